@@ -1,0 +1,58 @@
+//! The run-time error of every solver (SPEC section 5).
+
+/// Why a computation could not give a trustworthy answer.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MechError {
+    /// The input value has no real configuration (e.g. a four-bar driven past its limit).
+    #[error("no assembly: the mechanism cannot be assembled at this input value")]
+    NoAssembly,
+    /// A dead point or toggle position: a linear system is singular to working accuracy.
+    #[error("singular configuration (dead point): condition estimate {condition:.3e}")]
+    Singular {
+        /// Estimate of the condition number of the offending system (dimensionless).
+        condition: f64,
+    },
+    /// A NaN or infinite input, or a parameter out of its domain.
+    #[error("invalid input: {0}")]
+    InvalidInput(String),
+    /// Redundant constraints: reactions are indeterminate, or the drawing is redundant.
+    #[error("redundant constraints: {0}")]
+    Redundant(String),
+    /// Friction locks the mechanism: the driver cannot move it.
+    #[error("self-locking: {0}")]
+    SelfLocking(String),
+    /// Flywheel: the net work over one cycle is not zero (J).
+    #[error("not periodic: net work over the cycle is {net_work:.6e} J; balance it with a constant resisting torque")]
+    NotPeriodic {
+        /// Net work of M* over one cycle, J.
+        net_work: f64,
+    },
+    /// Non-positive reduced inertia I* (kg·m²).
+    #[error("non-positive reduced inertia I* = {0:.6e} kg·m²")]
+    NonPositiveInertia(f64),
+    /// The energy method reached ω = 0: the machine stalls before the requested position.
+    #[error("stall: the speed reaches zero at q = {q:.6} rad")]
+    Stall {
+        /// Where the speed vanished, rad.
+        q: f64,
+    },
+    /// An adaptive integrator needed a step smaller than it can represent.
+    #[error("step size underflow at t = {t:.6e} s")]
+    StepUnderflow {
+        /// Time reached, s.
+        t: f64,
+    },
+    /// A mechanism description was rejected (run-time loader); the messages of every check.
+    #[error("invalid mechanism:\n{0}")]
+    Invalid(String),
+}
+
+/// `InvalidInput` unless every value is finite.
+#[inline]
+pub fn check_finite(what: &str, values: &[f64]) -> Result<(), MechError> {
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(MechError::InvalidInput(format!("{what} must be finite, got {values:?}")))
+    }
+}

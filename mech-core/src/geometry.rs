@@ -1,0 +1,74 @@
+//! From the drawing to the local geometry the solvers use: link anchors, joint local
+//! vectors, sliding axes, the constraint list, the drawing's states.
+
+use crate::kinematics::{Con, ConKind, JointGeom, LinkState, V2};
+use crate::model::{JointKind, Model};
+
+/// The reference anchor of link `l` (m): its first point, else its cg; the origin for the ground.
+pub fn anchor(model: &Model, l: usize) -> V2 {
+    if l == 0 {
+        return V2::zeros();
+    }
+    let link = &model.links[l];
+    let p = link.points.first().map(|&p| model.points[p].pos).unwrap_or(link.cg);
+    V2::new(p[0], p[1])
+}
+
+/// Local vector in link `l` of a global reference position `p`.
+pub fn local(model: &Model, l: usize, p: [f64; 2]) -> V2 {
+    V2::new(p[0], p[1]) - anchor(model, l)
+}
+
+/// The local geometry of joint `j`.
+pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
+    let jt = &model.joints[j];
+    let p = model.points[jt.point].pos;
+    let ax = V2::new(jt.axis[0], jt.axis[1]);
+    let n = ax.norm();
+    JointGeom {
+        a: jt.a,
+        b: jt.b,
+        da: local(model, jt.a, p),
+        db: local(model, jt.b, p),
+        axis: if n > 0.0 { ax / n } else { V2::zeros() },
+        q_ref: match jt.kind {
+            JointKind::Revolute => model.reference_angle(jt.b) - model.reference_angle(jt.a),
+            _ => 0.0,
+        },
+    }
+}
+
+/// Every joint's geometry, in joint order.
+pub fn joint_geoms(model: &Model) -> Vec<JointGeom> {
+    (0..model.joints.len()).map(|j| joint_geom(model, j)).collect()
+}
+
+/// The constraints a joint imposes: its own kind, plus a driver row when it is input `k`.
+pub fn joint_cons(model: &Model, j: usize) -> Vec<Con> {
+    let kind = model.joints[j].kind;
+    let mut out = vec![Con {
+        joint: j,
+        kind: match kind {
+            JointKind::Revolute => ConKind::Revolute,
+            JointKind::Prismatic => ConKind::Prismatic,
+            JointKind::PinInSlot => ConKind::Slot,
+        },
+    }];
+    if let Some(k) = model.inputs.iter().position(|&i| i == j) {
+        out.push(Con {
+            joint: j,
+            kind: if kind == JointKind::Revolute { ConKind::DriveRevolute(k) } else { ConKind::DrivePrismatic(k) },
+        });
+    }
+    out
+}
+
+/// Every constraint of the mechanism (joints, then their drivers), in joint order.
+pub fn all_cons(model: &Model) -> Vec<Con> {
+    (0..model.joints.len()).flat_map(|j| joint_cons(model, j)).collect()
+}
+
+/// The links' states in the drawing (at rest).
+pub fn drawing_states(model: &Model) -> Vec<LinkState> {
+    (0..model.links.len()).map(|l| LinkState::at(anchor(model, l))).collect()
+}

@@ -1,0 +1,17 @@
+//! mech-core: the run-time half of `mech`.
+//!
+//! The pipeline of the `mechanism!` macro, visible in the module names:
+//! [`dsl`] (parse) → [`model`] (plain data) → [`resolve`] and [`validate`] (the checks of
+//! SPEC section 4: [`grubler`], [`assur`]) → [`plan`] (Assur groups, solve order) → emit
+//! (in `mech-macros`). The generated code calls the kernels of [`kinematics`] and
+//! [`kinetostatics`]; the run-time generic solver reuses the same model and validation.
+
+pub mod dsl;
+pub mod error;
+pub mod geometry;
+pub mod kinematics;
+pub mod model;
+pub mod resolve;
+
+pub use error::MechError;
+pub use nalgebra::Vector2;

@@ -1,0 +1,327 @@
+//! The plain-data description of a mechanism, shared by the `mechanism!` macro and the
+//! run-time loader.
+//!
+//! Two layers:
+//! - [`Description`]: what the user wrote, names unresolved, each item carrying the source
+//!   location `S` of its tokens (a `proc_macro2::Span` in the macro, a line/column in text);
+//! - [`Model`]: the resolved mechanism, every reference an index, ready for validation,
+//!   planning and solving. Index 0 of [`Model::links`] is the ground.
+//!
+//! Units are SI throughout (m, kg, kg·m², N, N·m, rad, s).
+
+/// A named item as written, with the location of its name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Name<S> {
+    /// The identifier.
+    pub text: String,
+    /// Where it was written.
+    pub span: S,
+}
+
+/// A numeric literal as written, with its location.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Num<S> {
+    /// The value.
+    pub value: f64,
+    /// Where it was written.
+    pub span: S,
+}
+
+/// A pair of numeric literals `(x, y)` as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pair<S> {
+    /// The value, `[x, y]`.
+    pub value: [f64; 2],
+    /// Where it was written.
+    pub span: S,
+}
+
+/// A point mentioned in a `points { ... }` list: either defined here (`A: (x, y)`) or reused (`A`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointRef<S> {
+    /// The point's name.
+    pub name: Name<S>,
+    /// `Some` when this mention defines the point's reference coordinates.
+    pub at: Option<Pair<S>>,
+}
+
+/// A `link NAME { ... }` block (or the `ground { ... }` block) as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinkDecl<S> {
+    /// The link's name (`ground` for the ground block).
+    pub name: Name<S>,
+    /// Its points in order; the first two define the link angle.
+    pub points: Vec<PointRef<S>>,
+    /// `mass: m` (kg); `None` = massless.
+    pub mass: Option<Num<S>>,
+    /// `inertia: I` about the cg (kg·m²); `None` = 0.
+    pub inertia: Option<Num<S>>,
+    /// `cg: (x, y)` in the drawing (m).
+    pub cg: Option<Pair<S>>,
+}
+
+/// The kind of a joint as written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// Pin: removes 2 DOF (lower pair).
+    Revolute,
+    /// Slider: removes 2 DOF (lower pair); axis fixed in `a`.
+    Prismatic,
+    /// Pin in a straight slot of `a`: removes 1 DOF (higher pair).
+    PinInSlot,
+}
+
+impl JointKind {
+    /// DOF removed by the joint in the plane (its number of reaction components).
+    pub const fn removed(self) -> usize {
+        match self {
+            JointKind::Revolute | JointKind::Prismatic => 2,
+            JointKind::PinInSlot => 1,
+        }
+    }
+    /// The keyword of the DSL.
+    pub const fn keyword(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "revolute",
+            JointKind::Prismatic => "prismatic",
+            JointKind::PinInSlot => "pin_in_slot",
+        }
+    }
+}
+
+/// A joint as written: `NAME: kind(a, b) [at P] [along (ux, uy)]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointDecl<S> {
+    /// The joint's name.
+    pub name: Name<S>,
+    /// Its kind, with the span of the keyword.
+    pub kind: JointKind,
+    /// Span of the whole joint declaration (the keyword).
+    pub kind_span: S,
+    /// First link (the guide or slot for sliding joints).
+    pub a: Name<S>,
+    /// Second link (the slider or the pin's link).
+    pub b: Name<S>,
+    /// `at P`; `None` = the point named like the joint.
+    pub at: Option<Name<S>>,
+    /// `along (ux, uy)`: the sliding axis (sliding joints only).
+    pub along: Option<Pair<S>>,
+}
+
+/// What a load is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoadDeclKind<S> {
+    /// `force on LINK at POINT`: a global force vector (N) applied at a point.
+    Force {
+        /// The link it acts on.
+        link: Name<S>,
+        /// The point of that link it is applied at.
+        point: Name<S>,
+    },
+    /// `torque on LINK`: a pure moment (N·m, CCW positive).
+    Torque {
+        /// The link it acts on.
+        link: Name<S>,
+    },
+}
+
+/// A load as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadDecl<S> {
+    /// The load's name (the field of the `Loads` struct).
+    pub name: Name<S>,
+    /// Force or torque.
+    pub kind: LoadDeclKind<S>,
+}
+
+/// A whole `mechanism! { ... }` body as written, names unresolved.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Description<S> {
+    /// Doc comment lines.
+    pub docs: Vec<String>,
+    /// The struct's name.
+    pub name: Name<S>,
+    /// `#[allow(redundant)]` was given.
+    pub allow_redundant: bool,
+    /// `gravity: (gx, gy)` (m/s²).
+    pub gravity: Option<Pair<S>>,
+    /// The ground block.
+    pub ground: LinkDecl<S>,
+    /// The moving links, in order.
+    pub links: Vec<LinkDecl<S>>,
+    /// The joints, in order.
+    pub joints: Vec<JointDecl<S>>,
+    /// The inputs (driven joints), in order.
+    pub inputs: Vec<Name<S>>,
+    /// Span of the `input`/`inputs` keyword (whole-mechanism errors point here).
+    pub inputs_span: S,
+    /// The loads, in order.
+    pub loads: Vec<LoadDecl<S>>,
+}
+
+// ---------------------------------------------------------------------------------------
+// Resolved model
+// ---------------------------------------------------------------------------------------
+
+/// A point of the drawing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Point {
+    /// Name.
+    pub name: String,
+    /// Reference (drawing) coordinates, m.
+    pub pos: [f64; 2],
+}
+
+/// A rigid link (index 0 = ground).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Link {
+    /// Name.
+    pub name: String,
+    /// Indices into [`Model::points`]; the first two define the link angle.
+    pub points: Vec<usize>,
+    /// Mass, kg; `None` = massless (no inertia terms at all).
+    pub mass: Option<f64>,
+    /// Moment of inertia about the cg, kg·m².
+    pub inertia: f64,
+    /// Centre of gravity in the drawing, m.
+    pub cg: [f64; 2],
+}
+
+impl Link {
+    /// True when the link carries mass or inertia.
+    pub fn has_inertia(&self) -> bool {
+        self.mass.is_some_and(|m| m != 0.0) || self.inertia != 0.0
+    }
+}
+
+/// A resolved joint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joint {
+    /// Name.
+    pub name: String,
+    /// Kind.
+    pub kind: JointKind,
+    /// First link (guide / slot for sliding joints).
+    pub a: usize,
+    /// Second link (slider / pin).
+    pub b: usize,
+    /// The joint point (a point of `b`).
+    pub point: usize,
+    /// Sliding axis in reference global coordinates (not normalised); `[0, 0]` for a revolute.
+    pub axis: [f64; 2],
+}
+
+/// A resolved load.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Load {
+    /// A force (N, global vector) on `link` at `point`.
+    Force {
+        /// Name.
+        name: String,
+        /// Link index.
+        link: usize,
+        /// Point index.
+        point: usize,
+    },
+    /// A torque (N·m, CCW) on `link`.
+    Torque {
+        /// Name.
+        name: String,
+        /// Link index.
+        link: usize,
+    },
+}
+
+impl Load {
+    /// The load's name.
+    pub fn name(&self) -> &str {
+        match self {
+            Load::Force { name, .. } | Load::Torque { name, .. } => name,
+        }
+    }
+    /// The link it acts on.
+    pub fn link(&self) -> usize {
+        match self {
+            Load::Force { link, .. } | Load::Torque { link, .. } => *link,
+        }
+    }
+}
+
+/// A resolved mechanism: plain data, indices only.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model {
+    /// The struct's name.
+    pub name: String,
+    /// Gravity (m/s²), `None` = no gravity terms.
+    pub gravity: Option<[f64; 2]>,
+    /// Redundant constraints accepted.
+    pub allow_redundant: bool,
+    /// Points.
+    pub points: Vec<Point>,
+    /// Links; index 0 is the ground.
+    pub links: Vec<Link>,
+    /// Joints.
+    pub joints: Vec<Joint>,
+    /// Driven joints (indices into `joints`).
+    pub inputs: Vec<usize>,
+    /// Loads.
+    pub loads: Vec<Load>,
+}
+
+impl Model {
+    /// N: the number of links, ground included.
+    pub fn n_links(&self) -> usize {
+        self.links.len()
+    }
+    /// P_I: lower pairs (revolute and prismatic joints).
+    pub fn lower_pairs(&self) -> usize {
+        self.joints.iter().filter(|j| j.kind != JointKind::PinInSlot).count()
+    }
+    /// P_II: higher pairs (pins in slots).
+    pub fn higher_pairs(&self) -> usize {
+        self.joints.iter().filter(|j| j.kind == JointKind::PinInSlot).count()
+    }
+    /// The index of the link named `name`.
+    pub fn link_index(&self, name: &str) -> Option<usize> {
+        self.links.iter().position(|l| l.name == name)
+    }
+    /// The index of the joint named `name`.
+    pub fn joint_index(&self, name: &str) -> Option<usize> {
+        self.joints.iter().position(|j| j.name == name)
+    }
+    /// The index of the point named `name`.
+    pub fn point_index(&self, name: &str) -> Option<usize> {
+        self.points.iter().position(|p| p.name == name)
+    }
+    /// Reference link angle θ (rad): atan2 of first → second point; 0 for a link with
+    /// fewer than two points.
+    pub fn reference_angle(&self, link: usize) -> f64 {
+        let l = &self.links[link];
+        if l.points.len() < 2 {
+            return 0.0;
+        }
+        let p0 = self.points[l.points[0]].pos;
+        let p1 = self.points[l.points[1]].pos;
+        (p1[1] - p0[1]).atan2(p1[0] - p0[0])
+    }
+    /// The reference value of input `k`'s coordinate: θ_b − θ_a for a revolute driver,
+    /// 0 for a prismatic driver.
+    pub fn reference_input(&self, k: usize) -> f64 {
+        let j = &self.joints[self.inputs[k]];
+        match j.kind {
+            JointKind::Revolute => self.reference_angle(j.b) - self.reference_angle(j.a),
+            _ => 0.0,
+        }
+    }
+    /// A length scale of the drawing (m): the largest distance between two points, at
+    /// least 1e-300. Tolerances of the numeric checks are relative to it.
+    pub fn scale(&self) -> f64 {
+        let mut s: f64 = 0.0;
+        for p in &self.points {
+            for r in &self.points {
+                s = s.max(((p.pos[0] - r.pos[0]).powi(2) + (p.pos[1] - r.pos[1]).powi(2)).sqrt());
+            }
+        }
+        s.max(1e-300)
+    }
+}

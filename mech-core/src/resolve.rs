@@ -1,0 +1,426 @@
+//! Name resolution (SPEC section 4, check 1): turns a [`Description`] into a [`Model`],
+//! collecting every naming mistake at once.
+
+use crate::model::*;
+use std::collections::HashMap;
+
+/// A message located at one or more places of the source. The first span is the culprit;
+/// the others are the declarations involved.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnostic<S> {
+    /// Where to point.
+    pub spans: Vec<S>,
+    /// What is wrong, the numbers, and how to fix it.
+    pub message: String,
+}
+
+impl<S> Diagnostic<S> {
+    /// A diagnostic at one place.
+    pub fn at(span: S, message: impl Into<String>) -> Self {
+        Diagnostic { spans: vec![span], message: message.into() }
+    }
+}
+
+/// A model item a check blames; mapped back to a span by [`Description::locate`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Culprit {
+    /// The struct as a whole.
+    Mechanism,
+    /// Link `i` of the model (0 = ground).
+    Link(usize),
+    /// The `mass` of link `i`.
+    Mass(usize),
+    /// The `inertia` of link `i`.
+    Inertia(usize),
+    /// The `cg` of link `i`.
+    Cg(usize),
+    /// Joint `i`.
+    Joint(usize),
+    /// The `along` axis of joint `i`.
+    Axis(usize),
+    /// Point `i` (its definition).
+    Point(usize),
+    /// The `input`/`inputs` declaration.
+    Inputs,
+    /// The gravity vector.
+    Gravity,
+}
+
+/// A problem found by a check on a resolved [`Model`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Issue {
+    /// The items involved, culprit first.
+    pub culprits: Vec<Culprit>,
+    /// The message.
+    pub message: String,
+}
+
+impl<S: Clone> Description<S> {
+    fn link_decl(&self, i: usize) -> &LinkDecl<S> {
+        if i == 0 {
+            &self.ground
+        } else {
+            &self.links[i - 1]
+        }
+    }
+
+    /// The source location of a model item.
+    pub fn locate(&self, model: &Model, c: Culprit) -> S {
+        match c {
+            Culprit::Mechanism => self.name.span.clone(),
+            Culprit::Link(i) => self.link_decl(i).name.span.clone(),
+            Culprit::Mass(i) => {
+                let l = self.link_decl(i);
+                l.mass.as_ref().map(|m| m.span.clone()).unwrap_or_else(|| l.name.span.clone())
+            }
+            Culprit::Inertia(i) => {
+                let l = self.link_decl(i);
+                l.inertia.as_ref().map(|m| m.span.clone()).unwrap_or_else(|| l.name.span.clone())
+            }
+            Culprit::Cg(i) => {
+                let l = self.link_decl(i);
+                l.cg.as_ref().map(|m| m.span.clone()).unwrap_or_else(|| l.name.span.clone())
+            }
+            Culprit::Joint(i) => self.joints[i].name.span.clone(),
+            Culprit::Axis(i) => {
+                let j = &self.joints[i];
+                j.along.as_ref().map(|a| a.span.clone()).unwrap_or_else(|| j.kind_span.clone())
+            }
+            Culprit::Point(i) => {
+                let n = &model.points[i].name;
+                std::iter::once(&self.ground)
+                    .chain(self.links.iter())
+                    .flat_map(|l| l.points.iter())
+                    .find(|p| &p.name.text == n && p.at.is_some())
+                    .map(|p| p.name.span.clone())
+                    .unwrap_or_else(|| self.name.span.clone())
+            }
+            Culprit::Inputs => self.inputs_span.clone(),
+            Culprit::Gravity => self.gravity.as_ref().map(|g| g.span.clone()).unwrap_or_else(|| self.name.span.clone()),
+        }
+    }
+
+    /// An [`Issue`] located in this description.
+    pub fn diagnostic(&self, model: &Model, issue: &Issue) -> Diagnostic<S> {
+        let mut spans: Vec<S> = issue.culprits.iter().map(|&c| self.locate(model, c)).collect();
+        if spans.is_empty() {
+            spans.push(self.name.span.clone());
+        }
+        Diagnostic { spans, message: issue.message.clone() }
+    }
+}
+
+fn dup_check<'a, S: Clone + 'a>(
+    what: &str,
+    names: impl Iterator<Item = &'a Name<S>>,
+    errs: &mut Vec<Diagnostic<S>>,
+) {
+    let mut seen: HashMap<&str, ()> = HashMap::new();
+    for n in names {
+        if seen.insert(n.text.as_str(), ()).is_some() {
+            errs.push(Diagnostic::at(
+                n.span.clone(),
+                format!("duplicate {what} `{}`: every {what} needs its own name", n.text),
+            ));
+        }
+    }
+}
+
+fn list(names: &[&str]) -> String {
+    if names.is_empty() {
+        return "(none)".into();
+    }
+    names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+}
+
+/// Resolve names; on success the model's links, joints and loads are in declaration
+/// order (ground first), points in order of definition.
+pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>> {
+    let mut errs = Vec::new();
+    let decls: Vec<&LinkDecl<S>> = std::iter::once(&d.ground).chain(d.links.iter()).collect();
+
+    dup_check("link", decls.iter().map(|l| &l.name), &mut errs);
+    dup_check("joint", d.joints.iter().map(|j| &j.name), &mut errs);
+    dup_check("load", d.loads.iter().map(|l| &l.name), &mut errs);
+    dup_check("input", d.inputs.iter(), &mut errs);
+
+    // Points: defined once, reused by name.
+    let mut points: Vec<Point> = Vec::new();
+    let mut point_ix: HashMap<String, usize> = HashMap::new();
+    for l in &decls {
+        for p in &l.points {
+            if let Some(at) = &p.at {
+                if point_ix.contains_key(&p.name.text) {
+                    errs.push(Diagnostic::at(
+                        p.name.span.clone(),
+                        format!(
+                            "point `{}` is defined twice: give its coordinates once and reuse it by name elsewhere (`{}` alone)",
+                            p.name.text, p.name.text
+                        ),
+                    ));
+                } else {
+                    point_ix.insert(p.name.text.clone(), points.len());
+                    points.push(Point { name: p.name.text.clone(), pos: at.value });
+                }
+            }
+        }
+    }
+    let mut links = Vec::new();
+    for l in &decls {
+        let mut pts = Vec::new();
+        for p in &l.points {
+            match point_ix.get(&p.name.text) {
+                Some(&i) => {
+                    if pts.contains(&i) {
+                        errs.push(Diagnostic::at(
+                            p.name.span.clone(),
+                            format!("point `{}` is listed twice in link `{}`", p.name.text, l.name.text),
+                        ));
+                    } else {
+                        pts.push(i)
+                    }
+                }
+                None => errs.push(Diagnostic::at(
+                    p.name.span.clone(),
+                    format!(
+                        "unknown point `{}`: no link defines it; define it once with its coordinates, e.g. `{}: (0.1, 0.2)`",
+                        p.name.text, p.name.text
+                    ),
+                )),
+            }
+        }
+        if let (Some(m), None) = (&l.mass, &l.cg) {
+            errs.push(Diagnostic::at(
+                m.span.clone(),
+                format!("link `{}` has a mass but no `cg`: add `cg: (x, y)`, its centre of gravity in the drawing", l.name.text),
+            ));
+        }
+        links.push(Link {
+            name: l.name.text.clone(),
+            points: pts,
+            mass: l.mass.as_ref().map(|m| m.value),
+            inertia: l.inertia.as_ref().map(|m| m.value).unwrap_or(0.0),
+            cg: l.cg.as_ref().map(|c| c.value).unwrap_or_else(|| {
+                l.points.iter().find_map(|p| point_ix.get(&p.name.text)).map(|&i| points[i].pos).unwrap_or([0.0, 0.0])
+            }),
+        });
+    }
+    let link_names: Vec<&str> = links.iter().map(|l| l.name.as_str()).collect();
+    let find_link = |n: &Name<S>, errs: &mut Vec<Diagnostic<S>>| -> Option<usize> {
+        let r = links.iter().position(|l| l.name == n.text);
+        if r.is_none() {
+            errs.push(Diagnostic::at(
+                n.span.clone(),
+                format!("unknown link `{}`: the links are {}", n.text, list(&link_names)),
+            ));
+        }
+        r
+    };
+
+    // Joints.
+    let mut joints = Vec::new();
+    let mut reached = vec![false; links.len()];
+    reached[0] = true;
+    for j in &d.joints {
+        let a = find_link(&j.a, &mut errs);
+        let b = find_link(&j.b, &mut errs);
+        let pname = j.at.as_ref().unwrap_or(&j.name);
+        let point = point_ix.get(&pname.text).copied();
+        if point.is_none() {
+            let how = if j.at.is_none() {
+                format!("joint `{}` has no `at POINT`, so it is placed at the point of the same name, and there is no point `{}`; add `at P`", j.name.text, pname.text)
+            } else {
+                format!("unknown point `{}` in joint `{}`", pname.text, j.name.text)
+            };
+            errs.push(Diagnostic::at(pname.span.clone(), how));
+        }
+        if let (Some(a), Some(b)) = (a, b) {
+            if a == b {
+                errs.push(Diagnostic::at(
+                    j.b.span.clone(),
+                    format!("joint `{}` joins link `{}` with itself: a joint needs two different links", j.name.text, links[a].name),
+                ));
+            } else {
+                reached[a] = true;
+                reached[b] = true;
+            }
+        }
+        let axis = match (j.kind, &j.along) {
+            (JointKind::Revolute, Some(al)) => {
+                errs.push(Diagnostic::at(al.span.clone(), format!("revolute joint `{}` takes no `along` axis", j.name.text)));
+                [0.0, 0.0]
+            }
+            (JointKind::Revolute, None) => [0.0, 0.0],
+            (_, Some(al)) => al.value,
+            (k, None) => {
+                errs.push(Diagnostic::at(
+                    j.kind_span.clone(),
+                    format!("{} joint `{}` needs its sliding axis: add `along (ux, uy)`", k.keyword(), j.name.text),
+                ));
+                [1.0, 0.0]
+            }
+        };
+        if let (Some(a), Some(b), Some(p)) = (a, b, point) {
+            let pn = &points[p].name;
+            match j.kind {
+                JointKind::Revolute => {
+                    for (l, side) in [(a, &j.a), (b, &j.b)] {
+                        if !links[l].points.contains(&p) {
+                            errs.push(Diagnostic::at(
+                                side.span.clone(),
+                                format!(
+                                    "revolute joint `{}` is at point `{pn}`, which link `{}` does not have; list `{pn}` among the points of `{}`",
+                                    j.name.text, links[l].name, links[l].name
+                                ),
+                            ));
+                        }
+                    }
+                }
+                JointKind::Prismatic | JointKind::PinInSlot => {
+                    if !links[b].points.contains(&p) {
+                        errs.push(Diagnostic::at(
+                            j.b.span.clone(),
+                            format!(
+                                "{} joint `{}` is at point `{pn}`, which must be a point of `{}` (the slider or pin); list it among `{}`'s points",
+                                j.kind.keyword(), j.name.text, links[b].name, links[b].name
+                            ),
+                        ));
+                    }
+                    if links[a].points.contains(&p) {
+                        errs.push(Diagnostic::at(
+                            j.a.span.clone(),
+                            format!(
+                                "{} joint `{}`: point `{pn}` belongs to the slider `{}` and must not be listed among the points of the guide `{}` (the guide is given by the axis alone)",
+                                j.kind.keyword(), j.name.text, links[b].name, links[a].name
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        joints.push(Joint {
+            name: j.name.text.clone(),
+            kind: j.kind,
+            a: a.unwrap_or(0),
+            b: b.unwrap_or(0),
+            point: point.unwrap_or(0),
+            axis,
+        });
+    }
+    for (i, l) in decls.iter().enumerate() {
+        if !reached[i] {
+            errs.push(Diagnostic::at(
+                l.name.span.clone(),
+                format!("link `{}` is not reached by any joint: connect it with a joint or remove it", l.name.text),
+            ));
+        }
+    }
+
+    // Shared points must be pinned by a revolute joint.
+    for (pi, p) in points.iter().enumerate() {
+        let owners: Vec<usize> = (0..links.len()).filter(|&l| links[l].points.contains(&pi)).collect();
+        for w in 1..owners.len() {
+            for v in 0..w {
+                let (l1, l2) = (owners[v], owners[w]);
+                let pinned = joints.iter().any(|j| {
+                    j.kind == JointKind::Revolute && j.point == pi && ((j.a == l1 && j.b == l2) || (j.a == l2 && j.b == l1))
+                });
+                // Links pinned through a third at the same point (a ternary pin) are fine.
+                let via_third = owners.iter().any(|&l3| {
+                    l3 != l1
+                        && l3 != l2
+                        && [l1, l2].iter().all(|&lx| {
+                            joints.iter().any(|j| {
+                                j.kind == JointKind::Revolute && j.point == pi && ((j.a == lx && j.b == l3) || (j.a == l3 && j.b == lx))
+                            })
+                        })
+                });
+                if !pinned && !via_third {
+                    let span = decls[l2]
+                        .points
+                        .iter()
+                        .find(|r| r.name.text == p.name)
+                        .map(|r| r.name.span.clone())
+                        .unwrap_or_else(|| decls[l2].name.span.clone());
+                    errs.push(Diagnostic::at(
+                        span,
+                        format!(
+                            "point `{}` is shared by links `{}` and `{}` but no revolute joint pins them there; a shared point is a pin: add `{}: revolute({}, {})`, or give one link its own point",
+                            p.name, links[l1].name, links[l2].name, p.name, links[l1].name, links[l2].name
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+
+    // Inputs.
+    let joint_names: Vec<&str> = d.joints.iter().map(|j| j.name.text.as_str()).collect();
+    let mut inputs = Vec::new();
+    for i in &d.inputs {
+        match d.joints.iter().position(|j| j.name.text == i.text) {
+            None => errs.push(Diagnostic::at(
+                i.span.clone(),
+                format!("unknown joint `{}` as input: the joints are {}", i.text, list(&joint_names)),
+            )),
+            Some(k) => {
+                if d.joints[k].kind == JointKind::PinInSlot {
+                    errs.push(Diagnostic::at(
+                        i.span.clone(),
+                        format!(
+                            "input `{}` is a pin_in_slot joint, which cannot be driven: an input must be a revolute joint (a motor torque) or a prismatic joint (an actuator force)",
+                            i.text
+                        ),
+                    ));
+                }
+                inputs.push(k);
+            }
+        }
+    }
+
+    // Loads.
+    let mut loads = Vec::new();
+    for l in &d.loads {
+        match &l.kind {
+            LoadDeclKind::Torque { link } => {
+                if let Some(li) = find_link(link, &mut errs) {
+                    loads.push(Load::Torque { name: l.name.text.clone(), link: li });
+                }
+            }
+            LoadDeclKind::Force { link, point } => {
+                let li = find_link(link, &mut errs);
+                let pi = point_ix.get(&point.text).copied();
+                match (li, pi) {
+                    (Some(li), Some(pi)) if links[li].points.contains(&pi) => {
+                        loads.push(Load::Force { name: l.name.text.clone(), link: li, point: pi })
+                    }
+                    (Some(li), _) => {
+                        let names: Vec<&str> = links[li].points.iter().map(|&p| points[p].name.as_str()).collect();
+                        errs.push(Diagnostic::at(
+                            point.span.clone(),
+                            format!(
+                                "load `{}` acts at point `{}`, which link `{}` does not have; its points are {}",
+                                l.name.text, point.text, links[li].name, list(&names)
+                            ),
+                        ))
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+
+    if !errs.is_empty() {
+        return Err(errs);
+    }
+    Ok(Model {
+        name: d.name.text.clone(),
+        gravity: d.gravity.as_ref().map(|g| g.value),
+        allow_redundant: d.allow_redundant,
+        points,
+        links,
+        joints,
+        inputs,
+        loads,
+    })
+}
