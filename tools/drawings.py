@@ -399,7 +399,7 @@ def mechanisms():
     O5 = d.point("O5", P("0.20", "0"), ground=True)
     A = d.point("A", polar(O1, "0.10", deg(110)))
     B = d.point("B", polar(O5, "0.11", deg(65)))
-    C = d.point("C", circles(A, "0.24", B, "0.22", left=False))
+    C = d.point("C", circles(A, "0.24", B, "0.22", left=True))
     d.link("crank1", ["O1", "A"], "0.55", "0.0006", local(O1, A, "0.045", "0.005"))
     d.link("link2", ["A", "C"], "0.8", "0.0042", local(A, C, "0.11", "-0.006"))
     d.link("link3", ["B", "C"], "0.75", "0.0034", local(B, C, "0.1", "0.005"))
@@ -414,7 +414,7 @@ def mechanisms():
     d.torque("twist", "link3")
     d.design.update(reference_crank1_angle_deg=110, reference_crank4_angle_deg=65, crank1="0.10",
                     link2_AC="0.24", link3_BC="0.22", crank4="0.11", O5="(0.20, 0)",
-                    assembly="C right of A->B (above the ground)")
+                    assembly="C left of A->B (above the cranks)")
     q1r = 110 * math.pi / 180
     q2r = 65 * math.pi / 180
     offs = [(0.11, -0.07), (-0.23, 0.14), (0.31, 0.22), (-0.35, -0.18), (0.05, 0.33), (-0.12, -0.31),

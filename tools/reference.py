@@ -554,7 +554,7 @@ class Mechanism:
             worst = max(worst, max(abs(v) for v in res))
         return worst
 
-    def finite_difference_check(self, x, q, h=mpf("1e-12")):
+    def finite_difference_check(self, x, q, h=mpf("1e-15")):
         """FD of positions vs velocity fields and of the velocity fields vs
         the acceleration analysis (qd = e_k, qdd = 0), and of I* vs dI*/dq"""
         out = {}
@@ -641,8 +641,9 @@ def fmt(v):
         return "true" if v else "false"
     if isinstance(v, int):
         return str(v)
-    if isinstance(v, (mpmath.mpf, float)):
-        v = mpf(v) if not isinstance(v, mpmath.mpf) else v
+    if isinstance(v, float):  # diagnostics (verification): plain double
+        return repr(v)
+    if isinstance(v, mpmath.mpf):
         if abs(v) < CHOP:
             return "0"
         s = mpmath.nstr(v, DIGITS_OUT)
