@@ -1,1 +1,55 @@
-pub fn x(){}
+//! # mech — dynamics of planar machines
+//!
+//! Describe a linkage once with [`mechanism!`]; at compile time the macro checks its
+//! structure (Grübler's count, over-constrained sub-chains, the rank of the constraint
+//! Jacobian at the drawing, input determinacy) and generates a struct with solvers
+//! specialised to that topology and free of heap allocation: `pose`, `kinematics`,
+//! `kinetostatics` (every reaction, d'Alembert), `driver_action` (virtual power), and for
+//! one DOF `reduced` (Zhukovski's I*, dI*/dq), `reduced_moment` (M*) and `acceleration`.
+//!
+//! ```
+//! use mech::prelude::*;
+//!
+//! mechanism! {
+//!     /// A crank-rocker four-bar.
+//!     pub struct FourBar {
+//!         ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
+//!         link crank { points { O2, A: (0.0, 0.1) }, mass: 0.5, inertia: 1e-3, cg: (0.0, 0.05) },
+//!         link coupler { points { A, B: (0.25, 0.25) }, mass: 1.0, inertia: 5e-3, cg: (0.12, 0.17) },
+//!         link rocker { points { O4, B }, mass: 0.8, inertia: 3e-3, cg: (0.28, 0.12) },
+//!         joints {
+//!             O2: revolute(ground, crank),
+//!             A: revolute(crank, coupler),
+//!             B: revolute(coupler, rocker),
+//!             O4: revolute(ground, rocker),
+//!         },
+//!         input: O2,
+//!     }
+//! }
+//!
+//! let m = FourBar::new();
+//! assert_eq!(FourBar::DOF, 1);
+//! let motion = m.kinematics(1.0, 10.0, 0.0).unwrap();
+//! let forces = m.kinetostatics(&motion, &FourBarLoads::default()).unwrap();
+//! let virtual_power = m.driver_action(&motion, &FourBarLoads::default()).unwrap();
+//! assert!((forces.driver - virtual_power).abs() < 1e-9 * forces.driver.abs().max(1.0));
+//! ```
+
+pub use mech_core::*;
+pub use mech_macros::mechanism;
+
+/// The paths the generated code uses. Not part of the public API.
+#[doc(hidden)]
+pub mod __private {
+    pub use mech_core::*;
+}
+
+/// Everything a user of a generated struct needs.
+pub mod prelude {
+    pub use crate::mechanism;
+    pub use mech_core::kinematics::{LinkMotion, LinkPose, PointMotion, PointPose};
+    pub use mech_core::kinetostatics::{PrismaticReaction, RevoluteReaction, SlotReaction};
+    pub use mech_core::zhukovski::Reduced;
+    pub use mech_core::MechError;
+    pub use mech_core::Vector2;
+}

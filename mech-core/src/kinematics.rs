@@ -632,3 +632,145 @@ pub fn branch(x: f64) -> f64 {
         1.0
     }
 }
+
+/// Solve one group up to `upto`: positions by its kernel ([`crate::assur::position`]),
+/// then, when asked, velocities and accelerations from its linear system. The group's
+/// links in `s` must be at the drawing (rest) on entry.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn group_solve<const N: usize>(
+    solver: crate::assur::Solver,
+    bodies: &[usize],
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    drive: Drive,
+    scale: f64,
+    sign: f64,
+    upto: Level,
+) -> Result<(), MechError> {
+    crate::assur::position::<N>(solver, bodies, cons, joints, s, drive, scale, sign)?;
+    if matches!(upto, Level::Velocity | Level::Acceleration) {
+        let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale)?;
+        group_velocity(&sys, bodies, cons, joints, s, drive);
+        if upto == Level::Acceleration {
+            group_acceleration(&sys, bodies, cons, joints, s, drive);
+        }
+    }
+    Ok(())
+}
+
+/// The reference data of one link the solvers need: anchor, reference direction,
+/// cg and inertia.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkGeom {
+    /// Reference anchor (m), see the module docs.
+    pub anchor: V2,
+    /// (cos θ_ref, sin θ_ref): the link angle in the drawing.
+    pub dir_ref: V2,
+    /// Local vector of the cg (m).
+    pub dcg: V2,
+    /// Mass (kg), 0 for massless.
+    pub mass: f64,
+    /// Moment of inertia about the cg (kg·m²).
+    pub inertia: f64,
+}
+
+/// Position, velocity and acceleration of a point (SPEC section 5), m, m/s, m/s².
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointMotion {
+    /// Position, m.
+    pub pos: V2,
+    /// Velocity, m/s.
+    pub vel: V2,
+    /// Acceleration, m/s².
+    pub acc: V2,
+}
+
+/// Position of a point, m.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointPose {
+    /// Position, m.
+    pub pos: V2,
+}
+
+/// Motion of a link (SPEC section 5): θ (rad, wrapped to (−π, π]), ω, α, and its cg's motion.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinkMotion {
+    /// Link angle θ, rad.
+    pub angle: f64,
+    /// ω, rad/s.
+    pub omega: f64,
+    /// α, rad/s².
+    pub alpha: f64,
+    /// cg position, m.
+    pub cg: V2,
+    /// cg velocity, m/s.
+    pub cg_vel: V2,
+    /// cg acceleration, m/s².
+    pub cg_acc: V2,
+}
+
+/// Pose of a link: θ (rad, wrapped to (−π, π]) and cg position (m).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinkPose {
+    /// Link angle θ, rad.
+    pub angle: f64,
+    /// cg position, m.
+    pub cg: V2,
+}
+
+impl LinkGeom {
+    /// The link angle θ = θ_ref + φ, wrapped to (−π, π].
+    #[inline]
+    pub fn angle(&self, s: &LinkState) -> f64 {
+        let d = rotate(s.rot, self.dir_ref);
+        d.y.atan2(d.x)
+    }
+    /// The link's pose.
+    #[inline]
+    pub fn pose(&self, s: &LinkState) -> LinkPose {
+        LinkPose { angle: self.angle(s), cg: s.point(self.dcg) }
+    }
+    /// The link's motion.
+    #[inline]
+    pub fn motion(&self, s: &LinkState) -> LinkMotion {
+        let r = s.r(self.dcg);
+        LinkMotion {
+            angle: self.angle(s),
+            omega: s.omega,
+            alpha: s.alpha,
+            cg: s.pos + r,
+            cg_vel: s.vel_at(r),
+            cg_acc: s.acc_at(r),
+        }
+    }
+}
+
+/// The motion of the material point of local vector `d` on a link.
+#[inline]
+pub fn point_motion(s: &LinkState, d: V2) -> PointMotion {
+    let r = s.r(d);
+    PointMotion { pos: s.pos + r, vel: s.vel_at(r), acc: s.acc_at(r) }
+}
+
+/// The position of the material point of local vector `d` on a link.
+#[inline]
+pub fn point_pose(s: &LinkState, d: V2) -> PointPose {
+    PointPose { pos: s.point(d) }
+}
+
+/// The velocity field of a group only (positions already in `s`, its velocities zero).
+#[inline]
+pub fn group_velocity_field<const N: usize>(
+    bodies: &[usize],
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    drive: Drive,
+    scale: f64,
+) -> Result<(), MechError> {
+    let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale)?;
+    group_velocity(&sys, bodies, cons, joints, s, drive);
+    Ok(())
+}

@@ -6,12 +6,19 @@
 //! (in `mech-macros`). The generated code calls the kernels of [`kinematics`] and
 //! [`kinetostatics`]; the run-time generic solver reuses the same model and validation.
 
+pub mod assur;
 pub mod dsl;
 pub mod error;
 pub mod geometry;
+pub mod grubler;
+pub mod instance;
 pub mod kinematics;
+pub mod kinetostatics;
 pub mod model;
+pub mod pebble;
 pub mod resolve;
+pub mod validate;
+pub mod zhukovski;
 
 pub use error::MechError;
 pub use nalgebra::Vector2;

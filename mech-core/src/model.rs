@@ -294,10 +294,10 @@ impl Model {
         self.points.iter().position(|p| p.name == name)
     }
     /// Reference link angle θ (rad): atan2 of first → second point; 0 for a link with
-    /// fewer than two points.
+    /// fewer than two points and for the ground (the fixed frame).
     pub fn reference_angle(&self, link: usize) -> f64 {
         let l = &self.links[link];
-        if l.points.len() < 2 {
+        if link == 0 || l.points.len() < 2 {
             return 0.0;
         }
         let p0 = self.points[l.points[0]].pos;

@@ -1,0 +1,428 @@
+//! Assur groups: the decomposition of a chain, with its inputs fixed, into the smallest
+//! sub-chains that can be solved one after the other (seed, section 2), and their
+//! position kernels — closed forms for the common groups, Newton for the rest.
+//!
+//! A group is a set of links whose constraints towards already-solved links and among
+//! themselves are exactly 3 × (its links) scalar equations. The plan is found at compile
+//! time by the macro (and at run time by the generic solver) with [`plan`]; the
+//! generated code then calls [`position`] once per group with constant arguments.
+
+use crate::geometry::joint_cons;
+use crate::kinematics::*;
+use crate::model::{JointKind, Model};
+use crate::MechError;
+
+/// How a group's positions are solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Solver {
+    /// One link, pinned by `joint` to a solved link and driven there by input `input`
+    /// (a crank): φ from q, position from the pin.
+    DrivenRevolute {
+        /// The link.
+        body: usize,
+        /// The revolute driver.
+        joint: usize,
+        /// The input index.
+        input: usize,
+    },
+    /// One link sliding along `joint` on a solved link, driven by input `input`.
+    DrivenPrismatic {
+        /// The link.
+        body: usize,
+        /// The prismatic driver.
+        joint: usize,
+        /// The input index.
+        input: usize,
+    },
+    /// RRR dyad: `b1` pinned to a solved link by `ja`, `b2` by `jb`, pinned together by
+    /// `jc`: intersection of two circles.
+    Rrr {
+        /// First link.
+        b1: usize,
+        /// Second link.
+        b2: usize,
+        /// Pin of b1 to a solved link.
+        ja: usize,
+        /// Pin between b1 and b2.
+        jc: usize,
+        /// Pin of b2 to a solved link.
+        jb: usize,
+    },
+    /// RRP dyad: `b1` pinned by `ja`, pinned to `b2` by `jc`, `b2` sliding on a solved link
+    /// by the prismatic `jp`: intersection of a circle and a line.
+    Rrp {
+        /// The pinned link.
+        b1: usize,
+        /// The slider.
+        b2: usize,
+        /// Pin of b1 to a solved link.
+        ja: usize,
+        /// Pin between b1 and b2.
+        jc: usize,
+        /// Prismatic of b2 on a solved link.
+        jp: usize,
+    },
+    /// RPR dyad: `b1` pinned by `ja`, `b2` pinned by `jb`, sliding on each other by the
+    /// prismatic `jp`: a tangent construction.
+    Rpr {
+        /// First link.
+        b1: usize,
+        /// Second link.
+        b2: usize,
+        /// Pin of b1 to a solved link.
+        ja: usize,
+        /// Prismatic between b1 and b2.
+        jp: usize,
+        /// Pin of b2 to a solved link.
+        jb: usize,
+    },
+    /// One link pinned by `ja` whose point slides in a slot of a solved link (`js`):
+    /// circle and line.
+    PinInFixedSlot {
+        /// The link.
+        body: usize,
+        /// Its pin to a solved link.
+        ja: usize,
+        /// The slot joint (slot in the solved link, pin of `body`).
+        js: usize,
+    },
+    /// One slotted link pinned by `ja`, with a solved link's pin in its slot (`js`): a
+    /// tangent construction.
+    SlottedLever {
+        /// The link.
+        body: usize,
+        /// Its pin to a solved link.
+        ja: usize,
+        /// The slot joint (slot in `body`, pin of a solved link).
+        js: usize,
+    },
+    /// No closed form: Newton–Raphson on the group's equations from the drawing.
+    Newton,
+}
+
+/// One group of the plan.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Group {
+    /// Its links, in column order.
+    pub bodies: Vec<usize>,
+    /// Its constraints, in row order.
+    pub cons: Vec<Con>,
+    /// The position kernel.
+    pub solver: Solver,
+}
+
+impl Group {
+    /// The number of scalar equations.
+    pub fn rows(&self) -> usize {
+        self.cons.iter().map(|c| c.kind.rows()).sum()
+    }
+    /// More equations than unknowns (accepted with `#[allow(redundant)]` only).
+    pub fn redundant(&self) -> bool {
+        self.rows() > 3 * self.bodies.len()
+    }
+}
+
+/// Decompose the mechanism into groups, in solve order. `Err` names the links that no
+/// group reaches (the chain is not determined by its inputs).
+pub fn plan(model: &Model) -> Result<Vec<Group>, Vec<usize>> {
+    let n = model.links.len();
+    let mut known = vec![false; n];
+    known[0] = true;
+    let mut groups = Vec::new();
+    let joints_between = |known: &[bool], set: &[usize]| -> Vec<usize> {
+        let inside = |l: usize| known[l] || set.contains(&l);
+        (0..model.joints.len())
+            .filter(|&j| {
+                let jt = &model.joints[j];
+                inside(jt.a) && inside(jt.b) && (set.contains(&jt.a) || set.contains(&jt.b))
+            })
+            .collect()
+    };
+    while known.iter().any(|k| !k) {
+        let unknown: Vec<usize> = (0..n).filter(|&l| !known[l]).collect();
+        let mut found = None;
+        'size: for size in 1..=unknown.len() {
+            for set in subsets(&unknown, size) {
+                let js = joints_between(&known, &set);
+                let cons: Vec<Con> = js.iter().flat_map(|&j| joint_cons(model, j)).collect();
+                let rows: usize = cons.iter().map(|c| c.kind.rows()).sum();
+                let fits = rows == 3 * size || (model.allow_redundant && rows > 3 * size);
+                if fits {
+                    found = Some((set, cons));
+                    break 'size;
+                }
+            }
+        }
+        let Some((bodies, cons)) = found else { return Err(unknown) };
+        for &b in &bodies {
+            known[b] = true;
+        }
+        let solver = if cons.iter().map(|c| c.kind.rows()).sum::<usize>() == 3 * bodies.len() {
+            classify(model, &bodies, &cons)
+        } else {
+            Solver::Newton
+        };
+        groups.push(Group { bodies, cons, solver });
+    }
+    Ok(groups)
+}
+
+fn subsets(items: &[usize], k: usize) -> Vec<Vec<usize>> {
+    if k == 0 {
+        return vec![vec![]];
+    }
+    let mut out = Vec::new();
+    for i in 0..items.len() {
+        for mut rest in subsets(&items[i + 1..], k - 1) {
+            rest.insert(0, items[i]);
+            out.push(rest);
+        }
+    }
+    out
+}
+
+/// Recognise a closed-form group.
+fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
+    let kind = |c: &Con| model.joints[c.joint].kind;
+    let touches = |c: &Con, b: usize| model.joints[c.joint].a == b || model.joints[c.joint].b == b;
+    match bodies {
+        &[body] => {
+            let drive = cons.iter().find(|c| matches!(c.kind, ConKind::DriveRevolute(_) | ConKind::DrivePrismatic(_)));
+            if let Some(d) = drive {
+                return match d.kind {
+                    ConKind::DriveRevolute(k) => Solver::DrivenRevolute { body, joint: d.joint, input: k },
+                    ConKind::DrivePrismatic(k) => Solver::DrivenPrismatic { body, joint: d.joint, input: k },
+                    _ => unreachable!(),
+                };
+            }
+            let rev = cons.iter().find(|c| c.kind == ConKind::Revolute);
+            let slot = cons.iter().find(|c| c.kind == ConKind::Slot);
+            if let (Some(r), Some(s), 2) = (rev, slot, cons.len()) {
+                return if model.joints[s.joint].b == body {
+                    Solver::PinInFixedSlot { body, ja: r.joint, js: s.joint }
+                } else {
+                    Solver::SlottedLever { body, ja: r.joint, js: s.joint }
+                };
+            }
+            Solver::Newton
+        }
+        &[x, y] if cons.len() == 3 => {
+            // The joint between the two links, and one joint from each to solved links.
+            let Some(mid) = cons.iter().find(|c| touches(c, x) && touches(c, y)) else { return Solver::Newton };
+            for (b1, b2) in [(x, y), (y, x)] {
+                let outer1 = cons.iter().find(|c| touches(c, b1) && !touches(c, b2));
+                let outer2 = cons.iter().find(|c| touches(c, b2) && !touches(c, b1));
+                let (Some(o1), Some(o2)) = (outer1, outer2) else { return Solver::Newton };
+                match (kind(o1), kind(mid), kind(o2)) {
+                    (JointKind::Revolute, JointKind::Revolute, JointKind::Revolute) => {
+                        return Solver::Rrr { b1, b2, ja: o1.joint, jc: mid.joint, jb: o2.joint }
+                    }
+                    (JointKind::Revolute, JointKind::Revolute, JointKind::Prismatic) => {
+                        return Solver::Rrp { b1, b2, ja: o1.joint, jc: mid.joint, jp: o2.joint }
+                    }
+                    (JointKind::Revolute, JointKind::Prismatic, JointKind::Revolute) => {
+                        return Solver::Rpr { b1, b2, ja: o1.joint, jp: mid.joint, jb: o2.joint }
+                    }
+                    _ => {}
+                }
+            }
+            Solver::Newton
+        }
+        _ => Solver::Newton,
+    }
+}
+
+/// For a joint `g` with link `body` on one side and a solved link on the other: the
+/// joint point's current position from the solved side, and its local vector in `body`.
+#[inline(always)]
+fn pin(g: &JointGeom, s: &[LinkState], body: usize) -> (V2, V2) {
+    if g.b == body {
+        (s[g.a].point(g.da), g.db)
+    } else {
+        (s[g.b].point(g.db), g.da)
+    }
+}
+
+/// The line along which a point (local `d` in `body`) moves when `body` slides on the
+/// solved link by the prismatic `g`, with `body`'s rotation `rot`: (a point of it, unit direction).
+#[inline(always)]
+fn slide_line(g: &JointGeom, s: &[LinkState], body: usize, rot: V2, d: V2) -> (V2, V2) {
+    let u = rotate(rot, g.axis);
+    if g.b == body {
+        (s[g.a].point(g.da) + rotate(rot, d - g.db), u)
+    } else {
+        (s[g.b].point(g.db) + rotate(rot, d - g.da), u)
+    }
+}
+
+/// RPR / slotted lever: the unit rotation of the guide `a` (pinned at `pin_a`) such that
+/// the line of `g` passes through the slider's point. `d` = slider point − guide pin
+/// (current), `w` = the local vector from the guide pin to the slide point minus that from the
+/// slider's pin to its slide point; `sign` picks the side.
+#[inline(always)]
+fn tangent_rotation(n0: V2, dvec: V2, w: V2, sign: f64) -> Result<(V2, f64), MechError> {
+    let len = dvec.norm();
+    if !(len > 0.0) {
+        return Err(MechError::NoAssembly);
+    }
+    let alpha = n0.dot(&w) / len;
+    let mut b2 = 1.0 - alpha * alpha;
+    if b2 < 0.0 {
+        if b2 < -TANGENT_TOL_REL {
+            return Err(MechError::NoAssembly);
+        }
+        b2 = 0.0;
+    }
+    let e = dvec / len;
+    let m = e * alpha + perp(e) * (sign * b2.sqrt());
+    // rot = m · conj(n0)
+    Ok((V2::new(m.dot(&n0), cross(n0, m)), cross(n0, dvec)))
+}
+
+const TANGENT_TOL_REL: f64 = 1e-12;
+
+/// The guide/slider data of an RPR or slotted-lever group: (n0, D, w).
+#[inline(always)]
+fn rpr_data(gp: &JointGeom, pin_a: (V2, V2), pin_b: (V2, V2), b_moves: bool) -> (V2, V2, V2) {
+    // Slide condition n·(P_b − Q_a) = 0 with P_b = pin_b + R(ψ)(db − dpin_b) when the
+    // slider rotates with the guide, or P_b = pin_b (a solved link's pin).
+    let n0 = perp(gp.axis);
+    let dvec = pin_b.0 - pin_a.0;
+    let wb = if b_moves { gp.db - pin_b.1 } else { V2::zeros() };
+    let w = -(wb - (gp.da - pin_a.1));
+    (n0, dvec, w)
+}
+
+/// The signed quantity whose sign is the group's assembly branch, at the current states.
+/// Evaluated once at the drawing (construction) and kept for every input value.
+pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) -> f64 {
+    match solver {
+        Solver::Rrr { b1, b2, ja, jc, jb } => {
+            let (a, _) = pin(&joints[ja], s, b1);
+            let (b, _) = pin(&joints[jb], s, b2);
+            let gc = &joints[jc];
+            let c = s[gc.b].point(gc.db);
+            cross(b - a, c - a)
+        }
+        Solver::Rrp { b1, b2, ja, jc, jp } => {
+            // Side along the line of C relative to the foot of the perpendicular from A.
+            let (a, _) = pin(&joints[ja], s, b1);
+            let gc = &joints[jc];
+            let c = s[gc.b].point(gc.db);
+            let u = s[b2].r(joints[jp].axis);
+            (c - a).dot(&u)
+        }
+        Solver::Rpr { b1, ja, jp, jb, .. } => {
+            let gp = &joints[jp];
+            let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
+            let (guide, slider) = (gp.a, gp.b);
+            let pa = pin(&joints[ga], s, guide);
+            let pb = pin(&joints[gb], s, slider);
+            let m = rotate(s[guide].rot, perp(gp.axis));
+            -cross(m, pb.0 - pa.0)
+        }
+        Solver::PinInFixedSlot { body, ja, js } => {
+            let (a, _) = pin(&joints[ja], s, body);
+            let g = &joints[js];
+            let p = s[body].point(g.db);
+            let u = s[g.a].r(g.axis);
+            (p - a).dot(&u)
+        }
+        Solver::SlottedLever { body, ja, js } => {
+            let g = &joints[js];
+            let (a, _) = pin(&joints[ja], s, body);
+            let p = s[g.b].point(g.db);
+            let m = rotate(s[body].rot, perp(g.axis));
+            -cross(m, p - a)
+        }
+        _ => 1.0,
+    }
+}
+
+/// Solve the positions of one group. `sign` is the branch of the drawing (from
+/// [`branch_quantity`]); `s` holds solved links' states, and the group's links at a
+/// starting guess (the drawing) for [`Solver::Newton`].
+#[inline]
+pub fn position<const N: usize>(
+    solver: Solver,
+    bodies: &[usize],
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    drive: Drive,
+    scale: f64,
+    sign: f64,
+) -> Result<(), MechError> {
+    match solver {
+        Solver::DrivenRevolute { body, joint, input } => {
+            let g = &joints[joint];
+            let (sn, cs) = (drive.0[input] - g.q_ref).sin_cos();
+            let (other, rel) = if g.b == body { (g.a, V2::new(cs, sn)) } else { (g.b, V2::new(cs, -sn)) };
+            let rot = rotate(s[other].rot, rel);
+            let (p, d) = pin(g, s, body);
+            place_by_point(&mut s[body], rot, d, p);
+        }
+        Solver::DrivenPrismatic { body, joint, input } => {
+            let g = &joints[joint];
+            let q = drive.0[input];
+            if g.b == body {
+                let rot = s[g.a].rot;
+                let p = s[g.a].point(g.da) + rotate(rot, g.axis) * q;
+                place_by_point(&mut s[body], rot, g.db, p);
+            } else {
+                let rot = s[g.b].rot;
+                let p = s[g.b].point(g.db) - rotate(rot, g.axis) * q;
+                place_by_point(&mut s[body], rot, g.da, p);
+            }
+        }
+        Solver::Rrr { b1, b2, ja, jc, jb } => {
+            let (a, da) = pin(&joints[ja], s, b1);
+            let (b, db) = pin(&joints[jb], s, b2);
+            let gc = &joints[jc];
+            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
+            let c = circle_circle(a, (dc1 - da).norm(), b, (dc2 - db).norm(), sign)?;
+            place_by_two_points(&mut s[b1], da, dc1, a, c);
+            place_by_two_points(&mut s[b2], db, dc2, b, c);
+        }
+        Solver::Rrp { b1, b2, ja, jc, jp } => {
+            let (a, da) = pin(&joints[ja], s, b1);
+            let gp = &joints[jp];
+            let rot2 = if gp.b == b2 { s[gp.a].rot } else { s[gp.b].rot };
+            let gc = &joints[jc];
+            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
+            let (p, u) = slide_line(gp, s, b2, rot2, dc2);
+            let c = circle_line(a, (dc1 - da).norm(), p, u, sign)?;
+            place_by_two_points(&mut s[b1], da, dc1, a, c);
+            place_by_point(&mut s[b2], rot2, dc2, c);
+        }
+        Solver::Rpr { b1, ja, jp, jb, .. } => {
+            let gp = &joints[jp];
+            let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
+            let (guide, slider) = (gp.a, gp.b);
+            let pa = pin(&joints[ga], s, guide);
+            let pb = pin(&joints[gb], s, slider);
+            let (n0, dvec, w) = rpr_data(gp, pa, pb, true);
+            let (rot, _) = tangent_rotation(n0, dvec, w, sign)?;
+            place_by_point(&mut s[guide], rot, pa.1, pa.0);
+            place_by_point(&mut s[slider], rot, pb.1, pb.0);
+        }
+        Solver::PinInFixedSlot { body, ja, js } => {
+            let (a, da) = pin(&joints[ja], s, body);
+            let g = &joints[js];
+            let u = s[g.a].r(g.axis);
+            let q = s[g.a].point(g.da);
+            let p = circle_line(a, (g.db - da).norm(), q, u, sign)?;
+            place_by_two_points(&mut s[body], da, g.db, a, p);
+        }
+        Solver::SlottedLever { body, ja, js } => {
+            let g = &joints[js];
+            let pa = pin(&joints[ja], s, body);
+            let pb = (s[g.b].point(g.db), g.db);
+            let (n0, dvec, w) = rpr_data(g, pa, pb, false);
+            let (rot, _) = tangent_rotation(n0, dvec, w, sign)?;
+            place_by_point(&mut s[body], rot, pa.1, pa.0);
+        }
+        Solver::Newton => group_newton::<N>(bodies, cons, joints, s, drive, scale)?,
+    }
+    Ok(())
+}

@@ -1,0 +1,91 @@
+//! The numbers a generated struct (or the generic solver) works with, derived from a
+//! resolved [`Model`]: local joint geometry, link data, the drawing's states.
+
+use crate::assur::{branch_quantity, Solver};
+use crate::geometry::{anchor, drawing_states, joint_geoms, local};
+use crate::kinematics::{branch, JointGeom, LinkGeom, LinkState, V2};
+use crate::model::{Load, Model};
+use crate::MechError;
+
+/// A mechanism's numbers, ready for the solvers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Instance {
+    /// Joint geometry, joint order.
+    pub joints: Vec<JointGeom>,
+    /// Link data, link order (ground first).
+    pub links: Vec<LinkGeom>,
+    /// The drawing's states.
+    pub drawing: Vec<LinkState>,
+    /// Per point: (owner link, local vector in it).
+    pub points: Vec<(usize, V2)>,
+    /// Per load: local vector of its point in its link (zero for torques).
+    pub loads: Vec<V2>,
+    /// The drawing's length scale, m.
+    pub scale: f64,
+    /// Gravity, m/s² (zero when not declared).
+    pub gravity: V2,
+}
+
+/// Derive the numbers of `model`. Runs the drawing and rank checks of SPEC section 4
+/// (the same code the macro runs), so a run-time change of parameters is checked too.
+pub fn instance(model: &Model) -> Result<Instance, MechError> {
+    let issues = crate::validate::runtime(model);
+    if !issues.is_empty() {
+        let msg = issues.iter().map(|i| i.message.as_str()).collect::<Vec<_>>().join("\n");
+        return Err(MechError::Invalid(msg));
+    }
+    let links = (0..model.links.len())
+        .map(|l| {
+            let link = &model.links[l];
+            let th = model.reference_angle(l);
+            LinkGeom {
+                anchor: anchor(model, l),
+                dir_ref: V2::new(th.cos(), th.sin()),
+                dcg: local(model, l, link.cg),
+                mass: link.mass.unwrap_or(0.0),
+                inertia: link.inertia,
+            }
+        })
+        .collect();
+    let points = (0..model.points.len())
+        .map(|p| {
+            let owner = (0..model.links.len()).find(|&l| model.links[l].points.contains(&p)).unwrap_or(0);
+            (owner, local(model, owner, model.points[p].pos))
+        })
+        .collect();
+    let loads = model
+        .loads
+        .iter()
+        .map(|l| match l {
+            Load::Force { link, point, .. } => local(model, *link, model.points[*point].pos),
+            Load::Torque { .. } => V2::zeros(),
+        })
+        .collect();
+    Ok(Instance {
+        joints: joint_geoms(model),
+        links,
+        drawing: drawing_states(model),
+        points,
+        loads,
+        scale: model.scale(),
+        gravity: model.gravity.map(|g| V2::new(g[0], g[1])).unwrap_or_else(V2::zeros),
+    })
+}
+
+impl Instance {
+    /// The branch sign of each group's closed form in the drawing.
+    pub fn branches(&self, solvers: &[Solver]) -> Vec<f64> {
+        solvers.iter().map(|&s| branch(branch_quantity(s, &self.joints, &self.drawing))).collect()
+    }
+}
+
+/// Mass data of a link as a run-time parameter.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinkParams {
+    /// Mass, kg (0 = massless).
+    pub mass: f64,
+    /// Moment of inertia about the cg, kg·m².
+    pub inertia: f64,
+    /// Centre of gravity in the drawing, m.
+    pub cg: V2,
+}

@@ -1,0 +1,116 @@
+//! Kinetostatics (seed, section 2): the motor actions and every joint reaction by
+//! d'Alembert, group by group from the outermost Assur group inward, and the motor
+//! actions alone by virtual power.
+//!
+//! Forces on a link are kept as generalised forces (F_x, F_y, M) with the moment about
+//! the link's anchor. The multipliers λ of a group's constraints solve Jᵀ λ = −f, f the
+//! sum of the applied, gravity and inertia forces on the group's links and the
+//! reactions of the groups solved before (outer groups); with the signs of
+//! [`crate::kinematics`], λ is the action BY joint link a ON link b.
+
+use crate::kinematics::*;
+use crate::MechError;
+use nalgebra::{SVector, Vector3};
+
+/// A generalised force on a link: (F_x, F_y, M about the anchor), N and N·m.
+pub type Wrench = Vector3<f64>;
+
+/// Add a force `force` (N) applied at the material point of local vector `d`.
+#[inline(always)]
+pub fn add_force(w: &mut Wrench, s: &LinkState, d: V2, force: V2) {
+    let r = s.r(d);
+    *w += Vector3::new(force.x, force.y, cross(r, force));
+}
+
+/// Add a pure torque (N·m, CCW).
+#[inline(always)]
+pub fn add_torque(w: &mut Wrench, torque: f64) {
+    w.z += torque;
+}
+
+/// Add gravity m·g at the cg.
+#[inline(always)]
+pub fn add_gravity(w: &mut Wrench, s: &LinkState, l: &LinkGeom, g: V2) {
+    add_force(w, s, l.dcg, g * l.mass);
+}
+
+/// Add d'Alembert's inertia force −m·a_G at the cg and inertia moment −I_G·α.
+#[inline(always)]
+pub fn add_inertia(w: &mut Wrench, s: &LinkState, l: &LinkGeom) {
+    let r = s.r(l.dcg);
+    add_force(w, s, l.dcg, -s.acc_at(r) * l.mass);
+    w.z -= l.inertia * s.alpha;
+}
+
+/// The multipliers of one group (row order of its constraints): solve Jᵀ λ = −f for
+/// the group's links, then pass each constraint's reaction on to the solved links it
+/// touches (`f[other] += rowᵀ λ`). Called from the outermost group inward.
+#[inline]
+pub fn group_reactions<const N: usize>(
+    bodies: &[usize],
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    scale: f64,
+) -> Result<SVector<f64, N>, MechError> {
+    let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale)?;
+    let mut rhs = SVector::<f64, N>::zeros();
+    for (k, &b) in bodies.iter().enumerate() {
+        rhs.fixed_rows_mut::<3>(3 * k).copy_from(&(-f[b]));
+    }
+    let lam = sys.solve_transpose(&rhs);
+    let none: &[f64] = &[];
+    let mut row = 0;
+    for c in cons {
+        let g = &joints[c.joint];
+        let e = eval(*c, g, s, (none, none, none), Level::Jacobian);
+        for k in 0..c.kind.rows() {
+            for (link, r) in [(g.a, e.rows[k].a), (g.b, e.rows[k].b)] {
+                if !bodies.contains(&link) {
+                    f[link] += r * lam[row];
+                }
+            }
+            row += 1;
+        }
+    }
+    Ok(lam)
+}
+
+/// The reaction force (N, global) of a sliding joint from its normal multiplier.
+#[inline]
+pub fn slide_force(g: &JointGeom, s: &[LinkState], lambda: f64) -> V2 {
+    perp(s[g.a].r(g.axis)) * lambda
+}
+
+/// Virtual power of the applied and inertia wrenches `f` in the velocity field of `s`:
+/// Σ (F·v_anchor + M·ω) (W per unit input rate). The motor action of the input that
+/// moves alone in `s` at unit rate is minus this.
+#[inline]
+pub fn virtual_power(f: &[Wrench], s: &[LinkState]) -> f64 {
+    f.iter().zip(s).map(|(w, st)| w.x * st.vel.x + w.y * st.vel.y + w.z * st.omega).sum()
+}
+
+/// Reaction at a revolute joint: the force BY a ON b (N, global).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RevoluteReaction {
+    /// Force by a on b, N.
+    pub force: V2,
+}
+
+/// Reaction at a prismatic joint: the force BY a ON b normal to the axis (N, global) and
+/// the moment on b about the joint point's current position (N·m, CCW).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PrismaticReaction {
+    /// Force by a on b, N.
+    pub force: V2,
+    /// Moment by a on b about the joint point, N·m.
+    pub moment: f64,
+}
+
+/// Reaction at a pin in a slot: the force BY a ON b, normal to the slot (N, global).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SlotReaction {
+    /// Force by a on b, N.
+    pub force: V2,
+}

@@ -1,0 +1,45 @@
+//! Zhukovski's reduction of a one-DOF machine to its input coordinate q (seed, section 3).
+//!
+//! With velocity coefficients g_j = ω_j / q̇ and g_Gj = v_Gj / q̇ (the velocities of the
+//! motion with q̇ = 1, q̈ = 0), and their derivatives g'_j, g'_Gj (the accelerations of
+//! that same motion):
+//! - I*(q) = Σ (m_j |g_Gj|² + I_Gj g_j²)                       (kg·m² for a rotary input)
+//! - dI*/dq = 2 Σ (m_j g_Gj·g'_Gj + I_Gj g_j g'_j)
+//! - M*(q) = Σ F_k·g_k + Σ M_j g_j                               (N·m), gravity included
+//! - equation of motion: I* q̈ + ½ dI*/dq q̇² = driver + M*.
+
+use crate::kinematics::{LinkGeom, LinkState};
+
+/// Reduced inertia and its derivative at one position.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Reduced {
+    /// I*, kg·m² (kg for a prismatic input).
+    pub inertia: f64,
+    /// dI*/dq, kg·m²/rad (kg/m for a prismatic input).
+    pub inertia_derivative: f64,
+}
+
+/// I* and dI*/dq from the states of the motion with q̇ = 1, q̈ = 0.
+#[inline]
+pub fn reduced(links: &[LinkGeom], s: &[LinkState]) -> Reduced {
+    let mut out = Reduced::default();
+    for (l, st) in links.iter().zip(s) {
+        if l.mass == 0.0 && l.inertia == 0.0 {
+            continue;
+        }
+        let r = st.r(l.dcg);
+        let (v, a) = (st.vel_at(r), st.acc_at(r));
+        out.inertia += l.mass * v.norm_squared() + l.inertia * st.omega * st.omega;
+        out.inertia_derivative += 2.0 * (l.mass * v.dot(&a) + l.inertia * st.omega * st.alpha);
+    }
+    out
+}
+
+/// The generalised acceleration q̈ = (driver + M* − ½ dI*/dq q̇²) / I*.
+#[inline]
+pub fn acceleration(r: Reduced, moment: f64, qd: f64, driver: f64) -> Result<f64, crate::MechError> {
+    if !(r.inertia > 0.0) {
+        return Err(crate::MechError::NonPositiveInertia(r.inertia));
+    }
+    Ok((driver + moment - 0.5 * r.inertia_derivative * qd * qd) / r.inertia)
+}

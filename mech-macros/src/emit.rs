@@ -1,0 +1,795 @@
+//! Emission: the generated struct and its solvers, as calls into mech-core's kernels.
+
+use mech_core::assur::{Group, Solver};
+use mech_core::kinematics::{Con, ConKind};
+use mech_core::model::{Description, JointKind, Load, Model};
+use mech_core::resolve::Diagnostic;
+use proc_macro2::{Span, TokenStream};
+use quote::{format_ident, quote};
+use syn::Ident;
+
+fn id(s: &str) -> Ident {
+    Ident::new(s, Span::call_site())
+}
+
+fn f64s(v: f64) -> TokenStream {
+    let l = proc_macro2::Literal::f64_suffixed(v);
+    quote!(#l)
+}
+
+fn vec2(v: [f64; 2]) -> TokenStream {
+    let (x, y) = (f64s(v[0]), f64s(v[1]));
+    quote!(::mech::__private::Vector2::new(#x, #y))
+}
+
+/// Every diagnostic as `compile_error!`s: the message at the culprit, a short pointer at
+/// each other declaration involved.
+pub fn errors(diags: &[Diagnostic<Span>]) -> TokenStream {
+    let mut out = TokenStream::new();
+    for d in diags {
+        let first = d.message.lines().next().unwrap_or("");
+        for (i, span) in d.spans.iter().enumerate() {
+            let msg = if i == 0 { d.message.clone() } else { format!("involved in: {first}") };
+            out.extend(syn::Error::new(*span, msg).to_compile_error());
+        }
+    }
+    out
+}
+
+struct Names {
+    main: Ident,
+    params: Ident,
+    loads: Ident,
+    pose: Ident,
+    motion: Ident,
+    forces: Ident,
+}
+
+fn names(desc: &Description<Span>) -> Names {
+    let n = &desc.name.text;
+    let span = desc.name.span;
+    Names {
+        main: Ident::new(n, span),
+        params: format_ident!("{}Params", n),
+        loads: format_ident!("{}Loads", n),
+        pose: format_ident!("{}Pose", n),
+        motion: format_ident!("{}Motion", n),
+        forces: format_ident!("{}Forces", n),
+    }
+}
+
+/// On error: the errors, and the struct's outline (empty types with the public names) so
+/// that code using the mechanism does not add a cascade of unrelated errors.
+pub fn outline(desc: &Description<Span>, _model: Option<&Model>, diags: &[Diagnostic<Span>]) -> TokenStream {
+    let errs = errors(diags);
+    let Names { main, params, loads, pose, motion, forces } = names(desc);
+    quote! {
+        #errs
+        /// (not generated: the mechanism has errors)
+        #[derive(Clone, Debug, Default)]
+        pub struct #main;
+        /// (not generated: the mechanism has errors)
+        #[derive(Clone, Debug, Default)]
+        pub struct #params;
+        /// (not generated: the mechanism has errors)
+        #[derive(Clone, Debug, Default)]
+        pub struct #loads;
+        /// (not generated: the mechanism has errors)
+        #[derive(Clone, Debug, Default)]
+        pub struct #pose;
+        /// (not generated: the mechanism has errors)
+        #[derive(Clone, Debug, Default)]
+        pub struct #motion;
+        /// (not generated: the mechanism has errors)
+        #[derive(Clone, Debug, Default)]
+        pub struct #forces;
+        impl #main {
+            /// (not generated: the mechanism has errors)
+            pub fn new() -> Self { #main }
+        }
+    }
+}
+
+fn con_tokens(c: &Con) -> TokenStream {
+    let j = c.joint;
+    let kind = match c.kind {
+        ConKind::Revolute => quote!(Revolute),
+        ConKind::Prismatic => quote!(Prismatic),
+        ConKind::Slot => quote!(Slot),
+        ConKind::DriveRevolute(k) => quote!(DriveRevolute(#k)),
+        ConKind::DrivePrismatic(k) => quote!(DrivePrismatic(#k)),
+    };
+    quote!(::mech::__private::kinematics::Con { joint: #j, kind: ::mech::__private::kinematics::ConKind::#kind })
+}
+
+fn solver_tokens(s: &Solver) -> TokenStream {
+    let p = quote!(::mech::__private::assur::Solver);
+    match *s {
+        Solver::DrivenRevolute { body, joint, input } => quote!(#p::DrivenRevolute { body: #body, joint: #joint, input: #input }),
+        Solver::DrivenPrismatic { body, joint, input } => quote!(#p::DrivenPrismatic { body: #body, joint: #joint, input: #input }),
+        Solver::Rrr { b1, b2, ja, jc, jb } => quote!(#p::Rrr { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jb: #jb }),
+        Solver::Rrp { b1, b2, ja, jc, jp } => quote!(#p::Rrp { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jp: #jp }),
+        Solver::Rpr { b1, b2, ja, jp, jb } => quote!(#p::Rpr { b1: #b1, b2: #b2, ja: #ja, jp: #jp, jb: #jb }),
+        Solver::PinInFixedSlot { body, ja, js } => quote!(#p::PinInFixedSlot { body: #body, ja: #ja, js: #js }),
+        Solver::SlottedLever { body, ja, js } => quote!(#p::SlottedLever { body: #body, ja: #ja, js: #js }),
+        Solver::Newton => quote!(#p::Newton),
+    }
+}
+
+/// Where each constraint's multipliers land: (group, first row) per joint and per input.
+struct RowMap {
+    joint: Vec<(usize, usize)>,
+    input: Vec<(usize, usize)>,
+}
+
+fn row_map(model: &Model, plan: &[Group]) -> RowMap {
+    let mut joint = vec![(0, 0); model.joints.len()];
+    let mut input = vec![(0, 0); model.inputs.len()];
+    for (gi, g) in plan.iter().enumerate() {
+        let mut row = 0;
+        for c in &g.cons {
+            match c.kind {
+                ConKind::DriveRevolute(k) | ConKind::DrivePrismatic(k) => input[k] = (gi, row),
+                _ => joint[c.joint] = (gi, row),
+            }
+            row += c.kind.rows();
+        }
+    }
+    RowMap { joint, input }
+}
+
+/// The whole generated code of a valid mechanism.
+pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> TokenStream {
+    let nm = names(desc);
+    let Names { main, params, loads, pose, motion, forces } = &nm;
+    let p = quote!(::mech::__private);
+    let v2 = quote!(#p::Vector2<f64>);
+    let n_links = model.links.len();
+    let n_joints = model.joints.len();
+    let n_points = model.points.len();
+    let n_loads = model.loads.len();
+    let dof = model.inputs.len();
+    let n_groups = plan.len();
+    let lower = model.lower_pairs();
+    let higher = model.higher_pairs();
+    let equations = 3 * (n_links - 1);
+    let unknowns = dof + 2 * lower + higher;
+    let redundant = model.allow_redundant;
+    let one_dof = dof == 1;
+    let q_ty = if one_dof { quote!(f64) } else { quote!([f64; #dof]) };
+    let to_arr = |v: &Ident| if one_dof { quote!(let #v = [#v];) } else { quote!() };
+    let from_arr = |v: TokenStream| if one_dof { quote!(#v[0]) } else { v };
+    let docs = desc.docs.iter().map(|d| quote!(#[doc = #d]));
+    let doc_struct = format!("Generated by `mechanism!`: {} links (ground included), {} lower pairs, {} higher pairs, {} input(s).", n_links, lower, higher, dof);
+
+    let link_ids: Vec<Ident> = model.links.iter().map(|l| id(&l.name)).collect();
+    let point_ids: Vec<Ident> = model.points.iter().map(|pt| id(&pt.name)).collect();
+    let joint_ids: Vec<Ident> = model.joints.iter().map(|j| id(&j.name)).collect();
+    let moving = 1..n_links;
+    let moving_ids: Vec<&Ident> = link_ids[1..].iter().collect();
+    let sliding: Vec<usize> = (0..n_joints).filter(|&j| model.joints[j].kind != JointKind::Revolute).collect();
+    let sliding_ids: Vec<&Ident> = sliding.iter().map(|&j| &joint_ids[j]).collect();
+
+    // ---- Params ------------------------------------------------------------------------
+    let params_points = format_ident!("{}ParamsPoints", desc.name.text);
+    let params_links = format_ident!("{}ParamsLinks", desc.name.text);
+    let params_axes = format_ident!("{}ParamsAxes", desc.name.text);
+    let point_defaults = model.points.iter().map(|pt| vec2(pt.pos));
+    let link_defaults = moving.clone().map(|l| {
+        let lk = &model.links[l];
+        let (m, i, cg) = (f64s(lk.mass.unwrap_or(0.0)), f64s(lk.inertia), vec2(lk.cg));
+        quote!(#p::instance::LinkParams { mass: #m, inertia: #i, cg: #cg })
+    });
+    let axis_defaults = sliding.iter().map(|&j| vec2(model.joints[j].axis));
+    let (gravity_field, gravity_default, gravity_model) = match model.gravity {
+        Some(g) => {
+            let gv = vec2(g);
+            (
+                quote!(/// Gravity, m/s².
+                       pub gravity: #v2,),
+                quote!(gravity: #gv,),
+                quote!(Some([p.gravity.x, p.gravity.y])),
+            )
+        }
+        None => (quote!(), quote!(), quote!(None)),
+    };
+
+    // ---- The model rebuilt from params (for from_params' run-time checks) -------------
+    let m_points = model.points.iter().zip(&point_ids).map(|(pt, pid)| {
+        let n = &pt.name;
+        quote!(#p::model::Point { name: #n.into(), pos: [p.points.#pid.x, p.points.#pid.y] })
+    });
+    let m_links = model.links.iter().enumerate().map(|(l, lk)| {
+        let n = &lk.name;
+        let pts = &lk.points;
+        if l == 0 {
+            quote!(#p::model::Link { name: #n.into(), points: vec![#(#pts),*], mass: None, inertia: 0.0, cg: [0.0, 0.0] })
+        } else {
+            let lid = &link_ids[l];
+            let mass = if lk.mass.is_some() { quote!(Some(p.links.#lid.mass)) } else { quote!(None) };
+            quote!(#p::model::Link { name: #n.into(), points: vec![#(#pts),*], mass: #mass, inertia: p.links.#lid.inertia, cg: [p.links.#lid.cg.x, p.links.#lid.cg.y] })
+        }
+    });
+    let m_joints = model.joints.iter().enumerate().map(|(j, jt)| {
+        let n = &jt.name;
+        let (a, b, pt) = (jt.a, jt.b, jt.point);
+        let kind = match jt.kind {
+            JointKind::Revolute => quote!(Revolute),
+            JointKind::Prismatic => quote!(Prismatic),
+            JointKind::PinInSlot => quote!(PinInSlot),
+        };
+        let axis = if jt.kind == JointKind::Revolute {
+            quote!([0.0, 0.0])
+        } else {
+            let jid = &joint_ids[j];
+            quote!([p.axes.#jid.x, p.axes.#jid.y])
+        };
+        quote!(#p::model::Joint { name: #n.into(), kind: #p::model::JointKind::#kind, a: #a, b: #b, point: #pt, axis: #axis })
+    });
+    let m_inputs = &model.inputs;
+    let m_loads = model.loads.iter().map(|l| match l {
+        Load::Force { name, link, point } => quote!(#p::model::Load::Force { name: #name.into(), link: #link, point: #point }),
+        Load::Torque { name, link } => quote!(#p::model::Load::Torque { name: #name.into(), link: #link }),
+    });
+    let model_name = &model.name;
+
+    // ---- Loads ---------------------------------------------------------------------------
+    let load_fields = model.loads.iter().map(|l| {
+        let lid = id(l.name());
+        match l {
+            Load::Force { link, point, .. } => {
+                let doc = format!("Force (N, global vector) on `{}` at `{}`.", model.links[*link].name, model.points[*point].name);
+                quote!(#[doc = #doc] pub #lid: #v2,)
+            }
+            Load::Torque { link, .. } => {
+                let doc = format!("Torque (N·m, CCW positive) on `{}`.", model.links[*link].name);
+                quote!(#[doc = #doc] pub #lid: f64,)
+            }
+        }
+    });
+    let load_checks = model.loads.iter().map(|l| {
+        let lid = id(l.name());
+        match l {
+            Load::Force { .. } => quote!(loads.#lid.x, loads.#lid.y,),
+            Load::Torque { .. } => quote!(loads.#lid,),
+        }
+    });
+    let load_terms = model.loads.iter().enumerate().map(|(k, l)| {
+        let lid = id(l.name());
+        let link = l.link();
+        match l {
+            Load::Force { .. } => quote!(#p::kinetostatics::add_force(&mut f[#link], &s[#link], self.loads[#k], loads.#lid);),
+            Load::Torque { .. } => quote!(#p::kinetostatics::add_torque(&mut f[#link], loads.#lid);),
+        }
+    });
+    let massive: Vec<usize> = (1..n_links).filter(|&l| model.links[l].has_inertia()).collect();
+    let gravity_terms = if model.gravity.is_some() {
+        let with_mass: Vec<usize> = (1..n_links).filter(|&l| model.links[l].mass.is_some_and(|m| m != 0.0)).collect();
+        quote!(#( #p::kinetostatics::add_gravity(&mut f[#with_mass], &s[#with_mass], &self.links[#with_mass], self.gravity); )*)
+    } else {
+        quote!()
+    };
+    let inertia_terms = quote!(#( #p::kinetostatics::add_inertia(&mut f[#massive], &s[#massive], &self.links[#massive]); )*);
+
+    // ---- Groups ----------------------------------------------------------------------------
+    let group_consts = plan.iter().enumerate().map(|(gi, g)| {
+        let bn = format_ident!("__G{}_BODIES", gi);
+        let cn = format_ident!("__G{}_CONS", gi);
+        let nb = g.bodies.len();
+        let nc = g.cons.len();
+        let bodies = &g.bodies;
+        let cons = g.cons.iter().map(con_tokens);
+        let doc = format!(
+            "Assur group {gi}: links {} ({:?}).",
+            g.bodies.iter().map(|&b| model.links[b].name.as_str()).collect::<Vec<_>>().join(", "),
+            g.solver
+        );
+        quote! {
+            #[doc = #doc]
+            const #bn: [usize; #nb] = [#(#bodies),*];
+            const #cn: [#p::kinematics::Con; #nc] = [#(#cons),*];
+        }
+    });
+    let solvers: Vec<TokenStream> = plan.iter().map(|g| solver_tokens(&g.solver)).collect();
+    let solve_calls = plan.iter().enumerate().map(|(gi, g)| {
+        let bn = format_ident!("__G{}_BODIES", gi);
+        let cn = format_ident!("__G{}_CONS", gi);
+        let n = 3 * g.bodies.len();
+        let solver = &solvers[gi];
+        quote!(#p::kinematics::group_solve::<#n>(#solver, &Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, self.branches[#gi], upto)?;)
+    });
+    let velocity_calls = plan.iter().enumerate().map(|(gi, g)| {
+        let bn = format_ident!("__G{}_BODIES", gi);
+        let cn = format_ident!("__G{}_CONS", gi);
+        let n = 3 * g.bodies.len();
+        quote!(#p::kinematics::group_velocity_field::<#n>(&Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+    });
+
+    // ---- Pose and motion ------------------------------------------------------------------
+    let pose_links = format_ident!("{}PoseLinks", desc.name.text);
+    let pose_points = format_ident!("{}PosePoints", desc.name.text);
+    let motion_links = format_ident!("{}MotionLinks", desc.name.text);
+    let motion_points = format_ident!("{}MotionPoints", desc.name.text);
+    let owners: Vec<usize> =
+        (0..n_points).map(|pt| (0..n_links).find(|&l| model.links[l].points.contains(&pt)).unwrap_or(0)).collect();
+    let pose_link_vals = moving.clone().map(|l| {
+        let lid = &link_ids[l];
+        quote!(#lid: self.links[#l].pose(&s[#l]),)
+    });
+    let pose_point_vals = (0..n_points).map(|pt| {
+        let pid = &point_ids[pt];
+        let o = owners[pt];
+        quote!(#pid: #p::kinematics::point_pose(&s[#o], self.points[#pt]),)
+    });
+    let motion_link_vals = moving.clone().map(|l| {
+        let lid = &link_ids[l];
+        quote!(#lid: self.links[#l].motion(&s[#l]),)
+    });
+    let motion_point_vals = (0..n_points).map(|pt| {
+        let pid = &point_ids[pt];
+        let o = owners[pt];
+        quote!(#pid: #p::kinematics::point_motion(&s[#o], self.points[#pt]),)
+    });
+
+    // ---- Forces ---------------------------------------------------------------------------
+    let forces_joints = format_ident!("{}ForcesJoints", desc.name.text);
+    let rows = row_map(model, plan);
+    let reaction_fields = model.joints.iter().enumerate().map(|(j, jt)| {
+        let jid = &joint_ids[j];
+        let (ty, what) = match jt.kind {
+            JointKind::Revolute => (quote!(#p::kinetostatics::RevoluteReaction), "force by"),
+            JointKind::Prismatic => (quote!(#p::kinetostatics::PrismaticReaction), "force (normal to the axis) and moment by"),
+            JointKind::PinInSlot => (quote!(#p::kinetostatics::SlotReaction), "force (normal to the slot) by"),
+        };
+        let doc = format!("Joint `{}`: {} `{}` on `{}`.", jt.name, what, model.links[jt.a].name, model.links[jt.b].name);
+        quote!(#[doc = #doc] pub #jid: #ty,)
+    });
+    let lam_ids: Vec<Ident> = (0..n_groups).map(|g| format_ident!("lam{}", g)).collect();
+    let reaction_calls = plan.iter().enumerate().rev().map(|(gi, g)| {
+        let bn = format_ident!("__G{}_BODIES", gi);
+        let cn = format_ident!("__G{}_CONS", gi);
+        let n = 3 * g.bodies.len();
+        let lam = &lam_ids[gi];
+        quote!(let #lam = #p::kinetostatics::group_reactions::<#n>(&Self::#bn, &Self::#cn, &self.joints, s, &mut f, self.scale)?;)
+    });
+    let reaction_vals = model.joints.iter().enumerate().map(|(j, jt)| {
+        let jid = &joint_ids[j];
+        let (g, r) = rows.joint[j];
+        let lam = &lam_ids[g];
+        let r1 = r + 1;
+        match jt.kind {
+            JointKind::Revolute => {
+                quote!(#jid: #p::kinetostatics::RevoluteReaction { force: #p::Vector2::new(#lam[#r], #lam[#r1]) },)
+            }
+            JointKind::Prismatic => quote!(#jid: #p::kinetostatics::PrismaticReaction {
+                force: #p::kinetostatics::slide_force(&self.joints[#j], s, #lam[#r]),
+                moment: #lam[#r1],
+            },),
+            JointKind::PinInSlot => quote!(#jid: #p::kinetostatics::SlotReaction {
+                force: #p::kinetostatics::slide_force(&self.joints[#j], s, #lam[#r]),
+            },),
+        }
+    });
+    let driver_vals: Vec<TokenStream> = rows
+        .input
+        .iter()
+        .map(|&(g, r)| {
+            let lam = &lam_ids[g];
+            quote!(#lam[#r])
+        })
+        .collect();
+    let driver_value = if one_dof { quote!(#(#driver_vals)*) } else { quote!([#(#driver_vals),*]) };
+
+    let link_names: Vec<&str> = model.links[1..].iter().map(|l| l.name.as_str()).collect();
+    let point_names: Vec<&str> = model.points.iter().map(|pt| pt.name.as_str()).collect();
+    let joint_names: Vec<&str> = model.joints.iter().map(|j| j.name.as_str()).collect();
+    let n_moving = n_links - 1;
+    let by_name = |ty: &Ident, what: &str, link_ty: TokenStream, point_ty: TokenStream| {
+        let doc_l = format!("The {what} of the link named `name`, if any.");
+        let doc_p = format!("The {what} of the point named `name`, if any.");
+        quote! {
+            impl #ty {
+                /// The moving links' names, in declaration order.
+                pub const LINK_NAMES: [&'static str; #n_moving] = [#(#link_names),*];
+                /// The points' names, in order of definition.
+                pub const POINT_NAMES: [&'static str; #n_points] = [#(#point_names),*];
+                #[doc = #doc_l]
+                pub fn link(&self, name: &str) -> Option<&#link_ty> {
+                    match name { #(#link_names => Some(&self.links.#moving_ids),)* _ => None }
+                }
+                #[doc = #doc_p]
+                pub fn point(&self, name: &str) -> Option<&#point_ty> {
+                    match name { #(#point_names => Some(&self.points.#point_ids),)* _ => None }
+                }
+            }
+        }
+    };
+    let pose_by_name = by_name(pose, "pose", quote!(#p::kinematics::LinkPose), quote!(#p::kinematics::PointPose));
+    let motion_by_name = by_name(motion, "motion", quote!(#p::kinematics::LinkMotion), quote!(#p::kinematics::PointMotion));
+    let reaction_by_name = model.joints.iter().enumerate().map(|(j, jt)| {
+        let jid = &joint_ids[j];
+        let n = &jt.name;
+        match jt.kind {
+            JointKind::Prismatic => quote!(#n => Some((self.joints.#jid.force, Some(self.joints.#jid.moment))),),
+            _ => quote!(#n => Some((self.joints.#jid.force, None)),),
+        }
+    });
+    let loads_by_name = model.loads.iter().map(|l| {
+        let lid = id(l.name());
+        let n = l.name();
+        match l {
+            Load::Force { .. } => quote!(#n if value.len() == 2 => { self.#lid = #p::Vector2::new(value[0], value[1]); true }),
+            Load::Torque { .. } => quote!(#n if value.len() == 1 => { self.#lid = value[0]; true }),
+        }
+    });
+    let loads_impl = quote! {
+        impl #loads {
+            /// Set the load named `name` from its components (2 for a force, 1 for a
+            /// torque); false when there is no such load or the length is wrong.
+            pub fn set_by_name(&mut self, name: &str, value: &[f64]) -> bool {
+                match name { #(#loads_by_name,)* _ => { let _ = value; false } }
+            }
+        }
+    };
+    let forces_by_name = if redundant {
+        quote!()
+    } else {
+        quote! {
+            impl #forces {
+                /// The joints' names, in declaration order.
+                pub const JOINT_NAMES: [&'static str; #n_joints] = [#(#joint_names),*];
+                /// The reaction at the joint named `name`: force by a on b (N) and, for a
+                /// prismatic joint, the moment (N·m).
+                pub fn reaction(&self, name: &str) -> Option<(#v2, Option<f64>)> {
+                    match name { #(#reaction_by_name)* _ => None }
+                }
+            }
+        }
+    };
+
+    let kinetostatics = if redundant {
+        quote!()
+    } else {
+        quote! {
+            /// Kinetostatics by d'Alembert (seed, section 2): the motor action of every input
+            /// and the reaction at every joint, solved group by group from the outermost
+            /// Assur group inward. Reactions are forces BY the joint's first link ON its
+            /// second (N), prismatic joints add a moment (N·m, CCW on the second link).
+            pub fn kinetostatics(&self, m: &#motion, loads: &#loads) -> Result<#forces, #p::MechError> {
+                let s = &m.states;
+                let mut f = self.__wrenches(s, loads, true)?;
+                #(#reaction_calls)*
+                Ok(#forces { driver: #driver_value, joints: #forces_joints { #(#reaction_vals)* } })
+            }
+        }
+    };
+    let forces_struct = if redundant {
+        quote! {
+            /// Not available: the mechanism has redundant constraints, so its reactions are
+            /// statically indeterminate (`#[allow(redundant)]`); use `driver_action`.
+            #[derive(Clone, Copy, Debug)]
+            pub struct #forces { _private: () }
+        }
+    } else {
+        quote! {
+            /// Reactions at every joint (SPEC section 2 conventions).
+            #[allow(non_snake_case)]
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            pub struct #forces_joints { #(#reaction_fields)* }
+            /// Result of `kinetostatics`: the motor actions and every joint reaction.
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            pub struct #forces {
+                /// The motor action of each input: torque by a on b (N·m) for a revolute
+                /// input, force along the axis on b (N) for a prismatic one.
+                pub driver: #q_ty,
+                /// The reaction at every joint.
+                pub joints: #forces_joints,
+            }
+        }
+    };
+
+    let one_dof_api = if one_dof {
+        quote! {
+            /// Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad), in closed
+            /// form from the velocity coefficients and their derivatives.
+            pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
+                #p::error::check_finite("q", &[q])?;
+                let s = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
+                Ok(#p::zhukovski::reduced(&self.links, &s))
+            }
+            /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads and gravity
+            /// per unit input rate, M* = Σ F·g + Σ M·g.
+            pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
+                #p::error::check_finite("q", &[q])?;
+                let s = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity)?;
+                let f = self.__wrenches(&s, loads, false)?;
+                Ok(#p::kinetostatics::virtual_power(&f, &s))
+            }
+            /// The direct problem: q̈ (rad/s²) from I* q̈ + ½ dI*/dq q̇² = driver + M*.
+            pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
+                #p::error::check_finite("q, qd, driver", &[q, qd, driver])?;
+                let s = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
+                let f = self.__wrenches(&s, loads, false)?;
+                let r = #p::zhukovski::reduced(&self.links, &s);
+                #p::zhukovski::acceleration(r, #p::kinetostatics::virtual_power(&f, &s), qd, driver)
+            }
+        }
+    } else {
+        quote!()
+    };
+
+    let q_arr = to_arr(&id("q"));
+    let qd_arr = to_arr(&id("qd"));
+    let qdd_arr = to_arr(&id("qdd"));
+    let driver_out = from_arr(quote!(out));
+    let mut joints_copy = quote!();
+    for j in 0..n_joints {
+        joints_copy.extend(quote!(inst.joints[#j],));
+    }
+    let links_copy = (0..n_links).map(|l| quote!(inst.links[#l],));
+    let drawing_copy = (0..n_links).map(|l| quote!(inst.drawing[#l],));
+    let points_copy = (0..n_points).map(|pt| quote!(inst.points[#pt].1,));
+    let loads_copy = (0..n_loads).map(|k| quote!(inst.loads[#k],));
+    let branches_copy = (0..n_groups).map(|g| quote!(branches[#g],));
+
+    quote! {
+        #(#docs)*
+        #[doc = #doc_struct]
+        #[derive(Clone, Debug)]
+        pub struct #main {
+            params: #params,
+            joints: [#p::kinematics::JointGeom; #n_joints],
+            links: [#p::kinematics::LinkGeom; #n_links],
+            drawing: [#p::kinematics::LinkState; #n_links],
+            points: [#v2; #n_points],
+            loads: [#v2; #n_loads],
+            branches: [f64; #n_groups],
+            scale: f64,
+            gravity: #v2,
+        }
+
+        /// Reference coordinates of every point (m).
+        #[allow(non_snake_case)]
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct #params_points { #(pub #point_ids: #v2,)* }
+        /// Mass data of every moving link.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct #params_links { #(pub #moving_ids: #p::instance::LinkParams,)* }
+        /// Sliding axes (reference global coordinates) of the prismatic and slot joints.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct #params_axes { #(pub #sliding_ids: #v2,)* }
+        /// Every number of the drawing; `Default` is the drawing as declared.
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct #params {
+            /// Points, m.
+            pub points: #params_points,
+            /// Links' mass, inertia and cg.
+            pub links: #params_links,
+            /// Sliding axes.
+            pub axes: #params_axes,
+            #gravity_field
+        }
+        impl Default for #params {
+            fn default() -> Self {
+                #params {
+                    points: #params_points { #(#point_ids: #point_defaults,)* },
+                    links: #params_links { #(#moving_ids: #link_defaults,)* },
+                    axes: #params_axes { #(#sliding_ids: #axis_defaults,)* },
+                    #gravity_default
+                }
+            }
+        }
+
+        /// The declared loads; `Default` is all zero.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        pub struct #loads { #(#load_fields)* }
+
+        /// Pose of every moving link.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #pose_links { #(pub #moving_ids: #p::kinematics::LinkPose,)* }
+        /// Position of every point.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #pose_points { #(pub #point_ids: #p::kinematics::PointPose,)* }
+        /// Result of `pose`: positions only.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #pose {
+            /// Links: angle (rad), cg (m).
+            pub links: #pose_links,
+            /// Points: pos (m).
+            pub points: #pose_points,
+        }
+
+        /// Motion of every moving link.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #motion_links { #(pub #moving_ids: #p::kinematics::LinkMotion,)* }
+        /// Motion of every point.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #motion_points { #(pub #point_ids: #p::kinematics::PointMotion,)* }
+        /// Result of `kinematics`: positions, velocities, accelerations.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #motion {
+            /// Links: angle, omega, alpha, cg, cg_vel, cg_acc.
+            pub links: #motion_links,
+            /// Points: pos, vel, acc.
+            pub points: #motion_points,
+            states: [#p::kinematics::LinkState; #n_links],
+        }
+
+        #forces_struct
+        #forces_by_name
+        #pose_by_name
+        #motion_by_name
+        #loads_impl
+
+        impl Default for #main {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+
+        impl #main {
+            /// G: the number of inputs (degrees of freedom).
+            pub const DOF: usize = #dof;
+            /// N: links, ground included.
+            pub const LINKS: usize = #n_links;
+            /// P_I: lower pairs (revolute, prismatic).
+            pub const LOWER_PAIRS: usize = #lower;
+            /// P_II: higher pairs (pins in slots).
+            pub const HIGHER_PAIRS: usize = #higher;
+            /// Equations of motion: 3(N − 1).
+            pub const EQUATIONS: usize = #equations;
+            /// Unknowns: G + 2 P_I + P_II.
+            pub const UNKNOWNS: usize = #unknowns;
+
+            #(#group_consts)*
+
+            /// The mechanism as drawn.
+            pub fn new() -> Self {
+                match Self::from_params(#params::default()) {
+                    Ok(m) => m,
+                    Err(e) => panic!("the drawing was checked at compile time: {e}"),
+                }
+            }
+
+            /// The mechanism with other numbers; re-runs the drawing, rank and determinacy
+            /// checks of the macro at run time.
+            pub fn from_params(p: #params) -> Result<Self, #p::MechError> {
+                let model = Self::__model(&p);
+                let inst = #p::instance::instance(&model)?;
+                let branches = inst.branches(&[#(#solvers),*]);
+                Ok(#main {
+                    joints: [#joints_copy],
+                    links: [#(#links_copy)*],
+                    drawing: [#(#drawing_copy)*],
+                    points: [#(#points_copy)*],
+                    loads: [#(#loads_copy)*],
+                    branches: [#(#branches_copy)*],
+                    scale: inst.scale,
+                    gravity: inst.gravity,
+                    params: p,
+                })
+            }
+
+            /// The numbers of the drawing in use.
+            pub fn params(&self) -> &#params {
+                &self.params
+            }
+
+            fn __model(p: &#params) -> #p::model::Model {
+                #p::model::Model {
+                    name: #model_name.into(),
+                    gravity: #gravity_model,
+                    allow_redundant: #redundant,
+                    points: vec![#(#m_points),*],
+                    links: vec![#(#m_links),*],
+                    joints: vec![#(#m_joints),*],
+                    inputs: vec![#(#m_inputs),*],
+                    loads: vec![#(#m_loads),*],
+                }
+            }
+
+            #[inline(always)]
+            fn __solve(
+                &self,
+                q: &[f64; #dof],
+                qd: &[f64; #dof],
+                qdd: &[f64; #dof],
+                upto: #p::kinematics::Level,
+            ) -> Result<[#p::kinematics::LinkState; #n_links], #p::MechError> {
+                let mut s = self.drawing;
+                let drive = (&q[..], &qd[..], &qdd[..]);
+                #(#solve_calls)*
+                Ok(s)
+            }
+
+            #[inline(always)]
+            fn __velocity_field(
+                &self,
+                s: &[#p::kinematics::LinkState; #n_links],
+                qd: &[f64; #dof],
+            ) -> Result<[#p::kinematics::LinkState; #n_links], #p::MechError> {
+                let mut v = *s;
+                for st in v.iter_mut() {
+                    st.vel = #p::Vector2::zeros();
+                    st.omega = 0.0;
+                }
+                let zero = [0.0; #dof];
+                let drive = (&zero[..], &qd[..], &zero[..]);
+                #(#velocity_calls)*
+                Ok(v)
+            }
+
+            /// Applied (loads, gravity) and, when `inertia`, d'Alembert inertia wrenches per link.
+            #[inline(always)]
+            fn __wrenches(
+                &self,
+                s: &[#p::kinematics::LinkState; #n_links],
+                loads: &#loads,
+                inertia: bool,
+            ) -> Result<[#p::kinetostatics::Wrench; #n_links], #p::MechError> {
+                #p::error::check_finite("loads", &[#(#load_checks)*])?;
+                let mut f = [#p::kinetostatics::Wrench::zeros(); #n_links];
+                #gravity_terms
+                #(#load_terms)*
+                if inertia {
+                    #inertia_terms
+                }
+                Ok(f)
+            }
+
+            /// Position analysis: every link's angle and cg, every point's position.
+            /// Computes no velocity or acceleration.
+            pub fn pose(&self, q: #q_ty) -> Result<#pose, #p::MechError> {
+                #q_arr
+                #p::error::check_finite("q", &q)?;
+                let zero = [0.0; #dof];
+                let s = self.__solve(&q, &zero, &zero, #p::kinematics::Level::Position)?;
+                Ok(#pose {
+                    links: #pose_links { #(#pose_link_vals)* },
+                    points: #pose_points { #(#pose_point_vals)* },
+                })
+            }
+
+            /// Position, velocity and acceleration analysis at input (q, q̇, q̈).
+            pub fn kinematics(&self, q: #q_ty, qd: #q_ty, qdd: #q_ty) -> Result<#motion, #p::MechError> {
+                #q_arr #qd_arr #qdd_arr
+                #p::error::check_finite("q, qd, qdd", &q)?;
+                #p::error::check_finite("q, qd, qdd", &qd)?;
+                #p::error::check_finite("q, qd, qdd", &qdd)?;
+                let s = self.__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration)?;
+                Ok(#motion {
+                    links: #motion_links { #(#motion_link_vals)* },
+                    points: #motion_points { #(#motion_point_vals)* },
+                    states: s,
+                })
+            }
+
+            #kinetostatics
+
+            /// The motor actions by the principle of virtual power, computing no reaction:
+            /// for each input, the velocity field that moves it alone at unit rate, and
+            /// Q = −Σ (F·v + M·ω) over loads, gravity and inertia forces.
+            pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
+                let s = &m.states;
+                let f = self.__wrenches(s, loads, true)?;
+                let mut out = [0.0; #dof];
+                for k in 0..#dof {
+                    let mut qd = [0.0; #dof];
+                    qd[k] = 1.0;
+                    let v = self.__velocity_field(s, &qd)?;
+                    out[k] = -#p::kinetostatics::virtual_power(&f, &v);
+                }
+                Ok(#driver_out)
+            }
+
+            #one_dof_api
+        }
+    }
+}
