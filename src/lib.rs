@@ -50,6 +50,7 @@ pub mod prelude {
     pub use mech_core::kinematics::{LinkMotion, LinkPose, PointMotion, PointPose};
     pub use mech_core::kinetostatics::{PrismaticReaction, RevoluteReaction, SlotReaction};
     pub use mech_core::zhukovski::Reduced;
+    pub use mech_core::traits::{Machine, OneDof};
     pub use mech_core::MechError;
     pub use mech_core::Vector2;
 }

@@ -17,6 +17,7 @@ pub mod kinetostatics;
 pub mod model;
 pub mod pebble;
 pub mod resolve;
+pub mod traits;
 pub mod validate;
 pub mod zhukovski;
 

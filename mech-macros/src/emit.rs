@@ -518,6 +518,76 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         quote!()
     };
 
+    let ke_terms = massive.iter().map(|&l| {
+        let lid = &link_ids[l];
+        quote!(out[#l] = 0.5 * (self.links[#l].mass * m.links.#lid.cg_vel.norm_squared() + self.links[#l].inertia * m.links.#lid.omega * m.links.#lid.omega);)
+    });
+    let pe_terms: Vec<TokenStream> = if model.gravity.is_some() {
+        massive.iter().map(|&l| {
+            let lid = &link_ids[l];
+            quote!(v -= self.links[#l].mass * self.gravity.dot(&m.links.#lid.cg);)
+        }).collect()
+    } else {
+        vec![]
+    };
+    let slice_to_q = |v: Ident| -> TokenStream {
+        if one_dof {
+            quote!(#v[0])
+        } else {
+            let idx = 0..dof;
+            quote!([#(#v[#idx]),*])
+        }
+    };
+    let (sq, sqd, sqdd) = (slice_to_q(id("q")), slice_to_q(id("qd")), slice_to_q(id("qdd")));
+    let drv_store = if one_dof { quote!(out[0] = d;) } else { quote!(out.copy_from_slice(&d);) };
+    let machine_impl = quote! {
+        impl #p::traits::Machine for #main {
+            const DOF: usize = #dof;
+            const LINKS: usize = #n_links;
+            type Loads = #loads;
+            type Motion = #motion;
+            fn motion(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<#motion, #p::MechError> {
+                if q.len() != #dof || qd.len() != #dof || qdd.len() != #dof {
+                    return Err(#p::MechError::InvalidInput(format!("expected {} input values", #dof)));
+                }
+                self.kinematics(#sq, #sqd, #sqdd)
+            }
+            fn driver_actions(&self, m: &#motion, loads: &#loads, out: &mut [f64]) -> Result<(), #p::MechError> {
+                let d = self.driver_action(m, loads)?;
+                #drv_store
+                Ok(())
+            }
+            fn link_kinetic_energies(&self, m: &#motion, out: &mut [f64]) {
+                for o in out.iter_mut() {
+                    *o = 0.0;
+                }
+                #(#ke_terms)*
+            }
+            fn potential_energy(&self, m: &#motion) -> f64 {
+                let mut v = 0.0;
+                #(#pe_terms)*
+                let _ = m;
+                v
+            }
+        }
+    };
+    let one_dof_impl = if one_dof {
+        quote! {
+            impl #p::traits::OneDof for #main {
+                fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
+                    #main::reduced(self, q)
+                }
+                fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
+                    #main::reduced_moment(self, q, loads)
+                }
+                fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
+                    #main::acceleration(self, q, qd, driver, loads)
+                }
+            }
+        }
+    } else {
+        quote!()
+    };
     let q_arr = to_arr(&id("q"));
     let qd_arr = to_arr(&id("qd"));
     let qdd_arr = to_arr(&id("qdd"));
@@ -627,6 +697,9 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         #pose_by_name
         #motion_by_name
         #loads_impl
+
+        #machine_impl
+        #one_dof_impl
 
         impl Default for #main {
             fn default() -> Self {

@@ -1,0 +1,35 @@
+//! The traits every generated struct implements, so the generic algorithms (dynamics,
+//! flywheel sizing, cycle sweeps, the stress suite) are written once, in mech-core.
+
+use crate::zhukovski::Reduced;
+use crate::MechError;
+
+/// Any generated mechanism, any number of inputs G.
+pub trait Machine {
+    /// G, the number of inputs.
+    const DOF: usize;
+    /// N, links including the ground.
+    const LINKS: usize;
+    /// The loads struct (`<Name>Loads`).
+    type Loads: Clone + Default;
+    /// The kinematics result (`<Name>Motion`).
+    type Motion: Clone;
+    /// Kinematics at (q, q̇, q̈), slices of length G.
+    fn motion(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<Self::Motion, MechError>;
+    /// The motor actions by virtual power into `out` (length G): torque (N·m) or force (N).
+    fn driver_actions(&self, m: &Self::Motion, loads: &Self::Loads, out: &mut [f64]) -> Result<(), MechError>;
+    /// Kinetic energy of each link (J) into `out` (length N, the ground's is 0).
+    fn link_kinetic_energies(&self, m: &Self::Motion, out: &mut [f64]);
+    /// Potential energy of gravity Σ −m g·r_G (J); 0 without gravity.
+    fn potential_energy(&self, m: &Self::Motion) -> f64;
+}
+
+/// A generated one-DOF mechanism: Zhukovski's reduction and the direct problem.
+pub trait OneDof: Machine {
+    /// I*(q) and dI*/dq.
+    fn reduced(&self, q: f64) -> Result<Reduced, MechError>;
+    /// M*(q) (N·m), loads and gravity included.
+    fn reduced_moment(&self, q: f64, loads: &Self::Loads) -> Result<f64, MechError>;
+    /// q̈ from I* q̈ + ½ dI*/dq q̇² = driver + M*.
+    fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &Self::Loads) -> Result<f64, MechError>;
+}
