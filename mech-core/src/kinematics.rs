@@ -135,6 +135,9 @@ pub enum ConKind {
     DriveRevolute(usize),
     /// Prismatic driver (input `k`): 1 row (the guide itself is a separate `Prismatic`).
     DrivePrismatic(usize),
+    /// One row (0: x, 1: y) of a revolute whose other row is redundant in its group
+    /// (only in mechanisms accepted with `#[allow(redundant)]`).
+    RevoluteRow(usize),
 }
 
 impl ConKind {
@@ -214,6 +217,10 @@ pub type Drive<'a> = (&'a [f64], &'a [f64], &'a [f64]);
 /// right-hand sides of the group's linear systems, negated.
 #[inline]
 pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) -> ConEval {
+    if let ConKind::RevoluteRow(k) = c.kind {
+        let e = eval(Con { joint: c.joint, kind: ConKind::Revolute }, g, s, drive, level);
+        return ConEval { rows: [e.rows[k], e.rows[1 - k]], val: [e.val[k], 0.0] };
+    }
     let (sa, sb) = (&s[g.a], &s[g.b]);
     let ra = sa.r(g.da);
     let rb = sb.r(g.db);
@@ -268,6 +275,7 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
                 };
             }
         }
+        ConKind::RevoluteRow(_) => unreachable!("handled above"),
         ConKind::DriveRevolute(k) => {
             out.rows[0] = Row { a: Vector3::new(0.0, 0.0, -1.0), b: Vector3::new(0.0, 0.0, 1.0) };
             out.val[0] = match level {

@@ -33,3 +33,20 @@ pub trait OneDof: Machine {
     /// q̈ from I* q̈ + ½ dI*/dq q̇² = driver + M*.
     fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &Self::Loads) -> Result<f64, MechError>;
 }
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// No type implements this trait: it is the bound of the `kinetostatics` method of a
+/// mechanism accepted with `#[allow(redundant)]`, so that calling it fails to compile
+/// with an explanation instead of "no method found".
+#[diagnostic::on_unimplemented(
+    message = "this mechanism has redundant constraints (`#[allow(redundant)]`): its reactions are statically indeterminate, so it has no `kinetostatics`",
+    label = "reactions cannot be computed for a redundant mechanism",
+    note = "the motor actions are still determined: call `driver_action(&motion, &loads)` (virtual power, seed section 2.f)"
+)]
+pub trait DeterminateReactions: sealed::Sealed {
+    /// Uninhabited: proves the method can never run.
+    fn never(&self) -> std::convert::Infallible;
+}

@@ -98,6 +98,7 @@ fn con_tokens(c: &Con) -> TokenStream {
         ConKind::Slot => quote!(Slot),
         ConKind::DriveRevolute(k) => quote!(DriveRevolute(#k)),
         ConKind::DrivePrismatic(k) => quote!(DrivePrismatic(#k)),
+        ConKind::RevoluteRow(k) => quote!(RevoluteRow(#k)),
     };
     quote!(::mech::__private::kinematics::Con { joint: #j, kind: ::mech::__private::kinematics::ConKind::#kind })
 }
@@ -448,7 +449,15 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
     };
 
     let kinetostatics = if redundant {
-        quote!()
+        quote! {
+            /// Not available: with redundant constraints the reactions are statically
+            /// indeterminate. Calling this fails to compile with that explanation; use
+            /// `driver_action`.
+            pub fn kinetostatics<M: #p::traits::DeterminateReactions>(&self, m: &M, loads: &#loads) -> Result<#forces, #p::MechError> {
+                let _ = loads;
+                match m.never() {}
+            }
+        }
     } else {
         quote! {
             /// Kinetostatics by d'Alembert (seed, section 2): the motor action of every input
