@@ -390,10 +390,6 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         let doc_p = format!("The {what} of the point named `name`, if any.");
         quote! {
             impl #ty {
-                /// The moving links' names, in declaration order.
-                pub const LINK_NAMES: [&'static str; #n_moving] = [#(#link_names),*];
-                /// The points' names, in order of definition.
-                pub const POINT_NAMES: [&'static str; #n_points] = [#(#point_names),*];
                 #[doc = #doc_l]
                 pub fn link(&self, name: &str) -> Option<&#link_ty> {
                     match name { #(#link_names => Some(&self.links.#moving_ids),)* _ => None }
@@ -437,8 +433,6 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
     } else {
         quote! {
             impl #forces {
-                /// The joints' names, in declaration order.
-                pub const JOINT_NAMES: [&'static str; #n_joints] = [#(#joint_names),*];
                 /// The reaction at the joint named `name`: force by a on b (N) and, for a
                 /// prismatic joint, the moment (N·m).
                 pub fn reaction(&self, name: &str) -> Option<(#v2, Option<f64>)> {
@@ -729,6 +723,12 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             pub const EQUATIONS: usize = #equations;
             /// Unknowns: G + 2 P_I + P_II.
             pub const UNKNOWNS: usize = #unknowns;
+            /// The moving links' names, in declaration order.
+            pub const LINK_NAMES: [&'static str; #n_moving] = [#(#link_names),*];
+            /// The points' names, in order of definition.
+            pub const POINT_NAMES: [&'static str; #n_points] = [#(#point_names),*];
+            /// The joints' names, in declaration order.
+            pub const JOINT_NAMES: [&'static str; #n_joints] = [#(#joint_names),*];
 
             #(#group_consts)*
 
