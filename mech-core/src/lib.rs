@@ -9,6 +9,7 @@
 pub mod assur;
 pub mod dsl;
 pub mod error;
+pub mod generic;
 pub mod geometry;
 pub mod grubler;
 pub mod instance;
