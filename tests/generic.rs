@@ -16,28 +16,9 @@ use support::*;
 /// The text of the generated mechanisms, exactly as the macro saw it.
 const MECHANISMS: &str = include_str!("common/mechanisms.rs");
 
-/// The body of the `mechanism! { ... }` block declaring `pub struct name`.
-fn dsl(name: &str) -> String {
-    let needle = format!("pub struct {name} {{");
-    for (start, _) in MECHANISMS.match_indices("mechanism! {") {
-        let body = start + "mechanism! {".len();
-        let mut depth = 1;
-        for (i, ch) in MECHANISMS[body..].char_indices() {
-            match ch {
-                '{' => depth += 1,
-                '}' => depth -= 1,
-                _ => {}
-            }
-            if depth == 0 {
-                let text = &MECHANISMS[body..body + i];
-                if text.contains(&needle) {
-                    return text.to_string();
-                }
-                break;
-            }
-        }
-    }
-    panic!("no mechanism `{name}` in tests/common/mechanisms.rs")
+/// The generic mechanism `name`, loaded from the text of `tests/common/mechanisms.rs`.
+fn generic(name: &str) -> GenericMechanism {
+    GenericMechanism::from_rust_source(MECHANISMS, name).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 /// Compare the generic motion with the reference table and with the generated motion.
@@ -89,7 +70,7 @@ macro_rules! generic_test {
         fn $test() {
             let t = truth($file);
             let gen = $ty::new();
-            let g = GenericMechanism::parse(&dsl(stringify!($ty))).unwrap_or_else(|e| panic!("{e}"));
+            let g = generic(stringify!($ty));
             assert_eq!(g.dof(), $ty::DOF);
             assert_eq!(g.model().n_links(), $ty::LINKS);
             let mut loads = $loads::default();
@@ -185,7 +166,7 @@ fn sweeps_over_a_revolution() {
     for (name, ty) in [("four_bar", "FourBar"), ("slider_crank", "SliderCrank")] {
         let path = format!("{}/tests/data/{name}.sweep.json", env!("CARGO_MANIFEST_DIR"));
         let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-        let g = GenericMechanism::parse(&dsl(ty)).unwrap();
+        let g = generic(ty);
         let mut loads = g.loads();
         for (n, l) in t["loads"].as_object().unwrap() {
             assert!(loads.set_by_name(n, &nums(&l["value"])));
@@ -208,17 +189,71 @@ fn sweeps_over_a_revolution() {
     }
 }
 
-/// The loader reads files, and a mechanism rebuilt from its model (other masses) is
-/// checked again and solved with the new numbers.
+/// A text copy of the Watt II of `tests/common/mechanisms.rs`.
+const WATT2: &str = r#"
+    /// Watt II six-bar: crank-rocker O2-A-B-O4 whose ternary rocker drives a second four-bar O4-C-D-O6
+    pub struct Watt2 {
+        gravity: (0.0, -9.81),
+        ground { O2: (0.0, 0.0), O4: (0.26, 0.02), O6: (0.5, 0.16) },
+        link crank {
+            points { O2, A: (0.049497474683058325, 0.049497474683058325) },
+            mass: 0.6, inertia: 0.00035, cg: (0.017677669529663688, 0.024748737341529162),
+        },
+        link coupler {
+            points { A, B: (0.24457586704408874, 0.18929883674307502) },
+            mass: 1.1, inertia: 0.0058, cg: (0.14295913113682304, 0.12508794215693006),
+        },
+        link rocker {
+            points { O4, B, C: (0.38963382395689183, 0.09546569873998104) },
+            mass: 1.6, inertia: 0.0061, cg: (0.3020698970003269, 0.09858817849435202),
+        },
+        link link5 {
+            points { C, D: (0.442738473050409, 0.2986402449918539) },
+            mass: 0.9, inertia: 0.0036, cg: (0.4207267391324297, 0.19069820698105808),
+        },
+        link rocker6 {
+            points { O6, D },
+            mass: 0.8, inertia: 0.0019, cg: (0.46495953939067963, 0.221263089379223),
+        },
+        joints {
+            O2: revolute(ground, crank),
+            A: revolute(crank, coupler),
+            B: revolute(coupler, rocker),
+            O4: revolute(ground, rocker),
+            C: revolute(rocker, link5),
+            D: revolute(link5, rocker6),
+            O6: revolute(ground, rocker6),
+        },
+        input: O2,
+        loads {
+            output: force on rocker6 at D,
+            resist: torque on rocker6,
+        },
+    }
+"#;
+
+/// The loader reads text and files; both give the mechanism of the Rust source. A
+/// mechanism rebuilt from its model (other masses) is checked again and solved with the
+/// new numbers.
 #[test]
-fn load_from_file_and_from_model() {
+fn load_from_text_file_and_model() {
     let path = std::env::temp_dir().join(format!("mech_generic_{}.mech", std::process::id()));
-    std::fs::write(&path, dsl("Watt2")).unwrap();
+    std::fs::write(&path, WATT2).unwrap();
     let g = GenericMechanism::load(&path).unwrap();
     std::fs::remove_file(&path).ok();
-    let text: GenericMechanism = dsl("Watt2").parse().unwrap();
-    let (a, b) = (g.pose(&[0.4]).unwrap(), text.pose(&[0.4]).unwrap());
-    assert_eq!(a.points, b.points);
+    let text: GenericMechanism = WATT2.parse().unwrap();
+    let source = generic("Watt2");
+    let gen = Watt2::new();
+    for q in [0.4, 2.0, -2.5] {
+        let (a, b, c) = (g.pose(&[q]).unwrap(), text.pose(&[q]).unwrap(), source.pose(&[q]).unwrap());
+        assert_eq!(a.points, b.points);
+        assert_eq!(a.points, c.points);
+        let p = gen.pose(q).unwrap();
+        for pt in &g.model().points {
+            let d = a.point(&pt.name).unwrap().pos - p.point(&pt.name).unwrap().pos;
+            assert!(d.amax() < 1e-13, "{}: {d:?}", pt.name);
+        }
+    }
 
     // Doubling every mass and inertia without gravity or loads doubles the driver torque.
     let mut model = g.model().clone();
@@ -253,7 +288,7 @@ fn newton_tolerance_parameter() {
     let q = nums(&c["q"]);
     let want = nums(&c["links"]["rocker"]["points"]["B"]["pos"]);
     for tol in [1e-3, 1e-6, 1e-9, 1e-12, 1e-15] {
-        let g = GenericMechanism::parse(&dsl("FourBar")).unwrap().with_tolerance(tol).unwrap();
+        let g = generic("FourBar").with_tolerance(tol).unwrap();
         assert_eq!(g.tolerance(), tol);
         let p = g.pose(&q).unwrap();
         let b = p.point("B").unwrap().pos;

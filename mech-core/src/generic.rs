@@ -265,6 +265,11 @@ fn located(d: &Diagnostic<Span>) -> String {
     out
 }
 
+/// A syntax error (every message of it) as [`MechError::Invalid`] with `line:column`.
+fn syntax(e: syn::Error) -> MechError {
+    MechError::Invalid(e.into_iter().map(|e| format!("{}: {}", location(&e.span()), e)).collect::<Vec<_>>().join("\n"))
+}
+
 fn invalid(diags: &[Diagnostic<Span>]) -> MechError {
     MechError::Invalid(diags.iter().map(located).collect::<Vec<_>>().join("\n"))
 }
@@ -284,10 +289,45 @@ impl GenericMechanism {
     /// [`crate::validate::check`], [`crate::assur::plan`]). Every problem found is reported
     /// in one [`MechError::Invalid`], each message prefixed with its `line:column`.
     pub fn parse(text: &str) -> Result<Self, MechError> {
-        let desc = parse_str(text).map_err(|e| {
-            MechError::Invalid(e.into_iter().map(|e| format!("{}: {}", location(&e.span()), e)).collect::<Vec<_>>().join("\n"))
-        })?;
-        let model = resolve(&desc).map_err(|d| invalid(&d))?;
+        let desc = parse_str(text).map_err(syntax)?;
+        Self::from_description(&desc)
+    }
+
+    /// Load the mechanism `name` declared with `mechanism! { ... pub struct name { ... } }`
+    /// in Rust source text `source` (e.g. `include_str!` of the file that the macro
+    /// compiles): the same tokens the macro sees, through the same checks as
+    /// [`GenericMechanism::parse`]; messages carry `line:column` in `source`.
+    /// [`MechError::Invalid`] when the source does not tokenize or declares no such mechanism.
+    pub fn from_rust_source(source: &str, name: &str) -> Result<Self, MechError> {
+        let tokens: proc_macro2::TokenStream =
+            source.parse().map_err(|e: proc_macro2::LexError| MechError::Invalid(format!("{}: {e}", location(&e.span()))))?;
+        let mut found = Vec::new();
+        let mut stack = vec![tokens];
+        while let Some(ts) = stack.pop() {
+            let tt: Vec<proc_macro2::TokenTree> = ts.into_iter().collect();
+            for (i, t) in tt.iter().enumerate() {
+                let proc_macro2::TokenTree::Group(g) = t else { continue };
+                let invoked = i >= 2
+                    && matches!(&tt[i - 2], proc_macro2::TokenTree::Ident(id) if id == "mechanism")
+                    && matches!(&tt[i - 1], proc_macro2::TokenTree::Punct(p) if p.as_char() == '!');
+                if !invoked {
+                    stack.push(g.stream());
+                    continue;
+                }
+                match syn::parse2::<crate::dsl::Parsed>(g.stream()) {
+                    Ok(p) if p.0.name.text == name => return Self::from_description(&p.0),
+                    Ok(p) => found.push(p.0.name.text),
+                    Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => return Err(syntax(e)),
+                    Err(_) => {}
+                }
+            }
+        }
+        Err(MechError::Invalid(format!("no `mechanism!` declares `{name}` here; found: {}", found.join(", "))))
+    }
+
+    /// Resolve and validate a parsed description (the macro's pipeline after parsing).
+    fn from_description(desc: &crate::model::Description<Span>) -> Result<Self, MechError> {
+        let model = resolve(desc).map_err(|d| invalid(&d))?;
         let issues = crate::validate::check(&model);
         if !issues.is_empty() {
             let diags: Vec<Diagnostic<Span>> = issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
@@ -967,6 +1007,19 @@ mod tests {
         let MechError::Invalid(msg) = e else { panic!("{e:?}") };
         assert!(msg.starts_with("1:"), "{msg}");
         assert!(matches!(GenericMechanism::load("/nonexistent/mechanism.txt"), Err(MechError::Invalid(_))));
+    }
+
+    #[test]
+    fn mechanisms_are_found_in_rust_source() {
+        let source = format!("use mech::prelude::*;\n\nfn main() {{}}\n\nmechanism! {{{FOUR_BAR}}}\n");
+        let m = GenericMechanism::from_rust_source(&source, "FourBar").unwrap();
+        assert_eq!(m.pose(&[0.5]).unwrap().points, GenericMechanism::parse(FOUR_BAR).unwrap().pose(&[0.5]).unwrap().points);
+        let Err(MechError::Invalid(msg)) = GenericMechanism::from_rust_source(&source, "Nothing") else { panic!() };
+        assert!(msg.contains("found: FourBar"), "{msg}");
+        // Locations are in the source file: the DSL starts on line 5.
+        let bad = source.replace("revolute(coupler, rocker)", "revolute(coupler, rockr)");
+        let Err(MechError::Invalid(msg)) = GenericMechanism::from_rust_source(&bad, "FourBar") else { panic!() };
+        assert!(msg.starts_with("16:38: unknown link `rockr`"), "{msg}");
     }
 
     #[test]
