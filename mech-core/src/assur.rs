@@ -76,6 +76,35 @@ pub enum Solver {
         /// Pin of b2 to a solved link.
         jb: usize,
     },
+    /// PRP dyad: `b1` sliding on a solved link by `jp1`, `b2` by `jp2`, pinned together
+    /// by `jc`: both rotations are known, the pin is where two lines cross.
+    Prp {
+        /// First slider.
+        b1: usize,
+        /// Second slider.
+        b2: usize,
+        /// Prismatic of b1 on a solved link.
+        jp1: usize,
+        /// Pin between b1 and b2.
+        jc: usize,
+        /// Prismatic of b2 on a solved link.
+        jp2: usize,
+    },
+    /// RPP dyad: `b1` pinned to a solved link by `ja`, sliding on `b2` by `jp`, `b2`
+    /// sliding on a solved link by `jq`: both rotations are those of the last solved link;
+    /// b1 is placed by its pin, b2 where two lines cross.
+    Rpp {
+        /// The pinned link.
+        b1: usize,
+        /// The outer slider.
+        b2: usize,
+        /// Pin of b1.
+        ja: usize,
+        /// Prismatic between b1 and b2.
+        jp: usize,
+        /// Prismatic of b2 on a solved link.
+        jq: usize,
+    },
     /// One link pinned by `ja` whose point slides in a slot of a solved link (`js`):
     /// circle and line.
     PinInFixedSlot {
@@ -270,6 +299,12 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
                     (JointKind::Revolute, JointKind::Prismatic, JointKind::Revolute) => {
                         return Solver::Rpr { b1, b2, ja: o1.joint, jp: mid.joint, jb: o2.joint }
                     }
+                    (JointKind::Prismatic, JointKind::Revolute, JointKind::Prismatic) => {
+                        return Solver::Prp { b1, b2, jp1: o1.joint, jc: mid.joint, jp2: o2.joint }
+                    }
+                    (JointKind::Revolute, JointKind::Prismatic, JointKind::Prismatic) => {
+                        return Solver::Rpp { b1, b2, ja: o1.joint, jp: mid.joint, jq: o2.joint }
+                    }
                     _ => {}
                 }
             }
@@ -452,6 +487,30 @@ pub fn position<const N: usize>(
             let (rot, _) = tangent_rotation(n0, dvec, w, sign)?;
             place_by_point(&mut s[guide], rot, pa.1, pa.0);
             place_by_point(&mut s[slider], rot, pb.1, pb.0);
+        }
+        Solver::Prp { b1, b2, jp1, jc, jp2 } => {
+            let (g1, g2) = (&joints[jp1], &joints[jp2]);
+            let rot1 = if g1.b == b1 { s[g1.a].rot } else { s[g1.b].rot };
+            let rot2 = if g2.b == b2 { s[g2.a].rot } else { s[g2.b].rot };
+            let gc = &joints[jc];
+            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
+            let (p1, u1) = slide_line(g1, s, b1, rot1, dc1);
+            let (p2, u2) = slide_line(g2, s, b2, rot2, dc2);
+            let c = line_line(p1, u1, p2, u2)?;
+            place_by_point(&mut s[b1], rot1, dc1, c);
+            place_by_point(&mut s[b2], rot2, dc2, c);
+        }
+        Solver::Rpp { b1, b2, ja, jp, jq } => {
+            let gq = &joints[jq];
+            let rot = if gq.b == b2 { s[gq.a].rot } else { s[gq.b].rot };
+            let (a, da) = pin(&joints[ja], s, b1);
+            place_by_point(&mut s[b1], rot, da, a);
+            // The sliding point of b2 on the solved link, on both lines.
+            let dq = if gq.b == b2 { gq.db } else { gq.da };
+            let (p1, u1) = slide_line(gq, s, b2, rot, dq);
+            let (p2, u2) = slide_line(&joints[jp], s, b2, rot, dq);
+            let c = line_line(p1, u1, p2, u2)?;
+            place_by_point(&mut s[b2], rot, dq, c);
         }
         Solver::PinInFixedSlot { body, ja, js } => {
             let (a, da) = pin(&joints[ja], s, body);

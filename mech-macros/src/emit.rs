@@ -111,6 +111,8 @@ fn solver_tokens(s: &Solver) -> TokenStream {
         Solver::Rrr { b1, b2, ja, jc, jb } => quote!(#p::Rrr { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jb: #jb }),
         Solver::Rrp { b1, b2, ja, jc, jp } => quote!(#p::Rrp { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jp: #jp }),
         Solver::Rpr { b1, b2, ja, jp, jb } => quote!(#p::Rpr { b1: #b1, b2: #b2, ja: #ja, jp: #jp, jb: #jb }),
+        Solver::Prp { b1, b2, jp1, jc, jp2 } => quote!(#p::Prp { b1: #b1, b2: #b2, jp1: #jp1, jc: #jc, jp2: #jp2 }),
+        Solver::Rpp { b1, b2, ja, jp, jq } => quote!(#p::Rpp { b1: #b1, b2: #b2, ja: #ja, jp: #jp, jq: #jq }),
         Solver::PinInFixedSlot { body, ja, js } => quote!(#p::PinInFixedSlot { body: #body, ja: #ja, js: #js }),
         Solver::SlottedLever { body, ja, js } => quote!(#p::SlottedLever { body: #body, ja: #ja, js: #js }),
         Solver::Newton => quote!(#p::Newton),
