@@ -35,7 +35,7 @@ use crate::error::check_finite;
 use crate::geometry::all_cons;
 use crate::instance::{instance, Instance};
 use crate::kinematics::{
-    eval, point_motion, point_pose, rotate, wrap, Con, ConKind, Drive, Level, LinkMotion, LinkPose, LinkState,
+    eval, point_motion, point_pose, rotate, Con, ConKind, Drive, Level, LinkMotion, LinkPose, LinkState,
     PointMotion, PointPose, SINGULAR_CONDITION, V2,
 };
 use crate::kinetostatics::{add_force, add_gravity, add_inertia, add_torque, slide_force, virtual_power, Wrench};
@@ -672,33 +672,45 @@ impl GenericMechanism {
     }
 
     /// Positions at inputs `q` by continuation from the drawing along q_ref + t·Δq, and the
-    /// factored Jacobian there. For a revolute input Δq is q − q_ref wrapped to (−π, π]
-    /// (the driver equation is 2π-periodic); for a one-DOF revolute input whose short way
-    /// fails, the long way round is tried as well.
+    /// factored Jacobian there. For a revolute input Δq is q − q_ref reduced exactly
+    /// (`rem_euclid`) to (−π, π] and the path ends at q_ref + Δq, the same configuration
+    /// as q (the driver equation is 2π-periodic); for a one-DOF revolute input whose short
+    /// way fails, the long way round is tried as well.
     fn positions(&self, q: &[f64]) -> Result<(Vec<LinkState>, System), MechError> {
         if q.len() != self.dof() {
             return Err(MechError::InvalidInput(format!("expected {} input values, got {}", self.dof(), q.len())));
         }
         check_finite("q", q)?;
+        let (pi, tau) = (std::f64::consts::PI, std::f64::consts::TAU);
         let revolute: Vec<bool> =
             self.model.inputs.iter().map(|&j| self.model.joints[j].kind == JointKind::Revolute).collect();
         let delta: Vec<f64> = (0..q.len())
-            .map(|k| if revolute[k] { wrap(q[k] - self.q_ref[k]) } else { q[k] - self.q_ref[k] })
+            .map(|k| {
+                let d = q[k] - self.q_ref[k];
+                if !revolute[k] {
+                    return d;
+                }
+                let r = d.rem_euclid(tau);
+                if r > pi {
+                    r - tau
+                } else {
+                    r
+                }
+            })
             .collect();
-        match self.continuation(q, &delta) {
+        match self.continuation(&delta) {
             Ok(r) => Ok(r),
             Err(e) if q.len() == 1 && revolute[0] && delta[0] != 0.0 => {
-                let tau = std::f64::consts::TAU;
-                let long = [delta[0] - tau.copysign(delta[0])];
-                self.continuation(q, &long).map_err(|_| e)
+                self.continuation(&[delta[0] - tau.copysign(delta[0])]).map_err(|_| e)
             }
             Err(e) => Err(e),
         }
     }
 
-    fn continuation(&self, q_end: &[f64], delta: &[f64]) -> Result<(Vec<LinkState>, System), MechError> {
+    fn continuation(&self, delta: &[f64]) -> Result<(Vec<LinkState>, System), MechError> {
         let scale = self.inst.scale;
-        let dof = q_end.len();
+        let dof = delta.len();
+        let q_end: Vec<f64> = (0..dof).map(|k| self.q_ref[k] + delta[k]).collect();
         let zero = vec![0.0; dof];
         let mut s = self.inst.drawing.clone();
         let mut t = 0.0f64;
@@ -730,7 +742,7 @@ impl GenericMechanism {
                 }
                 let last = t + h >= 1.0;
                 let q_new: Vec<f64> =
-                    if last { q_end.to_vec() } else { (0..dof).map(|k| self.q_ref[k] + (t + h) * delta[k]).collect() };
+                    if last { q_end.clone() } else { (0..dof).map(|k| self.q_ref[k] + (t + h) * delta[k]).collect() };
                 let mut trial = s.clone();
                 let pred = &d1 * h + &d2 * (0.5 * h * h);
                 let predicted = self.advance(&mut trial, &pred);
@@ -1000,6 +1012,7 @@ impl GenericMechanism {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kinematics::wrap;
 
     /// A crank-rocker four-bar with gravity and a load on the rocker.
     const FOUR_BAR: &str = r#"
