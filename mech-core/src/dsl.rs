@@ -36,7 +36,6 @@ fn number(input: ParseStream) -> syn::Result<Num<Span>> {
     } else {
         return Err(input.error("expected a number, e.g. `0.25` or `-1.5e-3`"));
     };
-    let span = neg.map(|n| n.span).unwrap_or(span);
     Ok(Num { value: if neg.is_some() { -value } else { value }, span })
 }
 

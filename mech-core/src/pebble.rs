@@ -264,9 +264,15 @@ pub fn check(model: &Model) -> Vec<Issue> {
                 names(inputs.iter().map(|&j| model.joints[j].name.clone())),
             )
         };
-        let mut culprits: Vec<Culprit> = links.iter().map(|&l| Culprit::Link(l)).collect();
+        // Culprit first: the inputs when over-driven, else the first moving link of the set.
+        let mut culprits: Vec<Culprit> = Vec::new();
+        if !inputs.is_empty() && by_joints <= capacity {
+            culprits.push(Culprit::Inputs);
+        }
+        culprits.extend(links.iter().filter(|&&l| l != 0).map(|&l| Culprit::Link(l)));
+        culprits.extend(links.iter().filter(|&&l| l == 0).map(|&l| Culprit::Link(l)));
         culprits.extend(joints.iter().map(|&j| Culprit::Joint(j)));
-        if !inputs.is_empty() {
+        if !inputs.is_empty() && by_joints > capacity {
             culprits.push(Culprit::Inputs);
         }
         out.push(Issue { culprits, message });
@@ -368,7 +374,10 @@ mod tests {
         assert_eq!(issues.len(), 1, "{issues:#?}");
         let issue = &issues[0];
         let t = |n: &str| m.link_index(n).unwrap();
-        assert_eq!(named_links(issue), vec![0, t("t1"), t("t2"), t("t3")]);
+        let mut named = named_links(issue);
+        named.sort();
+        assert_eq!(named, vec![0, t("t1"), t("t2"), t("t3")]);
+        assert_eq!(issue.culprits[0], Culprit::Link(t("t1")), "the truss, not the ground, is the culprit");
         let msg = &issue.message;
         assert!(
             msg.starts_with("links `t1`, `t2`, `t3` (with the ground) form an over-constrained sub-chain"),

@@ -308,7 +308,8 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         });
     }
     for (i, l) in decls.iter().enumerate() {
-        if !reached[i] {
+        let first_of_its_name = decls[..i].iter().all(|d| d.name.text != l.name.text);
+        if !reached[i] && first_of_its_name {
             errs.push(Diagnostic::at(
                 l.name.span.clone(),
                 format!("link `{}` is not reached by any joint: connect it with a joint or remove it", l.name.text),
@@ -316,8 +317,10 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         }
     }
 
-    // Shared points must be pinned by a revolute joint.
-    for (pi, p) in points.iter().enumerate() {
+    // Shared points must be pinned by a revolute joint (only once the names are right:
+    // a misspelt link in a joint would otherwise look like a missing pin).
+    let names_ok = errs.is_empty();
+    for (pi, p) in points.iter().enumerate().filter(|_| names_ok) {
         let owners: Vec<usize> = (0..links.len()).filter(|&l| links[l].points.contains(&pi)).collect();
         for w in 1..owners.len() {
             for v in 0..w {

@@ -380,6 +380,30 @@ pub fn check(model: &Model) -> Vec<Issue> {
         let n = model.n_links();
         pebble.retain(|i| i.culprits.iter().filter(|c| matches!(c, Culprit::Link(_))).count() < n);
     }
+    // Grübler below the inputs with a drawing that really moves (parallel cranks): the
+    // rank check tells the true story — redundant constraints — so report that instead.
+    if drawing_ok && !model.allow_redundant {
+        if grubler.is_some() {
+            let g = crate::grubler::count(model).grubler;
+            if g < model.inputs.len() as i64 {
+                let relaxed = Model { allow_redundant: true, ..model.clone() };
+                if geometric(&relaxed).is_empty() {
+                    let strict = geometric(model);
+                    if !strict.is_empty() {
+                        out.extend(strict.into_iter().map(|mut i| {
+                            i.message = format!(
+                                "{} (Grübler's count gives G = {g} for {} input(s), but the drawing moves: the count is fooled by the redundant constraints)",
+                                i.message,
+                                model.inputs.len()
+                            );
+                            i
+                        }));
+                        return out;
+                    }
+                }
+            }
+        }
+    }
     let counts_ok = grubler.is_none() && pebble.is_empty();
     out.extend(grubler);
     out.extend(pebble);
@@ -549,10 +573,12 @@ mod tests {
         assert!(msg.contains("joints `O1`, `O2`, `O3`, `A1`, `A2`, `A3` take part"), "{msg}");
         assert!(msg.contains("#[allow(redundant)]"), "{msg}");
         assert_eq!(issues[0].culprits.len(), 6);
-        // Through `check`, Grübler (G = 0 with one input) speaks first and the cascade stops.
+        // Through `check`, Grübler (G = 0 with one input) would say it cannot move; the
+        // rank shows it does, so the redundancy is what is reported.
         let all = check(&m);
         assert_eq!(all.len(), 1, "{all:#?}");
-        assert!(all[0].message.starts_with("Grübler's count"), "{}", all[0].message);
+        assert!(all[0].message.starts_with("redundant constraints at the drawing"), "{}", all[0].message);
+        assert!(all[0].message.contains("G = 0 for 1 input(s)"), "{}", all[0].message);
         assert!(all[0].message.contains("#[allow(redundant)]"));
         // Accepted when declared.
         let ok = model(&format!("#[allow(redundant)] {DOUBLE_PARALLELOGRAM}"));

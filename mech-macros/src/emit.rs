@@ -27,9 +27,9 @@ fn vec2(v: [f64; 2]) -> TokenStream {
 pub fn errors(diags: &[Diagnostic<Span>]) -> TokenStream {
     let mut out = TokenStream::new();
     for d in diags {
-        let first = d.message.lines().next().unwrap_or("");
+        let first = d.message.split(':').next().unwrap_or("");
         for (i, span) in d.spans.iter().enumerate() {
-            let msg = if i == 0 { d.message.clone() } else { format!("involved in: {first}") };
+            let msg = if i == 0 { d.message.clone() } else { format!("involved here: {first} (see the first error)") };
             out.extend(syn::Error::new(*span, msg).to_compile_error());
         }
     }
