@@ -672,29 +672,28 @@ impl GenericMechanism {
     }
 
     /// Positions at inputs `q` by continuation from the drawing along q_ref + t·Δq, and the
-    /// factored Jacobian there. For a revolute input Δq is q − q_ref reduced exactly
-    /// (`rem_euclid`) to (−π, π] and the path ends at q_ref + Δq, the same configuration
-    /// as q (the driver equation is 2π-periodic); for a one-DOF revolute input whose short
-    /// way fails, the long way round is tried as well.
+    /// factored Jacobian there. For a revolute input Δq is q − q_ref reduced to [−π, π]
+    /// (as atan2(sin, cos), exact for any finite q) and the path ends at q_ref + Δq, the
+    /// same configuration as q (the driver equation is 2π-periodic); for a one-DOF
+    /// revolute input whose short way fails, the long way round is tried as well.
     fn positions(&self, q: &[f64]) -> Result<(Vec<LinkState>, System), MechError> {
         if q.len() != self.dof() {
             return Err(MechError::InvalidInput(format!("expected {} input values, got {}", self.dof(), q.len())));
         }
         check_finite("q", q)?;
-        let (pi, tau) = (std::f64::consts::PI, std::f64::consts::TAU);
+        let tau = std::f64::consts::TAU;
         let revolute: Vec<bool> =
             self.model.inputs.iter().map(|&j| self.model.joints[j].kind == JointKind::Revolute).collect();
         let delta: Vec<f64> = (0..q.len())
             .map(|k| {
                 let d = q[k] - self.q_ref[k];
-                if !revolute[k] {
-                    return d;
-                }
-                let r = d.rem_euclid(tau);
-                if r > pi {
-                    r - tau
+                if revolute[k] {
+                    // Reduced through sin and cos, whose argument reduction is exact (a
+                    // remainder by the f64 value of 2π is not, for |d| ≫ 1).
+                    let (sn, cs) = d.sin_cos();
+                    sn.atan2(cs)
                 } else {
-                    r
+                    d
                 }
             })
             .collect();
@@ -892,9 +891,14 @@ impl GenericMechanism {
         Ok(f)
     }
 
-    fn check_motion(&self, m: &GenericMotion) -> Result<(), MechError> {
-        if m.states.len() != self.model.links.len() || m.q.len() != self.dof() {
+    /// A motion and loads made by this mechanism (or one with the same model).
+    fn check_owner(&self, m: &GenericMotion, loads: &GenericLoads) -> Result<(), MechError> {
+        let same = |other: &Arc<Model>| Arc::ptr_eq(other, &self.model) || **other == *self.model;
+        if !same(&m.model) {
             return Err(MechError::InvalidInput("the motion belongs to another mechanism".into()));
+        }
+        if !(Arc::ptr_eq(&loads.model, &self.model) || loads.model.loads == self.model.loads) {
+            return Err(MechError::InvalidInput("the loads belong to another mechanism".into()));
         }
         Ok(())
     }
@@ -906,7 +910,7 @@ impl GenericMechanism {
     /// [`MechError::Redundant`] for a mechanism declared `#[allow(redundant)]` (its
     /// reactions are statically indeterminate), [`MechError::Singular`] at a dead point.
     pub fn kinetostatics(&self, m: &GenericMotion, loads: &GenericLoads) -> Result<GenericForces, MechError> {
-        self.check_motion(m)?;
+        self.check_owner(m, loads)?;
         if self.rows != self.cols() {
             return Err(MechError::Redundant(format!(
                 "{} constraint equations for {} coordinates: the reactions are statically indeterminate; use driver_action",
@@ -950,7 +954,7 @@ impl GenericMechanism {
     /// Q_k = −Σ (F·v + M·ω) over loads, gravity and inertia wrenches (N·m or N).
     /// Works for `#[allow(redundant)]` mechanisms too.
     pub fn driver_action(&self, m: &GenericMotion, loads: &GenericLoads) -> Result<Vec<f64>, MechError> {
-        self.check_motion(m)?;
+        self.check_owner(m, loads)?;
         let s = &m.states;
         let f = self.wrenches(s, loads, true)?;
         let zero = vec![0.0; self.dof()];
