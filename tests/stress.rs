@@ -420,7 +420,8 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
             Err(e) => panic!("{ctx}: generated: {e}"),
         }
     }
-    assert!(generated_ok >= 6, "the generated solver answered only {generated_ok} of 7");
+    // SINGULAR_CONDITION = 1e6 refuses transmission angles below about 1e-6 rad.
+    assert!(generated_ok >= 5, "the generated solver answered only {generated_ok} of 7");
 
     // Past the toggle there is no assembly: an error from both, never a number.
     for q in PAST_TOGGLE {
@@ -443,7 +444,6 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
 /// `dead_point_results_are_within_the_stated_bound_or_singular`), so a threshold of 1e10
 /// on the pivot ratio lets through rates with relative error up to ~1e4.
 #[test]
-#[ignore = "bug: kinematics::SINGULAR_CONDITION (1e10 on κ) lets rates with error ~ε·κ² through: 2.2 % error in ω, 9 % in the torque at transmission angle 1e-7 rad, no error"]
 fn generated_toggle_is_accurate_to_a_thousandth_or_singular() {
     let gen = Toggle::new();
     let loads = ToggleLoads { resist: -3.0 };
@@ -1135,7 +1135,6 @@ mechanism! {
 /// `DrivePrismatic(k)` still indexes it with k, so input 9 or later of a prismatic driver
 /// panics (index out of bounds) in `GroupSystem::new`, i.e. in the generated `kinematics`.
 #[test]
-#[ignore = "bug: kinematics::eval indexes its 8-element zero drive with k at Level::Jacobian: a prismatic input k ≥ 8 panics (index out of bounds) in generated kinematics"]
 fn ninth_prismatic_input_does_not_panic() {
     let m = NineSliders::new();
     let q = [0.1; 9];
@@ -1162,7 +1161,6 @@ fn generic_nine_prismatic_inputs() {
 /// into (−π, π] as documented: wrap(−3e19) = −4089.7. It is the driver equation of a
 /// revolute input inside a Newton group, so such inputs have no assembly there.
 #[test]
-#[ignore = "bug: kinematics::wrap(a) returns values outside (−π, π] for |a| ≳ 1e16 (wrap(-3e19) = -4089.7): reduce through sin_cos + atan2"]
 fn wrap_reduces_huge_angles() {
     for a in [1e17, 1e20, -3e19, 1e300] {
         let w = mech::kinematics::wrap(a);

@@ -172,9 +172,15 @@ pub struct Row {
     pub b: Vector3<f64>,
 }
 
-/// Angle difference wrapped to (−π, π].
+/// Angle difference wrapped to (−π, π] (rad). Beyond |a| = 1e9 the reduction goes
+/// through (sin a, cos a), which is exact for any finite a.
 #[inline]
 pub fn wrap(a: f64) -> f64 {
+    if !(a.abs() < 1e9) {
+        let (s, c) = a.sin_cos();
+        let r = s.atan2(c);
+        return if r <= -std::f64::consts::PI { std::f64::consts::PI } else { r };
+    }
     let t = std::f64::consts::TAU;
     let r = a - t * (a / t).round();
     if r <= -std::f64::consts::PI {
@@ -226,8 +232,6 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
     let rb = sb.r(g.db);
     let z = Row { a: Vector3::zeros(), b: Vector3::zeros() };
     let mut out = ConEval { rows: [z, z], val: [0.0, 0.0] };
-    let zero: &[f64] = &[0.0; 8];
-    let drive = if level == Level::Jacobian { (zero, zero, zero) } else { drive };
     match c.kind {
         ConKind::Revolute => {
             out.rows[0] = Row { a: Vector3::new(-1.0, 0.0, ra.y), b: Vector3::new(1.0, 0.0, -rb.y) };
@@ -244,6 +248,7 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
             let u = sa.r(g.axis);
             // The sliding normal for guides; the axis itself for an actuator's stroke.
             let (n, target) = match c.kind {
+                ConKind::DrivePrismatic(_) if level == Level::Jacobian => (u, [0.0; 3]),
                 ConKind::DrivePrismatic(k) => (u, [drive.0[k], drive.1[k], drive.2[k]]),
                 _ => (perp(u), [0.0; 3]),
             };
@@ -289,9 +294,10 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
     out
 }
 
-/// Threshold on the condition estimate beyond which a group's system is reported
-/// `Singular` (a dead point or toggle position).
-pub const SINGULAR_CONDITION: f64 = 1e10;
+/// Threshold on the condition estimate κ (the pivot ratio of a group's scaled system)
+/// beyond which it is reported `Singular` (a dead point or toggle position). Near a
+/// toggle, rates carry a relative error of order ε·κ², so 1e6 bounds it by about 1e-4.
+pub const SINGULAR_CONDITION: f64 = 1e6;
 
 /// The square system of one Assur group with `N` = 3 × (its links) unknowns.
 ///
