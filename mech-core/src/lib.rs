@@ -8,6 +8,7 @@
 
 pub mod assur;
 pub mod dsl;
+pub mod dynamics;
 pub mod error;
 pub mod generic;
 pub mod geometry;
@@ -16,6 +17,7 @@ pub mod instance;
 pub mod kinematics;
 pub mod kinetostatics;
 pub mod model;
+pub mod ode;
 pub mod pebble;
 pub mod resolve;
 pub mod traits;
