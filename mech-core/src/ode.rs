@@ -106,6 +106,7 @@ impl<'a, const N: usize> Event<'a, N> {
     }
 }
 
+/// y + h Σ_j a_j k_j, skipping zero coefficients (a stage of an explicit tableau row).
 #[inline]
 fn lincomb<const N: usize, const S: usize>(y: &[f64; N], h: f64, a: &[f64; S], k: &[[f64; N]; S]) -> [f64; N] {
     let mut out = *y;
@@ -143,7 +144,8 @@ where
 ///
 /// With `event`, the run stops at the first zero crossing of g, located on the dense output
 /// by the Illinois variant of regula falsi to `t_tol`. `observer` sees every accepted step's
-/// dense output (in order, the last one ending at the returned time). Errors: the right-hand
+/// dense output in order; the last one contains the returned time (with an event it may
+/// reach past it). Errors: the right-hand
 /// side's own, [`MechError::InvalidInput`] for non-finite input or a state that becomes
 /// non-finite, [`MechError::StepUnderflow`] from an adaptive method.
 pub fn solve<const N: usize, M, F>(
@@ -949,10 +951,10 @@ impl<const N: usize> Tableau<N> for Dop8 {
         let mut k = [[0.0; N]; 16];
         k[0] = *dy;
         for s in 1..12 {
-            let ys = stage(y, h, &A[s], &k, s);
+            let ys = lincomb(y, h, &A[s], &k);
             k[s] = eval(f, t + C[s] * h, &ys, stats)?;
         }
-        let y1 = stage(y, h, &A[12], &k, 12);
+        let y1 = lincomb(y, h, &A[12], &k);
         k[12] = eval(f, t + h, &y1, stats)?;
         // Hairer's combined estimate |h| ‖e5‖² / sqrt(‖e5‖² + 0.01 ‖e3‖²), returned as the
         // vector e = ratio · e5 whose scaled RMS norm equals it.
@@ -991,7 +993,7 @@ impl<const N: usize> Tableau<N> for Dop8 {
         }
         let (t, h) = (d.t0, d.h);
         for s in 13..16 {
-            let ys = stage(&d.y0, h, &A[s], &d.poly.k, s);
+            let ys = lincomb(&d.y0, h, &A[s], &d.poly.k);
             d.poly.k[s] = eval(f, t + C[s] * h, &ys, stats)?;
         }
         for m in 0..4 {
@@ -1000,21 +1002,6 @@ impl<const N: usize> Tableau<N> for Dop8 {
         d.poly.degree7 = true;
         Ok(())
     }
-}
-
-/// y + h Σ_{j<s} a_j k_j.
-#[inline]
-fn stage<const N: usize>(y: &[f64; N], h: f64, a: &[f64; 16], k: &[[f64; N]; 16], s: usize) -> [f64; N] {
-    let mut out = *y;
-    for j in 0..s {
-        let c = h * a[j];
-        if c != 0.0 {
-            for i in 0..N {
-                out[i] += c * k[j][i];
-            }
-        }
-    }
-    out
 }
 
 #[cfg(test)]
