@@ -8,7 +8,7 @@
 mod mechanisms;
 mod support;
 
-use mech::generic::{GenericMechanism, GenericMotion};
+use mech::generic::{mechanism_text, GenericMechanism, GenericMotion};
 use mech::prelude::*;
 use mechanisms::*;
 use support::*;
@@ -189,59 +189,19 @@ fn sweeps_over_a_revolution() {
     }
 }
 
-/// A text copy of the Watt II of `tests/common/mechanisms.rs`.
-const WATT2: &str = r#"
-    /// Watt II six-bar: crank-rocker O2-A-B-O4 whose ternary rocker drives a second four-bar O4-C-D-O6
-    pub struct Watt2 {
-        gravity: (0.0, -9.81),
-        ground { O2: (0.0, 0.0), O4: (0.26, 0.02), O6: (0.5, 0.16) },
-        link crank {
-            points { O2, A: (0.049497474683058325, 0.049497474683058325) },
-            mass: 0.6, inertia: 0.00035, cg: (0.017677669529663688, 0.024748737341529162),
-        },
-        link coupler {
-            points { A, B: (0.24457586704408874, 0.18929883674307502) },
-            mass: 1.1, inertia: 0.0058, cg: (0.14295913113682304, 0.12508794215693006),
-        },
-        link rocker {
-            points { O4, B, C: (0.38963382395689183, 0.09546569873998104) },
-            mass: 1.6, inertia: 0.0061, cg: (0.3020698970003269, 0.09858817849435202),
-        },
-        link link5 {
-            points { C, D: (0.442738473050409, 0.2986402449918539) },
-            mass: 0.9, inertia: 0.0036, cg: (0.4207267391324297, 0.19069820698105808),
-        },
-        link rocker6 {
-            points { O6, D },
-            mass: 0.8, inertia: 0.0019, cg: (0.46495953939067963, 0.221263089379223),
-        },
-        joints {
-            O2: revolute(ground, crank),
-            A: revolute(crank, coupler),
-            B: revolute(coupler, rocker),
-            O4: revolute(ground, rocker),
-            C: revolute(rocker, link5),
-            D: revolute(link5, rocker6),
-            O6: revolute(ground, rocker6),
-        },
-        input: O2,
-        loads {
-            output: force on rocker6 at D,
-            resist: torque on rocker6,
-        },
-    }
-"#;
-
-/// The loader reads text and files; both give the mechanism of the Rust source. A
+/// The loader reads text and files (the Watt II's declaration text, cut out of the Rust
+/// source by `mechanism_text`); both give the mechanism of the Rust source. A
 /// mechanism rebuilt from its model (other masses) is checked again and solved with the
 /// new numbers.
 #[test]
 fn load_from_text_file_and_model() {
     let path = std::env::temp_dir().join(format!("mech_generic_{}.mech", std::process::id()));
-    std::fs::write(&path, WATT2).unwrap();
+    let watt2 = mechanism_text(MECHANISMS, "Watt2").unwrap();
+    assert!(watt2.trim_start().starts_with("/// Watt II six-bar") && watt2.trim_end().ends_with('}'), "{watt2}");
+    std::fs::write(&path, watt2).unwrap();
     let g = GenericMechanism::load(&path).unwrap();
     std::fs::remove_file(&path).ok();
-    let text: GenericMechanism = WATT2.parse().unwrap();
+    let text: GenericMechanism = watt2.parse().unwrap();
     let source = generic("Watt2");
     let gen = Watt2::new();
     for q in [0.4, 2.0, -2.5] {

@@ -314,6 +314,54 @@ fn invalid(diags: &[Diagnostic<Span>]) -> MechError {
     MechError::Invalid(diags.iter().map(located).collect::<Vec<_>>().join("\n"))
 }
 
+/// The `mechanism! { ... }` invocation declaring `pub struct name` in Rust source text:
+/// its braced group of tokens and the parsed description (spans located in `source`).
+fn find_declaration(source: &str, name: &str) -> Result<(proc_macro2::Group, crate::model::Description<Span>), MechError> {
+    use proc_macro2::TokenTree;
+    let tokens: proc_macro2::TokenStream =
+        source.parse().map_err(|e: proc_macro2::LexError| MechError::Invalid(format!("{}: {e}", location(&e.span()))))?;
+    let mut found = Vec::new();
+    let mut stack = vec![tokens];
+    while let Some(ts) = stack.pop() {
+        let tt: Vec<TokenTree> = ts.into_iter().collect();
+        for (i, t) in tt.iter().enumerate() {
+            let TokenTree::Group(g) = t else { continue };
+            let invoked = i >= 2
+                && matches!(&tt[i - 2], TokenTree::Ident(id) if id == "mechanism")
+                && matches!(&tt[i - 1], TokenTree::Punct(p) if p.as_char() == '!');
+            if !invoked {
+                stack.push(g.stream());
+                continue;
+            }
+            match syn::parse2::<crate::dsl::Parsed>(g.stream()) {
+                Ok(p) if p.0.name.text == name => return Ok((g.clone(), p.0)),
+                Ok(p) => found.push(p.0.name.text),
+                Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => return Err(syntax(e)),
+                Err(_) => {}
+            }
+        }
+    }
+    Err(MechError::Invalid(format!("no `mechanism!` declares `{name}` here; found: {}", found.join(", "))))
+}
+
+/// The DSL text of the mechanism `name` declared with `mechanism! { ... }` in Rust source
+/// `source`: the text between the invocation's braces, as written (for
+/// [`GenericMechanism::parse`], a file for [`GenericMechanism::load`], or editing).
+/// [`MechError::Invalid`] as [`GenericMechanism::from_rust_source`].
+pub fn mechanism_text<'a>(source: &'a str, name: &str) -> Result<&'a str, MechError> {
+    let (group, _) = find_declaration(source, name)?;
+    Ok(&source[group.span_open().byte_range().end..group.span_close().byte_range().start])
+}
+
+/// `value` if finite and > 0, else [`MechError::InvalidInput`] naming it.
+fn positive(what: &str, value: f64) -> Result<f64, MechError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(MechError::InvalidInput(format!("{what} must be finite and > 0, got {value}")))
+    }
+}
+
 impl std::str::FromStr for GenericMechanism {
     type Err = MechError;
     /// Same as [`GenericMechanism::parse`].
@@ -339,30 +387,7 @@ impl GenericMechanism {
     /// [`GenericMechanism::parse`]; messages carry `line:column` in `source`.
     /// [`MechError::Invalid`] when the source does not tokenize or declares no such mechanism.
     pub fn from_rust_source(source: &str, name: &str) -> Result<Self, MechError> {
-        let tokens: proc_macro2::TokenStream =
-            source.parse().map_err(|e: proc_macro2::LexError| MechError::Invalid(format!("{}: {e}", location(&e.span()))))?;
-        let mut found = Vec::new();
-        let mut stack = vec![tokens];
-        while let Some(ts) = stack.pop() {
-            let tt: Vec<proc_macro2::TokenTree> = ts.into_iter().collect();
-            for (i, t) in tt.iter().enumerate() {
-                let proc_macro2::TokenTree::Group(g) = t else { continue };
-                let invoked = i >= 2
-                    && matches!(&tt[i - 2], proc_macro2::TokenTree::Ident(id) if id == "mechanism")
-                    && matches!(&tt[i - 1], proc_macro2::TokenTree::Punct(p) if p.as_char() == '!');
-                if !invoked {
-                    stack.push(g.stream());
-                    continue;
-                }
-                match syn::parse2::<crate::dsl::Parsed>(g.stream()) {
-                    Ok(p) if p.0.name.text == name => return Self::from_description(&p.0),
-                    Ok(p) => found.push(p.0.name.text),
-                    Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => return Err(syntax(e)),
-                    Err(_) => {}
-                }
-            }
-        }
-        Err(MechError::Invalid(format!("no `mechanism!` declares `{name}` here; found: {}", found.join(", "))))
+        Self::from_description(&find_declaration(source, name)?.1)
     }
 
     /// Resolve and validate a parsed description (the macro's pipeline after parsing).
@@ -472,10 +497,7 @@ impl GenericMechanism {
     /// Newton step is at most `tol` × L, L the drawing's length scale in m). Must be finite
     /// and > 0, else [`MechError::InvalidInput`]. The default is [`DEFAULT_TOLERANCE`].
     pub fn with_tolerance(mut self, tol: f64) -> Result<Self, MechError> {
-        if !(tol.is_finite() && tol > 0.0) {
-            return Err(MechError::InvalidInput(format!("Newton tolerance must be finite and > 0, got {tol}")));
-        }
-        self.tol = tol;
+        self.tol = positive("the Newton tolerance", tol)?;
         Ok(self)
     }
 
@@ -493,10 +515,7 @@ impl GenericMechanism {
     /// and > 0, else [`MechError::InvalidInput`]; a system beyond
     /// [`HARD_CONDITION`] is refused whatever `max_error`.
     pub fn with_max_error(mut self, max_error: f64) -> Result<Self, MechError> {
-        if !(max_error.is_finite() && max_error > 0.0) {
-            return Err(MechError::InvalidInput(format!("max_error must be finite and > 0, got {max_error}")));
-        }
-        self.max_error = max_error;
+        self.max_error = positive("max_error", max_error)?;
         Ok(self)
     }
 
@@ -1112,6 +1131,9 @@ mod tests {
         let bad = source.replace("revolute(coupler, rocker)", "revolute(coupler, rockr)");
         let Err(MechError::Invalid(msg)) = GenericMechanism::from_rust_source(&bad, "FourBar") else { panic!() };
         assert!(msg.starts_with("16:38: unknown link `rockr`"), "{msg}");
+        // The declaration's text, as written.
+        assert_eq!(mechanism_text(&source, "FourBar").unwrap(), FOUR_BAR);
+        assert!(mechanism_text(&source, "Nothing").is_err());
     }
 
     #[test]
