@@ -10,6 +10,7 @@ pub mod assur;
 pub mod dsl;
 pub mod dynamics;
 pub mod error;
+pub mod flywheel;
 pub mod generic;
 pub mod geometry;
 pub mod grubler;

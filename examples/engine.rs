@@ -1,0 +1,75 @@
+//! A single-cylinder four-stroke engine and its flywheel, end to end:
+//!
+//! ```text
+//! cargo run --release --example engine
+//! ```
+//!
+//! The engine (tests/common/engine.rs): an offset slider-crank, 86 mm bore × 86 mm stroke,
+//! 143 mm rod, with an explicit gas-pressure model over the 4π cycle (intake, polytropic
+//! compression, Wiebe-shaped combustion, polytropic expansion, exhaust) acting on the piston.
+//! The consumer's constant resisting torque is the one that balances the cycle. The example
+//! prints the turning-moment table, sizes the flywheel for ω_a = 3000 rpm and ε = 1/50 by
+//! Wittenbauer's exact method and by the approximate one, checks the exact one by
+//! integrating a cycle in time, and writes the diagrams into target/mech-figures/engine/.
+
+#[path = "../tests/common/engine.rs"]
+mod engine;
+#[path = "common/plot.rs"]
+mod plot;
+
+use std::error::Error;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use engine::*;
+use mech::flywheel::Cycle;
+
+/// Where the figures go.
+pub const FIGURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/target/mech-figures/engine");
+
+fn main() -> ExitCode {
+    plot::exit("engine", run(Path::new(FIGURES)))
+}
+
+/// The whole example: prints the report and writes the SVG diagrams into `dir`; returns
+/// their paths.
+pub fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
+    let started = std::time::Instant::now();
+    let eng = Engine::new();
+    let gas_only = Cycle::new(&eng, Q_TDC, PERIOD, &breakpoints(), |q| gas_loads(&eng, q), |_| 0.0)?;
+    println!("Single-cylinder four-stroke engine: bore {:.0} mm, stroke {:.2} mm, rod 143 mm, offset 6 mm, compression ratio {}", BORE * 1e3, (X_TDC - X_BDC) * 1e3, COMPRESSION_RATIO);
+    println!("cycle: lambda = 4 pi from the TDC of intake (q0 = {:.4} deg); gas work per cycle W = {:.3} J", Q_TDC.to_degrees(), gas_only.net_work());
+    if let Err(e) = gas_only.check_periodic() {
+        println!("  gas loads alone: {e}");
+    }
+    let (cycle, torque) = gas_only.balanced();
+    println!("  balanced by a constant resisting torque T = {torque:.4} N m on the crank (mean power {:.2} kW at {:.0} rpm)", -torque * OMEGA_MEAN / 1e3, OMEGA_MEAN * 30.0 / std::f64::consts::PI);
+
+    println!();
+    println!("Turning moment at constant speed w_a = {OMEGA_MEAN:.2} rad/s (alpha = 0); reactions in kN (force by the first link on the second):");
+    println!("{:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}", "phi", "p", "T_driver", "|R_A|", "|R_B|", "|R_O2|", "M*", "I*");
+    println!("{:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}", "deg", "bar", "N m", "crankpin", "gudgeon", "main", "N m", "kg m^2");
+    for k in 0..=24 {
+        let q = Q_TDC + (30.0 * k as f64).to_radians();
+        let motion = eng.kinematics(q, OMEGA_MEAN, 0.0)?;
+        let loads = cycle.loads(q)?;
+        let f = eng.kinetostatics(&motion, &loads)?;
+        let p = pressure(q, motion.points.B.pos.x);
+        println!(
+            "{:>6} {:>8.2} {:>10.2} {:>9.3} {:>9.3} {:>9.3} {:>10.2} {:>9.6}",
+            30 * k,
+            p / 1e5,
+            f.driver,
+            f.joints.A.force.norm() / 1e3,
+            f.joints.B.force.norm() / 1e3,
+            f.joints.O2.force.norm() / 1e3,
+            cycle.moment(q)?,
+            eng.reduced(q)?.inertia
+        );
+    }
+    println!("(the mean of T_driver over the cycle is T; M* = gas and gravity moment + T)");
+
+    let paths = plot::report(&cycle, OMEGA_MEAN, IRREGULARITY, "engine", dir)?;
+    println!("done in {:.2} s", started.elapsed().as_secs_f64());
+    Ok(paths)
+}
