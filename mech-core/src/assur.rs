@@ -424,7 +424,7 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
 /// Solve the positions of one group. `sign` is the branch of the drawing (from
 /// [`branch_quantity`]); `s` holds solved links' states, and the group's links at a
 /// starting guess (the drawing) for [`Solver::Newton`].
-#[inline]
+#[inline(always)]
 pub fn position<const N: usize>(
     solver: Solver,
     bodies: &[usize],

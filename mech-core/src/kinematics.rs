@@ -221,19 +221,15 @@ pub type Drive<'a> = (&'a [f64], &'a [f64], &'a [f64]);
 /// Velocity/acceleration values are the full time derivatives evaluated at the current
 /// states; with the unknown links' velocities (accelerations) set to zero they are the
 /// right-hand sides of the group's linear systems, negated.
-#[inline]
+#[inline(always)]
 pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) -> ConEval {
-    if let ConKind::RevoluteRow(k) = c.kind {
-        let e = eval(Con { joint: c.joint, kind: ConKind::Revolute }, g, s, drive, level);
-        return ConEval { rows: [e.rows[k], e.rows[1 - k]], val: [e.val[k], 0.0] };
-    }
     let (sa, sb) = (&s[g.a], &s[g.b]);
     let ra = sa.r(g.da);
     let rb = sb.r(g.db);
     let z = Row { a: Vector3::zeros(), b: Vector3::zeros() };
     let mut out = ConEval { rows: [z, z], val: [0.0, 0.0] };
     match c.kind {
-        ConKind::Revolute => {
+        ConKind::Revolute | ConKind::RevoluteRow(_) => {
             out.rows[0] = Row { a: Vector3::new(-1.0, 0.0, ra.y), b: Vector3::new(1.0, 0.0, -rb.y) };
             out.rows[1] = Row { a: Vector3::new(0.0, -1.0, -ra.x), b: Vector3::new(0.0, 1.0, rb.x) };
             let v = match level {
@@ -243,6 +239,10 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
                 Level::Acceleration => sb.acc_at(rb) - sa.acc_at(ra),
             };
             out.val = [v.x, v.y];
+            if let ConKind::RevoluteRow(k) = c.kind {
+                out.rows.swap(0, k);
+                out.val.swap(0, k);
+            }
         }
         ConKind::Prismatic | ConKind::Slot | ConKind::DrivePrismatic(_) => {
             let u = sa.r(g.axis);
@@ -280,7 +280,6 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
                 };
             }
         }
-        ConKind::RevoluteRow(_) => unreachable!("handled above"),
         ConKind::DriveRevolute(k) => {
             out.rows[0] = Row { a: Vector3::new(0.0, 0.0, -1.0), b: Vector3::new(0.0, 0.0, 1.0) };
             out.val[0] = match level {
@@ -317,47 +316,32 @@ fn block(bodies: &[usize], link: usize) -> Option<usize> {
     bodies.iter().position(|&b| b == link)
 }
 
-/// Evaluate every constraint of a group at `level`, calling `f(row, eval, k)` for each
-/// scalar row `row` (the `k`-th row of the constraint).
-#[inline(always)]
-fn for_rows(
-    cons: &[Con],
-    joints: &[JointGeom],
-    s: &[LinkState],
-    drive: Drive,
-    level: Level,
-    mut f: impl FnMut(usize, &Con, &ConEval, usize),
-) {
-    let mut row = 0;
-    for c in cons {
-        let e = eval(*c, &joints[c.joint], s, drive, level);
-        for k in 0..c.kind.rows() {
-            f(row, c, &e, k);
-            row += 1;
-        }
-    }
-}
-
 impl<const N: usize> GroupSystem<N> {
     /// Assemble and factor the Jacobian of the group's constraints with respect to its
     /// links' coordinates at the current positions. `scale` is the drawing's length (m).
-    #[inline]
+    #[inline(always)]
     pub fn new(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
         let mut j = SMatrix::<f64, N, N>::zeros();
         let mut row_scale = SVector::<f64, N>::repeat(1.0);
         let none: &[f64] = &[];
-        for_rows(cons, joints, s, (none, none, none), Level::Jacobian, |row, c, e, k| {
-            let rs = if c.kind.angle_row(k) { scale } else { 1.0 };
-            row_scale[row] = rs;
+        let mut row = 0;
+        for c in cons {
             let g = &joints[c.joint];
-            for (link, r) in [(g.a, &e.rows[k].a), (g.b, &e.rows[k].b)] {
-                if let Some(bk) = block(bodies, link) {
-                    j[(row, 3 * bk)] += rs * r.x;
-                    j[(row, 3 * bk + 1)] += rs * r.y;
-                    j[(row, 3 * bk + 2)] += rs * r.z / scale;
+            let e = eval(*c, g, s, (none, none, none), Level::Jacobian);
+            let (ba, bb) = (block(bodies, g.a), block(bodies, g.b));
+            for k in 0..c.kind.rows() {
+                let rs = if c.kind.angle_row(k) { scale } else { 1.0 };
+                row_scale[row] = rs;
+                for (bk, r) in [(ba, &e.rows[k].a), (bb, &e.rows[k].b)] {
+                    if let Some(bk) = bk {
+                        j[(row, 3 * bk)] += rs * r.x;
+                        j[(row, 3 * bk + 1)] += rs * r.y;
+                        j[(row, 3 * bk + 2)] += rs * r.z / scale;
+                    }
                 }
+                row += 1;
             }
-        });
+        }
         let lu = Lu::new(j);
         let cond = lu.condition();
         if !(cond < SINGULAR_CONDITION) {
@@ -367,7 +351,7 @@ impl<const N: usize> GroupSystem<N> {
     }
 
     /// Solve J x = b for the links' coordinates rates (x, y, φ per link).
-    #[inline]
+    #[inline(always)]
     pub fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
         let rhs = b.component_mul(&self.row_scale);
         let mut x = self.lu.solve(&rhs);
@@ -378,7 +362,7 @@ impl<const N: usize> GroupSystem<N> {
     }
 
     /// Solve Jᵀ λ = f for the multipliers (f = generalised forces (Fx, Fy, M) per link).
-    #[inline]
+    #[inline(always)]
     pub fn solve_transpose(&self, f: &SVector<f64, N>) -> SVector<f64, N> {
         let mut rhs = *f;
         for i in 0..N / 3 {
@@ -397,7 +381,7 @@ pub struct Lu<const N: usize> {
 
 impl<const N: usize> Lu<N> {
     /// Factor P A = L U (L unit lower, U upper, stored together).
-    #[inline]
+    #[inline(always)]
     pub fn new(mut m: SMatrix<f64, N, N>) -> Self {
         let mut perm = [0usize; N];
         for (i, p) in perm.iter_mut().enumerate() {
@@ -429,7 +413,7 @@ impl<const N: usize> Lu<N> {
         Lu { m, perm }
     }
     /// Pivot ratio max|U_ii| / min|U_ii|: a cheap condition estimate (∞ when singular).
-    #[inline]
+    #[inline(always)]
     pub fn condition(&self) -> f64 {
         let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
         for i in 0..N {
@@ -491,16 +475,23 @@ impl<const N: usize> Lu<N> {
 }
 
 /// Minus the constraint values of a group at `level` (unknown rates must be zero in `s`).
-#[inline]
+#[inline(always)]
 pub fn group_rhs<const N: usize>(cons: &[Con], joints: &[JointGeom], s: &[LinkState], drive: Drive, level: Level) -> SVector<f64, N> {
     let mut b = SVector::<f64, N>::zeros();
-    for_rows(cons, joints, s, drive, level, |row, _, e, k| b[row] = -e.val[k]);
+    let mut row = 0;
+    for c in cons {
+        let e = eval(*c, &joints[c.joint], s, drive, level);
+        for k in 0..c.kind.rows() {
+            b[row] = -e.val[k];
+            row += 1;
+        }
+    }
     b
 }
 
 /// Velocities of a group's links from those of the links already solved:
 /// J ẋ = −Φ̇(known). The group's velocities in `s` must be zero on entry.
-#[inline]
+#[inline(always)]
 pub fn group_velocity<const N: usize>(
     sys: &GroupSystem<N>,
     bodies: &[usize],
@@ -517,7 +508,7 @@ pub fn group_velocity<const N: usize>(
 }
 
 /// Accelerations of a group's links: J ẍ = −(Φ̈ with the group's accelerations zero).
-#[inline]
+#[inline(always)]
 pub fn group_acceleration<const N: usize>(
     sys: &GroupSystem<N>,
     bodies: &[usize],
@@ -650,7 +641,7 @@ pub fn branch(x: f64) -> f64 {
 /// Solve one group up to `upto`: positions by its kernel ([`crate::assur::position`]),
 /// then, when asked, velocities and accelerations from its linear system. The group's
 /// links in `s` must be at the drawing (rest) on entry.
-#[inline]
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn group_solve<const N: usize>(
     solver: crate::assur::Solver,
@@ -775,7 +766,7 @@ pub fn point_pose(s: &LinkState, d: V2) -> PointPose {
 }
 
 /// The velocity field of a group only (positions already in `s`, its velocities zero).
-#[inline]
+#[inline(always)]
 pub fn group_velocity_field<const N: usize>(
     bodies: &[usize],
     cons: &[Con],
