@@ -695,6 +695,7 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             /// Points: pos, vel, acc.
             pub points: #motion_points,
             states: [#p::kinematics::LinkState; #n_links],
+            qd: [f64; #dof],
         }
 
         #forces_struct
@@ -852,6 +853,7 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
                     links: #motion_links { #(#motion_link_vals)* },
                     points: #motion_points { #(#motion_point_vals)* },
                     states: s,
+                    qd,
                 })
             }
 
@@ -859,11 +861,18 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
 
             /// The motor actions by the principle of virtual power, computing no reaction:
             /// for each input, the velocity field that moves it alone at unit rate, and
-            /// Q = −Σ (F·v + M·ω) over loads, gravity and inertia forces.
+            /// Q = −Σ (F·v + M·ω) over loads, gravity and inertia forces. With one input
+            /// moving (q̇ ≠ 0) that field is the motion's own velocities divided by q̇.
             pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
                 let s = &m.states;
                 let f = self.__wrenches(s, loads, true)?;
                 let mut out = [0.0; #dof];
+                // One input moving at q̇ ≠ 0: the motion's own velocities are q̇ times the
+                // virtual field, so no velocity system needs solving.
+                if #dof == 1 && m.qd[0] != 0.0 {
+                    out[0] = -#p::kinetostatics::virtual_power(&f, s) / m.qd[0];
+                    return Ok(#driver_out);
+                }
                 for k in 0..#dof {
                     let mut qd = [0.0; #dof];
                     qd[k] = 1.0;
