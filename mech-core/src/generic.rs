@@ -610,6 +610,7 @@ impl GenericMechanism {
             let condition = if lo > 0.0 { sv.max() / lo } else { f64::INFINITY };
             System { factor: Factor::Svd(svd), condition, det_sign: 1.0 }
         };
+        // Written to be true for a NaN condition as well.
         if !(sys.condition < HARD_CONDITION) {
             return Err(MechError::Singular { condition: sys.condition });
         }
@@ -949,11 +950,10 @@ impl GenericMechanism {
         let sys = Self::factor(j.transpose())?;
         // Jᵀ λ = −f in the scaled unknowns: (R J C)ᵀ μ = −C f, λ = R μ.
         let mut rhs = DVector::zeros(self.cols());
-        for l in 1..self.model.links.len() {
-            let c = 3 * (l - 1);
-            rhs[c] = -f[l].x;
-            rhs[c + 1] = -f[l].y;
-            rhs[c + 2] = -f[l].z / self.inst.scale;
+        for (k, w) in f.iter().skip(1).enumerate() {
+            rhs[3 * k] = -w.x;
+            rhs[3 * k + 1] = -w.y;
+            rhs[3 * k + 2] = -w.z / self.inst.scale;
         }
         let lam = sys.solve(&rhs)?.component_mul(&DVector::from_column_slice(&self.row_scale));
         let mut driver = vec![0.0; self.dof()];
