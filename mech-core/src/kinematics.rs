@@ -304,6 +304,7 @@ pub const SINGULAR_CONDITION: f64 = 1e6;
 /// equations of its constraints in order, angle rows multiplied by L (the drawing's
 /// length scale): all entries are then dimensionless and of order one, so the pivot
 /// ratio of the LU factorisation is a meaningful condition estimate.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GroupSystem<const N: usize> {
     lu: Lu<N>,
     row_scale: SVector<f64, N>,
@@ -373,7 +374,7 @@ impl<const N: usize> GroupSystem<N> {
 }
 
 /// LU factorisation with partial pivoting of a small fixed-size matrix, on the stack.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lu<const N: usize> {
     m: SMatrix<f64, N, N>,
     perm: [usize; N],
@@ -640,7 +641,8 @@ pub fn branch(x: f64) -> f64 {
 
 /// Solve one group up to `upto`: positions by its kernel ([`crate::assur::position`]),
 /// then, when asked, velocities and accelerations from its linear system. The group's
-/// links in `s` must be at the drawing (rest) on entry.
+/// links in `s` must be at the drawing (rest) on entry. Returns the factored system when
+/// it was built (velocity level and beyond), so that kinetostatics can reuse it.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn group_solve<const N: usize>(
@@ -653,7 +655,7 @@ pub fn group_solve<const N: usize>(
     scale: f64,
     sign: f64,
     upto: Level,
-) -> Result<(), MechError> {
+) -> Result<Option<GroupSystem<N>>, MechError> {
     crate::assur::position::<N>(solver, bodies, cons, joints, s, drive, scale, sign)?;
     if matches!(upto, Level::Velocity | Level::Acceleration) {
         let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale)?;
@@ -661,8 +663,9 @@ pub fn group_solve<const N: usize>(
         if upto == Level::Acceleration {
             group_acceleration(&sys, bodies, cons, joints, s, drive);
         }
+        return Ok(Some(sys));
     }
-    Ok(())
+    Ok(None)
 }
 
 /// The reference data of one link the solvers need: anchor, reference direction,
@@ -765,9 +768,11 @@ pub fn point_pose(s: &LinkState, d: V2) -> PointPose {
     PointPose { pos: s.point(d) }
 }
 
-/// The velocity field of a group only (positions already in `s`, its velocities zero).
+/// The velocity field of a group only (positions already in `s`, its velocities zero),
+/// with the group's factored system `sys` when the kinematics kept it.
 #[inline(always)]
 pub fn group_velocity_field<const N: usize>(
+    sys: Option<&GroupSystem<N>>,
     bodies: &[usize],
     cons: &[Con],
     joints: &[JointGeom],
@@ -775,7 +780,10 @@ pub fn group_velocity_field<const N: usize>(
     drive: Drive,
     scale: f64,
 ) -> Result<(), MechError> {
-    let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale)?;
+    let sys = match sys {
+        Some(sys) => *sys,
+        None => GroupSystem::<N>::new(bodies, cons, joints, s, scale)?,
+    };
     group_velocity(&sys, bodies, cons, joints, s, drive);
     Ok(())
 }

@@ -44,9 +44,11 @@ pub fn add_inertia(w: &mut Wrench, s: &LinkState, l: &LinkGeom) {
 
 /// The multipliers of one group (row order of its constraints): solve Jᵀ λ = −f for
 /// the group's links, then pass each constraint's reaction on to the solved links it
-/// touches (`f[other] += rowᵀ λ`). Called from the outermost group inward.
+/// touches (`f[other] += rowᵀ λ`). Called from the outermost group inward. `sys` is the
+/// group's factored system from the kinematics, if kept; else it is rebuilt.
 #[inline]
 pub fn group_reactions<const N: usize>(
+    sys: Option<&GroupSystem<N>>,
     bodies: &[usize],
     cons: &[Con],
     joints: &[JointGeom],
@@ -54,7 +56,10 @@ pub fn group_reactions<const N: usize>(
     f: &mut [Wrench],
     scale: f64,
 ) -> Result<SVector<f64, N>, MechError> {
-    let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale)?;
+    let sys = match sys {
+        Some(sys) => *sys,
+        None => GroupSystem::<N>::new(bodies, cons, joints, s, scale)?,
+    };
     let mut rhs = SVector::<f64, N>::zeros();
     for (k, &b) in bodies.iter().enumerate() {
         rhs.fixed_rows_mut::<3>(3 * k).copy_from(&(-f[b]));

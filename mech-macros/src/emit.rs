@@ -299,13 +299,21 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         let cn = format_ident!("__G{}_CONS", gi);
         let n = 3 * g.bodies.len();
         let solver = &solvers[gi];
-        quote!(#p::kinematics::group_solve::<#n>(#solver, &Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, self.branches[#gi], upto)?;)
+        let sys = format_ident!("sys{}", gi);
+        quote!(let #sys = #p::kinematics::group_solve::<#n>(#solver, &Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, self.branches[#gi], upto)?;)
     });
+    let sys_ids: Vec<Ident> = (0..n_groups).map(|g| format_ident!("sys{}", g)).collect();
+    let sys_types: Vec<TokenStream> = plan.iter().map(|g| {
+        let n = 3 * g.bodies.len();
+        quote!(Option<#p::kinematics::GroupSystem<#n>>)
+    }).collect();
+    let systems_ty = quote!((#(#sys_types,)*));
     let velocity_calls = plan.iter().enumerate().map(|(gi, g)| {
         let bn = format_ident!("__G{}_BODIES", gi);
         let cn = format_ident!("__G{}_CONS", gi);
         let n = 3 * g.bodies.len();
-        quote!(#p::kinematics::group_velocity_field::<#n>(&Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+        let idx = syn::Index::from(gi);
+        quote!(#p::kinematics::group_velocity_field::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
     });
 
     // ---- Pose and motion ------------------------------------------------------------------
@@ -353,7 +361,8 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         let cn = format_ident!("__G{}_CONS", gi);
         let n = 3 * g.bodies.len();
         let lam = &lam_ids[gi];
-        quote!(let #lam = #p::kinetostatics::group_reactions::<#n>(&Self::#bn, &Self::#cn, &self.joints, s, &mut f, self.scale)?;)
+        let idx = syn::Index::from(gi);
+        quote!(let #lam = #p::kinetostatics::group_reactions::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, s, &mut f, self.scale)?;)
     });
     let reaction_vals = model.joints.iter().enumerate().map(|(j, jt)| {
         let jid = &joint_ids[j];
@@ -499,21 +508,21 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             /// form from the velocity coefficients and their derivatives.
             pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
                 #p::error::check_finite("q", &[q])?;
-                let s = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
+                let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
                 Ok(#p::zhukovski::reduced(&self.links, &s))
             }
             /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads and gravity
             /// per unit input rate, M* = Σ F·g + Σ M·g.
             pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
                 #p::error::check_finite("q", &[q])?;
-                let s = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity)?;
+                let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity)?;
                 let f = self.__wrenches(&s, loads, false)?;
                 Ok(#p::kinetostatics::virtual_power(&f, &s))
             }
             /// The direct problem: q̈ (rad/s²) from I* q̈ + ½ dI*/dq q̇² = driver + M*.
             pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
                 #p::error::check_finite("q, qd, driver", &[q, qd, driver])?;
-                let s = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
+                let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
                 let f = self.__wrenches(&s, loads, false)?;
                 let r = #p::zhukovski::reduced(&self.links, &s);
                 #p::zhukovski::acceleration(r, #p::kinetostatics::virtual_power(&f, &s), qd, driver)
@@ -696,6 +705,7 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             pub points: #motion_points,
             states: [#p::kinematics::LinkState; #n_links],
             qd: [f64; #dof],
+            systems: #systems_ty,
         }
 
         #forces_struct
@@ -787,20 +797,20 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
                 qd: &[f64; #dof],
                 qdd: &[f64; #dof],
                 upto: #p::kinematics::Level,
-            ) -> Result<[#p::kinematics::LinkState; #n_links], #p::MechError> {
+            ) -> Result<([#p::kinematics::LinkState; #n_links], #systems_ty), #p::MechError> {
                 let mut s = self.drawing;
                 let drive = (&q[..], &qd[..], &qdd[..]);
                 #(#solve_calls)*
-                Ok(s)
+                Ok((s, (#(#sys_ids,)*)))
             }
 
             #[inline(always)]
             fn __velocity_field(
                 &self,
-                s: &[#p::kinematics::LinkState; #n_links],
+                m: &#motion,
                 qd: &[f64; #dof],
             ) -> Result<[#p::kinematics::LinkState; #n_links], #p::MechError> {
-                let mut v = *s;
+                let mut v = m.states;
                 for st in v.iter_mut() {
                     st.vel = #p::Vector2::zeros();
                     st.omega = 0.0;
@@ -835,7 +845,7 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
                 #q_arr
                 #p::error::check_finite("q", &q)?;
                 let zero = [0.0; #dof];
-                let s = self.__solve(&q, &zero, &zero, #p::kinematics::Level::Position)?;
+                let (s, _) = self.__solve(&q, &zero, &zero, #p::kinematics::Level::Position)?;
                 Ok(#pose {
                     links: #pose_links { #(#pose_link_vals)* },
                     points: #pose_points { #(#pose_point_vals)* },
@@ -848,12 +858,13 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
                 #p::error::check_finite("q, qd, qdd", &q)?;
                 #p::error::check_finite("q, qd, qdd", &qd)?;
                 #p::error::check_finite("q, qd, qdd", &qdd)?;
-                let s = self.__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration)?;
+                let (s, systems) = self.__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration)?;
                 Ok(#motion {
                     links: #motion_links { #(#motion_link_vals)* },
                     points: #motion_points { #(#motion_point_vals)* },
                     states: s,
                     qd,
+                    systems,
                 })
             }
 
@@ -876,7 +887,7 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
                 for k in 0..#dof {
                     let mut qd = [0.0; #dof];
                     qd[k] = 1.0;
-                    let v = self.__velocity_field(s, &qd)?;
+                    let v = self.__velocity_field(m, &qd)?;
                     out[k] = -#p::kinetostatics::virtual_power(&f, &v);
                 }
                 Ok(#driver_out)
