@@ -186,61 +186,16 @@ pub fn plan(model: &Model) -> Result<Vec<Group>, Vec<usize>> {
         for &b in &bodies {
             known[b] = true;
         }
-        let (cons, solver) = if cons.iter().map(|c| c.kind.rows()).sum::<usize>() == 3 * bodies.len() {
-            let solver = classify(model, &bodies, &cons);
-            (cons, solver)
+        // A redundant group (more rows than unknowns) is solved in the least-squares
+        // sense by `kinematics::group_solve_ls`; its solver is Newton's.
+        let solver = if cons.iter().map(|c| c.kind.rows()).sum::<usize>() == 3 * bodies.len() {
+            classify(model, &bodies, &cons)
         } else {
-            match square_up(model, &bodies, &cons) {
-                Some(c) => (c, Solver::Newton),
-                None => return Err(bodies),
-            }
+            Solver::Newton
         };
         groups.push(Group { bodies, cons, solver });
     }
     Ok(groups)
-}
-
-/// A redundant group (more rows than unknowns, accepted with `#[allow(redundant)]`):
-/// keep a square subset of its rows, splitting revolutes into single rows, that has full
-/// rank at the drawing. The dropped rows hold by the geometry (that is what makes the
-/// drawing redundant rather than locked).
-fn square_up(model: &Model, bodies: &[usize], cons: &[Con]) -> Option<Vec<Con>> {
-    let mut rows: Vec<Con> = Vec::new();
-    for c in cons {
-        match c.kind {
-            ConKind::Revolute => {
-                rows.push(Con { joint: c.joint, kind: ConKind::RevoluteRow(0) });
-                rows.push(Con { joint: c.joint, kind: ConKind::RevoluteRow(1) });
-            }
-            _ => rows.push(*c),
-        }
-    }
-    let n = 3 * bodies.len();
-    let joints = crate::geometry::joint_geoms(model);
-    let s = crate::geometry::drawing_states(model);
-    let scale = model.scale();
-    let none: &[f64] = &[];
-    let row_of = |c: &Con| {
-        let e = eval(*c, &joints[c.joint], &s, (none, none, none), Level::Jacobian);
-        let mut r = vec![0.0; n];
-        for (link, v) in [(joints[c.joint].a, e.rows[0].a), (joints[c.joint].b, e.rows[0].b)] {
-            if let Some(k) = bodies.iter().position(|&b| b == link) {
-                r[3 * k] += v.x;
-                r[3 * k + 1] += v.y;
-                r[3 * k + 2] += v.z / scale;
-            }
-        }
-        r
-    };
-    for keep in subsets(&(0..rows.len()).collect::<Vec<_>>(), n) {
-        let m = nalgebra::DMatrix::from_fn(n, n, |i, j| row_of(&rows[keep[i]])[j]);
-        let sv = m.singular_values();
-        let (hi, lo) = (sv.max(), sv.min());
-        if hi > 0.0 && lo > 1e-8 * hi {
-            return Some(keep.iter().map(|&i| rows[i]).collect());
-        }
-    }
-    None
 }
 
 fn subsets(items: &[usize], k: usize) -> Vec<Vec<usize>> {

@@ -968,7 +968,6 @@ impl GenericMechanism {
                 }
                 ConKind::Slot => joints[c.joint].force = slide_force(g, s, lam[r]),
                 // One row of a revolute (never produced by `all_cons`; kept total).
-                ConKind::RevoluteRow(i) => joints[c.joint].force[i] = lam[r],
             }
         }
         Ok(GenericForces { driver, joints, condition: sys.condition, model: self.model.clone() })

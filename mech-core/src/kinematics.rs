@@ -135,9 +135,6 @@ pub enum ConKind {
     DriveRevolute(usize),
     /// Prismatic driver (input `k`): 1 row (the guide itself is a separate `Prismatic`).
     DrivePrismatic(usize),
-    /// One row (0: x, 1: y) of a revolute whose other row is redundant in its group
-    /// (only in mechanisms accepted with `#[allow(redundant)]`).
-    RevoluteRow(usize),
 }
 
 impl ConKind {
@@ -229,7 +226,7 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
     let z = Row { a: Vector3::zeros(), b: Vector3::zeros() };
     let mut out = ConEval { rows: [z, z], val: [0.0, 0.0] };
     match c.kind {
-        ConKind::Revolute | ConKind::RevoluteRow(_) => {
+        ConKind::Revolute => {
             out.rows[0] = Row { a: Vector3::new(-1.0, 0.0, ra.y), b: Vector3::new(1.0, 0.0, -rb.y) };
             out.rows[1] = Row { a: Vector3::new(0.0, -1.0, -ra.x), b: Vector3::new(0.0, 1.0, rb.x) };
             let v = match level {
@@ -239,10 +236,6 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
                 Level::Acceleration => sb.acc_at(rb) - sa.acc_at(ra),
             };
             out.val = [v.x, v.y];
-            if let ConKind::RevoluteRow(k) = c.kind {
-                out.rows.swap(0, k);
-                out.val.swap(0, k);
-            }
         }
         ConKind::Prismatic | ConKind::Slot | ConKind::DrivePrismatic(_) => {
             let u = sa.r(g.axis);
@@ -317,32 +310,174 @@ fn block(bodies: &[usize], link: usize) -> Option<usize> {
     bodies.iter().position(|&b| b == link)
 }
 
+/// The scaled Jacobian (M rows, N = 3 × links columns) of a group's constraints at the
+/// current positions, and the row scales (L for angle rows, 1 otherwise); see
+/// [`GroupSystem`] for the scaling.
+#[inline(always)]
+pub fn assemble<const M: usize, const N: usize>(
+    bodies: &[usize],
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    scale: f64,
+) -> (SMatrix<f64, M, N>, SVector<f64, M>) {
+    let mut j = SMatrix::<f64, M, N>::zeros();
+    let mut row_scale = SVector::<f64, M>::repeat(1.0);
+    let none: &[f64] = &[];
+    let mut row = 0;
+    for c in cons {
+        let g = &joints[c.joint];
+        let e = eval(*c, g, s, (none, none, none), Level::Jacobian);
+        let (ba, bb) = (block(bodies, g.a), block(bodies, g.b));
+        for k in 0..c.kind.rows() {
+            let rs = if c.kind.angle_row(k) { scale } else { 1.0 };
+            row_scale[row] = rs;
+            for (bk, r) in [(ba, &e.rows[k].a), (bb, &e.rows[k].b)] {
+                if let Some(bk) = bk {
+                    j[(row, 3 * bk)] += rs * r.x;
+                    j[(row, 3 * bk + 1)] += rs * r.y;
+                    j[(row, 3 * bk + 2)] += rs * r.z / scale;
+                }
+            }
+            row += 1;
+        }
+    }
+    (j, row_scale)
+}
+
+/// The over-determined system of a redundant group (M > N rows, accepted with
+/// `#[allow(redundant)]`): the equations are consistent, so the least-squares solution of
+/// the normal equations JᵀJ x = Jᵀb is the exact one. Its condition is κ(J)², which is
+/// what the threshold is applied to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LsSystem<const N: usize, const M: usize> {
+    j: SMatrix<f64, M, N>,
+    lu: Lu<N>,
+    row_scale: SVector<f64, M>,
+    scale: f64,
+}
+
+impl<const N: usize, const M: usize> LsSystem<N, M> {
+    /// Assemble J and factor JᵀJ at the current positions.
+    #[inline(always)]
+    pub fn new(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
+        let (j, row_scale) = assemble::<M, N>(bodies, cons, joints, s, scale);
+        let lu = Lu::new(j.transpose() * j);
+        let cond = lu.condition();
+        if !(cond < SINGULAR_CONDITION * SINGULAR_CONDITION) {
+            return Err(MechError::Singular { condition: cond.sqrt() });
+        }
+        Ok(LsSystem { j, lu, row_scale, scale })
+    }
+
+    /// Solve J x = b (consistent, M ≥ N) through the normal equations.
+    #[inline(always)]
+    pub fn solve(&self, b: &SVector<f64, M>) -> SVector<f64, N> {
+        let rhs = self.j.transpose() * b.component_mul(&self.row_scale);
+        let mut x = self.lu.solve(&rhs);
+        for i in 0..N / 3 {
+            x[3 * i + 2] /= self.scale;
+        }
+        x
+    }
+}
+
+/// Write the solved rates `x` (x, y, φ per link) of a group into its links' velocities
+/// (`acc` false) or accelerations (`acc` true).
+#[inline(always)]
+fn store_rates<const N: usize>(bodies: &[usize], s: &mut [LinkState], x: &SVector<f64, N>, acc: bool) {
+    for (k, &b) in bodies.iter().enumerate() {
+        if acc {
+            s[b].acc = V2::new(x[3 * k], x[3 * k + 1]);
+            s[b].alpha = x[3 * k + 2];
+        } else {
+            s[b].vel = V2::new(x[3 * k], x[3 * k + 1]);
+            s[b].omega = x[3 * k + 2];
+        }
+    }
+}
+
+/// Move a group's links by the coordinate step `dx`; the largest component (m, φ×L).
+#[inline(always)]
+fn apply_step<const N: usize>(bodies: &[usize], s: &mut [LinkState], dx: &SVector<f64, N>, scale: f64) -> f64 {
+    let mut step: f64 = 0.0;
+    for (k, &b) in bodies.iter().enumerate() {
+        s[b].pos += V2::new(dx[3 * k], dx[3 * k + 1]);
+        let (sn, cs) = dx[3 * k + 2].sin_cos();
+        s[b].rot = rotate(s[b].rot, V2::new(cs, sn)).normalize();
+        step = step.max(dx[3 * k].abs()).max(dx[3 * k + 1].abs()).max((dx[3 * k + 2] * scale).abs());
+    }
+    step
+}
+
+/// A redundant group solved up to `upto`: positions by Gauss–Newton from the current
+/// states (the drawing), then velocities and accelerations, all through [`LsSystem`].
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn group_solve_ls<const N: usize, const M: usize>(
+    bodies: &[usize],
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    drive: Drive,
+    scale: f64,
+    upto: Level,
+) -> Result<Option<LsSystem<N, M>>, MechError> {
+    let mut converged = false;
+    for _ in 0..50 {
+        let sys = LsSystem::<N, M>::new(bodies, cons, joints, s, scale).map_err(|_| MechError::NoAssembly)?;
+        let dx = sys.solve(&group_rhs::<M>(cons, joints, s, drive, Level::Position));
+        let step = apply_step(bodies, s, &dx, scale);
+        if !step.is_finite() {
+            return Err(MechError::NoAssembly);
+        }
+        if step < 1e-14 * scale {
+            converged = true;
+            break;
+        }
+    }
+    // Consistent equations have a zero residual; a non-zero one means the links solved
+    // before took the other branch at a change point (see the generated `__solve`).
+    let r = group_rhs::<M>(cons, joints, s, drive, Level::Position);
+    if !converged || !(r.amax() < 1e-9 * scale) {
+        return Err(MechError::NoAssembly);
+    }
+    if !matches!(upto, Level::Velocity | Level::Acceleration) {
+        return Ok(None);
+    }
+    let sys = LsSystem::<N, M>::new(bodies, cons, joints, s, scale)?;
+    store_rates(bodies, s, &sys.solve(&group_rhs::<M>(cons, joints, s, drive, Level::Velocity)), false);
+    if upto == Level::Acceleration {
+        store_rates(bodies, s, &sys.solve(&group_rhs::<M>(cons, joints, s, drive, Level::Acceleration)), true);
+    }
+    Ok(Some(sys))
+}
+
+/// The velocity field of a redundant group only (see [`group_velocity_field`]).
+#[inline(always)]
+pub fn group_velocity_field_ls<const N: usize, const M: usize>(
+    sys: Option<&LsSystem<N, M>>,
+    bodies: &[usize],
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    drive: Drive,
+    scale: f64,
+) -> Result<(), MechError> {
+    let sys = match sys {
+        Some(sys) => *sys,
+        None => LsSystem::<N, M>::new(bodies, cons, joints, s, scale)?,
+    };
+    store_rates(bodies, s, &sys.solve(&group_rhs::<M>(cons, joints, s, drive, Level::Velocity)), false);
+    Ok(())
+}
+
 impl<const N: usize> GroupSystem<N> {
     /// Assemble and factor the Jacobian of the group's constraints with respect to its
     /// links' coordinates at the current positions. `scale` is the drawing's length (m).
     #[inline(always)]
     pub fn new(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
-        let mut j = SMatrix::<f64, N, N>::zeros();
-        let mut row_scale = SVector::<f64, N>::repeat(1.0);
-        let none: &[f64] = &[];
-        let mut row = 0;
-        for c in cons {
-            let g = &joints[c.joint];
-            let e = eval(*c, g, s, (none, none, none), Level::Jacobian);
-            let (ba, bb) = (block(bodies, g.a), block(bodies, g.b));
-            for k in 0..c.kind.rows() {
-                let rs = if c.kind.angle_row(k) { scale } else { 1.0 };
-                row_scale[row] = rs;
-                for (bk, r) in [(ba, &e.rows[k].a), (bb, &e.rows[k].b)] {
-                    if let Some(bk) = bk {
-                        j[(row, 3 * bk)] += rs * r.x;
-                        j[(row, 3 * bk + 1)] += rs * r.y;
-                        j[(row, 3 * bk + 2)] += rs * r.z / scale;
-                    }
-                }
-                row += 1;
-            }
-        }
+        let (j, row_scale) = assemble::<N, N>(bodies, cons, joints, s, scale);
         let lu = Lu::new(j);
         let cond = lu.condition();
         if !(cond < SINGULAR_CONDITION) {
@@ -502,10 +637,7 @@ pub fn group_velocity<const N: usize>(
     drive: Drive,
 ) {
     let x = sys.solve(&group_rhs::<N>(cons, joints, s, drive, Level::Velocity));
-    for (k, &b) in bodies.iter().enumerate() {
-        s[b].vel = V2::new(x[3 * k], x[3 * k + 1]);
-        s[b].omega = x[3 * k + 2];
-    }
+    store_rates(bodies, s, &x, false);
 }
 
 /// Accelerations of a group's links: J ẍ = −(Φ̈ with the group's accelerations zero).
@@ -519,10 +651,7 @@ pub fn group_acceleration<const N: usize>(
     drive: Drive,
 ) {
     let x = sys.solve(&group_rhs::<N>(cons, joints, s, drive, Level::Acceleration));
-    for (k, &b) in bodies.iter().enumerate() {
-        s[b].acc = V2::new(x[3 * k], x[3 * k + 1]);
-        s[b].alpha = x[3 * k + 2];
-    }
+    store_rates(bodies, s, &x, true);
 }
 
 /// Positions of a group with no closed form: Newton–Raphson on the group's equations,
@@ -539,13 +668,7 @@ pub fn group_newton<const N: usize>(
     for _ in 0..50 {
         let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale).map_err(|_| MechError::NoAssembly)?;
         let dx = sys.solve(&group_rhs::<N>(cons, joints, s, drive, Level::Position));
-        let mut step: f64 = 0.0;
-        for (k, &b) in bodies.iter().enumerate() {
-            s[b].pos += V2::new(dx[3 * k], dx[3 * k + 1]);
-            let (sn, cs) = dx[3 * k + 2].sin_cos();
-            s[b].rot = rotate(s[b].rot, V2::new(cs, sn)).normalize();
-            step = step.max(dx[3 * k].abs()).max(dx[3 * k + 1].abs()).max((dx[3 * k + 2] * scale).abs());
-        }
+        let step = apply_step(bodies, s, &dx, scale);
         if !step.is_finite() {
             return Err(MechError::NoAssembly);
         }

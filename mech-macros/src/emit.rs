@@ -98,7 +98,6 @@ fn con_tokens(c: &Con) -> TokenStream {
         ConKind::Slot => quote!(Slot),
         ConKind::DriveRevolute(k) => quote!(DriveRevolute(#k)),
         ConKind::DrivePrismatic(k) => quote!(DrivePrismatic(#k)),
-        ConKind::RevoluteRow(k) => quote!(RevoluteRow(#k)),
     };
     quote!(::mech::__private::kinematics::Con { joint: #j, kind: ::mech::__private::kinematics::ConKind::#kind })
 }
@@ -300,20 +299,57 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         let n = 3 * g.bodies.len();
         let solver = &solvers[gi];
         let sys = format_ident!("sys{}", gi);
-        quote!(let #sys = #p::kinematics::group_solve::<#n>(#solver, &Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, self.branches[#gi], upto)?;)
+        if g.redundant() {
+            let m = g.rows();
+            quote!(let #sys = #p::kinematics::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, upto)?;)
+        } else {
+            quote!(let #sys = #p::kinematics::group_solve::<#n>(#solver, &Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, branches[#gi], upto)?;)
+        }
     });
     let sys_ids: Vec<Ident> = (0..n_groups).map(|g| format_ident!("sys{}", g)).collect();
     let sys_types: Vec<TokenStream> = plan.iter().map(|g| {
         let n = 3 * g.bodies.len();
-        quote!(Option<#p::kinematics::GroupSystem<#n>>)
+        if g.redundant() {
+            let m = g.rows();
+            quote!(Option<#p::kinematics::LsSystem<#n, #m>>)
+        } else {
+            quote!(Option<#p::kinematics::GroupSystem<#n>>)
+        }
     }).collect();
     let systems_ty = quote!((#(#sys_types,)*));
+    // With redundant constraints the closed forms' drawing branches may be the wrong ones
+    // past a change point (a parallelogram folding): the redundant group then finds its
+    // equations inconsistent, and the other branches are tried.
+    let solve_entry = if plan.iter().any(|g| g.redundant()) {
+        quote! {
+            let mut result = self.__solve_on(&self.branches, q, qd, qdd, upto);
+            let mut flips = 1u32;
+            while matches!(result, Err(#p::MechError::NoAssembly)) && flips < (1u32 << #n_groups.min(8)) {
+                let mut b = self.branches;
+                for (k, x) in b.iter_mut().enumerate() {
+                    if flips & (1 << k) != 0 {
+                        *x = -*x;
+                    }
+                }
+                result = self.__solve_on(&b, q, qd, qdd, upto);
+                flips += 1;
+            }
+            result
+        }
+    } else {
+        quote!(self.__solve_on(&self.branches, q, qd, qdd, upto))
+    };
     let velocity_calls = plan.iter().enumerate().map(|(gi, g)| {
         let bn = format_ident!("__G{}_BODIES", gi);
         let cn = format_ident!("__G{}_CONS", gi);
         let n = 3 * g.bodies.len();
         let idx = syn::Index::from(gi);
-        quote!(#p::kinematics::group_velocity_field::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+        if g.redundant() {
+            let m = g.rows();
+            quote!(#p::kinematics::group_velocity_field_ls::<#n, #m>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+        } else {
+            quote!(#p::kinematics::group_velocity_field::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+        }
     });
 
     // ---- Pose and motion ------------------------------------------------------------------
@@ -791,8 +827,21 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             }
 
             #[inline(always)]
+            #[inline(always)]
             fn __solve(
                 &self,
+                q: &[f64; #dof],
+                qd: &[f64; #dof],
+                qdd: &[f64; #dof],
+                upto: #p::kinematics::Level,
+            ) -> Result<([#p::kinematics::LinkState; #n_links], #systems_ty), #p::MechError> {
+                #solve_entry
+            }
+
+            #[inline(always)]
+            fn __solve_on(
+                &self,
+                branches: &[f64; #n_groups],
                 q: &[f64; #dof],
                 qd: &[f64; #dof],
                 qdd: &[f64; #dof],

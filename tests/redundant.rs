@@ -1,0 +1,66 @@
+//! A mechanism accepted with `#[allow(redundant)]`: coupled locomotive wheels (three equal
+//! parallel cranks on one coupling rod, a double parallelogram). Its kinematics and its
+//! motor torque (virtual power) are determined; its reactions are not, so it has no
+//! callable `kinetostatics` (see `tests/ui/redundant_kinetostatics.rs`).
+
+use mech::prelude::*;
+
+mechanism! {
+    /// Coupled wheels: three equal parallel cranks and one coupling rod.
+    #[allow(redundant)]
+    pub struct CoupledWheels {
+        ground { O1: (0.0, 0.0), O2: (0.8, 0.0), O3: (1.6, 0.0) },
+        link wheel1 { points { O1, A1: (0.05, 0.0866) }, mass: 120.0, inertia: 9.0, cg: (0.0, 0.0) },
+        link wheel2 { points { O2, A2: (0.85, 0.0866) }, mass: 120.0, inertia: 9.0, cg: (0.8, 0.0) },
+        link wheel3 { points { O3, A3: (1.65, 0.0866) }, mass: 120.0, inertia: 9.0, cg: (1.6, 0.0) },
+        link rod { points { A1, A2, A3 }, mass: 35.0, inertia: 7.5, cg: (0.85, 0.0866) },
+        joints {
+            O1: revolute(ground, wheel1),
+            O2: revolute(ground, wheel2),
+            O3: revolute(ground, wheel3),
+            A1: revolute(wheel1, rod),
+            A2: revolute(wheel2, rod),
+            A3: revolute(wheel3, rod),
+        },
+        input: O1,
+        loads { traction: torque on wheel3 },
+    }
+}
+
+#[test]
+fn coupled_wheels_move_and_need_the_textbook_torque() {
+    assert_eq!((CoupledWheels::DOF, CoupledWheels::EQUATIONS, CoupledWheels::UNKNOWNS), (1, 12, 13));
+    let m = CoupledWheels::new();
+    let r = (0.05f64 * 0.05 + 0.0866 * 0.0866).sqrt();
+    // Every wheel turns with the first, the rod translates on a circle of radius r.
+    let i_star = 3.0 * 9.0 + 35.0 * r * r;
+    let loads = CoupledWheelsLoads { traction: -50.0 };
+    // At q = 0 and π the cranks lie on the line of the pivots: the parallelogram's change
+    // point (it could fold into an anti-parallelogram), reported as such.
+    let at_change = m.kinematics(0.0, 1.0, 0.0);
+    assert!(matches!(at_change, Err(MechError::Singular { .. } | MechError::NoAssembly)), "{at_change:?}");
+    // Away from the change points (0.3 rad or more), where the dyad is well conditioned.
+    for k in 0..16 {
+        let q = 0.3 + 0.4 * k as f64;
+        if (q / std::f64::consts::PI - (q / std::f64::consts::PI).round()).abs() * std::f64::consts::PI < 0.3 {
+            continue;
+        }
+        let (qd, qdd) = (10.0, 2.0);
+        let mo = m.kinematics(q, qd, qdd).unwrap();
+        for w in [mo.links.wheel2, mo.links.wheel3] {
+            let d = (w.angle - mo.links.wheel1.angle).rem_euclid(std::f64::consts::TAU);
+            assert!(d.min(std::f64::consts::TAU - d) < 1e-12, "q={q}");
+            assert!((w.omega - qd).abs() < 1e-10 * qd && (w.alpha - qdd).abs() < 1e-9 * qd * qd, "q={q}: {} {}", w.omega, w.alpha);
+        }
+        assert!(mo.links.rod.omega.abs() < 1e-10 * qd, "the rod translates: ω = {}", mo.links.rod.omega);
+        let torque = m.driver_action(&mo, &loads).unwrap();
+        // I* is constant: T = I* q̈ − (traction on a wheel turning at the input's rate).
+        let want = i_star * qdd + 50.0;
+        assert!((torque - want).abs() < 1e-10 * want, "q={q}: {torque} vs {want}");
+        let z = m.reduced(q).unwrap();
+        assert!((z.inertia - i_star).abs() < 1e-12 * i_star && z.inertia_derivative.abs() < 1e-10);
+        // A motion at rest still gets its torque from the solved velocity field.
+        let rest = m.kinematics(q, 0.0, qdd).unwrap();
+        assert!((m.driver_action(&rest, &loads).unwrap() - want).abs() < 1e-10 * want);
+    }
+}
