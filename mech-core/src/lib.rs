@@ -1,10 +1,15 @@
 //! mech-core: the run-time half of `mech`.
 //!
 //! The pipeline of the `mechanism!` macro, visible in the module names:
-//! [`dsl`] (parse) → [`model`] (plain data) → [`resolve`] and [`validate`] (the checks of
-//! SPEC section 4: [`grubler`], [`assur`]) → [`plan`] (Assur groups, solve order) → emit
-//! (in `mech-macros`). The generated code calls the kernels of [`kinematics`] and
-//! [`kinetostatics`]; the run-time generic solver reuses the same model and validation.
+//! [`dsl`] (parse, syn) → [`model`] (plain data) → [`resolve`] (names) and [`validate`]
+//! (the checks of SPEC section 4, with [`grubler`] and [`pebble`]) → [`assur::plan`]
+//! (Assur groups, solve order) → emit (in `mech-macros`). The generated code is a
+//! sequence of calls into the kernels of [`kinematics`], [`assur`] (closed-form dyads),
+//! [`kinetostatics`] and [`zhukovski`], with the numbers of [`instance`]; every generated
+//! struct implements the [`traits`] that the algorithms written once here take:
+//! [`dynamics`] and [`ode`] (the direct problem), [`flywheel`] (Wittenbauer). The
+//! run-time [`generic`] solver reads the same DSL text and reuses the same model,
+//! validation and kernels, with one dense system instead of group by group.
 
 pub mod assur;
 pub mod dsl;
