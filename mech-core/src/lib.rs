@@ -14,6 +14,7 @@
 pub mod assur;
 pub mod dsl;
 pub mod dynamics;
+pub mod equivalent_mass;
 pub mod error;
 pub mod flywheel;
 pub mod generic;
