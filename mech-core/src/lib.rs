@@ -17,6 +17,7 @@ pub mod dynamics;
 pub mod equivalent_mass;
 pub mod error;
 pub mod flywheel;
+pub mod friction;
 pub mod generic;
 pub mod geometry;
 pub mod grubler;

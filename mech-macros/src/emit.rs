@@ -489,6 +489,31 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         }
     };
 
+    // Flattened forces: drivers first, then per joint (fx, fy[, moment]).
+    let mut offsets = Vec::new();
+    let mut flat_len = dof;
+    for jt in &model.joints {
+        offsets.push(flat_len);
+        flat_len += if jt.kind == JointKind::Prismatic { 3 } else { 2 };
+    }
+    let flat_driver = if one_dof { quote!(out[0] = f.driver;) } else { quote!(out[..#dof].copy_from_slice(&f.driver);) };
+    let flat_joints: Vec<TokenStream> = model.joints.iter().enumerate().map(|(j, jt)| {
+        let jid = &joint_ids[j];
+        let o = offsets[j];
+        let (o1, o2) = (o + 1, o + 2);
+        if jt.kind == JointKind::Prismatic {
+            quote!(out[#o] = f.joints.#jid.force.x; out[#o1] = f.joints.#jid.force.y; out[#o2] = f.joints.#jid.moment;)
+        } else {
+            quote!(out[#o] = f.joints.#jid.force.x; out[#o1] = f.joints.#jid.force.y;)
+        }
+    }).collect();
+    let friction_calls: Vec<TokenStream> = model.joints.iter().enumerate().map(|(j, jt)| {
+        let o = offsets[j];
+        let o1 = o + 1;
+        let kernel = if jt.kind == JointKind::Revolute { quote!(revolute) } else { quote!(sliding) };
+        quote!(#p::friction::#kernel(&mut extra, &self.joints[#j], s, &friction[#j], #p::Vector2::new(prev[#o], prev[#o1]));)
+    }).collect();
+
     let kinetostatics = if redundant {
         quote! {
             /// Not available: with redundant constraints the reactions are statically
@@ -506,10 +531,59 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             /// Assur group inward. Reactions are forces BY the joint's first link ON its
             /// second (N), prismatic joints add a moment (N·m, CCW on the second link).
             pub fn kinetostatics(&self, m: &#motion, loads: &#loads) -> Result<#forces, #p::MechError> {
+                self.__kinetostatics(m, loads, None)
+            }
+
+            /// Kinetostatics with Coulomb friction in the joints (`friction[j]` for joint j
+            /// in declaration order, see `mech::friction`): d'Alembert iterated to a fixed
+            /// point, friction from the reactions of the previous iterate;
+            /// `MechError::SelfLocking` when no finite motor action moves the mechanism.
+            pub fn kinetostatics_with_friction(
+                &self,
+                m: &#motion,
+                loads: &#loads,
+                friction: &[#p::friction::JointFriction; #n_joints],
+            ) -> Result<#forces, #p::MechError> {
+                let s = &m.states;
+                let first = Self::__flat(&self.__kinetostatics(m, loads, None)?);
+                let mut last = None;
+                #p::friction::iterate(first, |prev| {
+                    let mut extra = [#p::kinetostatics::Wrench::zeros(); #n_links];
+                    #(#friction_calls)*
+                    let f = self.__kinetostatics(m, loads, Some(&extra))?;
+                    let flat = Self::__flat(&f);
+                    last = Some(f);
+                    Ok(flat)
+                })?;
+                match last {
+                    Some(f) => Ok(f),
+                    None => self.__kinetostatics(m, loads, None),
+                }
+            }
+
+            fn __kinetostatics(
+                &self,
+                m: &#motion,
+                loads: &#loads,
+                extra: Option<&[#p::kinetostatics::Wrench; #n_links]>,
+            ) -> Result<#forces, #p::MechError> {
                 let s = &m.states;
                 let mut f = self.__wrenches(s, loads, true)?;
+                if let Some(extra) = extra {
+                    for (fi, ei) in f.iter_mut().zip(extra) {
+                        *fi += ei;
+                    }
+                }
                 #(#reaction_calls)*
                 Ok(#forces { driver: #driver_value, joints: #forces_joints { #(#reaction_vals)* } })
+            }
+
+            /// Motor actions, then every joint's force (and prismatic moment), as one array.
+            fn __flat(f: &#forces) -> [f64; #flat_len] {
+                let mut out = [0.0; #flat_len];
+                #flat_driver
+                #(#flat_joints)*
+                out
             }
         }
     };
