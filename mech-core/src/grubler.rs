@@ -140,11 +140,8 @@ pub fn spatial_mobility(n_links: usize, pairs_by_class: [usize; 5]) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{dsl::parse_str, resolve::resolve};
 
-    fn model(text: &str) -> Model {
-        resolve(&parse_str(text).expect("parse")).expect("resolve")
-    }
+    use crate::resolve::model_of as model;
 
     const FOUR_BAR: &str = r#"
         pub struct FourBar {

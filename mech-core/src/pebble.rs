@@ -283,11 +283,8 @@ pub fn check(model: &Model) -> Vec<Issue> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{dsl::parse_str, resolve::resolve};
 
-    fn model(text: &str) -> Model {
-        resolve(&parse_str(text).expect("parse")).expect("resolve")
-    }
+    use crate::resolve::model_of as model;
 
     const FOUR_BAR: &str = r#"
         pub struct FourBar {

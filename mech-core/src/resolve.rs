@@ -427,3 +427,9 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         loads,
     })
 }
+
+/// Parse and resolve DSL text, for the unit tests of the checks.
+#[cfg(test)]
+pub(crate) fn model_of(text: &str) -> Model {
+    resolve(&crate::dsl::parse_str(text).expect("parse")).expect("resolve")
+}

@@ -428,11 +428,8 @@ pub fn runtime(model: &Model) -> Vec<Issue> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{dsl::parse_str, resolve::resolve};
 
-    fn model(text: &str) -> Model {
-        resolve(&parse_str(text).expect("parse")).expect("resolve")
-    }
+    use crate::resolve::model_of as model;
 
     const SLIDER_CRANK: &str = r#"
         /// Offset slider-crank of a single-cylinder engine.
