@@ -293,11 +293,11 @@ fn slide_line(g: &JointGeom, s: &[LinkState], body: usize, rot: V2, d: V2) -> (V
 }
 
 /// RPR / slotted lever: the unit rotation of the guide `a` (pinned at `pin_a`) such that
-/// the line of `g` passes through the slider's point. `d` = slider point − guide pin
+/// the line of `g` passes through the slider's point. `dvec` = slider pin − guide pin
 /// (current), `w` = the local vector from the guide pin to the slide point minus that from the
-/// slider's pin to its slide point; `sign` picks the side.
+/// slider's pin to its slide point; `sign` picks the side (see [`tangent_side`]).
 #[inline(always)]
-fn tangent_rotation(n0: V2, dvec: V2, w: V2, sign: f64) -> Result<(V2, f64), MechError> {
+fn tangent_rotation(n0: V2, dvec: V2, w: V2, sign: f64) -> Result<V2, MechError> {
     let len = dvec.norm();
     if !(len > 0.0) {
         return Err(MechError::NoAssembly);
@@ -313,7 +313,14 @@ fn tangent_rotation(n0: V2, dvec: V2, w: V2, sign: f64) -> Result<(V2, f64), Mec
     let e = dvec / len;
     let m = e * alpha + perp(e) * (sign * b2.sqrt());
     // rot = m · conj(n0)
-    Ok((V2::new(m.dot(&n0), cross(n0, m)), cross(n0, dvec)))
+    Ok(V2::new(m.dot(&n0), cross(n0, m)))
+}
+
+/// The side of a tangent construction: with the guide's current normal `m` and `dvec`
+/// as in [`tangent_rotation`], −m × dvec has the sign of that kernel's `sign`.
+#[inline(always)]
+fn tangent_side(guide: &LinkState, axis: V2, dvec: V2) -> f64 {
+    -cross(rotate(guide.rot, perp(axis)), dvec)
 }
 
 const TANGENT_TOL_REL: f64 = 1e-12;
@@ -355,8 +362,7 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
             let (guide, slider) = (gp.a, gp.b);
             let pa = pin(&joints[ga], s, guide);
             let pb = pin(&joints[gb], s, slider);
-            let m = rotate(s[guide].rot, perp(gp.axis));
-            -cross(m, pb.0 - pa.0)
+            tangent_side(&s[guide], gp.axis, pb.0 - pa.0)
         }
         Solver::PinInFixedSlot { body, ja, js } => {
             let (a, _) = pin(&joints[ja], s, body);
@@ -369,8 +375,7 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
             let g = &joints[js];
             let (a, _) = pin(&joints[ja], s, body);
             let p = s[g.b].point(g.db);
-            let m = rotate(s[body].rot, perp(g.axis));
-            -cross(m, p - a)
+            tangent_side(&s[body], g.axis, p - a)
         }
         _ => 1.0,
     }
@@ -439,7 +444,7 @@ pub fn position<const N: usize>(
             let pa = pin(&joints[ga], s, guide);
             let pb = pin(&joints[gb], s, slider);
             let (n0, dvec, w) = rpr_data(gp, pa, pb, true);
-            let (rot, _) = tangent_rotation(n0, dvec, w, sign)?;
+            let rot = tangent_rotation(n0, dvec, w, sign)?;
             place_by_point(&mut s[guide], rot, pa.1, pa.0);
             place_by_point(&mut s[slider], rot, pb.1, pb.0);
         }
@@ -480,7 +485,7 @@ pub fn position<const N: usize>(
             let pa = pin(&joints[ja], s, body);
             let pb = (s[g.b].point(g.db), g.db);
             let (n0, dvec, w) = rpr_data(g, pa, pb, false);
-            let (rot, _) = tangent_rotation(n0, dvec, w, sign)?;
+            let rot = tangent_rotation(n0, dvec, w, sign)?;
             place_by_point(&mut s[body], rot, pa.1, pa.0);
         }
         Solver::Newton => group_newton::<N>(bodies, cons, joints, s, drive, scale)?,

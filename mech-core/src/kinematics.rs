@@ -97,11 +97,6 @@ impl LinkState {
     pub fn acc_at(&self, r: V2) -> V2 {
         self.acc + perp(r) * self.alpha - r * (self.omega * self.omega)
     }
-    /// Rotation since the drawing, φ = atan2(sin, cos) ∈ (−π, π].
-    #[inline]
-    pub fn phi(&self) -> f64 {
-        self.rot.y.atan2(self.rot.x)
-    }
 }
 
 /// Geometry of one joint in the local frames of its two links.
@@ -423,23 +418,14 @@ pub fn group_solve_ls<const N: usize, const M: usize>(
     scale: f64,
     upto: Level,
 ) -> Result<Option<LsSystem<N, M>>, MechError> {
-    let mut converged = false;
-    for _ in 0..50 {
-        let sys = LsSystem::<N, M>::new(bodies, cons, joints, s, scale).map_err(|_| MechError::NoAssembly)?;
-        let dx = sys.solve(&group_rhs::<M>(cons, joints, s, drive, Level::Position));
-        let step = apply_step(bodies, s, &dx, scale);
-        if !step.is_finite() {
-            return Err(MechError::NoAssembly);
-        }
-        if step < 1e-14 * scale {
-            converged = true;
-            break;
-        }
-    }
+    newton(bodies, s, scale, |s| {
+        let sys = LsSystem::<N, M>::new(bodies, cons, joints, s, scale)?;
+        Ok(sys.solve(&group_rhs::<M>(cons, joints, s, drive, Level::Position)))
+    })?;
     // Consistent equations have a zero residual; a non-zero one means the links solved
     // before took the other branch at a change point (see the generated `__solve`).
     let r = group_rhs::<M>(cons, joints, s, drive, Level::Position);
-    if !converged || !(r.amax() < 1e-9 * scale) {
+    if !(r.amax() < 1e-9 * scale) {
         return Err(MechError::NoAssembly);
     }
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
@@ -665,14 +651,29 @@ pub fn group_newton<const N: usize>(
     drive: Drive,
     scale: f64,
 ) -> Result<(), MechError> {
+    newton(bodies, s, scale, |s| {
+        let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale)?;
+        Ok(sys.solve(&group_rhs::<N>(cons, joints, s, drive, Level::Position)))
+    })
+}
+
+/// The Newton iteration of a group: apply the steps `step(s)` until the largest is below
+/// 1e-14 L (at most 50); `NoAssembly` when a system is singular, a step is not finite,
+/// or it does not converge.
+#[inline]
+fn newton<const N: usize>(
+    bodies: &[usize],
+    s: &mut [LinkState],
+    scale: f64,
+    mut step: impl FnMut(&[LinkState]) -> Result<SVector<f64, N>, MechError>,
+) -> Result<(), MechError> {
     for _ in 0..50 {
-        let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale).map_err(|_| MechError::NoAssembly)?;
-        let dx = sys.solve(&group_rhs::<N>(cons, joints, s, drive, Level::Position));
-        let step = apply_step(bodies, s, &dx, scale);
-        if !step.is_finite() {
+        let dx = step(s).map_err(|_| MechError::NoAssembly)?;
+        let size = apply_step(bodies, s, &dx, scale);
+        if !size.is_finite() {
             return Err(MechError::NoAssembly);
         }
-        if step < 1e-14 * scale {
+        if size < 1e-14 * scale {
             return Ok(());
         }
     }
