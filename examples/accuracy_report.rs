@@ -22,7 +22,8 @@ mod mechanisms;
 #[path = "../tests/support/mod.rs"]
 mod support;
 
-use mech::assur::{plan, Solver};
+use mech::assur::plan;
+use mech::dyad::Solver;
 use mech::generic::{GenericMechanism, GenericMotion};
 use mech::prelude::*;
 use mechanisms::*;

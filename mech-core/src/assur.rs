@@ -7,127 +7,11 @@
 //! time by the macro (and at run time by the generic solver) with [`plan`]; the
 //! generated code then calls [`position`] once per group with constant arguments.
 
+use crate::constraints::{Con, ConKind};
+use crate::dyad::Solver;
 use crate::geometry::joint_cons;
-use crate::kinematics::*;
 use crate::model::{JointKind, Model};
-use crate::MechError;
-
-/// How a group's positions are solved.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Solver {
-    /// One link, pinned by `joint` to a solved link and driven there by input `input`
-    /// (a crank): φ from q, position from the pin.
-    DrivenRevolute {
-        /// The link.
-        body: usize,
-        /// The revolute driver.
-        joint: usize,
-        /// The input index.
-        input: usize,
-    },
-    /// One link sliding along `joint` on a solved link, driven by input `input`.
-    DrivenPrismatic {
-        /// The link.
-        body: usize,
-        /// The prismatic driver.
-        joint: usize,
-        /// The input index.
-        input: usize,
-    },
-    /// RRR dyad: `b1` pinned to a solved link by `ja`, `b2` by `jb`, pinned together by
-    /// `jc`: intersection of two circles.
-    Rrr {
-        /// First link.
-        b1: usize,
-        /// Second link.
-        b2: usize,
-        /// Pin of b1 to a solved link.
-        ja: usize,
-        /// Pin between b1 and b2.
-        jc: usize,
-        /// Pin of b2 to a solved link.
-        jb: usize,
-    },
-    /// RRP dyad: `b1` pinned by `ja`, pinned to `b2` by `jc`, `b2` sliding on a solved link
-    /// by the prismatic `jp`: intersection of a circle and a line.
-    Rrp {
-        /// The pinned link.
-        b1: usize,
-        /// The slider.
-        b2: usize,
-        /// Pin of b1 to a solved link.
-        ja: usize,
-        /// Pin between b1 and b2.
-        jc: usize,
-        /// Prismatic of b2 on a solved link.
-        jp: usize,
-    },
-    /// RPR dyad: `b1` pinned by `ja`, `b2` pinned by `jb`, sliding on each other by the
-    /// prismatic `jp`: a tangent construction.
-    Rpr {
-        /// First link.
-        b1: usize,
-        /// Second link.
-        b2: usize,
-        /// Pin of b1 to a solved link.
-        ja: usize,
-        /// Prismatic between b1 and b2.
-        jp: usize,
-        /// Pin of b2 to a solved link.
-        jb: usize,
-    },
-    /// PRP dyad: `b1` sliding on a solved link by `jp1`, `b2` by `jp2`, pinned together
-    /// by `jc`: both rotations are known, the pin is where two lines cross.
-    Prp {
-        /// First slider.
-        b1: usize,
-        /// Second slider.
-        b2: usize,
-        /// Prismatic of b1 on a solved link.
-        jp1: usize,
-        /// Pin between b1 and b2.
-        jc: usize,
-        /// Prismatic of b2 on a solved link.
-        jp2: usize,
-    },
-    /// RPP dyad: `b1` pinned to a solved link by `ja`, sliding on `b2` by `jp`, `b2`
-    /// sliding on a solved link by `jq`: both rotations are those of the last solved link;
-    /// b1 is placed by its pin, b2 where two lines cross.
-    Rpp {
-        /// The pinned link.
-        b1: usize,
-        /// The outer slider.
-        b2: usize,
-        /// Pin of b1.
-        ja: usize,
-        /// Prismatic between b1 and b2.
-        jp: usize,
-        /// Prismatic of b2 on a solved link.
-        jq: usize,
-    },
-    /// One link pinned by `ja` whose point slides in a slot of a solved link (`js`):
-    /// circle and line.
-    PinInFixedSlot {
-        /// The link.
-        body: usize,
-        /// Its pin to a solved link.
-        ja: usize,
-        /// The slot joint (slot in the solved link, pin of `body`).
-        js: usize,
-    },
-    /// One slotted link pinned by `ja`, with a solved link's pin in its slot (`js`): a
-    /// tangent construction.
-    SlottedLever {
-        /// The link.
-        body: usize,
-        /// Its pin to a solved link.
-        ja: usize,
-        /// The slot joint (slot in `body`, pin of a solved link).
-        js: usize,
-    },
-    /// No closed form: Newton–Raphson on the group's equations from the drawing.
-    Newton,
-}
+use crate::screw::{Chain, Driven, JointScrew, VIRTUAL};
 
 /// One group of the plan.
 #[derive(Clone, Debug, PartialEq)]
@@ -138,6 +22,62 @@ pub struct Group {
     pub cons: Vec<Con>,
     /// The position kernel.
     pub solver: Solver,
+    /// The rates and reactions kernel.
+    pub kernel: Kernel,
+}
+
+/// How a group's rates and reactions are solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kernel {
+    /// A driven crank or slider: one joint screw with a known rate.
+    Driven(Driven),
+    /// A closed-form dyad or slot group: a chain of three joint screws.
+    Chain(Chain),
+    /// No closed form: the group's scaled Jacobian, LU-factored.
+    System,
+}
+
+/// The screw kernel of a closed-form solver ([`crate::screw`] docs): the chain of joint
+/// screws from a solved link through the group's links to a solved link.
+pub fn kernel(model: &Model, solver: Solver) -> Kernel {
+    let other = |j: usize, body: usize| {
+        let jt = &model.joints[j];
+        if jt.a == body {
+            jt.b
+        } else {
+            jt.a
+        }
+    };
+    let rot = |joint| JointScrew { joint, slide: false };
+    let slide = |joint| JointScrew { joint, slide: true };
+    let sc = |j: usize| if model.joints[j].kind == JointKind::Revolute { rot(j) } else { slide(j) };
+    let dyad = |b1, b2, j1: usize, j2: usize, j3: usize| {
+        Kernel::Chain(Chain { from: other(j1, b1), to: other(j3, b2), screws: [sc(j1), sc(j2), sc(j3)], links: [b1, b2] })
+    };
+    match solver {
+        Solver::DrivenRevolute { body, joint, input } => Kernel::Driven(Driven { from: other(joint, body), body, screw: rot(joint), input }),
+        Solver::DrivenPrismatic { body, joint, input } => Kernel::Driven(Driven { from: other(joint, body), body, screw: slide(joint), input }),
+        Solver::Rrr { b1, b2, ja, jc, jb } => dyad(b1, b2, ja, jc, jb),
+        Solver::Rrp { b1, b2, ja, jc, jp } => dyad(b1, b2, ja, jc, jp),
+        Solver::Rpr { b1, b2, ja, jp, jb } => dyad(b1, b2, ja, jp, jb),
+        Solver::Prp { b1, b2, jp1, jc, jp2 } => dyad(b1, b2, jp1, jc, jp2),
+        Solver::Rpp { b1, b2, ja, jp, jq } => dyad(b1, b2, ja, jp, jq),
+        // Pin of `body` in a slot of a solved link: rotation about the pin, then the slide.
+        Solver::PinInFixedSlot { body, ja, js } => Kernel::Chain(Chain {
+            from: other(ja, body),
+            to: model.joints[js].a,
+            screws: [rot(ja), rot(js), slide(js)],
+            links: [body, VIRTUAL],
+        }),
+        // Slot in `body`, pin of a solved link: the slide, then the rotation about the pin.
+        Solver::SlottedLever { body, ja, js } => Kernel::Chain(Chain {
+            from: other(ja, body),
+            to: model.joints[js].b,
+            screws: [rot(ja), slide(js), rot(js)],
+            links: [body, VIRTUAL],
+        }),
+        Solver::Newton => Kernel::System,
+    }
 }
 
 impl Group {
@@ -193,7 +133,8 @@ pub fn plan(model: &Model) -> Result<Vec<Group>, Vec<usize>> {
         } else {
             Solver::Newton
         };
-        groups.push(Group { bodies, cons, solver });
+        let kernel = kernel(model, solver);
+        groups.push(Group { bodies, cons, solver, kernel });
     }
     Ok(groups)
 }
@@ -267,228 +208,4 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
         }
         _ => Solver::Newton,
     }
-}
-
-/// For a joint `g` with link `body` on one side and a solved link on the other: the
-/// joint point's current position from the solved side, and its local vector in `body`.
-#[inline(always)]
-fn pin(g: &JointGeom, s: &[LinkState], body: usize) -> (V2, V2) {
-    if g.b == body {
-        (s[g.a].point(g.da), g.db)
-    } else {
-        (s[g.b].point(g.db), g.da)
-    }
-}
-
-/// The line along which a point (local `d` in `body`) moves when `body` slides on the
-/// solved link by the prismatic `g`, with `body`'s rotation `rot`: (a point of it, unit direction).
-#[inline(always)]
-fn slide_line(g: &JointGeom, s: &[LinkState], body: usize, rot: V2, d: V2) -> (V2, V2) {
-    let u = rotate(rot, g.axis);
-    if g.b == body {
-        (s[g.a].point(g.da) + rotate(rot, d - g.db), u)
-    } else {
-        (s[g.b].point(g.db) + rotate(rot, d - g.da), u)
-    }
-}
-
-/// RPR / slotted lever: the unit rotation of the guide `a` (pinned at `pin_a`) such that
-/// the line of `g` passes through the slider's point. `dvec` = slider pin − guide pin
-/// (current), `w` = the local vector from the guide pin to the slide point minus that from the
-/// slider's pin to its slide point; `sign` picks the side (see [`tangent_side`]).
-#[inline(always)]
-fn tangent_rotation(n0: V2, dvec: V2, w: V2, sign: f64) -> Result<V2, MechError> {
-    let len = dvec.norm();
-    if !(len > 0.0) {
-        return Err(MechError::NoAssembly);
-    }
-    let alpha = n0.dot(&w) / len;
-    let mut b2 = 1.0 - alpha * alpha;
-    if b2 < 0.0 {
-        if b2 < -TANGENT_TOL_REL {
-            return Err(MechError::NoAssembly);
-        }
-        b2 = 0.0;
-    }
-    let e = dvec / len;
-    let m = e * alpha + perp(e) * (sign * b2.sqrt());
-    // rot = m · conj(n0)
-    Ok(V2::new(m.dot(&n0), cross(n0, m)))
-}
-
-/// The side of a tangent construction: with the guide's current normal `m` and `dvec`
-/// as in [`tangent_rotation`], −m × dvec has the sign of that kernel's `sign`.
-#[inline(always)]
-fn tangent_side(guide: &LinkState, axis: V2, dvec: V2) -> f64 {
-    -cross(rotate(guide.rot, perp(axis)), dvec)
-}
-
-const TANGENT_TOL_REL: f64 = 1e-12;
-
-/// The guide/slider data of an RPR or slotted-lever group: (n0, D, w).
-#[inline(always)]
-fn rpr_data(gp: &JointGeom, pin_a: (V2, V2), pin_b: (V2, V2), b_moves: bool) -> (V2, V2, V2) {
-    // Slide condition n·(P_b − Q_a) = 0 with P_b = pin_b + R(ψ)(db − dpin_b) when the
-    // slider rotates with the guide, or P_b = pin_b (a solved link's pin).
-    let n0 = perp(gp.axis);
-    let dvec = pin_b.0 - pin_a.0;
-    let wb = if b_moves { gp.db - pin_b.1 } else { V2::zeros() };
-    let w = -(wb - (gp.da - pin_a.1));
-    (n0, dvec, w)
-}
-
-/// The signed quantity whose sign is the group's assembly branch, at the current states.
-/// Evaluated once at the drawing (construction) and kept for every input value.
-pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) -> f64 {
-    match solver {
-        Solver::Rrr { b1, b2, ja, jc, jb } => {
-            let (a, _) = pin(&joints[ja], s, b1);
-            let (b, _) = pin(&joints[jb], s, b2);
-            let gc = &joints[jc];
-            let c = s[gc.b].point(gc.db);
-            cross(b - a, c - a)
-        }
-        Solver::Rrp { b1, b2, ja, jc, jp } => {
-            // Side along the line of C relative to the foot of the perpendicular from A.
-            let (a, _) = pin(&joints[ja], s, b1);
-            let gc = &joints[jc];
-            let c = s[gc.b].point(gc.db);
-            let u = s[b2].r(joints[jp].axis);
-            (c - a).dot(&u)
-        }
-        Solver::Rpr { b1, ja, jp, jb, .. } => {
-            let gp = &joints[jp];
-            let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
-            let (guide, slider) = (gp.a, gp.b);
-            let pa = pin(&joints[ga], s, guide);
-            let pb = pin(&joints[gb], s, slider);
-            tangent_side(&s[guide], gp.axis, pb.0 - pa.0)
-        }
-        Solver::PinInFixedSlot { body, ja, js } => {
-            let (a, _) = pin(&joints[ja], s, body);
-            let g = &joints[js];
-            let p = s[body].point(g.db);
-            let u = s[g.a].r(g.axis);
-            (p - a).dot(&u)
-        }
-        Solver::SlottedLever { body, ja, js } => {
-            let g = &joints[js];
-            let (a, _) = pin(&joints[ja], s, body);
-            let p = s[g.b].point(g.db);
-            tangent_side(&s[body], g.axis, p - a)
-        }
-        _ => 1.0,
-    }
-}
-
-/// Solve the positions of one group. `sign` is the branch of the drawing (from
-/// [`branch_quantity`]); `s` holds solved links' states, and the group's links at a
-/// starting guess (the drawing) for [`Solver::Newton`].
-#[inline(always)]
-pub fn position<const N: usize>(
-    solver: Solver,
-    bodies: &[usize],
-    cons: &[Con],
-    joints: &[JointGeom],
-    s: &mut [LinkState],
-    drive: Drive,
-    scale: f64,
-    sign: f64,
-) -> Result<(), MechError> {
-    match solver {
-        Solver::DrivenRevolute { body, joint, input } => {
-            let g = &joints[joint];
-            let (sn, cs) = (drive.0[input] - g.q_ref).sin_cos();
-            let (other, rel) = if g.b == body { (g.a, V2::new(cs, sn)) } else { (g.b, V2::new(cs, -sn)) };
-            let rot = rotate(s[other].rot, rel);
-            let (p, d) = pin(g, s, body);
-            place_by_point(&mut s[body], rot, d, p);
-        }
-        Solver::DrivenPrismatic { body, joint, input } => {
-            let g = &joints[joint];
-            let q = drive.0[input];
-            if g.b == body {
-                let rot = s[g.a].rot;
-                let p = s[g.a].point(g.da) + rotate(rot, g.axis) * q;
-                place_by_point(&mut s[body], rot, g.db, p);
-            } else {
-                let rot = s[g.b].rot;
-                let p = s[g.b].point(g.db) - rotate(rot, g.axis) * q;
-                place_by_point(&mut s[body], rot, g.da, p);
-            }
-        }
-        Solver::Rrr { b1, b2, ja, jc, jb } => {
-            let (a, da) = pin(&joints[ja], s, b1);
-            let (b, db) = pin(&joints[jb], s, b2);
-            let gc = &joints[jc];
-            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
-            let c = circle_circle(a, (dc1 - da).norm(), b, (dc2 - db).norm(), sign)?;
-            place_by_two_points(&mut s[b1], da, dc1, a, c);
-            place_by_two_points(&mut s[b2], db, dc2, b, c);
-        }
-        Solver::Rrp { b1, b2, ja, jc, jp } => {
-            let (a, da) = pin(&joints[ja], s, b1);
-            let gp = &joints[jp];
-            let rot2 = if gp.b == b2 { s[gp.a].rot } else { s[gp.b].rot };
-            let gc = &joints[jc];
-            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
-            let (p, u) = slide_line(gp, s, b2, rot2, dc2);
-            let c = circle_line(a, (dc1 - da).norm(), p, u, sign)?;
-            place_by_two_points(&mut s[b1], da, dc1, a, c);
-            place_by_point(&mut s[b2], rot2, dc2, c);
-        }
-        Solver::Rpr { b1, ja, jp, jb, .. } => {
-            let gp = &joints[jp];
-            let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
-            let (guide, slider) = (gp.a, gp.b);
-            let pa = pin(&joints[ga], s, guide);
-            let pb = pin(&joints[gb], s, slider);
-            let (n0, dvec, w) = rpr_data(gp, pa, pb, true);
-            let rot = tangent_rotation(n0, dvec, w, sign)?;
-            place_by_point(&mut s[guide], rot, pa.1, pa.0);
-            place_by_point(&mut s[slider], rot, pb.1, pb.0);
-        }
-        Solver::Prp { b1, b2, jp1, jc, jp2 } => {
-            let (g1, g2) = (&joints[jp1], &joints[jp2]);
-            let rot1 = if g1.b == b1 { s[g1.a].rot } else { s[g1.b].rot };
-            let rot2 = if g2.b == b2 { s[g2.a].rot } else { s[g2.b].rot };
-            let gc = &joints[jc];
-            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
-            let (p1, u1) = slide_line(g1, s, b1, rot1, dc1);
-            let (p2, u2) = slide_line(g2, s, b2, rot2, dc2);
-            let c = line_line(p1, u1, p2, u2)?;
-            place_by_point(&mut s[b1], rot1, dc1, c);
-            place_by_point(&mut s[b2], rot2, dc2, c);
-        }
-        Solver::Rpp { b1, b2, ja, jp, jq } => {
-            let gq = &joints[jq];
-            let rot = if gq.b == b2 { s[gq.a].rot } else { s[gq.b].rot };
-            let (a, da) = pin(&joints[ja], s, b1);
-            place_by_point(&mut s[b1], rot, da, a);
-            // The sliding point of b2 on the solved link, on both lines.
-            let dq = if gq.b == b2 { gq.db } else { gq.da };
-            let (p1, u1) = slide_line(gq, s, b2, rot, dq);
-            let (p2, u2) = slide_line(&joints[jp], s, b2, rot, dq);
-            let c = line_line(p1, u1, p2, u2)?;
-            place_by_point(&mut s[b2], rot, dq, c);
-        }
-        Solver::PinInFixedSlot { body, ja, js } => {
-            let (a, da) = pin(&joints[ja], s, body);
-            let g = &joints[js];
-            let u = s[g.a].r(g.axis);
-            let q = s[g.a].point(g.da);
-            let p = circle_line(a, (g.db - da).norm(), q, u, sign)?;
-            place_by_two_points(&mut s[body], da, g.db, a, p);
-        }
-        Solver::SlottedLever { body, ja, js } => {
-            let g = &joints[js];
-            let pa = pin(&joints[ja], s, body);
-            let pb = (s[g.b].point(g.db), g.db);
-            let (n0, dvec, w) = rpr_data(g, pa, pb, false);
-            let rot = tangent_rotation(n0, dvec, w, sign)?;
-            place_by_point(&mut s[body], rot, pa.1, pa.0);
-        }
-        Solver::Newton => group_newton::<N>(bodies, cons, joints, s, drive, scale)?,
-    }
-    Ok(())
 }

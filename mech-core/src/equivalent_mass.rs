@@ -119,7 +119,7 @@ pub fn spatial_ten_masses(m: f64, inertia: SpatialInertia, points: [[f64; 3]; 10
 
 /// Solve a small square system, `Singular` (with a condition estimate) when it is.
 fn solve<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>) -> Result<SVector<f64, N>, MechError> {
-    let lu = crate::kinematics::Lu::new(a);
+    let lu = crate::linalg::Lu::new(a);
     let condition = lu.condition();
     if !(condition < 1e12) {
         return Err(MechError::Singular { condition });

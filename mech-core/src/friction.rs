@@ -15,7 +15,8 @@
 //! A joint with no relative motion (ω_rel = 0, v_rel = 0) has indeterminate static
 //! friction and gets none.
 
-use crate::kinematics::{cross, JointGeom, LinkState, V2};
+use crate::constraints::JointGeom;
+use crate::link_state::{cross, LinkState, V2};
 use crate::kinetostatics::Wrench;
 use crate::MechError;
 

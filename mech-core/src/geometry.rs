@@ -1,7 +1,8 @@
 //! From the drawing to the local geometry the solvers use: link anchors, joint local
 //! vectors, sliding axes, the constraint list, the drawing's states.
 
-use crate::kinematics::{Con, ConKind, JointGeom, LinkState, V2};
+use crate::constraints::{Con, ConKind, JointGeom};
+use crate::link_state::{LinkState, V2};
 use crate::model::{JointKind, Model};
 
 /// The reference anchor of link `l` (m): its first point, else its cg; the origin for the ground.

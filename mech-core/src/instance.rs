@@ -1,9 +1,10 @@
 //! The numbers a generated struct (or the generic solver) works with, derived from a
 //! resolved [`Model`]: local joint geometry, link data, the drawing's states.
 
-use crate::assur::{branch_quantity, Solver};
+use crate::dyad::{branch, branch_quantity, Solver};
 use crate::geometry::{anchor, drawing_states, joint_geoms, local};
-use crate::kinematics::{branch, JointGeom, LinkGeom, LinkState, V2};
+use crate::constraints::JointGeom;
+use crate::link_state::{LinkGeom, LinkState, V2};
 use crate::model::{Load, Model};
 use crate::MechError;
 

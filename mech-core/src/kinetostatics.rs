@@ -8,7 +8,9 @@
 //! reactions of the groups solved before (outer groups); with the signs of
 //! [`crate::kinematics`], λ is the action BY joint link a ON link b.
 
-use crate::kinematics::*;
+use crate::constraints::{eval, Con, ConKind, JointGeom, Level};
+use crate::group::GroupSystem;
+use crate::link_state::{cross, perp, LinkGeom, LinkState, V2};
 use crate::MechError;
 use nalgebra::{SVector, Vector3};
 
@@ -94,6 +96,35 @@ pub fn slide_force(g: &JointGeom, s: &[LinkState], lambda: f64) -> V2 {
 #[inline]
 pub fn virtual_power(f: &[Wrench], s: &[LinkState]) -> f64 {
     f.iter().zip(s).map(|(w, st)| w.x * st.vel.x + w.y * st.vel.y + w.z * st.omega).sum()
+}
+
+/// The reaction at one joint as the kernels produce it: the force BY a ON b (N, global)
+/// and the moment on b about the joint's current point (N·m, CCW; zero but for a
+/// prismatic joint). The generated `Forces` copy it into the joint's own reaction type.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Reaction {
+    /// Force by a on b, N.
+    pub force: V2,
+    /// Moment by a on b about the joint point, N·m.
+    pub moment: f64,
+}
+
+/// The reactions of a group solved through its multipliers λ (row order of `cons`, from
+/// [`group_reactions`]): each joint's into `out`, each driver row's motor action into
+/// `drivers` (by a on b: torque, or axial force).
+#[inline]
+pub fn lambda_reactions(cons: &[Con], joints: &[JointGeom], s: &[LinkState], lam: &[f64], out: &mut [Reaction], drivers: &mut [f64]) {
+    let mut row = 0;
+    for c in cons {
+        let g = &joints[c.joint];
+        match c.kind {
+            ConKind::Revolute => out[c.joint] = Reaction { force: V2::new(lam[row], lam[row + 1]), moment: 0.0 },
+            ConKind::Prismatic => out[c.joint] = Reaction { force: slide_force(g, s, lam[row]), moment: lam[row + 1] },
+            ConKind::Slot => out[c.joint] = Reaction { force: slide_force(g, s, lam[row]), moment: 0.0 },
+            ConKind::DriveRevolute(k) | ConKind::DrivePrismatic(k) => drivers[k] = lam[row],
+        }
+        row += c.kind.rows();
+    }
 }
 
 /// Reaction at a revolute joint: the force BY a ON b (N, global).

@@ -12,7 +12,9 @@
 //! validation and kernels, with one dense system instead of group by group.
 
 pub mod assur;
+pub mod constraints;
 pub mod dsl;
+pub mod dyad;
 pub mod dynamics;
 pub mod equivalent_mass;
 pub mod error;
@@ -20,14 +22,18 @@ pub mod flywheel;
 pub mod friction;
 pub mod generic;
 pub mod geometry;
+pub mod group;
 pub mod grubler;
 pub mod instance;
 pub mod kinematics;
 pub mod kinetostatics;
+pub mod linalg;
+pub mod link_state;
 pub mod model;
 pub mod ode;
 pub mod pebble;
 pub mod resolve;
+pub mod screw;
 pub mod traits;
 pub mod validate;
 pub mod zhukovski;

@@ -5,7 +5,7 @@
 //! (check 4, [`geometric`]). [`check`] runs them all and collects every [`Issue`].
 
 use crate::geometry::{all_cons, drawing_states, joint_geoms};
-use crate::kinematics::{eval, Con, ConKind, Level};
+use crate::constraints::{eval, Con, ConKind, Level};
 use crate::model::{JointKind, Model};
 use crate::resolve::{Culprit, Issue};
 use nalgebra::{DMatrix, DVector};

@@ -8,7 +8,7 @@
 //! - M*(q) = Σ F_k·g_k + Σ M_j g_j                               (N·m), gravity included
 //! - equation of motion: I* q̈ + ½ dI*/dq q̇² = driver + M*.
 
-use crate::kinematics::{LinkGeom, LinkState};
+use crate::link_state::{LinkGeom, LinkState};
 
 /// Reduced inertia and its derivative at one position.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

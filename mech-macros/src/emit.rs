@@ -1,6 +1,8 @@
 //! Emission: the generated struct and its solvers, as calls into mech-core's kernels.
 
-use mech_core::assur::{Group, Solver};
+use mech_core::assur::{Group, Kernel};
+use mech_core::dyad::Solver;
+use mech_core::screw::{Chain, Driven, JointScrew};
 use mech_core::kinematics::{Con, ConKind};
 use mech_core::model::{Description, JointKind, Load, Model};
 use mech_core::resolve::Diagnostic;
@@ -103,7 +105,7 @@ fn con_tokens(c: &Con) -> TokenStream {
 }
 
 fn solver_tokens(s: &Solver) -> TokenStream {
-    let p = quote!(::mech::__private::assur::Solver);
+    let p = quote!(::mech::__private::dyad::Solver);
     match *s {
         Solver::DrivenRevolute { body, joint, input } => quote!(#p::DrivenRevolute { body: #body, joint: #joint, input: #input }),
         Solver::DrivenPrismatic { body, joint, input } => quote!(#p::DrivenPrismatic { body: #body, joint: #joint, input: #input }),
@@ -118,26 +120,30 @@ fn solver_tokens(s: &Solver) -> TokenStream {
     }
 }
 
-/// Where each constraint's multipliers land: (group, first row) per joint and per input.
-struct RowMap {
-    joint: Vec<(usize, usize)>,
-    input: Vec<(usize, usize)>,
+fn screw_tokens(s: &JointScrew) -> TokenStream {
+    let (j, slide) = (s.joint, s.slide);
+    quote!(::mech::__private::screw::JointScrew { joint: #j, slide: #slide })
 }
 
-fn row_map(model: &Model, plan: &[Group]) -> RowMap {
-    let mut joint = vec![(0, 0); model.joints.len()];
-    let mut input = vec![(0, 0); model.inputs.len()];
-    for (gi, g) in plan.iter().enumerate() {
-        let mut row = 0;
-        for c in &g.cons {
-            match c.kind {
-                ConKind::DriveRevolute(k) | ConKind::DrivePrismatic(k) => input[k] = (gi, row),
-                _ => joint[c.joint] = (gi, row),
-            }
-            row += c.kind.rows();
-        }
+fn link_tokens(l: usize) -> TokenStream {
+    if l == mech_core::screw::VIRTUAL {
+        quote!(::mech::__private::screw::VIRTUAL)
+    } else {
+        quote!(#l)
     }
-    RowMap { joint, input }
+}
+
+fn chain_tokens(c: &Chain) -> TokenStream {
+    let (from, to) = (c.from, c.to);
+    let screws = c.screws.iter().map(screw_tokens);
+    let links = c.links.iter().map(|&l| link_tokens(l));
+    quote!(::mech::__private::screw::Chain { from: #from, to: #to, screws: [#(#screws),*], links: [#(#links),*] })
+}
+
+fn driven_tokens(d: &Driven) -> TokenStream {
+    let (from, body, input) = (d.from, d.body, d.input);
+    let screw = screw_tokens(&d.screw);
+    quote!(::mech::__private::screw::Driven { from: #from, body: #body, screw: #screw, input: #input })
 }
 
 /// The whole generated code of a valid mechanism.
@@ -286,10 +292,25 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             g.bodies.iter().map(|&b| model.links[b].name.as_str()).collect::<Vec<_>>().join(", "),
             g.solver
         );
+        let kernel = match &g.kernel {
+            Kernel::Driven(d) => {
+                let kn = format_ident!("__G{}_DRIVEN", gi);
+                let t = driven_tokens(d);
+                quote!(const #kn: #p::screw::Driven = #t;)
+            }
+            Kernel::Chain(c) => {
+                let kn = format_ident!("__G{}_CHAIN", gi);
+                let t = chain_tokens(c);
+                quote!(const #kn: #p::screw::Chain = #t;)
+            }
+            Kernel::System => quote!(
+                const #bn: [usize; #nb] = [#(#bodies),*];
+                const #cn: [#p::kinematics::Con; #nc] = [#(#cons),*];
+            ),
+        };
         quote! {
             #[doc = #doc]
-            const #bn: [usize; #nb] = [#(#bodies),*];
-            const #cn: [#p::kinematics::Con; #nc] = [#(#cons),*];
+            #kernel
         }
     });
     let solvers: Vec<TokenStream> = plan.iter().map(|g| solver_tokens(&g.solver)).collect();
@@ -299,21 +320,32 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         let n = 3 * g.bodies.len();
         let solver = &solvers[gi];
         let sys = format_ident!("sys{}", gi);
-        if g.redundant() {
-            let m = g.rows();
-            quote!(let #sys = #p::kinematics::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, upto)?;)
-        } else {
-            quote!(let #sys = #p::kinematics::group_solve::<#n>(#solver, &Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, branches[#gi], upto)?;)
+        match g.kernel {
+            Kernel::Driven(_) => {
+                let kn = format_ident!("__G{}_DRIVEN", gi);
+                quote!(#p::kinematics::solve_driven(#solver, &Self::#kn, &self.joints, &mut s, drive, upto)?; let #sys = ();)
+            }
+            Kernel::Chain(_) => {
+                let kn = format_ident!("__G{}_CHAIN", gi);
+                quote!(#p::kinematics::solve_chain(#solver, &Self::#kn, &self.joints, &mut s, drive, branches[#gi], self.scale, upto)?; let #sys = ();)
+            }
+            Kernel::System if g.redundant() => {
+                let m = g.rows();
+                quote!(let #sys = #p::group::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, upto)?;)
+            }
+            Kernel::System => quote!(let #sys = #p::group::group_solve::<#n>(&Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, upto)?;),
         }
     });
     let sys_ids: Vec<Ident> = (0..n_groups).map(|g| format_ident!("sys{}", g)).collect();
     let sys_types: Vec<TokenStream> = plan.iter().map(|g| {
         let n = 3 * g.bodies.len();
-        if g.redundant() {
+        if g.kernel != Kernel::System {
+            quote!(())
+        } else if g.redundant() {
             let m = g.rows();
-            quote!(Option<#p::kinematics::LsSystem<#n, #m>>)
+            quote!(Option<#p::group::LsSystem<#n, #m>>)
         } else {
-            quote!(Option<#p::kinematics::GroupSystem<#n>>)
+            quote!(Option<#p::group::GroupSystem<#n>>)
         }
     }).collect();
     let systems_ty = quote!((#(#sys_types,)*));
@@ -344,11 +376,21 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         let cn = format_ident!("__G{}_CONS", gi);
         let n = 3 * g.bodies.len();
         let idx = syn::Index::from(gi);
-        if g.redundant() {
-            let m = g.rows();
-            quote!(#p::kinematics::group_velocity_field_ls::<#n, #m>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
-        } else {
-            quote!(#p::kinematics::group_velocity_field::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+        let level = quote!(#p::kinematics::Level::Velocity);
+        match g.kernel {
+            Kernel::Driven(_) => {
+                let kn = format_ident!("__G{}_DRIVEN", gi);
+                quote!(#p::screw::driven_rates(&Self::#kn, &self.joints, &mut v, drive, #level)?;)
+            }
+            Kernel::Chain(_) => {
+                let kn = format_ident!("__G{}_CHAIN", gi);
+                quote!(#p::screw::chain_rates(&Self::#kn, &self.joints, &mut v, self.scale, #level)?;)
+            }
+            Kernel::System if g.redundant() => {
+                let m = g.rows();
+                quote!(#p::group::group_velocity_field_ls::<#n, #m>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+            }
+            Kernel::System => quote!(#p::group::group_velocity_field::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;),
         }
     });
 
@@ -380,7 +422,6 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
 
     // ---- Forces ---------------------------------------------------------------------------
     let forces_joints = format_ident!("{}ForcesJoints", desc.name.text);
-    let rows = row_map(model, plan);
     let reaction_fields = model.joints.iter().enumerate().map(|(j, jt)| {
         let jid = &joint_ids[j];
         let (ty, what) = match jt.kind {
@@ -391,42 +432,35 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         let doc = format!("Joint `{}`: {} `{}` on `{}`.", jt.name, what, model.links[jt.a].name, model.links[jt.b].name);
         quote!(#[doc = #doc] pub #jid: #ty,)
     });
-    let lam_ids: Vec<Ident> = (0..n_groups).map(|g| format_ident!("lam{}", g)).collect();
     let reaction_calls = plan.iter().enumerate().rev().map(|(gi, g)| {
         let bn = format_ident!("__G{}_BODIES", gi);
         let cn = format_ident!("__G{}_CONS", gi);
         let n = 3 * g.bodies.len();
-        let lam = &lam_ids[gi];
         let idx = syn::Index::from(gi);
-        quote!(let #lam = #p::kinetostatics::group_reactions::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, s, &mut f, self.scale)?;)
+        match g.kernel {
+            Kernel::Driven(_) => {
+                let kn = format_ident!("__G{}_DRIVEN", gi);
+                quote!(#p::screw::driven_reactions(&Self::#kn, &self.joints, s, &mut f, &mut r, &mut d);)
+            }
+            Kernel::Chain(_) => {
+                let kn = format_ident!("__G{}_CHAIN", gi);
+                quote!(#p::screw::chain_reactions(&Self::#kn, &self.joints, s, &mut f, self.scale, &mut r)?;)
+            }
+            Kernel::System => quote! {
+                let lam = #p::kinetostatics::group_reactions::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, s, &mut f, self.scale)?;
+                #p::kinetostatics::lambda_reactions(&Self::#cn, &self.joints, s, lam.as_slice(), &mut r, &mut d);
+            },
+        }
     });
     let reaction_vals = model.joints.iter().enumerate().map(|(j, jt)| {
         let jid = &joint_ids[j];
-        let (g, r) = rows.joint[j];
-        let lam = &lam_ids[g];
-        let r1 = r + 1;
         match jt.kind {
-            JointKind::Revolute => {
-                quote!(#jid: #p::kinetostatics::RevoluteReaction { force: #p::Vector2::new(#lam[#r], #lam[#r1]) },)
-            }
-            JointKind::Prismatic => quote!(#jid: #p::kinetostatics::PrismaticReaction {
-                force: #p::kinetostatics::slide_force(&self.joints[#j], s, #lam[#r]),
-                moment: #lam[#r1],
-            },),
-            JointKind::PinInSlot => quote!(#jid: #p::kinetostatics::SlotReaction {
-                force: #p::kinetostatics::slide_force(&self.joints[#j], s, #lam[#r]),
-            },),
+            JointKind::Revolute => quote!(#jid: #p::kinetostatics::RevoluteReaction { force: r[#j].force },),
+            JointKind::Prismatic => quote!(#jid: #p::kinetostatics::PrismaticReaction { force: r[#j].force, moment: r[#j].moment },),
+            JointKind::PinInSlot => quote!(#jid: #p::kinetostatics::SlotReaction { force: r[#j].force },),
         }
     });
-    let driver_vals: Vec<TokenStream> = rows
-        .input
-        .iter()
-        .map(|&(g, r)| {
-            let lam = &lam_ids[g];
-            quote!(#lam[#r])
-        })
-        .collect();
-    let driver_value = if one_dof { quote!(#(#driver_vals)*) } else { quote!([#(#driver_vals),*]) };
+    let driver_value = if one_dof { quote!(d[0]) } else { quote!(d) };
 
     let link_names: Vec<&str> = model.links[1..].iter().map(|l| l.name.as_str()).collect();
     let point_names: Vec<&str> = model.points.iter().map(|pt| pt.name.as_str()).collect();
@@ -574,6 +608,8 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
                         *fi += ei;
                     }
                 }
+                let mut r = [#p::kinetostatics::Reaction::default(); #n_joints];
+                let mut d = [0.0; #dof];
                 #(#reaction_calls)*
                 Ok(#forces { driver: #driver_value, joints: #forces_joints { #(#reaction_vals)* } })
             }

@@ -1,0 +1,238 @@
+//! The constraint equations of the joints and their Jacobian, in the links' absolute
+//! coordinates (x, y, φ) (see [`crate::link_state`]):
+//! - revolute (a, b) at P: `P_b − P_a = 0` (2 rows),
+//! - sliding normal (prismatic and slot) along u fixed in a: `n·(P_b − Q_a) = 0` with
+//!   n = R(φ_a)·perp(u), Q_a the material point of a at P in the drawing (1 row),
+//! - prismatic rotation lock: `φ_b − φ_a = 0` (1 row),
+//! - revolute driver: `φ_b − φ_a − (q − q_ref) = 0`; prismatic driver: `u·(P_b − Q_a) − q = 0`.
+//!
+//! The reaction convention follows from these signs: the multiplier λ of a joint's rows
+//! is the force (and moment) exerted BY a ON b (`docs/conventions.md`, Reactions).
+//!
+//! Scaling (one rule, [`ConKind::angle_row`]): columns (x, y, φ·L), angle rows × L, L the
+//! drawing's length scale; every entry of the scaled Jacobian is then dimensionless and of
+//! order one. [`scaled_rows`] writes it; the group systems, the validation's rank test and
+//! the generic solver all assemble through it.
+
+use crate::link_state::{cross, perp, wrap, LinkState, V2};
+use nalgebra::{SMatrix, SVector, Vector3};
+
+/// Geometry of one joint in the local frames of its two links.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointGeom {
+    /// First link (guide / slot).
+    pub a: usize,
+    /// Second link (slider / pin).
+    pub b: usize,
+    /// Local vector in `a` of the joint point (for sliding joints: of the material point
+    /// of `a` that coincides with P in the drawing).
+    pub da: V2,
+    /// Local vector in `b` of the joint point.
+    pub db: V2,
+    /// Unit sliding axis in `a`'s local (reference) orientation; zero for a revolute.
+    pub axis: V2,
+    /// For a revolute driver: θ_b − θ_a in the drawing (rad), so that φ_b − φ_a = q − q_ref.
+    pub q_ref: f64,
+}
+
+/// The kind of a constraint contributed by one joint to a group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConKind {
+    /// Revolute: 2 rows.
+    Revolute,
+    /// Prismatic: sliding normal + rotation lock, 2 rows.
+    Prismatic,
+    /// Pin in slot: sliding normal, 1 row.
+    Slot,
+    /// Revolute driver (input `k`): 1 row (the pin itself is a separate `Revolute`).
+    DriveRevolute(usize),
+    /// Prismatic driver (input `k`): 1 row (the guide itself is a separate `Prismatic`).
+    DrivePrismatic(usize),
+}
+
+impl ConKind {
+    /// Number of scalar equations.
+    pub const fn rows(self) -> usize {
+        match self {
+            ConKind::Revolute | ConKind::Prismatic => 2,
+            _ => 1,
+        }
+    }
+    /// Rows whose unit is an angle (scaled by the length scale in group systems).
+    pub const fn angle_row(self, k: usize) -> bool {
+        matches!((self, k), (ConKind::Prismatic, 1) | (ConKind::DriveRevolute(_), 0))
+    }
+}
+
+/// One constraint of a group: a joint (index into the joint geometry) and what it imposes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Con {
+    /// Joint index.
+    pub joint: usize,
+    /// What it imposes.
+    pub kind: ConKind,
+}
+
+/// The partial derivatives of one scalar constraint with respect to (x, y, φ) of `a` and `b`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Row {
+    /// ∂C/∂(x_a, y_a, φ_a).
+    pub a: Vector3<f64>,
+    /// ∂C/∂(x_b, y_b, φ_b).
+    pub b: Vector3<f64>,
+}
+
+/// The value, rate or second rate of one constraint's rows, and its Jacobian rows.
+#[derive(Clone, Copy, Debug)]
+pub struct ConEval {
+    /// Up to two Jacobian rows.
+    pub rows: [Row; 2],
+    /// Up to two values (position residual, or the rate / second rate with the group's
+    /// own unknowns set to zero).
+    pub val: [f64; 2],
+}
+
+/// What to evaluate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Level {
+    /// The Jacobian rows only (values left zero).
+    Jacobian,
+    /// Φ.
+    Position,
+    /// dΦ/dt.
+    Velocity,
+    /// d²Φ/dt².
+    Acceleration,
+}
+
+/// Input values: (q, q̇, q̈) per input.
+pub type Drive<'a> = (&'a [f64], &'a [f64], &'a [f64]);
+
+/// Evaluate constraint `c` on the states `s` at `level`: its Jacobian rows and values.
+///
+/// Velocity/acceleration values are the full time derivatives evaluated at the current
+/// states; with the unknown links' velocities (accelerations) set to zero they are the
+/// right-hand sides of the group's linear systems, negated.
+#[inline(always)]
+pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) -> ConEval {
+    let (sa, sb) = (&s[g.a], &s[g.b]);
+    let ra = sa.r(g.da);
+    let rb = sb.r(g.db);
+    let z = Row { a: Vector3::zeros(), b: Vector3::zeros() };
+    let mut out = ConEval { rows: [z, z], val: [0.0, 0.0] };
+    match c.kind {
+        ConKind::Revolute => {
+            out.rows[0] = Row { a: Vector3::new(-1.0, 0.0, ra.y), b: Vector3::new(1.0, 0.0, -rb.y) };
+            out.rows[1] = Row { a: Vector3::new(0.0, -1.0, -ra.x), b: Vector3::new(0.0, 1.0, rb.x) };
+            let v = match level {
+                Level::Jacobian => V2::zeros(),
+                Level::Position => (sb.pos + rb) - (sa.pos + ra),
+                Level::Velocity => sb.vel_at(rb) - sa.vel_at(ra),
+                Level::Acceleration => sb.acc_at(rb) - sa.acc_at(ra),
+            };
+            out.val = [v.x, v.y];
+        }
+        ConKind::Prismatic | ConKind::Slot | ConKind::DrivePrismatic(_) => {
+            let u = sa.r(g.axis);
+            // The sliding normal for guides; the axis itself for an actuator's stroke.
+            let (n, target) = match c.kind {
+                ConKind::DrivePrismatic(_) if level == Level::Jacobian => (u, [0.0; 3]),
+                ConKind::DrivePrismatic(k) => (u, [drive.0[k], drive.1[k], drive.2[k]]),
+                _ => (perp(u), [0.0; 3]),
+            };
+            let pb = sb.pos + rb;
+            let e = pb - (sa.pos + ra);
+            out.rows[0] = Row {
+                a: Vector3::new(-n.x, -n.y, cross(n, pb - sa.pos)),
+                b: Vector3::new(n.x, n.y, cross(rb, n)),
+            };
+            let nd = perp(n) * sa.omega;
+            let ed = sb.vel_at(rb) - sa.vel_at(ra);
+            out.val[0] = match level {
+                Level::Jacobian => 0.0,
+                Level::Position => n.dot(&e) - target[0],
+                Level::Velocity => nd.dot(&e) + n.dot(&ed) - target[1],
+                Level::Acceleration => {
+                    let ndd = perp(n) * sa.alpha - n * (sa.omega * sa.omega);
+                    let edd = sb.acc_at(rb) - sa.acc_at(ra);
+                    ndd.dot(&e) + 2.0 * nd.dot(&ed) + n.dot(&edd) - target[2]
+                }
+            };
+            if c.kind == ConKind::Prismatic {
+                out.rows[1] = Row { a: Vector3::new(0.0, 0.0, -1.0), b: Vector3::new(0.0, 0.0, 1.0) };
+                out.val[1] = match level {
+                    Level::Jacobian => 0.0,
+                    Level::Position => cross(sa.rot, sb.rot).atan2(sa.rot.dot(&sb.rot)),
+                    Level::Velocity => sb.omega - sa.omega,
+                    Level::Acceleration => sb.alpha - sa.alpha,
+                };
+            }
+        }
+        ConKind::DriveRevolute(k) => {
+            out.rows[0] = Row { a: Vector3::new(0.0, 0.0, -1.0), b: Vector3::new(0.0, 0.0, 1.0) };
+            out.val[0] = match level {
+                Level::Jacobian => 0.0,
+                Level::Position => wrap(cross(sa.rot, sb.rot).atan2(sa.rot.dot(&sb.rot)) - (drive.0[k] - g.q_ref)),
+                Level::Velocity => sb.omega - sa.omega - drive.1[k],
+                Level::Acceleration => sb.alpha - sa.alpha - drive.2[k],
+            };
+        }
+    }
+    out
+}
+
+/// Which column block (0, 1, ...) of the group a link occupies, if any.
+#[inline(always)]
+fn block(bodies: &[usize], link: usize) -> Option<usize> {
+    bodies.iter().position(|&b| b == link)
+}
+
+/// The scaled Jacobian (M rows, N = 3 × links columns) of a group's constraints at the
+/// current positions, and the row scales (L for angle rows, 1 otherwise); see
+/// [`GroupSystem`] for the scaling.
+#[inline(always)]
+pub fn assemble<const M: usize, const N: usize>(
+    bodies: &[usize],
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    scale: f64,
+) -> (SMatrix<f64, M, N>, SVector<f64, M>) {
+    let mut j = SMatrix::<f64, M, N>::zeros();
+    let mut row_scale = SVector::<f64, M>::repeat(1.0);
+    let none: &[f64] = &[];
+    let mut row = 0;
+    for c in cons {
+        let g = &joints[c.joint];
+        let e = eval(*c, g, s, (none, none, none), Level::Jacobian);
+        let (ba, bb) = (block(bodies, g.a), block(bodies, g.b));
+        for k in 0..c.kind.rows() {
+            let rs = if c.kind.angle_row(k) { scale } else { 1.0 };
+            row_scale[row] = rs;
+            for (bk, r) in [(ba, &e.rows[k].a), (bb, &e.rows[k].b)] {
+                if let Some(bk) = bk {
+                    j[(row, 3 * bk)] += rs * r.x;
+                    j[(row, 3 * bk + 1)] += rs * r.y;
+                    j[(row, 3 * bk + 2)] += rs * r.z / scale;
+                }
+            }
+            row += 1;
+        }
+    }
+    (j, row_scale)
+}
+
+/// Minus the constraint values of a group at `level` (unknown rates must be zero in `s`).
+#[inline(always)]
+pub fn group_rhs<const N: usize>(cons: &[Con], joints: &[JointGeom], s: &[LinkState], drive: Drive, level: Level) -> SVector<f64, N> {
+    let mut b = SVector::<f64, N>::zeros();
+    let mut row = 0;
+    for c in cons {
+        let e = eval(*c, &joints[c.joint], s, drive, level);
+        for k in 0..c.kind.rows() {
+            b[row] = -e.val[k];
+            row += 1;
+        }
+    }
+    b
+}

@@ -1,0 +1,420 @@
+//! Closed-form positions of the common groups: the driven crank and slider, the dyads
+//! RRR (two circles), RRP (circle and line), RPR (a tangent construction), PRP (two
+//! lines), RPP, and the single-link slot groups. Each keeps the assembly branch of the
+//! drawing: [`branch_quantity`] is evaluated once at the drawing and its sign passed to
+//! [`position`] at every input value.
+
+use crate::constraints::{Drive, JointGeom};
+use crate::link_state::{cross, perp, rotate, LinkState, V2};
+use crate::MechError;
+
+/// How a group's positions are solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Solver {
+    /// One link, pinned by `joint` to a solved link and driven there by input `input`
+    /// (a crank): φ from q, position from the pin.
+    DrivenRevolute {
+        /// The link.
+        body: usize,
+        /// The revolute driver.
+        joint: usize,
+        /// The input index.
+        input: usize,
+    },
+    /// One link sliding along `joint` on a solved link, driven by input `input`.
+    DrivenPrismatic {
+        /// The link.
+        body: usize,
+        /// The prismatic driver.
+        joint: usize,
+        /// The input index.
+        input: usize,
+    },
+    /// RRR dyad: `b1` pinned to a solved link by `ja`, `b2` by `jb`, pinned together by
+    /// `jc`: intersection of two circles.
+    Rrr {
+        /// First link.
+        b1: usize,
+        /// Second link.
+        b2: usize,
+        /// Pin of b1 to a solved link.
+        ja: usize,
+        /// Pin between b1 and b2.
+        jc: usize,
+        /// Pin of b2 to a solved link.
+        jb: usize,
+    },
+    /// RRP dyad: `b1` pinned by `ja`, pinned to `b2` by `jc`, `b2` sliding on a solved link
+    /// by the prismatic `jp`: intersection of a circle and a line.
+    Rrp {
+        /// The pinned link.
+        b1: usize,
+        /// The slider.
+        b2: usize,
+        /// Pin of b1 to a solved link.
+        ja: usize,
+        /// Pin between b1 and b2.
+        jc: usize,
+        /// Prismatic of b2 on a solved link.
+        jp: usize,
+    },
+    /// RPR dyad: `b1` pinned by `ja`, `b2` pinned by `jb`, sliding on each other by the
+    /// prismatic `jp`: a tangent construction.
+    Rpr {
+        /// First link.
+        b1: usize,
+        /// Second link.
+        b2: usize,
+        /// Pin of b1 to a solved link.
+        ja: usize,
+        /// Prismatic between b1 and b2.
+        jp: usize,
+        /// Pin of b2 to a solved link.
+        jb: usize,
+    },
+    /// PRP dyad: `b1` sliding on a solved link by `jp1`, `b2` by `jp2`, pinned together
+    /// by `jc`: both rotations are known, the pin is where two lines cross.
+    Prp {
+        /// First slider.
+        b1: usize,
+        /// Second slider.
+        b2: usize,
+        /// Prismatic of b1 on a solved link.
+        jp1: usize,
+        /// Pin between b1 and b2.
+        jc: usize,
+        /// Prismatic of b2 on a solved link.
+        jp2: usize,
+    },
+    /// RPP dyad: `b1` pinned to a solved link by `ja`, sliding on `b2` by `jp`, `b2`
+    /// sliding on a solved link by `jq`: both rotations are those of the last solved link;
+    /// b1 is placed by its pin, b2 where two lines cross.
+    Rpp {
+        /// The pinned link.
+        b1: usize,
+        /// The outer slider.
+        b2: usize,
+        /// Pin of b1.
+        ja: usize,
+        /// Prismatic between b1 and b2.
+        jp: usize,
+        /// Prismatic of b2 on a solved link.
+        jq: usize,
+    },
+    /// One link pinned by `ja` whose point slides in a slot of a solved link (`js`):
+    /// circle and line.
+    PinInFixedSlot {
+        /// The link.
+        body: usize,
+        /// Its pin to a solved link.
+        ja: usize,
+        /// The slot joint (slot in the solved link, pin of `body`).
+        js: usize,
+    },
+    /// One slotted link pinned by `ja`, with a solved link's pin in its slot (`js`): a
+    /// tangent construction.
+    SlottedLever {
+        /// The link.
+        body: usize,
+        /// Its pin to a solved link.
+        ja: usize,
+        /// The slot joint (slot in `body`, pin of a solved link).
+        js: usize,
+    },
+    /// No closed form: Newton–Raphson on the group's equations from the drawing.
+    Newton,
+}
+
+/// Relative tolerance within which a negative discriminant is taken as a tangency.
+const TANGENT_TOL: f64 = 1e-12;
+
+/// Intersection of the circle (c1, r1) with the circle (c2, r2) on the side `sign` of the
+/// line c1 → c2 (sign of (c2 − c1) × (X − c1)). `NoAssembly` when they do not meet.
+#[inline]
+pub fn circle_circle(c1: V2, r1: f64, c2: V2, r2: f64, sign: f64) -> Result<V2, MechError> {
+    let d = c2 - c1;
+    let l2 = d.norm_squared();
+    let l = l2.sqrt();
+    if !(l > 0.0) {
+        return Err(MechError::NoAssembly);
+    }
+    let a = (l2 + r1 * r1 - r2 * r2) / (2.0 * l);
+    let mut h2 = r1 * r1 - a * a;
+    if h2 < 0.0 {
+        if h2 < -TANGENT_TOL * r1.max(r2).powi(2) {
+            return Err(MechError::NoAssembly);
+        }
+        h2 = 0.0;
+    }
+    let e = d / l;
+    Ok(c1 + e * a + perp(e) * (sign * h2.sqrt()))
+}
+
+/// Intersection of the circle (c, r) with the line through `p` along unit `u`, on the
+/// side `sign` along u of the foot of the perpendicular from c.
+#[inline]
+pub fn circle_line(c: V2, r: f64, p: V2, u: V2, sign: f64) -> Result<V2, MechError> {
+    let t0 = (c - p).dot(&u);
+    let foot = p + u * t0;
+    let h = (c - foot).norm_squared();
+    let mut w2 = r * r - h;
+    if w2 < 0.0 {
+        if w2 < -TANGENT_TOL * r * r {
+            return Err(MechError::NoAssembly);
+        }
+        w2 = 0.0;
+    }
+    Ok(foot + u * (sign * w2.sqrt()))
+}
+
+/// Intersection of the lines (p1, u1) and (p2, u2); `Singular` when parallel.
+#[inline]
+pub fn line_line(p1: V2, u1: V2, p2: V2, u2: V2) -> Result<V2, MechError> {
+    let den = cross(u1, u2);
+    if den.abs() < 1e-12 {
+        return Err(MechError::Singular { condition: 1.0 / den.abs().max(f64::MIN_POSITIVE) });
+    }
+    Ok(p1 + u1 * (cross(p2 - p1, u2) / den))
+}
+
+/// Place a link from its rotation and one of its points: pos = P − R d.
+#[inline]
+pub fn place_by_point(s: &mut LinkState, rot: V2, d: V2, p: V2) {
+    s.rot = rot;
+    s.pos = p - rotate(rot, d);
+}
+
+/// Place a link from two of its points (local vectors d1, d2) at global positions p1, p2.
+#[inline]
+pub fn place_by_two_points(s: &mut LinkState, d1: V2, d2: V2, p1: V2, p2: V2) {
+    let a = d2 - d1;
+    let b = p2 - p1;
+    let rot = V2::new(a.dot(&b), cross(a, b)).normalize();
+    place_by_point(s, rot, d1, p1);
+}
+
+/// The side of a closed form's solution in the drawing (±1), given the kernel's signed
+/// quantity there; a zero (a change point) counts as +1.
+#[inline]
+pub fn branch(x: f64) -> f64 {
+    if x < 0.0 {
+        -1.0
+    } else {
+        1.0
+    }
+}
+
+/// For a joint `g` with link `body` on one side and a solved link on the other: the
+/// joint point's current position from the solved side, and its local vector in `body`.
+#[inline(always)]
+fn pin(g: &JointGeom, s: &[LinkState], body: usize) -> (V2, V2) {
+    if g.b == body {
+        (s[g.a].point(g.da), g.db)
+    } else {
+        (s[g.b].point(g.db), g.da)
+    }
+}
+
+/// The line along which a point (local `d` in `body`) moves when `body` slides on the
+/// solved link by the prismatic `g`, with `body`'s rotation `rot`: (a point of it, unit direction).
+#[inline(always)]
+fn slide_line(g: &JointGeom, s: &[LinkState], body: usize, rot: V2, d: V2) -> (V2, V2) {
+    let u = rotate(rot, g.axis);
+    if g.b == body {
+        (s[g.a].point(g.da) + rotate(rot, d - g.db), u)
+    } else {
+        (s[g.b].point(g.db) + rotate(rot, d - g.da), u)
+    }
+}
+
+const TANGENT_TOL_REL: f64 = 1e-12;
+
+/// RPR / slotted lever: the unit rotation of the guide `a` (pinned at `pin_a`) such that
+/// the line of `g` passes through the slider's point. `dvec` = slider pin − guide pin
+/// (current), `w` = the local vector from the guide pin to the slide point minus that from the
+/// slider's pin to its slide point; `sign` picks the side (see [`tangent_side`]).
+#[inline(always)]
+fn tangent_rotation(n0: V2, dvec: V2, w: V2, sign: f64) -> Result<V2, MechError> {
+    let len = dvec.norm();
+    if !(len > 0.0) {
+        return Err(MechError::NoAssembly);
+    }
+    let alpha = n0.dot(&w) / len;
+    let mut b2 = 1.0 - alpha * alpha;
+    if b2 < 0.0 {
+        if b2 < -TANGENT_TOL_REL {
+            return Err(MechError::NoAssembly);
+        }
+        b2 = 0.0;
+    }
+    let e = dvec / len;
+    let m = e * alpha + perp(e) * (sign * b2.sqrt());
+    // rot = m · conj(n0)
+    Ok(V2::new(m.dot(&n0), cross(n0, m)))
+}
+
+/// The side of a tangent construction: with the guide's current normal `m` and `dvec`
+/// as in [`tangent_rotation`], −m × dvec has the sign of that kernel's `sign`.
+#[inline(always)]
+fn tangent_side(guide: &LinkState, axis: V2, dvec: V2) -> f64 {
+    -cross(rotate(guide.rot, perp(axis)), dvec)
+}
+
+/// The guide/slider data of an RPR or slotted-lever group: (n0, D, w).
+#[inline(always)]
+fn rpr_data(gp: &JointGeom, pin_a: (V2, V2), pin_b: (V2, V2), b_moves: bool) -> (V2, V2, V2) {
+    // Slide condition n·(P_b − Q_a) = 0 with P_b = pin_b + R(ψ)(db − dpin_b) when the
+    // slider rotates with the guide, or P_b = pin_b (a solved link's pin).
+    let n0 = perp(gp.axis);
+    let dvec = pin_b.0 - pin_a.0;
+    let wb = if b_moves { gp.db - pin_b.1 } else { V2::zeros() };
+    let w = -(wb - (gp.da - pin_a.1));
+    (n0, dvec, w)
+}
+
+/// The signed quantity whose sign is the group's assembly branch, at the current states.
+/// Evaluated once at the drawing (construction) and kept for every input value.
+pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) -> f64 {
+    match solver {
+        Solver::Rrr { b1, b2, ja, jc, jb } => {
+            let (a, _) = pin(&joints[ja], s, b1);
+            let (b, _) = pin(&joints[jb], s, b2);
+            let gc = &joints[jc];
+            let c = s[gc.b].point(gc.db);
+            cross(b - a, c - a)
+        }
+        Solver::Rrp { b1, b2, ja, jc, jp } => {
+            // Side along the line of C relative to the foot of the perpendicular from A.
+            let (a, _) = pin(&joints[ja], s, b1);
+            let gc = &joints[jc];
+            let c = s[gc.b].point(gc.db);
+            let u = s[b2].r(joints[jp].axis);
+            (c - a).dot(&u)
+        }
+        Solver::Rpr { b1, ja, jp, jb, .. } => {
+            let gp = &joints[jp];
+            let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
+            let (guide, slider) = (gp.a, gp.b);
+            let pa = pin(&joints[ga], s, guide);
+            let pb = pin(&joints[gb], s, slider);
+            tangent_side(&s[guide], gp.axis, pb.0 - pa.0)
+        }
+        Solver::PinInFixedSlot { body, ja, js } => {
+            let (a, _) = pin(&joints[ja], s, body);
+            let g = &joints[js];
+            let p = s[body].point(g.db);
+            let u = s[g.a].r(g.axis);
+            (p - a).dot(&u)
+        }
+        Solver::SlottedLever { body, ja, js } => {
+            let g = &joints[js];
+            let (a, _) = pin(&joints[ja], s, body);
+            let p = s[g.b].point(g.db);
+            tangent_side(&s[body], g.axis, p - a)
+        }
+        _ => 1.0,
+    }
+}
+
+/// Place the links of a closed-form group. `sign` is the branch of the drawing (from
+/// [`branch_quantity`]); `s` holds the solved links' states. [`Solver::Newton`] has no
+/// closed form (it is solved by [`crate::group::group_solve`]) and gives `NoAssembly` here.
+#[inline]
+pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive: Drive, sign: f64) -> Result<(), MechError> {
+    match solver {
+        Solver::DrivenRevolute { body, joint, input } => {
+            let g = &joints[joint];
+            let (sn, cs) = (drive.0[input] - g.q_ref).sin_cos();
+            let (other, rel) = if g.b == body { (g.a, V2::new(cs, sn)) } else { (g.b, V2::new(cs, -sn)) };
+            let rot = rotate(s[other].rot, rel);
+            let (p, d) = pin(g, s, body);
+            place_by_point(&mut s[body], rot, d, p);
+        }
+        Solver::DrivenPrismatic { body, joint, input } => {
+            let g = &joints[joint];
+            let q = drive.0[input];
+            if g.b == body {
+                let rot = s[g.a].rot;
+                let p = s[g.a].point(g.da) + rotate(rot, g.axis) * q;
+                place_by_point(&mut s[body], rot, g.db, p);
+            } else {
+                let rot = s[g.b].rot;
+                let p = s[g.b].point(g.db) - rotate(rot, g.axis) * q;
+                place_by_point(&mut s[body], rot, g.da, p);
+            }
+        }
+        Solver::Rrr { b1, b2, ja, jc, jb } => {
+            let (a, da) = pin(&joints[ja], s, b1);
+            let (b, db) = pin(&joints[jb], s, b2);
+            let gc = &joints[jc];
+            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
+            let c = circle_circle(a, (dc1 - da).norm(), b, (dc2 - db).norm(), sign)?;
+            place_by_two_points(&mut s[b1], da, dc1, a, c);
+            place_by_two_points(&mut s[b2], db, dc2, b, c);
+        }
+        Solver::Rrp { b1, b2, ja, jc, jp } => {
+            let (a, da) = pin(&joints[ja], s, b1);
+            let gp = &joints[jp];
+            let rot2 = if gp.b == b2 { s[gp.a].rot } else { s[gp.b].rot };
+            let gc = &joints[jc];
+            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
+            let (p, u) = slide_line(gp, s, b2, rot2, dc2);
+            let c = circle_line(a, (dc1 - da).norm(), p, u, sign)?;
+            place_by_two_points(&mut s[b1], da, dc1, a, c);
+            place_by_point(&mut s[b2], rot2, dc2, c);
+        }
+        Solver::Rpr { b1, ja, jp, jb, .. } => {
+            let gp = &joints[jp];
+            let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
+            let (guide, slider) = (gp.a, gp.b);
+            let pa = pin(&joints[ga], s, guide);
+            let pb = pin(&joints[gb], s, slider);
+            let (n0, dvec, w) = rpr_data(gp, pa, pb, true);
+            let rot = tangent_rotation(n0, dvec, w, sign)?;
+            place_by_point(&mut s[guide], rot, pa.1, pa.0);
+            place_by_point(&mut s[slider], rot, pb.1, pb.0);
+        }
+        Solver::Prp { b1, b2, jp1, jc, jp2 } => {
+            let (g1, g2) = (&joints[jp1], &joints[jp2]);
+            let rot1 = if g1.b == b1 { s[g1.a].rot } else { s[g1.b].rot };
+            let rot2 = if g2.b == b2 { s[g2.a].rot } else { s[g2.b].rot };
+            let gc = &joints[jc];
+            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
+            let (p1, u1) = slide_line(g1, s, b1, rot1, dc1);
+            let (p2, u2) = slide_line(g2, s, b2, rot2, dc2);
+            let c = line_line(p1, u1, p2, u2)?;
+            place_by_point(&mut s[b1], rot1, dc1, c);
+            place_by_point(&mut s[b2], rot2, dc2, c);
+        }
+        Solver::Rpp { b1, b2, ja, jp, jq } => {
+            let gq = &joints[jq];
+            let rot = if gq.b == b2 { s[gq.a].rot } else { s[gq.b].rot };
+            let (a, da) = pin(&joints[ja], s, b1);
+            place_by_point(&mut s[b1], rot, da, a);
+            // The sliding point of b2 on the solved link, on both lines.
+            let dq = if gq.b == b2 { gq.db } else { gq.da };
+            let (p1, u1) = slide_line(gq, s, b2, rot, dq);
+            let (p2, u2) = slide_line(&joints[jp], s, b2, rot, dq);
+            let c = line_line(p1, u1, p2, u2)?;
+            place_by_point(&mut s[b2], rot, dq, c);
+        }
+        Solver::PinInFixedSlot { body, ja, js } => {
+            let (a, da) = pin(&joints[ja], s, body);
+            let g = &joints[js];
+            let u = s[g.a].r(g.axis);
+            let q = s[g.a].point(g.da);
+            let p = circle_line(a, (g.db - da).norm(), q, u, sign)?;
+            place_by_two_points(&mut s[body], da, g.db, a, p);
+        }
+        Solver::SlottedLever { body, ja, js } => {
+            let g = &joints[js];
+            let pa = pin(&joints[ja], s, body);
+            let pb = (s[g.b].point(g.db), g.db);
+            let (n0, dvec, w) = rpr_data(g, pa, pb, false);
+            let rot = tangent_rotation(n0, dvec, w, sign)?;
+            place_by_point(&mut s[body], rot, pa.1, pa.0);
+        }
+        Solver::Newton => return Err(MechError::NoAssembly),
+    }
+    Ok(())
+}

@@ -1,0 +1,181 @@
+//! Small dense linear algebra on the stack: LU with partial pivoting of an N×N system,
+//! and the threshold on the condition estimate beyond which a system is `Singular`.
+
+use nalgebra::{SMatrix, SVector};
+
+/// Threshold on the condition estimate κ (the pivot ratio of a group's scaled system)
+/// beyond which it is reported `Singular` (a dead point or toggle position). Near a
+/// toggle, rates carry a relative error of order ε·κ², so 1e6 bounds it by about 1e-4.
+pub const SINGULAR_CONDITION: f64 = 1e6;
+
+/// LU factorisation with partial pivoting of a small fixed-size matrix, on the stack.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lu<const N: usize> {
+    m: SMatrix<f64, N, N>,
+    perm: [usize; N],
+}
+
+impl<const N: usize> Lu<N> {
+    /// Factor P A = L U (L unit lower, U upper, stored together).
+    #[inline(always)]
+    pub fn new(mut m: SMatrix<f64, N, N>) -> Self {
+        let mut perm = [0usize; N];
+        for (i, p) in perm.iter_mut().enumerate() {
+            *p = i;
+        }
+        for k in 0..N {
+            let mut piv = k;
+            for i in k + 1..N {
+                if m[(i, k)].abs() > m[(piv, k)].abs() {
+                    piv = i;
+                }
+            }
+            if piv != k {
+                m.swap_rows(k, piv);
+                perm.swap(k, piv);
+            }
+            let d = m[(k, k)];
+            if d == 0.0 {
+                continue;
+            }
+            for i in k + 1..N {
+                let f = m[(i, k)] / d;
+                m[(i, k)] = f;
+                for c in k + 1..N {
+                    m[(i, c)] -= f * m[(k, c)];
+                }
+            }
+        }
+        Lu { m, perm }
+    }
+    /// Pivot ratio max|U_ii| / min|U_ii|: a cheap condition estimate (∞ when singular).
+    #[inline(always)]
+    pub fn condition(&self) -> f64 {
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+        for i in 0..N {
+            let d = self.m[(i, i)].abs();
+            lo = lo.min(d);
+            hi = hi.max(d);
+        }
+        if lo > 0.0 {
+            hi / lo
+        } else {
+            f64::INFINITY
+        }
+    }
+    /// Solve A x = b.
+    #[inline]
+    pub fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
+        let mut x = SVector::<f64, N>::zeros();
+        for i in 0..N {
+            let mut v = b[self.perm[i]];
+            for k in 0..i {
+                v -= self.m[(i, k)] * x[k];
+            }
+            x[i] = v;
+        }
+        for i in (0..N).rev() {
+            let mut v = x[i];
+            for k in i + 1..N {
+                v -= self.m[(i, k)] * x[k];
+            }
+            x[i] = v / self.m[(i, i)];
+        }
+        x
+    }
+    /// Solve Aᵀ x = b.
+    #[inline]
+    pub fn solve_transpose(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
+        // Aᵀ = Uᵀ Lᵀ P: solve Uᵀ y = b, Lᵀ z = y, x = Pᵀ z.
+        let mut y = SVector::<f64, N>::zeros();
+        for i in 0..N {
+            let mut v = b[i];
+            for k in 0..i {
+                v -= self.m[(k, i)] * y[k];
+            }
+            y[i] = v / self.m[(i, i)];
+        }
+        for i in (0..N).rev() {
+            let mut v = y[i];
+            for k in i + 1..N {
+                v -= self.m[(k, i)] * y[k];
+            }
+            y[i] = v;
+        }
+        let mut x = SVector::<f64, N>::zeros();
+        for i in 0..N {
+            x[self.perm[i]] = y[i];
+        }
+        x
+    }
+}
+
+/// The inverse of a 3×3 matrix by its adjugate, with a condition estimate.
+///
+/// A⁻¹ = adj(A) / det(A); the estimate is the Frobenius condition number
+/// κ_F = ‖A‖_F ‖A⁻¹‖_F (κ₂ ≤ κ_F ≤ 3 κ₂), computed on the matrix the caller scaled to be
+/// dimensionless. About 40 flops, no pivoting: it is meant for the well-scaled 3×3
+/// systems of [`crate::screw`], where it is backward stable away from `Singular`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inverse3 {
+    /// A⁻¹, row major.
+    pub inv: [[f64; 3]; 3],
+    /// κ_F(A).
+    pub condition: f64,
+}
+
+impl Inverse3 {
+    /// Invert `a` (row major); `Singular` when κ_F ≥ [`SINGULAR_CONDITION`] (or not finite).
+    #[inline]
+    pub fn new(a: [[f64; 3]; 3]) -> Result<Self, crate::MechError> {
+        let c = |i: usize, j: usize| {
+            let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+            let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
+            a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1]
+        };
+        // Cofactors C_ij; adj(A)_ji = C_ij.
+        let cof = [[c(0, 0), c(0, 1), c(0, 2)], [c(1, 0), c(1, 1), c(1, 2)], [c(2, 0), c(2, 1), c(2, 2)]];
+        let det = a[0][0] * cof[0][0] + a[0][1] * cof[0][1] + a[0][2] * cof[0][2];
+        let (mut na, mut nadj) = (0.0, 0.0);
+        for i in 0..3 {
+            for j in 0..3 {
+                na += a[i][j] * a[i][j];
+                nadj += cof[i][j] * cof[i][j];
+            }
+        }
+        let condition = (na * nadj).sqrt() / det.abs();
+        if !(condition < SINGULAR_CONDITION) {
+            return Err(crate::MechError::Singular { condition: if condition.is_nan() { f64::INFINITY } else { condition } });
+        }
+        let r = 1.0 / det;
+        let mut inv = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                inv[i][j] = cof[j][i] * r;
+            }
+        }
+        Ok(Inverse3 { inv, condition })
+    }
+
+    /// A⁻¹ b.
+    #[inline(always)]
+    pub fn solve(&self, b: [f64; 3]) -> [f64; 3] {
+        let m = &self.inv;
+        [
+            m[0][0] * b[0] + m[0][1] * b[1] + m[0][2] * b[2],
+            m[1][0] * b[0] + m[1][1] * b[1] + m[1][2] * b[2],
+            m[2][0] * b[0] + m[2][1] * b[1] + m[2][2] * b[2],
+        ]
+    }
+
+    /// A⁻ᵀ b.
+    #[inline(always)]
+    pub fn solve_transpose(&self, b: [f64; 3]) -> [f64; 3] {
+        let m = &self.inv;
+        [
+            m[0][0] * b[0] + m[1][0] * b[1] + m[2][0] * b[2],
+            m[0][1] * b[0] + m[1][1] * b[1] + m[2][1] * b[2],
+            m[0][2] * b[0] + m[1][2] * b[1] + m[2][2] * b[2],
+        ]
+    }
+}

@@ -1,0 +1,208 @@
+//! The state of a link: its frame, the motion of its material points, and the plane
+//! vector operations every kernel uses.
+//!
+//! A link's state is its frame: `pos`, the global position of its anchor (its first
+//! point, or its cg when it has no point; the ground's anchor is the origin), and `rot`
+//! = (cos φ, sin φ), its rotation since the drawing. Every point of a link is stored as
+//! a *local vector* `d` = (reference position − reference anchor), so its current
+//! position is `pos + R(φ) d`, its velocity `v + ω perp(r)` and its acceleration
+//! `a + α perp(r) − ω² r` with r = R(φ) d. The link angle θ of
+//! `docs/conventions.md` is θ = θ_ref + φ.
+
+use nalgebra::Vector2;
+
+/// A plane vector, m (or m/s, m/s², N).
+pub type V2 = Vector2<f64>;
+
+/// The vector turned +90°: perp(x, y) = (−y, x).
+#[inline(always)]
+pub fn perp(v: V2) -> V2 {
+    V2::new(-v.y, v.x)
+}
+
+/// The scalar cross product a × b = a_x b_y − a_y b_x.
+#[inline(always)]
+pub fn cross(a: V2, b: V2) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+/// Rotate `d` by the unit complex `rot` = (cos φ, sin φ).
+#[inline(always)]
+pub fn rotate(rot: V2, d: V2) -> V2 {
+    V2::new(rot.x * d.x - rot.y * d.y, rot.y * d.x + rot.x * d.y)
+}
+
+/// Angle difference wrapped to (−π, π] (rad). Beyond |a| = 1e9 the reduction goes
+/// through (sin a, cos a), which is exact for any finite a.
+#[inline]
+pub fn wrap(a: f64) -> f64 {
+    if !(a.abs() < 1e9) {
+        let (s, c) = a.sin_cos();
+        let r = s.atan2(c);
+        return if r <= -std::f64::consts::PI { std::f64::consts::PI } else { r };
+    }
+    let t = std::f64::consts::TAU;
+    let r = a - t * (a / t).round();
+    if r <= -std::f64::consts::PI {
+        r + t
+    } else {
+        r
+    }
+}
+
+/// Position, velocity and acceleration of a link's frame (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkState {
+    /// Anchor position, m.
+    pub pos: V2,
+    /// (cos φ, sin φ), φ the rotation since the drawing.
+    pub rot: V2,
+    /// Anchor velocity, m/s.
+    pub vel: V2,
+    /// Angular velocity ω, rad/s.
+    pub omega: f64,
+    /// Anchor acceleration, m/s².
+    pub acc: V2,
+    /// Angular acceleration α, rad/s².
+    pub alpha: f64,
+}
+
+impl Default for LinkState {
+    fn default() -> Self {
+        LinkState::at(V2::zeros())
+    }
+}
+
+impl LinkState {
+    /// At rest, unrotated, anchor at `pos` (the drawing's pose when `pos` is the reference anchor).
+    pub const fn at(pos: V2) -> Self {
+        LinkState {
+            pos,
+            rot: V2::new(1.0, 0.0),
+            vel: V2::new(0.0, 0.0),
+            omega: 0.0,
+            acc: V2::new(0.0, 0.0),
+            alpha: 0.0,
+        }
+    }
+    /// The current vector from the anchor to the material point of local vector `d`.
+    #[inline(always)]
+    pub fn r(&self, d: V2) -> V2 {
+        rotate(self.rot, d)
+    }
+    /// Position of the material point with local vector `d`.
+    #[inline(always)]
+    pub fn point(&self, d: V2) -> V2 {
+        self.pos + self.r(d)
+    }
+    /// Velocity of the material point at current offset `r` from the anchor: v + ω perp(r).
+    #[inline(always)]
+    pub fn vel_at(&self, r: V2) -> V2 {
+        self.vel + perp(r) * self.omega
+    }
+    /// Acceleration of the material point at offset `r`: a + α perp(r) − ω² r.
+    #[inline(always)]
+    pub fn acc_at(&self, r: V2) -> V2 {
+        self.acc + perp(r) * self.alpha - r * (self.omega * self.omega)
+    }
+}
+
+/// The reference data of one link the solvers need: anchor, reference direction,
+/// cg and inertia.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkGeom {
+    /// Reference anchor (m), see the module docs.
+    pub anchor: V2,
+    /// (cos θ_ref, sin θ_ref): the link angle in the drawing.
+    pub dir_ref: V2,
+    /// Local vector of the cg (m).
+    pub dcg: V2,
+    /// Mass (kg), 0 for massless.
+    pub mass: f64,
+    /// Moment of inertia about the cg (kg·m²).
+    pub inertia: f64,
+}
+
+/// Position, velocity and acceleration of a point (SPEC section 5), m, m/s, m/s².
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointMotion {
+    /// Position, m.
+    pub pos: V2,
+    /// Velocity, m/s.
+    pub vel: V2,
+    /// Acceleration, m/s².
+    pub acc: V2,
+}
+
+/// Position of a point, m.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointPose {
+    /// Position, m.
+    pub pos: V2,
+}
+
+/// Motion of a link (SPEC section 5): θ (rad, wrapped to (−π, π]), ω, α, and its cg's motion.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinkMotion {
+    /// Link angle θ, rad.
+    pub angle: f64,
+    /// ω, rad/s.
+    pub omega: f64,
+    /// α, rad/s².
+    pub alpha: f64,
+    /// cg position, m.
+    pub cg: V2,
+    /// cg velocity, m/s.
+    pub cg_vel: V2,
+    /// cg acceleration, m/s².
+    pub cg_acc: V2,
+}
+
+/// Pose of a link: θ (rad, wrapped to (−π, π]) and cg position (m).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinkPose {
+    /// Link angle θ, rad.
+    pub angle: f64,
+    /// cg position, m.
+    pub cg: V2,
+}
+
+impl LinkGeom {
+    /// The link angle θ = θ_ref + φ, wrapped to (−π, π].
+    #[inline]
+    pub fn angle(&self, s: &LinkState) -> f64 {
+        let d = rotate(s.rot, self.dir_ref);
+        d.y.atan2(d.x)
+    }
+    /// The link's pose.
+    #[inline]
+    pub fn pose(&self, s: &LinkState) -> LinkPose {
+        LinkPose { angle: self.angle(s), cg: s.point(self.dcg) }
+    }
+    /// The link's motion.
+    #[inline]
+    pub fn motion(&self, s: &LinkState) -> LinkMotion {
+        let r = s.r(self.dcg);
+        LinkMotion {
+            angle: self.angle(s),
+            omega: s.omega,
+            alpha: s.alpha,
+            cg: s.pos + r,
+            cg_vel: s.vel_at(r),
+            cg_acc: s.acc_at(r),
+        }
+    }
+}
+
+/// The motion of the material point of local vector `d` on a link.
+#[inline]
+pub fn point_motion(s: &LinkState, d: V2) -> PointMotion {
+    let r = s.r(d);
+    PointMotion { pos: s.pos + r, vel: s.vel_at(r), acc: s.acc_at(r) }
+}
+
+/// The position of the material point of local vector `d` on a link.
+#[inline]
+pub fn point_pose(s: &LinkState, d: V2) -> PointPose {
+    PointPose { pos: s.point(d) }
+}

@@ -1,0 +1,338 @@
+//! Closed-form rates and reactions of the closed-form groups, by joint screws
+//! (`docs/theory.md` §3, §4).
+//!
+//! Every closed-form group is a serial chain of three elementary joint screws from a
+//! solved link B₀ to a solved link B₃ through its moving links (a dyad: B₁, B₂; a
+//! single-link slot group: B₁ and the virtual slider block of the slot), or one screw
+//! with a known rate from a solved link to a driven crank or slider. With planar twists
+//! t = (ω, v_O) taken at one point O of the group (v_O: the velocity of the body point
+//! at O) and the unit screws of the joints,
+//! - rotation about the joint point P: $ = (1, perp(O − P)),
+//! - slide along the axis u (unit, turning with the guide): $ = (0, u),
+//!
+//! the twist of each link is the previous one plus the joint's: t_k = t_{k−1} + ρ_k $_k.
+//! Closing the loop gives the velocities and, differentiated, the accelerations, with the
+//! same 3×3 matrix S = [$₁ $₂ $₃]:
+//! - S ρ = t₃ − t₀,
+//! - S ρ̇ = â₃ − â₀ − Σ ρ_k (t_{k−1} × $_k),
+//!
+//! where â = (α, v̇_O) is the spatial acceleration and (ω₁, v₁) × (ω₂, v₂) =
+//! (0, ω₁ perp(v₂) − ω₂ perp(v₁)) the planar spatial cross product ($_k is fixed in the
+//! link before it, so d$_k/dt = t_{k−1} × $_k).
+//!
+//! The reactions come from the transpose of that same matrix. With W_k = (F, M_O) the
+//! wrench that B_{k−1} exerts on B_k through joint k, and F_k the applied and inertia
+//! wrench on B_k, equilibrium of B₁ and B₂ gives W₂ = W₁ + F₁, W₃ = W₂ + F₂, and a joint
+//! transmits no power along its own screw (W_k · $_k = 0), so
+//! Sᵀ W₁ = −(0, F₁·$₂, (F₁ + F₂)·$₃). For a driven link W₁ = −F₁ and the motor action is
+//! W₁·$₁. One 3×3 inverse per group ([`Inverse3`]) serves velocities, accelerations and
+//! reactions; its condition estimate gives `Singular` near a change point.
+
+use crate::constraints::{Drive, JointGeom, Level};
+use crate::kinetostatics::{Reaction, Wrench};
+use crate::linalg::Inverse3;
+use crate::link_state::{cross, perp, LinkState, V2};
+use crate::MechError;
+
+/// A planar twist (ω rad/s, v_O m/s) at a group's point O, or its time derivative, the
+/// spatial acceleration (α, v̇_O).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Twist {
+    /// ω (rad/s) or α (rad/s²).
+    pub w: f64,
+    /// The velocity (acceleration) of the body point at O.
+    pub v: V2,
+}
+
+impl Twist {
+    /// t + k s.
+    #[inline(always)]
+    fn plus(self, k: f64, s: Twist) -> Twist {
+        Twist { w: self.w + k * s.w, v: self.v + s.v * k }
+    }
+    /// The planar spatial cross product (ω₁, v₁) × (ω₂, v₂) = (0, ω₁ perp(v₂) − ω₂ perp(v₁)).
+    #[inline(always)]
+    fn cross(self, s: Twist) -> Twist {
+        Twist { w: 0.0, v: perp(s.v) * self.w - perp(self.v) * s.w }
+    }
+    /// The twist of a link's state at the point `o`: (ω, v + ω perp(o − pos)).
+    #[inline(always)]
+    fn of(s: &LinkState, o: V2) -> Twist {
+        Twist { w: s.omega, v: s.vel_at(o - s.pos) }
+    }
+    /// The spatial acceleration of a link's state at `o`: (α, a(o) − ω perp(v_O)).
+    #[inline(always)]
+    fn acc_of(s: &LinkState, o: V2) -> Twist {
+        let r = o - s.pos;
+        Twist { w: s.alpha, v: s.acc_at(r) - perp(s.vel_at(r)) * s.omega }
+    }
+    /// Power of the wrench `w` (at O) on this twist, W.
+    #[inline(always)]
+    fn power(self, w: &Force) -> f64 {
+        w.f.dot(&self.v) + w.m * self.w
+    }
+}
+
+/// Store a twist `t` (at `o`) as a link's velocity: v = v_O + ω perp(pos − o).
+#[inline(always)]
+fn set_velocity(s: &mut LinkState, t: Twist, o: V2) {
+    s.omega = t.w;
+    s.vel = t.v + perp(s.pos - o) * t.w;
+}
+
+/// Store a spatial acceleration `a` (at `o`) as a link's acceleration:
+/// a = v̇_O + α perp(pos − o) + ω perp(v), the velocity already stored.
+#[inline(always)]
+fn set_acceleration(s: &mut LinkState, a: Twist, o: V2) {
+    s.alpha = a.w;
+    s.acc = a.v + perp(s.pos - o) * a.w + perp(s.vel) * s.omega;
+}
+
+/// A wrench (F N, M_O N·m about the group's point O).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Force {
+    f: V2,
+    m: f64,
+}
+
+impl Force {
+    /// A link wrench (moment about its anchor `pos`) moved to O: M_O = M + (pos − O) × F.
+    #[inline(always)]
+    fn at(w: &Wrench, pos: V2, o: V2) -> Force {
+        let f = V2::new(w.x, w.y);
+        Force { f, m: w.z + cross(pos - o, f) }
+    }
+    /// Back to a link wrench about the anchor `pos`.
+    #[inline(always)]
+    fn about(self, pos: V2, o: V2) -> Wrench {
+        Wrench::new(self.f.x, self.f.y, self.m - cross(pos - o, self.f))
+    }
+    #[inline(always)]
+    fn plus(self, o: Force) -> Force {
+        Force { f: self.f + o.f, m: self.m + o.m }
+    }
+}
+
+/// One elementary joint screw: the rotation about a joint's point, or the slide along its axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JointScrew {
+    /// The joint (index into the joint geometry).
+    pub joint: usize,
+    /// A slide along the axis (true) or a rotation about the point (false).
+    pub slide: bool,
+}
+
+impl JointScrew {
+    /// The unit screw at `o`: (1, perp(o − P)) or (0, u), u = R(φ_a) axis.
+    #[inline(always)]
+    fn at(self, joints: &[JointGeom], s: &[LinkState], o: V2) -> Twist {
+        let g = &joints[self.joint];
+        if self.slide {
+            Twist { w: 0.0, v: s[g.a].r(g.axis) }
+        } else {
+            Twist { w: 1.0, v: perp(o - s[g.b].point(g.db)) }
+        }
+    }
+    /// The joint's point now (the point of its second link), m.
+    #[inline(always)]
+    fn point(self, joints: &[JointGeom], s: &[LinkState]) -> V2 {
+        let g = &joints[self.joint];
+        s[g.b].point(g.db)
+    }
+}
+
+/// No link: the virtual slider block between the two screws of a pin in a slot.
+pub const VIRTUAL: usize = usize::MAX;
+
+/// A closed-form group as a chain of three joint screws from the solved link `from` to
+/// the solved link `to` (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Chain {
+    /// B₀, solved.
+    pub from: usize,
+    /// B₃, solved.
+    pub to: usize,
+    /// $₁, $₂, $₃ in chain order.
+    pub screws: [JointScrew; 3],
+    /// B₁ and B₂ (B₂ = [`VIRTUAL`] for a single-link slot group).
+    pub links: [usize; 2],
+}
+
+/// A link driven by one input through one joint screw with a known rate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Driven {
+    /// The solved link it is jointed to.
+    pub from: usize,
+    /// The driven link.
+    pub body: usize,
+    /// The driver joint's screw.
+    pub screw: JointScrew,
+    /// The input index.
+    pub input: usize,
+}
+
+/// The inverse of the chain matrix S and its condition. The condition is taken of the
+/// dimensionless Â = D S C, D = diag(L, 1, 1) on the rows (ω, v_x, v_y) and C = 1/L on
+/// the rotation columns (L the drawing's length scale, m); then S⁻¹ = C Â⁻¹ D.
+#[inline(always)]
+fn chain_matrix(sc: &[Twist; 3], scale: f64) -> Result<Inverse3, MechError> {
+    let c = sc.map(|t| if t.w != 0.0 { 1.0 / scale } else { 1.0 });
+    let a = [
+        [scale * sc[0].w * c[0], scale * sc[1].w * c[1], scale * sc[2].w * c[2]],
+        [sc[0].v.x * c[0], sc[1].v.x * c[1], sc[2].v.x * c[2]],
+        [sc[0].v.y * c[0], sc[1].v.y * c[1], sc[2].v.y * c[2]],
+    ];
+    let mut inv = Inverse3::new(a)?;
+    for (k, row) in inv.inv.iter_mut().enumerate() {
+        row[0] *= scale * c[k];
+        row[1] *= c[k];
+        row[2] *= c[k];
+    }
+    Ok(inv)
+}
+
+/// The chain's origin O (its first joint's point), screws and inverse matrix.
+#[inline(always)]
+fn chain_setup(c: &Chain, joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<(V2, [Twist; 3], Inverse3), MechError> {
+    let o = c.screws[0].point(joints, s);
+    let sc = [c.screws[0].at(joints, s, o), c.screws[1].at(joints, s, o), c.screws[2].at(joints, s, o)];
+    let inv = chain_matrix(&sc, scale)?;
+    Ok((o, sc, inv))
+}
+
+/// Velocities (and accelerations when `upto` is [`Level::Acceleration`]) of a chain's
+/// links, positions placed and the solved links' rates known. Nothing at
+/// [`Level::Position`]. `Singular` near a change point (condition ≥ 1e6).
+#[inline]
+pub fn chain_rates(c: &Chain, joints: &[JointGeom], s: &mut [LinkState], scale: f64, upto: Level) -> Result<(), MechError> {
+    if !matches!(upto, Level::Velocity | Level::Acceleration) {
+        return Ok(());
+    }
+    let (o, sc, inv) = chain_setup(c, joints, s, scale)?;
+    let t0 = Twist::of(&s[c.from], o);
+    let t3 = Twist::of(&s[c.to], o);
+    let rho = inv.solve([t3.w - t0.w, t3.v.x - t0.v.x, t3.v.y - t0.v.y]);
+    let t1 = t0.plus(rho[0], sc[0]);
+    let t2 = t1.plus(rho[1], sc[1]);
+    let [l1, l2] = c.links;
+    set_velocity(&mut s[l1], t1, o);
+    if l2 != VIRTUAL {
+        set_velocity(&mut s[l2], t2, o);
+    }
+    if upto != Level::Acceleration {
+        return Ok(());
+    }
+    let bias = [t0.cross(sc[0]), t1.cross(sc[1]), t2.cross(sc[2])];
+    let a0 = Twist::acc_of(&s[c.from], o);
+    let a3 = Twist::acc_of(&s[c.to], o);
+    let mut b = a3.plus(-1.0, a0);
+    for k in 0..3 {
+        b = b.plus(-rho[k], bias[k]);
+    }
+    let rhod = inv.solve([b.w, b.v.x, b.v.y]);
+    let a1 = a0.plus(rhod[0], sc[0]).plus(rho[0], bias[0]);
+    set_acceleration(&mut s[l1], a1, o);
+    if l2 != VIRTUAL {
+        let a2 = a1.plus(rhod[1], sc[1]).plus(rho[1], bias[1]);
+        set_acceleration(&mut s[l2], a2, o);
+    }
+    Ok(())
+}
+
+/// The orientation of a driver's screw along the chain: +1 when the chain runs from the
+/// joint's first link a to its second b (q̇ $ is the twist of b relative to a), else −1.
+#[inline(always)]
+fn orientation(g: &JointGeom, from: usize) -> f64 {
+    if g.a == from {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+/// Velocity (and acceleration) of a driven link: t = t₀ + σ q̇ $, â = â₀ + σ (q̈ $ + q̇ t₀ × $).
+#[inline]
+pub fn driven_rates(d: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive: Drive, upto: Level) -> Result<(), MechError> {
+    if !matches!(upto, Level::Velocity | Level::Acceleration) {
+        return Ok(());
+    }
+    let o = d.screw.point(joints, s);
+    let sc = d.screw.at(joints, s, o);
+    let sigma = orientation(&joints[d.screw.joint], d.from);
+    let (qd, qdd) = (sigma * drive.1[d.input], sigma * drive.2[d.input]);
+    let t0 = Twist::of(&s[d.from], o);
+    set_velocity(&mut s[d.body], t0.plus(qd, sc), o);
+    if upto == Level::Acceleration {
+        let a = Twist::acc_of(&s[d.from], o).plus(qdd, sc).plus(qd, t0.cross(sc));
+        set_acceleration(&mut s[d.body], a, o);
+    }
+    Ok(())
+}
+
+/// The reaction at joint `j` (by a on b, `docs/conventions.md`) from the wrench `w` (at
+/// `o`) that link `before` exerts through it on the next link of the chain: the force,
+/// and the moment about the joint's point (zero but for a prismatic joint).
+#[inline(always)]
+fn reaction(g: &JointGeom, s: &[LinkState], before: usize, w: Force, o: V2) -> Reaction {
+    let sigma = orientation(g, before);
+    let p = s[g.b].point(g.db);
+    Reaction { force: w.f * sigma, moment: sigma * (w.m - cross(p - o, w.f)) }
+}
+
+/// d'Alembert for a chain: the reaction at each of its joints into `out` (joint order),
+/// and the reactions on the solved links `from` and `to` added to their wrenches in `f`
+/// (`f` holds every link's applied and inertia wrench, plus the reactions of the groups
+/// solved before, about its anchor). Called from the outermost group inward.
+#[inline]
+pub fn chain_reactions(
+    c: &Chain,
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    scale: f64,
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    let (o, sc, inv) = chain_setup(c, joints, s, scale)?;
+    let [l1, l2] = c.links;
+    let f1 = Force::at(&f[l1], s[l1].pos, o);
+    let f2 = if l2 != VIRTUAL { Force::at(&f[l2], s[l2].pos, o) } else { Force::default() };
+    let f12 = f1.plus(f2);
+    let w = inv.solve_transpose([0.0, -sc[1].power(&f1), -sc[2].power(&f12)]);
+    let w1 = Force { f: V2::new(w[1], w[2]), m: w[0] };
+    let ws = [w1, w1.plus(f1), w1.plus(f12)];
+    let before = [c.from, l1, l2];
+    for k in 0..3 {
+        let j = c.screws[k].joint;
+        // A slot's two screws carry one wrench: report it at the first, whose preceding
+        // link is a real one.
+        if k > 0 && c.screws[k - 1].joint == j {
+            continue;
+        }
+        out[j] = reaction(&joints[j], s, before[k], ws[k], o);
+    }
+    let back = Force { f: -w1.f, m: -w1.m };
+    f[c.from] += back.about(s[c.from].pos, o);
+    f[c.to] += ws[2].about(s[c.to].pos, o);
+    Ok(())
+}
+
+/// d'Alembert for a driven link: the reaction at its driver joint into `out`, the motor
+/// action into `drivers[input]` (torque or axial force by a on b), and the reaction on
+/// the solved link added to `f`. W₁ = −F₁; the motor action is σ W₁·$, the rest of W₁ the
+/// joint's reaction (a prismatic driver's axial component is the motor force, not part of
+/// the reaction).
+#[inline]
+pub fn driven_reactions(d: &Driven, joints: &[JointGeom], s: &[LinkState], f: &mut [Wrench], out: &mut [Reaction], drivers: &mut [f64]) {
+    let g = &joints[d.screw.joint];
+    let o = d.screw.point(joints, s);
+    let sc = d.screw.at(joints, s, o);
+    let w1 = Force::at(&f[d.body], s[d.body].pos, o);
+    let w1 = Force { f: -w1.f, m: -w1.m };
+    let sigma = orientation(g, d.from);
+    let action = sc.power(&w1);
+    drivers[d.input] = sigma * action;
+    // Take the motor's component out: what is left does no work along the screw.
+    let constraint = if d.screw.slide { Force { f: w1.f - sc.v * action, m: w1.m } } else { Force { f: w1.f, m: 0.0 } };
+    out[d.screw.joint] = reaction(g, s, d.from, constraint, o);
+    f[d.from] += Force { f: -w1.f, m: -w1.m }.about(s[d.from].pos, o);
+}
