@@ -9,11 +9,11 @@
 //! per call of `kinematics + kinetostatics`; then, for the generic position analysis, the
 //! Newton tolerance against the error and the time per `pose` call.
 //!
-//! Errors are relative to the largest entry of the same kind in the configuration (SPEC
-//! section 6): "kinematics" is the worst of positions, velocities, accelerations, ω, α
-//! (angles absolute, rad); "forces" the worst of reactions, motor actions (d'Alembert and
-//! virtual power) and, for one DOF, I*, dI*/dq, M*. The worst over the twelve reference
-//! configurations is shown.
+//! Errors are relative to the largest entry of the same kind in the configuration
+//! (`docs/conventions.md#solver-requirements`): "kinematics" is the worst of positions,
+//! velocities, accelerations, ω, α (angles absolute, rad); "forces" the worst of
+//! reactions, motor actions (d'Alembert and virtual power) and, for one DOF, I*, dI*/dq,
+//! M*. The worst over the twelve reference configurations is shown.
 //!
 //! Run: `cargo run --release --example accuracy_report` (a markdown report on stdout).
 

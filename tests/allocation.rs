@@ -1,5 +1,6 @@
-//! Zero heap allocations in every generated solver (SPEC section 6), proved with a
-//! counting global allocator, for every example topology.
+//! Zero heap allocations in every generated solver
+//! (`docs/conventions.md#solver-requirements`), proved with a counting global allocator,
+//! for every example topology.
 
 #[path = "common/mechanisms.rs"]
 mod mechanisms;

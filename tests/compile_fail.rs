@@ -1,4 +1,4 @@
-//! Compile-fail suite of the `mechanism!` checks (SPEC section 4): every case under
+//! Compile-fail suite of the `mechanism!` checks (`docs/conventions.md#checks`): every case under
 //! `tests/ui/` is a small realistic mechanism with exactly one mistake, and its `.stderr`
 //! holds the expected diagnostics (message and span).
 //!

@@ -1,7 +1,8 @@
 //! Compile-pass suite: eleven textbook topologies declared with realistic numbers. Each test
-//! asserts the generated constants against counts made by hand (SPEC section 5:
-//! DOF = the number of inputs, LINKS = N with the ground, LOWER_PAIRS = P_I,
-//! HIGHER_PAIRS = P_II, EQUATIONS = 3(N − 1), UNKNOWNS = DOF + 2·P_I + P_II), and that
+//! asserts the generated constants against counts made by hand
+//! (`docs/conventions.md#generated-api`: DOF = the number of inputs, LINKS = N with the
+//! ground, LOWER_PAIRS = P_I, HIGHER_PAIRS = P_II, EQUATIONS = 3(N − 1),
+//! UNKNOWNS = DOF + 2·P_I + P_II), and that
 //! `new()` posed at the drawing's own input value reproduces every point of the drawing.
 //!
 //! The drawing's input value: θ_b − θ_a for a revolute input (here always a crank on the
@@ -36,7 +37,8 @@ macro_rules! assert_reproduces {
     }};
 }
 
-/// The constants against hand counts, and the identities of SPEC section 5 between them.
+/// The constants against hand counts, and the identities of
+/// `docs/conventions.md#generated-api` between them.
 macro_rules! assert_counts {
     ($ty:ident, dof: $g:expr, links: $n:expr, lower: $p1:expr, higher: $p2:expr, equations: $e:expr, unknowns: $u:expr) => {{
         assert_eq!($ty::DOF, $g, "DOF");
@@ -489,7 +491,7 @@ fn hydraulic_lever_prismatic_input() {
 //    upper A-C (j), lower A-E (k), rocker B-E (c), back D-F (f). Ternary links: the top
 //    triangle B-C-D (b, d, e) and the foot triangle E-F-G (g, i, h). Three pins join three
 //    links each (A: crank, upper, lower; B: ground, top, rocker; E: rocker, lower, foot):
-//    each is two revolute joints at the same point, the seed's ternary pair.
+//    each is two revolute joints at the same point, a ternary pin (`docs/theory.md` §4.3).
 // ---------------------------------------------------------------------------------------
 
 mechanism! {

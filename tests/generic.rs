@@ -2,7 +2,7 @@
 //! run time from the very DSL text the macro compiled (`tests/common/mechanisms.rs`, read
 //! as text), it must agree with every generated solver and with the high-precision tables
 //! of `tests/data/` to 1e-12 relative (scaled by the largest entry of the same kind), as
-//! SPEC section 6 asks of the generated code.
+//! `docs/conventions.md#solver-requirements` asks of the generated code.
 
 #[path = "common/mechanisms.rs"]
 mod mechanisms;

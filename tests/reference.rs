@@ -3,7 +3,8 @@
 //! constraint system in absolute coordinates and one dense Newton–Euler system).
 //!
 //! Tolerance: 1e-12 relative to the largest entry of the same kind in the configuration
-//! (positions, velocities, accelerations, angles, forces ...), as SPEC section 6 states.
+//! (positions, velocities, accelerations, angles, forces ...), as
+//! `docs/conventions.md#solver-requirements` states.
 
 #[path = "common/mechanisms.rs"]
 mod mechanisms;

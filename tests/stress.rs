@@ -424,11 +424,11 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
     }
 }
 
-/// SPEC section 6: "near a dead point the result is either accurate or `Singular`": every
-/// generated answer near the toggle is within 1e-3 of the reference. (Regression: with
-/// `SINGULAR_CONDITION` = 1e10 the generated four-bar answered at a transmission angle of
-/// 1e-7 rad, κ ≈ 1.5e7, with ω 2.2 % and the torque 9 % off and no error; rate errors grow
-/// as ε κ², and the threshold is now 1e6.)
+/// `docs/conventions.md#solver-requirements`: "near a dead point the result is either
+/// accurate or `Singular`": every generated answer near the toggle is within 1e-3 of the
+/// reference. (Regression: with `SINGULAR_CONDITION` = 1e10 the generated four-bar
+/// answered at a transmission angle of 1e-7 rad, κ ≈ 1.5e7, with ω 2.2 % and the torque
+/// 9 % off and no error; rate errors grow as ε κ², and the threshold is now 1e6.)
 #[test]
 fn generated_toggle_is_accurate_to_a_thousandth_or_singular() {
     let gen = Toggle::new();

@@ -18,9 +18,10 @@ Kinetostatics (d'Alembert) with Lagrange multipliers, one dense system:
 where Q_applied holds gravity (at the cg) and the loads.  The multipliers are
 the joint reactions on link b (see `reactions`) and the driver actions.
 
-Conventions (SPEC section 2): reaction at a joint declared (a, b) is the force
-BY a ON b at the joint point; a prismatic joint adds the moment, CCW on b,
-about the point's current position; a pin-in-slot reports its normal force.
+Conventions (docs/conventions.md, Reactions and Inputs): reaction at a joint
+declared (a, b) is the force BY a ON b at the joint point; a prismatic joint
+adds the moment, CCW on b, about the point's current position; a pin-in-slot
+reports its normal force.
 Revolute driver: q = theta_b - theta_a, action = torque by a on b (CCW on b).
 Prismatic driver: q = displacement of P along the axis (fixed in a) from its
 reference position, action = force along the axis on b.

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Write tests/common/mechanisms.rs: one `mechanism! { ... }` per drawing in
-tests/data/*.mechanism.json, in the DSL of SPEC section 3.
+tests/data/*.mechanism.json, in the DSL of docs/conventions.md (section DSL).
 
 Numbers are the drawings' "float" values written as Rust f64 literals that
 round-trip exactly (Python repr of the double, always with a '.' in the

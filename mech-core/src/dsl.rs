@@ -1,4 +1,4 @@
-//! The grammar of the `mechanism!` DSL (SPEC section 3), parsed with `syn` into a
+//! The grammar of the `mechanism!` DSL (`docs/conventions.md#dsl`), parsed with `syn` into a
 //! [`Description`]. The macro and the run-time loader share this parser, so a mechanism
 //! means the same thing whether it is compiled or read from text.
 

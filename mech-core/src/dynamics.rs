@@ -1,4 +1,4 @@
-//! The direct dynamic problem (seed, section 3), written once over the traits that every
+//! The direct dynamic problem (`docs/theory.md` §6), written once over the traits that every
 //! generated mechanism implements ([`Machine`], [`OneDof`]).
 //!
 //! One DOF, coordinate q (rad for a revolute input, m for a prismatic one):
@@ -63,7 +63,7 @@ pub fn total_energy<M: Machine>(machine: &M, q: &[f64], qd: &[f64]) -> Result<f6
     Ok(kinetic_energy(machine, &motion) + machine.potential_energy(&motion))
 }
 
-/// Quinn's energy-contribution coefficients (seed, section 3) at position q:
+/// Quinn's energy-contribution coefficients (`docs/theory.md` §6.5) at position q:
 /// ε_j(q) = T_j / T = (m_j g_Gj² + I_Gj g_j²) / I*(q), independent of q̇; written into
 /// `out` (length N = `M::LINKS`, the ground's entry 0). They sum to 1.
 /// Errors: `out` of the wrong length, a configuration error, and
@@ -217,7 +217,7 @@ pub struct EnergyPoint {
     pub work: f64,
 }
 
-/// The energy method for actions that depend on the position only (seed, section 3):
+/// The energy method for actions that depend on the position only (`docs/theory.md` §6.6, §6.7):
 /// ω(q) from W_ext(q0 → q) = T(q) − T(q0) with W_ext = ∫ (driver(q) + M*(q)) dq, and
 /// t(q) = t0 + ∫ dq / ω(q).
 ///

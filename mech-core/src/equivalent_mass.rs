@@ -1,4 +1,4 @@
-//! Equivalent mass systems (seed, section 1.5): a rigid link replaced by point masses
+//! Equivalent mass systems (`docs/theory.md` §9): a rigid link replaced by point masses
 //! rigidly joined. *Static* equivalence keeps the mass and the centre of gravity;
 //! *complete* equivalence also keeps the inertia.
 //!
@@ -82,7 +82,7 @@ pub fn planar_four_masses(m: f64, i_g: f64, points: [[f64; 2]; 3]) -> Result<[f6
 
 /// The inertia of a spatial rigid body about its centre of gravity: moments
 /// I_x = Σ m (y² + z²), I_y, I_z and products C_x = Σ m y z, C_y = Σ m x z, C_z = Σ m x y
-/// (the seed's notation), kg·m².
+/// (the notation of `docs/theory.md` §9.3), kg·m².
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpatialInertia {
     /// I_x, kg·m².
@@ -100,9 +100,9 @@ pub struct SpatialInertia {
 }
 
 /// A spatial rigid body of mass `m` by ten point masses at the given points (relative to
-/// G, m): the ten linear conditions of the seed — Σ m_i = m, Σ m_i (x_i, y_i, z_i) = 0,
-/// the three moments and the three products of inertia. `Singular` when the points do
-/// not determine the masses.
+/// G, m): the ten linear conditions of `docs/theory.md` §9.3 — Σ m_i = m,
+/// Σ m_i (x_i, y_i, z_i) = 0, the three moments and the three products of inertia.
+/// `Singular` when the points do not determine the masses.
 pub fn spatial_ten_masses(m: f64, inertia: SpatialInertia, points: [[f64; 3]; 10]) -> Result<[f64; 10], MechError> {
     let m = non_negative("mass", m)?;
     let SpatialInertia { ix, iy, iz, cx, cy, cz } = inertia;

@@ -1,4 +1,4 @@
-//! The run-time error of every solver (SPEC section 5).
+//! The run-time error of every solver (`docs/conventions.md#errors`).
 
 /// Why a computation could not give a trustworthy answer.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

@@ -1,4 +1,4 @@
-//! Flywheel design of a one-DOF machine in steady state (seed, section 4; SPEC §7, §8),
+//! Flywheel design of a one-DOF machine in steady state (`docs/theory.md` §7),
 //! written once over [`OneDof`].
 //!
 //! A [`Cycle`] is the machine with its actions over one period λ of its steady state
@@ -446,7 +446,8 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         Ok(self.extreme(|_, i| i, false)?.value)
     }
 
-    /// The approximate flywheel (seed 4.4, I ≫ I*): I = (S_max − S_min)/(ε ω_a²), kg·m².
+    /// The approximate flywheel (`docs/theory.md` §7.5, I ≫ I*):
+    /// I = (S_max − S_min)/(ε ω_a²), kg·m².
     /// Errors: ω_a ≤ 0, ε ∉ (0, 2), non-finite input, [`MechError::NotPeriodic`].
     pub fn approximate(&self, omega_mean: f64, irregularity: f64) -> Result<Approximate, MechError> {
         check_design(omega_mean, irregularity)?;

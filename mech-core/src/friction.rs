@@ -1,4 +1,4 @@
-//! Coulomb friction in the joints (SPEC sections 7 and 8).
+//! Coulomb friction in the joints (`docs/theory.md` §8).
 //!
 //! - Revolute joint of pin radius r: a friction force μ|R| tangent to the pin, i.e. a
 //!   moment μ r |R| (N·m) against the relative rotation ω_b − ω_a: on b it is

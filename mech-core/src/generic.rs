@@ -1,7 +1,7 @@
-//! The generic run-time solver (SPEC section 7): a mechanism read at run time from the
-//! DSL text (the grammar of [`crate::dsl`], the checks of [`crate::validate`], exactly as
-//! the `mechanism!` macro runs them) and solved by an interpreter with heap-allocated
-//! (dynamic) nalgebra matrices.
+//! The generic run-time solver (`docs/conventions.md#algorithms-written-once`): a
+//! mechanism read at run time from the DSL text (the grammar of [`crate::dsl`], the checks
+//! of [`crate::validate`], exactly as the `mechanism!` macro runs them) and solved by an
+//! interpreter with heap-allocated (dynamic) nalgebra matrices.
 //!
 //! It is the baseline every generated solver is measured against, and the engine for
 //! mechanisms not known at compile time. It uses the same formulas as the generated code —
@@ -929,7 +929,7 @@ impl GenericMechanism {
         Ok(())
     }
 
-    /// Kinetostatics by d'Alembert (seed, section 2) as ONE dense system of every
+    /// Kinetostatics by d'Alembert (`docs/theory.md` §4) as ONE dense system of every
     /// multiplier, Jᵀ λ = −f (f: loads, gravity, inertia wrenches per link): the motor
     /// action of every input and the reaction at every joint (force BY the joint's first
     /// link ON its second, N; prismatic joints add the moment, N·m, CCW on the second link).

@@ -1,4 +1,4 @@
-//! Counting formulas (SPEC section 4, check 2, and section 8).
+//! Counting formulas (`docs/theory.md` §1; check 2 of `docs/conventions.md#checks`).
 //!
 //! Plane (Grübler): a free link has 3 DOF, a lower pair (revolute, prismatic; class I in
 //! the plane) removes 2, a higher pair (pin in slot; class II) removes 1, and the ground
@@ -16,7 +16,7 @@
 use crate::model::Model;
 use crate::resolve::{Culprit, Issue};
 
-/// The counts of SPEC sections 4 and 8 for one plane mechanism (all dimensionless).
+/// The counts of `docs/theory.md` §1.2–§1.3 for one plane mechanism (all dimensionless).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Count {
     /// N: links, ground included.
@@ -62,8 +62,9 @@ fn plural(n: i64, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
-/// Check 2 of SPEC section 4: Grübler's G = 3(N − 1) − 2·P_I − P_II must equal the number
-/// of declared inputs, so that the 3(N − 1) equations match the G + 2·P_I + P_II unknowns.
+/// Check 2 of `docs/conventions.md#checks`: Grübler's G = 3(N − 1) − 2·P_I − P_II must
+/// equal the number of declared inputs, so that the 3(N − 1) equations match the
+/// G + 2·P_I + P_II unknowns.
 ///
 /// Skipped (returns `None`) when the model has `#[allow(redundant)]` and G < inputs:
 /// redundant constraints make G undercount the mobility, and the geometric check
@@ -123,7 +124,7 @@ pub fn check(model: &Model) -> Option<Issue> {
 }
 
 /// Mobility of a spatial mechanism by the Kutzbach (Chebyshev–Grübler–Kutzbach) formula of
-/// SPEC section 8 (dimensionless):
+/// `docs/theory.md` §1.5 (dimensionless):
 ///
 /// G = 6(N − 1) − (5·P_I + 4·P_II + 3·P_III + 2·P_IV + P_V),
 ///

@@ -1,5 +1,5 @@
 //! Explicit Runge–Kutta integrators for y' = f(t, y), y ∈ ℝᴺ, written once and shared by
-//! every dynamics problem of the crate (seed, section 3: the direct dynamic problem).
+//! every dynamics problem of the crate (`docs/theory.md` §6: the direct dynamic problem).
 //!
 //! - [`Rk4`]: the classical fixed-step fourth-order method, cubic Hermite dense output.
 //! - [`DormandPrince`]: Dormand–Prince 5(4) with error control (local extrapolation,

@@ -1,5 +1,5 @@
-//! Structural redundancy (SPEC section 4, check 3) by the (3,3) pebble game on the
-//! body-bar graph of the mechanism.
+//! Structural redundancy (`docs/conventions.md#checks`, check 3; `docs/theory.md` §1.4)
+//! by the (3,3) pebble game on the body-bar graph of the mechanism.
 //!
 //! Every link, the ground included, is a rigid body with 3 DOF in the plane (3 pebbles).
 //! Every scalar constraint is a bar between two bodies: a revolute or a prismatic joint is
@@ -202,7 +202,7 @@ fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
-/// Check 3 of SPEC section 4: structural redundancy.
+/// Check 3 of `docs/conventions.md#checks`: structural redundancy.
 ///
 /// Runs the (3,3) pebble game on the body-bar graph (bodies = links with the ground, 3 DOF
 /// each; bars = 2 per revolute or prismatic joint, 1 per pin in slot, 1 per input) and

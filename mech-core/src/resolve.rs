@@ -1,5 +1,5 @@
-//! Name resolution (SPEC section 4, check 1): turns a [`Description`] into a [`Model`],
-//! collecting every naming mistake at once.
+//! Name resolution (check 1 of `docs/conventions.md#checks`): turns a [`Description`]
+//! into a [`Model`], collecting every naming mistake at once.
 
 use crate::model::*;
 use std::collections::HashMap;

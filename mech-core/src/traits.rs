@@ -44,7 +44,7 @@ mod sealed {
 #[diagnostic::on_unimplemented(
     message = "this mechanism has redundant constraints (`#[allow(redundant)]`): its reactions are statically indeterminate, so it has no `kinetostatics`",
     label = "reactions cannot be computed for a redundant mechanism",
-    note = "the motor actions are still determined: call `driver_action(&motion, &loads)` (virtual power, seed section 2.f)"
+    note = "the motor actions are still determined: call `driver_action(&motion, &loads)` (virtual power, docs/theory.md §5.3)"
 )]
 pub trait DeterminateReactions: sealed::Sealed {
     /// Uninhabited: proves the method can never run.

@@ -1,4 +1,4 @@
-//! The checks of SPEC section 4 on a resolved [`Model`] (name resolution, check 1, is
+//! The checks of `docs/conventions.md#checks` on a resolved [`Model`] (name resolution, check 1, is
 //! [`crate::resolve`]): the drawing's consistency (check 5, [`drawing`]), Grübler's count
 //! (check 2, [`crate::grubler::check`]), structural redundancy (check 3,
 //! [`crate::pebble::check`]) and the rank of the constraint Jacobian at the drawing
@@ -35,7 +35,7 @@ fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
-/// Check 5 of SPEC section 4: the drawing is consistent.
+/// Check 5 of `docs/conventions.md#checks`: the drawing is consistent.
 ///
 /// - every mass (kg) and moment of inertia (kg·m²) is finite and ≥ 0;
 /// - every point's coordinates (m), every cg (m) and the gravity (m/s²) are finite;
@@ -270,7 +270,8 @@ fn significant(vectors: &[DVector<f64>], groups: usize, group_of: impl Fn(usize)
     (0..groups).filter(|&g| hit[g]).collect()
 }
 
-/// Check 4 of SPEC section 4: geometric redundancy and determinacy at the drawing.
+/// Check 4 of `docs/conventions.md#checks`: geometric redundancy and determinacy at the drawing
+/// (`docs/theory.md` §1.4).
 ///
 /// With J the dimensionless Jacobian of [`jacobian`] (3(N − 1) columns) and rank decided
 /// by SVD with the relative tolerance [`RANK_TOL`]:
@@ -365,7 +366,7 @@ pub fn geometric(model: &Model) -> Vec<Issue> {
     out
 }
 
-/// Every check of SPEC section 4 on a resolved model (check 1, names, is done by
+/// Every check of `docs/conventions.md#checks` on a resolved model (check 1, names, is done by
 /// [`crate::resolve::resolve`]): [`drawing`] (5), [`crate::grubler::check`] (2),
 /// [`crate::pebble::check`] (3), and [`geometric`] (4) only when the drawing and the counts
 /// passed, to avoid cascades. A structural issue that covers the whole mechanism is
