@@ -1,5 +1,5 @@
 //! Assur groups: the decomposition of a chain, with its inputs fixed, into the smallest
-//! sub-chains that can be solved one after the other (seed, section 2), and their
+//! sub-chains that can be solved one after the other (`docs/theory.md` §2), and their
 //! position kernels — closed forms for the common groups, Newton for the rest.
 //!
 //! A group is a set of links whose constraints towards already-solved links and among

@@ -187,9 +187,39 @@ fn block(bodies: &[usize], link: usize) -> Option<usize> {
     bodies.iter().position(|&b| b == link)
 }
 
+/// The row scale of row `k` of a constraint of kind `kind`: L for an angle row, 1 otherwise.
+#[inline(always)]
+pub fn row_scale(kind: ConKind, k: usize, scale: f64) -> f64 {
+    if kind.angle_row(k) {
+        scale
+    } else {
+        1.0
+    }
+}
+
+/// The scaled Jacobian rows of constraint `c` at the states `s`: for each of its rows k
+/// and each of its two links, `put(k, link, [∂C/∂x, ∂C/∂y, ∂C/∂(φL)] × row scale)`, all
+/// dimensionless (module docs). The one place the scaling rule is applied.
+#[inline(always)]
+pub fn scaled_rows(c: Con, g: &JointGeom, s: &[LinkState], scale: f64, mut put: impl FnMut(usize, usize, [f64; 3])) {
+    // The input index only selects a drive value, which the Jacobian does not use.
+    let kind = match c.kind {
+        ConKind::DriveRevolute(_) => ConKind::DriveRevolute(0),
+        ConKind::DrivePrismatic(_) => ConKind::DrivePrismatic(0),
+        k => k,
+    };
+    let zero = [0.0];
+    let e = eval(Con { joint: c.joint, kind }, g, s, (&zero, &zero, &zero), Level::Jacobian);
+    for k in 0..c.kind.rows() {
+        let rs = row_scale(c.kind, k, scale);
+        for (link, r) in [(g.a, &e.rows[k].a), (g.b, &e.rows[k].b)] {
+            put(k, link, [rs * r.x, rs * r.y, rs * r.z / scale]);
+        }
+    }
+}
+
 /// The scaled Jacobian (M rows, N = 3 × links columns) of a group's constraints at the
-/// current positions, and the row scales (L for angle rows, 1 otherwise); see
-/// [`GroupSystem`] for the scaling.
+/// current positions, and the row scales (L for angle rows, 1 otherwise).
 #[inline(always)]
 pub fn assemble<const M: usize, const N: usize>(
     bodies: &[usize],
@@ -199,27 +229,22 @@ pub fn assemble<const M: usize, const N: usize>(
     scale: f64,
 ) -> (SMatrix<f64, M, N>, SVector<f64, M>) {
     let mut j = SMatrix::<f64, M, N>::zeros();
-    let mut row_scale = SVector::<f64, M>::repeat(1.0);
-    let none: &[f64] = &[];
+    let mut rows = SVector::<f64, M>::repeat(1.0);
     let mut row = 0;
     for c in cons {
-        let g = &joints[c.joint];
-        let e = eval(*c, g, s, (none, none, none), Level::Jacobian);
-        let (ba, bb) = (block(bodies, g.a), block(bodies, g.b));
-        for k in 0..c.kind.rows() {
-            let rs = if c.kind.angle_row(k) { scale } else { 1.0 };
-            row_scale[row] = rs;
-            for (bk, r) in [(ba, &e.rows[k].a), (bb, &e.rows[k].b)] {
-                if let Some(bk) = bk {
-                    j[(row, 3 * bk)] += rs * r.x;
-                    j[(row, 3 * bk + 1)] += rs * r.y;
-                    j[(row, 3 * bk + 2)] += rs * r.z / scale;
+        scaled_rows(*c, &joints[c.joint], s, scale, |k, link, e| {
+            if let Some(b) = block(bodies, link) {
+                for (i, x) in e.iter().enumerate() {
+                    j[(row + k, 3 * b + i)] += x;
                 }
             }
-            row += 1;
+        });
+        for k in 0..c.kind.rows() {
+            rows[row + k] = row_scale(c.kind, k, scale);
         }
+        row += c.kind.rows();
     }
-    (j, row_scale)
+    (j, rows)
 }
 
 /// Minus the constraint values of a group at `level` (unknown rates must be zero in `s`).

@@ -34,10 +34,8 @@ use crate::dsl::parse_str;
 use crate::error::check_finite;
 use crate::geometry::all_cons;
 use crate::instance::{instance, Instance};
-use crate::kinematics::{
-    eval, point_motion, point_pose, rotate, Con, ConKind, Drive, Level, LinkMotion, LinkPose, LinkState,
-    PointMotion, PointPose, V2,
-};
+use crate::constraints::{eval, row_scale, scaled_rows, Con, ConKind, ConEval, Drive, Level};
+use crate::link_state::{point_motion, point_pose, rotate, LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2};
 use crate::kinetostatics::{add_force, add_gravity, add_inertia, add_torque, slide_force, virtual_power, Wrench};
 use crate::model::{JointKind, Load, Model};
 use crate::resolve::{resolve, Diagnostic};
@@ -456,18 +454,9 @@ impl GenericMechanism {
             tol: DEFAULT_TOLERANCE,
             max_error: DEFAULT_MAX_ERROR,
         };
-        // A row's unit is an angle exactly when it has no translational entry (the
-        // prismatic rotation lock, a revolute driver): scale those by L.
-        let zero = vec![0.0; g.dof()];
-        let drawing = g.inst.drawing.clone();
+        // The one scaling rule of `constraints`: L for the rows whose unit is an angle.
         let scale = g.inst.scale;
-        let mut row_scale = vec![1.0; rows];
-        g.for_rows(&drawing, (&zero, &zero, &zero), Level::Position, |r, _, e, k| {
-            let row = &e.rows[k];
-            if row.a.x == 0.0 && row.a.y == 0.0 && row.b.x == 0.0 && row.b.y == 0.0 {
-                row_scale[r] = scale;
-            }
-        });
+        let row_scale = g.cons.iter().flat_map(|c| (0..c.kind.rows()).map(move |k| row_scale(c.kind, k, scale))).collect();
         g.row_scale = row_scale;
         Ok(g)
     }
@@ -547,7 +536,7 @@ impl GenericMechanism {
         s: &[LinkState],
         drive: Drive,
         level: Level,
-        mut f: impl FnMut(usize, &Con, &crate::kinematics::ConEval, usize),
+        mut f: impl FnMut(usize, &Con, &ConEval, usize),
     ) {
         for (c, &r0) in self.cons.iter().zip(&self.first_row) {
             let e = eval(*c, &self.inst.joints[c.joint], s, drive, level);
@@ -560,23 +549,17 @@ impl GenericMechanism {
     /// The scaled Jacobian J (rows × 3(N − 1)) at the states `s` and the scaled right-hand
     /// side b = −(row scale × constraint values at `level`).
     fn assemble(&self, s: &[LinkState], drive: Drive, level: Level) -> (DMatrix<f64>, DVector<f64>) {
-        let scale = self.inst.scale;
         let mut j = DMatrix::zeros(self.rows, self.cols());
-        let mut b = DVector::zeros(self.rows);
-        self.for_rows(s, drive, level, |r, c, e, k| {
-            let rs = self.row_scale[r];
-            let g = &self.inst.joints[c.joint];
-            for (link, row) in [(g.a, &e.rows[k].a), (g.b, &e.rows[k].b)] {
+        for (c, &r0) in self.cons.iter().zip(&self.first_row) {
+            scaled_rows(*c, &self.inst.joints[c.joint], s, self.inst.scale, |k, link, e| {
                 if link != 0 {
-                    let c0 = 3 * (link - 1);
-                    j[(r, c0)] += rs * row.x;
-                    j[(r, c0 + 1)] += rs * row.y;
-                    j[(r, c0 + 2)] += rs * row.z / scale;
+                    for (i, x) in e.iter().enumerate() {
+                        j[(r0 + k, 3 * (link - 1) + i)] += x;
+                    }
                 }
-            }
-            b[r] = -rs * e.val[k];
-        });
-        (j, b)
+            });
+        }
+        (j, self.rhs(s, drive, level))
     }
 
     /// The right-hand side only (for a second solve with the same Jacobian).

@@ -27,7 +27,7 @@ pub struct Instance {
     pub gravity: V2,
 }
 
-/// Derive the numbers of `model`. Runs the drawing and rank checks of SPEC section 4
+/// Derive the numbers of `model`. Runs the drawing and rank checks (`docs/conventions.md#checks`)
 /// (the same code the macro runs), so a run-time change of parameters is checked too.
 pub fn instance(model: &Model) -> Result<Instance, MechError> {
     let issues = crate::validate::runtime(model);

@@ -20,7 +20,7 @@ use crate::MechError;
 /// Solve a closed-form group up to `upto`: place its links by `solver` on the drawing's
 /// branch `sign`, then its velocities and accelerations by the chain's joint screws.
 /// `Singular` near a change point, `NoAssembly` where the group does not close.
-#[inline]
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn solve_chain(
     solver: Solver,
@@ -38,7 +38,7 @@ pub fn solve_chain(
 
 /// Solve a driven crank or slider up to `upto`: its pose from the input q, then its
 /// velocity and acceleration from q̇ and q̈.
-#[inline]
+#[inline(always)]
 pub fn solve_driven(solver: Solver, driven: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive: Drive, upto: Level) -> Result<(), MechError> {
     crate::dyad::position(solver, joints, s, drive, 1.0)?;
     driven_rates(driven, joints, s, drive, upto)

@@ -1,4 +1,4 @@
-//! Kinetostatics (seed, section 2): the motor actions and every joint reaction by
+//! Kinetostatics (`docs/theory.md` §4, §5): the motor actions and every joint reaction by
 //! d'Alembert, group by group from the outermost Assur group inward, and the motor
 //! actions alone by virtual power.
 //!

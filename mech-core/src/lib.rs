@@ -2,7 +2,7 @@
 //!
 //! The pipeline of the `mechanism!` macro, visible in the module names:
 //! [`dsl`] (parse, syn) → [`model`] (plain data) → [`resolve`] (names) and [`validate`]
-//! (the checks of SPEC section 4, with [`grubler`] and [`pebble`]) → [`assur::plan`]
+//! (the checks of `docs/conventions.md#checks`, with [`grubler`] and [`pebble`]) → [`assur::plan`]
 //! (Assur groups, solve order) → emit (in `mech-macros`). The generated code is a
 //! sequence of calls into the kernels of [`kinematics`], [`assur`] (closed-form dyads),
 //! [`kinetostatics`] and [`zhukovski`], with the numbers of [`instance`]; every generated

@@ -126,7 +126,7 @@ pub struct Inverse3 {
 
 impl Inverse3 {
     /// Invert `a` (row major); `Singular` when κ_F ≥ [`SINGULAR_CONDITION`] (or not finite).
-    #[inline]
+    #[inline(always)]
     pub fn new(a: [[f64; 3]; 3]) -> Result<Self, crate::MechError> {
         let c = |i: usize, j: usize| {
             let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);

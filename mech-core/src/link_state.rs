@@ -123,7 +123,7 @@ pub struct LinkGeom {
     pub inertia: f64,
 }
 
-/// Position, velocity and acceleration of a point (SPEC section 5), m, m/s, m/s².
+/// Position, velocity and acceleration of a point (`docs/conventions.md#generated-api`), m, m/s, m/s².
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointMotion {
     /// Position, m.
@@ -141,7 +141,7 @@ pub struct PointPose {
     pub pos: V2,
 }
 
-/// Motion of a link (SPEC section 5): θ (rad, wrapped to (−π, π]), ω, α, and its cg's motion.
+/// Motion of a link (`docs/conventions.md#generated-api`): θ (rad, wrapped to (−π, π]), ω, α, and its cg's motion.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LinkMotion {
     /// Link angle θ, rad.

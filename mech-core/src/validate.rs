@@ -5,7 +5,7 @@
 //! (check 4, [`geometric`]). [`check`] runs them all and collects every [`Issue`].
 
 use crate::geometry::{all_cons, drawing_states, joint_geoms};
-use crate::constraints::{eval, Con, ConKind, Level};
+use crate::constraints::ConKind;
 use crate::model::{JointKind, Model};
 use crate::resolve::{Culprit, Issue};
 use nalgebra::{DMatrix, DVector};
@@ -137,11 +137,6 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
     out
 }
 
-/// Rows whose unit is an angle (the prismatic rotation lock, a revolute driver).
-fn angle_row(kind: ConKind, k: usize) -> bool {
-    matches!((kind, k), (ConKind::Prismatic, 1) | (ConKind::DriveRevolute(_), 0))
-}
-
 /// The dimensionless constraint Jacobian of the whole mechanism at the drawing.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Jacobian {
@@ -183,32 +178,20 @@ pub fn jacobian(model: &Model) -> Jacobian {
     let mut matrix = DMatrix::zeros(total, cols);
     let mut joint = Vec::with_capacity(total);
     let mut driver = Vec::with_capacity(total);
-    let none: &[f64] = &[];
     let mut r = 0;
     for c in &cons {
-        // The input index only selects a drive value, which the Jacobian does not use.
-        let kind = match c.kind {
-            ConKind::DriveRevolute(_) => ConKind::DriveRevolute(0),
-            ConKind::DrivePrismatic(_) => ConKind::DrivePrismatic(0),
-            k => k,
-        };
-        let g = &geoms[c.joint];
-        let e = eval(Con { joint: c.joint, kind }, g, &states, (none, none, none), Level::Jacobian);
-        for k in 0..c.kind.rows() {
-            let rs = if angle_row(c.kind, k) { scale } else { 1.0 };
-            for (link, row) in [(g.a, e.rows[k].a), (g.b, e.rows[k].b)] {
-                if link == 0 || link >= n {
-                    continue;
+        crate::constraints::scaled_rows(*c, &geoms[c.joint], &states, scale, |k, link, e| {
+            if link != 0 && link < n {
+                for (i, x) in e.iter().enumerate() {
+                    matrix[(r + k, 3 * (link - 1) + i)] += x;
                 }
-                let c0 = 3 * (link - 1);
-                matrix[(r, c0)] += rs * row.x;
-                matrix[(r, c0 + 1)] += rs * row.y;
-                matrix[(r, c0 + 2)] += rs * row.z / scale;
             }
+        });
+        for _ in 0..c.kind.rows() {
             joint.push(c.joint);
             driver.push(matches!(c.kind, ConKind::DriveRevolute(_) | ConKind::DrivePrismatic(_)));
-            r += 1;
         }
+        r += c.kind.rows();
     }
     Jacobian { matrix, joint, driver, scale }
 }

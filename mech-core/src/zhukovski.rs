@@ -1,4 +1,4 @@
-//! Zhukovski's reduction of a one-DOF machine to its input coordinate q (seed, section 3).
+//! Zhukovski's reduction of a one-DOF machine to its input coordinate q (`docs/theory.md` §6).
 //!
 //! With velocity coefficients g_j = ω_j / q̇ and g_Gj = v_Gj / q̇ (the velocities of the
 //! motion with q̇ = 1, q̈ = 0), and their derivatives g'_j, g'_Gj (the accelerations of
@@ -20,7 +20,7 @@ pub struct Reduced {
 }
 
 /// I* and dI*/dq from the states of the motion with q̇ = 1, q̈ = 0.
-#[inline]
+#[inline(always)]
 pub fn reduced(links: &[LinkGeom], s: &[LinkState]) -> Reduced {
     let mut out = Reduced::default();
     for (l, st) in links.iter().zip(s) {

@@ -560,7 +560,7 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         }
     } else {
         quote! {
-            /// Kinetostatics by d'Alembert (seed, section 2): the motor action of every input
+            /// Kinetostatics by d'Alembert (`docs/theory.md` §4): the motor action of every input
             /// and the reaction at every joint, solved group by group from the outermost
             /// Assur group inward. Reactions are forces BY the joint's first link ON its
             /// second (N), prismatic joints add a moment (N·m, CCW on the second link).
@@ -632,7 +632,7 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         }
     } else {
         quote! {
-            /// Reactions at every joint (SPEC section 2 conventions).
+            /// Reactions at every joint (`docs/conventions.md#reactions`).
             #[allow(non_snake_case)]
             #[derive(Clone, Copy, Debug, Default, PartialEq)]
             pub struct #forces_joints { #(#reaction_fields)* }

@@ -11,7 +11,7 @@ use mech_core::resolve::{resolve, Diagnostic};
 use proc_macro::TokenStream;
 use proc_macro2::Span;
 
-/// Declare a planar mechanism; see the crate `mech` and SPEC section 3 for the grammar.
+/// Declare a planar mechanism; see the crate `mech` and `docs/conventions.md#dsl` for the grammar.
 #[proc_macro]
 pub fn mechanism(input: TokenStream) -> TokenStream {
     let desc = match syn::parse::<Parsed>(input) {

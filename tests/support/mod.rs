@@ -5,7 +5,7 @@
 use mech::prelude::Vector2;
 use serde_json::Value;
 
-/// Relative tolerance of SPEC section 6.
+/// Relative tolerance of `docs/conventions.md#solver-requirements`.
 pub const REL: f64 = 1e-12;
 
 /// A truth or mechanism file of `tests/data/`.
