@@ -37,6 +37,18 @@ pub enum Kernel {
     System,
 }
 
+/// The pivot of a chain (see [`Chain::pivot`]): its middle screw when that is a rotation,
+/// else its first rotation (every closed-form chain has one).
+fn pivot(screws: &[JointScrew; 3]) -> usize {
+    if !screws[1].slide {
+        1
+    } else if !screws[0].slide {
+        0
+    } else {
+        2
+    }
+}
+
 /// The screw kernel of a closed-form solver ([`crate::screw`] docs): the chain of joint
 /// screws from a solved link through the group's links to a solved link.
 pub fn kernel(model: &Model, solver: Solver) -> Kernel {
@@ -52,7 +64,8 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
     let slide = |joint| JointScrew { joint, slide: true };
     let sc = |j: usize| if model.joints[j].kind == JointKind::Revolute { rot(j) } else { slide(j) };
     let dyad = |b1, b2, j1: usize, j2: usize, j3: usize| {
-        Kernel::Chain(Chain { from: other(j1, b1), to: other(j3, b2), screws: [sc(j1), sc(j2), sc(j3)], links: [b1, b2] })
+        let screws = [sc(j1), sc(j2), sc(j3)];
+        Kernel::Chain(Chain { from: other(j1, b1), to: other(j3, b2), screws, links: [b1, b2], pivot: pivot(&screws) })
     };
     match solver {
         Solver::DrivenRevolute { body, joint, input } => Kernel::Driven(Driven { from: other(joint, body), body, screw: rot(joint), input }),
@@ -68,6 +81,7 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             to: model.joints[js].a,
             screws: [rot(ja), rot(js), slide(js)],
             links: [body, VIRTUAL],
+            pivot: 1,
         }),
         // Slot in `body`, pin of a solved link: the slide, then the rotation about the pin.
         Solver::SlottedLever { body, ja, js } => Kernel::Chain(Chain {
@@ -75,6 +89,7 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             to: model.joints[js].b,
             screws: [rot(ja), slide(js), rot(js)],
             links: [body, VIRTUAL],
+            pivot: 0,
         }),
         Solver::Newton => Kernel::System,
     }

@@ -128,38 +128,40 @@ pub enum Solver {
 /// Relative tolerance within which a negative discriminant is taken as a tangency.
 const TANGENT_TOL: f64 = 1e-12;
 
-/// Intersection of the circle (c1, r1) with the circle (c2, r2) on the side `sign` of the
-/// line c1 → c2 (sign of (c2 − c1) × (X − c1)). `NoAssembly` when they do not meet.
+/// Intersection of the circle (c1, r1) with the circle (c2, r2), given the squared radii
+/// r1², r2² (m²), on the side `sign` of the line c1 → c2 (sign of (c2 − c1) × (X − c1)).
+/// With d = c2 − c1, k = (|d|² + r1² − r2²) / (2|d|²) and h² = r1²/|d|² − k²:
+/// X = c1 + k d + sign·h·perp(d). `NoAssembly` when they do not meet (h² < 0 beyond a
+/// relative tolerance, a tangency within it).
 #[inline]
-pub fn circle_circle(c1: V2, r1: f64, c2: V2, r2: f64, sign: f64) -> Result<V2, MechError> {
+pub fn circle_circle(c1: V2, r1sq: f64, c2: V2, r2sq: f64, sign: f64) -> Result<V2, MechError> {
     let d = c2 - c1;
     let l2 = d.norm_squared();
-    let l = l2.sqrt();
-    if !(l > 0.0) {
+    if !(l2 > 0.0) {
         return Err(MechError::NoAssembly);
     }
-    let a = (l2 + r1 * r1 - r2 * r2) / (2.0 * l);
-    let mut h2 = r1 * r1 - a * a;
+    let inv = 1.0 / l2;
+    let k = 0.5 * (1.0 + (r1sq - r2sq) * inv);
+    let mut h2 = r1sq * inv - k * k;
     if h2 < 0.0 {
-        if h2 < -TANGENT_TOL * r1.max(r2).powi(2) {
+        if h2 < -TANGENT_TOL * r1sq.max(r2sq) * inv {
             return Err(MechError::NoAssembly);
         }
         h2 = 0.0;
     }
-    let e = d / l;
-    Ok(c1 + e * a + perp(e) * (sign * h2.sqrt()))
+    Ok(c1 + d * k + perp(d) * (sign * h2.sqrt()))
 }
 
-/// Intersection of the circle (c, r) with the line through `p` along unit `u`, on the
-/// side `sign` along u of the foot of the perpendicular from c.
+/// Intersection of the circle (c, r), given r² (m²), with the line through `p` along unit
+/// `u`, on the side `sign` along u of the foot of the perpendicular from c.
 #[inline]
-pub fn circle_line(c: V2, r: f64, p: V2, u: V2, sign: f64) -> Result<V2, MechError> {
+pub fn circle_line(c: V2, rsq: f64, p: V2, u: V2, sign: f64) -> Result<V2, MechError> {
     let t0 = (c - p).dot(&u);
     let foot = p + u * t0;
     let h = (c - foot).norm_squared();
-    let mut w2 = r * r - h;
+    let mut w2 = rsq - h;
     if w2 < 0.0 {
-        if w2 < -TANGENT_TOL * r * r {
+        if w2 < -TANGENT_TOL * rsq {
             return Err(MechError::NoAssembly);
         }
         w2 = 0.0;
@@ -348,7 +350,7 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
             let (b, db) = pin(&joints[jb], s, b2);
             let gc = &joints[jc];
             let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
-            let c = circle_circle(a, (dc1 - da).norm(), b, (dc2 - db).norm(), sign)?;
+            let c = circle_circle(a, (dc1 - da).norm_squared(), b, (dc2 - db).norm_squared(), sign)?;
             place_by_two_points(&mut s[b1], da, dc1, a, c);
             place_by_two_points(&mut s[b2], db, dc2, b, c);
         }
@@ -359,7 +361,7 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
             let gc = &joints[jc];
             let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
             let (p, u) = slide_line(gp, s, b2, rot2, dc2);
-            let c = circle_line(a, (dc1 - da).norm(), p, u, sign)?;
+            let c = circle_line(a, (dc1 - da).norm_squared(), p, u, sign)?;
             place_by_two_points(&mut s[b1], da, dc1, a, c);
             place_by_point(&mut s[b2], rot2, dc2, c);
         }
@@ -403,7 +405,7 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
             let g = &joints[js];
             let u = s[g.a].r(g.axis);
             let q = s[g.a].point(g.da);
-            let p = circle_line(a, (g.db - da).norm(), q, u, sign)?;
+            let p = circle_line(a, (g.db - da).norm_squared(), q, u, sign)?;
             place_by_two_points(&mut s[body], da, g.db, a, p);
         }
         Solver::SlottedLever { body, ja, js } => {

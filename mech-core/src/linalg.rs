@@ -179,3 +179,41 @@ impl Inverse3 {
         ]
     }
 }
+
+/// The inverse of a 2×2 matrix [[a, b], [c, d]] with its condition estimate
+/// κ_F = ‖A‖_F ‖A⁻¹‖_F = ‖A‖²_F / |det A| (exact for 2×2: ‖A⁻¹‖_F = ‖A‖_F / |det A|).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inverse2 {
+    /// A⁻¹, row major.
+    pub inv: [[f64; 2]; 2],
+    /// κ_F(A).
+    pub condition: f64,
+}
+
+impl Inverse2 {
+    /// Invert `m` (row major; columns given as the caller scaled them to be dimensionless);
+    /// `Singular` when κ_F ≥ [`SINGULAR_CONDITION`] or it is not finite.
+    #[inline(always)]
+    pub fn new(m: [[f64; 2]; 2]) -> Result<Self, crate::MechError> {
+        let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+        let norm2 = m[0][0] * m[0][0] + m[0][1] * m[0][1] + m[1][0] * m[1][0] + m[1][1] * m[1][1];
+        let condition = norm2 / det.abs();
+        if !(condition < SINGULAR_CONDITION) {
+            return Err(crate::MechError::Singular { condition: if condition.is_nan() { f64::INFINITY } else { condition } });
+        }
+        let r = 1.0 / det;
+        Ok(Inverse2 { inv: [[m[1][1] * r, -m[0][1] * r], [-m[1][0] * r, m[0][0] * r]], condition })
+    }
+    /// A⁻¹ b.
+    #[inline(always)]
+    pub fn solve(&self, b: [f64; 2]) -> [f64; 2] {
+        let m = &self.inv;
+        [m[0][0] * b[0] + m[0][1] * b[1], m[1][0] * b[0] + m[1][1] * b[1]]
+    }
+    /// A⁻ᵀ b.
+    #[inline(always)]
+    pub fn solve_transpose(&self, b: [f64; 2]) -> [f64; 2] {
+        let m = &self.inv;
+        [m[0][0] * b[0] + m[1][0] * b[1], m[0][1] * b[0] + m[1][1] * b[1]]
+    }
+}

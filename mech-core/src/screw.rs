@@ -30,7 +30,7 @@
 
 use crate::constraints::{Drive, JointGeom, Level};
 use crate::kinetostatics::{Reaction, Wrench};
-use crate::linalg::Inverse3;
+use crate::linalg::Inverse2;
 use crate::link_state::{cross, perp, LinkState, V2};
 use crate::MechError;
 
@@ -65,6 +65,24 @@ impl Twist {
     fn acc_of(s: &LinkState, o: V2) -> Twist {
         let r = o - s.pos;
         Twist { w: s.alpha, v: s.acc_at(r) - perp(s.vel_at(r)) * s.omega }
+    }
+    /// The twist of link `l` at `o`, zero for the ground (link 0), whose state is not read.
+    #[inline(always)]
+    fn of_link(s: &[LinkState], l: usize, o: V2) -> Twist {
+        if l == 0 {
+            Twist::default()
+        } else {
+            Twist::of(&s[l], o)
+        }
+    }
+    /// The spatial acceleration of link `l` at `o`, zero for the ground.
+    #[inline(always)]
+    fn acc_of_link(s: &[LinkState], l: usize, o: V2) -> Twist {
+        if l == 0 {
+            Twist::default()
+        } else {
+            Twist::acc_of(&s[l], o)
+        }
     }
     /// Power of the wrench `w` (at O) on this twist, W.
     #[inline(always)]
@@ -156,6 +174,9 @@ pub struct Chain {
     pub screws: [JointScrew; 3],
     /// B₁ and B₂ (B₂ = [`VIRTUAL`] for a single-link slot group).
     pub links: [usize; 2],
+    /// A rotation screw whose point is taken as the origin O (the middle one when it is a
+    /// rotation): its column of S is then (1, 0, 0), and S reduces to a 2×2 block.
+    pub pivot: usize,
 }
 
 /// A link driven by one input through one joint screw with a known rate.
@@ -171,33 +192,85 @@ pub struct Driven {
     pub input: usize,
 }
 
-/// The inverse of the chain matrix S and its condition. The condition is taken of the
-/// dimensionless Â = D S C, D = diag(L, 1, 1) on the rows (ω, v_x, v_y) and C = 1/L on
-/// the rotation columns (L the drawing's length scale, m); then S⁻¹ = C Â⁻¹ D.
-#[inline(always)]
-fn chain_matrix(sc: &[Twist; 3], scale: f64) -> Result<Inverse3, MechError> {
-    let c = sc.map(|t| if t.w != 0.0 { 1.0 / scale } else { 1.0 });
-    let a = [
-        [scale * sc[0].w * c[0], scale * sc[1].w * c[1], scale * sc[2].w * c[2]],
-        [sc[0].v.x * c[0], sc[1].v.x * c[1], sc[2].v.x * c[2]],
-        [sc[0].v.y * c[0], sc[1].v.y * c[1], sc[2].v.y * c[2]],
-    ];
-    let mut inv = Inverse3::new(a)?;
-    for (k, row) in inv.inv.iter_mut().enumerate() {
-        row[0] *= scale * c[k];
-        row[1] *= c[k];
-        row[2] *= c[k];
-    }
-    Ok(inv)
+/// The chain matrix S at the current positions, reduced by its pivot p: with O at the
+/// pivot's point, column p is (1, 0, 0), so the translation rows of S ρ = b read
+/// ρ_i v_i + ρ_j v_j = b_v (the 2×2 block M = [v_i v_j], i, j ≠ p) and the rotation row
+/// gives ρ_p = b_ω − ρ_i ω_i − ρ_j ω_j. The transpose is solved the same way. M's
+/// rotation columns are divided by the length scale L so that its condition estimate is
+/// dimensionless.
+#[derive(Clone, Copy, Debug)]
+struct ChainSystem {
+    o: V2,
+    sc: [Twist; 3],
+    pivot: usize,
+    others: [usize; 2],
+    col_scale: [f64; 2],
+    inv: Inverse2,
 }
 
-/// The chain's origin O (its first joint's point), screws and inverse matrix.
-#[inline(always)]
-fn chain_setup(c: &Chain, joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<(V2, [Twist; 3], Inverse3), MechError> {
-    let o = c.screws[0].point(joints, s);
-    let sc = [c.screws[0].at(joints, s, o), c.screws[1].at(joints, s, o), c.screws[2].at(joints, s, o)];
-    let inv = chain_matrix(&sc, scale)?;
-    Ok((o, sc, inv))
+impl ChainSystem {
+    #[inline(always)]
+    fn new(c: &Chain, joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
+        let p = c.pivot;
+        let others = [[1, 2], [0, 2], [0, 1]][p];
+        let o = c.screws[p].point(joints, s);
+        let mut sc = [Twist { w: 1.0, v: V2::zeros() }; 3];
+        for k in others {
+            sc[k] = c.screws[k].at(joints, s, o);
+        }
+        let col_scale = others.map(|k| if c.screws[k].slide { 1.0 } else { 1.0 / scale });
+        let (a, b) = (sc[others[0]].v * col_scale[0], sc[others[1]].v * col_scale[1]);
+        let inv = Inverse2::new([[a.x, b.x], [a.y, b.y]])?;
+        Ok(ChainSystem { o, sc, pivot: p, others, col_scale, inv })
+    }
+    /// ρ from S ρ = b.
+    #[inline(always)]
+    fn solve(&self, b: Twist) -> [f64; 3] {
+        let [i, j] = self.others;
+        let x = self.inv.solve([b.v.x, b.v.y]);
+        let (ri, rj) = (x[0] * self.col_scale[0], x[1] * self.col_scale[1]);
+        let mut rho = [0.0; 3];
+        rho[i] = ri;
+        rho[j] = rj;
+        rho[self.pivot] = b.w - self.sc[i].w * ri - self.sc[j].w * rj;
+        rho
+    }
+    /// W from Sᵀ W = c (W·$_k = c_k).
+    #[inline(always)]
+    fn solve_transpose(&self, c: [f64; 3]) -> Force {
+        let [i, j] = self.others;
+        let m = c[self.pivot];
+        let y = [(c[i] - self.sc[i].w * m) * self.col_scale[0], (c[j] - self.sc[j].w * m) * self.col_scale[1]];
+        let f = self.inv.solve_transpose(y);
+        Force { f: V2::new(f[0], f[1]), m }
+    }
+    /// t + ρ $_k.
+    #[inline(always)]
+    fn step(&self, t: Twist, k: usize, rho: f64) -> Twist {
+        if k == self.pivot {
+            Twist { w: t.w + rho, v: t.v }
+        } else {
+            t.plus(rho, self.sc[k])
+        }
+    }
+    /// t × $_k.
+    #[inline(always)]
+    fn bias(&self, t: Twist, k: usize) -> Twist {
+        if k == self.pivot {
+            Twist { w: 0.0, v: -perp(t.v) }
+        } else {
+            t.cross(self.sc[k])
+        }
+    }
+    /// W·$_k.
+    #[inline(always)]
+    fn power(&self, k: usize, w: &Force) -> f64 {
+        if k == self.pivot {
+            w.m
+        } else {
+            self.sc[k].power(w)
+        }
+    }
 }
 
 /// Velocities (and accelerations when `upto` is [`Level::Acceleration`]) of a chain's
@@ -208,12 +281,13 @@ pub fn chain_rates(c: &Chain, joints: &[JointGeom], s: &mut [LinkState], scale: 
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
         return Ok(());
     }
-    let (o, sc, inv) = chain_setup(c, joints, s, scale)?;
-    let t0 = Twist::of(&s[c.from], o);
-    let t3 = Twist::of(&s[c.to], o);
-    let rho = inv.solve([t3.w - t0.w, t3.v.x - t0.v.x, t3.v.y - t0.v.y]);
-    let t1 = t0.plus(rho[0], sc[0]);
-    let t2 = t1.plus(rho[1], sc[1]);
+    let sys = ChainSystem::new(c, joints, s, scale)?;
+    let o = sys.o;
+    let t0 = Twist::of_link(s, c.from, o);
+    let t3 = Twist::of_link(s, c.to, o);
+    let rho = sys.solve(t3.plus(-1.0, t0));
+    let t1 = sys.step(t0, 0, rho[0]);
+    let t2 = sys.step(t1, 1, rho[1]);
     let [l1, l2] = c.links;
     set_velocity(&mut s[l1], t1, o);
     if l2 != VIRTUAL {
@@ -222,18 +296,18 @@ pub fn chain_rates(c: &Chain, joints: &[JointGeom], s: &mut [LinkState], scale: 
     if upto != Level::Acceleration {
         return Ok(());
     }
-    let bias = [t0.cross(sc[0]), t1.cross(sc[1]), t2.cross(sc[2])];
-    let a0 = Twist::acc_of(&s[c.from], o);
-    let a3 = Twist::acc_of(&s[c.to], o);
+    let bias = [sys.bias(t0, 0), sys.bias(t1, 1), sys.bias(t2, 2)];
+    let a0 = Twist::acc_of_link(s, c.from, o);
+    let a3 = Twist::acc_of_link(s, c.to, o);
     let mut b = a3.plus(-1.0, a0);
     for k in 0..3 {
         b = b.plus(-rho[k], bias[k]);
     }
-    let rhod = inv.solve([b.w, b.v.x, b.v.y]);
-    let a1 = a0.plus(rhod[0], sc[0]).plus(rho[0], bias[0]);
+    let rhod = sys.solve(b);
+    let a1 = sys.step(a0, 0, rhod[0]).plus(rho[0], bias[0]);
     set_acceleration(&mut s[l1], a1, o);
     if l2 != VIRTUAL {
-        let a2 = a1.plus(rhod[1], sc[1]).plus(rho[1], bias[1]);
+        let a2 = sys.step(a1, 1, rhod[1]).plus(rho[1], bias[1]);
         set_acceleration(&mut s[l2], a2, o);
     }
     Ok(())
@@ -260,10 +334,10 @@ pub fn driven_rates(d: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive
     let sc = d.screw.at(joints, s, o);
     let sigma = orientation(&joints[d.screw.joint], d.from);
     let (qd, qdd) = (sigma * drive.1[d.input], sigma * drive.2[d.input]);
-    let t0 = Twist::of(&s[d.from], o);
+    let t0 = Twist::of_link(s, d.from, o);
     set_velocity(&mut s[d.body], t0.plus(qd, sc), o);
     if upto == Level::Acceleration {
-        let a = Twist::acc_of(&s[d.from], o).plus(qdd, sc).plus(qd, t0.cross(sc));
+        let a = Twist::acc_of_link(s, d.from, o).plus(qdd, sc).plus(qd, t0.cross(sc));
         set_acceleration(&mut s[d.body], a, o);
     }
     Ok(())
@@ -273,10 +347,10 @@ pub fn driven_rates(d: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive
 /// `o`) that link `before` exerts through it on the next link of the chain: the force,
 /// and the moment about the joint's point (zero but for a prismatic joint).
 #[inline(always)]
-fn reaction(g: &JointGeom, s: &[LinkState], before: usize, w: Force, o: V2) -> Reaction {
+fn reaction(g: &JointGeom, s: &[LinkState], before: usize, w: Force, o: V2, moment: bool) -> Reaction {
     let sigma = orientation(g, before);
-    let p = s[g.b].point(g.db);
-    Reaction { force: w.f * sigma, moment: sigma * (w.m - cross(p - o, w.f)) }
+    let moment = if moment { sigma * (w.m - cross(s[g.b].point(g.db) - o, w.f)) } else { 0.0 };
+    Reaction { force: w.f * sigma, moment }
 }
 
 /// d'Alembert for a chain: the reaction at each of its joints into `out` (joint order),
@@ -292,23 +366,24 @@ pub fn chain_reactions(
     scale: f64,
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
-    let (o, sc, inv) = chain_setup(c, joints, s, scale)?;
+    let sys = ChainSystem::new(c, joints, s, scale)?;
+    let o = sys.o;
     let [l1, l2] = c.links;
     let f1 = Force::at(&f[l1], s[l1].pos, o);
     let f2 = if l2 != VIRTUAL { Force::at(&f[l2], s[l2].pos, o) } else { Force::default() };
     let f12 = f1.plus(f2);
-    let w = inv.solve_transpose([0.0, -sc[1].power(&f1), -sc[2].power(&f12)]);
-    let w1 = Force { f: V2::new(w[1], w[2]), m: w[0] };
+    let w1 = sys.solve_transpose([0.0, -sys.power(1, &f1), -sys.power(2, &f12)]);
     let ws = [w1, w1.plus(f1), w1.plus(f12)];
     let before = [c.from, l1, l2];
     for k in 0..3 {
         let j = c.screws[k].joint;
         // A slot's two screws carry one wrench: report it at the first, whose preceding
-        // link is a real one.
+        // link is a real one. Only a prismatic joint reports a moment.
         if k > 0 && c.screws[k - 1].joint == j {
             continue;
         }
-        out[j] = reaction(&joints[j], s, before[k], ws[k], o);
+        let prismatic = c.screws[k].slide && !(k < 2 && c.screws[k + 1].joint == j);
+        out[j] = reaction(&joints[j], s, before[k], ws[k], o, prismatic);
     }
     let back = Force { f: -w1.f, m: -w1.m };
     f[c.from] += back.about(s[c.from].pos, o);
@@ -333,7 +408,7 @@ pub fn driven_reactions(d: &Driven, joints: &[JointGeom], s: &[LinkState], f: &m
     drivers[d.input] = sigma * action;
     // Take the motor's component out: what is left does no work along the screw.
     let constraint = if d.screw.slide { Force { f: w1.f - sc.v * action, m: w1.m } } else { Force { f: w1.f, m: 0.0 } };
-    out[d.screw.joint] = reaction(g, s, d.from, constraint, o);
+    out[d.screw.joint] = reaction(g, s, d.from, constraint, o, d.screw.slide);
     f[d.from] += Force { f: -w1.f, m: -w1.m }.about(s[d.from].pos, o);
 }
 

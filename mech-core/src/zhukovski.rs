@@ -8,7 +8,7 @@
 //! - M*(q) = Σ F_k·g_k + Σ M_j g_j                               (N·m), gravity included
 //! - equation of motion: I* q̈ + ½ dI*/dq q̇² = driver + M*.
 
-use crate::link_state::{LinkGeom, LinkState};
+use crate::link_state::{LinkGeom, LinkState, V2};
 
 /// Reduced inertia and its derivative at one position.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -42,4 +42,43 @@ pub fn acceleration(r: Reduced, moment: f64, qd: f64, driver: f64) -> Result<f64
         return Err(crate::MechError::NonPositiveInertia(r.inertia));
     }
     Ok((driver + moment - 0.5 * r.inertia_derivative * qd * qd) / r.inertia)
+}
+
+/// Zhukovski's sums accumulated link by link and load by load over the motion with q̇ = 1,
+/// q̈ = 0 (whose velocities are the velocity coefficients g and whose accelerations are
+/// their derivatives g'): I* = Σ (m |g_G|² + I_G g²), dI*/dq = 2 Σ (m g_G·g'_G + I_G g g'),
+/// M* = Σ F·g_P + Σ M g + Σ m g·g_G (gravity). Each term is computed once from the link's
+/// state, so the direct problem needs no wrench and no reaction.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Reduction {
+    /// I* and dI*/dq so far.
+    pub reduced: Reduced,
+    /// M* so far, N·m (N for a prismatic input).
+    pub moment: f64,
+}
+
+impl Reduction {
+    /// Add a link's inertia to I* and dI*/dq (needs the accelerations of the motion).
+    #[inline(always)]
+    pub fn inertia(&mut self, l: &LinkGeom, s: &LinkState) {
+        let r = s.r(l.dcg);
+        let (v, a) = (s.vel_at(r), s.acc_at(r));
+        self.reduced.inertia += l.mass * v.norm_squared() + l.inertia * s.omega * s.omega;
+        self.reduced.inertia_derivative += 2.0 * (l.mass * v.dot(&a) + l.inertia * s.omega * s.alpha);
+    }
+    /// Add the power of gravity on a link, m g·g_G, to M*.
+    #[inline(always)]
+    pub fn gravity(&mut self, l: &LinkGeom, s: &LinkState, g: V2) {
+        self.moment += l.mass * g.dot(&s.vel_at(s.r(l.dcg)));
+    }
+    /// Add the power of a force `f` (N) at the material point of local vector `d`, f·g_P.
+    #[inline(always)]
+    pub fn force(&mut self, s: &LinkState, d: V2, f: V2) {
+        self.moment += f.dot(&s.vel_at(s.r(d)));
+    }
+    /// Add the power of a torque `t` (N·m) on a link, t g.
+    #[inline(always)]
+    pub fn torque(&mut self, s: &LinkState, t: f64) {
+        self.moment += t * s.omega;
+    }
 }

@@ -134,10 +134,10 @@ fn link_tokens(l: usize) -> TokenStream {
 }
 
 fn chain_tokens(c: &Chain) -> TokenStream {
-    let (from, to) = (c.from, c.to);
+    let (from, to, pivot) = (c.from, c.to, c.pivot);
     let screws = c.screws.iter().map(screw_tokens);
     let links = c.links.iter().map(|&l| link_tokens(l));
-    quote!(::mech::__private::screw::Chain { from: #from, to: #to, screws: [#(#screws),*], links: [#(#links),*] })
+    quote!(::mech::__private::screw::Chain { from: #from, to: #to, screws: [#(#screws),*], links: [#(#links),*], pivot: #pivot })
 }
 
 fn driven_tokens(d: &Driven) -> TokenStream {
@@ -261,7 +261,7 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             Load::Force { .. } => quote!(loads.#lid.x, loads.#lid.y,),
             Load::Torque { .. } => quote!(loads.#lid,),
         }
-    });
+    }).collect::<Vec<TokenStream>>();
     let load_terms = model.loads.iter().enumerate().map(|(k, l)| {
         let lid = id(l.name());
         let link = l.link();
@@ -336,6 +336,12 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             Kernel::System => quote!(let #sys = #p::group::group_solve::<#n>(&Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, upto)?;),
         }
     });
+    // Newton starts from the drawing; closed forms overwrite every state they use.
+    let initial = if plan.iter().any(|g| g.kernel == Kernel::System) {
+        quote!(self.drawing)
+    } else {
+        quote!([#p::kinematics::LinkState::default(); #n_links])
+    };
     let sys_ids: Vec<Ident> = (0..n_groups).map(|g| format_ident!("sys{}", g)).collect();
     let sys_types: Vec<TokenStream> = plan.iter().map(|g| {
         let n = 3 * g.bodies.len();
@@ -648,6 +654,24 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
         }
     };
 
+    let zhuk_inertia = quote!(#( z.inertia(&self.links[#massive], &s[#massive]); )*);
+    let zhuk_gravity: Vec<TokenStream> = if model.gravity.is_some() {
+        (1..n_links)
+            .filter(|&l| model.links[l].mass.is_some_and(|m| m != 0.0))
+            .map(|l| quote!(z.gravity(&self.links[#l], &s[#l], self.gravity);))
+            .collect()
+    } else {
+        vec![]
+    };
+    let zhuk_loads = model.loads.iter().enumerate().map(|(k, l)| {
+        let lid = id(l.name());
+        let link = l.link();
+        match l {
+            Load::Force { .. } => quote!(z.force(&s[#link], self.loads[#k], loads.#lid);),
+            Load::Torque { .. } => quote!(z.torque(&s[#link], loads.#lid);),
+        }
+    });
+    let zhuk_moment = quote!(#(#zhuk_gravity)* #(#zhuk_loads)*);
     let one_dof_api = if one_dof {
         quote! {
             /// Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad), in closed
@@ -655,23 +679,29 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
             pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
                 #p::error::check_finite("q", &[q])?;
                 let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
-                Ok(#p::zhukovski::reduced(&self.links, &s))
+                let mut z = #p::zhukovski::Reduction::default();
+                #zhuk_inertia
+                Ok(z.reduced)
             }
             /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads and gravity
             /// per unit input rate, M* = Σ F·g + Σ M·g.
             pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
                 #p::error::check_finite("q", &[q])?;
+                #p::error::check_finite("loads", &[#(#load_checks)*])?;
                 let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity)?;
-                let f = self.__wrenches(&s, loads, false)?;
-                Ok(#p::kinetostatics::virtual_power(&f, &s))
+                let mut z = #p::zhukovski::Reduction::default();
+                #zhuk_moment
+                Ok(z.moment)
             }
             /// The direct problem: q̈ (rad/s²) from I* q̈ + ½ dI*/dq q̇² = driver + M*.
             pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
                 #p::error::check_finite("q, qd, driver", &[q, qd, driver])?;
+                #p::error::check_finite("loads", &[#(#load_checks)*])?;
                 let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
-                let f = self.__wrenches(&s, loads, false)?;
-                let r = #p::zhukovski::reduced(&self.links, &s);
-                #p::zhukovski::acceleration(r, #p::kinetostatics::virtual_power(&f, &s), qd, driver)
+                let mut z = #p::zhukovski::Reduction::default();
+                #zhuk_inertia
+                #zhuk_moment
+                #p::zhukovski::acceleration(z.reduced, z.moment, qd, driver)
             }
         }
     } else {
@@ -957,7 +987,7 @@ pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Tok
                 qdd: &[f64; #dof],
                 upto: #p::kinematics::Level,
             ) -> Result<([#p::kinematics::LinkState; #n_links], #systems_ty), #p::MechError> {
-                let mut s = self.drawing;
+                let mut s = #initial;
                 let drive = (&q[..], &qd[..], &qdd[..]);
                 #(#solve_calls)*
                 Ok((s, (#(#sys_ids,)*)))
