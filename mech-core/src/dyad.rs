@@ -274,6 +274,17 @@ fn rpr_data(gp: &JointGeom, pin_a: (V2, V2), pin_b: (V2, V2), b_moves: bool) -> 
     (n0, dvec, w)
 }
 
+/// An RPR group's prismatic joint, guide and slider, and the pins of the guide and the
+/// slider to solved links (current position, local vector).
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+fn rpr_pins<'a>(joints: &'a [JointGeom], s: &[LinkState], b1: usize, ja: usize, jp: usize, jb: usize) -> (&'a JointGeom, usize, usize, (V2, V2), (V2, V2)) {
+    let gp = &joints[jp];
+    let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
+    let (guide, slider) = (gp.a, gp.b);
+    (gp, guide, slider, pin(&joints[ga], s, guide), pin(&joints[gb], s, slider))
+}
+
 /// The signed quantity whose sign is the group's assembly branch, at the current states.
 /// Evaluated once at the drawing (construction) and kept for every input value.
 pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) -> f64 {
@@ -294,11 +305,7 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
             (c - a).dot(&u)
         }
         Solver::Rpr { b1, ja, jp, jb, .. } => {
-            let gp = &joints[jp];
-            let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
-            let (guide, slider) = (gp.a, gp.b);
-            let pa = pin(&joints[ga], s, guide);
-            let pb = pin(&joints[gb], s, slider);
+            let (gp, guide, _, pa, pb) = rpr_pins(joints, s, b1, ja, jp, jb);
             tangent_side(&s[guide], gp.axis, pb.0 - pa.0)
         }
         Solver::PinInFixedSlot { body, ja, js } => {
@@ -366,11 +373,7 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
             place_by_point(&mut s[b2], rot2, dc2, c);
         }
         Solver::Rpr { b1, ja, jp, jb, .. } => {
-            let gp = &joints[jp];
-            let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
-            let (guide, slider) = (gp.a, gp.b);
-            let pa = pin(&joints[ga], s, guide);
-            let pb = pin(&joints[gb], s, slider);
+            let (gp, guide, slider, pa, pb) = rpr_pins(joints, s, b1, ja, jp, jb);
             let (n0, dvec, w) = rpr_data(gp, pa, pb, true);
             let rot = tangent_rotation(n0, dvec, w, sign)?;
             place_by_point(&mut s[guide], rot, pa.1, pa.0);

@@ -123,33 +123,21 @@ fn apply_step<const N: usize>(bodies: &[usize], s: &mut [LinkState], dx: &SVecto
     step
 }
 
-/// Velocities of a group's links from those of the links already solved:
-/// J ẋ = −Φ̇(known). The group's velocities in `s` must be zero on entry.
+/// Rates of a group's links from those of the links already solved, at `level`:
+/// velocities J ẋ = −Φ̇(known) or accelerations J ẍ = −Φ̈(group's accelerations zero).
+/// The group's rates at that level must be zero in `s` on entry.
 #[inline(always)]
-pub fn group_velocity<const N: usize>(
+pub fn group_rates<const N: usize>(
     sys: &GroupSystem<N>,
     bodies: &[usize],
     cons: &[Con],
     joints: &[JointGeom],
     s: &mut [LinkState],
     drive: Drive,
+    level: Level,
 ) {
-    let x = sys.solve(&group_rhs::<N>(cons, joints, s, drive, Level::Velocity));
-    store_rates(bodies, s, &x, false);
-}
-
-/// Accelerations of a group's links: J ẍ = −(Φ̈ with the group's accelerations zero).
-#[inline(always)]
-pub fn group_acceleration<const N: usize>(
-    sys: &GroupSystem<N>,
-    bodies: &[usize],
-    cons: &[Con],
-    joints: &[JointGeom],
-    s: &mut [LinkState],
-    drive: Drive,
-) {
-    let x = sys.solve(&group_rhs::<N>(cons, joints, s, drive, Level::Acceleration));
-    store_rates(bodies, s, &x, true);
+    let x = sys.solve(&group_rhs::<N>(cons, joints, s, drive, level));
+    store_rates(bodies, s, &x, level == Level::Acceleration);
 }
 
 /// The velocity field of a group only (positions already in `s`, its velocities zero),
@@ -168,7 +156,7 @@ pub fn group_velocity_field<const N: usize>(
         Some(sys) => *sys,
         None => GroupSystem::<N>::new(bodies, cons, joints, s, scale)?,
     };
-    group_velocity(&sys, bodies, cons, joints, s, drive);
+    group_rates(&sys, bodies, cons, joints, s, drive, Level::Velocity);
     Ok(())
 }
 
@@ -248,9 +236,9 @@ pub fn group_solve<const N: usize>(
     group_newton::<N>(bodies, cons, joints, s, drive, scale)?;
     if matches!(upto, Level::Velocity | Level::Acceleration) {
         let sys = GroupSystem::<N>::new(bodies, cons, joints, s, scale)?;
-        group_velocity(&sys, bodies, cons, joints, s, drive);
+        group_rates(&sys, bodies, cons, joints, s, drive, Level::Velocity);
         if upto == Level::Acceleration {
-            group_acceleration(&sys, bodies, cons, joints, s, drive);
+            group_rates(&sys, bodies, cons, joints, s, drive, Level::Acceleration);
         }
         return Ok(Some(sys));
     }

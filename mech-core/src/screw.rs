@@ -419,7 +419,7 @@ mod tests {
     //! from its transpose, for every closed-form group kind.
     use super::*;
     use crate::assur::{plan, Kernel};
-    use crate::group::{group_acceleration, group_velocity, GroupSystem};
+    use crate::group::{group_rates, GroupSystem};
     use crate::kinetostatics::{group_reactions, lambda_reactions};
     use crate::resolve::model_of;
 
@@ -522,12 +522,12 @@ mod tests {
                     // One-link groups: a 3×3 system.
                     if g.bodies.len() == 1 {
                         let sys = GroupSystem::<3>::new(&g.bodies, &g.cons, &inst.joints, &sb, inst.scale).expect("lu");
-                        group_velocity(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive);
-                        group_acceleration(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive);
+                        group_rates(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive, Level::Velocity);
+                        group_rates(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive, Level::Acceleration);
                     } else {
                         let sys = sys.expect("lu");
-                        group_velocity(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive);
-                        group_acceleration(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive);
+                        group_rates(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive, Level::Velocity);
+                        group_rates(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive, Level::Acceleration);
                     }
                 }
                 for (a, b) in sa.iter().zip(&sb) {
