@@ -25,7 +25,7 @@
 //! wrench on B_k, equilibrium of B₁ and B₂ gives W₂ = W₁ + F₁, W₃ = W₂ + F₂, and a joint
 //! transmits no power along its own screw (W_k · $_k = 0), so
 //! Sᵀ W₁ = −(0, F₁·$₂, (F₁ + F₂)·$₃). For a driven link W₁ = −F₁ and the motor action is
-//! W₁·$₁. One 3×3 inverse per group ([`Inverse3`]) serves velocities, accelerations and
+//! W₁·$₁. One small system per group (reduced to 2×2 by a pivot, see `ChainSystem`) serves velocities, accelerations and
 //! reactions; its condition estimate gives `Singular` near a change point.
 
 use crate::constraints::{Drive, JointGeom, Level};
@@ -330,10 +330,25 @@ pub fn driven_rates(d: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
         return Ok(());
     }
+    let g = &joints[d.screw.joint];
+    let sigma = orientation(g, d.from);
+    let (qd, qdd) = (sigma * drive.1[d.input], sigma * drive.2[d.input]);
+    if d.from == 0 && !d.screw.slide {
+        // A crank on the ground: ω = σ q̇ about the fixed pin P, v = ω perp(r),
+        // a = α perp(r) − ω² r with r from P to the anchor.
+        let p = if g.a == 0 { g.da } else { g.db };
+        let b = &mut s[d.body];
+        let r = b.pos - p;
+        b.omega = qd;
+        b.vel = perp(r) * qd;
+        if upto == Level::Acceleration {
+            b.alpha = qdd;
+            b.acc = perp(r) * qdd - r * (qd * qd);
+        }
+        return Ok(());
+    }
     let o = d.screw.point(joints, s);
     let sc = d.screw.at(joints, s, o);
-    let sigma = orientation(&joints[d.screw.joint], d.from);
-    let (qd, qdd) = (sigma * drive.1[d.input], sigma * drive.2[d.input]);
     let t0 = Twist::of_link(s, d.from, o);
     set_velocity(&mut s[d.body], t0.plus(qd, sc), o);
     if upto == Level::Acceleration {
