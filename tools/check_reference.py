@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Validate tools/reference.py against the published worked examples.
 
-Runs the reference solver on /work/shared/reference/public_*.mechanism.json with
+Runs the reference solver on tests/data/public_*.mechanism.json (the two published worked
+examples, committed with their exact answers) with
 the loads and configurations of the matching truth files and compares every
 number of every configuration (kinematics, drivers, reactions, Zhukovski) with
 the given truth.  Tolerance: 1e-20 relative to the number itself (or, for
@@ -92,9 +93,9 @@ def compare_config(mine, truth, label):
 
 
 def main(argv):
-    refdir = argv[0] if argv else "/work/shared/reference"
+    refdir = argv[0] if argv else os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests", "data")
     names = sorted(f[:-len(".mechanism.json")] for f in os.listdir(refdir)
-                   if f.endswith(".mechanism.json"))
+                   if f.startswith("public_") and f.endswith(".mechanism.json"))
     if not names:
         print("no mechanisms in", refdir)
         return 1
