@@ -328,7 +328,8 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
 /// Place the links of a closed-form group. `sign` is the branch of the drawing (from
 /// [`branch_quantity`]); `s` holds the solved links' states. [`Solver::Newton`] has no
 /// closed form (it is solved by [`crate::group::group_solve`]) and gives `NoAssembly` here.
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive: Drive, sign: f64) -> Result<(), MechError> {
     match solver {
         Solver::DrivenRevolute { body, joint, input } => {

@@ -142,7 +142,8 @@ pub fn group_rates<const N: usize>(
 
 /// The velocity field of a group only (positions already in `s`, its velocities zero),
 /// with the group's factored system `sys` when the kinematics kept it.
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn group_velocity_field<const N: usize>(
     sys: Option<&GroupSystem<N>>,
     bodies: &[usize],
@@ -161,7 +162,8 @@ pub fn group_velocity_field<const N: usize>(
 }
 
 /// The velocity field of a redundant group only (see [`group_velocity_field`]).
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn group_velocity_field_ls<const N: usize, const M: usize>(
     sys: Option<&LsSystem<N, M>>,
     bodies: &[usize],

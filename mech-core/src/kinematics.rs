@@ -8,6 +8,12 @@
 //!
 //! The state of a link and its points is in [`crate::link_state`], the constraint
 //! equations in [`crate::constraints`]; both are re-exported here.
+//!
+//! Inlining: in an optimised build (no `debug_assertions`) these kernels are
+//! `#[inline(always)]`, so the topology constants of the generated call fold into them
+//! (what makes the generated code fast); in a debug build they are plain `#[inline]`
+//! functions the generated code calls, which keeps the build cost of a mechanism low
+//! (`docs/macro_cost.md`).
 
 pub use crate::constraints::{eval, Con, ConEval, ConKind, Drive, JointGeom, Level, Row};
 pub use crate::dyad::Solver;
@@ -20,7 +26,8 @@ use crate::MechError;
 /// Solve a closed-form group up to `upto`: place its links by `solver` on the drawing's
 /// branch `sign`, then its velocities and accelerations by the chain's joint screws.
 /// `Singular` near a change point, `NoAssembly` where the group does not close.
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 #[allow(clippy::too_many_arguments)]
 pub fn solve_chain(
     solver: Solver,
@@ -38,7 +45,8 @@ pub fn solve_chain(
 
 /// Solve a driven crank or slider up to `upto`: its pose from the input q, then its
 /// velocity and acceleration from q̇ and q̈.
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn solve_driven(solver: Solver, driven: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive: Drive, upto: Level) -> Result<(), MechError> {
     crate::dyad::position(solver, joints, s, drive, 1.0)?;
     driven_rates(driven, joints, s, drive, upto)

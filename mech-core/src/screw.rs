@@ -276,7 +276,8 @@ impl ChainSystem {
 /// Velocities (and accelerations when `upto` is [`Level::Acceleration`]) of a chain's
 /// links, positions placed and the solved links' rates known. Nothing at
 /// [`Level::Position`]. `Singular` near a change point (condition ≥ 1e6).
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn chain_rates(c: &Chain, joints: &[JointGeom], s: &mut [LinkState], scale: f64, upto: Level) -> Result<(), MechError> {
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
         return Ok(());
@@ -325,7 +326,8 @@ fn orientation(g: &JointGeom, from: usize) -> f64 {
 }
 
 /// Velocity (and acceleration) of a driven link: t = t₀ + σ q̇ $, â = â₀ + σ (q̈ $ + q̇ t₀ × $).
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn driven_rates(d: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive: Drive, upto: Level) -> Result<(), MechError> {
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
         return Ok(());
@@ -372,7 +374,8 @@ fn reaction(g: &JointGeom, s: &[LinkState], before: usize, w: Force, o: V2, mome
 /// and the reactions on the solved links `from` and `to` added to their wrenches in `f`
 /// (`f` holds every link's applied and inertia wrench, plus the reactions of the groups
 /// solved before, about its anchor). Called from the outermost group inward.
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn chain_reactions(
     c: &Chain,
     joints: &[JointGeom],
@@ -411,7 +414,8 @@ pub fn chain_reactions(
 /// the solved link added to `f`. W₁ = −F₁; the motor action is σ W₁·$, the rest of W₁ the
 /// joint's reaction (a prismatic driver's axial component is the motor force, not part of
 /// the reaction).
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn driven_reactions(d: &Driven, joints: &[JointGeom], s: &[LinkState], f: &mut [Wrench], out: &mut [Reaction], drivers: &mut [f64]) {
     let g = &joints[d.screw.joint];
     let o = d.screw.point(joints, s);
