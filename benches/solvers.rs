@@ -10,11 +10,11 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use mechanisms::*;
 
 macro_rules! bench_mechanism {
-    ($c:ident, $name:literal, $ty:ident, $loads:ident) => {{
+    ($c:ident, $name:literal, $ty:ident, $loads:ident, $force:literal, $torque:literal) => {{
         let m = $ty::new();
         let mut loads = $loads::default();
-        let _ = loads.set_by_name("tool", &[80.0, -60.0]);
-        let _ = loads.set_by_name("out", &[2.0]);
+        assert!(loads.set_by_name($force, &[80.0, -60.0]), "no force load {}", $force);
+        assert!(loads.set_by_name($torque, &[2.0]), "no torque load {}", $torque);
         let mut g = $c.benchmark_group($name);
         g.bench_function("pose", |b| b.iter(|| m.pose(black_box(0.7)).unwrap()));
         g.bench_function("kinematics", |b| b.iter(|| m.kinematics(black_box(0.7), black_box(12.0), black_box(-3.0)).unwrap()));
@@ -35,8 +35,8 @@ macro_rules! bench_mechanism {
 }
 
 fn solvers(c: &mut Criterion) {
-    bench_mechanism!(c, "four_bar", FourBar, FourBarLoads);
-    bench_mechanism!(c, "watt2", Watt2, Watt2Loads);
+    bench_mechanism!(c, "four_bar", FourBar, FourBarLoads, "tool", "resist");
+    bench_mechanism!(c, "watt2", Watt2, Watt2Loads, "output", "resist");
 }
 
 criterion_group!(benches, solvers);
