@@ -16,8 +16,9 @@
 //! friction and gets none.
 
 use crate::constraints::JointGeom;
+use crate::kinetostatics::{PrismaticReaction, RevoluteReaction, SlotReaction, Wrench};
 use crate::link_state::{cross, LinkState, V2};
-use crate::kinetostatics::Wrench;
+use crate::model::JointKind;
 use crate::MechError;
 
 /// The Coulomb friction of one joint.
@@ -59,6 +60,111 @@ pub fn sliding(extra: &mut [Wrench], g: &JointGeom, s: &[LinkState], fr: &JointF
     extra[g.a] -= Wrench::new(f.x, f.y, cross(ra, f));
 }
 
+/// The friction of every joint j (`friction[j]`, kind `kinds[j]`) into `extra`, from the
+/// reactions of the previous iterate `prev`, flattened as [`Flattener`] writes them for
+/// `dof` inputs: [`revolute`] for a revolute joint, [`sliding`] for a prismatic joint or a
+/// pin in a slot.
+#[inline]
+pub fn add_joint_friction(
+    extra: &mut [Wrench],
+    joints: &[JointGeom],
+    kinds: &[JointKind],
+    s: &[LinkState],
+    friction: &[JointFriction],
+    dof: usize,
+    prev: &[f64],
+) {
+    let mut at = dof;
+    for (j, &kind) in kinds.iter().enumerate() {
+        let force = V2::new(prev[at], prev[at + 1]);
+        match kind {
+            JointKind::Revolute => revolute(extra, &joints[j], s, &friction[j], force),
+            JointKind::Prismatic | JointKind::PinInSlot => sliding(extra, &joints[j], s, &friction[j], force),
+        }
+        at += flat_width(kind);
+    }
+}
+
+/// How many values a joint of kind `kind` has in the flattened layout of [`iterate`]:
+/// its force (fx, fy, N) and, for a prismatic joint, its moment (N·m).
+pub const fn flat_width(kind: JointKind) -> usize {
+    match kind {
+        JointKind::Prismatic => 3,
+        JointKind::Revolute | JointKind::PinInSlot => 2,
+    }
+}
+
+/// The length of the flattened layout of [`iterate`]: the `dof` motor actions first, then
+/// per joint of `kinds`, in declaration order, its [`flat_width`] values.
+pub const fn flat_len(dof: usize, kinds: &[JointKind]) -> usize {
+    let mut n = dof;
+    let mut j = 0;
+    while j < kinds.len() {
+        n += flat_width(kinds[j]);
+        j += 1;
+    }
+    n
+}
+
+/// A joint reaction's values in the flattened layout of [`iterate`].
+pub trait FlatReaction {
+    /// The joint kind's [`flat_width`].
+    const WIDTH: usize;
+    /// The force (fx, fy, N) and, for a prismatic joint, the moment (N·m), into
+    /// `out[..WIDTH]`.
+    fn write(&self, out: &mut [f64]);
+}
+
+impl FlatReaction for RevoluteReaction {
+    const WIDTH: usize = flat_width(JointKind::Revolute);
+    #[inline]
+    fn write(&self, out: &mut [f64]) {
+        out[0] = self.force.x;
+        out[1] = self.force.y;
+    }
+}
+
+impl FlatReaction for PrismaticReaction {
+    const WIDTH: usize = flat_width(JointKind::Prismatic);
+    #[inline]
+    fn write(&self, out: &mut [f64]) {
+        out[0] = self.force.x;
+        out[1] = self.force.y;
+        out[2] = self.moment;
+    }
+}
+
+impl FlatReaction for SlotReaction {
+    const WIDTH: usize = flat_width(JointKind::PinInSlot);
+    #[inline]
+    fn write(&self, out: &mut [f64]) {
+        out[0] = self.force.x;
+        out[1] = self.force.y;
+    }
+}
+
+/// Writes the motor actions, then each joint's reaction in declaration order, into the
+/// flattened layout of [`iterate`] (length [`flat_len`]).
+pub struct Flattener<'a> {
+    out: &'a mut [f64],
+    at: usize,
+}
+
+impl<'a> Flattener<'a> {
+    /// Start the layout in `out` with the motor actions `drivers`.
+    #[inline]
+    pub fn new(out: &'a mut [f64], drivers: &[f64]) -> Self {
+        out[..drivers.len()].copy_from_slice(drivers);
+        Flattener { out, at: drivers.len() }
+    }
+    /// Append the next joint's reaction.
+    #[inline]
+    pub fn push<R: FlatReaction>(&mut self, r: &R) {
+        r.write(&mut self.out[self.at..self.at + R::WIDTH]);
+        self.at += R::WIDTH;
+    }
+}
+
 /// Largest number of fixed-point iterations.
 pub const MAX_ITERATIONS: usize = 200;
 
@@ -94,4 +200,21 @@ pub fn iterate<const K: usize>(
     Err(MechError::SelfLocking(
         "the friction in the joints feeds back on itself with a gain of one or more: no finite motor action moves the mechanism in this configuration".into(),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_layout_is_read_where_it_is_written() {
+        let kinds = [JointKind::Revolute, JointKind::Prismatic, JointKind::PinInSlot];
+        assert_eq!(flat_len(2, &kinds), 2 + 2 + 3 + 2);
+        let mut out = [0.0; flat_len(2, &[JointKind::Revolute, JointKind::Prismatic, JointKind::PinInSlot])];
+        let mut w = Flattener::new(&mut out, &[-1.0, -2.0]);
+        w.push(&RevoluteReaction { force: V2::new(1.0, 2.0) });
+        w.push(&PrismaticReaction { force: V2::new(3.0, 4.0), moment: 5.0 });
+        w.push(&SlotReaction { force: V2::new(6.0, 7.0) });
+        assert_eq!(out, [-1.0, -2.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
+    }
 }

@@ -5,17 +5,21 @@
 //! (the checks of `docs/conventions.md#checks`, with [`grubler`] and [`pebble`]) → [`assur::plan`]
 //! (Assur groups, solve order) → emit (in `mech-macros`). The generated code is a
 //! sequence of calls into the kernels of [`kinematics`], [`assur`] (closed-form dyads),
-//! [`kinetostatics`] and [`zhukovski`], with the numbers of [`instance`]; every generated
-//! struct implements the [`traits`] that the algorithms written once here take:
+//! [`kinetostatics`], [`virtual_power`], [`zhukovski`], [`energy`], [`branches`] and
+//! [`friction`], with the numbers of [`instance`] checked against the declaration by
+//! [`params`]; every generated struct implements the [`traits`] that the algorithms
+//! written once here take:
 //! [`dynamics`] and [`ode`] (the direct problem), [`flywheel`] (Wittenbauer). The
 //! run-time [`generic`] solver reads the same DSL text and reuses the same model,
 //! validation and kernels, with one dense system instead of group by group.
 
 pub mod assur;
+pub mod branches;
 pub mod constraints;
 pub mod dsl;
 pub mod dyad;
 pub mod dynamics;
+pub mod energy;
 pub mod equivalent_mass;
 pub mod error;
 pub mod flywheel;
@@ -31,11 +35,13 @@ pub mod linalg;
 pub mod link_state;
 pub mod model;
 pub mod ode;
+pub mod params;
 pub mod pebble;
 pub mod resolve;
 pub mod screw;
 pub mod traits;
 pub mod validate;
+pub mod virtual_power;
 pub mod zhukovski;
 
 pub use error::MechError;

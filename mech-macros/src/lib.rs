@@ -44,9 +44,9 @@ pub fn mechanism(input: TokenStream) -> TokenStream {
 }
 
 /// The whole pipeline on text, for the snapshot tests: parse → resolve → validate →
-/// plan → emit, returning the generated code or the diagnostics' messages.
+/// plan → emit, returning the generated code part by part or the diagnostics' messages.
 #[cfg(test)]
-fn expand_str(text: &str) -> Result<proc_macro2::TokenStream, Vec<String>> {
+fn expand_parts(text: &str) -> Result<Vec<(&'static str, proc_macro2::TokenStream)>, Vec<String>> {
     let desc = mech_core::dsl::parse_str(text).map_err(|e| vec![e.to_string()])?;
     let model = resolve(&desc).map_err(|d| d.into_iter().map(|d| d.message).collect::<Vec<_>>())?;
     let issues = mech_core::validate::check(&model);
@@ -54,46 +54,135 @@ fn expand_str(text: &str) -> Result<proc_macro2::TokenStream, Vec<String>> {
         return Err(issues.into_iter().map(|i| i.message).collect());
     }
     let plan = mech_core::assur::plan(&model).map_err(|_| vec!["no plan".to_string()])?;
-    Ok(emit::mechanism(&desc, &model, &plan))
+    Ok(emit::parts(&desc, &model, &plan))
 }
 
 #[cfg(test)]
 mod snapshots {
-    //! Snapshots of the expanded code (prettyplease): a change in what the macro emits
-    //! shows up as a reviewable diff (`cargo insta review`, or INSTA_UPDATE=always).
+    //! Snapshots of the expanded code (prettyplease), one per emitted part (params, plan,
+    //! results, forces, traits): a change in what the macro emits shows up as a
+    //! reviewable diff of that part (`cargo insta review`, or INSTA_UPDATE=always).
 
-    fn pretty(text: &str) -> String {
-        let tokens = super::expand_str(text).unwrap_or_else(|e| panic!("{e:?}"));
-        prettyplease::unparse(&syn::parse2(tokens).expect("the generated code parses as a file"))
+    /// Each part of the expansion of `text`, pretty-printed.
+    fn pretty_parts(text: &str) -> Vec<(&'static str, String)> {
+        let parts = super::expand_parts(text).unwrap_or_else(|e| panic!("{e:?}"));
+        let mut all = proc_macro2::TokenStream::new();
+        let out = parts
+            .into_iter()
+            .map(|(name, tokens)| {
+                all.extend(tokens.clone());
+                let file = syn::parse2(tokens).unwrap_or_else(|e| panic!("the {name} part parses as items: {e}"));
+                (name, prettyplease::unparse(&file))
+            })
+            .collect();
+        syn::parse2::<syn::File>(all).expect("the whole expansion parses as a file");
+        out
+    }
+
+    /// A snapshot of every part, named `<mechanism>_<part>`.
+    fn snapshot_parts(mechanism: &str, text: &str) {
+        for (part, code) in pretty_parts(text) {
+            insta::assert_snapshot!(format!("{mechanism}_{part}"), code);
+        }
+    }
+
+    /// A four-bar with a link of each kind: the crank declared with `mass` (every term),
+    /// the coupler without (massless: no term, `from_params` checks it stays so), the
+    /// rocker with `inertia` alone (the inertia moment only); gravity and two loads.
+    const FOUR_BAR: &str = r#"
+        /// Crank-rocker four-bar.
+        pub struct FourBar {
+            gravity: (0.0, -9.81),
+            ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
+            link crank { points { O2, A: (0.0, 0.1) }, mass: 0.5, inertia: 1e-3, cg: (0.0, 0.05) },
+            link coupler { points { A, B: (0.25, 0.25), P: (0.1, 0.2) } },
+            link rocker { points { O4, B }, inertia: 3e-3 },
+            joints { O2: revolute(ground, crank), A: revolute(crank, coupler), B: revolute(coupler, rocker), O4: revolute(ground, rocker) },
+            input: O2,
+            loads { tool: force on coupler at P, resist: torque on rocker },
+        }
+    "#;
+
+    /// An offset slider-crank (a prismatic joint) with gravity; the piston declared
+    /// `mass: 0.0`, so its mass may be given at run time.
+    const SLIDER_CRANK: &str = r#"
+        /// Offset slider-crank.
+        pub struct SliderCrank {
+            gravity: (0.0, -9.81),
+            ground { O2: (0.0, 0.0) },
+            link crank { points { O2, A: (0.038302, 0.032139) }, mass: 1.2, inertia: 2.1e-3, cg: (0.0089, 0.0127) },
+            link rod { points { A, B: (0.237285, 0.012) }, mass: 2.4, inertia: 9.5e-3, cg: (0.1030, 0.0256) },
+            link piston { points { B }, mass: 0.0, cg: (0.237285, 0.012) },
+            joints {
+                O2: revolute(ground, crank),
+                A: revolute(crank, rod),
+                B: revolute(rod, piston),
+                guide: prismatic(ground, piston) at B along (1.0, 0.0),
+            },
+            input: O2,
+            loads { gas: force on piston at B, load: torque on crank },
+        }
+    "#;
+
+    #[test]
+    fn four_bar_parts() {
+        snapshot_parts("four_bar", FOUR_BAR);
     }
 
     #[test]
-    fn slider_crank_expansion() {
-        insta::assert_snapshot!(pretty(
-            r#"
-            /// Offset slider-crank.
-            pub struct SliderCrank {
-                gravity: (0.0, -9.81),
-                ground { O2: (0.0, 0.0) },
-                link crank { points { O2, A: (0.038302, 0.032139) }, mass: 1.2, inertia: 2.1e-3, cg: (0.0089, 0.0127) },
-                link rod { points { A, B: (0.237285, 0.012) }, mass: 2.4, inertia: 9.5e-3, cg: (0.1030, 0.0256) },
-                link piston { points { B }, mass: 1.7, cg: (0.237285, 0.012) },
-                joints {
-                    O2: revolute(ground, crank),
-                    A: revolute(crank, rod),
-                    B: revolute(rod, piston),
-                    guide: prismatic(ground, piston) at B along (1.0, 0.0),
-                },
-                input: O2,
-                loads { gas: force on piston at B, load: torque on crank },
-            }
-            "#
-        ));
+    fn slider_crank_parts() {
+        snapshot_parts("slider_crank", SLIDER_CRANK);
+    }
+
+    /// The whole expansion with no whitespace, to look for calls whatever the line breaks.
+    fn flat(parts: &[(&'static str, String)]) -> String {
+        parts.iter().flat_map(|(_, c)| c.chars()).filter(|c| !c.is_whitespace()).collect()
+    }
+
+    #[test]
+    fn declared_terms_on_every_route() {
+        let code = flat(&pretty_parts(SLIDER_CRANK));
+        // `mass: 0.0` on the piston (link 3): gravity, inertia, energies and Zhukovski.
+        for term in [
+            "add_gravity(&mutf[3usize]",
+            "add_inertia(&mutf[3usize]",
+            "z.inertia(&self.links[3usize]",
+            "z.gravity(&self.links[3usize]",
+            "energy::kinetic(&self.links[3usize]",
+            "energy::potential(&self.links[3usize]",
+        ] {
+            assert!(code.contains(term), "{term}");
+        }
+        assert!(!code.contains("LinkTerms::"), "every link declared with mass: nothing to check in from_params");
+        let code = flat(&pretty_parts(FOUR_BAR));
+        // The coupler (link 2) has no term; the rocker (link 3) its inertia only.
+        for absent in [
+            "add_inertia(&mutf[2usize]",
+            "add_gravity(&mutf[2usize]",
+            "z.inertia(&self.links[2usize]",
+            "z.gravity(&self.links[2usize]",
+            "energy::kinetic(&self.links[2usize]",
+            "energy::potential(&self.links[2usize]",
+            "add_gravity(&mutf[3usize]",
+            "z.gravity(&self.links[3usize]",
+            "energy::potential(&self.links[3usize]",
+        ] {
+            assert!(!code.contains(absent), "{absent}");
+        }
+        for present in [
+            "LinkTerms::Massless.check(\"coupler\",&p.links.coupler)?",
+            "LinkTerms::InertiaOnly.check(\"rocker\",&p.links.rocker)?",
+            "add_inertia(&mutf[3usize]",
+            "z.inertia(&self.links[3usize]",
+            "energy::kinetic(&self.links[3usize]",
+        ] {
+            assert!(code.contains(present), "{present}");
+        }
     }
 
     #[test]
     fn massless_four_bar_without_gravity_has_no_inertia_or_gravity_terms() {
-        let code = pretty(
+        let parts = pretty_parts(
             r#"
             pub struct Bare {
                 ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
@@ -106,9 +195,16 @@ mod snapshots {
             }
             "#,
         );
-        assert!(!code.contains("add_inertia"), "massless links must not get inertia terms");
-        assert!(!code.contains("add_gravity"), "no gravity declared: no gravity terms");
+        let code = flat(&parts);
+        for absent in ["add_inertia", "z.inertia", "energy::kinetic"] {
+            assert!(!code.contains(absent), "massless links must not get inertia terms: {absent}");
+        }
+        for absent in ["add_gravity", "z.gravity", "energy::potential", "pubgravity"] {
+            assert!(!code.contains(absent), "no gravity declared: no gravity terms: {absent}");
+        }
         assert!(code.contains("add_torque"));
-        insta::assert_snapshot!(code);
+        for (part, code) in parts.into_iter().filter(|(part, _)| matches!(*part, "forces" | "traits")) {
+            insta::assert_snapshot!(format!("bare_four_bar_{part}"), code);
+        }
     }
 }

@@ -1,0 +1,71 @@
+//! The motor actions by the principle of virtual power (seed, section 2.f), computing no
+//! reaction: for each input k, the velocity field that moves input k alone at unit rate,
+//! and Q_k = −Σ (F·v + M·ω) over the applied, gravity and inertia wrenches (N·m for a
+//! revolute input, N for a prismatic one).
+
+use crate::link_state::LinkState;
+use crate::kinetostatics::{virtual_power, Wrench};
+use crate::MechError;
+
+/// The G motor actions Q_k = −Σ (F·v_k + M·ω_k) (N·m or N) of the wrenches `f` (N, N·m
+/// about each link's anchor) in the virtual velocity fields v_k of the mechanism at the
+/// states `s`, whose input rates are `qd`.
+///
+/// With one input (G = 1) moving at q̇ ≠ 0 the motion's own velocities are q̇ times the
+/// virtual field, so Q = −Σ (F·v + M·ω) / q̇ with no velocity solve. Otherwise
+/// `field(e_k)` gives the velocity field with input rates e_k (1 for input k, 0 for the
+/// others) at the same positions, one call per input.
+#[inline(always)]
+pub fn driver_actions<const G: usize, V: AsRef<[LinkState]>>(
+    f: &[Wrench],
+    s: &[LinkState],
+    qd: &[f64; G],
+    mut field: impl FnMut(&[f64; G]) -> Result<V, MechError>,
+) -> Result<[f64; G], MechError> {
+    let mut out = [0.0; G];
+    if G == 1 && qd[0] != 0.0 {
+        out[0] = -virtual_power(f, s) / qd[0];
+        return Ok(out);
+    }
+    for (k, o) in out.iter_mut().enumerate() {
+        let mut unit = [0.0; G];
+        unit[k] = 1.0;
+        let v = field(&unit)?;
+        *o = -virtual_power(f, v.as_ref());
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::link_state::V2;
+
+    fn moving(omega: f64) -> LinkState {
+        let mut s = LinkState::at(V2::zeros());
+        s.omega = omega;
+        s.vel = V2::new(2.0 * omega, 0.0);
+        s
+    }
+
+    #[test]
+    fn one_moving_input_uses_the_motion_itself() {
+        let f = [Wrench::new(0.0, 0.0, 0.0), Wrench::new(3.0, 1.0, -2.0)];
+        let s = [LinkState::default(), moving(5.0)];
+        let q = driver_actions(&f, &s, &[5.0], |_| -> Result<[LinkState; 2], MechError> { panic!("no field needed") });
+        assert_eq!(q, Ok([-(3.0 * 2.0 - 2.0)]));
+    }
+
+    #[test]
+    fn at_rest_one_field_per_input() {
+        let f = [Wrench::new(0.0, 0.0, 0.0), Wrench::new(3.0, 1.0, -2.0)];
+        let s = [LinkState::default(), moving(0.0)];
+        let mut calls = 0;
+        let q = driver_actions(&f, &s, &[0.0, 0.0], |e| {
+            calls += 1;
+            Ok([LinkState::default(), moving(e[0] + 2.0 * e[1])])
+        });
+        assert_eq!(q, Ok([-4.0, -8.0]));
+        assert_eq!(calls, 2);
+    }
+}

@@ -1,0 +1,336 @@
+//! The forces: `<Name>Loads`, the wrenches on every link (`__wrenches`: loads, gravity,
+//! d'Alembert's inertia), `<Name>Forces`, and the routes to the motor actions:
+//! `kinetostatics` (d'Alembert, every reaction), `kinetostatics_with_friction` and
+//! `driver_action` (virtual power, no reaction).
+
+use super::{id, plan, Ctx};
+use mech_core::assur::{Group, Kernel};
+use mech_core::model::{JointKind, Load};
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+/// The loads and forces types and the force methods.
+pub(crate) fn emit(cx: &Ctx) -> TokenStream {
+    let main = &cx.names.main;
+    let (loads, forces, wrenches) = (loads_type(cx), forces_type(cx), wrenches_fn(cx));
+    let kinetostatics = if cx.redundant() { no_kinetostatics(cx) } else { kinetostatics_fns(cx) };
+    let driver_action = driver_action_fn(cx);
+    quote! {
+        #loads
+        #forces
+        impl #main {
+            #wrenches
+            #kinetostatics
+            #driver_action
+        }
+    }
+}
+
+/// `Loads` (one field per declared load) and `set_by_name`.
+fn loads_type(cx: &Ctx) -> TokenStream {
+    let Ctx { p, v2, model, .. } = cx;
+    let loads = &cx.names.loads;
+    let fields = model.loads.iter().map(|l| {
+        let lid = id(l.name());
+        match l {
+            Load::Force { link, point, .. } => {
+                let doc = format!("Force (N, global vector) on `{}` at `{}`.", model.links[*link].name, model.points[*point].name);
+                quote!(#[doc = #doc] pub #lid: #v2,)
+            }
+            Load::Torque { link, .. } => {
+                let doc = format!("Torque (N·m, CCW positive) on `{}`.", model.links[*link].name);
+                quote!(#[doc = #doc] pub #lid: f64,)
+            }
+        }
+    });
+    let by_name = model.loads.iter().map(|l| {
+        let (lid, n) = (id(l.name()), l.name());
+        match l {
+            Load::Force { .. } => quote!(#n if value.len() == 2 => { self.#lid = #p::Vector2::new(value[0], value[1]); true }),
+            Load::Torque { .. } => quote!(#n if value.len() == 1 => { self.#lid = value[0]; true }),
+        }
+    });
+    quote! {
+        /// The declared loads; `Default` is all zero.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        pub struct #loads { #(#fields)* }
+        impl #loads {
+            /// Set the load named `name` from its components (2 for a force, 1 for a
+            /// torque); false when there is no such load or the length is wrong.
+            pub fn set_by_name(&mut self, name: &str, value: &[f64]) -> bool {
+                match name { #(#by_name,)* _ => { let _ = value; false } }
+            }
+        }
+    }
+}
+
+/// The components of every load, for `check_finite`.
+pub(crate) fn load_values(cx: &Ctx) -> TokenStream {
+    let values = cx.model.loads.iter().map(|l| {
+        let lid = id(l.name());
+        match l {
+            Load::Force { .. } => quote!(loads.#lid.x, loads.#lid.y,),
+            Load::Torque { .. } => quote!(loads.#lid,),
+        }
+    });
+    quote!(#(#values)*)
+}
+
+/// `Forces` with one reaction per joint and `reaction(name)`; an empty `Forces` for a
+/// redundant mechanism (its reactions are indeterminate).
+fn forces_type(cx: &Ctx) -> TokenStream {
+    let Ctx { p, v2, q_ty, model, joint_ids, .. } = cx;
+    let (forces, forces_joints) = (&cx.names.forces, &cx.names.forces_joints);
+    if cx.redundant() {
+        return quote! {
+            /// Not available: the mechanism has redundant constraints, so its reactions are
+            /// statically indeterminate (`#[allow(redundant)]`); use `driver_action`.
+            #[derive(Clone, Copy, Debug)]
+            pub struct #forces { _private: () }
+        };
+    }
+    let fields = model.joints.iter().zip(joint_ids).map(|(jt, jid)| {
+        let (ty, what) = match jt.kind {
+            JointKind::Revolute => (quote!(#p::kinetostatics::RevoluteReaction), "force by"),
+            JointKind::Prismatic => (quote!(#p::kinetostatics::PrismaticReaction), "force (normal to the axis) and moment by"),
+            JointKind::PinInSlot => (quote!(#p::kinetostatics::SlotReaction), "force (normal to the slot) by"),
+        };
+        let doc = format!("Joint `{}`: {} `{}` on `{}`.", jt.name, what, model.links[jt.a].name, model.links[jt.b].name);
+        quote!(#[doc = #doc] pub #jid: #ty,)
+    });
+    let by_name = model.joints.iter().zip(joint_ids).map(|(jt, jid)| {
+        let n = &jt.name;
+        match jt.kind {
+            JointKind::Prismatic => quote!(#n => Some((self.joints.#jid.force, Some(self.joints.#jid.moment))),),
+            _ => quote!(#n => Some((self.joints.#jid.force, None)),),
+        }
+    });
+    quote! {
+        /// Reactions at every joint (`docs/conventions.md#reactions`).
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        pub struct #forces_joints { #(#fields)* }
+        /// Result of `kinetostatics`: the motor actions and every joint reaction.
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        pub struct #forces {
+            /// The motor action of each input: torque by a on b (N·m) for a revolute
+            /// input, force along the axis on b (N) for a prismatic one.
+            pub driver: #q_ty,
+            /// The reaction at every joint.
+            pub joints: #forces_joints,
+        }
+        impl #forces {
+            /// The reaction at the joint named `name`: force by a on b (N) and, for a
+            /// prismatic joint, the moment (N·m).
+            pub fn reaction(&self, name: &str) -> Option<(#v2, Option<f64>)> {
+                match name { #(#by_name)* _ => None }
+            }
+        }
+    }
+}
+
+/// `__wrenches`: gravity on the links declared with `mass`, the loads, and with `inertia`
+/// d'Alembert's inertia wrench of the links with inertia terms.
+fn wrenches_fn(cx: &Ctx) -> TokenStream {
+    let Ctx { p, n_links, .. } = cx;
+    let loads = &cx.names.loads;
+    let values = load_values(cx);
+    let weighed = cx.weighed();
+    let inertial = cx.inertial();
+    let load_terms = cx.model.loads.iter().enumerate().map(|(k, l)| {
+        let (lid, link) = (id(l.name()), l.link());
+        match l {
+            Load::Force { .. } => quote!(#p::kinetostatics::add_force(&mut f[#link], &s[#link], self.loads[#k], loads.#lid);),
+            Load::Torque { .. } => quote!(#p::kinetostatics::add_torque(&mut f[#link], loads.#lid);),
+        }
+    });
+    quote! {
+        /// Applied (loads, gravity) and, when `inertia`, d'Alembert inertia wrenches per link.
+        #[inline(always)]
+        fn __wrenches(
+            &self,
+            s: &[#p::kinematics::LinkState; #n_links],
+            loads: &#loads,
+            inertia: bool,
+        ) -> Result<[#p::kinetostatics::Wrench; #n_links], #p::MechError> {
+            #p::error::check_finite("loads", &[#values])?;
+            let mut f = [#p::kinetostatics::Wrench::zeros(); #n_links];
+            #( #p::kinetostatics::add_gravity(&mut f[#weighed], &s[#weighed], &self.links[#weighed], self.gravity); )*
+            #(#load_terms)*
+            if inertia {
+                #( #p::kinetostatics::add_inertia(&mut f[#inertial], &s[#inertial], &self.links[#inertial]); )*
+            }
+            Ok(f)
+        }
+    }
+}
+
+/// The reaction call of group `gi`: its joints' reactions into `r`, its inputs' motor
+/// actions into `d`, its reactions passed on to the inner links' wrenches `f`.
+fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
+    let p = &cx.p;
+    let (bn, cn) = plan::system_consts(gi);
+    let n = 3 * g.bodies.len();
+    let idx = syn::Index::from(gi);
+    match g.kernel {
+        Kernel::Driven(_) => {
+            let kn = format_ident!("__G{}_DRIVEN", gi);
+            quote!(#p::screw::driven_reactions(&Self::#kn, &self.joints, s, &mut f, &mut r, &mut d);)
+        }
+        Kernel::Chain(_) => {
+            let kn = format_ident!("__G{}_CHAIN", gi);
+            quote!(#p::screw::chain_reactions(&Self::#kn, &self.joints, s, &mut f, self.scale, &mut r)?;)
+        }
+        Kernel::System => quote! {
+            let lam = #p::kinetostatics::group_reactions::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, s, &mut f, self.scale)?;
+            #p::kinetostatics::lambda_reactions(&Self::#cn, &self.joints, s, lam.as_slice(), &mut r, &mut d);
+        },
+    }
+}
+
+/// The `kinetostatics` of a redundant mechanism: a bound no type meets, so that calling it
+/// fails to compile with the explanation.
+fn no_kinetostatics(cx: &Ctx) -> TokenStream {
+    let p = &cx.p;
+    let (loads, forces) = (&cx.names.loads, &cx.names.forces);
+    quote! {
+        /// Not available: with redundant constraints the reactions are statically
+        /// indeterminate. Calling this fails to compile with that explanation; use
+        /// `driver_action`.
+        pub fn kinetostatics<M: #p::traits::DeterminateReactions>(&self, m: &M, loads: &#loads) -> Result<#forces, #p::MechError> {
+            let _ = loads;
+            match m.never() {}
+        }
+    }
+}
+
+/// `kinetostatics`, `kinetostatics_with_friction` and their helpers.
+fn kinetostatics_fns(cx: &Ctx) -> TokenStream {
+    let Ctx { p, n_joints, n_links, .. } = cx;
+    let n = &cx.names;
+    let (motion, loads, forces) = (&n.motion, &n.loads, &n.forces);
+    let (inner, flat) = (inner_kinetostatics_fn(cx), flat_fn(cx));
+    quote! {
+        /// Kinetostatics by d'Alembert (`docs/theory.md` §4): the motor action of every input
+        /// and the reaction at every joint, solved group by group from the outermost
+        /// Assur group inward. Reactions are forces BY the joint's first link ON its
+        /// second (N), prismatic joints add a moment (N·m, CCW on the second link).
+        pub fn kinetostatics(&self, m: &#motion, loads: &#loads) -> Result<#forces, #p::MechError> {
+            self.__kinetostatics(m, loads, None)
+        }
+
+        /// Kinetostatics with Coulomb friction in the joints (`friction[j]` for joint j
+        /// in declaration order, see `mech::friction`): d'Alembert iterated to a fixed
+        /// point, friction from the reactions of the previous iterate;
+        /// `MechError::SelfLocking` when no finite motor action moves the mechanism.
+        pub fn kinetostatics_with_friction(
+            &self,
+            m: &#motion,
+            loads: &#loads,
+            friction: &[#p::friction::JointFriction; #n_joints],
+        ) -> Result<#forces, #p::MechError> {
+            let s = &m.states;
+            let first = Self::__flat(&self.__kinetostatics(m, loads, None)?);
+            let mut last = None;
+            #p::friction::iterate(first, |prev| {
+                let mut extra = [#p::kinetostatics::Wrench::zeros(); #n_links];
+                #p::friction::add_joint_friction(&mut extra, &self.joints, &Self::__JOINT_KINDS, s, friction, Self::DOF, prev);
+                let f = self.__kinetostatics(m, loads, Some(&extra))?;
+                let flat = Self::__flat(&f);
+                last = Some(f);
+                Ok(flat)
+            })?;
+            match last {
+                Some(f) => Ok(f),
+                None => self.__kinetostatics(m, loads, None),
+            }
+        }
+
+        #inner
+        #flat
+    }
+}
+
+/// `__kinetostatics`: the wrenches (plus the friction's `extra`), then every group's
+/// reaction call from the outermost group inward.
+fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
+    let Ctx { p, n_joints, n_links, dof, joint_ids, model, .. } = cx;
+    let n = &cx.names;
+    let (motion, loads, forces, forces_joints) = (&n.motion, &n.loads, &n.forces, &n.forces_joints);
+    let calls = cx.plan.iter().enumerate().rev().map(|(gi, g)| reaction_call(cx, gi, g));
+    let values = model.joints.iter().enumerate().map(|(j, jt)| {
+        let jid = &joint_ids[j];
+        match jt.kind {
+            JointKind::Revolute => quote!(#jid: #p::kinetostatics::RevoluteReaction { force: r[#j].force },),
+            JointKind::Prismatic => quote!(#jid: #p::kinetostatics::PrismaticReaction { force: r[#j].force, moment: r[#j].moment },),
+            JointKind::PinInSlot => quote!(#jid: #p::kinetostatics::SlotReaction { force: r[#j].force },),
+        }
+    });
+    let driver = if cx.one_dof() { quote!(d[0]) } else { quote!(d) };
+    quote! {
+        fn __kinetostatics(
+            &self,
+            m: &#motion,
+            loads: &#loads,
+            extra: Option<&[#p::kinetostatics::Wrench; #n_links]>,
+        ) -> Result<#forces, #p::MechError> {
+            let s = &m.states;
+            let mut f = self.__wrenches(s, loads, true)?;
+            if let Some(extra) = extra {
+                for (fi, ei) in f.iter_mut().zip(extra) {
+                    *fi += ei;
+                }
+            }
+            let mut r = [#p::kinetostatics::Reaction::default(); #n_joints];
+            let mut d = [0.0; #dof];
+            #(#calls)*
+            Ok(#forces { driver: #driver, joints: #forces_joints { #(#values)* } })
+        }
+    }
+}
+
+/// The joints' kinds and `__flat`: the forces in the flattened layout the friction's
+/// fixed point iterates on (`mech::friction::Flattener`).
+fn flat_fn(cx: &Ctx) -> TokenStream {
+    let Ctx { p, n_joints, joint_ids, model, .. } = cx;
+    let forces = &cx.names.forces;
+    let kinds = model.joints.iter().map(|jt| match jt.kind {
+        JointKind::Revolute => quote!(#p::model::JointKind::Revolute),
+        JointKind::Prismatic => quote!(#p::model::JointKind::Prismatic),
+        JointKind::PinInSlot => quote!(#p::model::JointKind::PinInSlot),
+    });
+    let drivers = if cx.one_dof() { quote!(&[f.driver]) } else { quote!(&f.driver) };
+    quote! {
+        /// The kind of every joint, in declaration order.
+        const __JOINT_KINDS: [#p::model::JointKind; #n_joints] = [#(#kinds),*];
+        /// Motor actions, then every joint's force (and prismatic moment).
+        const __FLAT_LEN: usize = #p::friction::flat_len(Self::DOF, &Self::__JOINT_KINDS);
+
+        /// Motor actions, then every joint's force (and prismatic moment), as one array.
+        fn __flat(f: &#forces) -> [f64; Self::__FLAT_LEN] {
+            let mut out = [0.0; Self::__FLAT_LEN];
+            let mut w = #p::friction::Flattener::new(&mut out, #drivers);
+            #( w.push(&f.joints.#joint_ids); )*
+            out
+        }
+    }
+}
+
+/// `driver_action`: the motor actions by virtual power, computing no reaction.
+fn driver_action_fn(cx: &Ctx) -> TokenStream {
+    let Ctx { p, q_ty, .. } = cx;
+    let (motion, loads) = (&cx.names.motion, &cx.names.loads);
+    let out = if cx.one_dof() { quote!(out[0]) } else { quote!(out) };
+    quote! {
+        /// The motor actions by the principle of virtual power, computing no reaction:
+        /// for each input, the velocity field that moves it alone at unit rate, and
+        /// Q = −Σ (F·v + M·ω) over loads, gravity and inertia forces. With one input
+        /// moving (q̇ ≠ 0) that field is the motion's own velocities divided by q̇.
+        pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
+            let f = self.__wrenches(&m.states, loads, true)?;
+            let out = #p::virtual_power::driver_actions(&f, &m.states, &m.qd, |qd| self.__velocity_field(m, qd))?;
+            Ok(#out)
+        }
+    }
+}

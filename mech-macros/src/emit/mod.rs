@@ -1,0 +1,157 @@
+//! Emission: the generated struct and its solvers, as calls into mech-core's kernels.
+//!
+//! A small pipeline. [`Ctx`] gathers once the names, ids, counts and the declared terms
+//! of one mechanism; each part emits the items it is named after, and [`mechanism`]
+//! concatenates them:
+//! - [`params`]: the struct and its constants, `Params`, `new`, `from_params`, `params`;
+//! - [`plan`]: the Assur groups as constants, `__solve`, `__solve_on`, `__velocity_field`;
+//! - [`results`]: `Pose`, `Motion`, their by-name accessors, `pose`, `kinematics`;
+//! - [`forces`]: `Loads`, `__wrenches`, `Forces`, `kinetostatics`,
+//!   `kinetostatics_with_friction`, `driver_action`;
+//! - [`traits`]: the `Machine` and `OneDof` impls and the one-DOF methods `reduced`,
+//!   `reduced_moment`, `acceleration`.
+//!
+//! [`outline()`] is what is emitted instead when the mechanism has errors.
+
+mod forces;
+mod names;
+mod outline;
+mod params;
+mod plan;
+mod results;
+mod traits;
+
+pub use outline::outline;
+
+use mech_core::assur::Group;
+use mech_core::model::{Description, JointKind, Model};
+use mech_core::params::LinkTerms;
+use names::Names;
+use proc_macro2::{Span, TokenStream};
+use quote::quote;
+use syn::Ident;
+
+/// An identifier of the user's (a link, point, joint or load name).
+pub(crate) fn id(s: &str) -> Ident {
+    Ident::new(s, Span::call_site())
+}
+
+/// An `f64` literal.
+pub(crate) fn f64s(v: f64) -> TokenStream {
+    let l = proc_macro2::Literal::f64_suffixed(v);
+    quote!(#l)
+}
+
+/// A `Vector2<f64>` literal.
+pub(crate) fn vec2(v: [f64; 2]) -> TokenStream {
+    let (x, y) = (f64s(v[0]), f64s(v[1]));
+    quote!(::mech::__private::Vector2::new(#x, #y))
+}
+
+/// What every part needs to know about the mechanism being emitted.
+pub(crate) struct Ctx<'a> {
+    /// The resolved mechanism.
+    pub model: &'a Model,
+    /// Its Assur groups in solve order.
+    pub plan: &'a [Group],
+    /// The doc comment lines written on the struct.
+    pub docs: &'a [String],
+    /// The generated type names.
+    pub names: Names,
+    /// `::mech::__private`, the path of every kernel.
+    pub p: TokenStream,
+    /// `Vector2<f64>`.
+    pub v2: TokenStream,
+    /// One identifier per link (ground first), point and joint.
+    pub link_ids: Vec<Ident>,
+    pub point_ids: Vec<Ident>,
+    pub joint_ids: Vec<Ident>,
+    /// N (ground included), joints, points, loads, G and groups.
+    pub n_links: usize,
+    pub n_joints: usize,
+    pub n_points: usize,
+    pub n_loads: usize,
+    pub dof: usize,
+    pub n_groups: usize,
+    /// The type of an input value: `f64` for one DOF, `[f64; G]` else.
+    pub q_ty: TokenStream,
+    /// The inertia and gravity terms of each link, from its declaration (ground first).
+    pub terms: Vec<LinkTerms>,
+}
+
+impl<'a> Ctx<'a> {
+    fn new(desc: &'a Description<Span>, model: &'a Model, plan: &'a [Group]) -> Self {
+        let p = quote!(::mech::__private);
+        let dof = model.inputs.len();
+        Ctx {
+            model,
+            plan,
+            docs: &desc.docs,
+            names: Names::new(desc),
+            v2: quote!(#p::Vector2<f64>),
+            p,
+            link_ids: model.links.iter().map(|l| id(&l.name)).collect(),
+            point_ids: model.points.iter().map(|pt| id(&pt.name)).collect(),
+            joint_ids: model.joints.iter().map(|j| id(&j.name)).collect(),
+            n_links: model.links.len(),
+            n_joints: model.joints.len(),
+            n_points: model.points.len(),
+            n_loads: model.loads.len(),
+            dof,
+            n_groups: plan.len(),
+            q_ty: if dof == 1 { quote!(f64) } else { quote!([f64; #dof]) },
+            terms: model.links.iter().map(LinkTerms::of).collect(),
+        }
+    }
+
+    /// One input: `Q` is `f64`, the one-DOF methods and `OneDof` are emitted.
+    pub fn one_dof(&self) -> bool {
+        self.dof == 1
+    }
+
+    /// `#[allow(redundant)]`: no reactions.
+    pub fn redundant(&self) -> bool {
+        self.model.allow_redundant
+    }
+
+    /// The moving links' identifiers.
+    pub fn moving_ids(&self) -> &[Ident] {
+        &self.link_ids[1..]
+    }
+
+    /// The prismatic and slot joints (those with an axis).
+    pub fn sliding(&self) -> Vec<usize> {
+        (0..self.n_joints).filter(|&j| self.model.joints[j].kind != JointKind::Revolute).collect()
+    }
+
+    /// The links with inertia terms (−m·a_G, −I_G·α, T, their share of I*).
+    pub fn inertial(&self) -> Vec<usize> {
+        (1..self.n_links).filter(|&l| self.terms[l].inertia()).collect()
+    }
+
+    /// The links with gravity terms (m·g, V, their share of M*): none without gravity.
+    pub fn weighed(&self) -> Vec<usize> {
+        if self.model.gravity.is_none() {
+            return vec![];
+        }
+        (1..self.n_links).filter(|&l| self.terms[l].gravity()).collect()
+    }
+}
+
+/// The generated code of a valid mechanism, part by part, each with its name (the
+/// snapshot tests show them one by one).
+pub(crate) fn parts(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Vec<(&'static str, TokenStream)> {
+    let cx = Ctx::new(desc, model, plan);
+    vec![
+        ("params", params::emit(&cx)),
+        ("plan", plan::emit(&cx)),
+        ("results", results::emit(&cx)),
+        ("forces", forces::emit(&cx)),
+        ("traits", traits::emit(&cx)),
+    ]
+}
+
+/// The whole generated code of a valid mechanism.
+pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> TokenStream {
+    parts(desc, model, plan).into_iter().map(|(_, part)| part).collect()
+}

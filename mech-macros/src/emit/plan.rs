@@ -1,0 +1,293 @@
+//! The plan: each Assur group's position solver and kernel data as constants, and the
+//! solvers that call the group kernels in plan order (`__solve`, `__solve_on`,
+//! `__velocity_field`).
+//!
+//! The call of each group kernel is emitted by one small function ([`solve_call`],
+//! [`velocity_call`], and [`super::forces::reaction_call`] for the reactions), so that a
+//! change of the mech-core kernels changes those functions only.
+
+use super::Ctx;
+use mech_core::assur::{Group, Kernel};
+use mech_core::dyad::Solver;
+use mech_core::kinematics::{Con, ConKind};
+use mech_core::screw::{Chain, Driven, JointScrew};
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+use syn::Ident;
+
+/// The group constants and the solvers.
+pub(crate) fn emit(cx: &Ctx) -> TokenStream {
+    let main = &cx.names.main;
+    let consts = cx.plan.iter().enumerate().map(|(gi, g)| group_consts(cx, gi, g));
+    let (solve, solve_on, velocity_field) = (solve(cx), solve_on(cx), velocity_field(cx));
+    quote! {
+        impl #main {
+            #(#consts)*
+            #solve
+            #solve_on
+            #velocity_field
+        }
+    }
+}
+
+/// The constant of group `gi` its kernel reads: the driven joint's screw, the chain of
+/// joint screws of a closed form, or the bodies and constraints of a Newton group.
+fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
+    let p = &cx.p;
+    let doc = format!(
+        "Assur group {gi}: links {} ({:?}).",
+        g.bodies.iter().map(|&b| cx.model.links[b].name.as_str()).collect::<Vec<_>>().join(", "),
+        g.solver
+    );
+    let kernel = match &g.kernel {
+        Kernel::Driven(d) => {
+            let (kn, t) = (format_ident!("__G{}_DRIVEN", gi), driven_tokens(d));
+            quote!(const #kn: #p::screw::Driven = #t;)
+        }
+        Kernel::Chain(c) => {
+            let (kn, t) = (format_ident!("__G{}_CHAIN", gi), chain_tokens(c));
+            quote!(const #kn: #p::screw::Chain = #t;)
+        }
+        Kernel::System => {
+            let (bn, cn) = system_consts(gi);
+            let (nb, nc, bodies) = (g.bodies.len(), g.cons.len(), &g.bodies);
+            let cons = g.cons.iter().map(con_tokens);
+            quote!(
+                const #bn: [usize; #nb] = [#(#bodies),*];
+                const #cn: [#p::kinematics::Con; #nc] = [#(#cons),*];
+            )
+        }
+    };
+    let (sn, solver) = (solver_const(gi), solver_tokens(&g.solver));
+    quote! {
+        #[doc = #doc]
+        const #sn: #p::dyad::Solver = #solver;
+        #kernel
+    }
+}
+
+/// The name of group `gi`'s position solver constant.
+fn solver_const(gi: usize) -> Ident {
+    format_ident!("__G{}_SOLVER", gi)
+}
+
+/// The names of a Newton group's bodies and constraints constants.
+pub(crate) fn system_consts(gi: usize) -> (Ident, Ident) {
+    (format_ident!("__G{}_BODIES", gi), format_ident!("__G{}_CONS", gi))
+}
+
+/// The position solver constant of every group, in plan order (`from_params` reads the
+/// drawing's branch of each).
+pub(crate) fn solvers(cx: &Ctx) -> Vec<TokenStream> {
+    (0..cx.n_groups).map(|gi| {
+        let sn = solver_const(gi);
+        quote!(Self::#sn)
+    }).collect()
+}
+
+/// The solve call of group `gi`, which binds `sys{gi}` to the group's kept system (`()`
+/// for a closed form).
+fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
+    let p = &cx.p;
+    let (bn, cn) = system_consts(gi);
+    let n = 3 * g.bodies.len();
+    let solver = solver_const(gi);
+    let sys = format_ident!("sys{}", gi);
+    match g.kernel {
+        Kernel::Driven(_) => {
+            let kn = format_ident!("__G{}_DRIVEN", gi);
+            quote!(#p::kinematics::solve_driven(Self::#solver, &Self::#kn, &self.joints, &mut s, drive, upto)?; let #sys = ();)
+        }
+        Kernel::Chain(_) => {
+            let kn = format_ident!("__G{}_CHAIN", gi);
+            quote!(#p::kinematics::solve_chain(Self::#solver, &Self::#kn, &self.joints, &mut s, drive, branches[#gi], self.scale, upto)?; let #sys = ();)
+        }
+        Kernel::System if g.redundant() => {
+            let m = g.rows();
+            quote!(let #sys = #p::group::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, upto)?;)
+        }
+        Kernel::System => quote!(let #sys = #p::group::group_solve::<#n>(&Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, upto)?;),
+    }
+}
+
+/// The velocity-field call of group `gi` (positions known, velocities of the inputs'
+/// rates `drive`), into the states `v`.
+fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
+    let p = &cx.p;
+    let (bn, cn) = system_consts(gi);
+    let n = 3 * g.bodies.len();
+    let idx = syn::Index::from(gi);
+    let level = quote!(#p::kinematics::Level::Velocity);
+    match g.kernel {
+        Kernel::Driven(_) => {
+            let kn = format_ident!("__G{}_DRIVEN", gi);
+            quote!(#p::screw::driven_rates(&Self::#kn, &self.joints, &mut v, drive, #level)?;)
+        }
+        Kernel::Chain(_) => {
+            let kn = format_ident!("__G{}_CHAIN", gi);
+            quote!(#p::screw::chain_rates(&Self::#kn, &self.joints, &mut v, self.scale, #level)?;)
+        }
+        Kernel::System if g.redundant() => {
+            let m = g.rows();
+            quote!(#p::group::group_velocity_field_ls::<#n, #m>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+        }
+        Kernel::System => quote!(#p::group::group_velocity_field::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;),
+    }
+}
+
+/// The type of what group `g` keeps in the motion for the reactions and velocity fields:
+/// its factored system (Newton groups), nothing for closed forms.
+fn system_type(cx: &Ctx, g: &Group) -> TokenStream {
+    let p = &cx.p;
+    let n = 3 * g.bodies.len();
+    if g.kernel != Kernel::System {
+        quote!(())
+    } else if g.redundant() {
+        let m = g.rows();
+        quote!(Option<#p::group::LsSystem<#n, #m>>)
+    } else {
+        quote!(Option<#p::group::GroupSystem<#n>>)
+    }
+}
+
+/// The tuple of every group's [`system_type`] (the `systems` field of the motion).
+pub(crate) fn systems_type(cx: &Ctx) -> TokenStream {
+    let types = cx.plan.iter().map(|g| system_type(cx, g));
+    quote!((#(#types,)*))
+}
+
+/// `__solve`: the states (and kept systems) at the inputs, on the drawing's branches;
+/// with redundant constraints, other branches past a change point.
+fn solve(cx: &Ctx) -> TokenStream {
+    let Ctx { p, n_links, dof, .. } = cx;
+    let systems = systems_type(cx);
+    // With redundant constraints the closed forms' drawing branches may be the wrong ones
+    // past a change point (a parallelogram folding): the redundant group then finds its
+    // equations inconsistent, and the other branches are tried.
+    let body = if cx.plan.iter().any(|g| g.redundant()) {
+        quote!(#p::branches::search(&self.branches, |b| self.__solve_on(b, q, qd, qdd, upto)))
+    } else {
+        quote!(self.__solve_on(&self.branches, q, qd, qdd, upto))
+    };
+    quote! {
+        #[inline(always)]
+        fn __solve(
+            &self,
+            q: &[f64; #dof],
+            qd: &[f64; #dof],
+            qdd: &[f64; #dof],
+            upto: #p::kinematics::Level,
+        ) -> Result<([#p::kinematics::LinkState; #n_links], #systems), #p::MechError> {
+            #body
+        }
+    }
+}
+
+/// `__solve_on`: every group's solve call in plan order, on the given branch signs.
+fn solve_on(cx: &Ctx) -> TokenStream {
+    let Ctx { p, n_links, n_groups, dof, .. } = cx;
+    let systems = systems_type(cx);
+    let calls = cx.plan.iter().enumerate().map(|(gi, g)| solve_call(cx, gi, g));
+    let sys_ids = (0..cx.n_groups).map(|g| format_ident!("sys{}", g));
+    // Newton starts from the drawing; closed forms overwrite every state they use.
+    let initial = if cx.plan.iter().any(|g| g.kernel == Kernel::System) {
+        quote!(self.drawing)
+    } else {
+        quote!([#p::kinematics::LinkState::default(); #n_links])
+    };
+    quote! {
+        #[inline(always)]
+        fn __solve_on(
+            &self,
+            branches: &[f64; #n_groups],
+            q: &[f64; #dof],
+            qd: &[f64; #dof],
+            qdd: &[f64; #dof],
+            upto: #p::kinematics::Level,
+        ) -> Result<([#p::kinematics::LinkState; #n_links], #systems), #p::MechError> {
+            let mut s = #initial;
+            let drive = (&q[..], &qd[..], &qdd[..]);
+            #(#calls)*
+            Ok((s, (#(#sys_ids,)*)))
+        }
+    }
+}
+
+/// `__velocity_field`: the velocities of input rates `qd` at the motion's positions.
+fn velocity_field(cx: &Ctx) -> TokenStream {
+    let Ctx { p, n_links, dof, .. } = cx;
+    let motion = &cx.names.motion;
+    let calls = cx.plan.iter().enumerate().map(|(gi, g)| velocity_call(cx, gi, g));
+    quote! {
+        #[inline(always)]
+        fn __velocity_field(
+            &self,
+            m: &#motion,
+            qd: &[f64; #dof],
+        ) -> Result<[#p::kinematics::LinkState; #n_links], #p::MechError> {
+            let mut v = m.states;
+            for st in v.iter_mut() {
+                st.vel = #p::Vector2::zeros();
+                st.omega = 0.0;
+            }
+            let zero = [0.0; #dof];
+            let drive = (&zero[..], &qd[..], &zero[..]);
+            #(#calls)*
+            Ok(v)
+        }
+    }
+}
+
+fn con_tokens(c: &Con) -> TokenStream {
+    let j = c.joint;
+    let kind = match c.kind {
+        ConKind::Revolute => quote!(Revolute),
+        ConKind::Prismatic => quote!(Prismatic),
+        ConKind::Slot => quote!(Slot),
+        ConKind::DriveRevolute(k) => quote!(DriveRevolute(#k)),
+        ConKind::DrivePrismatic(k) => quote!(DrivePrismatic(#k)),
+    };
+    quote!(::mech::__private::kinematics::Con { joint: #j, kind: ::mech::__private::kinematics::ConKind::#kind })
+}
+
+fn solver_tokens(s: &Solver) -> TokenStream {
+    let p = quote!(::mech::__private::dyad::Solver);
+    match *s {
+        Solver::DrivenRevolute { body, joint, input } => quote!(#p::DrivenRevolute { body: #body, joint: #joint, input: #input }),
+        Solver::DrivenPrismatic { body, joint, input } => quote!(#p::DrivenPrismatic { body: #body, joint: #joint, input: #input }),
+        Solver::Rrr { b1, b2, ja, jc, jb } => quote!(#p::Rrr { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jb: #jb }),
+        Solver::Rrp { b1, b2, ja, jc, jp } => quote!(#p::Rrp { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jp: #jp }),
+        Solver::Rpr { b1, b2, ja, jp, jb } => quote!(#p::Rpr { b1: #b1, b2: #b2, ja: #ja, jp: #jp, jb: #jb }),
+        Solver::Prp { b1, b2, jp1, jc, jp2 } => quote!(#p::Prp { b1: #b1, b2: #b2, jp1: #jp1, jc: #jc, jp2: #jp2 }),
+        Solver::Rpp { b1, b2, ja, jp, jq } => quote!(#p::Rpp { b1: #b1, b2: #b2, ja: #ja, jp: #jp, jq: #jq }),
+        Solver::PinInFixedSlot { body, ja, js } => quote!(#p::PinInFixedSlot { body: #body, ja: #ja, js: #js }),
+        Solver::SlottedLever { body, ja, js } => quote!(#p::SlottedLever { body: #body, ja: #ja, js: #js }),
+        Solver::Newton => quote!(#p::Newton),
+    }
+}
+
+fn screw_tokens(s: &JointScrew) -> TokenStream {
+    let (j, slide) = (s.joint, s.slide);
+    quote!(::mech::__private::screw::JointScrew { joint: #j, slide: #slide })
+}
+
+fn link_tokens(l: usize) -> TokenStream {
+    if l == mech_core::screw::VIRTUAL {
+        quote!(::mech::__private::screw::VIRTUAL)
+    } else {
+        quote!(#l)
+    }
+}
+
+fn chain_tokens(c: &Chain) -> TokenStream {
+    let (from, to, pivot) = (c.from, c.to, c.pivot);
+    let screws = c.screws.iter().map(screw_tokens);
+    let links = c.links.iter().map(|&l| link_tokens(l));
+    quote!(::mech::__private::screw::Chain { from: #from, to: #to, screws: [#(#screws),*], links: [#(#links),*], pivot: #pivot })
+}
+
+fn driven_tokens(d: &Driven) -> TokenStream {
+    let (from, body, input) = (d.from, d.body, d.input);
+    let screw = screw_tokens(&d.screw);
+    quote!(::mech::__private::screw::Driven { from: #from, body: #body, screw: #screw, input: #input })
+}

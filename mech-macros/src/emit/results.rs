@@ -1,0 +1,178 @@
+//! The results of the kinematics: `<Name>Pose` and `<Name>Motion` with their by-name
+//! accessors, and the methods that make them, `pose` and `kinematics`.
+
+use super::{plan, Ctx};
+use proc_macro2::TokenStream;
+use quote::quote;
+use syn::Ident;
+
+/// The result types and `pose`, `kinematics`.
+pub(crate) fn emit(cx: &Ctx) -> TokenStream {
+    let n = &cx.names;
+    let (types, pose_by_name, motion_by_name) = (types(cx), by_name(cx, &n.pose, "pose"), by_name(cx, &n.motion, "motion"));
+    let (pose_fn, kinematics_fn) = (pose_fn(cx), kinematics_fn(cx));
+    let main = &n.main;
+    quote! {
+        #types
+        #pose_by_name
+        #motion_by_name
+        impl #main {
+            #pose_fn
+            #kinematics_fn
+        }
+    }
+}
+
+/// `Pose`, `Motion` and their per-link and per-point structs.
+fn types(cx: &Ctx) -> TokenStream {
+    let Ctx { p, n_links, dof, point_ids, .. } = cx;
+    let n = &cx.names;
+    let (pose, pose_links, pose_points) = (&n.pose, &n.pose_links, &n.pose_points);
+    let (motion, motion_links, motion_points) = (&n.motion, &n.motion_links, &n.motion_points);
+    let moving_ids = cx.moving_ids();
+    let systems = plan::systems_type(cx);
+    quote! {
+        /// Pose of every moving link.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #pose_links { #(pub #moving_ids: #p::kinematics::LinkPose,)* }
+        /// Position of every point.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #pose_points { #(pub #point_ids: #p::kinematics::PointPose,)* }
+        /// Result of `pose`: positions only.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #pose {
+            /// Links: angle (rad), cg (m).
+            pub links: #pose_links,
+            /// Points: pos (m).
+            pub points: #pose_points,
+        }
+
+        /// Motion of every moving link.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #motion_links { #(pub #moving_ids: #p::kinematics::LinkMotion,)* }
+        /// Motion of every point.
+        #[allow(non_snake_case)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #motion_points { #(pub #point_ids: #p::kinematics::PointMotion,)* }
+        /// Result of `kinematics`: positions, velocities, accelerations.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct #motion {
+            /// Links: angle, omega, alpha, cg, cg_vel, cg_acc.
+            pub links: #motion_links,
+            /// Points: pos, vel, acc.
+            pub points: #motion_points,
+            states: [#p::kinematics::LinkState; #n_links],
+            qd: [f64; #dof],
+            systems: #systems,
+        }
+    }
+}
+
+/// `link(name)` and `point(name)` of the result type `ty` (`what`: pose or motion).
+fn by_name(cx: &Ctx, ty: &Ident, what: &str) -> TokenStream {
+    let p = &cx.p;
+    let (link_ty, point_ty) = match what {
+        "pose" => (quote!(#p::kinematics::LinkPose), quote!(#p::kinematics::PointPose)),
+        _ => (quote!(#p::kinematics::LinkMotion), quote!(#p::kinematics::PointMotion)),
+    };
+    let link_names = cx.model.links[1..].iter().map(|l| l.name.as_str());
+    let point_names = cx.model.points.iter().map(|pt| pt.name.as_str());
+    let (moving_ids, point_ids) = (cx.moving_ids(), &cx.point_ids);
+    let doc_l = format!("The {what} of the link named `name`, if any.");
+    let doc_p = format!("The {what} of the point named `name`, if any.");
+    quote! {
+        impl #ty {
+            #[doc = #doc_l]
+            pub fn link(&self, name: &str) -> Option<&#link_ty> {
+                match name { #(#link_names => Some(&self.links.#moving_ids),)* _ => None }
+            }
+            #[doc = #doc_p]
+            pub fn point(&self, name: &str) -> Option<&#point_ty> {
+                match name { #(#point_names => Some(&self.points.#point_ids),)* _ => None }
+            }
+        }
+    }
+}
+
+/// The link that carries each point (its first link), whose state places it.
+fn owners(cx: &Ctx) -> Vec<usize> {
+    (0..cx.n_points).map(|pt| (0..cx.n_links).find(|&l| cx.model.links[l].points.contains(&pt)).unwrap_or(0)).collect()
+}
+
+/// `let q = [q];` for one DOF (the solvers take arrays), nothing else.
+pub(crate) fn to_array(cx: &Ctx, v: &str) -> TokenStream {
+    let v = super::id(v);
+    if cx.one_dof() {
+        quote!(let #v = [#v];)
+    } else {
+        quote!()
+    }
+}
+
+/// `pose`: positions only.
+fn pose_fn(cx: &Ctx) -> TokenStream {
+    let Ctx { p, q_ty, dof, point_ids, .. } = cx;
+    let n = &cx.names;
+    let (pose, pose_links, pose_points) = (&n.pose, &n.pose_links, &n.pose_points);
+    let owners = owners(cx);
+    let links = (1..cx.n_links).map(|l| {
+        let lid = &cx.link_ids[l];
+        quote!(#lid: self.links[#l].pose(&s[#l]),)
+    });
+    let points = (0..cx.n_points).map(|pt| {
+        let (pid, o) = (&point_ids[pt], owners[pt]);
+        quote!(#pid: #p::kinematics::point_pose(&s[#o], self.points[#pt]),)
+    });
+    let q_arr = to_array(cx, "q");
+    quote! {
+        /// Position analysis: every link's angle and cg, every point's position.
+        /// Computes no velocity or acceleration.
+        pub fn pose(&self, q: #q_ty) -> Result<#pose, #p::MechError> {
+            #q_arr
+            #p::error::check_finite("q", &q)?;
+            let zero = [0.0; #dof];
+            let (s, _) = self.__solve(&q, &zero, &zero, #p::kinematics::Level::Position)?;
+            Ok(#pose {
+                links: #pose_links { #(#links)* },
+                points: #pose_points { #(#points)* },
+            })
+        }
+    }
+}
+
+/// `kinematics`: positions, velocities and accelerations.
+fn kinematics_fn(cx: &Ctx) -> TokenStream {
+    let Ctx { p, q_ty, point_ids, .. } = cx;
+    let n = &cx.names;
+    let (motion, motion_links, motion_points) = (&n.motion, &n.motion_links, &n.motion_points);
+    let owners = owners(cx);
+    let links = (1..cx.n_links).map(|l| {
+        let lid = &cx.link_ids[l];
+        quote!(#lid: self.links[#l].motion(&s[#l]),)
+    });
+    let points = (0..cx.n_points).map(|pt| {
+        let (pid, o) = (&point_ids[pt], owners[pt]);
+        quote!(#pid: #p::kinematics::point_motion(&s[#o], self.points[#pt]),)
+    });
+    let (q_arr, qd_arr, qdd_arr) = (to_array(cx, "q"), to_array(cx, "qd"), to_array(cx, "qdd"));
+    quote! {
+        /// Position, velocity and acceleration analysis at input (q, q̇, q̈).
+        pub fn kinematics(&self, q: #q_ty, qd: #q_ty, qdd: #q_ty) -> Result<#motion, #p::MechError> {
+            #q_arr #qd_arr #qdd_arr
+            #p::error::check_finite("q, qd, qdd", &q)?;
+            #p::error::check_finite("q, qd, qdd", &qd)?;
+            #p::error::check_finite("q, qd, qdd", &qdd)?;
+            let (s, systems) = self.__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration)?;
+            Ok(#motion {
+                links: #motion_links { #(#links)* },
+                points: #motion_points { #(#points)* },
+                states: s,
+                qd,
+                systems,
+            })
+        }
+    }
+}

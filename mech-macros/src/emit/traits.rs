@@ -1,0 +1,159 @@
+//! The mech-core traits every generated struct implements (`Machine`, and `OneDof` for one
+//! input), with the energies, and the one-DOF methods of Zhukovski's reduction:
+//! `reduced`, `reduced_moment`, `acceleration`.
+
+use super::{forces, id, Ctx};
+use mech_core::model::Load;
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// The trait impls and the one-DOF methods.
+pub(crate) fn emit(cx: &Ctx) -> TokenStream {
+    let machine = machine_impl(cx);
+    if !cx.one_dof() {
+        return machine;
+    }
+    let (one_dof, zhukovski) = (one_dof_impl(cx), zhukovski_fns(cx));
+    let main = &cx.names.main;
+    quote! {
+        #machine
+        #one_dof
+        impl #main {
+            #zhukovski
+        }
+    }
+}
+
+/// `Machine`: slices in, the kinematics and virtual power out, and the energies of the
+/// links that have the terms (`mech::energy`).
+fn machine_impl(cx: &Ctx) -> TokenStream {
+    let Ctx { p, n_links, dof, .. } = cx;
+    let n = &cx.names;
+    let (main, loads, motion) = (&n.main, &n.loads, &n.motion);
+    let slice_to_q = |v: &str| {
+        let v = id(v);
+        if cx.one_dof() {
+            quote!(#v[0])
+        } else {
+            let idx = 0..cx.dof;
+            quote!([#(#v[#idx]),*])
+        }
+    };
+    let (q, qd, qdd) = (slice_to_q("q"), slice_to_q("qd"), slice_to_q("qdd"));
+    let store = if cx.one_dof() { quote!(out[0] = d;) } else { quote!(out.copy_from_slice(&d);) };
+    let kinetic = cx.inertial().into_iter().map(|l| {
+        let lid = &cx.link_ids[l];
+        quote!(out[#l] = #p::energy::kinetic(&self.links[#l], &m.links.#lid);)
+    });
+    let potential = cx.weighed().into_iter().map(|l| {
+        let lid = &cx.link_ids[l];
+        quote!(+ #p::energy::potential(&self.links[#l], &m.links.#lid, self.gravity))
+    });
+    quote! {
+        impl #p::traits::Machine for #main {
+            const DOF: usize = #dof;
+            const LINKS: usize = #n_links;
+            type Loads = #loads;
+            type Motion = #motion;
+            fn motion(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<#motion, #p::MechError> {
+                if q.len() != #dof || qd.len() != #dof || qdd.len() != #dof {
+                    return Err(#p::MechError::InvalidInput(format!("expected {} input values", #dof)));
+                }
+                self.kinematics(#q, #qd, #qdd)
+            }
+            fn driver_actions(&self, m: &#motion, loads: &#loads, out: &mut [f64]) -> Result<(), #p::MechError> {
+                let d = self.driver_action(m, loads)?;
+                #store
+                Ok(())
+            }
+            fn link_kinetic_energies(&self, m: &#motion, out: &mut [f64]) {
+                for o in out.iter_mut() {
+                    *o = 0.0;
+                }
+                #(#kinetic)*
+            }
+            fn potential_energy(&self, m: &#motion) -> f64 {
+                let _ = m;
+                0.0 #(#potential)*
+            }
+        }
+    }
+}
+
+/// `OneDof`: the inherent one-DOF methods.
+fn one_dof_impl(cx: &Ctx) -> TokenStream {
+    let p = &cx.p;
+    let (main, loads) = (&cx.names.main, &cx.names.loads);
+    quote! {
+        impl #p::traits::OneDof for #main {
+            fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
+                #main::reduced(self, q)
+            }
+            fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
+                #main::reduced_moment(self, q, loads)
+            }
+            fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
+                #main::acceleration(self, q, qd, driver, loads)
+            }
+        }
+    }
+}
+
+/// Zhukovski's sums term by term (`mech::zhukovski::Reduction`): the inertia of the links
+/// with inertia terms, and the moment of gravity and of every load.
+fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
+    let inertial = cx.inertial();
+    let weighed = cx.weighed();
+    let inertia = quote!(#( z.inertia(&self.links[#inertial], &s[#inertial]); )*);
+    let loads = cx.model.loads.iter().enumerate().map(|(k, l)| {
+        let (lid, link) = (id(l.name()), l.link());
+        match l {
+            Load::Force { .. } => quote!(z.force(&s[#link], self.loads[#k], loads.#lid);),
+            Load::Torque { .. } => quote!(z.torque(&s[#link], loads.#lid);),
+        }
+    });
+    let moment = quote! {
+        #( z.gravity(&self.links[#weighed], &s[#weighed], self.gravity); )*
+        #(#loads)*
+    };
+    (inertia, moment)
+}
+
+/// `reduced`, `reduced_moment`, `acceleration`.
+fn zhukovski_fns(cx: &Ctx) -> TokenStream {
+    let p = &cx.p;
+    let loads = &cx.names.loads;
+    let values = forces::load_values(cx);
+    let (inertia, moment) = zhukovski_terms(cx);
+    quote! {
+        /// Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad), in closed
+        /// form from the velocity coefficients and their derivatives.
+        pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
+            #p::error::check_finite("q", &[q])?;
+            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
+            let mut z = #p::zhukovski::Reduction::default();
+            #inertia
+            Ok(z.reduced)
+        }
+        /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads and gravity
+        /// per unit input rate, M* = Σ F·g + Σ M·g.
+        pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
+            #p::error::check_finite("q", &[q])?;
+            #p::error::check_finite("loads", &[#values])?;
+            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity)?;
+            let mut z = #p::zhukovski::Reduction::default();
+            #moment
+            Ok(z.moment)
+        }
+        /// The direct problem: q̈ (rad/s²) from I* q̈ + ½ dI*/dq q̇² = driver + M*.
+        pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
+            #p::error::check_finite("q, qd, driver", &[q, qd, driver])?;
+            #p::error::check_finite("loads", &[#values])?;
+            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
+            let mut z = #p::zhukovski::Reduction::default();
+            #inertia
+            #moment
+            #p::zhukovski::acceleration(z.reduced, z.moment, qd, driver)
+        }
+    }
+}
