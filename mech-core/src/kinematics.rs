@@ -51,3 +51,11 @@ pub fn solve_driven(solver: Solver, driven: &Driven, joints: &[JointGeom], s: &m
     crate::dyad::position(solver, joints, s, drive, 1.0)?;
     driven_rates(driven, joints, s, drive, upto)
 }
+
+/// The angle θ (rad, wrapped to (−π, π]) of a crank driven on the ground: q = θ_b − θ_a
+/// with the ground's θ = 0, so θ = q when the crank is the joint's second link (`sign` =
+/// 1) and −q when it is the first (`sign` = −1). No atan2 needed.
+#[inline]
+pub fn crank_angle(q: f64, sign: f64) -> f64 {
+    wrap(sign * q)
+}

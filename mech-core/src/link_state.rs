@@ -177,14 +177,24 @@ impl LinkGeom {
     /// The link's pose.
     #[inline]
     pub fn pose(&self, s: &LinkState) -> LinkPose {
-        LinkPose { angle: self.angle(s), cg: s.point(self.dcg) }
+        self.pose_at(s, self.angle(s))
+    }
+    /// The link's pose when its angle θ is already known (a crank on the ground: ±q).
+    #[inline]
+    pub fn pose_at(&self, s: &LinkState, angle: f64) -> LinkPose {
+        LinkPose { angle, cg: s.point(self.dcg) }
     }
     /// The link's motion.
     #[inline]
     pub fn motion(&self, s: &LinkState) -> LinkMotion {
+        self.motion_at(s, self.angle(s))
+    }
+    /// The link's motion when its angle θ is already known (a crank on the ground: ±q).
+    #[inline]
+    pub fn motion_at(&self, s: &LinkState, angle: f64) -> LinkMotion {
         let r = s.r(self.dcg);
         LinkMotion {
-            angle: self.angle(s),
+            angle,
             omega: s.omega,
             alpha: s.alpha,
             cg: s.pos + r,

@@ -1,6 +1,7 @@
 //! The results of the kinematics: `<Name>Pose` and `<Name>Motion` with their by-name
 //! accessors, and the methods that make them, `pose` and `kinematics`.
 
+use mech_core::assur::Kernel;
 use super::{plan, Ctx};
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -112,6 +113,20 @@ pub(crate) fn to_array(cx: &Ctx, v: &str) -> TokenStream {
     }
 }
 
+/// The angle of link `l` from the input, when it is a crank driven on the ground (no
+/// atan2): `crank_angle(q[k], ±1)`.
+fn crank_angle(cx: &Ctx, l: usize) -> Option<TokenStream> {
+    let p = &cx.p;
+    cx.plan.iter().find_map(|g| match g.kernel {
+        Kernel::Driven(d) if d.body == l && d.from == 0 && !d.screw.slide => {
+            let (k, sign) = (d.input, if cx.model.joints[d.screw.joint].b == l { 1.0f64 } else { -1.0 });
+            let sign = crate::emit::f64s(sign);
+            Some(quote!(#p::kinematics::crank_angle(q[#k], #sign)))
+        }
+        _ => None,
+    })
+}
+
 /// `pose`: positions only.
 fn pose_fn(cx: &Ctx) -> TokenStream {
     let Ctx { p, q_ty, dof, point_ids, .. } = cx;
@@ -120,7 +135,10 @@ fn pose_fn(cx: &Ctx) -> TokenStream {
     let owners = owners(cx);
     let links = (1..cx.n_links).map(|l| {
         let lid = &cx.link_ids[l];
-        quote!(#lid: self.links[#l].pose(&s[#l]),)
+        match crank_angle(cx, l) {
+            Some(angle) => quote!(#lid: self.links[#l].pose_at(&s[#l], #angle),),
+            None => quote!(#lid: self.links[#l].pose(&s[#l]),),
+        }
     });
     let points = (0..cx.n_points).map(|pt| {
         let (pid, o) = (&point_ids[pt], owners[pt]);
@@ -151,7 +169,10 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
     let owners = owners(cx);
     let links = (1..cx.n_links).map(|l| {
         let lid = &cx.link_ids[l];
-        quote!(#lid: self.links[#l].motion(&s[#l]),)
+        match crank_angle(cx, l) {
+            Some(angle) => quote!(#lid: self.links[#l].motion_at(&s[#l], #angle),),
+            None => quote!(#lid: self.links[#l].motion(&s[#l]),),
+        }
     });
     let points = (0..cx.n_points).map(|pt| {
         let (pid, o) = (&point_ids[pt], owners[pt]);
