@@ -136,16 +136,46 @@ pub fn group_rates<const N: usize>(
     drive: Drive,
     level: Level,
 ) {
-    let x = sys.solve(&group_rhs::<N>(cons, joints, s, drive, level));
-    store_rates(bodies, s, &x, level == Level::Acceleration);
+    store_rates(bodies, s, &sys.rates(cons, joints, s, drive, level), level == Level::Acceleration);
+}
+
+/// A group's factored linear system: the square [`GroupSystem`] or the least-squares
+/// [`LsSystem`] of a redundant group.
+pub trait RateSystem<const N: usize>: Copy {
+    /// Assemble and factor at the current positions.
+    fn build(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError>;
+    /// The links' rates (x, y, φ per link) at `level`, J x = −Φ̇ or −Φ̈ of the known rates.
+    fn rates(&self, cons: &[Con], joints: &[JointGeom], s: &[LinkState], drive: Drive, level: Level) -> SVector<f64, N>;
+}
+
+impl<const N: usize> RateSystem<N> for GroupSystem<N> {
+    #[inline(always)]
+    fn build(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
+        GroupSystem::new(bodies, cons, joints, s, scale)
+    }
+    #[inline(always)]
+    fn rates(&self, cons: &[Con], joints: &[JointGeom], s: &[LinkState], drive: Drive, level: Level) -> SVector<f64, N> {
+        self.solve(&group_rhs::<N>(cons, joints, s, drive, level))
+    }
+}
+
+impl<const N: usize, const M: usize> RateSystem<N> for LsSystem<N, M> {
+    #[inline(always)]
+    fn build(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
+        LsSystem::new(bodies, cons, joints, s, scale)
+    }
+    #[inline(always)]
+    fn rates(&self, cons: &[Con], joints: &[JointGeom], s: &[LinkState], drive: Drive, level: Level) -> SVector<f64, N> {
+        self.solve(&group_rhs::<M>(cons, joints, s, drive, level))
+    }
 }
 
 /// The velocity field of a group only (positions already in `s`, its velocities zero),
-/// with the group's factored system `sys` when the kinematics kept it.
+/// with the group's factored system `sys` when the kinematics kept it (else it is built).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
-pub fn group_velocity_field<const N: usize>(
-    sys: Option<&GroupSystem<N>>,
+pub fn group_velocity_field<const N: usize, S: RateSystem<N>>(
+    sys: Option<&S>,
     bodies: &[usize],
     cons: &[Con],
     joints: &[JointGeom],
@@ -155,29 +185,9 @@ pub fn group_velocity_field<const N: usize>(
 ) -> Result<(), MechError> {
     let sys = match sys {
         Some(sys) => *sys,
-        None => GroupSystem::<N>::new(bodies, cons, joints, s, scale)?,
+        None => S::build(bodies, cons, joints, s, scale)?,
     };
-    group_rates(&sys, bodies, cons, joints, s, drive, Level::Velocity);
-    Ok(())
-}
-
-/// The velocity field of a redundant group only (see [`group_velocity_field`]).
-#[cfg_attr(debug_assertions, inline)]
-#[cfg_attr(not(debug_assertions), inline(always))]
-pub fn group_velocity_field_ls<const N: usize, const M: usize>(
-    sys: Option<&LsSystem<N, M>>,
-    bodies: &[usize],
-    cons: &[Con],
-    joints: &[JointGeom],
-    s: &mut [LinkState],
-    drive: Drive,
-    scale: f64,
-) -> Result<(), MechError> {
-    let sys = match sys {
-        Some(sys) => *sys,
-        None => LsSystem::<N, M>::new(bodies, cons, joints, s, scale)?,
-    };
-    store_rates(bodies, s, &sys.solve(&group_rhs::<M>(cons, joints, s, drive, Level::Velocity)), false);
+    store_rates(bodies, s, &sys.rates(cons, joints, s, drive, Level::Velocity), false);
     Ok(())
 }
 
@@ -274,9 +284,9 @@ pub fn group_solve_ls<const N: usize, const M: usize>(
         return Ok(None);
     }
     let sys = LsSystem::<N, M>::new(bodies, cons, joints, s, scale)?;
-    store_rates(bodies, s, &sys.solve(&group_rhs::<M>(cons, joints, s, drive, Level::Velocity)), false);
+    store_rates(bodies, s, &sys.rates(cons, joints, s, drive, Level::Velocity), false);
     if upto == Level::Acceleration {
-        store_rates(bodies, s, &sys.solve(&group_rhs::<M>(cons, joints, s, drive, Level::Acceleration)), true);
+        store_rates(bodies, s, &sys.rates(cons, joints, s, drive, Level::Acceleration), true);
     }
     Ok(Some(sys))
 }

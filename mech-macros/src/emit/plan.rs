@@ -129,9 +129,9 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         }
         Kernel::System if g.redundant() => {
             let m = g.rows();
-            quote!(#p::group::group_velocity_field_ls::<#n, #m>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+            quote!(#p::group::group_velocity_field::<#n, #p::group::LsSystem<#n, #m>>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
         }
-        Kernel::System => quote!(#p::group::group_velocity_field::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;),
+        Kernel::System => quote!(#p::group::group_velocity_field::<#n, #p::group::GroupSystem<#n>>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;),
     }
 }
 
