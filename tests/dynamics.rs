@@ -265,7 +265,7 @@ macro_rules! quinn_check {
         let m = $ty::new();
         let links = link_data($file);
         let t = truth($file);
-        let mut eps = vec![0.0; <$ty as Machine>::LINKS];
+        let mut eps = vec![0.0; m.links()];
         for c in t["configs"].as_array().unwrap() {
             let q = c["q"].as_f64().unwrap();
             quinn_coefficients(&m, q, &mut eps).unwrap();

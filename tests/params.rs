@@ -132,7 +132,7 @@ fn kinetic_rate(links: &[(f64, f64, &LinkMotion)]) -> f64 {
 /// Σ T along the motion through (q, q̇, q̈) at constant q̈, at time t.
 fn kinetic_at<M: Machine>(m: &M, q: f64, qd: f64, qdd: f64, t: f64) -> f64 {
     let motion = m.motion(&[q + qd * t + 0.5 * qdd * t * t], &[qd + qdd * t], &[qdd]).unwrap();
-    let mut e = vec![0.0; M::LINKS];
+    let mut e = vec![0.0; m.links()];
     m.link_kinetic_energies(&motion, &mut e);
     e.iter().sum()
 }

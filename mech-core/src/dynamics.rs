@@ -46,7 +46,7 @@ fn with_scratch<R>(n: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
 
 /// Kinetic energy T = Σ_j (½ m_j |v_Gj|² + ½ I_Gj ω_j²) of a motion, J.
 pub fn kinetic_energy<M: Machine>(machine: &M, motion: &M::Motion) -> f64 {
-    with_scratch(M::LINKS, |e| {
+    with_scratch(machine.links(), |e| {
         machine.link_kinetic_energies(motion, e);
         e.iter().sum()
     })
@@ -55,8 +55,8 @@ pub fn kinetic_energy<M: Machine>(machine: &M, motion: &M::Motion) -> f64 {
 /// Total mechanical energy T + V at (q, q̇), J: V = Σ −m_j g·r_Gj (gravity only; the
 /// loads have no potential). `q`, `qd` have length G.
 pub fn total_energy<M: Machine>(machine: &M, q: &[f64], qd: &[f64]) -> Result<f64, MechError> {
-    if q.len() != M::DOF || qd.len() != M::DOF {
-        return Err(MechError::InvalidInput(format!("expected {} input values", M::DOF)));
+    if q.len() != machine.dof() || qd.len() != machine.dof() {
+        return Err(MechError::InvalidInput(format!("expected {} input values", machine.dof())));
     }
     // The accelerations do not enter T or V: q̇ serves as any finite q̈ of the right length.
     let motion = machine.motion(q, qd, qd)?;
@@ -65,12 +65,12 @@ pub fn total_energy<M: Machine>(machine: &M, q: &[f64], qd: &[f64]) -> Result<f6
 
 /// Quinn's energy-contribution coefficients (`docs/theory.md` §6.5) at position q:
 /// ε_j(q) = T_j / T = (m_j g_Gj² + I_Gj g_j²) / I*(q), independent of q̇; written into
-/// `out` (length N = `M::LINKS`, the ground's entry 0). They sum to 1.
+/// `out` (length N = `machine.links()`, the ground's entry 0). They sum to 1.
 /// Errors: `out` of the wrong length, a configuration error, and
 /// [`MechError::NonPositiveInertia`] when T = 0 (a massless chain).
 pub fn quinn_coefficients<M: OneDof>(machine: &M, q: f64, out: &mut [f64]) -> Result<(), MechError> {
-    if out.len() != M::LINKS {
-        return Err(MechError::InvalidInput(format!("Quinn coefficients need a slice of {} links, got {}", M::LINKS, out.len())));
+    if out.len() != machine.links() {
+        return Err(MechError::InvalidInput(format!("Quinn coefficients need a slice of {} links, got {}", machine.links(), out.len())));
     }
     crate::error::check_finite("q", &[q])?;
     let motion = machine.motion(&[q], &[1.0], &[0.0])?;
@@ -436,11 +436,11 @@ where
 // ---------------------------------------------------------------------------------------
 // Several DOF: Lagrange's equations
 
-fn check_dof<M: Machine>(g: usize) -> Result<(), MechError> {
-    if g == M::DOF {
+fn check_dof<M: Machine>(machine: &M, g: usize) -> Result<(), MechError> {
+    if g == machine.dof() {
         Ok(())
     } else {
-        Err(MechError::InvalidInput(format!("the machine has {} inputs, {g} given", M::DOF)))
+        Err(MechError::InvalidInput(format!("the machine has {} inputs, {g} given", machine.dof())))
     }
 }
 
@@ -456,7 +456,7 @@ fn actions_at<M: Machine, const G: usize>(machine: &M, q: &[f64; G], qd: &[f64; 
 /// M e_k = D(q, 0, e_k, no loads) − D(q, 0, 0, no loads), D the motor actions of virtual
 /// power (the gravity terms cancel). For one DOF, M = (I*), the 1 × 1 matrix.
 pub fn mass_matrix<M: Machine, const G: usize>(machine: &M, q: &[f64; G]) -> Result<[[f64; G]; G], MechError> {
-    check_dof::<M>(G)?;
+    check_dof(machine, G)?;
     let none = M::Loads::default();
     let zero = [0.0; G];
     let base = actions_at(machine, q, &zero, &zero, &none)?;
@@ -476,7 +476,7 @@ pub fn mass_matrix<M: Machine, const G: usize>(machine: &M, q: &[f64; G]) -> Res
 /// equations M q̈ + b = τ (N·m or N per input): Coriolis and centrifugal terms minus the
 /// generalized forces of gravity and the loads. For one DOF, b = ½ dI*/dq q̇² − M*.
 pub fn velocity_terms<M: Machine, const G: usize>(machine: &M, q: &[f64; G], qd: &[f64; G], loads: &M::Loads) -> Result<[f64; G], MechError> {
-    check_dof::<M>(G)?;
+    check_dof(machine, G)?;
     actions_at(machine, q, qd, &[0.0; G], loads)
 }
 

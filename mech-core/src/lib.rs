@@ -32,6 +32,7 @@ pub mod instance;
 pub mod kinematics;
 pub mod kinetostatics;
 pub mod linalg;
+pub mod mechanism;
 pub mod link_state;
 pub mod model;
 pub mod ode;
@@ -45,4 +46,5 @@ pub mod virtual_power;
 pub mod zhukovski;
 
 pub use error::MechError;
+pub use mechanism::Mechanism;
 pub use nalgebra::Vector2;

@@ -4,12 +4,13 @@
 use crate::zhukovski::Reduced;
 use crate::MechError;
 
-/// Any generated mechanism, any number of inputs G.
+/// Any mechanism, generated or loaded at run time ([`crate::mechanism::Mechanism`]), any
+/// number of inputs G.
 pub trait Machine {
-    /// G, the number of inputs.
-    const DOF: usize;
-    /// N, links including the ground.
-    const LINKS: usize;
+    /// G, the number of inputs (a generated struct's `DOF`).
+    fn dof(&self) -> usize;
+    /// N, links including the ground (a generated struct's `LINKS`).
+    fn links(&self) -> usize;
     /// The loads struct (`<Name>Loads`).
     type Loads: Clone + Default;
     /// The kinematics result (`<Name>Motion`).

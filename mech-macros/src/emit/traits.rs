@@ -51,9 +51,13 @@ fn machine_impl(cx: &Ctx) -> TokenStream {
     });
     quote! {
         impl #p::traits::Machine for #main {
-            const DOF: usize = #dof;
-            const LINKS: usize = #n_links;
             type Loads = #loads;
+            fn dof(&self) -> usize {
+                #dof
+            }
+            fn links(&self) -> usize {
+                #n_links
+            }
             type Motion = #motion;
             fn motion(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<#motion, #p::MechError> {
                 if q.len() != #dof || qd.len() != #dof || qdd.len() != #dof {

@@ -1,0 +1,501 @@
+//! The run-time mechanism: a mechanism known only when the program runs (DSL text, a file, a
+//! [`Model`] built in code), solved by executing the same Assur plan with the same kernels
+//! as the struct the `mechanism!` macro generates.
+//!
+//! Loading runs the macro's pipeline (resolution, every check, the Assur plan, the drawing's
+//! branches); each solver then walks the plan group by group — [`kinematics::solve_driven`]
+//! for a driven crank or slider, [`kinematics::solve_chain`] for a closed-form dyad or slot
+//! group (rates and reactions by joint screws, `docs/theory.md` §3.4), Newton and a
+//! fixed-size LU ([`group::group_solve`]) for a group with no closed form — into a buffer of
+//! link states the caller may keep ([`Mechanism::solve_into`]: no allocation once it has
+//! grown). Same accuracy, same `Singular`/`NoAssembly` behaviour and the same branch rule as
+//! the generated struct, which the tests check to 1e-12 on every reference machine.
+//!
+//! A `Mechanism` implements [`Machine`] and, with one input, [`OneDof`], so every algorithm
+//! of mech-core (the direct problem, the energy method, Quinn, Lagrange, flywheel sizing)
+//! takes it. The dense whole-system solver [`crate::generic::GenericMechanism`] stays as an
+//! independent cross-check.
+//!
+//! Limits: a redundant mechanism (`#[allow(redundant)]`) and a group of more than six links
+//! are refused at loading with [`MechError::InvalidInput`] (use `GenericMechanism`).
+
+use crate::assur::{Group, Kernel};
+use crate::constraints::{Drive, Level};
+use crate::generic::{GenericMechanism, JointReaction, LoadValue};
+use crate::group::{group_solve, group_velocity_field, GroupSystem};
+use crate::instance::{instance, Instance};
+use crate::kinematics;
+use crate::kinetostatics::{add_force, add_gravity, add_inertia, add_torque, group_reactions, lambda_reactions, Reaction, Wrench};
+use crate::link_state::{point_motion, point_pose, LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2};
+use crate::model::{JointKind, Load, Model};
+use crate::params::LinkTerms;
+use crate::screw;
+use crate::traits::{Machine, OneDof};
+use crate::zhukovski::{Reduced, Reduction};
+use crate::MechError;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The largest group (in links) the run-time interpreter solves with a fixed-size system.
+pub const MAX_GROUP_LINKS: usize = 6;
+
+/// A mechanism loaded at run time and solved with the generated code's plan and kernels
+/// (module docs).
+#[derive(Clone, Debug)]
+pub struct Mechanism {
+    model: Arc<Model>,
+    inst: Instance,
+    plan: Vec<Group>,
+    branches: Vec<f64>,
+    terms: Vec<LinkTerms>,
+}
+
+/// The values of a run-time mechanism's loads, in declaration order. [`Mechanism::loads`]
+/// makes them all zero with the names; `Default` is "no load" (every load zero).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Loads {
+    /// One value per declared load (declaration order); missing entries count as zero.
+    pub values: Vec<LoadValue>,
+    model: Option<Arc<Model>>,
+}
+
+impl Loads {
+    /// Set the load named `name` from its components (2 for a force, N; 1 for a torque,
+    /// N·m); false when there is no such load or the length is wrong.
+    pub fn set_by_name(&mut self, name: &str, value: &[f64]) -> bool {
+        let Some(model) = &self.model else { return false };
+        let Some(k) = model.loads.iter().position(|l| l.name() == name) else { return false };
+        match (&model.loads[k], value) {
+            (Load::Force { .. }, [x, y]) => self.values[k] = LoadValue::Force(V2::new(*x, *y)),
+            (Load::Torque { .. }, [t]) => self.values[k] = LoadValue::Torque(*t),
+            _ => return false,
+        }
+        true
+    }
+}
+
+/// Result of [`Mechanism::pose`]: every link's angle (rad) and cg (m), every point (m),
+/// indexed like [`Model::links`] (0 = the ground) and [`Model::points`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pose {
+    /// Links, ground first.
+    pub links: Vec<LinkPose>,
+    /// Points.
+    pub points: Vec<PointPose>,
+    model: Arc<Model>,
+}
+
+impl Pose {
+    /// The pose of the link named `name`, if any.
+    pub fn link(&self, name: &str) -> Option<&LinkPose> {
+        self.model.link_index(name).map(|l| &self.links[l])
+    }
+    /// The position of the point named `name`, if any.
+    pub fn point(&self, name: &str) -> Option<&PointPose> {
+        self.model.point_index(name).map(|p| &self.points[p])
+    }
+}
+
+/// Result of [`Mechanism::kinematics`]: positions, velocities, accelerations of every link
+/// and point (indexed like the model), and the input values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Motion {
+    /// Links, ground first: θ, ω, α, cg and its velocity and acceleration.
+    pub links: Vec<LinkMotion>,
+    /// Points: position, velocity, acceleration.
+    pub points: Vec<PointMotion>,
+    /// q, q̇, q̈ of this motion.
+    pub q: Vec<f64>,
+    /// q̇.
+    pub qd: Vec<f64>,
+    /// q̈.
+    pub qdd: Vec<f64>,
+    states: Vec<LinkState>,
+    model: Arc<Model>,
+}
+
+impl Motion {
+    /// The motion of the link named `name`, if any.
+    pub fn link(&self, name: &str) -> Option<&LinkMotion> {
+        self.model.link_index(name).map(|l| &self.links[l])
+    }
+    /// The motion of the point named `name`, if any.
+    pub fn point(&self, name: &str) -> Option<&PointMotion> {
+        self.model.point_index(name).map(|p| &self.points[p])
+    }
+}
+
+/// Result of [`Mechanism::kinetostatics`]: the motor action of each input and the reaction
+/// at every joint (force BY a ON b, N; a prismatic joint's moment about its point, N·m).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Forces {
+    /// Motor actions: torque (N·m) or axial force (N) by a on b.
+    pub driver: Vec<f64>,
+    /// Reactions, indexed like [`Model::joints`].
+    pub joints: Vec<JointReaction>,
+    model: Arc<Model>,
+}
+
+impl Forces {
+    /// The reaction at the joint named `name`: force by a on b (N) and, for a prismatic
+    /// joint, the moment (N·m) — the shape of a generated `<Name>Forces::reaction`.
+    pub fn reaction(&self, name: &str) -> Option<(V2, Option<f64>)> {
+        self.model.joint_index(name).map(|j| (self.joints[j].force, self.joints[j].moment))
+    }
+}
+
+impl Mechanism {
+    /// Load from DSL text (the body of a `mechanism! { ... }`): the macro's parse,
+    /// resolution and checks; every problem reported together with its line and column.
+    pub fn from_dsl(text: &str) -> Result<Self, MechError> {
+        Self::from_model(GenericMechanism::parse(text)?.model().clone())
+    }
+
+    /// Load the mechanism `name` declared with `mechanism!` in Rust source text.
+    pub fn from_rust_source(source: &str, name: &str) -> Result<Self, MechError> {
+        Self::from_model(GenericMechanism::from_rust_source(source, name)?.model().clone())
+    }
+
+    /// Load from a file of DSL text.
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, MechError> {
+        Self::from_model(GenericMechanism::load(path)?.model().clone())
+    }
+
+    /// A mechanism from a resolved [`Model`]: every check of the macro, the Assur plan and
+    /// the drawing's branches. [`MechError::Invalid`] when a check fails,
+    /// [`MechError::InvalidInput`] for what the interpreter does not take (module docs).
+    pub fn from_model(model: Model) -> Result<Self, MechError> {
+        let issues = crate::validate::check(&model);
+        if !issues.is_empty() {
+            return Err(MechError::Invalid(issues.iter().map(|i| i.message.as_str()).collect::<Vec<_>>().join("\n")));
+        }
+        let plan = crate::assur::plan(&model)
+            .map_err(|_| MechError::Invalid("the links cannot be solved group by group from the inputs".into()))?;
+        if let Some(g) = plan.iter().find(|g| g.redundant() || g.bodies.len() > MAX_GROUP_LINKS) {
+            let names: Vec<&str> = g.bodies.iter().map(|&b| model.links[b].name.as_str()).collect();
+            return Err(MechError::InvalidInput(format!(
+                "the group of links {} is {}: the run-time interpreter takes non-redundant groups of at most {MAX_GROUP_LINKS} links; load it with `GenericMechanism`",
+                names.join(", "),
+                if g.redundant() { "redundant" } else { "too large" }
+            )));
+        }
+        let inst = instance(&model)?;
+        let solvers: Vec<_> = plan.iter().map(|g| g.solver).collect();
+        let branches = inst.branches(&solvers);
+        let terms = model.links.iter().map(LinkTerms::of).collect();
+        Ok(Mechanism { model: Arc::new(model), inst, plan, branches, terms })
+    }
+
+    /// The resolved model (names, topology and the drawing's numbers).
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// G, the number of inputs.
+    pub fn dof(&self) -> usize {
+        self.model.inputs.len()
+    }
+
+    /// All loads zero, with their names (for [`Loads::set_by_name`]).
+    pub fn loads(&self) -> Loads {
+        let values = self
+            .model
+            .loads
+            .iter()
+            .map(|l| match l {
+                Load::Force { .. } => LoadValue::Force(V2::zeros()),
+                Load::Torque { .. } => LoadValue::Torque(0.0),
+            })
+            .collect();
+        Loads { values, model: Some(self.model.clone()) }
+    }
+
+    fn check_inputs(&self, v: &[&[f64]]) -> Result<(), MechError> {
+        for x in v {
+            if x.len() != self.dof() {
+                return Err(MechError::InvalidInput(format!("expected {} input values, got {}", self.dof(), x.len())));
+            }
+            crate::error::check_finite("q, qd, qdd", x)?;
+        }
+        Ok(())
+    }
+
+    /// Solve the plan up to `upto` at (q, q̇, q̈) into `s` (one state per link), reusing its
+    /// allocation: the run-time counterpart of the generated `__solve`.
+    pub fn solve_into(&self, q: &[f64], qd: &[f64], qdd: &[f64], upto: Level, s: &mut Vec<LinkState>) -> Result<(), MechError> {
+        self.check_inputs(&[q, qd, qdd])?;
+        s.clear();
+        s.extend_from_slice(&self.inst.drawing);
+        let drive: Drive = (q, qd, qdd);
+        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+        for (g, &sign) in self.plan.iter().zip(&self.branches) {
+            match &g.kernel {
+                Kernel::Driven(d) => kinematics::solve_driven(g.solver, d, joints, s, drive, upto)?,
+                Kernel::Chain(c) => kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)?,
+                Kernel::System => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
+            }
+        }
+        Ok(())
+    }
+
+    /// Positions only: every link's angle and cg, every point.
+    pub fn pose(&self, q: &[f64]) -> Result<Pose, MechError> {
+        let zero = vec![0.0; self.dof()];
+        let mut s = Vec::new();
+        self.solve_into(q, &zero, &zero, Level::Position, &mut s)?;
+        let links = self.inst.links.iter().zip(&s).map(|(l, st)| l.pose(st)).collect();
+        let points = self.inst.points.iter().map(|&(o, d)| point_pose(&s[o], d)).collect();
+        Ok(Pose { links, points, model: self.model.clone() })
+    }
+
+    /// Positions, velocities and accelerations at (q, q̇, q̈).
+    pub fn kinematics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<Motion, MechError> {
+        let mut s = Vec::new();
+        self.solve_into(q, qd, qdd, Level::Acceleration, &mut s)?;
+        let links = self.inst.links.iter().zip(&s).map(|(l, st)| l.motion(st)).collect();
+        let points = self.inst.points.iter().map(|&(o, d)| point_motion(&s[o], d)).collect();
+        Ok(Motion { links, points, q: q.to_vec(), qd: qd.to_vec(), qdd: qdd.to_vec(), states: s, model: self.model.clone() })
+    }
+
+    /// The applied wrenches (loads, gravity) and, when `inertia`, d'Alembert's inertia
+    /// wrenches, per link, with the terms each link's declaration gives it.
+    fn wrenches(&self, s: &[LinkState], loads: &Loads, inertia: bool) -> Result<Vec<Wrench>, MechError> {
+        let mut f = vec![Wrench::zeros(); s.len()];
+        for (l, t) in self.terms.iter().enumerate().skip(1) {
+            if t.gravity() {
+                add_gravity(&mut f[l], &s[l], &self.inst.links[l], self.inst.gravity);
+            }
+            if inertia && t.inertia() {
+                add_inertia(&mut f[l], &s[l], &self.inst.links[l]);
+            }
+        }
+        for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
+            let link = load.link();
+            match *value {
+                LoadValue::Force(v) => {
+                    crate::error::check_finite("loads", &[v.x, v.y])?;
+                    add_force(&mut f[link], &s[link], self.inst.loads[k], v)
+                }
+                LoadValue::Torque(t) => {
+                    crate::error::check_finite("loads", &[t])?;
+                    add_torque(&mut f[link], t)
+                }
+            }
+        }
+        Ok(f)
+    }
+
+    /// d'Alembert: the motor action of every input and the reaction at every joint, group
+    /// by group from the outermost Assur group inward. `extra` adds wrenches per link
+    /// (friction).
+    pub fn kinetostatics_with(&self, m: &Motion, loads: &Loads, extra: Option<&[Wrench]>) -> Result<Forces, MechError> {
+        let s = &m.states;
+        let mut f = self.wrenches(s, loads, true)?;
+        if let Some(extra) = extra {
+            for (fi, e) in f.iter_mut().zip(extra) {
+                *fi += e;
+            }
+        }
+        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+        let mut r = vec![Reaction::default(); joints.len()];
+        let mut d = vec![0.0; self.dof()];
+        for g in self.plan.iter().rev() {
+            match &g.kernel {
+                Kernel::Driven(k) => screw::driven_reactions(k, joints, s, &mut f, &mut r, &mut d),
+                Kernel::Chain(c) => screw::chain_reactions(c, joints, s, &mut f, scale, &mut r)?,
+                Kernel::System => system(g, |n| n.reactions(g, joints, s, &mut f, scale, &mut r, &mut d))?,
+            }
+        }
+        let joints = self
+            .model
+            .joints
+            .iter()
+            .zip(r)
+            .map(|(j, r)| JointReaction { force: r.force, moment: (j.kind == JointKind::Prismatic).then_some(r.moment) })
+            .collect();
+        Ok(Forces { driver: d, joints, model: self.model.clone() })
+    }
+
+    /// d'Alembert (see [`Mechanism::kinetostatics_with`]).
+    pub fn kinetostatics(&self, m: &Motion, loads: &Loads) -> Result<Forces, MechError> {
+        self.kinetostatics_with(m, loads, None)
+    }
+
+    /// The motor actions by virtual power, no reaction: Q_k = −Σ (F·v + M ω) over loads,
+    /// gravity and inertia in the velocity field moving input k alone at unit rate.
+    pub fn driver_action(&self, m: &Motion, loads: &Loads) -> Result<Vec<f64>, MechError> {
+        let s = &m.states;
+        let f = self.wrenches(s, loads, true)?;
+        let g = self.dof();
+        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+        let mut out = vec![0.0; g];
+        for (k, o) in out.iter_mut().enumerate() {
+            let mut v = s.clone();
+            for st in v.iter_mut() {
+                st.vel = V2::zeros();
+                st.omega = 0.0;
+            }
+            let mut qd = vec![0.0; g];
+            qd[k] = 1.0;
+            let zero = vec![0.0; g];
+            let drive: Drive = (&zero, &qd, &zero);
+            for grp in &self.plan {
+                match &grp.kernel {
+                    Kernel::Driven(d) => screw::driven_rates(d, joints, &mut v, drive, Level::Velocity)?,
+                    Kernel::Chain(c) => screw::chain_rates(c, joints, &mut v, scale, Level::Velocity)?,
+                    Kernel::System => system(grp, |n| n.field(grp, joints, &mut v, drive, scale))?,
+                }
+            }
+            *o = -crate::kinetostatics::virtual_power(&f, &v);
+        }
+        Ok(out)
+    }
+
+    /// Zhukovski's sums over the motion with q̇ = 1, q̈ = 0 (one input).
+    fn reduction(&self, q: f64, loads: Option<&Loads>, upto: Level) -> Result<Reduction, MechError> {
+        if self.dof() != 1 {
+            return Err(MechError::InvalidInput(format!("Zhukovski's reduction needs one input, the mechanism has {}", self.dof())));
+        }
+        let mut s = Vec::new();
+        self.solve_into(&[q], &[1.0], &[0.0], upto, &mut s)?;
+        let mut z = Reduction::default();
+        for (l, t) in self.terms.iter().enumerate().skip(1) {
+            let geom = &self.inst.links[l];
+            if upto == Level::Acceleration && t.inertia() {
+                z.inertia(geom, &s[l]);
+            }
+            if loads.is_some() && t.gravity() {
+                z.gravity(geom, &s[l], self.inst.gravity);
+            }
+        }
+        if let Some(loads) = loads {
+            for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
+                let link = load.link();
+                match *value {
+                    LoadValue::Force(v) => {
+                        crate::error::check_finite("loads", &[v.x, v.y])?;
+                        z.force(&s[link], self.inst.loads[k], v)
+                    }
+                    LoadValue::Torque(t) => {
+                        crate::error::check_finite("loads", &[t])?;
+                        z.torque(&s[link], t)
+                    }
+                }
+            }
+        }
+        Ok(z)
+    }
+}
+
+/// A Newton group's solvers at its size N = 3 × links (const generic, dispatched here).
+struct Newton<const N: usize>;
+
+impl<const N: usize> Newton<N> {
+    fn solve(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64, upto: Level) -> Result<(), MechError> {
+        group_solve::<N>(&g.bodies, &g.cons, joints, s, drive, scale, upto).map(|_| ())
+    }
+    #[allow(clippy::too_many_arguments)]
+    fn reactions(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &[LinkState],
+        f: &mut [Wrench],
+        scale: f64,
+        r: &mut [Reaction],
+        d: &mut [f64],
+    ) -> Result<(), MechError> {
+        let lam = group_reactions::<N>(None, &g.bodies, &g.cons, joints, s, f, scale)?;
+        lambda_reactions(&g.cons, joints, s, lam.as_slice(), r, d);
+        Ok(())
+    }
+    fn field(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64) -> Result<(), MechError> {
+        group_velocity_field::<N, GroupSystem<N>>(None, &g.bodies, &g.cons, joints, s, drive, scale)
+    }
+}
+
+/// Call `f` with the fixed-size solver of group `g`'s size.
+fn system<T>(g: &Group, f: impl FnOnce(&dyn NewtonAny) -> Result<T, MechError>) -> Result<T, MechError> {
+    match g.bodies.len() {
+        1 => f(&Newton::<3>),
+        2 => f(&Newton::<6>),
+        3 => f(&Newton::<9>),
+        4 => f(&Newton::<12>),
+        5 => f(&Newton::<15>),
+        6 => f(&Newton::<18>),
+        n => Err(MechError::InvalidInput(format!("a group of {n} links is beyond the run-time interpreter ({MAX_GROUP_LINKS})"))),
+    }
+}
+
+/// The size-erased interface of [`Newton`].
+trait NewtonAny {
+    fn solve(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64, upto: Level) -> Result<(), MechError>;
+    #[allow(clippy::too_many_arguments)]
+    fn reactions(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &[LinkState], f: &mut [Wrench], scale: f64, r: &mut [Reaction], d: &mut [f64]) -> Result<(), MechError>;
+    fn field(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64) -> Result<(), MechError>;
+}
+
+impl<const N: usize> NewtonAny for Newton<N> {
+    fn solve(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64, upto: Level) -> Result<(), MechError> {
+        Newton::<N>::solve(self, g, joints, s, drive, scale, upto)
+    }
+    fn reactions(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &[LinkState], f: &mut [Wrench], scale: f64, r: &mut [Reaction], d: &mut [f64]) -> Result<(), MechError> {
+        Newton::<N>::reactions(self, g, joints, s, f, scale, r, d)
+    }
+    fn field(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64) -> Result<(), MechError> {
+        Newton::<N>::field(self, g, joints, s, drive, scale)
+    }
+}
+
+impl Machine for Mechanism {
+    type Loads = Loads;
+    type Motion = Motion;
+    fn dof(&self) -> usize {
+        self.model.inputs.len()
+    }
+    fn links(&self) -> usize {
+        self.model.links.len()
+    }
+    fn motion(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<Motion, MechError> {
+        self.kinematics(q, qd, qdd)
+    }
+    fn driver_actions(&self, m: &Motion, loads: &Loads, out: &mut [f64]) -> Result<(), MechError> {
+        let d = self.driver_action(m, loads)?;
+        if out.len() != d.len() {
+            return Err(MechError::InvalidInput(format!("expected {} driver slots, got {}", d.len(), out.len())));
+        }
+        out.copy_from_slice(&d);
+        Ok(())
+    }
+    fn link_kinetic_energies(&self, m: &Motion, out: &mut [f64]) {
+        for (l, o) in out.iter_mut().enumerate() {
+            *o = match (self.terms.get(l), m.links.get(l)) {
+                (Some(t), Some(lm)) if l > 0 && t.inertia() => crate::energy::kinetic(&self.inst.links[l], lm),
+                _ => 0.0,
+            };
+        }
+    }
+    fn potential_energy(&self, m: &Motion) -> f64 {
+        self.terms
+            .iter()
+            .enumerate()
+            .skip(1)
+            .filter(|(_, t)| t.gravity())
+            .map(|(l, _)| crate::energy::potential(&self.inst.links[l], &m.links[l], self.inst.gravity))
+            .sum()
+    }
+}
+
+impl OneDof for Mechanism {
+    fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
+        Ok(self.reduction(q, None, Level::Acceleration)?.reduced)
+    }
+    fn reduced_moment(&self, q: f64, loads: &Loads) -> Result<f64, MechError> {
+        Ok(self.reduction(q, Some(loads), Level::Velocity)?.moment)
+    }
+    fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &Loads) -> Result<f64, MechError> {
+        crate::error::check_finite("q, qd, driver", &[q, qd, driver])?;
+        let z = self.reduction(q, Some(loads), Level::Acceleration)?;
+        crate::zhukovski::acceleration(z.reduced, z.moment, qd, driver)
+    }
+}
