@@ -172,17 +172,14 @@ pub const MAX_ITERATIONS: usize = 200;
 /// kinetostatics with the friction of the previous ones), from the frictionless `first`:
 /// converged when the largest change is below 1e-13 of the largest value;
 /// `SelfLocking` when the changes stop shrinking (gain ≥ 1) or the values blow up.
-pub fn iterate<const K: usize>(
-    first: [f64; K],
-    mut step: impl FnMut(&[f64; K]) -> Result<[f64; K], MechError>,
-) -> Result<[f64; K], MechError> {
-    let size = |v: &[f64; K]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    let mut prev = first;
+pub fn iterate<V: AsRef<[f64]> + Clone>(first: V, mut step: impl FnMut(&V) -> Result<V, MechError>) -> Result<V, MechError> {
+    let size = |v: &V| v.as_ref().iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let mut prev = first.clone();
     let mut last_change = f64::INFINITY;
     let mut growing = 0;
     for _ in 0..MAX_ITERATIONS {
         let next = step(&prev)?;
-        let change = next.iter().zip(&prev).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+        let change = next.as_ref().iter().zip(prev.as_ref()).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
         let scale = size(&next).max(size(&first)).max(f64::MIN_POSITIVE);
         if !change.is_finite() || scale > 1e12 * size(&first).max(1.0) {
             break;

@@ -21,11 +21,14 @@
 
 use crate::assur::{Group, Kernel};
 use crate::constraints::{Drive, Level};
+use crate::friction::{add_joint_friction, flat_len, iterate, Flattener, JointFriction};
 use crate::generic::{GenericMechanism, JointReaction, LoadValue};
 use crate::group::{group_solve, group_velocity_field, GroupSystem};
 use crate::instance::{instance, Instance};
 use crate::kinematics;
-use crate::kinetostatics::{add_force, add_gravity, add_inertia, add_torque, group_reactions, lambda_reactions, Reaction, Wrench};
+use crate::kinetostatics::{
+    add_force, add_gravity, add_inertia, add_torque, group_reactions, lambda_reactions, PrismaticReaction, Reaction, RevoluteReaction, Wrench,
+};
 use crate::link_state::{point_motion, point_pose, LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2};
 use crate::model::{JointKind, Load, Model};
 use crate::params::LinkTerms;
@@ -319,6 +322,43 @@ impl Mechanism {
     /// d'Alembert (see [`Mechanism::kinetostatics_with`]).
     pub fn kinetostatics(&self, m: &Motion, loads: &Loads) -> Result<Forces, MechError> {
         self.kinetostatics_with(m, loads, None)
+    }
+
+    /// Kinetostatics with Coulomb friction in the joints (`friction[j]` for joint j in
+    /// declaration order, `mech::friction`): d'Alembert iterated to a fixed point, the
+    /// friction from the reactions of the previous iterate; `SelfLocking` when no finite
+    /// motor action moves the mechanism. The same iteration as the generated struct's.
+    pub fn kinetostatics_with_friction(&self, m: &Motion, loads: &Loads, friction: &[JointFriction]) -> Result<Forces, MechError> {
+        let n = self.model.joints.len();
+        if friction.len() != n {
+            return Err(MechError::InvalidInput(format!("expected the friction of {n} joints, got {}", friction.len())));
+        }
+        let kinds: Vec<JointKind> = self.model.joints.iter().map(|j| j.kind).collect();
+        let len = flat_len(self.dof(), &kinds);
+        let flat = |f: &Forces| {
+            let mut out = vec![0.0; len];
+            let mut w = Flattener::new(&mut out, &f.driver);
+            for (r, k) in f.joints.iter().zip(&kinds) {
+                match k {
+                    JointKind::Prismatic => w.push(&PrismaticReaction { force: r.force, moment: r.moment.unwrap_or(0.0) }),
+                    _ => w.push(&RevoluteReaction { force: r.force }),
+                }
+            }
+            out
+        };
+        let mut last = None;
+        iterate(flat(&self.kinetostatics(m, loads)?), |prev| {
+            let mut extra = vec![Wrench::zeros(); self.model.links.len()];
+            add_joint_friction(&mut extra, &self.inst.joints, &kinds, &m.states, friction, self.dof(), prev);
+            let f = self.kinetostatics_with(m, loads, Some(&extra))?;
+            let out = flat(&f);
+            last = Some(f);
+            Ok(out)
+        })?;
+        match last {
+            Some(f) => Ok(f),
+            None => self.kinetostatics(m, loads),
+        }
     }
 
     /// The motor actions by virtual power, no reaction: Q_k = −Σ (F·v + M ω) over loads,
