@@ -189,6 +189,61 @@ impl Mechanism {
         Ok(Mechanism { model: Arc::new(model), inst, plan, branches, terms })
     }
 
+    /// Change one number of the drawing by name, re-validated by every check of the
+    /// loading (the mechanism is unchanged on error):
+    /// - `points.<P>` = [x, y] (m), `links.<l>.cg` = [x, y] (m),
+    /// - `links.<l>.mass` = [m] (kg; a link declared without mass gets every term),
+    ///   `links.<l>.inertia` = [I_G] (kg·m²),
+    /// - `axes.<joint>` = [ux, uy] (a prismatic or slot joint's axis),
+    /// - `gravity` = [gx, gy] (m/s²; `[]` removes it).
+    ///
+    /// The run-time counterpart of a generated struct's `from_params`.
+    pub fn set_param(&mut self, path: &str, value: &[f64]) -> Result<(), MechError> {
+        crate::error::check_finite(path, value)?;
+        let mut model = (*self.model).clone();
+        let bad = |what: &str| MechError::InvalidInput(format!("no parameter `{path}`: {what}"));
+        let pair = |v: &[f64]| -> Result<[f64; 2], MechError> {
+            match v {
+                [x, y] => Ok([*x, *y]),
+                _ => Err(MechError::InvalidInput(format!("`{path}` takes 2 numbers, got {}", v.len()))),
+            }
+        };
+        let one = |v: &[f64]| -> Result<f64, MechError> {
+            match v {
+                [x] => Ok(*x),
+                _ => Err(MechError::InvalidInput(format!("`{path}` takes 1 number, got {}", v.len()))),
+            }
+        };
+        let parts: Vec<&str> = path.split('.').collect();
+        match parts.as_slice() {
+            ["points", p] => {
+                let i = model.point_index(p).ok_or_else(|| bad("unknown point"))?;
+                model.points[i].pos = pair(value)?;
+            }
+            ["links", l, what] => {
+                let i = model.link_index(l).filter(|&i| i > 0).ok_or_else(|| bad("unknown moving link"))?;
+                let link = &mut model.links[i];
+                match *what {
+                    "cg" => link.cg = pair(value)?,
+                    "mass" => link.mass = Some(one(value)?),
+                    "inertia" => link.inertia = one(value)?,
+                    _ => return Err(bad("a link has `cg`, `mass` and `inertia`")),
+                }
+            }
+            ["axes", j] => {
+                let i = model.joint_index(j).ok_or_else(|| bad("unknown joint"))?;
+                if model.joints[i].kind == JointKind::Revolute {
+                    return Err(bad("a revolute joint has no axis"));
+                }
+                model.joints[i].axis = pair(value)?;
+            }
+            ["gravity"] => model.gravity = if value.is_empty() { None } else { Some(pair(value)?) },
+            _ => return Err(bad("use points.<P>, links.<l>.{cg, mass, inertia}, axes.<joint> or gravity")),
+        }
+        *self = Mechanism::from_model(model)?;
+        Ok(())
+    }
+
     /// The resolved model (names, topology and the drawing's numbers).
     pub fn model(&self) -> &Model {
         &self.model
