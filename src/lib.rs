@@ -52,5 +52,6 @@ pub mod prelude {
     pub use mech_core::zhukovski::Reduced;
     pub use mech_core::traits::{Machine, OneDof};
     pub use mech_core::MechError;
+    pub use mech_core::Mechanism;
     pub use mech_core::Vector2;
 }

@@ -36,8 +36,12 @@ use crate::screw;
 use crate::traits::{Machine, OneDof};
 use crate::zhukovski::{Reduced, Reduction};
 use crate::MechError;
+use smallvec::{smallvec, SmallVec};
 use std::path::Path;
 use std::sync::Arc;
+
+/// Per-call temporaries on the stack for mechanisms of up to 8 links or joints.
+type Scratch<T> = SmallVec<[T; 8]>;
 
 /// The largest group (in links) the run-time interpreter solves with a fixed-size system.
 pub const MAX_GROUP_LINKS: usize = 6;
@@ -107,17 +111,26 @@ pub struct Motion {
     pub links: Vec<LinkMotion>,
     /// Points: position, velocity, acceleration.
     pub points: Vec<PointMotion>,
-    /// q, q̇, q̈ of this motion.
-    pub q: Vec<f64>,
-    /// q̇.
-    pub qd: Vec<f64>,
-    /// q̈.
-    pub qdd: Vec<f64>,
+    /// q, q̇ and q̈ of this motion, one after the other (G values each).
+    inputs: Vec<f64>,
     states: Vec<LinkState>,
     model: Arc<Model>,
 }
 
 impl Motion {
+    /// The input values q (rad or m) of this motion.
+    pub fn q(&self) -> &[f64] {
+        &self.inputs[..self.inputs.len() / 3]
+    }
+    /// The input rates q̇.
+    pub fn qd(&self) -> &[f64] {
+        let g = self.inputs.len() / 3;
+        &self.inputs[g..2 * g]
+    }
+    /// The input accelerations q̈.
+    pub fn qdd(&self) -> &[f64] {
+        &self.inputs[2 * self.inputs.len() / 3..]
+    }
     /// The motion of the link named `name`, if any.
     pub fn link(&self, name: &str) -> Option<&LinkMotion> {
         self.model.link_index(name).map(|l| &self.links[l])
@@ -308,17 +321,35 @@ impl Mechanism {
 
     /// Positions, velocities and accelerations at (q, q̇, q̈).
     pub fn kinematics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<Motion, MechError> {
-        let mut s = Vec::new();
-        self.solve_into(q, qd, qdd, Level::Acceleration, &mut s)?;
-        let links = self.inst.links.iter().zip(&s).map(|(l, st)| l.motion(st)).collect();
-        let points = self.inst.points.iter().map(|&(o, d)| point_motion(&s[o], d)).collect();
-        Ok(Motion { links, points, q: q.to_vec(), qd: qd.to_vec(), qdd: qdd.to_vec(), states: s, model: self.model.clone() })
+        let mut m = Motion { links: Vec::new(), points: Vec::new(), inputs: Vec::new(), states: Vec::new(), model: self.model.clone() };
+        self.kinematics_into(q, qd, qdd, &mut m)?;
+        Ok(m)
+    }
+
+    /// [`Mechanism::kinematics`] into `out`, reusing its buffers: no allocation once they
+    /// have grown (`out` from an earlier call, on this or another mechanism).
+    pub fn kinematics_into(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut Motion) -> Result<(), MechError> {
+        self.solve_into(q, qd, qdd, Level::Acceleration, &mut out.states)?;
+        let s = &out.states;
+        out.links.clear();
+        out.links.extend(self.inst.links.iter().zip(s).map(|(l, st)| l.motion(st)));
+        out.points.clear();
+        out.points.extend(self.inst.points.iter().map(|&(o, d)| point_motion(&s[o], d)));
+        out.inputs.clear();
+        out.inputs.extend_from_slice(q);
+        out.inputs.extend_from_slice(qd);
+        out.inputs.extend_from_slice(qdd);
+        if !Arc::ptr_eq(&out.model, &self.model) {
+            out.model = self.model.clone();
+        }
+        Ok(())
     }
 
     /// The applied wrenches (loads, gravity) and, when `inertia`, d'Alembert's inertia
     /// wrenches, per link, with the terms each link's declaration gives it.
-    fn wrenches(&self, s: &[LinkState], loads: &Loads, inertia: bool) -> Result<Vec<Wrench>, MechError> {
-        let mut f = vec![Wrench::zeros(); s.len()];
+    fn wrenches(&self, s: &[LinkState], loads: &Loads, inertia: bool, f: &mut Scratch<Wrench>) -> Result<(), MechError> {
+        f.clear();
+        f.resize(s.len(), Wrench::zeros());
         for (l, t) in self.terms.iter().enumerate().skip(1) {
             if t.gravity() {
                 add_gravity(&mut f[l], &s[l], &self.inst.links[l], self.inst.gravity);
@@ -340,38 +371,52 @@ impl Mechanism {
                 }
             }
         }
-        Ok(f)
+        Ok(())
     }
 
     /// d'Alembert: the motor action of every input and the reaction at every joint, group
     /// by group from the outermost Assur group inward. `extra` adds wrenches per link
     /// (friction).
     pub fn kinetostatics_with(&self, m: &Motion, loads: &Loads, extra: Option<&[Wrench]>) -> Result<Forces, MechError> {
+        let mut out = Forces { driver: Vec::new(), joints: Vec::new(), model: self.model.clone() };
+        self.kinetostatics_into(m, loads, extra, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Mechanism::kinetostatics_with`] into `out`, reusing its buffers: no allocation
+    /// once they have grown, for mechanisms of up to 8 links and joints.
+    pub fn kinetostatics_into(&self, m: &Motion, loads: &Loads, extra: Option<&[Wrench]>, out: &mut Forces) -> Result<(), MechError> {
         let s = &m.states;
-        let mut f = self.wrenches(s, loads, true)?;
+        let mut f = Scratch::new();
+        self.wrenches(s, loads, true, &mut f)?;
         if let Some(extra) = extra {
             for (fi, e) in f.iter_mut().zip(extra) {
                 *fi += e;
             }
         }
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
-        let mut r = vec![Reaction::default(); joints.len()];
-        let mut d = vec![0.0; self.dof()];
+        let mut r: Scratch<Reaction> = smallvec![Reaction::default(); joints.len()];
+        out.driver.clear();
+        out.driver.resize(self.dof(), 0.0);
         for g in self.plan.iter().rev() {
             match &g.kernel {
-                Kernel::Driven(k) => screw::driven_reactions(k, joints, s, &mut f, &mut r, &mut d),
+                Kernel::Driven(k) => screw::driven_reactions(k, joints, s, &mut f, &mut r, &mut out.driver),
                 Kernel::Chain(c) => screw::chain_reactions(c, joints, s, &mut f, scale, &mut r)?,
-                Kernel::System => system(g, |n| n.reactions(g, joints, s, &mut f, scale, &mut r, &mut d))?,
+                Kernel::System => system(g, |n| n.reactions(g, joints, s, &mut f, scale, &mut r, &mut out.driver))?,
             }
         }
-        let joints = self
-            .model
-            .joints
-            .iter()
-            .zip(r)
-            .map(|(j, r)| JointReaction { force: r.force, moment: (j.kind == JointKind::Prismatic).then_some(r.moment) })
-            .collect();
-        Ok(Forces { driver: d, joints, model: self.model.clone() })
+        out.joints.clear();
+        out.joints.extend(
+            self.model
+                .joints
+                .iter()
+                .zip(r)
+                .map(|(j, r)| JointReaction { force: r.force, moment: (j.kind == JointKind::Prismatic).then_some(r.moment) }),
+        );
+        if !Arc::ptr_eq(&out.model, &self.model) {
+            out.model = self.model.clone();
+        }
+        Ok(())
     }
 
     /// d'Alembert (see [`Mechanism::kinetostatics_with`]).
@@ -420,19 +465,20 @@ impl Mechanism {
     /// gravity and inertia in the velocity field moving input k alone at unit rate.
     pub fn driver_action(&self, m: &Motion, loads: &Loads) -> Result<Vec<f64>, MechError> {
         let s = &m.states;
-        let f = self.wrenches(s, loads, true)?;
+        let mut f = Scratch::new();
+        self.wrenches(s, loads, true, &mut f)?;
         let g = self.dof();
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
         let mut out = vec![0.0; g];
         for (k, o) in out.iter_mut().enumerate() {
-            let mut v = s.clone();
+            let mut v: Scratch<LinkState> = SmallVec::from_slice(s);
             for st in v.iter_mut() {
                 st.vel = V2::zeros();
                 st.omega = 0.0;
             }
-            let mut qd = vec![0.0; g];
+            let mut qd: Scratch<f64> = smallvec![0.0; g];
             qd[k] = 1.0;
-            let zero = vec![0.0; g];
+            let zero: Scratch<f64> = smallvec![0.0; g];
             let drive: Drive = (&zero, &qd, &zero);
             for grp in &self.plan {
                 match &grp.kernel {
