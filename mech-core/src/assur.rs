@@ -5,7 +5,7 @@
 //! A group is a set of links whose constraints towards already-solved links and among
 //! themselves are exactly 3 × (its links) scalar equations. The plan is found at compile
 //! time by the macro (and at run time by the generic solver) with [`plan`]; the
-//! generated code then calls [`position`] once per group with constant arguments.
+//! generated code then calls [`crate::kinematics`] once per group with constant arguments.
 
 use crate::constraints::{Con, ConKind};
 use crate::dyad::Solver;

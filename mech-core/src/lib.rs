@@ -2,16 +2,22 @@
 //!
 //! The pipeline of the `mechanism!` macro, visible in the module names:
 //! [`dsl`] (parse, syn) → [`model`] (plain data) → [`resolve`] (names) and [`validate`]
-//! (the checks of `docs/conventions.md#checks`, with [`grubler`] and [`pebble`]) → [`assur::plan`]
-//! (Assur groups, solve order) → emit (in `mech-macros`). The generated code is a
-//! sequence of calls into the kernels of [`kinematics`], [`assur`] (closed-form dyads),
-//! [`kinetostatics`], [`virtual_power`], [`zhukovski`], [`energy`], [`branches`] and
+//! (the checks of `docs/conventions.md#checks`, with [`grubler`] and [`pebble`]) →
+//! [`assur::plan`] (Assur groups, solve order, each group's kernel) → emit (in `mech-macros`).
+//!
+//! One kinematic core, shared by the generated code, the run-time [`Mechanism`] and the
+//! validation, each formula once, imports one way: [`link_state`] (a link's frame, its
+//! points' motion) → [`constraints`] (the joints' equations, their scaled Jacobian) →
+//! [`linalg`] → [`dyad`] (closed-form positions), [`screw`] (closed-form rates and
+//! reactions by joint screws), [`group`] (Newton and LU for the rest) → [`kinematics`]
+//! (one entry point per group). The generated code is a sequence of calls into those and
+//! into [`kinetostatics`], [`virtual_power`], [`zhukovski`], [`energy`], [`branches`] and
 //! [`friction`], with the numbers of [`instance`] checked against the declaration by
-//! [`params`]; every generated struct implements the [`traits`] that the algorithms
-//! written once here take:
-//! [`dynamics`] and [`ode`] (the direct problem), [`flywheel`] (Wittenbauer). The
-//! run-time [`generic`] solver reads the same DSL text and reuses the same model,
-//! validation and kernels, with one dense system instead of group by group.
+//! [`params`]. Every generated struct and every run-time [`Mechanism`] implements the
+//! [`traits`] that the algorithms written once here take: [`dynamics`] and [`ode`] (the
+//! direct problem), [`flywheel`] (Wittenbauer), [`friction`], [`equivalent_mass`]. The
+//! dense whole-system solver [`generic`] reads the same text and stays as an independent
+//! cross-check.
 
 pub mod assur;
 pub mod branches;

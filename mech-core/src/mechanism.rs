@@ -6,7 +6,7 @@
 //! branches); each solver then walks the plan group by group — [`kinematics::solve_driven`]
 //! for a driven crank or slider, [`kinematics::solve_chain`] for a closed-form dyad or slot
 //! group (rates and reactions by joint screws, `docs/theory.md` §3.4), Newton and a
-//! fixed-size LU ([`group::group_solve`]) for a group with no closed form — into a buffer of
+//! fixed-size LU ([`crate::group::group_solve`]) for a group with no closed form — into a buffer of
 //! link states the caller may keep ([`Mechanism::solve_into`]: no allocation once it has
 //! grown). Same accuracy, same `Singular`/`NoAssembly` behaviour and the same branch rule as
 //! the generated struct, which the tests check to 1e-12 on every reference machine.
@@ -204,11 +204,11 @@ impl Mechanism {
 
     /// Change one number of the drawing by name, re-validated by every check of the
     /// loading (the mechanism is unchanged on error):
-    /// - `points.<P>` = [x, y] (m), `links.<l>.cg` = [x, y] (m),
-    /// - `links.<l>.mass` = [m] (kg; a link declared without mass gets every term),
-    ///   `links.<l>.inertia` = [I_G] (kg·m²),
-    /// - `axes.<joint>` = [ux, uy] (a prismatic or slot joint's axis),
-    /// - `gravity` = [gx, gy] (m/s²; `[]` removes it).
+    /// - `points.<P>` = `[x, y]` (m), `links.<l>.cg` = `[x, y]` (m),
+    /// - `links.<l>.mass` = `[m]` (kg; a link declared without mass gets every term),
+    ///   `links.<l>.inertia` = `[I_G]` (kg·m²),
+    /// - `axes.<joint>` = `[ux, uy]` (a prismatic or slot joint's axis),
+    /// - `gravity` = `[gx, gy]` (m/s²; `[]` removes it).
     ///
     /// The run-time counterpart of a generated struct's `from_params`.
     pub fn set_param(&mut self, path: &str, value: &[f64]) -> Result<(), MechError> {

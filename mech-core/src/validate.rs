@@ -165,7 +165,7 @@ impl Jacobian {
 }
 
 /// Assemble the constraint Jacobian ∂Φ/∂(x, y, φ) of every joint and driver at the
-/// drawing from [`crate::kinematics::eval`] at [`Level::Jacobian`], scaled to be
+/// drawing from [`crate::constraints::scaled_rows`], scaled to be
 /// dimensionless: columns (x, y, φ·L) of links 1..N, angle rows × L, L = [`Model::scale`] (m).
 pub fn jacobian(model: &Model) -> Jacobian {
     let geoms = joint_geoms(model);
