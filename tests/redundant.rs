@@ -64,3 +64,33 @@ fn coupled_wheels_move_and_need_the_textbook_torque() {
         assert!((m.driver_action(&rest, &loads).unwrap() - want).abs() < 1e-10 * want);
     }
 }
+
+/// The same mechanism loaded at run time (`mech::Mechanism`, the same text): the same
+/// motion, the same motor torque (virtual power) and I*, and no reactions.
+#[test]
+fn the_run_time_mechanism_solves_it_too() {
+    let text = mech::generic::mechanism_text(include_str!("redundant.rs"), "CoupledWheels").unwrap();
+    let rt = mech::Mechanism::from_dsl(text).unwrap();
+    assert!(rt.redundant());
+    let m = CoupledWheels::new();
+    let loads = CoupledWheelsLoads { traction: -50.0 };
+    let mut rloads = rt.loads();
+    assert!(rloads.set_by_name("traction", &[-50.0]));
+    for k in 0..16 {
+        let q = 0.3 + 0.4 * k as f64;
+        if (q / std::f64::consts::PI - (q / std::f64::consts::PI).round()).abs() * std::f64::consts::PI < 0.3 {
+            continue;
+        }
+        let (mo, rm) = (m.kinematics(q, 10.0, 2.0).unwrap(), rt.kinematics(&[q], &[10.0], &[2.0]).unwrap());
+        for name in ["wheel2", "wheel3", "rod"] {
+            let (a, b) = (mo.link(name).unwrap(), rm.link(name).unwrap());
+            assert!((a.omega - b.omega).abs() < 1e-12 * 10.0 && (a.alpha - b.alpha).abs() < 1e-10 * 100.0, "q={q} {name}");
+            assert!((a.cg - b.cg).norm() < 1e-12, "q={q} {name}");
+        }
+        let (t, rtq) = (m.driver_action(&mo, &loads).unwrap(), rt.driver_action(&rm, &rloads).unwrap()[0]);
+        assert!((t - rtq).abs() < 1e-11 * t.abs(), "q={q}: {t} vs {rtq}");
+        let (z, rz) = (m.reduced(q).unwrap(), rt.reduced(q).unwrap());
+        assert!((z.inertia - rz.inertia).abs() < 1e-12 * z.inertia);
+        assert!(matches!(rt.kinetostatics(&rm, &rloads), Err(MechError::Redundant(_))));
+    }
+}

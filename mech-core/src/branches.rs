@@ -16,16 +16,14 @@ pub const MAX_FLIPPED: usize = 8;
 /// the sign of group k when bit k of c is set. The first answer that is not `NoAssembly`
 /// is returned, else the last `NoAssembly`.
 #[inline(always)]
-pub fn search<const G: usize, T>(
-    drawing: &[f64; G],
-    mut solve: impl FnMut(&[f64; G]) -> Result<T, MechError>,
-) -> Result<T, MechError> {
+pub fn search<B: AsRef<[f64]> + AsMut<[f64]> + Clone, T>(drawing: &B, mut solve: impl FnMut(&B) -> Result<T, MechError>) -> Result<T, MechError> {
     let mut result = solve(drawing);
-    let combinations = 1u32 << G.min(MAX_FLIPPED);
+    let g = drawing.as_ref().len();
+    let combinations = 1u32 << g.min(MAX_FLIPPED);
     let mut flips = 1u32;
     while matches!(result, Err(MechError::NoAssembly)) && flips < combinations {
-        let mut b = *drawing;
-        for (k, x) in b.iter_mut().enumerate().take(MAX_FLIPPED) {
+        let mut b = drawing.clone();
+        for (k, x) in b.as_mut().iter_mut().enumerate().take(MAX_FLIPPED) {
             if flips & (1 << k) != 0 {
                 *x = -*x;
             }

@@ -16,8 +16,11 @@
 //! takes it. The dense whole-system solver [`crate::generic::GenericMechanism`] stays as an
 //! independent cross-check.
 //!
-//! Limits: a redundant mechanism (`#[allow(redundant)]`) and a group of more than six links
-//! are refused at loading with [`MechError::InvalidInput`] (use `GenericMechanism`).
+//! A mechanism accepted with redundant constraints (`#[allow(redundant)]`) is solved as the
+//! generated struct solves it (least squares in its redundant groups, the other branches
+//! tried past a change point) and has no reactions (`MechError::Redundant`), only the motor
+//! actions. Limits: a group of more than six links or more than three redundant equations
+//! is refused at loading with [`MechError::InvalidInput`] (use `GenericMechanism`).
 
 use crate::assur::{Group, Kernel};
 use crate::constraints::{Drive, Level};
@@ -45,6 +48,9 @@ type Scratch<T> = SmallVec<[T; 8]>;
 
 /// The largest group (in links) the run-time interpreter solves with a fixed-size system.
 pub const MAX_GROUP_LINKS: usize = 6;
+
+/// The most redundant equations a group may have (`#[allow(redundant)]`).
+pub const MAX_REDUNDANT_ROWS: usize = 3;
 
 /// A mechanism loaded at run time and solved with the generated code's plan and kernels
 /// (module docs).
@@ -187,12 +193,13 @@ impl Mechanism {
         }
         let plan = crate::assur::plan(&model)
             .map_err(|_| MechError::Invalid("the links cannot be solved group by group from the inputs".into()))?;
-        if let Some(g) = plan.iter().find(|g| g.redundant() || g.bodies.len() > MAX_GROUP_LINKS) {
+        if let Some(g) = plan.iter().find(|g| g.bodies.len() > MAX_GROUP_LINKS || g.rows() > 3 * g.bodies.len() + MAX_REDUNDANT_ROWS) {
             let names: Vec<&str> = g.bodies.iter().map(|&b| model.links[b].name.as_str()).collect();
             return Err(MechError::InvalidInput(format!(
-                "the group of links {} is {}: the run-time interpreter takes non-redundant groups of at most {MAX_GROUP_LINKS} links; load it with `GenericMechanism`",
+                "the group of links {} has {} links and {} equations: the run-time interpreter takes groups of at most {MAX_GROUP_LINKS} links with at most {MAX_REDUNDANT_ROWS} redundant equations; load it with `GenericMechanism`",
                 names.join(", "),
-                if g.redundant() { "redundant" } else { "too large" }
+                g.bodies.len(),
+                g.rows()
             )));
         }
         let inst = instance(&model)?;
@@ -295,11 +302,25 @@ impl Mechanism {
     /// allocation: the run-time counterpart of the generated `__solve`.
     pub fn solve_into(&self, q: &[f64], qd: &[f64], qdd: &[f64], upto: Level, s: &mut Vec<LinkState>) -> Result<(), MechError> {
         self.check_inputs(&[q, qd, qdd])?;
+        if self.redundant() {
+            // Past a change point the drawing's branches may not close a redundant group:
+            // the other combinations are tried, as the generated code does.
+            let branches: Scratch<f64> = SmallVec::from_slice(&self.branches);
+            return crate::branches::search(&branches, |b| self.solve_on(b, (q, qd, qdd), upto, s));
+        }
+        self.solve_on(&self.branches, (q, qd, qdd), upto, s)
+    }
+
+    /// True when the mechanism was accepted with redundant constraints.
+    pub fn redundant(&self) -> bool {
+        self.model.allow_redundant && self.plan.iter().any(|g| g.redundant())
+    }
+
+    fn solve_on(&self, branches: &[f64], drive: Drive, upto: Level, s: &mut Vec<LinkState>) -> Result<(), MechError> {
         s.clear();
         s.extend_from_slice(&self.inst.drawing);
-        let drive: Drive = (q, qd, qdd);
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
-        for (g, &sign) in self.plan.iter().zip(&self.branches) {
+        for (g, &sign) in self.plan.iter().zip(branches) {
             match &g.kernel {
                 Kernel::Driven(d) => kinematics::solve_driven(g.solver, d, joints, s, drive, upto)?,
                 Kernel::Chain(c) => kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)?,
@@ -386,6 +407,11 @@ impl Mechanism {
     /// [`Mechanism::kinetostatics_with`] into `out`, reusing its buffers: no allocation
     /// once they have grown, for mechanisms of up to 8 links and joints.
     pub fn kinetostatics_into(&self, m: &Motion, loads: &Loads, extra: Option<&[Wrench]>, out: &mut Forces) -> Result<(), MechError> {
+        if self.redundant() {
+            return Err(MechError::Redundant(
+                "this mechanism has redundant constraints (`#[allow(redundant)]`): its reactions are statically indeterminate; the motor actions are still determined: call `driver_action` (virtual power)".into(),
+            ));
+        }
         let s = &m.states;
         let mut f = Scratch::new();
         self.wrenches(s, loads, true, &mut f)?;
@@ -555,16 +581,37 @@ impl<const N: usize> Newton<N> {
     }
 }
 
-/// Call `f` with the fixed-size solver of group `g`'s size.
+/// Call `f` with the fixed-size solver of group `g`'s size: N = 3 × links unknowns, and M
+/// equations for a redundant group (least squares).
 fn system<T>(g: &Group, f: impl FnOnce(&dyn NewtonAny) -> Result<T, MechError>) -> Result<T, MechError> {
-    match g.bodies.len() {
-        1 => f(&Newton::<3>),
-        2 => f(&Newton::<6>),
-        3 => f(&Newton::<9>),
-        4 => f(&Newton::<12>),
-        5 => f(&Newton::<15>),
-        6 => f(&Newton::<18>),
-        n => Err(MechError::InvalidInput(format!("a group of {n} links is beyond the run-time interpreter ({MAX_GROUP_LINKS})"))),
+    macro_rules! dispatch {
+        ($($links:literal => $n:literal [$($m:literal)*]),*) => {
+            match (g.bodies.len(), g.rows()) {
+                $(
+                    ($links, $n) => f(&Newton::<$n>),
+                    $(($links, $m) => f(&LeastSquares::<$n, $m>),)*
+                )*
+                (l, m) => Err(MechError::InvalidInput(format!(
+                    "a group of {l} links and {m} equations is beyond the run-time interpreter ({MAX_GROUP_LINKS} links, {MAX_REDUNDANT_ROWS} redundant equations)"
+                ))),
+            }
+        };
+    }
+    dispatch!(1 => 3 [4 5 6], 2 => 6 [7 8 9], 3 => 9 [10 11 12], 4 => 12 [13 14 15], 5 => 15 [16 17 18], 6 => 18 [19 20 21])
+}
+
+/// A redundant group's solvers (least squares over its M ≥ N equations).
+struct LeastSquares<const N: usize, const M: usize>;
+
+impl<const N: usize, const M: usize> NewtonAny for LeastSquares<N, M> {
+    fn solve(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64, upto: Level) -> Result<(), MechError> {
+        crate::group::group_solve_ls::<N, M>(&g.bodies, &g.cons, joints, s, drive, scale, upto).map(|_| ())
+    }
+    fn reactions(&self, _: &Group, _: &[crate::constraints::JointGeom], _: &[LinkState], _: &mut [Wrench], _: f64, _: &mut [Reaction], _: &mut [f64]) -> Result<(), MechError> {
+        Err(MechError::Redundant("a redundant group's reactions are statically indeterminate".into()))
+    }
+    fn field(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64) -> Result<(), MechError> {
+        group_velocity_field::<N, crate::group::LsSystem<N, M>>(None, &g.bodies, &g.cons, joints, s, drive, scale)
     }
 }
 
