@@ -301,6 +301,12 @@ impl Mechanism {
     /// Solve the plan up to `upto` at (q, q̇, q̈) into `s` (one state per link), reusing its
     /// allocation: the run-time counterpart of the generated `__solve`.
     pub fn solve_into(&self, q: &[f64], qd: &[f64], qdd: &[f64], upto: Level, s: &mut Vec<LinkState>) -> Result<(), MechError> {
+        s.resize(self.inst.drawing.len(), LinkState::default());
+        self.solve_slice(q, qd, qdd, upto, s)
+    }
+
+    /// [`Mechanism::solve_into`] into a slice of one state per link.
+    fn solve_slice(&self, q: &[f64], qd: &[f64], qdd: &[f64], upto: Level, s: &mut [LinkState]) -> Result<(), MechError> {
         self.check_inputs(&[q, qd, qdd])?;
         if self.redundant() {
             // Past a change point the drawing's branches may not close a redundant group:
@@ -316,9 +322,8 @@ impl Mechanism {
         self.model.allow_redundant && self.plan.iter().any(|g| g.redundant())
     }
 
-    fn solve_on(&self, branches: &[f64], drive: Drive, upto: Level, s: &mut Vec<LinkState>) -> Result<(), MechError> {
-        s.clear();
-        s.extend_from_slice(&self.inst.drawing);
+    fn solve_on(&self, branches: &[f64], drive: Drive, upto: Level, s: &mut [LinkState]) -> Result<(), MechError> {
+        s.copy_from_slice(&self.inst.drawing);
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
         for (g, &sign) in self.plan.iter().zip(branches) {
             match &g.kernel {
@@ -523,8 +528,8 @@ impl Mechanism {
         if self.dof() != 1 {
             return Err(MechError::InvalidInput(format!("Zhukovski's reduction needs one input, the mechanism has {}", self.dof())));
         }
-        let mut s = Vec::new();
-        self.solve_into(&[q], &[1.0], &[0.0], upto, &mut s)?;
+        let mut s: Scratch<LinkState> = SmallVec::from_slice(&self.inst.drawing);
+        self.solve_slice(&[q], &[1.0], &[0.0], upto, &mut s)?;
         let mut z = Reduction::default();
         for (l, t) in self.terms.iter().enumerate().skip(1) {
             let geom = &self.inst.links[l];
