@@ -5,7 +5,7 @@
 //! [`position`] at every input value.
 
 use crate::constraints::{Drive, JointGeom};
-use crate::link_state::{cross, perp, rotate, LinkState, V2};
+use crate::link_state::{cross, dir_of, perp, point_of, rotate, LinkState, V2};
 use crate::MechError;
 
 /// How a group's positions are solved.
@@ -211,9 +211,9 @@ pub fn branch(x: f64) -> f64 {
 #[inline(always)]
 fn pin(g: &JointGeom, s: &[LinkState], body: usize) -> (V2, V2) {
     if g.b == body {
-        (s[g.a].point(g.da), g.db)
+        (point_of(s, g.a, g.da), g.db)
     } else {
-        (s[g.b].point(g.db), g.da)
+        (point_of(s, g.b, g.db), g.da)
     }
 }
 
@@ -223,9 +223,9 @@ fn pin(g: &JointGeom, s: &[LinkState], body: usize) -> (V2, V2) {
 fn slide_line(g: &JointGeom, s: &[LinkState], body: usize, rot: V2, d: V2) -> (V2, V2) {
     let u = rotate(rot, g.axis);
     if g.b == body {
-        (s[g.a].point(g.da) + rotate(rot, d - g.db), u)
+        (point_of(s, g.a, g.da) + rotate(rot, d - g.db), u)
     } else {
-        (s[g.b].point(g.db) + rotate(rot, d - g.da), u)
+        (point_of(s, g.b, g.db) + rotate(rot, d - g.da), u)
     }
 }
 
@@ -312,13 +312,13 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
             let (a, _) = pin(&joints[ja], s, body);
             let g = &joints[js];
             let p = s[body].point(g.db);
-            let u = s[g.a].r(g.axis);
+            let u = dir_of(s, g.a, g.axis);
             (p - a).dot(&u)
         }
         Solver::SlottedLever { body, ja, js } => {
             let g = &joints[js];
             let (a, _) = pin(&joints[ja], s, body);
-            let p = s[g.b].point(g.db);
+            let p = point_of(s, g.b, g.db);
             tangent_side(&s[body], g.axis, p - a)
         }
         _ => 1.0,
@@ -336,7 +336,7 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
             let g = &joints[joint];
             let (sn, cs) = (drive.0[input] - g.q_ref).sin_cos();
             let (other, rel) = if g.b == body { (g.a, V2::new(cs, sn)) } else { (g.b, V2::new(cs, -sn)) };
-            let rot = rotate(s[other].rot, rel);
+            let rot = if other == 0 { rel } else { rotate(s[other].rot, rel) };
             let (p, d) = pin(g, s, body);
             place_by_point(&mut s[body], rot, d, p);
         }
@@ -345,11 +345,11 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
             let q = drive.0[input];
             if g.b == body {
                 let rot = s[g.a].rot;
-                let p = s[g.a].point(g.da) + rotate(rot, g.axis) * q;
+                let p = point_of(s, g.a, g.da) + rotate(rot, g.axis) * q;
                 place_by_point(&mut s[body], rot, g.db, p);
             } else {
                 let rot = s[g.b].rot;
-                let p = s[g.b].point(g.db) - rotate(rot, g.axis) * q;
+                let p = point_of(s, g.b, g.db) - rotate(rot, g.axis) * q;
                 place_by_point(&mut s[body], rot, g.da, p);
             }
         }
@@ -407,15 +407,15 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
         Solver::PinInFixedSlot { body, ja, js } => {
             let (a, da) = pin(&joints[ja], s, body);
             let g = &joints[js];
-            let u = s[g.a].r(g.axis);
-            let q = s[g.a].point(g.da);
+            let u = dir_of(s, g.a, g.axis);
+            let q = point_of(s, g.a, g.da);
             let p = circle_line(a, (g.db - da).norm_squared(), q, u, sign)?;
             place_by_two_points(&mut s[body], da, g.db, a, p);
         }
         Solver::SlottedLever { body, ja, js } => {
             let g = &joints[js];
             let pa = pin(&joints[ja], s, body);
-            let pb = (s[g.b].point(g.db), g.db);
+            let pb = (point_of(s, g.b, g.db), g.db);
             let (n0, dvec, w) = rpr_data(g, pa, pb, false);
             let rot = tangent_rotation(n0, dvec, w, sign)?;
             place_by_point(&mut s[body], rot, pa.1, pa.0);

@@ -204,6 +204,28 @@ impl LinkGeom {
     }
 }
 
+/// The current position of the material point of local vector `d` on link `l` of the
+/// states `s`. The ground (link 0) never moves and its anchor is the origin, so its points
+/// are their local vectors: no rotation is spent on them.
+#[inline(always)]
+pub fn point_of(s: &[LinkState], l: usize, d: V2) -> V2 {
+    if l == 0 {
+        d
+    } else {
+        s[l].point(d)
+    }
+}
+
+/// The current direction of the local vector `d` of link `l` (unrotated on the ground).
+#[inline(always)]
+pub fn dir_of(s: &[LinkState], l: usize, d: V2) -> V2 {
+    if l == 0 {
+        d
+    } else {
+        s[l].r(d)
+    }
+}
+
 /// The motion of the material point of local vector `d` on a link.
 #[inline]
 pub fn point_motion(s: &LinkState, d: V2) -> PointMotion {

@@ -31,7 +31,7 @@
 use crate::constraints::{Drive, JointGeom, Level};
 use crate::kinetostatics::{Reaction, Wrench};
 use crate::linalg::Inverse2;
-use crate::link_state::{cross, perp, LinkState, V2};
+use crate::link_state::{cross, dir_of, perp, point_of, LinkState, V2};
 use crate::MechError;
 
 /// A planar twist (ω rad/s, v_O m/s) at a group's point O, or its time derivative, the
@@ -146,16 +146,16 @@ impl JointScrew {
     fn at(self, joints: &[JointGeom], s: &[LinkState], o: V2) -> Twist {
         let g = &joints[self.joint];
         if self.slide {
-            Twist { w: 0.0, v: s[g.a].r(g.axis) }
+            Twist { w: 0.0, v: dir_of(s, g.a, g.axis) }
         } else {
-            Twist { w: 1.0, v: perp(o - s[g.b].point(g.db)) }
+            Twist { w: 1.0, v: perp(o - point_of(s, g.b, g.db)) }
         }
     }
     /// The joint's point now (the point of its second link), m.
     #[inline(always)]
     fn point(self, joints: &[JointGeom], s: &[LinkState]) -> V2 {
         let g = &joints[self.joint];
-        s[g.b].point(g.db)
+        point_of(s, g.b, g.db)
     }
 }
 
@@ -366,7 +366,7 @@ pub fn driven_rates(d: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive
 #[inline(always)]
 fn reaction(g: &JointGeom, s: &[LinkState], before: usize, w: Force, o: V2, moment: bool) -> Reaction {
     let sigma = orientation(g, before);
-    let moment = if moment { sigma * (w.m - cross(s[g.b].point(g.db) - o, w.f)) } else { 0.0 };
+    let moment = if moment { sigma * (w.m - cross(point_of(s, g.b, g.db) - o, w.f)) } else { 0.0 };
     Reaction { force: w.f * sigma, moment }
 }
 
