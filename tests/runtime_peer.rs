@@ -1,0 +1,150 @@
+//! The run-time mechanism (`mech::Mechanism`) is a peer of the generated struct: every
+//! algorithm of mech-core takes it and gives the generated struct's answer — the
+//! flywheel of the engine example from a file of DSL text, the direct problem, Quinn's
+//! coefficients, Lagrange's equations for two inputs, Coulomb friction.
+
+#[path = "common/engine.rs"]
+mod engine;
+#[path = "common/mechanisms.rs"]
+mod mechanisms;
+
+use mech::dynamics::{equation_of_motion, lagrange_acceleration, mass_matrix, quinn_coefficients};
+use mech::flywheel::Cycle;
+use mech::friction::JointFriction;
+use mech::generic::mechanism_text;
+use mech::ode::{integrate, Dop853};
+use mech::prelude::*;
+
+const MECHANISMS: &str = include_str!("common/mechanisms.rs");
+
+fn runtime(name: &str) -> Mechanism {
+    Mechanism::from_rust_source(MECHANISMS, name).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs().max(f64::MIN_POSITIVE)
+}
+
+/// The engine example's flywheel (approximate and Wittenbauer's exact inertia), from the
+/// engine's DSL text written to a file and loaded at run time, equals the generated
+/// engine's to 1e-10.
+#[test]
+fn engine_flywheel_from_a_file() {
+    let text = mechanism_text(include_str!("common/engine.rs"), "Engine").unwrap();
+    let path = std::env::temp_dir().join(format!("mech_engine_{}.mech", std::process::id()));
+    std::fs::write(&path, text).unwrap();
+    let rt = Mechanism::load(&path).unwrap();
+    std::fs::remove_file(&path).ok();
+    let gen = engine::Engine::new();
+
+    let rt_loads = |q: f64| -> Result<mech::mechanism::Loads, MechError> {
+        let x_b = rt.pose(&[q])?.point("B").unwrap().pos.x;
+        let mut l = rt.loads();
+        let f = -(engine::pressure(q, x_b) - engine::P_CRANKCASE) * engine::PISTON_AREA;
+        assert!(l.set_by_name("gas", &[f, 0.0]));
+        Ok(l)
+    };
+    let (g_cycle, g_t) = Cycle::new(&gen, engine::Q_TDC, engine::PERIOD, &engine::breakpoints(), |q| engine::gas_loads(&gen, q), |_| 0.0)
+        .unwrap()
+        .balanced();
+    let (r_cycle, r_t) = Cycle::new(&rt, engine::Q_TDC, engine::PERIOD, &engine::breakpoints(), rt_loads, |_| 0.0).unwrap().balanced();
+    assert!(rel(r_t, g_t) < 1e-10, "balancing torque {r_t} vs {g_t}");
+    let g = g_cycle.flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY).unwrap();
+    let r = r_cycle.flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY).unwrap();
+    assert!(rel(r.approximate.inertia, g.approximate.inertia) < 1e-10, "approximate {} vs {}", r.approximate.inertia, g.approximate.inertia);
+    assert!(rel(r.exact.inertia, g.exact.inertia) < 1e-10, "exact {} vs {}", r.exact.inertia, g.exact.inertia);
+    assert!(g.exact.inertia > 0.01 && g.approximate.inertia > 0.01, "a real flywheel: {} kg·m²", g.exact.inertia);
+    eprintln!("flywheel: exact {} / {} kg·m², approximate {} / {}", r.exact.inertia, g.exact.inertia, r.approximate.inertia, g.approximate.inertia);
+}
+
+/// The direct problem: DOP853 on the slider-crank under a constant torque for 0.5 s (about
+/// 20 revolutions), run-time against generated: the same end state to 1e-10.
+#[test]
+fn direct_problem() {
+    let gen = mechanisms::SliderCrank::new();
+    let rt = runtime("SliderCrank");
+    let (gl, rl) = (mechanisms::SliderCrankLoads::default(), rt.loads());
+    let a = integrate(&mut Dop853::new(1e-11, 1e-11), equation_of_motion(&gen, |_, _, _| (3.0, gl)), 0.0, [0.3, 20.0], 0.5).unwrap();
+    let b = integrate(&mut Dop853::new(1e-11, 1e-11), equation_of_motion(&rt, |_, _, _| (3.0, rl.clone())), 0.0, [0.3, 20.0], 0.5).unwrap();
+    assert!(rel(b.y[0], a.y[0]) < 1e-10 && rel(b.y[1], a.y[1]) < 1e-10, "{:?} vs {:?}", b.y, a.y);
+    // Energy: both give the same kinetic + potential energy along the way.
+    for q in [0.3, 1.7, 4.0] {
+        let (e1, e2) = (mech::dynamics::total_energy(&gen, &[q], &[20.0]).unwrap(), mech::dynamics::total_energy(&rt, &[q], &[20.0]).unwrap());
+        assert!(rel(e2, e1) < 1e-12, "q={q}: energy {e2} vs {e1}");
+    }
+}
+
+/// Quinn's energy-contribution coefficients of the four-bar.
+#[test]
+fn quinn() {
+    let gen = mechanisms::FourBar::new();
+    let rt = runtime("FourBar");
+    let (mut a, mut b) = (vec![0.0; gen.links()], vec![0.0; rt.links()]);
+    for k in 0..12 {
+        let q = 0.5 * k as f64;
+        quinn_coefficients(&gen, q, &mut a).unwrap();
+        quinn_coefficients(&rt, q, &mut b).unwrap();
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() < 1e-12, "q={q}: {a:?} vs {b:?}");
+        }
+    }
+}
+
+/// Lagrange's equations of the two-input five-bar: mass matrix and accelerations.
+#[test]
+fn lagrange_two_inputs() {
+    let gen = mechanisms::FiveBar::new();
+    let rt = runtime("FiveBar");
+    let (gl, rl) = (mechanisms::FiveBarLoads::default(), rt.loads());
+    for k in 0..6 {
+        let m = rt.model();
+        let q = [m.reference_input(0) + 0.05 * k as f64, m.reference_input(1) - 0.03 * k as f64];
+        let (ma, mb) = (mass_matrix(&gen, &q).unwrap(), mass_matrix(&rt, &q).unwrap());
+        for i in 0..2 {
+            for j in 0..2 {
+                assert!((ma[i][j] - mb[i][j]).abs() < 1e-12 * ma[0][0].abs().max(ma[1][1].abs()), "q={q:?} M[{i}][{j}]");
+            }
+        }
+        let (qd, tau) = ([3.0, -2.0], [0.4, -0.3]);
+        let (aa, ab) = (lagrange_acceleration(&gen, &q, &qd, &tau, &gl).unwrap(), lagrange_acceleration(&rt, &q, &qd, &tau, &rl).unwrap());
+        for i in 0..2 {
+            assert!((aa[i] - ab[i]).abs() < 1e-10 * aa[i].abs().max(1.0), "q={q:?}: {aa:?} vs {ab:?}");
+        }
+    }
+}
+
+/// Coulomb friction in every joint of the slider-crank: the run-time fixed point equals
+/// the generated one (driver and every reaction).
+#[test]
+fn friction() {
+    let gen = mechanisms::SliderCrank::new();
+    let rt = runtime("SliderCrank");
+    let fr = [JointFriction { mu: 0.1, pin_radius: 0.012 }; 4];
+    let mut gl = mechanisms::SliderCrankLoads::default();
+    let mut rl = rt.loads();
+    assert!(gl.set_by_name("gas", &[-1500.0, 0.0]) && rl.set_by_name("gas", &[-1500.0, 0.0]));
+    for k in 0..10 {
+        let q = 0.3 + 0.6 * k as f64;
+        let (mo, rm) = (gen.kinematics(q, 40.0, 5.0).unwrap(), rt.kinematics(&[q], &[40.0], &[5.0]).unwrap());
+        let (a, b) = (gen.kinetostatics_with_friction(&mo, &gl, &fr), rt.kinetostatics_with_friction(&rm, &rl, &fr));
+        match (a, b) {
+            (Ok(a), Ok(b)) => {
+                let scale = a.driver.abs().max(1500.0);
+                assert!((a.driver - b.driver[0]).abs() < 1e-12 * scale, "q={q}: driver {} vs {}", a.driver, b.driver[0]);
+                let frictionless = gen.kinetostatics(&mo, &gl).unwrap().driver;
+                assert!((a.driver - frictionless).abs() > 1e-6 * scale, "q={q}: friction changes the torque");
+                for name in mechanisms::SliderCrank::JOINT_NAMES {
+                    let (ga, gm) = a.reaction(name).unwrap();
+                    let (ra, rmom) = b.reaction(name).unwrap();
+                    assert!((ga - ra).norm() < 1e-12 * scale, "q={q} {name}");
+                    assert_eq!(gm.is_some(), rmom.is_some());
+                    if let (Some(x), Some(y)) = (gm, rmom) {
+                        assert!((x - y).abs() < 1e-12 * scale, "q={q} {name} moment");
+                    }
+                }
+            }
+            (Err(MechError::SelfLocking(_)), Err(MechError::SelfLocking(_))) => {}
+            (a, b) => panic!("q={q}: {a:?} vs {b:?}"),
+        }
+    }
+}
