@@ -1,0 +1,76 @@
+//! The run-time mechanism makes no heap allocation per call once its buffers have grown:
+//! `solve_into`, `kinematics_into` and `kinetostatics_into` with caller-owned buffers, and
+//! Zhukovski's route (`reduced`, `reduced_moment`, `acceleration`, the right-hand side of
+//! the direct problem), for mechanisms of up to 8 links and joints. Proved with a counting
+//! global allocator (one test in this file: the harness runs tests in threads).
+
+use mech::kinematics::{LinkState, Level};
+use mech::prelude::*;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        System.alloc(l)
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        System.dealloc(p, l)
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        System.realloc(p, l, n)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn count<R>(f: impl FnOnce() -> R) -> (usize, R) {
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let r = f();
+    (ALLOCATIONS.load(Ordering::SeqCst) - before, r)
+}
+
+const MECHANISMS: &str = include_str!("common/mechanisms.rs");
+
+#[test]
+fn no_allocation_per_call_with_caller_buffers() {
+    // A closed-form chain, a slider-crank, and a group solved by Newton (hydraulic lever).
+    for name in ["FourBar", "SliderCrank", "HydraulicLever", "Watt2"] {
+        let m = Mechanism::from_rust_source(MECHANISMS, name).unwrap();
+        let q0 = m.model().reference_input(0);
+        let mut loads = m.loads();
+        for (k, l) in m.model().loads.iter().enumerate() {
+            let v: &[f64] = match l {
+                mech::model::Load::Force { .. } => &[10.0 + k as f64, -5.0],
+                mech::model::Load::Torque { .. } => &[1.5],
+            };
+            assert!(loads.set_by_name(l.name(), v));
+        }
+        let mut states: Vec<LinkState> = Vec::new();
+        let mut motion = m.kinematics(&[q0], &[1.0], &[0.0]).unwrap();
+        let mut forces = m.kinetostatics(&motion, &loads).unwrap();
+        m.solve_into(&[q0], &[1.0], &[0.0], Level::Acceleration, &mut states).unwrap();
+        for k in 0..8 {
+            let q = [q0 + 0.01 * k as f64];
+            let (n, r) = count(|| m.solve_into(&q, &[2.0], &[-1.0], Level::Acceleration, &mut states));
+            r.unwrap();
+            assert_eq!(n, 0, "{name}: solve_into allocated");
+            let (n, r) = count(|| m.kinematics_into(&q, &[2.0], &[-1.0], &mut motion));
+            r.unwrap();
+            assert_eq!(n, 0, "{name}: kinematics_into allocated");
+            let (n, r) = count(|| m.kinetostatics_into(&motion, &loads, None, &mut forces));
+            r.unwrap();
+            assert_eq!(n, 0, "{name}: kinetostatics_into allocated");
+            assert!(forces.driver[0].is_finite());
+            let (n, r) = count(|| (m.reduced(q[0]), m.reduced_moment(q[0], &loads), m.acceleration(q[0], 2.0, 0.5, &loads)));
+            let (a, b, c) = r;
+            assert!(a.is_ok() && b.is_ok() && c.is_ok());
+            assert_eq!(n, 0, "{name}: Zhukovski's route allocated");
+        }
+    }
+}
