@@ -23,7 +23,7 @@
 //! - driver actions by virtual power, and Zhukovski's I*, dI*/dq, M* for one DOF.
 //!
 //! The system is scaled to be dimensionless, as the group systems of
-//! [`crate::kinematics::GroupSystem`]: columns (x, y, φ·L) and angle rows × L, L the
+//! [`crate::group::GroupSystem`]: columns (x, y, φ·L) and angle rows × L, L the
 //! drawing's length scale ([`Model::scale`], m). The condition estimate is the pivot ratio
 //! max|U_ii| / min|U_ii| of the LU factorisation; beyond
 //! [`HARD_CONDITION`] the solver reports [`MechError::Singular`].
@@ -85,7 +85,7 @@ pub const DEFAULT_MAX_ERROR: f64 = 1e-6;
 
 /// The condition estimate beyond which the generic solver refuses whatever `max_error`
 /// (its default `max_error` refuses much earlier, from the stated bounds). Looser than
-/// the generated code's [`crate::kinematics::SINGULAR_CONDITION`], so that the stress
+/// the generated code's [`crate::linalg::SINGULAR_CONDITION`], so that the stress
 /// suite can measure errors close to a toggle.
 pub const HARD_CONDITION: f64 = 1e10;
 
