@@ -284,32 +284,16 @@ pub struct GenericMechanism {
     max_error: f64,
 }
 
-/// `line:column` (1-based) of a span of text parsed at run time.
-fn location(span: &Span) -> String {
-    let lc = span.start();
-    format!("{}:{}", lc.line, lc.column + 1)
+use crate::report::location;
+
+/// A syntax error as [`MechError::Invalid`], rendered against `source` ([`crate::report`]).
+fn syntax(source: &str, e: syn::Error) -> MechError {
+    MechError::Invalid(crate::report::render_syntax(source, None, &e))
 }
 
-/// A diagnostic as `line:column: message`, the other declarations involved appended.
-fn located(d: &Diagnostic<Span>) -> String {
-    let mut out = match d.spans.first() {
-        Some(s) => format!("{}: {}", location(s), d.message),
-        None => d.message.clone(),
-    };
-    if d.spans.len() > 1 {
-        let others: Vec<String> = d.spans[1..].iter().map(location).collect();
-        out.push_str(&format!(" (involved: {})", others.join(", ")));
-    }
-    out
-}
-
-/// A syntax error (every message of it) as [`MechError::Invalid`] with `line:column`.
-fn syntax(e: syn::Error) -> MechError {
-    MechError::Invalid(e.into_iter().map(|e| format!("{}: {}", location(&e.span()), e)).collect::<Vec<_>>().join("\n"))
-}
-
-fn invalid(diags: &[Diagnostic<Span>]) -> MechError {
-    MechError::Invalid(diags.iter().map(located).collect::<Vec<_>>().join("\n"))
+/// The checks' diagnostics as [`MechError::Invalid`], rendered against `source`.
+fn invalid(source: &str, diags: &[Diagnostic<Span>]) -> MechError {
+    MechError::Invalid(crate::report::render(source, None, diags))
 }
 
 /// The `mechanism! { ... }` invocation declaring `pub struct name` in Rust source text:
@@ -334,7 +318,7 @@ fn find_declaration(source: &str, name: &str) -> Result<(proc_macro2::Group, cra
             match syn::parse2::<crate::dsl::Parsed>(g.stream()) {
                 Ok(p) if p.0.name.text == name => return Ok((g.clone(), p.0)),
                 Ok(p) => found.push(p.0.name.text),
-                Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => return Err(syntax(e)),
+                Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => return Err(syntax(source, e)),
                 Err(_) => {}
             }
         }
@@ -375,8 +359,8 @@ impl GenericMechanism {
     /// [`crate::validate::check`], [`crate::assur::plan`]). Every problem found is reported
     /// in one [`MechError::Invalid`], each message prefixed with its `line:column`.
     pub fn parse(text: &str) -> Result<Self, MechError> {
-        let desc = parse_str(text).map_err(syntax)?;
-        Self::from_description(&desc)
+        let desc = parse_str(text).map_err(|e| syntax(text, e))?;
+        Self::from_description(&desc, text)
     }
 
     /// Load the mechanism `name` declared with `mechanism! { ... pub struct name { ... } }`
@@ -385,21 +369,21 @@ impl GenericMechanism {
     /// [`GenericMechanism::parse`]; messages carry `line:column` in `source`.
     /// [`MechError::Invalid`] when the source does not tokenize or declares no such mechanism.
     pub fn from_rust_source(source: &str, name: &str) -> Result<Self, MechError> {
-        Self::from_description(&find_declaration(source, name)?.1)
+        Self::from_description(&find_declaration(source, name)?.1, source)
     }
 
     /// Resolve and validate a parsed description (the macro's pipeline after parsing).
-    fn from_description(desc: &crate::model::Description<Span>) -> Result<Self, MechError> {
-        let model = resolve(desc).map_err(|d| invalid(&d))?;
+    fn from_description(desc: &crate::model::Description<Span>, source: &str) -> Result<Self, MechError> {
+        let model = resolve(desc).map_err(|d| invalid(source, &d))?;
         let issues = crate::validate::check(&model);
         if !issues.is_empty() {
             let diags: Vec<Diagnostic<Span>> = issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
-            return Err(invalid(&diags));
+            return Err(invalid(source, &diags));
         }
         if let Err(links) = crate::assur::plan(&model) {
             let names: Vec<String> = links.iter().map(|&l| format!("`{}`", model.links[l].name)).collect();
             let spans = links.iter().map(|&l| desc.locate(&model, crate::resolve::Culprit::Link(l))).collect();
-            return Err(invalid(&[Diagnostic {
+            return Err(invalid(source, &[Diagnostic {
                 spans,
                 message: format!(
                     "links {} cannot be solved group by group from the inputs: no Assur group of them has as many equations as unknowns; check the joints and inputs",

@@ -48,6 +48,7 @@ pub mod model;
 pub mod ode;
 pub mod params;
 pub mod pebble;
+pub mod report;
 pub mod resolve;
 pub mod screw;
 pub mod traits;
