@@ -115,6 +115,20 @@ pub enum LoadValue {
     Torque(f64),
 }
 
+/// Set the load named `name` of `model` in `values` (declaration order) from its
+/// components: 2 for a force (N), 1 for a torque (N·m); false when there is no such load
+/// or the length is wrong. Shared by [`GenericLoads`] and [`crate::mechanism::Loads`].
+pub fn set_load(model: &Model, values: &mut [LoadValue], name: &str, value: &[f64]) -> bool {
+    let Some(k) = model.loads.iter().position(|l| l.name() == name) else { return false };
+    let Some(slot) = values.get_mut(k) else { return false };
+    match (&model.loads[k], value) {
+        (Load::Force { .. }, [x, y]) => *slot = LoadValue::Force(V2::new(*x, *y)),
+        (Load::Torque { .. }, [t]) => *slot = LoadValue::Torque(*t),
+        _ => return false,
+    }
+    true
+}
+
 /// The values of a generic mechanism's loads, in declaration order (the run-time
 /// counterpart of a generated `<Name>Loads`). Made by [`GenericMechanism::loads`], all zero.
 #[derive(Clone, Debug, PartialEq)]
@@ -128,13 +142,7 @@ impl GenericLoads {
     /// Set the load named `name` from its components (2 for a force, N; 1 for a torque,
     /// N·m); false when there is no such load or the length is wrong.
     pub fn set_by_name(&mut self, name: &str, value: &[f64]) -> bool {
-        let Some(k) = self.model.loads.iter().position(|l| l.name() == name) else { return false };
-        match (&self.model.loads[k], value) {
-            (Load::Force { .. }, [x, y]) => self.values[k] = LoadValue::Force(V2::new(*x, *y)),
-            (Load::Torque { .. }, [t]) => self.values[k] = LoadValue::Torque(*t),
-            _ => return false,
-        }
-        true
+        set_load(&self.model, &mut self.values, name, value)
     }
     /// The value of the load named `name`, if any.
     pub fn get(&self, name: &str) -> Option<LoadValue> {

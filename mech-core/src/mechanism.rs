@@ -76,14 +76,10 @@ impl Loads {
     /// Set the load named `name` from its components (2 for a force, N; 1 for a torque,
     /// N·m); false when there is no such load or the length is wrong.
     pub fn set_by_name(&mut self, name: &str, value: &[f64]) -> bool {
-        let Some(model) = &self.model else { return false };
-        let Some(k) = model.loads.iter().position(|l| l.name() == name) else { return false };
-        match (&model.loads[k], value) {
-            (Load::Force { .. }, [x, y]) => self.values[k] = LoadValue::Force(V2::new(*x, *y)),
-            (Load::Torque { .. }, [t]) => self.values[k] = LoadValue::Torque(*t),
-            _ => return false,
+        match &self.model {
+            Some(model) => crate::generic::set_load(model, &mut self.values, name, value),
+            None => false,
         }
-        true
     }
 }
 
