@@ -148,3 +148,24 @@ fn friction() {
         }
     }
 }
+
+/// Degenerate input gives an answer or a `MechError`, never a panic: a ground-only
+/// mechanism, wrong input counts, non-finite inputs.
+#[test]
+fn degenerate_input_is_an_error_not_a_panic() {
+    if let Ok(m) = Mechanism::from_dsl("pub struct X { ground { O: (0.0, 0.0) } }") {
+        assert!(m.pose(&[]).is_ok() || m.pose(&[]).is_err());
+        assert!(matches!(m.kinematics(&[1.0], &[0.0], &[0.0]), Err(MechError::InvalidInput(_))));
+    }
+    let m = runtime("FourBar");
+    assert!(matches!(m.kinematics(&[], &[], &[]), Err(MechError::InvalidInput(_))));
+    assert!(matches!(m.kinematics(&[f64::NAN], &[0.0], &[0.0]), Err(MechError::InvalidInput(_))));
+    assert!(matches!(m.acceleration(0.5, f64::INFINITY, 0.0, &m.loads()), Err(MechError::InvalidInput(_))));
+    let mut loads = m.loads();
+    assert!(!loads.set_by_name("nothing", &[1.0, 2.0]) && !loads.set_by_name("tool", &[1.0]));
+    assert!(loads.set_by_name("tool", &[f64::NAN, 0.0]));
+    let mo = m.kinematics(&[0.5], &[1.0], &[0.0]).unwrap();
+    assert!(matches!(m.kinetostatics(&mo, &loads), Err(MechError::InvalidInput(_))));
+    // Loads of another mechanism's shape (fewer values) count as zero.
+    assert!(m.driver_action(&mo, &mech::mechanism::Loads::default()).is_ok());
+}
