@@ -114,7 +114,7 @@ pub struct Motion {
     /// Points: position, velocity, acceleration.
     pub points: Vec<PointMotion>,
     /// q, q̇ and q̈ of this motion, one after the other (G values each).
-    inputs: Vec<f64>,
+    inputs: SmallVec<[f64; 12]>,
     states: Vec<LinkState>,
     model: Arc<Model>,
 }
@@ -343,7 +343,7 @@ impl Mechanism {
 
     /// Positions, velocities and accelerations at (q, q̇, q̈).
     pub fn kinematics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<Motion, MechError> {
-        let mut m = Motion { links: Vec::new(), points: Vec::new(), inputs: Vec::new(), states: Vec::new(), model: self.model.clone() };
+        let mut m = Motion { links: Vec::new(), points: Vec::new(), inputs: SmallVec::new(), states: Vec::new(), model: self.model.clone() };
         self.kinematics_into(q, qd, qdd, &mut m)?;
         Ok(m)
     }
