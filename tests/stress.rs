@@ -881,7 +881,7 @@ fn loader_rejects_bad_descriptions_with_locations() {
     let b = "B: (0.2430191330116403, 0.23171119111114735)";
     let cases: &[(&str, &str, &str, &str)] = &[
         (four_bar, b, "B: (0.2430191330116403, 0.23171119111114735", "cannot parse"),
-        (four_bar, "mass: 1.45", "mass: NaN", "expected a number"),
+        (four_bar, "mass: 1.45", "mass: NaN", "unknown constant `NaN`"),
         (four_bar, "revolute(coupler, rocker)", "revolute(coupler, rockr)", "unknown link `rockr`"),
         // P on A: two points of the coupler coincide (a zero-length link side).
         (four_bar, "P: (0.08528408845676129, 0.22077246544174978)", "P: (0.04, 0.06928203230275509)", "coincide"),

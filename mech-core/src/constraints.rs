@@ -4,7 +4,7 @@
 //! - sliding normal (prismatic and slot) along u fixed in a: `n·(P_b − Q_a) = 0` with
 //!   n = R(φ_a)·perp(u), Q_a the material point of a at P in the drawing (1 row),
 //! - prismatic rotation lock: `φ_b − φ_a = 0` (1 row),
-//! - revolute driver: `φ_b − φ_a − (q − q_ref) = 0`; prismatic driver: `u·(P_b − Q_a) − q = 0`.
+//! - revolute driver: `φ_b − φ_a − (q − q_ref) = 0`; prismatic driver: `u·(P_b − Q_a) − (q − q_ref) = 0`.
 //!
 //! The reaction convention follows from these signs: the multiplier λ of a joint's rows
 //! is the force (and moment) exerted BY a ON b (`docs/conventions.md`, Reactions).
@@ -31,7 +31,9 @@ pub struct JointGeom {
     pub db: V2,
     /// Unit sliding axis in `a`'s local (reference) orientation; zero for a revolute.
     pub axis: V2,
-    /// For a revolute driver: θ_b − θ_a in the drawing (rad), so that φ_b − φ_a = q − q_ref.
+    /// The input q in the drawing (`Model::reference_input`): for a revolute driver
+    /// θ_b − θ_a there less the input's zero (rad), so that φ_b − φ_a = q − q_ref; for a
+    /// prismatic driver minus its zero (m), so that the slide from the drawing is q − q_ref.
     pub q_ref: f64,
 }
 
@@ -137,7 +139,7 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
             // The sliding normal for guides; the axis itself for an actuator's stroke.
             let (n, target) = match c.kind {
                 ConKind::DrivePrismatic(_) if level == Level::Jacobian => (u, [0.0; 3]),
-                ConKind::DrivePrismatic(k) => (u, [drive.0[k], drive.1[k], drive.2[k]]),
+                ConKind::DrivePrismatic(k) => (u, [drive.0[k] - g.q_ref, drive.1[k], drive.2[k]]),
                 _ => (perp(u), [0.0; 3]),
             };
             let pb = sb.pos + rb;

@@ -2,12 +2,16 @@
 //! [`Description`]. The macro and the run-time loader share this parser, so a mechanism
 //! means the same thing whether it is compiled or read from text.
 
+use crate::construction::{self, Branch, CIRCLE_CIRCLE_WORDS, CIRCLE_LINE_WORDS};
+use crate::expr::{Constants, Quantity};
+use crate::link_state::V2;
 use crate::model::{
-    Description, JointDecl, JointKind, LinkDecl, LoadDecl, LoadDeclKind, Name, Num, Pair, PointRef,
+    Description, InputDecl, JointDecl, JointKind, LinkDecl, LoadDecl, LoadDeclKind, Measure, Name, Num, Pair, PointRef,
 };
+use crate::units::Dim;
 use proc_macro2::Span;
 use syn::parse::{Parse, ParseStream};
-use syn::{braced, bracketed, parenthesized, Ident, LitFloat, LitInt, Token};
+use syn::{braced, bracketed, parenthesized, Ident, Token};
 
 /// A parsed mechanism, spans as `proc_macro2::Span`.
 pub struct Parsed(pub Description<Span>);
@@ -24,35 +28,6 @@ fn keyword(input: ParseStream, kw: &str) -> syn::Result<Ident> {
     Ok(id)
 }
 
-/// A number literal, negative allowed: `-0.5`, `3`, `2.1e-3`.
-fn number(input: ParseStream) -> syn::Result<Num<Span>> {
-    let neg: Option<Token![-]> = input.parse()?;
-    let (value, span) = if input.peek(LitFloat) {
-        let l: LitFloat = input.parse()?;
-        (l.base10_parse::<f64>()?, l.span())
-    } else if input.peek(LitInt) {
-        let l: LitInt = input.parse()?;
-        (l.base10_parse::<f64>()?, l.span())
-    } else {
-        return Err(input.error("expected a number, e.g. `0.25` or `-1.5e-3`"));
-    };
-    Ok(Num { value: if neg.is_some() { -value } else { value }, span })
-}
-
-/// `(x, y)`.
-fn pair(input: ParseStream) -> syn::Result<Pair<Span>> {
-    let content;
-    let paren = parenthesized!(content in input);
-    let x = number(&content)?;
-    content.parse::<Token![,]>()?;
-    let y = number(&content)?;
-    let _: Option<Token![,]> = content.parse()?;
-    if !content.is_empty() {
-        return Err(content.error("expected `(x, y)`: two numbers"));
-    }
-    Ok(Pair { value: [x.value, y.value], span: paren.span.join() })
-}
-
 fn comma(input: ParseStream) -> syn::Result<()> {
     if !input.is_empty() {
         input.parse::<Token![,]>()?;
@@ -60,30 +35,264 @@ fn comma(input: ParseStream) -> syn::Result<()> {
     Ok(())
 }
 
-/// `A: (x, y), B, ...` inside braces.
-fn point_list(input: ParseStream) -> syn::Result<Vec<PointRef<Span>>> {
-    let mut out = Vec::new();
-    while !input.is_empty() {
+/// A `cg` in a link's own frame, placed once every point is known.
+struct LocalCg {
+    /// Index into `Description::links`.
+    link: usize,
+    /// (u, v) in the link's frame, m.
+    at: (f64, f64),
+    span: Span,
+}
+
+/// What the parser knows so far, in the order of the text: the named constants and the
+/// points defined (ground first, then each link).
+#[derive(Default)]
+struct Scope {
+    consts: Constants,
+    points: Vec<(String, V2)>,
+    local_cgs: Vec<LocalCg>,
+}
+
+impl Scope {
+    /// An expression where a quantity of dimension `dim` goes.
+    fn scalar(&self, input: ParseStream, dim: Dim, what: &str) -> syn::Result<Num<Span>> {
+        let q = self.consts.expr(input)?;
+        Ok(Num { value: q.expect(dim, what)?, span: q.span })
+    }
+
+    /// `(x, y)`, each an expression of dimension `dim`.
+    fn pair(&self, input: ParseStream, dim: Dim, what: &str) -> syn::Result<Pair<Span>> {
+        let content;
+        let paren = parenthesized!(content in input);
+        let x = self.scalar(&content, dim, what)?;
+        content.parse::<Token![,]>()?;
+        let y = self.scalar(&content, dim, what)?;
+        let _: Option<Token![,]> = content.parse()?;
+        if !content.is_empty() {
+            return Err(content.error("expected `(x, y)`: two numbers"));
+        }
+        Ok(Pair { value: [x.value, y.value], span: paren.span.join() })
+    }
+
+    /// The position of a point defined earlier.
+    fn point(&self, id: &Ident) -> syn::Result<V2> {
+        let n = id.to_string();
+        if let Some((_, p)) = self.points.iter().find(|(m, _)| *m == n) {
+            return Ok(*p);
+        }
+        let hint = if self.consts.get(&n).is_some() { format!("`{n}` is a constant, not a point") } else { format!("point `{n}` is used before it is defined") };
+        Err(syn::Error::new(
+            id.span(),
+            format!("{hint}: a point built from others may use the ground's points and those defined above it (points are read in order: `ground`, then each link)"),
+        ))
+    }
+
+    /// A vector: `(dx, dy)` or `polar(r, θ)`, m, with where it was written.
+    fn vector(&self, input: ParseStream) -> syn::Result<(V2, Span)> {
+        if input.peek(Ident) && input.peek2(syn::token::Paren) {
+            let id: Ident = input.parse()?;
+            if id != "polar" {
+                return Err(syn::Error::new(id.span(), format!("expected a vector, `(dx, dy)` or `polar(length, angle)`, found `{id}(..)`")));
+            }
+            let content;
+            parenthesized!(content in input);
+            let r = self.scalar(&content, Dim::LENGTH, "the length of `polar`")?;
+            content.parse::<Token![,]>()?;
+            let t = self.scalar(&content, Dim::ANGLE, "the direction of `polar`")?;
+            let _: Option<Token![,]> = content.parse()?;
+            return Ok((construction::polar(r.value, t.value), id.span()));
+        }
+        let p = self.pair(input, Dim::LENGTH, "a vector component")?;
+        Ok((V2::new(p.value[0], p.value[1]), p.span))
+    }
+
+    /// A point: coordinates `(x, y)`, a point defined earlier, `circle_circle(..)` or
+    /// `circle_line(..)`, each followed by any number of `+ vector` / `- vector`.
+    fn point_expr(&self, input: ParseStream) -> syn::Result<Pair<Span>> {
+        let span = input.span();
+        let mut p = if input.peek(syn::token::Paren) {
+            let p = self.pair(input, Dim::LENGTH, "a point's coordinate")?;
+            V2::new(p.value[0], p.value[1])
+        } else {
+            let id: Ident = input.parse()?;
+            if input.peek(syn::token::Paren) {
+                self.construction(&id, input)?
+            } else {
+                self.point(&id)?
+            }
+        };
+        loop {
+            if input.peek(Token![+]) {
+                input.parse::<Token![+]>()?;
+                p += self.vector(input)?.0;
+            } else if input.peek(Token![-]) {
+                input.parse::<Token![-]>()?;
+                p -= self.vector(input)?.0;
+            } else {
+                return Ok(Pair { value: [p.x, p.y], span });
+            }
+        }
+    }
+
+    /// The name a point argument is shown with in messages.
+    fn label(input: ParseStream) -> String {
+        if input.peek(Ident) && !input.peek2(syn::token::Paren) {
+            input.fork().parse::<Ident>().map(|i| i.to_string()).unwrap_or_default()
+        } else {
+            "the point".to_string()
+        }
+    }
+
+    /// `circle_circle(c1, r1, c2, r2, left|right)`, `circle_line(c, r, p, θ, forward|backward)`.
+    fn construction(&self, id: &Ident, input: ParseStream) -> syn::Result<V2> {
+        let content;
+        parenthesized!(content in input);
+        let kind = id.to_string();
+        let words = match kind.as_str() {
+            "circle_circle" => CIRCLE_CIRCLE_WORDS,
+            "circle_line" => CIRCLE_LINE_WORDS,
+            _ => {
+                return Err(syn::Error::new(
+                    id.span(),
+                    format!("unknown construction `{kind}`: a point is `(x, y)`, a point name, `P + polar(r, angle)`, `P + (dx, dy)`, `circle_circle(..)` or `circle_line(..)`"),
+                ))
+            }
+        };
+        let c_name = Self::label(&content);
+        let c = self.point_expr(&content)?;
+        content.parse::<Token![,]>()?;
+        let r = self.scalar(&content, Dim::LENGTH, "a radius")?;
+        content.parse::<Token![,]>()?;
+        let other_name = Self::label(&content);
+        let other = self.point_expr(&content)?;
+        content.parse::<Token![,]>()?;
+        let x = if kind == "circle_circle" {
+            self.scalar(&content, Dim::LENGTH, "a radius")?
+        } else {
+            self.scalar(&content, Dim::ANGLE, "the direction of the line")?
+        };
+        let branch = Self::branch(&content, words)?;
+        if !content.is_empty() {
+            return Err(content.error(format!("expected `)` after the branch word `{}` or `{}`", words.0, words.1)));
+        }
+        let (c, o) = (V2::new(c.value[0], c.value[1]), V2::new(other.value[0], other.value[1]));
+        let result = if kind == "circle_circle" {
+            construction::circle_circle(c, r.value, o, x.value, branch, (&c_name, &other_name))
+        } else {
+            construction::circle_line(c, r.value, o, x.value, branch, &c_name)
+        };
+        result.map_err(|m| syn::Error::new(id.span(), format!("`{kind}`: {m}")))
+    }
+
+    /// `, left` / `, right` (or forward / backward), or nothing.
+    fn branch(input: ParseStream, words: (&str, &str)) -> syn::Result<Branch> {
+        if input.is_empty() {
+            return Ok(None);
+        }
+        input.parse::<Token![,]>()?;
+        if input.is_empty() {
+            return Ok(None);
+        }
+        let w: Ident = input.parse()?;
+        match w.to_string() {
+            s if s == words.0 => Ok(Some(1.0)),
+            s if s == words.1 => Ok(Some(-1.0)),
+            s => Err(syn::Error::new(w.span(), format!("unknown branch word `{s}`: expected `{}` or `{}`", words.0, words.1))),
+        }
+    }
+
+    /// `A: point, B, ...` inside braces; each defined point is known from here on.
+    fn point_list(&mut self, input: ParseStream) -> syn::Result<Vec<PointRef<Span>>> {
+        let mut out = Vec::new();
+        while !input.is_empty() {
+            let id: Ident = input.parse()?;
+            let at = if input.peek(Token![:]) {
+                input.parse::<Token![:]>()?;
+                let at = self.point_expr(input)?;
+                let n = id.to_string();
+                if !self.points.iter().any(|(m, _)| *m == n) {
+                    self.points.push((n, V2::new(at.value[0], at.value[1])));
+                }
+                Some(at)
+            } else {
+                None
+            };
+            out.push(PointRef { name: name(&id), at });
+            comma(input)?;
+        }
+        Ok(out)
+    }
+
+    /// `cg: (x, y)` (or any point), `cg: along(d)`, `cg: local(u, v)`; the last two are
+    /// placed at the end ([`Scope::place_local_cgs`]), when every point is known.
+    fn cg(&mut self, input: ParseStream, link: usize) -> syn::Result<Option<Pair<Span>>> {
+        let span = input.span();
+        if input.peek(Ident) && input.peek2(syn::token::Paren) {
+            let id: Ident = input.fork().parse()?;
+            if id == "along" || id == "local" {
+                input.parse::<Ident>()?;
+                let content;
+                parenthesized!(content in input);
+                let u = self.scalar(&content, Dim::LENGTH, "a distance along the link")?;
+                let v = if id == "local" {
+                    content.parse::<Token![,]>()?;
+                    self.scalar(&content, Dim::LENGTH, "a distance across the link")?.value
+                } else {
+                    0.0
+                };
+                let _: Option<Token![,]> = content.parse()?;
+                if !content.is_empty() {
+                    return Err(content.error(format!("expected `)`: `{id}` takes {} number(s)", if id == "local" { 2 } else { 1 })));
+                }
+                self.local_cgs.push(LocalCg { link, at: (u.value, v), span });
+                return Ok(None);
+            }
+        }
+        self.point_expr(input).map(Some)
+    }
+
+    /// Place the cgs given in a link's own frame, from its first two points.
+    fn place_local_cgs(&self, links: &mut [LinkDecl<Span>]) -> syn::Result<()> {
+        for c in &self.local_cgs {
+            let l = &mut links[c.link];
+            let at = |k: usize| -> syn::Result<V2> {
+                let Some(p) = l.points.get(k) else {
+                    return Err(syn::Error::new(c.span, format!("`along` and `local` place the cg on the line from the link's first to its second point, but link `{}` has {} point(s)", l.name.text, l.points.len())));
+                };
+                let n = &p.name.text;
+                self.points.iter().find(|(m, _)| m == n).map(|(_, v)| *v).ok_or_else(|| {
+                    syn::Error::new(c.span, format!("point `{n}` of link `{}` is never given coordinates", l.name.text))
+                })
+            };
+            let (p0, p1) = (at(0)?, at(1)?);
+            let g = construction::local(p0, p1, c.at.0, c.at.1).map_err(|m| syn::Error::new(c.span, format!("the cg of link `{}`: {m}", l.name.text)))?;
+            l.cg = Some(Pair { value: [g.x, g.y], span: c.span });
+        }
+        Ok(())
+    }
+
+    /// `O2` or `O2 from z` (z an angle or a length, checked against the joint's kind
+    /// when names are resolved).
+    fn input(&self, input: ParseStream) -> syn::Result<InputDecl<Span>> {
         let id: Ident = input.parse()?;
-        let at = if input.peek(Token![:]) {
-            input.parse::<Token![:]>()?;
-            Some(pair(input)?)
+        let from = if input.peek(Ident) {
+            keyword(input, "from")?;
+            let q: Quantity = self.consts.expr(input)?;
+            Some(Measure { value: q.value, dim: q.dim, span: q.span })
         } else {
             None
         };
-        out.push(PointRef { name: name(&id), at });
-        comma(input)?;
+        Ok(InputDecl { name: name(&id), from })
     }
-    Ok(out)
 }
 
-fn link_body(input: ParseStream, link_name: Name<Span>, ground: bool) -> syn::Result<LinkDecl<Span>> {
+fn link_body(input: ParseStream, scope: &mut Scope, link_name: Name<Span>, ground: bool, index: usize) -> syn::Result<LinkDecl<Span>> {
     let content;
     braced!(content in input);
     let mut decl = LinkDecl { name: link_name, points: Vec::new(), mass: None, inertia: None, cg: None };
     // `ground { O2: (0, 0), O4: (..) }` lists points directly.
     if ground && !content.peek2(syn::token::Brace) {
-        decl.points = point_list(&content)?;
+        decl.points = scope.point_list(&content)?;
         return Ok(decl);
     }
     while !content.is_empty() {
@@ -92,19 +301,19 @@ fn link_body(input: ParseStream, link_name: Name<Span>, ground: bool) -> syn::Re
             "points" => {
                 let inner;
                 braced!(inner in content);
-                decl.points.extend(point_list(&inner)?);
+                decl.points.extend(scope.point_list(&inner)?);
             }
             "mass" if !ground => {
                 content.parse::<Token![:]>()?;
-                decl.mass = Some(number(&content)?);
+                decl.mass = Some(scope.scalar(&content, Dim::MASS, "a mass")?);
             }
             "inertia" if !ground => {
                 content.parse::<Token![:]>()?;
-                decl.inertia = Some(number(&content)?);
+                decl.inertia = Some(scope.scalar(&content, Dim::INERTIA, "an inertia")?);
             }
             "cg" if !ground => {
                 content.parse::<Token![:]>()?;
-                decl.cg = Some(pair(&content)?);
+                decl.cg = scope.cg(&content, index)?;
             }
             other => {
                 let expected = if ground { "`points`" } else { "`points`, `mass`, `inertia` or `cg`" };
@@ -116,7 +325,7 @@ fn link_body(input: ParseStream, link_name: Name<Span>, ground: bool) -> syn::Re
     Ok(decl)
 }
 
-fn joints(input: ParseStream) -> syn::Result<Vec<JointDecl<Span>>> {
+fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>> {
     let content;
     braced!(content in input);
     let mut out = Vec::new();
@@ -147,7 +356,10 @@ fn joints(input: ParseStream) -> syn::Result<Vec<JointDecl<Span>>> {
             let k: Ident = content.parse()?;
             match k.to_string().as_str() {
                 "at" => at = Some(name(&content.parse::<Ident>()?)),
-                "along" => along = Some(pair(&content)?),
+                "along" => {
+                    let (u, span) = scope.vector(&content)?;
+                    along = Some(Pair { value: [u.x, u.y], span });
+                }
                 other => {
                     return Err(syn::Error::new(k.span(), format!("unexpected `{other}`: expected `at POINT` or `along (ux, uy)`")))
                 }
@@ -226,28 +438,31 @@ impl Parse for Parsed {
         let mut inputs = Vec::new();
         let mut inputs_span = struct_name.span();
         let mut load_list = Vec::new();
+        let mut scope = Scope::default();
         while !body.is_empty() {
             let key: Ident = body.call(syn::ext::IdentExt::parse_any)?;
             match key.to_string().as_str() {
                 "gravity" => {
                     body.parse::<Token![:]>()?;
-                    gravity = Some(pair(&body)?);
+                    gravity = Some(scope.pair(&body, Dim::ACCELERATION, "gravity")?);
                 }
                 "ground" => {
                     if ground.is_some() {
                         return Err(syn::Error::new(key.span(), "duplicate `ground` block: list every ground point in one block"));
                     }
-                    ground = Some(link_body(&body, name(&key), true)?);
+                    ground = Some(link_body(&body, &mut scope, name(&key), true, usize::MAX)?);
                 }
                 "link" => {
                     let id: Ident = body.parse()?;
-                    links.push(link_body(&body, name(&id), false)?);
+                    let index = links.len();
+                    links.push(link_body(&body, &mut scope, name(&id), false, index)?);
                 }
-                "joints" => joint_list.extend(joints(&body)?),
+                "consts" => scope.consts.parse_block(&body)?,
+                "joints" => joint_list.extend(joints(&body, &scope)?),
                 "input" => {
                     body.parse::<Token![:]>()?;
                     inputs_span = key.span();
-                    inputs.push(name(&body.parse::<Ident>()?));
+                    inputs.push(scope.input(&body)?);
                 }
                 "inputs" => {
                     body.parse::<Token![:]>()?;
@@ -255,7 +470,7 @@ impl Parse for Parsed {
                     let list;
                     bracketed!(list in body);
                     while !list.is_empty() {
-                        inputs.push(name(&list.parse::<Ident>()?));
+                        inputs.push(scope.input(&list)?);
                         comma(&list)?;
                     }
                 }
@@ -263,7 +478,7 @@ impl Parse for Parsed {
                 other => {
                     return Err(syn::Error::new(
                         key.span(),
-                        format!("unknown item `{other}`: expected `gravity`, `ground`, `link`, `joints`, `input`, `inputs` or `loads`"),
+                        format!("unknown item `{other}`: expected `consts`, `gravity`, `ground`, `link`, `joints`, `input`, `inputs` or `loads`"),
                     ))
                 }
             }
@@ -275,6 +490,7 @@ impl Parse for Parsed {
         if inputs.is_empty() {
             inputs_span = struct_name.span();
         }
+        scope.place_local_cgs(&mut links)?;
         Ok(Parsed(Description {
             docs,
             name: name(&struct_name),

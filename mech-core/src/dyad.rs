@@ -342,7 +342,7 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
         }
         Solver::DrivenPrismatic { body, joint, input } => {
             let g = &joints[joint];
-            let q = drive.0[input];
+            let q = drive.0[input] - g.q_ref;
             if g.b == body {
                 let rot = s[g.a].rot;
                 let p = point_of(s, g.a, g.da) + rotate(rot, g.axis) * q;

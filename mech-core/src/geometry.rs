@@ -32,9 +32,10 @@ pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
         da: local(model, jt.a, p),
         db: local(model, jt.b, p),
         axis: if n > 0.0 { ax / n } else { V2::zeros() },
-        q_ref: match jt.kind {
-            JointKind::Revolute => model.reference_angle(jt.b) - model.reference_angle(jt.a),
-            _ => 0.0,
+        q_ref: match model.inputs.iter().position(|&i| i == j) {
+            Some(k) => model.reference_input(k),
+            None if jt.kind == JointKind::Revolute => model.reference_angle(jt.b) - model.reference_angle(jt.a),
+            None => 0.0,
         },
     }
 }

@@ -27,7 +27,29 @@ pub struct Num<S> {
     pub span: S,
 }
 
-/// A pair of numeric literals `(x, y)` as written.
+/// A number of the DSL evaluated to SI, with the dimension its unit words gave it (none
+/// for a plain number): kept where the check of its unit needs the model (the zero of an
+/// input is an angle on a revolute joint, a length on a prismatic one).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measure<S> {
+    /// The value, SI.
+    pub value: f64,
+    /// Its dimension, `None` for a plain number.
+    pub dim: Option<crate::units::Dim>,
+    /// Where it was written.
+    pub span: S,
+}
+
+/// An input as written: `O2` or `O2 from 90 deg`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InputDecl<S> {
+    /// The driven joint.
+    pub name: Name<S>,
+    /// `from z`: the joint coordinate where q = 0 (rad or m); `None` = 0.
+    pub from: Option<Measure<S>>,
+}
+
+/// A pair of numbers `(x, y)` as written (evaluated to SI).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pair<S> {
     /// The value, `[x, y]`.
@@ -152,7 +174,7 @@ pub struct Description<S> {
     /// The joints, in order.
     pub joints: Vec<JointDecl<S>>,
     /// The inputs (driven joints), in order.
-    pub inputs: Vec<Name<S>>,
+    pub inputs: Vec<InputDecl<S>>,
     /// Span of the `input`/`inputs` keyword (whole-mechanism errors point here).
     pub inputs_span: S,
     /// The loads, in order.
@@ -264,6 +286,10 @@ pub struct Model {
     pub joints: Vec<Joint>,
     /// Driven joints (indices into `joints`).
     pub inputs: Vec<usize>,
+    /// The zero of each input (`input: O2 from 90 deg`): the joint coordinate where q = 0
+    /// (rad for a revolute input, m for a prismatic one), so that the joint's angle
+    /// θ_b − θ_a (or its slide from the drawing) is q + zero.
+    pub input_zero: Vec<f64>,
     /// Loads.
     pub loads: Vec<Load>,
 }
@@ -304,14 +330,15 @@ impl Model {
         let p1 = self.points[l.points[1]].pos;
         (p1[1] - p0[1]).atan2(p1[0] - p0[0])
     }
-    /// The reference value of input `k`'s coordinate: θ_b − θ_a for a revolute driver,
-    /// 0 for a prismatic driver.
+    /// The value of input `k` in the drawing: θ_b − θ_a for a revolute driver, 0 for a
+    /// prismatic driver (its slide from the drawing), less the input's zero.
     pub fn reference_input(&self, k: usize) -> f64 {
         let j = &self.joints[self.inputs[k]];
-        match j.kind {
+        let joint = match j.kind {
             JointKind::Revolute => self.reference_angle(j.b) - self.reference_angle(j.a),
             _ => 0.0,
-        }
+        };
+        joint - self.input_zero.get(k).copied().unwrap_or(0.0)
     }
     /// A length scale of the drawing (m): the largest distance between two points, at
     /// least 1e-300. Tolerances of the numeric checks are relative to it.

@@ -142,7 +142,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
     dup_check("link", decls.iter().map(|l| &l.name), &mut errs);
     dup_check("joint", d.joints.iter().map(|j| &j.name), &mut errs);
     dup_check("load", d.loads.iter().map(|l| &l.name), &mut errs);
-    dup_check("input", d.inputs.iter(), &mut errs);
+    dup_check("input", d.inputs.iter().map(|i| &i.name), &mut errs);
 
     // Points: defined once, reused by name.
     let mut points: Vec<Point> = Vec::new();
@@ -360,7 +360,15 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
     // Inputs.
     let joint_names: Vec<&str> = d.joints.iter().map(|j| j.name.text.as_str()).collect();
     let mut inputs = Vec::new();
-    for i in &d.inputs {
+    let mut input_zero = Vec::new();
+    for decl in &d.inputs {
+        let i = &decl.name;
+        if let Some(k) = d.joints.iter().position(|j| j.name.text == i.text) {
+            match input_zero_of(decl, d.joints[k].kind) {
+                Ok(z) => input_zero.push(z),
+                Err(e) => errs.push(e),
+            }
+        }
         match d.joints.iter().position(|j| j.name.text == i.text) {
             None => errs.push(Diagnostic::at(
                 i.span.clone(),
@@ -424,8 +432,30 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         links,
         joints,
         inputs,
+        input_zero,
         loads,
     })
+}
+
+/// The zero of an input (`from z`): an angle on a revolute joint, a length on a
+/// prismatic one (a plain number is SI: rad or m).
+fn input_zero_of<S: Clone>(decl: &InputDecl<S>, kind: JointKind) -> Result<f64, Diagnostic<S>> {
+    let Some(z) = &decl.from else { return Ok(0.0) };
+    let want = if kind == JointKind::Revolute { crate::units::Dim::ANGLE } else { crate::units::Dim::LENGTH };
+    match z.dim.filter(|d| *d != crate::units::Dim::NONE) {
+        Some(d) if d != want => Err(Diagnostic::at(
+            z.span.clone(),
+            format!(
+                "the zero of input `{}`, a {} joint, is {}, but this value is {}: use {} or a plain number (SI)",
+                decl.name.text,
+                kind.keyword(),
+                want.describe(),
+                d.describe(),
+                want.words()
+            ),
+        )),
+        _ => Ok(z.value),
+    }
 }
 
 /// Parse and resolve DSL text, for the unit tests of the checks.

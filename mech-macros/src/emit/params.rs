@@ -279,6 +279,7 @@ fn model_expr(cx: &Ctx) -> TokenStream {
     });
     let (name, inputs, redundant) = (&model.name, &model.inputs, model.allow_redundant);
     let gravity = if model.gravity.is_some() { quote!(Some([p.gravity.x, p.gravity.y])) } else { quote!(None) };
+    let zero = model.input_zero.iter().map(|&z| crate::emit::f64s(z));
     quote! {
         #p::model::Model {
             name: #name.into(),
@@ -288,6 +289,7 @@ fn model_expr(cx: &Ctx) -> TokenStream {
             links: ::std::vec::Vec::from([#(#links),*]),
             joints: ::std::vec::Vec::from([#(#joints),*]),
             inputs: ::std::vec::Vec::from([#(#inputs),*]),
+            input_zero: ::std::vec::Vec::from([#(#zero),*]),
             loads: ::std::vec::Vec::from([#(#loads),*]),
         }
     }
