@@ -4,9 +4,10 @@
 //! cargo run --release --example engine
 //! ```
 //!
-//! The engine (tests/common/engine.rs): an offset slider-crank, 86 mm bore × 86 mm stroke,
-//! 143 mm rod, with an explicit gas-pressure model over the 4π cycle (intake, polytropic
-//! compression, Wiebe-shaped combustion, polytropic expansion, exhaust) acting on the piston.
+//! The engine: an offset slider-crank, 86 mm bore × 86 mm stroke, 143 mm rod, declared
+//! below by its dimensions (no coordinate computed by hand), with an explicit gas-pressure
+//! model over the 4π cycle (intake, polytropic compression, Wiebe-shaped combustion,
+//! polytropic expansion, exhaust; `tests/common/engine.rs`) acting on the piston.
 //! The consumer's constant resisting torque is the one that balances the cycle. The example
 //! prints the turning-moment table, sizes the flywheel for ω_a = 3000 rpm and ε = 1/50 by
 //! Wittenbauer's exact method and by the approximate one, checks the exact one by
@@ -21,8 +22,50 @@ use std::error::Error;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use engine::*;
+use engine::{pressure, breakpoints, BORE, COMPRESSION_RATIO, IRREGULARITY, OMEGA_MEAN, PERIOD, PISTON_AREA, P_CRANKCASE, Q_TDC, X_BDC, X_TDC};
 use mech::flywheel::Cycle;
+use mech::prelude::*;
+
+mechanism! {
+    /// Single-cylinder four-stroke engine: offset slider-crank, 86 mm stroke, 143 mm rod,
+    /// the piston's guide 6 mm above the crank centre, drawn with the crank at 30°.
+    pub struct Engine {
+        consts { stroke: 86 mm, r: stroke / 2, l: 143 mm, e: 6 mm },
+        gravity: (0.0, -9.81),
+        ground { O2: (0.0, 0.0) },
+        link crank {
+            points { O2, A: O2 + polar(r, 30 deg) },
+            // crankshaft with counterweights: the cg 5 mm behind the pivot
+            mass: 3.6 kg, inertia: 6.8e-3 kg_m2, cg: along(-5 mm),
+        },
+        link rod {
+            // B on the guide line y = e, on the far side of the crank: the rod's length closes it
+            points { A, B: circle_line(A, l, (0.0, e), 0 deg, forward) },
+            mass: 580 g, inertia: 2.1e-3 kg_m2, cg: along(38 mm),
+        },
+        link piston {
+            points { B },
+            mass: 520 g, cg: B,
+        },
+        joints {
+            O2: revolute(ground, crank),
+            A: revolute(crank, rod),
+            B: revolute(rod, piston),
+            guide: prismatic(ground, piston) at B along (1.0, 0.0),
+        },
+        input: O2,
+        loads {
+            gas: force on piston at B,
+        },
+    }
+}
+
+/// The gas force on the piston pin at crank angle q (N): (−(p − p_crankcase) A, 0), the
+/// cylinder head on the +x side.
+pub fn gas_loads(engine: &Engine, q: f64) -> Result<EngineLoads, MechError> {
+    let x_b = engine.pose(q)?.points.B.pos.x;
+    Ok(EngineLoads { gas: Vector2::new(-(pressure(q, x_b) - P_CRANKCASE) * PISTON_AREA, 0.0) })
+}
 
 /// Where the figures go.
 pub const FIGURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/target/mech-figures/engine");

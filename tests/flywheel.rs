@@ -335,3 +335,32 @@ fn the_shaper_example_runs_and_writes_well_formed_svgs() {
     // Without a flywheel the shaper stalls: the speed diagram has the flywheel's curve only.
     check_svgs(&paths, &[("moment.svg", 1), ("inertia.svg", 1), ("wittenbauer.svg", 6), ("speed.svg", 1)]);
 }
+
+/// The example declares the engine by its dimensions (stroke, rod, offset, crank angle,
+/// cgs along the links, masses in g, units); `tests/common/engine.rs` holds the same
+/// engine as 25-digit coordinates from `tools/flywheel_reference.py` (mpmath). Both give
+/// the same numbers to 1e-12: the drawing, and the solvers over a turn.
+#[test]
+fn the_dimensioned_engine_is_the_drawn_one() {
+    let (dim, lit) = (engine_example::Engine::new(), engine::Engine::new());
+    let (a, b) = (dim.params(), lit.params());
+    let near = |what: &str, x: Vector2<f64>, y: Vector2<f64>| assert!((x - y).norm() <= 1e-12 * y.norm().max(1e-3), "{what}: {x:?} against {y:?}");
+    for (what, x, y) in [("O2", a.points.O2, b.points.O2), ("A", a.points.A, b.points.A), ("B", a.points.B, b.points.B)] {
+        near(what, x, y);
+    }
+    for (what, x, y) in [("crank", &a.links.crank, &b.links.crank), ("rod", &a.links.rod, &b.links.rod), ("piston", &a.links.piston, &b.links.piston)] {
+        near(what, x.cg, y.cg);
+        assert!((x.mass - y.mass).abs() <= 1e-15 && (x.inertia - y.inertia).abs() <= 1e-15, "{what}");
+    }
+    for k in 0..36 {
+        let q = engine::Q_TDC + (10.0 * k as f64).to_radians();
+        let (rd, rl) = (dim.reduced(q).unwrap(), lit.reduced(q).unwrap());
+        close("I*", rd.inertia, rl.inertia, rl.inertia, 1e-12);
+        close("dI*/dq", rd.inertia_derivative, rl.inertia_derivative, rl.inertia, 1e-12);
+        let (gd, gl) = (engine_example::gas_loads(&dim, q).unwrap(), engine::gas_loads(&lit, q).unwrap());
+        close("gas force", gd.gas.x, gl.gas.x, gl.gas.x.abs().max(1.0), 1e-12);
+        let (md, ml) = (dim.kinematics(q, 300.0, 0.0).unwrap(), lit.kinematics(q, 300.0, 0.0).unwrap());
+        let (fd, fl) = (dim.kinetostatics(&md, &gd).unwrap(), lit.kinetostatics(&ml, &gl).unwrap());
+        close("driver torque", fd.driver, fl.driver, fl.driver.abs().max(1.0), 1e-12);
+    }
+}
