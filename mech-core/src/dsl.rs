@@ -80,7 +80,7 @@ impl Scope {
         if let Some((_, p)) = self.points.iter().find(|(m, _)| *m == n) {
             return Ok(*p);
         }
-        let hint = if self.consts.get(&n).is_some() { format!("`{n}` is a constant, not a point") } else { format!("point `{n}` is used before it is defined") };
+        let hint = if self.consts.get(&n).is_some() { format!("`{n}` is a constant, not a point") } else { format!("point `{n}` is not defined yet") };
         Err(syn::Error::new(
             id.span(),
             format!("{hint}: a point built from others may use the ground's points and those defined above it (points are read in order: `ground`, then each link)"),

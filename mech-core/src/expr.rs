@@ -49,7 +49,7 @@ impl Quantity {
             Some(d) if d != want => Err(syn::Error::new(
                 self.span,
                 format!(
-                    "{what} is {}, but this value is {}: use {} or a plain number (SI, {})",
+                    "{what} is {}, but this value is {}: write it with {}, or as a plain number in {}",
                     want.describe(),
                     d.describe(),
                     want.words(),

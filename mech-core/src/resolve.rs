@@ -446,7 +446,7 @@ fn input_zero_of<S: Clone>(decl: &InputDecl<S>, kind: JointKind) -> Result<f64, 
         Some(d) if d != want => Err(Diagnostic::at(
             z.span.clone(),
             format!(
-                "the zero of input `{}`, a {} joint, is {}, but this value is {}: use {} or a plain number (SI)",
+                "the zero of input `{}`, a {} joint, is {}, but this value is {}: write it with {}, or as a plain number in SI",
                 decl.name.text,
                 kind.keyword(),
                 want.describe(),

@@ -106,6 +106,7 @@ fn forces_type(cx: &Ctx) -> TokenStream {
             _ => quote!(#n => Some((self.joints.#jid.force, None)),),
         }
     });
+    let inputs = &cx.inputs_doc;
     quote! {
         /// Reactions at every joint (`docs/conventions.md#reactions`).
         #[allow(non_snake_case)]
@@ -116,6 +117,8 @@ fn forces_type(cx: &Ctx) -> TokenStream {
         pub struct #forces {
             /// The motor action of each input: torque by a on b (N·m) for a revolute
             /// input, force along the axis on b (N) for a prismatic one.
+            ///
+            #(#[doc = #inputs])*
             pub driver: #q_ty,
             /// The reaction at every joint.
             pub joints: #forces_joints,
@@ -322,11 +325,14 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
     let Ctx { p, q_ty, .. } = cx;
     let (motion, loads) = (&cx.names.motion, &cx.names.loads);
     let out = if cx.one_dof() { quote!(out[0]) } else { quote!(out) };
+    let inputs = &cx.inputs_doc;
     quote! {
         /// The motor actions by the principle of virtual power, computing no reaction:
         /// for each input, the velocity field that moves it alone at unit rate, and
         /// Q = −Σ (F·v + M·ω) over loads, gravity and inertia forces. With one input
         /// moving (q̇ ≠ 0) that field is the motion's own velocities divided by q̇.
+        ///
+        #(#[doc = #inputs])*
         pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
             let f = self.__wrenches(&m.states, loads, true)?;
             let out = #p::virtual_power::driver_actions(&f, &m.states, &m.qd, |qd| self.__velocity_field(m, qd))?;

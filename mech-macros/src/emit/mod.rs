@@ -77,6 +77,8 @@ pub(crate) struct Ctx<'a> {
     pub q_ty: TokenStream,
     /// The inertia and gravity terms of each link, from its declaration (ground first).
     pub terms: Vec<LinkTerms>,
+    /// What q of each input is and which sign its motor action follows (doc lines).
+    pub inputs_doc: Vec<String>,
 }
 
 impl<'a> Ctx<'a> {
@@ -101,6 +103,7 @@ impl<'a> Ctx<'a> {
             n_groups: plan.len(),
             q_ty: if dof == 1 { quote!(f64) } else { quote!([f64; #dof]) },
             terms: model.links.iter().map(LinkTerms::of).collect(),
+            inputs_doc: inputs_doc(model),
         }
     }
 
@@ -155,3 +158,45 @@ pub(crate) fn parts(desc: &Description<Span>, model: &Model, plan: &[Group]) -> 
 pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> TokenStream {
     parts(desc, model, plan).into_iter().map(|(_, part)| part).collect()
 }
+
+/// A number without trailing zeros (for doc comments).
+fn short(x: f64) -> String {
+    let s = format!("{x:.9}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// For each input: what q is (the joint coordinate less the declared zero) and the sign
+/// of its motor action, in words, for the doc comments of the solvers that take q or
+/// report the motor action.
+fn inputs_doc(model: &Model) -> Vec<String> {
+    let mut lines = vec![" Inputs and signs:".to_string()];
+    for (k, (&j, &zero)) in model.inputs.iter().zip(&model.input_zero).enumerate() {
+        let jt = &model.joints[j];
+        let (a, b) = (&model.links[jt.a].name, &model.links[jt.b].name);
+        let q = if model.inputs.len() == 1 { "q".to_string() } else { format!("q[{k}]") };
+        let line = match jt.kind {
+            JointKind::Revolute => {
+                let zero = if zero == 0.0 { String::new() } else { format!(" − {}°", short(zero.to_degrees())) };
+                let relative = if jt.a == 0 { String::new() } else { format!(" − θ_{a}") };
+                format!(
+                    " - {q}, joint `{}` (revolute, `{a}` → `{b}`): q = θ_{b}{relative}{zero} (rad, counter-clockwise); \
+                     its motor action is the torque applied by `{a}` on `{b}` (N·m, counter-clockwise positive): \
+                     the torque the motor applies. The \"turning moment on the crankshaft\" of engine \
+                     textbooks (the torque the loads give the crank) is its negative.",
+                    jt.name
+                )
+            }
+            _ => {
+                let zero = if zero == 0.0 { String::new() } else { format!(" − {} m", short(zero)) };
+                format!(
+                    " - {q}, joint `{}` (prismatic, `{b}` on `{a}`): q = the slide of `{}` along the axis from the drawing{zero} (m); \
+                     its motor action is the force applied by `{a}` on `{b}` along the axis (N).",
+                    jt.name, model.points[jt.point].name
+                )
+            }
+        };
+        lines.push(line);
+    }
+    lines
+}
+

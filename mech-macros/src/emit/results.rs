@@ -152,9 +152,12 @@ fn pose_fn(cx: &Ctx) -> TokenStream {
         quote!(#pid: #p::kinematics::point_pose(&s[#o], self.points[#pt]),)
     });
     let q_arr = to_array(cx, "q");
+    let inputs = &cx.inputs_doc;
     quote! {
         /// Position analysis: every link's angle and cg, every point's position.
         /// Computes no velocity or acceleration.
+        ///
+        #(#[doc = #inputs])*
         pub fn pose(&self, q: #q_ty) -> Result<#pose, #p::MechError> {
             #q_arr
             #p::error::check_finite("q", &q)?;
@@ -186,8 +189,11 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
         quote!(#pid: #p::kinematics::point_motion(&s[#o], self.points[#pt]),)
     });
     let (q_arr, qd_arr, qdd_arr) = (to_array(cx, "q"), to_array(cx, "qd"), to_array(cx, "qdd"));
+    let inputs = &cx.inputs_doc;
     quote! {
         /// Position, velocity and acceleration analysis at input (q, q̇, q̈).
+        ///
+        #(#[doc = #inputs])*
         pub fn kinematics(&self, q: #q_ty, qd: #q_ty, qdd: #q_ty) -> Result<#motion, #p::MechError> {
             #q_arr #qd_arr #qdd_arr
             #p::error::check_finite("q, qd, qdd", &q)?;

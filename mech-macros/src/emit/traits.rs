@@ -129,6 +129,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
     let loads = &cx.names.loads;
     let values = forces::load_values(cx);
     let (inertia, moment) = zhukovski_terms(cx);
+    let inputs = &cx.inputs_doc;
     quote! {
         /// Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad), in closed
         /// form from the velocity coefficients and their derivatives.
@@ -149,7 +150,10 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             #moment
             Ok(z.moment)
         }
-        /// The direct problem: q̈ (rad/s²) from I* q̈ + ½ dI*/dq q̇² = driver + M*.
+        /// The direct problem: q̈ (rad/s²) from I* q̈ + ½ dI*/dq q̇² = driver + M*, the
+        /// driver's torque applied by the motor (the sign of `kinetostatics`' `driver`).
+        ///
+        #(#[doc = #inputs])*
         pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
             #p::error::check_finite("q, qd, driver", &[q, qd, driver])?;
             #p::error::check_finite("loads", &[#values])?;
