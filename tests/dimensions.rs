@@ -379,3 +379,19 @@ fn the_run_time_loader_explains_a_missing_branch_word() {
         other => panic!("{other:?}"),
     }
 }
+
+/// The README's example mechanism, read by the run-time loader: valid, and its piston
+/// where the slider-crank's closed form puts it.
+#[test]
+fn the_readme_mechanism_is_valid() {
+    let readme = include_str!("../README.md");
+    let at = readme.find("pub struct SliderCrank").unwrap();
+    let (start, end) = (readme[..at].rfind("```rust").unwrap() + 7, at + readme[at..].find("```").unwrap());
+    let m = Mechanism::from_rust_source(&readme[start..end], "SliderCrank").unwrap();
+    let (r, l, e) = (0.05, 0.225, 0.012);
+    let q = 0.7f64;
+    let s = (l * l - (e - r * q.sin()).powi(2)).sqrt();
+    let pose = m.pose(&[q]).unwrap();
+    let b = pose.point("B").unwrap().pos;
+    near("B", b, Vector2::new(r * q.cos() + s, e), 1e-15);
+}
