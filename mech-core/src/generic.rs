@@ -295,13 +295,13 @@ pub struct GenericMechanism {
 use crate::report::location;
 
 /// A syntax error as [`MechError::Invalid`], rendered against `source` ([`crate::report`]).
-fn syntax(source: &str, e: syn::Error) -> MechError {
-    MechError::Invalid(crate::report::render_syntax(source, None, &e))
+fn syntax(source: &str, origin: Option<&str>, e: syn::Error) -> MechError {
+    MechError::Invalid(crate::report::render_syntax(source, origin, &e))
 }
 
 /// The checks' diagnostics as [`MechError::Invalid`], rendered against `source`.
-fn invalid(source: &str, diags: &[Diagnostic<Span>]) -> MechError {
-    MechError::Invalid(crate::report::render(source, None, diags))
+fn invalid(source: &str, origin: Option<&str>, diags: &[Diagnostic<Span>]) -> MechError {
+    MechError::Invalid(crate::report::render(source, origin, diags))
 }
 
 /// The `mechanism! { ... }` invocation declaring `pub struct name` in Rust source text:
@@ -326,7 +326,7 @@ fn find_declaration(source: &str, name: &str) -> Result<(proc_macro2::Group, cra
             match syn::parse2::<crate::dsl::Parsed>(g.stream()) {
                 Ok(p) if p.0.name.text == name => return Ok((g.clone(), p.0)),
                 Ok(p) => found.push(p.0.name.text),
-                Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => return Err(syntax(source, e)),
+                Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => return Err(syntax(source, None, e)),
                 Err(_) => {}
             }
         }
@@ -367,8 +367,14 @@ impl GenericMechanism {
     /// [`crate::validate::check`], [`crate::assur::plan`]). Every problem found is reported
     /// in one [`MechError::Invalid`], each message prefixed with its `line:column`.
     pub fn parse(text: &str) -> Result<Self, MechError> {
-        let desc = parse_str(text).map_err(|e| syntax(text, e))?;
-        Self::from_description(&desc, text)
+        Self::parse_named(text, None)
+    }
+
+    /// [`GenericMechanism::parse`] of the text of a file named `origin` (shown in every
+    /// message as `origin:LINE:COLUMN`).
+    pub fn parse_named(text: &str, origin: Option<&str>) -> Result<Self, MechError> {
+        let desc = parse_str(text).map_err(|e| syntax(text, origin, e))?;
+        Self::from_description(&desc, text, origin)
     }
 
     /// Load the mechanism `name` declared with `mechanism! { ... pub struct name { ... } }`
@@ -377,21 +383,21 @@ impl GenericMechanism {
     /// [`GenericMechanism::parse`]; messages carry `line:column` in `source`.
     /// [`MechError::Invalid`] when the source does not tokenize or declares no such mechanism.
     pub fn from_rust_source(source: &str, name: &str) -> Result<Self, MechError> {
-        Self::from_description(&find_declaration(source, name)?.1, source)
+        Self::from_description(&find_declaration(source, name)?.1, source, None)
     }
 
     /// Resolve and validate a parsed description (the macro's pipeline after parsing).
-    fn from_description(desc: &crate::model::Description<Span>, source: &str) -> Result<Self, MechError> {
-        let model = resolve(desc).map_err(|d| invalid(source, &d))?;
+    fn from_description(desc: &crate::model::Description<Span>, source: &str, origin: Option<&str>) -> Result<Self, MechError> {
+        let model = resolve(desc).map_err(|d| invalid(source, origin, &d))?;
         let issues = crate::validate::check(&model);
         if !issues.is_empty() {
             let diags: Vec<Diagnostic<Span>> = issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
-            return Err(invalid(source, &diags));
+            return Err(invalid(source, origin, &diags));
         }
         if let Err(links) = crate::assur::plan(&model) {
             let names: Vec<String> = links.iter().map(|&l| format!("`{}`", model.links[l].name)).collect();
             let spans = links.iter().map(|&l| desc.locate(&model, crate::resolve::Culprit::Link(l))).collect();
-            return Err(invalid(source, &[Diagnostic {
+            return Err(invalid(source, origin, &[Diagnostic {
                 spans,
                 message: format!(
                     "links {} cannot be solved group by group from the inputs: no Assur group of them has as many equations as unknowns; check the joints and inputs",

@@ -169,6 +169,12 @@ impl Mechanism {
         Self::from_model(GenericMechanism::parse(text)?.model().clone())
     }
 
+    /// [`Mechanism::from_dsl`] of the text of a file named `origin`: every message starts
+    /// with `origin:LINE:COLUMN:`.
+    pub fn from_dsl_named(text: &str, origin: &str) -> Result<Self, MechError> {
+        Self::from_model(GenericMechanism::parse_named(text, Some(origin))?.model().clone())
+    }
+
     /// Load the mechanism `name` declared with `mechanism!` in Rust source text.
     pub fn from_rust_source(source: &str, name: &str) -> Result<Self, MechError> {
         Self::from_model(GenericMechanism::from_rust_source(source, name)?.model().clone())

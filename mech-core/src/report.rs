@@ -2,8 +2,9 @@
 //! macro's: each check's message with its line and column in the text, the offending line
 //! with the culprit underlined, and the other declarations involved (`annotate-snippets`).
 //!
-//! Each rendered error starts with a line `LINE:COLUMN: message` (1-based), so a program
-//! can still find the location by reading up to the second colon.
+//! Each rendered error starts with a line `LINE:COLUMN: message` (1-based), or
+//! `FILE:LINE:COLUMN: message` when the text came from a named file, so a program (or an
+//! editor) can find the location.
 
 use crate::resolve::Diagnostic;
 use annotate_snippets::{Level, Renderer, Snippet};
@@ -43,7 +44,10 @@ pub fn location(span: &Span) -> String {
 /// other declarations involved (`spans[1..]`) underlined.
 fn render_one(source: &str, origin: Option<&str>, message: &str, spans: &[Span]) -> String {
     let Some(first) = spans.first() else { return message.to_string() };
-    let head = format!("{}: {message}", location(first));
+    let head = match origin {
+        Some(o) => format!("{o}:{}: {message}", location(first)),
+        None => format!("{}: {message}", location(first)),
+    };
     let mut snippet = Snippet::source(source).line_start(1).fold(true);
     if let Some(o) = origin {
         snippet = snippet.origin(o);

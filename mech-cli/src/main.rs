@@ -1,0 +1,154 @@
+//! `mech`: planar mechanisms from a terminal (`docs/cli.md`). Each subcommand reads a
+//! mechanism file (`*.mech`: the text between the braces of `mechanism! { ... }`), or
+//! standard input with `-`.
+
+use clap::{Parser, Subcommand};
+use mech_cli::columns::Level;
+use mech_cli::loads::LoadSet;
+use mech_cli::output::Format;
+use mech_cli::{check, draw, import, quantity, report, solve, source, Failure};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Dynamics of planar machines: check, solve, sweep, size a flywheel, simulate, draw.
+///
+/// Numbers are SI, or carry one unit word glued or spaced: `--at 30deg`, `--at "30 deg"`,
+/// `--speed 3000rpm`, `--load gas=-1.5kN,0`. Output data (SI units, named in the table
+/// header) go to standard output, messages and progress to standard error.
+#[derive(Parser, Debug)]
+#[command(name = "mech", version, about, long_about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// The options of a configuration: inputs, rates, loads, output.
+#[derive(clap::Args, Debug)]
+struct State {
+    /// Input speeds q̇, one per input (rad/s or m/s; `rpm` allowed); default 0.
+    #[arg(long = "speed", value_delimiter = ',', allow_hyphen_values = true)]
+    speed: Vec<String>,
+    /// Input accelerations q̈, one per input (rad/s² or m/s²); default 0.
+    #[arg(long = "accel", value_delimiter = ',', allow_hyphen_values = true)]
+    accel: Vec<String>,
+    /// A load: NAME=VALUE (`gas=-1500,0` N, `shaft=-4` N·m) or NAME=@table.csv (columns q
+    /// or q_deg, then the value(s); linear, repeating with the table's span). Repeatable.
+    #[arg(long = "load", allow_hyphen_values = true)]
+    load: Vec<String>,
+    /// What to compute: positions, kinematics, or forces (reactions, motor actions by
+    /// d'Alembert and by virtual power, I*, M*).
+    #[arg(long, value_enum, default_value_t = Level::Forces)]
+    level: Level,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    format: Format,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run the macro's checks; print the structure (Grübler, Assur groups) or the errors
+    /// as FILE:LINE:COLUMN with an excerpt. Exit status 1 for a bad mechanism.
+    Check {
+        /// The mechanism file (`-` = standard input).
+        file: PathBuf,
+    },
+    /// One configuration: every point and link, every reaction, the motor actions by
+    /// both routes, I* and M*.
+    Solve {
+        /// The mechanism file (`-` = standard input).
+        file: PathBuf,
+        /// Input values q, one per input (rad or m; `deg`, `mm` allowed).
+        #[arg(long = "at", required = true, value_delimiter = ',', allow_hyphen_values = true)]
+        at: Vec<String>,
+        #[command(flatten)]
+        state: State,
+    },
+    /// The same over a range of the first input, one row per input, in parallel.
+    Sweep {
+        /// The mechanism file (`-` = standard input).
+        file: PathBuf,
+        /// First value of the first input.
+        #[arg(long, allow_hyphen_values = true)]
+        from: String,
+        /// Last value of the first input (included).
+        #[arg(long, allow_hyphen_values = true)]
+        to: String,
+        /// Number of steps (rows = steps + 1).
+        #[arg(long)]
+        steps: usize,
+        /// The other inputs' values (several DOF), in order after the first.
+        #[arg(long = "rest", value_delimiter = ',', allow_hyphen_values = true)]
+        rest: Vec<String>,
+        #[command(flatten)]
+        state: State,
+    },
+    /// Draw the linkage at one input as SVG: links, pins, slider guides, ground hatching,
+    /// point names.
+    Draw(draw::DrawArgs),
+    /// The linkage moving over a cycle as an animated SVG that plays in any browser.
+    Animate(draw::AnimateArgs),
+    /// One self-contained HTML page: the animated linkage, a slider for the input, and
+    /// plots over the cycle.
+    Report(report::ReportArgs),
+    /// A mechanism from pyslvs's PMKS expression (`M[J[R, P[x, y], L[ground, L1]], ...]`)
+    /// written as a `.mech` file.
+    Import(import::ImportArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("{}", f.message);
+            ExitCode::from(f.status)
+        }
+    }
+}
+
+/// The rates and the loads of `state` for mechanism `m`.
+fn rates(m: &mech_core::Mechanism, state: &State) -> Result<(Vec<f64>, Vec<f64>, LoadSet), Failure> {
+    let model = m.model();
+    Ok((
+        quantity::per_input(&state.speed, model, 1, "--speed", 0.0)?,
+        quantity::per_input(&state.accel, model, 2, "--accel", 0.0)?,
+        LoadSet::parse(&state.load, model)?,
+    ))
+}
+
+fn run(command: Command) -> Result<(), Failure> {
+    let stdout = std::io::stdout().lock();
+    match command {
+        Command::Check { file } => {
+            let m = source::load(&file)?;
+            print!("{}", check::summary(&m));
+            Ok(())
+        }
+        Command::Solve { file, at, state } => {
+            let m = source::load(&file)?;
+            let q = quantity::per_input(&at, m.model(), 0, "--at", 0.0)?;
+            let (qd, qdd, loads) = rates(&m, &state)?;
+            solve::solve(&m, &q, &qd, &qdd, &loads, state.level, state.format, stdout)
+        }
+        Command::Sweep { file, from, to, steps, rest, state } => {
+            let m = source::load(&file)?;
+            let model = m.model();
+            let (d, _) = quantity::input_dims(model, 0);
+            let (a, b) = (quantity::parse(&from, d, "--from")?, quantity::parse(&to, d, "--to")?);
+            let g = m.dof();
+            if rest.len() + 1 != g {
+                return Err(Failure::usage(format!("--rest: {} value(s) for the {} input(s) after the first", rest.len(), g - 1)));
+            }
+            let mut q = vec![a];
+            for (k, t) in rest.iter().enumerate() {
+                q.push(quantity::parse(t, quantity::input_dims(model, k + 1).0, "--rest")?);
+            }
+            let (qd, qdd, loads) = rates(&m, &state)?;
+            solve::sweep(&m, (a, b, steps), &q, &qd, &qdd, &loads, state.level, state.format, stdout)
+        }
+        Command::Draw(args) => draw::draw(args),
+        Command::Animate(args) => draw::animate(args),
+        Command::Report(args) => report::run(args),
+        Command::Import(args) => import::run(args),
+    }
+}

@@ -1,0 +1,94 @@
+//! `mech solve` (one configuration) and `mech sweep` (a range of inputs, in parallel, one
+//! row per input, streamed in chunks so that a million rows need no more memory than a
+//! chunk, with a progress bar on standard error when the sweep is long).
+
+use crate::columns::{Columns, Level};
+use crate::loads::LoadSet;
+use crate::output::{Format, Writer};
+use crate::Failure;
+use mech_core::Mechanism;
+use rayon::prelude::*;
+use std::io::Write;
+
+/// Rows per chunk of a sweep: solved in parallel, then written in order.
+const CHUNK: usize = 4096;
+
+/// Sweeps longer than this show a progress bar (on a terminal).
+const PROGRESS_FROM: usize = 20_000;
+
+/// One configuration in `format`. The table format lists one quantity per line with its
+/// unit; CSV and JSON give the one row.
+pub fn solve(m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &LoadSet, level: Level, format: Format, out: impl Write) -> Result<(), Failure> {
+    let cols = Columns::new(m, level);
+    let row = cols.row(m, q, qd, qdd, &loads.at(m, q[0]))?;
+    if format == Format::Table {
+        let mut out = out;
+        let w = cols.names.iter().map(String::len).max().unwrap_or(1);
+        for ((n, u), v) in cols.names.iter().zip(&cols.units).zip(&row) {
+            writeln!(out, "{n:<w$}  {v:>20.12e}  {u}")?;
+        }
+        return Ok(());
+    }
+    let mut w = Writer::new(out, format, &cols.names, &cols.units)?;
+    w.row(&row)?;
+    w.finish()?;
+    Ok(())
+}
+
+/// The inputs of a sweep: `steps` + 1 values from `from` to `to` (both included) for the
+/// first input; the other inputs (several DOF) stay at `rest`.
+pub fn inputs(from: f64, to: f64, steps: usize, k: usize) -> f64 {
+    if steps == 0 {
+        from
+    } else {
+        from + (to - from) * k as f64 / steps as f64
+    }
+}
+
+/// A sweep of the first input from `from` to `to` in `steps` steps; the other inputs at
+/// `rest`; a row per input, in order.
+#[allow(clippy::too_many_arguments)]
+pub fn sweep(
+    m: &Mechanism,
+    (from, to, steps): (f64, f64, usize),
+    rest: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    loads: &LoadSet,
+    level: Level,
+    format: Format,
+    out: impl Write,
+) -> Result<(), Failure> {
+    let cols = Columns::new(m, level);
+    let mut w = Writer::new(out, format, &cols.names, &cols.units)?;
+    let total = steps + 1;
+    let bar = if total >= PROGRESS_FROM {
+        let b = indicatif::ProgressBar::new(total as u64);
+        b.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} configurations, {per_sec}, eta {eta}").expect("template"));
+        Some(b)
+    } else {
+        None
+    };
+    for start in (0..total).step_by(CHUNK) {
+        let end = (start + CHUNK).min(total);
+        let rows: Vec<Result<Vec<f64>, Failure>> = (start..end)
+            .into_par_iter()
+            .map(|k| {
+                let mut q = rest.to_vec();
+                q[0] = inputs(from, to, steps, k);
+                cols.row(m, &q, qd, qdd, &loads.at(m, q[0])).map_err(|e| Failure::mechanism(format!("at q = {}: {}", q[0], e.message)))
+            })
+            .collect();
+        for r in rows {
+            w.row(&r?)?;
+        }
+        if let Some(b) = &bar {
+            b.set_position(end as u64);
+        }
+    }
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    w.finish()?;
+    Ok(())
+}
