@@ -11,11 +11,13 @@
 pub mod check;
 pub mod columns;
 pub mod draw;
+pub mod flywheel;
 pub mod import;
 pub mod loads;
 pub mod output;
 pub mod quantity;
 pub mod report;
+pub mod simulate;
 pub mod solve;
 pub mod source;
 

@@ -6,7 +6,7 @@ use clap::{Parser, Subcommand};
 use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
-use mech_cli::{check, draw, import, quantity, report, solve, source, Failure};
+use mech_cli::{check, draw, flywheel, import, quantity, report, simulate, solve, source, Failure};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -82,6 +82,12 @@ enum Command {
         #[command(flatten)]
         state: State,
     },
+    /// Size a flywheel: the cycle's work, ΔE = S_max − S_min, the inertia by the
+    /// approximate formula and by Wittenbauer's exact method, checked by integration.
+    Flywheel(flywheel::FlywheelArgs),
+    /// The direct problem over time (one input): q(t), q̇(t), q̈(t) under a driver and
+    /// loads given as constants or tables against q.
+    Simulate(simulate::SimulateArgs),
     /// Draw the linkage at one input as SVG: links, pins, slider guides, ground hatching,
     /// point names.
     Draw(draw::DrawArgs),
@@ -146,6 +152,8 @@ fn run(command: Command) -> Result<(), Failure> {
             let (qd, qdd, loads) = rates(&m, &state)?;
             solve::sweep(&m, (a, b, steps), &q, &qd, &qdd, &loads, state.level, state.format, stdout)
         }
+        Command::Flywheel(args) => flywheel::run(args, stdout),
+        Command::Simulate(args) => simulate::run(args, stdout),
         Command::Draw(args) => draw::draw(args),
         Command::Animate(args) => draw::animate(args),
         Command::Report(args) => report::run(args),

@@ -11,6 +11,13 @@ use syn::parse::{ParseStream, Parser};
 /// messages); a plain number is SI.
 pub fn parse(text: &str, dim: Dim, what: &str) -> Result<f64, Failure> {
     let c = Constants::default();
+    // `4pi`, `2 pi`, `4π`: a multiple of π, as written on the command line.
+    let trimmed = text.trim();
+    let expr = match trimmed.strip_suffix("pi").or_else(|| trimmed.strip_suffix('π')) {
+        Some(k) if !k.trim().is_empty() && k.trim().parse::<f64>().is_ok() => format!("{} * PI", k.trim()),
+        _ => trimmed.to_string(),
+    };
+    let text = expr.as_str();
     let q = (|input: ParseStream| {
         let q = c.expr(input)?;
         if !input.is_empty() {
@@ -68,6 +75,8 @@ mod tests {
         assert_eq!(parse("0.5", Dim::ANGLE, "q").unwrap(), 0.5);
         assert!((parse("3000rpm", Dim::SPEED, "speed").unwrap() - 100.0 * std::f64::consts::PI).abs() < 1e-12);
         assert!((parse("4*PI", Dim::ANGLE, "period").unwrap() - 4.0 * std::f64::consts::PI).abs() < 1e-15);
+        assert_eq!(parse("4pi", Dim::ANGLE, "period").unwrap(), 4.0 * std::f64::consts::PI);
+        assert_eq!(parse("2 π", Dim::ANGLE, "period").unwrap(), 2.0 * std::f64::consts::PI);
         let e = parse("30 mm", Dim::ANGLE, "--at").unwrap_err();
         assert!(e.message.contains("an angle") && e.status == 2, "{}", e.message);
         assert!(parse("thirty", Dim::ANGLE, "--at").is_err());
