@@ -19,13 +19,13 @@ pub struct FlywheelArgs {
     /// The mechanism file (`-` = standard input); one revolute input.
     pub file: PathBuf,
     /// The cycle's period λ (rad): `2pi`, `4*PI` (a four-stroke engine), `720deg`.
-    #[arg(long, default_value = "2*PI")]
+    #[arg(long, default_value = "2*PI", allow_hyphen_values = true)]
     pub period: String,
     /// Where the cycle starts, q0 (rad or deg).
     #[arg(long, default_value = "0", allow_hyphen_values = true)]
     pub start: String,
     /// Mean speed ω_a (rad/s, or rpm).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub speed: String,
     /// Coefficient of fluctuation of speed ε = (ω_max − ω_min)/ω_a.
     #[arg(long)]

@@ -140,7 +140,8 @@ mod tests {
         let quarter = std::f64::consts::FRAC_PI_2;
         assert!((t.at(quarter / 2.0)[0] - 5.0).abs() < 1e-12);
         assert!((t.at(quarter / 2.0 + 2.0 * std::f64::consts::PI)[0] - 5.0).abs() < 1e-12);
-        assert!((t.at(-quarter / 2.0 * 3.0)[0] - t.at(2.0 * std::f64::consts::PI - 0.75 * quarter)[0]).abs() < 1e-12);
+        assert!((t.at(-1.5 * quarter)[0] - t.at(4.0 * quarter - 1.5 * quarter)[0]).abs() < 1e-12);
+        assert!((t.at(-1.5 * quarter)[0] - 5.0).abs() < 1e-12, "at 225° = −135°: 10 (1 − 135/270)");
         assert!(Table::parse("x, f\n0, 1\n1, 2\n", 1, "t.csv").is_err());
         assert!(Table::parse("q, f\n0, 1\n0, 2\n", 1, "t.csv").is_err());
         assert!(Table::parse("q, fx\n0, 1\n1, 2\n", 2, "t.csv").is_err());

@@ -21,5 +21,8 @@ pub fn read(path: &Path) -> Result<(String, String), Failure> {
 /// [`Failure`] whose message starts `FILE:LINE:COLUMN:`.
 pub fn load(path: &Path) -> Result<Mechanism, Failure> {
     let (text, origin) = read(path)?;
-    Mechanism::from_dsl_named(&text, &origin).map_err(|e| Failure::mechanism(e.to_string()))
+    Mechanism::from_dsl_named(&text, &origin).map_err(|e| match e {
+        mech_core::MechError::Invalid(rendered) => Failure::mechanism(rendered),
+        other => Failure::mechanism(other.to_string()),
+    })
 }
