@@ -123,7 +123,7 @@ fn rates(m: &mech_core::Mechanism, state: &State) -> Result<(Vec<f64>, Vec<f64>,
 }
 
 fn run(command: Command) -> Result<(), Failure> {
-    let stdout = std::io::stdout().lock();
+    let stdout = std::io::BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
     match command {
         Command::Check { file } => {
             let m = source::load(&file)?;

@@ -16,18 +16,20 @@ pub enum Format {
     Json,
 }
 
-/// Where rows go: the plain stream, or a CSV writer over it.
-enum Sink<W: Write> {
-    Plain(W),
-    Csv(csv::Writer<W>),
+/// Writes rows in one format, streaming (rows may come in chunks). A row is first
+/// rendered to text ([`Writer::render`], pure: chunks render in parallel), then written in
+/// order ([`Writer::push`]).
+pub struct Writer<W: Write> {
+    out: W,
+    renderer: Renderer,
+    rows: usize,
 }
 
-/// Writes rows in one format, streaming (rows may come in chunks).
-pub struct Writer<W: Write> {
-    sink: Sink<W>,
+/// How a row becomes text (shared by the threads of a sweep).
+#[derive(Clone, Debug)]
+pub struct Renderer {
     format: Format,
     names: Vec<String>,
-    rows: usize,
 }
 
 /// The width of a table column.
@@ -36,57 +38,66 @@ const WIDTH: usize = 16;
 impl<W: Write> Writer<W> {
     /// A writer of rows with these column names and units; writes the header.
     pub fn new(mut out: W, format: Format, names: &[String], units: &[&str]) -> io::Result<Self> {
-        let sink = match format {
+        match format {
             Format::Table => {
                 let head: Vec<String> = names.iter().zip(units).map(|(n, u)| format!("{:>WIDTH$}", format!("{n} [{u}]"))).collect();
                 writeln!(out, "{}", head.join(" "))?;
-                Sink::Plain(out)
             }
             Format::Csv => {
-                let mut c = csv::Writer::from_writer(out);
+                let mut c = csv::Writer::from_writer(&mut out);
                 c.write_record(names)?;
-                Sink::Csv(c)
+                c.flush()?;
             }
-            Format::Json => {
-                write!(out, "[")?;
-                Sink::Plain(out)
-            }
-        };
-        Ok(Writer { sink, format, names: names.to_vec(), rows: 0 })
+            Format::Json => write!(out, "[")?,
+        }
+        Ok(Writer { out, renderer: Renderer { format, names: names.to_vec() }, rows: 0 })
     }
 
-    /// One row (as many values as names).
+    /// The renderer of this writer's rows.
+    pub fn renderer(&self) -> &Renderer {
+        &self.renderer
+    }
+
+    /// Write a rendered row.
+    pub fn push(&mut self, rendered: &str) -> io::Result<()> {
+        match self.renderer.format {
+            Format::Json => write!(self.out, "{}  {rendered}", if self.rows == 0 { "\n" } else { ",\n" })?,
+            _ => writeln!(self.out, "{rendered}")?,
+        }
+        self.rows += 1;
+        Ok(())
+    }
+
+    /// Render and write one row.
     pub fn row(&mut self, values: &[f64]) -> io::Result<()> {
-        match (&mut self.sink, self.format) {
-            (Sink::Csv(c), _) => c.write_record(values.iter().map(|v| v.to_string()))?,
-            (Sink::Plain(out), Format::Table) => {
-                let cells: Vec<String> = values.iter().map(|v| format!("{:>WIDTH$}", format!("{v:.9e}"))).collect();
-                writeln!(out, "{}", cells.join(" "))?;
-            }
-            (Sink::Plain(out), _) => {
+        let r = self.renderer.render(values);
+        self.push(&r)
+    }
+
+    /// Close the output (the JSON array's bracket) and flush.
+    pub fn finish(mut self) -> io::Result<()> {
+        if self.renderer.format == Format::Json {
+            writeln!(self.out, "\n]")?;
+        }
+        self.out.flush()
+    }
+}
+
+impl Renderer {
+    /// One row as text (as many values as names): numbers in shortest round-trip form
+    /// for CSV and JSON, 10 significant digits in the table.
+    pub fn render(&self, values: &[f64]) -> String {
+        match self.format {
+            Format::Csv => values.iter().map(f64::to_string).collect::<Vec<_>>().join(","),
+            Format::Table => values.iter().map(|v| format!("{:>WIDTH$}", format!("{v:.9e}"))).collect::<Vec<_>>().join(" "),
+            Format::Json => {
                 let obj: serde_json::Map<String, serde_json::Value> = self
                     .names
                     .iter()
                     .zip(values)
                     .map(|(n, v)| (n.clone(), serde_json::Number::from_f64(*v).map_or(serde_json::Value::Null, serde_json::Value::Number)))
                     .collect();
-                let sep = if self.rows == 0 { "\n" } else { ",\n" };
-                write!(out, "{sep}  {}", serde_json::Value::Object(obj))?;
-            }
-        }
-        self.rows += 1;
-        Ok(())
-    }
-
-    /// Close the output (the JSON array's bracket, the CSV writer's buffer).
-    pub fn finish(self) -> io::Result<()> {
-        match self.sink {
-            Sink::Csv(mut c) => c.flush(),
-            Sink::Plain(mut out) => {
-                if self.format == Format::Json {
-                    writeln!(out, "\n]")?;
-                }
-                out.flush()
+                serde_json::Value::Object(obj).to_string()
             }
         }
     }

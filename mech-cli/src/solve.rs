@@ -62,6 +62,7 @@ pub fn sweep(
     let cols = Columns::new(m, level);
     let mut w = Writer::new(out, format, &cols.names, &cols.units)?;
     let total = steps + 1;
+    let renderer = w.renderer().clone();
     let bar = if total >= PROGRESS_FROM {
         let b = indicatif::ProgressBar::new(total as u64);
         b.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} configurations, {per_sec}, eta {eta}").expect("template"));
@@ -71,16 +72,17 @@ pub fn sweep(
     };
     for start in (0..total).step_by(CHUNK) {
         let end = (start + CHUNK).min(total);
-        let rows: Vec<Result<Vec<f64>, Failure>> = (start..end)
+        let rows: Vec<Result<String, Failure>> = (start..end)
             .into_par_iter()
             .map(|k| {
                 let mut q = rest.to_vec();
                 q[0] = inputs(from, to, steps, k);
-                cols.row(m, &q, qd, qdd, &loads.at(m, q[0])).map_err(|e| Failure::mechanism(format!("at q = {}: {}", q[0], e.message)))
+                let row = cols.row(m, &q, qd, qdd, &loads.at(m, q[0])).map_err(|e| Failure::mechanism(format!("at q = {}: {}", q[0], e.message)))?;
+                Ok(renderer.render(&row))
             })
             .collect();
         for r in rows {
-            w.row(&r?)?;
+            w.push(&r?)?;
         }
         if let Some(b) = &bar {
             b.set_position(end as u64);
