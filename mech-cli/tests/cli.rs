@@ -274,3 +274,18 @@ fn bad_arguments_are_usage_errors() {
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
 }
+
+/// Every example mechanism file passes `mech check`.
+#[test]
+fn the_example_files_pass_check() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/mech");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "mech") {
+            mech().arg("check").arg(&path).assert().success();
+            n += 1;
+        }
+    }
+    assert!(n >= 4, "{n} example files in {}", dir.display());
+}
