@@ -289,3 +289,38 @@ fn the_example_files_pass_check() {
     }
     assert!(n >= 4, "{n} example files in {}", dir.display());
 }
+
+#[path = "../../tests/common/engine.rs"]
+#[allow(dead_code)]
+mod engine;
+
+/// The engine example's flywheel from files: `examples/mech/engine.mech` and the gas
+/// force tabulated every 0.1° by `tools/engine_gas_table.py`, against the 25-digit
+/// reference of the engine example (`tests/data/engine.flywheel.json`, mpmath). The table's
+/// linear interpolation costs a few parts in 10⁷.
+#[test]
+fn the_engine_flywheel_from_files() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let breaks: Vec<String> = engine::breakpoints().iter().map(|b| format!("{b:.17}")).collect();
+    let out = mech()
+        .arg("flywheel")
+        .arg(root.join("examples/mech/engine.mech"))
+        .args(["--period", "4pi", "--start", &format!("{:.17}", engine::Q_TDC), "--speed", "3000rpm", "--irregularity", "0.02"])
+        .arg("--breakpoints")
+        .arg(breaks.join(","))
+        .arg(format!("--load=gas=@{}", root.join("examples/mech/engine_gas.csv").display()))
+        .args(["--format", "json"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let r = &serde_json::from_slice::<serde_json::Value>(&out).unwrap()[0];
+    let reference: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(root.join("tests/data/engine.flywheel.json")).unwrap()).unwrap();
+    let x = &reference["results"];
+    for (ours, theirs) in [("net_work", "net_work_gas"), ("balancing_torque", "balancing_torque"), ("s_max", "s_max"), ("s_min", "s_min"), ("inertia_approximate", "approximate_inertia"), ("inertia_exact", "exact_inertia")] {
+        let (a, b) = (r[ours].as_f64().unwrap(), x[theirs].as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-6 * b.abs(), "{ours}: {a} against the reference {b} ({:.1e})", (a - b).abs() / b.abs());
+    }
+    close("simulated ε", r["irregularity_simulated"].as_f64().unwrap(), 0.02, 1e-6);
+}
