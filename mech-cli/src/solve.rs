@@ -2,7 +2,7 @@
 //! row per input, streamed in chunks so that a million rows need no more memory than a
 //! chunk, with a progress bar on standard error when the sweep is long).
 
-use crate::columns::{Columns, Level};
+use crate::columns::Level;
 use crate::loads::LoadSet;
 use crate::output::{Format, Writer};
 use crate::Failure;
@@ -19,7 +19,7 @@ const PROGRESS_FROM: usize = 20_000;
 /// One configuration in `format`. The table format lists one quantity per line with its
 /// unit; CSV and JSON give the one row.
 pub fn solve(m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &LoadSet, level: Level, format: Format, out: impl Write) -> Result<(), Failure> {
-    let cols = Columns::new(m, level);
+    let cols = level.columns(m);
     let row = cols.row(m, q, qd, qdd, &loads.at(m, q[0]))?;
     if format == Format::Table {
         let mut out = out;
@@ -59,7 +59,7 @@ pub fn sweep(
     format: Format,
     out: impl Write,
 ) -> Result<(), Failure> {
-    let cols = Columns::new(m, level);
+    let cols = level.columns(m);
     let mut w = Writer::new(out, format, &cols.names, &cols.units)?;
     let total = steps + 1;
     let renderer = w.renderer().clone();
@@ -77,7 +77,7 @@ pub fn sweep(
             .map(|k| {
                 let mut q = rest.to_vec();
                 q[0] = inputs(from, to, steps, k);
-                let row = cols.row(m, &q, qd, qdd, &loads.at(m, q[0])).map_err(|e| Failure::mechanism(format!("at q = {}: {}", q[0], e.message)))?;
+                let row = cols.row(m, &q, qd, qdd, &loads.at(m, q[0])).map_err(|e| Failure::mechanism(format!("at q = {}: {}", q[0], e)))?;
                 Ok(renderer.render(&row))
             })
             .collect();

@@ -25,6 +25,7 @@
 
 pub mod assur;
 pub mod branches;
+pub mod columns;
 pub mod constraints;
 pub mod construction;
 pub mod dsl;
