@@ -1,0 +1,350 @@
+//! The native half of the Python package `mech` (`docs/python.md`): the run-time
+//! [`mech_core::Mechanism`] behind a small class whose solvers take 2-D float arrays of
+//! inputs and return 2-D arrays of the columns of `mech_core::columns`, the loop in Rust
+//! with the GIL released and rayon inside. The Python layer (`python/mech/__init__.py`)
+//! turns scalars, lists and callables into those arrays and the arrays into dicts.
+
+use mech_core::columns::{Columns, Part};
+use mech_core::flywheel::Cycle;
+use mech_core::mechanism::Loads;
+use mech_core::model::{JointKind, Load};
+use mech_core::traits::OneDof;
+use mech_core::{MechError as CoreError, Mechanism};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use rayon::prelude::*;
+use std::sync::OnceLock;
+
+create_exception!(_mech, MechError, PyException, "An error of mech: the message says what is wrong, the numbers and the fix.");
+create_exception!(_mech, InvalidMechanism, MechError, "The description fails a check; `line` and `column` (1-based) locate the culprit.");
+create_exception!(_mech, NoAssembly, MechError, "The mechanism cannot be assembled at this input value.");
+create_exception!(_mech, Singular, MechError, "A dead point: the system is not solvable to the requested accuracy.");
+create_exception!(_mech, InvalidInput, MechError, "A bad number: NaN, infinite, out of range, or the wrong shape.");
+
+/// The Python exception of a mech error. A check's message starts `[FILE:]LINE:COLUMN:`:
+/// the exception carries `line`, `column` and `message`.
+fn py_err(py: Python<'_>, e: CoreError) -> PyErr {
+    match e {
+        CoreError::Invalid(text) => {
+            let err = InvalidMechanism::new_err(text.clone());
+            let head = text.lines().next().unwrap_or("");
+            let mut parts = head.split_once(": ").map_or("", |(at, _)| at).rsplit(':');
+            let (col, line) = (parts.next().and_then(|c| c.parse::<usize>().ok()), parts.next().and_then(|l| l.parse::<usize>().ok()));
+            let v = err.value(py);
+            let _ = v.setattr("line", line);
+            let _ = v.setattr("column", col);
+            let _ = v.setattr("message", text);
+            err
+        }
+        CoreError::NoAssembly => NoAssembly::new_err(e.to_string()),
+        CoreError::Singular { .. } => Singular::new_err(e.to_string()),
+        CoreError::InvalidInput(_) => InvalidInput::new_err(e.to_string()),
+        other => MechError::new_err(other.to_string()),
+    }
+}
+
+/// The rayon pool of the package: `MECH_NUM_THREADS` threads (default: rayon's choice,
+/// the number of cores), so that a Dask or Ray worker does not oversubscribe its cores.
+fn pool() -> &'static rayon::ThreadPool {
+    static POOL: OnceLock<rayon::ThreadPool> = OnceLock::new();
+    POOL.get_or_init(|| {
+        let n = std::env::var("MECH_NUM_THREADS").ok().and_then(|s| s.parse::<usize>().ok()).unwrap_or(0);
+        rayon::ThreadPoolBuilder::new().num_threads(n).build().expect("a thread pool")
+    })
+}
+
+/// The number of threads the solvers use.
+#[pyfunction]
+fn num_threads() -> usize {
+    pool().current_num_threads()
+}
+
+fn parts_of(names: &[String]) -> PyResult<Vec<Part>> {
+    names
+        .iter()
+        .map(|n| match n.as_str() {
+            "inputs" => Ok(Part::Inputs),
+            "positions" => Ok(Part::Positions),
+            "rates" => Ok(Part::Rates),
+            "reactions" => Ok(Part::Reactions),
+            "driver" => Ok(Part::Driver),
+            "virtual_power" => Ok(Part::VirtualPower),
+            "zhukovski" => Ok(Part::Zhukovski),
+            other => Err(InvalidInput::new_err(format!("unknown part `{other}`"))),
+        })
+        .collect()
+}
+
+/// The loads of one row: the flat values (force: 2, torque: 1, in declaration order).
+fn loads_of(m: &Mechanism, flat: &[f64]) -> Loads {
+    let mut loads = m.loads();
+    let mut at = 0;
+    for l in m.model().loads.iter() {
+        let w = if matches!(l, Load::Force { .. }) { 2 } else { 1 };
+        if at + w <= flat.len() {
+            loads.set_by_name(l.name(), &flat[at..at + w]);
+        }
+        at += w;
+    }
+    loads
+}
+
+/// A row's inputs from 2-D arrays (n, G).
+fn row<'a>(a: &'a numpy::ndarray::ArrayView2<'a, f64>, k: usize) -> Vec<f64> {
+    a.row(k).to_vec()
+}
+
+/// The native mechanism (wrapped by `mech.Mechanism`).
+#[pyclass(module = "mech._mech", name = "_Mechanism")]
+#[derive(Clone)]
+struct PyMechanism {
+    inner: Mechanism,
+}
+
+/// Results of a table: (names, data (n, C), ok (n,), first error message or None).
+type Table<'py> = (Vec<String>, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<bool>>, Option<String>);
+
+#[pymethods]
+impl PyMechanism {
+    /// A mechanism from DSL text (`origin`: a file name for the messages).
+    #[staticmethod]
+    #[pyo3(signature = (text, origin=None))]
+    fn from_dsl(py: Python<'_>, text: &str, origin: Option<&str>) -> PyResult<Self> {
+        let m = match origin {
+            Some(o) => Mechanism::from_dsl_named(text, o),
+            None => Mechanism::from_dsl(text),
+        };
+        m.map(|inner| PyMechanism { inner }).map_err(|e| py_err(py, e))
+    }
+
+    /// Change one number of the drawing (`points.A`, `links.rod.mass`, `gravity`, ...).
+    fn set_param(&mut self, py: Python<'_>, path: &str, value: Vec<f64>) -> PyResult<()> {
+        self.inner.set_param(path, &value).map_err(|e| py_err(py, e))
+    }
+
+    /// The number of inputs G.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.inner.dof()
+    }
+
+    /// The inputs: (joint name, "revolute" | "prismatic").
+    #[getter]
+    fn inputs(&self) -> Vec<(String, String)> {
+        let model = self.inner.model();
+        model.inputs.iter().map(|&j| (model.joints[j].name.clone(), model.joints[j].kind.keyword().to_string())).collect()
+    }
+
+    /// The loads: (name, number of components: 2 for a force, 1 for a torque).
+    #[getter]
+    fn loads(&self) -> Vec<(String, usize)> {
+        self.inner.model().loads.iter().map(|l| (l.name().to_string(), if matches!(l, Load::Force { .. }) { 2 } else { 1 })).collect()
+    }
+
+    /// The mechanism's name.
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.model().name.clone()
+    }
+
+    /// The column names of `parts`.
+    fn columns(&self, parts: Vec<String>) -> PyResult<Vec<String>> {
+        Ok(Columns::new(&self.inner, &parts_of(&parts)?).names)
+    }
+
+    /// The columns of `parts` at every row of q, q̇, q̈ (n, G) with the flat loads (n, L):
+    /// (names, data (n, C), ok (n,), the first error). A failed row is NaN with ok false.
+    fn table<'py>(
+        &self,
+        py: Python<'py>,
+        parts: Vec<String>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        loads: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Table<'py>> {
+        let cols = Columns::new(&self.inner, &parts_of(&parts)?);
+        let (q, qd, qdd, loads) = (q.as_array(), qd.as_array(), qdd.as_array(), loads.as_array());
+        let n = q.nrows();
+        let width = cols.names.len();
+        let m = &self.inner;
+        let rows: Vec<Result<Vec<f64>, CoreError>> = py.allow_threads(|| {
+            pool().install(|| {
+                (0..n)
+                    .into_par_iter()
+                    .map(|k| cols.row(m, &row(&q, k), &row(&qd, k), &row(&qdd, k), &loads_of(m, &row(&loads, k))))
+                    .collect()
+            })
+        });
+        let mut data = Vec::with_capacity(n * width);
+        let mut ok = Vec::with_capacity(n);
+        let mut first = None;
+        for r in rows {
+            match r {
+                Ok(v) => {
+                    data.extend(v);
+                    ok.push(true);
+                }
+                Err(e) => {
+                    first.get_or_insert_with(|| e.to_string());
+                    data.extend(std::iter::repeat(f64::NAN).take(width));
+                    ok.push(false);
+                }
+            }
+        }
+        let data = numpy::ndarray::Array2::from_shape_vec((n, width), data).expect("shape").into_pyarray(py);
+        Ok((cols.names, data, ok.into_pyarray(py), first))
+    }
+
+    /// The direct problem q̈ at rows of (q, q̇, driver) with the flat loads (one input):
+    /// (q̈ (n,), ok (n,), the first error).
+    fn acceleration<'py>(
+        &self,
+        py: Python<'py>,
+        q: Vec<f64>,
+        qd: Vec<f64>,
+        driver: Vec<f64>,
+        loads: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<bool>>, Option<String>)> {
+        if self.inner.dof() != 1 {
+            return Err(InvalidInput::new_err(format!("the direct problem by Zhukovski needs one input; this mechanism has {}", self.inner.dof())));
+        }
+        let loads = loads.as_array();
+        let m = &self.inner;
+        let out: Vec<Result<f64, CoreError>> = py.allow_threads(|| {
+            pool().install(|| (0..q.len()).into_par_iter().map(|k| OneDof::acceleration(m, q[k], qd[k], driver[k], &loads_of(m, &row(&loads, k)))).collect())
+        });
+        let first = out.iter().find_map(|r| r.as_ref().err().map(|e| e.to_string()));
+        let ok: Vec<bool> = out.iter().map(Result::is_ok).collect();
+        let v: Vec<f64> = out.into_iter().map(|r| r.unwrap_or(f64::NAN)).collect();
+        Ok((v.into_pyarray(py), ok.into_pyarray(py), first))
+    }
+
+    /// A parameter sweep: for each variant (a list of (path, values) given to
+    /// `set_param`), the columns of `parts` at every row of q (n, G): data (V, n, C) and
+    /// ok (V, n); a variant that does not build (its drawing fails a check) is all NaN.
+    fn sweep<'py>(
+        &self,
+        py: Python<'py>,
+        variants: Vec<Vec<(String, Vec<f64>)>>,
+        parts: Vec<String>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        loads: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<(Vec<String>, Bound<'py, PyArray3<f64>>, Bound<'py, numpy::PyArray2<bool>>)> {
+        let parts = parts_of(&parts)?;
+        let cols = Columns::new(&self.inner, &parts);
+        let (q, qd, qdd, loads) = (q.as_array(), qd.as_array(), qdd.as_array(), loads.as_array());
+        let (n, width, nv) = (q.nrows(), cols.names.len(), variants.len());
+        let base = &self.inner;
+        let results: Vec<(Vec<f64>, Vec<bool>)> = py.allow_threads(|| {
+            pool().install(|| {
+                variants
+                    .par_iter()
+                    .map(|v| {
+                        let mut m = base.clone();
+                        let built = v.iter().try_for_each(|(path, value)| m.set_param(path, value));
+                        let mut data = vec![f64::NAN; n * width];
+                        let mut ok = vec![false; n];
+                        if built.is_ok() {
+                            for k in 0..n {
+                                if let Ok(r) = cols.row(&m, &row(&q, k), &row(&qd, k), &row(&qdd, k), &loads_of(&m, &row(&loads, k))) {
+                                    data[k * width..(k + 1) * width].copy_from_slice(&r);
+                                    ok[k] = true;
+                                }
+                            }
+                        }
+                        (data, ok)
+                    })
+                    .collect()
+            })
+        });
+        let mut data = Vec::with_capacity(nv * n * width);
+        let mut ok = Vec::with_capacity(nv * n);
+        for (d, o) in results {
+            data.extend(d);
+            ok.extend(o);
+        }
+        let data = numpy::ndarray::Array3::from_shape_vec((nv, n, width), data).expect("shape").into_pyarray(py);
+        let ok = numpy::ndarray::Array2::from_shape_vec((nv, n), ok).expect("shape").into_pyarray(py);
+        Ok((cols.names, data, ok))
+    }
+
+    /// Flywheel sizing over a cycle (one revolute input), loads and driver given by
+    /// Python callables of q returning the flat loads and the driver torque.
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (start, period, breakpoints, omega_mean, irregularity, loads, driver, rtol))]
+    fn flywheel(
+        &self,
+        py: Python<'_>,
+        start: f64,
+        period: f64,
+        breakpoints: Vec<f64>,
+        omega_mean: f64,
+        irregularity: f64,
+        loads: PyObject,
+        driver: Option<PyObject>,
+        rtol: f64,
+    ) -> PyResult<Vec<(String, f64)>> {
+        let m = &self.inner;
+        if m.dof() != 1 || m.model().joints[m.model().inputs[0]].kind != JointKind::Revolute {
+            return Err(InvalidInput::new_err("flywheel sizing needs one revolute input"));
+        }
+        let call_loads = |q: f64| -> Result<Loads, CoreError> {
+            let flat: Vec<f64> = loads.call1(py, (q,)).and_then(|v| v.extract(py)).map_err(|e| CoreError::InvalidInput(format!("the loads callable at q = {q}: {e}")))?;
+            Ok(loads_of(m, &flat))
+        };
+        let balance = driver.is_none();
+        let call_driver = |q: f64| -> f64 { driver.as_ref().map_or(0.0, |d| d.call1(py, (q,)).and_then(|v| v.extract::<f64>(py)).unwrap_or(f64::NAN)) };
+        let run = || -> Result<Vec<(String, f64)>, CoreError> {
+            let cycle = Cycle::new(m, start, period, &breakpoints, call_loads, call_driver)?;
+            let net = cycle.net_work();
+            let (cycle, torque) = if balance { cycle.balanced() } else { (cycle, 0.0) };
+            cycle.check_periodic()?;
+            let fw = cycle.flywheel(omega_mean, irregularity)?;
+            let sim = cycle.simulate(&fw.exact.state, rtol)?;
+            let a = fw.approximate;
+            Ok([
+                ("net_work", net),
+                ("balancing_torque", torque),
+                ("s_max", a.s_max),
+                ("q_s_max", a.q_s_max),
+                ("s_min", a.s_min),
+                ("q_s_min", a.q_s_min),
+                ("fluctuation", a.s_max - a.s_min),
+                ("inertia_approximate", a.inertia),
+                ("inertia_exact", fw.exact.inertia),
+                ("omega_max", sim.speeds.omega_max),
+                ("omega_min", sim.speeds.omega_min),
+                ("irregularity_simulated", sim.speeds.irregularity),
+            ]
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .collect())
+        };
+        run().map_err(|e| py_err(py, e))
+    }
+
+    /// Reduce for pickling: the DSL text cannot be recovered from the model, so the
+    /// Python wrapper pickles its text and parameters; this native object refuses.
+    fn __reduce__(&self) -> PyResult<()> {
+        Err(InvalidInput::new_err("pickle mech.Mechanism (the wrapper keeps the text), not its native core"))
+    }
+}
+
+/// The native module `mech._mech`.
+#[pymodule]
+fn _mech(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyMechanism>()?;
+    m.add_function(wrap_pyfunction!(num_threads, m)?)?;
+    let py = m.py();
+    m.add("MechError", py.get_type::<MechError>())?;
+    m.add("InvalidMechanism", py.get_type::<InvalidMechanism>())?;
+    m.add("NoAssembly", py.get_type::<NoAssembly>())?;
+    m.add("Singular", py.get_type::<Singular>())?;
+    m.add("InvalidInput", py.get_type::<InvalidInput>())?;
+    Ok(())
+}
