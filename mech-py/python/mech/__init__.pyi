@@ -1,0 +1,75 @@
+"""Type stubs of the package `mech` (dynamics of planar machines)."""
+
+from os import PathLike
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+Columns = Dict[str, Any]
+LoadValue = Union[float, Sequence[float], npt.ArrayLike, Callable[[Any], Any]]
+
+class MechError(Exception):
+    """An error of mech: what is wrong, the numbers and the fix."""
+
+class InvalidMechanism(MechError):
+    """The description fails a check."""
+    line: Optional[int]
+    column: Optional[int]
+    message: str
+
+class NoAssembly(MechError):
+    """The mechanism cannot be assembled at this input value."""
+
+class Singular(MechError):
+    """A dead point: not solvable to the requested accuracy."""
+
+class InvalidInput(MechError):
+    """A bad number or shape."""
+
+def num_threads() -> int:
+    """Threads of the solvers (MECH_NUM_THREADS)."""
+
+class Mechanism:
+    """A planar mechanism read from DSL text (a `.mech` file), checked like the macro."""
+
+    def __init__(self, text: str, origin: Optional[str] = ..., params: Iterable[Tuple[str, Sequence[float]]] = ...) -> None: ...
+    @classmethod
+    def from_dsl(cls, text: str) -> "Mechanism":
+        """The mechanism described by `text`."""
+    @classmethod
+    def load(cls, path: Union[str, "PathLike[str]"]) -> "Mechanism":
+        """The mechanism of a `.mech` file."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def inputs(self) -> List[Tuple[str, str]]: ...
+    @property
+    def load_names(self) -> List[Tuple[str, int]]: ...
+    @property
+    def text(self) -> str: ...
+    def set_param(self, path: str, value: ArrayLike) -> None:
+        """Change one number of the drawing (points.A, links.rod.mass, ...), re-checked."""
+    def columns(self, parts: Optional[Sequence[str]] = ...) -> List[str]: ...
+    def pose(self, q: ArrayLike, errors: str = ...) -> Columns:
+        """`<point>.x`, `<point>.y` (m), `<link>.angle` (rad)."""
+    def kinematics(self, q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., errors: str = ...) -> Columns:
+        """Positions, velocities and accelerations of every point and link."""
+    def kinetostatics(self, q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., loads: Optional[Mapping[str, LoadValue]] = ..., errors: str = ...) -> Columns:
+        """Every reaction (`<joint>.fx`, `.fy`, `.moment`) and `driver` by d'Alembert."""
+    def driver_action(self, q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., loads: Optional[Mapping[str, LoadValue]] = ..., errors: str = ...) -> Columns:
+        """`driver` by virtual power, no reaction computed."""
+    def reduced(self, q: ArrayLike, errors: str = ...) -> Columns:
+        """`inertia` I* (kg·m²) and `inertia_derivative` dI*/dq."""
+    def reduced_moment(self, q: ArrayLike, loads: Optional[Mapping[str, LoadValue]] = ..., errors: str = ...) -> Columns:
+        """`moment` M* (N·m)."""
+    def acceleration(self, q: ArrayLike, qd: ArrayLike, driver: Union[ArrayLike, Callable[[float], float]], loads: Optional[Mapping[str, LoadValue]] = ..., errors: str = ...) -> Columns:
+        """`qdd`: the direct problem's q̈."""
+    def flywheel(self, period: float, speed: float, irregularity: float, loads: Optional[Mapping[str, LoadValue]] = ..., start: float = ..., breakpoints: Sequence[float] = ..., driver: Union[None, float, Callable[[float], float]] = ..., rtol: float = ...) -> Dict[str, float]:
+        """ΔE, the approximate and the exact (Wittenbauer) flywheel inertia, the simulated speeds."""
+
+def sweep(mechanism: Mechanism, params: Union[Mapping[str, ArrayLike], Sequence[Mapping[str, ArrayLike]]], q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., loads: Optional[Mapping[str, LoadValue]] = ..., parts: Optional[Sequence[str]] = ...) -> Dict[str, np.ndarray]:
+    """Columns over parameter variants × inputs, shape (V, n), with the mask `ok`."""
