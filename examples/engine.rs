@@ -79,14 +79,20 @@ fn main() -> ExitCode {
 pub fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
     let started = std::time::Instant::now();
     let eng = Engine::new();
-    let gas_only = Cycle::new(&eng, Q_TDC, PERIOD, &breakpoints(), |q| gas_loads(&eng, q), |_| 0.0)?;
+    let mut cycle = Cycle::builder(&eng, PERIOD, |q| gas_loads(&eng, q)).start(Q_TDC).breakpoints(&breakpoints()).build()?;
+    let gas_only = &cycle;
     println!("Single-cylinder four-stroke engine: bore {:.0} mm, stroke {:.2} mm, rod 143 mm, offset 6 mm, compression ratio {}", BORE * 1e3, (X_TDC - X_BDC) * 1e3, COMPRESSION_RATIO);
     println!("cycle: lambda = 4 pi from the TDC of intake (q0 = {:.4} deg); gas work per cycle W = {:.3} J", Q_TDC.to_degrees(), gas_only.net_work());
     if let Err(e) = gas_only.check_periodic() {
         println!("  gas loads alone: {e}");
     }
-    let (cycle, torque) = gas_only.balanced();
+    let torque = cycle.balance();
     println!("  balanced by a constant resisting torque T = {torque:.4} N m on the crank (mean power {:.2} kW at {:.0} rpm)", -torque * OMEGA_MEAN / 1e3, OMEGA_MEAN * 30.0 / std::f64::consts::PI);
+    let de = cycle.fluctuation()?;
+    println!("  maximum fluctuation of energy dE = S_max - S_min = {:.3} J (S_max at {:.1} deg, S_min at {:.1} deg of the cycle)", de.energy, (de.q_s_max - Q_TDC).to_degrees(), (de.q_s_min - Q_TDC).to_degrees());
+    for flywheel in [0.1, 0.2, 0.4] {
+        println!("  a flywheel of {flywheel} kg m^2 keeps the speed within delta = (w_max - w_min)/w_a = {:.5} at {:.0} rpm", cycle.speed_fluctuation(OMEGA_MEAN, flywheel)?, OMEGA_MEAN * 30.0 / std::f64::consts::PI);
+    }
 
     println!();
     println!("Turning moment at constant speed w_a = {OMEGA_MEAN:.2} rad/s (alpha = 0); reactions in kN (force by the first link on the second):");

@@ -769,7 +769,7 @@ fn generic_loads(g: &GenericMechanism, c: &Case) -> GenericLoads {
 }
 
 fn lp(c: &Case, k: usize) -> LinkParams {
-    LinkParams { mass: c.links[k].0, inertia: c.links[k].1, cg: c.links[k].2 }
+    LinkParams { mass: c.links[k].0, inertia: c.links[k].1, flywheel: 0.0, cg: c.links[k].2 }
 }
 
 /// One random case through both solvers: the generic one from the run-time model, the

@@ -188,6 +188,21 @@ pub struct Approximate {
     pub q_s_min: f64,
 }
 
+/// The maximum fluctuation of energy of a cycle ([`Cycle::fluctuation`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Fluctuation {
+    /// ΔE = S_max − S_min, J.
+    pub energy: f64,
+    /// The largest accumulated work S_max, J.
+    pub s_max: f64,
+    /// Where S_max is reached, rad.
+    pub q_s_max: f64,
+    /// The smallest accumulated work S_min, J.
+    pub s_min: f64,
+    /// Where S_min is reached, rad.
+    pub q_s_min: f64,
+}
+
 /// Both flywheels for one (ω_a, ε) ([`Cycle::flywheel`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Flywheel {
@@ -246,6 +261,23 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         let mut me = Cycle { machine, loads: Box::new(loads), driver: Box::new(driver), start, period, breakpoints: cuts, nodes: Vec::new(), atol_rate: 0.0, gross_work: 0.0 };
         me.tabulate()?;
         Ok(me)
+    }
+
+    /// The cycle with the defaults a designer expects: from q0 = 0 over `period` (2π,
+    /// or 4π for a four-stroke engine), no breakpoints, no driver torque — only the loads,
+    /// a function of q. Balance it with [`Cycle::balance`]; for a start, breakpoints or a
+    /// driver use [`CycleBuilder`] ([`Cycle::builder`]) or [`Cycle::new`].
+    pub fn of(machine: &'a M, period: f64, loads: impl Fn(f64) -> Result<M::Loads, MechError> + 'a) -> Result<Self, MechError> {
+        Self::new(machine, 0.0, period, &[], loads, |_| 0.0)
+    }
+
+    /// A builder with those defaults: `Cycle::builder(&m, 4π, loads).start(q0)
+    /// .breakpoints(&[..]).driver(|q| ..).build()`.
+    pub fn builder<L>(machine: &'a M, period: f64, loads: L) -> CycleBuilder<'a, M, L>
+    where
+        L: Fn(f64) -> Result<M::Loads, MechError> + 'a,
+    {
+        CycleBuilder { machine, period, loads, start: 0.0, breakpoints: Vec::new(), driver: Box::new(|_| 0.0) }
     }
 
     /// The panel ends, their I*, then S by quadrature panel by panel.
@@ -365,9 +397,10 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         -self.net_work() / self.period
     }
 
-    /// The same cycle with [`Cycle::balancing_torque`] added to the driver: periodic.
-    /// Returns the cycle and the torque T (N·m). S(q) becomes S(q) + T (q − q0).
-    pub fn balanced(mut self) -> (Self, f64) {
+    /// Add [`Cycle::balancing_torque`] to the driver, in place: the cycle becomes
+    /// periodic, S(q) becomes S(q) + T (q − q0). Returns T (N·m). Calling it again adds
+    /// the (zero, up to rounding) torque that is left.
+    pub fn balance(&mut self) -> f64 {
         let t = self.balancing_torque();
         let old = std::mem::replace(&mut self.driver, Box::new(|_| 0.0));
         self.driver = Box::new(move |q| old(q) + t);
@@ -384,7 +417,34 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             last.work = 0.0;
         }
         self.gross_work = gross;
+        t
+    }
+
+    /// The same cycle with [`Cycle::balancing_torque`] added to the driver ([`Cycle::balance`]
+    /// on a cycle given by value): the cycle and the torque T (N·m).
+    pub fn balanced(mut self) -> (Self, f64) {
+        let t = self.balance();
         (self, t)
+    }
+
+    /// The maximum fluctuation of energy over the cycle, ΔE = S_max − S_min (J), with
+    /// where S reaches its extremes: the energy the flywheel must store and give back
+    /// (`docs/theory.md` §7). Needs a periodic cycle ([`MechError::NotPeriodic`]).
+    pub fn fluctuation(&self) -> Result<Fluctuation, MechError> {
+        self.check_periodic()?;
+        let hi = self.extreme(|s, _| s, true)?;
+        let lo = self.extreme(|s, _| s, false)?;
+        Ok(Fluctuation { energy: hi.value - lo.value, s_max: hi.value, q_s_max: hi.q, s_min: lo.value, q_s_min: lo.q })
+    }
+
+    /// The coefficient of fluctuation of speed δ = (ω_max − ω_min)/ω_a that a flywheel of
+    /// inertia I (kg·m², added on the input) gives at the mean speed ω_a (rad/s): the
+    /// steady state of [`Cycle::steady_state`], exact (no I ≫ I* assumption). For a large
+    /// flywheel δ → ΔE' / (I ω_a²), ΔE' the range of S(q) − ½ I*(q) ω_a² over the cycle:
+    /// ΔE ([`Cycle::fluctuation`]) less the swing of the machine's own kinetic energy,
+    /// which the approximate formula neglects and Wittenbauer's method keeps.
+    pub fn speed_fluctuation(&self, omega_mean: f64, flywheel: f64) -> Result<f64, MechError> {
+        Ok(self.steady_state(omega_mean, flywheel)?.speeds.irregularity)
     }
 
     /// n + 1 evenly spaced samples q0 + k λ / n, k = 0..=n, of M*, I*, dI*/dq and S.
@@ -451,16 +511,8 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     /// Errors: ω_a ≤ 0, ε ∉ (0, 2), non-finite input, [`MechError::NotPeriodic`].
     pub fn approximate(&self, omega_mean: f64, irregularity: f64) -> Result<Approximate, MechError> {
         check_design(omega_mean, irregularity)?;
-        self.check_periodic()?;
-        let hi = self.extreme(|s, _| s, true)?;
-        let lo = self.extreme(|s, _| s, false)?;
-        Ok(Approximate {
-            inertia: (hi.value - lo.value) / (irregularity * omega_mean * omega_mean),
-            s_max: hi.value,
-            q_s_max: hi.q,
-            s_min: lo.value,
-            q_s_min: lo.q,
-        })
+        let f = self.fluctuation()?;
+        Ok(Approximate { inertia: f.energy / (irregularity * omega_mean * omega_mean), s_max: f.s_max, q_s_max: f.q_s_max, s_min: f.s_min, q_s_min: f.q_s_min })
     }
 
     /// The exact flywheel by Wittenbauer's method (module documentation):
@@ -620,6 +672,43 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             duration: out.t,
             stats: out.stats,
         })
+    }
+}
+
+/// A [`Cycle`] under construction ([`Cycle::builder`]): the table of S(q) is built once,
+/// by [`CycleBuilder::build`], with every setting in place.
+pub struct CycleBuilder<'a, M: OneDof, L> {
+    machine: &'a M,
+    period: f64,
+    loads: L,
+    start: f64,
+    breakpoints: Vec<f64>,
+    driver: Box<dyn Fn(f64) -> f64 + 'a>,
+}
+
+impl<'a, M: OneDof, L: Fn(f64) -> Result<M::Loads, MechError> + 'a> CycleBuilder<'a, M, L> {
+    /// Where the cycle starts, q0 (rad; default 0).
+    pub fn start(mut self, q0: f64) -> Self {
+        self.start = q0;
+        self
+    }
+
+    /// Input positions (rad, inside the cycle) where the loads are not smooth.
+    pub fn breakpoints(mut self, at: &[f64]) -> Self {
+        self.breakpoints = at.to_vec();
+        self
+    }
+
+    /// The driver action as a function of q (N·m; default none).
+    pub fn driver(mut self, driver: impl Fn(f64) -> f64 + 'a) -> Self {
+        self.driver = Box::new(driver);
+        self
+    }
+
+    /// The cycle and its table of S(q) ([`Cycle::new`]'s errors).
+    pub fn build(self) -> Result<Cycle<'a, M>, MechError> {
+        let driver = self.driver;
+        Cycle::new(self.machine, self.start, self.period, &self.breakpoints, self.loads, move |q| driver(q))
     }
 }
 

@@ -44,7 +44,7 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
                 dir_ref: V2::new(th.cos(), th.sin()),
                 dcg: local(model, l, link.cg),
                 mass: link.mass.unwrap_or(0.0),
-                inertia: link.inertia,
+                inertia: link.rotational_inertia(),
             }
         })
         .collect();
@@ -87,6 +87,10 @@ pub struct LinkParams {
     pub mass: f64,
     /// Moment of inertia about the cg, kg·m².
     pub inertia: f64,
+    /// A flywheel keyed to the link (kg·m², 0 = none): a pure rotor whose inertia adds to
+    /// the link's on every route (d'Alembert, virtual power, Zhukovski's I*, the kinetic
+    /// energy), so that the direct problem of a machine with its flywheel is one call.
+    pub flywheel: f64,
     /// Centre of gravity in the drawing, m.
     pub cg: V2,
 }

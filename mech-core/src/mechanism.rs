@@ -215,7 +215,8 @@ impl Mechanism {
     /// loading (the mechanism is unchanged on error):
     /// - `points.<P>` = `[x, y]` (m), `links.<l>.cg` = `[x, y]` (m),
     /// - `links.<l>.mass` = `[m]` (kg; a link declared without mass gets every term),
-    ///   `links.<l>.inertia` = `[I_G]` (kg·m²),
+    ///   `links.<l>.inertia` = `[I_G]` (kg·m²), `links.<l>.flywheel` = `[I]` (kg·m², a rotor
+    ///   keyed to the link, added to its rotational inertia),
     /// - `axes.<joint>` = `[ux, uy]` (a prismatic or slot joint's axis),
     /// - `gravity` = `[gx, gy]` (m/s²; `[]` removes it).
     ///
@@ -249,7 +250,8 @@ impl Mechanism {
                     "cg" => link.cg = pair(value)?,
                     "mass" => link.mass = Some(one(value)?),
                     "inertia" => link.inertia = one(value)?,
-                    _ => return Err(bad("a link has `cg`, `mass` and `inertia`")),
+                    "flywheel" => link.flywheel = one(value)?,
+                    _ => return Err(bad("a link has `cg`, `mass`, `inertia` and `flywheel`")),
                 }
             }
             ["axes", j] => {

@@ -205,14 +205,22 @@ pub struct Link {
     pub mass: Option<f64>,
     /// Moment of inertia about the cg, kg·m².
     pub inertia: f64,
+    /// A flywheel keyed to the link: a pure rotor of this inertia (kg·m²) added to the
+    /// link's rotational inertia on every route (0 = none). A run-time parameter.
+    pub flywheel: f64,
     /// Centre of gravity in the drawing, m.
     pub cg: [f64; 2],
 }
 
 impl Link {
-    /// True when the link carries mass or inertia.
+    /// True when the link carries mass or inertia (its own or a flywheel's).
     pub fn has_inertia(&self) -> bool {
-        self.mass.is_some_and(|m| m != 0.0) || self.inertia != 0.0
+        self.mass.is_some_and(|m| m != 0.0) || self.inertia != 0.0 || self.flywheel != 0.0
+    }
+
+    /// The rotational inertia the solvers use: I_G plus the flywheel's, kg·m².
+    pub fn rotational_inertia(&self) -> f64 {
+        self.inertia + self.flywheel
     }
 }
 

@@ -59,7 +59,7 @@ impl LinkTerms {
         let (mass_ok, inertia_ok) = match self {
             LinkTerms::Massive => (true, true),
             LinkTerms::InertiaOnly => (p.mass == 0.0, true),
-            LinkTerms::Massless => (p.mass == 0.0, p.inertia == 0.0),
+            LinkTerms::Massless => (p.mass == 0.0, p.inertia == 0.0 && p.flywheel == 0.0),
         };
         if mass_ok && inertia_ok {
             return Ok(());
@@ -69,9 +69,9 @@ impl LinkTerms {
             _ => "is declared without `mass`, so it is massless by structure: it has no inertia or gravity terms",
         };
         Err(MechError::InvalidInput(format!(
-            "link `{link}` {declared}, but the parameters give it mass {} kg and inertia {} kg·m²; \
+            "link `{link}` {declared}, but the parameters give it mass {} kg, inertia {} kg·m² and a flywheel of {} kg·m²; \
              declare `mass: 0.0` on link `{link}` in `mechanism!` to vary its mass at run time",
-            p.mass, p.inertia
+            p.mass, p.inertia, p.flywheel
         )))
     }
 }
@@ -82,11 +82,11 @@ mod tests {
     use crate::link_state::V2;
 
     fn link(mass: Option<f64>, inertia: f64) -> Link {
-        Link { name: "coupler".into(), points: vec![], mass, inertia, cg: [0.0, 0.0] }
+        Link { name: "coupler".into(), points: vec![], mass, inertia, flywheel: 0.0, cg: [0.0, 0.0] }
     }
 
     fn params(mass: f64, inertia: f64) -> LinkParams {
-        LinkParams { mass, inertia, cg: V2::new(0.1, 0.2) }
+        LinkParams { mass, inertia, flywheel: 0.0, cg: V2::new(0.1, 0.2) }
     }
 
     #[test]

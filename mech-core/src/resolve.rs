@@ -200,6 +200,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
             points: pts,
             mass: l.mass.as_ref().map(|m| m.value),
             inertia: l.inertia.as_ref().map(|m| m.value).unwrap_or(0.0),
+            flywheel: 0.0,
             cg: l.cg.as_ref().map(|c| c.value).unwrap_or_else(|| {
                 l.points.iter().find_map(|p| point_ix.get(&p.name.text)).map(|&i| points[i].pos).unwrap_or([0.0, 0.0])
             }),

@@ -80,6 +80,12 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
                 ),
             });
         }
+        if !(l.flywheel.is_finite() && l.flywheel >= 0.0) {
+            out.push(Issue {
+                culprits: vec![Culprit::Link(i)],
+                message: format!("link `{}` has a flywheel of {} kg·m²: a flywheel's inertia must be finite and ≥ 0 (kg·m²)", l.name, l.flywheel),
+            });
+        }
         if !l.cg.iter().all(|v| v.is_finite()) {
             out.push(Issue {
                 culprits: vec![Culprit::Cg(i), Culprit::Link(i)],

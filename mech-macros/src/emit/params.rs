@@ -116,7 +116,7 @@ fn params_types(cx: &Ctx) -> TokenStream {
     let link_defaults = (1..cx.n_links).map(|l| {
         let lk = &model.links[l];
         let (m, i, cg) = (f64s(lk.mass.unwrap_or(0.0)), f64s(lk.inertia), vec2(lk.cg));
-        quote!(#p::instance::LinkParams { mass: #m, inertia: #i, cg: #cg })
+        quote!(#p::instance::LinkParams { mass: #m, inertia: #i, flywheel: 0f64, cg: #cg })
     });
     let axis_defaults = sliding.iter().map(|&j| vec2(model.joints[j].axis));
     let (gravity_field, gravity_default) = match model.gravity {
@@ -256,11 +256,11 @@ fn model_expr(cx: &Ctx) -> TokenStream {
     let links = model.links.iter().enumerate().map(|(l, lk)| {
         let (n, pts) = (&lk.name, &lk.points);
         if l == 0 {
-            return quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: None, inertia: 0.0, cg: [0.0, 0.0] });
+            return quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: None, inertia: 0.0, flywheel: 0.0, cg: [0.0, 0.0] });
         }
         let lid = &cx.link_ids[l];
         let mass = if lk.mass.is_some() { quote!(Some(p.links.#lid.mass)) } else { quote!(None) };
-        quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: #mass, inertia: p.links.#lid.inertia, cg: [p.links.#lid.cg.x, p.links.#lid.cg.y] })
+        quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: #mass, inertia: p.links.#lid.inertia, flywheel: p.links.#lid.flywheel, cg: [p.links.#lid.cg.x, p.links.#lid.cg.y] })
     });
     let joints = model.joints.iter().enumerate().map(|(j, jt)| {
         let (n, a, b, pt) = (&jt.name, jt.a, jt.b, jt.point);
