@@ -17,9 +17,11 @@ pub mod loads;
 pub mod output;
 pub mod quantity;
 pub mod report;
+pub mod scene;
 pub mod simulate;
 pub mod solve;
 pub mod source;
+pub mod svg;
 
 /// An error of the tool: the message for standard error, and the exit status.
 #[derive(Debug)]

@@ -1,0 +1,185 @@
+//! The linkage as shapes: one [`Frame`] per input value, every frame with the same shapes
+//! in the same order (so that a frame sequence animates attribute by attribute), in the
+//! coordinates of the drawing (m, y up). [`crate::svg`] writes them.
+//!
+//! - a link with two points: a bar between them; with more: the polygon of its points;
+//!   a link with one point (a slider block): a rectangle along its guide;
+//! - a revolute joint: a pin (a small circle) at its point; on the ground, a pivot (a
+//!   triangle under the pin, hatched by [`crate::svg`]);
+//! - a prismatic joint: the guide line through its point along the axis (turning with the
+//!   guide's link); a pin in a slot: the slot, two lines along the axis;
+//! - every point: its name.
+
+use crate::Failure;
+use mech_core::link_state::{perp, rotate, V2};
+use mech_core::model::{JointKind, Model};
+use mech_core::Mechanism;
+
+/// What a shape is, for its style.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    /// A link with two points.
+    Bar,
+    /// A link with three or more points.
+    Plate,
+    /// A slider block.
+    Block,
+    /// A guide or a slot line.
+    Guide,
+    /// A pin of a revolute joint.
+    Pin,
+    /// A ground pivot's support.
+    Pivot,
+    /// A point's name.
+    Label,
+    /// The path of a point.
+    Path,
+    /// A reaction arrow.
+    Arrow,
+}
+
+/// One shape: its role, its index among the link (or joint, point) it draws, a name
+/// (the link, joint or point), and its points (m).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shape {
+    /// Style.
+    pub role: Role,
+    /// The link, joint or point it draws.
+    pub name: String,
+    /// Its vertices (a circle: the centre; a label: the anchor), m.
+    pub points: Vec<V2>,
+}
+
+/// The shapes of the linkage at one input value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// The input values.
+    pub q: Vec<f64>,
+    /// The shapes, in drawing order (links, guides, pivots, pins, labels).
+    pub shapes: Vec<Shape>,
+}
+
+/// Half the length of a guide line drawn through a slider, as a fraction of the drawing.
+const GUIDE: f64 = 0.35;
+
+/// A block's half length and half width, as fractions of the drawing.
+const BLOCK: (f64, f64) = (0.045, 0.025);
+
+/// The size of the drawing (m): its largest distance between two points.
+pub fn size(model: &Model) -> f64 {
+    model.scale()
+}
+
+/// The rotation of link `l` from the drawing at `angle` (unit complex number).
+fn turn(model: &Model, l: usize, angle: f64) -> V2 {
+    let d = angle - model.reference_angle(l);
+    V2::new(d.cos(), d.sin())
+}
+
+/// The frame of mechanism `m` at inputs `q`.
+pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
+    let model = m.model();
+    let pose = m.pose(q)?;
+    let at = |p: usize| pose.points[p].pos;
+    let s = size(model);
+    let mut shapes = Vec::new();
+    // Guides and slots first (under the links).
+    for j in &model.joints {
+        if j.kind == JointKind::Revolute {
+            continue;
+        }
+        let n = V2::new(j.axis[0], j.axis[1]).normalize();
+        let u = rotate(turn(model, j.a, pose.links[j.a].angle), n);
+        let p = at(j.point);
+        let half = GUIDE * s;
+        let (a, b) = (p - u * half, p + u * half);
+        if j.kind == JointKind::Prismatic {
+            shapes.push(Shape { role: Role::Guide, name: j.name.clone(), points: vec![a, b] });
+        } else {
+            let w = perp(u) * (0.012 * s);
+            shapes.push(Shape { role: Role::Guide, name: j.name.clone(), points: vec![a + w, b + w] });
+            shapes.push(Shape { role: Role::Guide, name: j.name.clone(), points: vec![a - w, b - w] });
+        }
+    }
+    for (l, link) in model.links.iter().enumerate().skip(1) {
+        let pts: Vec<V2> = link.points.iter().map(|&p| at(p)).collect();
+        match pts.len() {
+            0 => {}
+            1 => {
+                // A slider block along the guide it slides on, else square to the frame.
+                let guide = model.joints.iter().find(|j| j.kind == JointKind::Prismatic && (j.b == l || j.a == l));
+                let u = match guide {
+                    Some(j) => rotate(turn(model, j.a, pose.links[j.a].angle), V2::new(j.axis[0], j.axis[1]).normalize()),
+                    None => turn(model, l, pose.links[l].angle),
+                };
+                let (h, w) = (u * (BLOCK.0 * s), perp(u) * (BLOCK.1 * s));
+                let c = pts[0];
+                shapes.push(Shape { role: Role::Block, name: link.name.clone(), points: vec![c - h - w, c + h - w, c + h + w, c - h + w] });
+            }
+            2 => shapes.push(Shape { role: Role::Bar, name: link.name.clone(), points: pts }),
+            _ => shapes.push(Shape { role: Role::Plate, name: link.name.clone(), points: pts }),
+        }
+    }
+    for j in &model.joints {
+        if j.kind != JointKind::Revolute {
+            continue;
+        }
+        let p = at(j.point);
+        if j.a == 0 || j.b == 0 {
+            let (w, h) = (0.035 * s, 0.05 * s);
+            shapes.push(Shape { role: Role::Pivot, name: j.name.clone(), points: vec![p, p + V2::new(-w, -h), p + V2::new(w, -h)] });
+        }
+        shapes.push(Shape { role: Role::Pin, name: j.name.clone(), points: vec![p] });
+    }
+    for (i, p) in model.points.iter().enumerate() {
+        shapes.push(Shape { role: Role::Label, name: p.name.clone(), points: vec![at(i) + V2::new(0.015 * s, 0.015 * s)] });
+    }
+    Ok(Frame { q: q.to_vec(), shapes })
+}
+
+/// The frames of `m` at each of `qs`; an input where the mechanism does not assemble
+/// repeats the previous frame (the first solvable one when it is the first).
+pub fn frames(m: &Mechanism, qs: &[Vec<f64>]) -> Result<Vec<Frame>, Failure> {
+    let solved: Vec<Option<Frame>> = qs.iter().map(|q| frame(m, q).ok()).collect();
+    let first = solved.iter().flatten().next().cloned().ok_or_else(|| Failure::mechanism("the mechanism does not assemble at any of these inputs"))?;
+    let mut last = first;
+    Ok(solved
+        .into_iter()
+        .map(|f| {
+            if let Some(f) = f {
+                last = f;
+            }
+            last.clone()
+        })
+        .collect())
+}
+
+/// The path of point `name` over `qs` (the inputs where it assembles).
+pub fn path(m: &Mechanism, name: &str, qs: &[Vec<f64>]) -> Result<Shape, Failure> {
+    let i = m.model().point_index(name).ok_or_else(|| {
+        let names: Vec<&str> = m.model().points.iter().map(|p| p.name.as_str()).collect();
+        Failure::usage(format!("--path {name}: no such point; the points are {}", names.join(", ")))
+    })?;
+    let points = qs.iter().filter_map(|q| m.pose(q).ok()).map(|p| p.points[i].pos).collect();
+    Ok(Shape { role: Role::Path, name: name.to_string(), points })
+}
+
+/// The reaction arrows of `m` at (q, q̇, q̈) with `loads`: at each joint point, the force
+/// by the joint's first link on its second, scaled so that the largest is `length` m.
+pub fn arrows(m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &mech_core::mechanism::Loads, length: f64) -> Result<Vec<Shape>, Failure> {
+    let motion = m.kinematics(q, qd, qdd)?;
+    let forces = m.kinetostatics(&motion, loads)?;
+    let largest = forces.joints.iter().map(|r| r.force.norm()).fold(0.0, f64::max);
+    if !(largest > 0.0) {
+        return Ok(Vec::new());
+    }
+    Ok(m.model()
+        .joints
+        .iter()
+        .zip(&forces.joints)
+        .map(|(j, r)| {
+            let p = motion.points[j.point].pos;
+            Shape { role: Role::Arrow, name: j.name.clone(), points: vec![p, p + r.force * (length / largest)] }
+        })
+        .collect())
+}
