@@ -15,6 +15,7 @@ pub mod flywheel;
 pub mod import;
 pub mod loads;
 pub mod output;
+pub mod pmks;
 pub mod quantity;
 pub mod report;
 pub mod scene;
