@@ -8,7 +8,8 @@
 //! `virtual_power` (`virtual_power.<joint>`), and for one input Zhukovski's `inertia` (I*),
 //! `inertia_derivative` (dI*/dq) and `moment` (M*). SI units throughout.
 
-use crate::mechanism::Loads;
+use crate::link_state::LinkState;
+use crate::mechanism::{Loads, Motion};
 use crate::model::JointKind;
 use crate::traits::OneDof;
 use crate::{MechError, Mechanism};
@@ -39,6 +40,13 @@ impl Part {
     pub const KINEMATICS: &'static [Part] = &[Part::Inputs, Part::Positions, Part::Rates];
     /// Everything.
     pub const ALL: &'static [Part] = &[Part::Inputs, Part::Positions, Part::Rates, Part::Reactions, Part::Driver, Part::VirtualPower, Part::Zhukovski];
+}
+
+/// Buffers reused from row to row ([`Columns::row_into`]).
+#[derive(Debug, Default)]
+pub struct RowScratch {
+    states: Vec<LinkState>,
+    motion: Option<Motion>,
 }
 
 /// The names and units of a row's columns.
@@ -135,6 +143,35 @@ impl Columns {
     /// computes what the parts need and nothing else (positions alone for [`Part::POSE`],
     /// no reaction for the virtual-power driver or Zhukovski's columns).
     pub fn row(&self, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &Loads) -> Result<Vec<f64>, MechError> {
+        let mut row = vec![0.0; self.names.len()];
+        self.row_into(m, q, qd, qdd, loads, &mut RowScratch::default(), &mut row)?;
+        Ok(row)
+    }
+
+    /// [`Columns::row`] into `out` (as many values as names), reusing `scratch`: rows of
+    /// positions allocate nothing once the scratch has grown (a batch keeps one scratch
+    /// per thread).
+    pub fn row_into(&self, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &Loads, scratch: &mut RowScratch, out: &mut [f64]) -> Result<(), MechError> {
+        let needs_motion = self.has(Part::Rates) || self.has(Part::Reactions) || self.has(Part::Driver) || self.has(Part::VirtualPower);
+        if !needs_motion && !self.has(Part::Zhukovski) {
+            let mut at = 0;
+            if self.has(Part::Inputs) {
+                out[..q.len()].copy_from_slice(q);
+                at = q.len();
+            }
+            if self.has(Part::Positions) {
+                let n = 2 * m.model().points.len() + m.model().links.len() - 1;
+                m.positions_into(q, &mut scratch.states, &mut out[at..at + n])?;
+            }
+            return Ok(());
+        }
+        let row = self.full_row(m, q, qd, qdd, loads, scratch)?;
+        out.copy_from_slice(&row);
+        Ok(())
+    }
+
+    /// Every part but positions-only: through the motion (reused from `scratch`).
+    fn full_row(&self, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &Loads, scratch: &mut RowScratch) -> Result<Vec<f64>, MechError> {
         let mut row = Vec::with_capacity(self.names.len());
         if self.has(Part::Inputs) {
             row.extend_from_slice(q);
@@ -147,7 +184,13 @@ impl Columns {
                 row.extend(p.links[1..].iter().map(|l| l.angle));
             }
         } else {
-            let mo = m.kinematics(q, qd, qdd)?;
+            let mo = match &mut scratch.motion {
+                Some(mo) => {
+                    m.kinematics_into(q, qd, qdd, mo)?;
+                    mo
+                }
+                slot => slot.insert(m.kinematics(q, qd, qdd)?),
+            };
             if self.has(Part::Positions) {
                 row.extend(mo.points.iter().flat_map(|p| [p.pos.x, p.pos.y]));
                 row.extend(mo.links[1..].iter().map(|l| l.angle));

@@ -4,7 +4,7 @@
 //! with the GIL released and rayon inside. The Python layer (`python/mech/__init__.py`)
 //! turns scalars, lists and callables into those arrays and the arrays into dicts.
 
-use mech_core::columns::{Columns, Part};
+use mech_core::columns::{Columns, Part, RowScratch};
 use mech_core::flywheel::Cycle;
 use mech_core::mechanism::Loads;
 use mech_core::model::{JointKind, Load};
@@ -80,6 +80,12 @@ fn parts_of(names: &[String]) -> PyResult<Vec<Part>> {
 /// The loads of one row: the flat values (force: 2, torque: 1, in declaration order).
 fn loads_of(m: &Mechanism, flat: &[f64]) -> Loads {
     let mut loads = m.loads();
+    set_loads(m, &mut loads, flat);
+    loads
+}
+
+/// Set `loads` from the flat values of one row (no allocation).
+fn set_loads(m: &Mechanism, loads: &mut Loads, flat: &[f64]) {
     let mut at = 0;
     for l in m.model().loads.iter() {
         let w = if matches!(l, Load::Force { .. }) { 2 } else { 1 };
@@ -88,7 +94,6 @@ fn loads_of(m: &Mechanism, flat: &[f64]) -> Loads {
         }
         at += w;
     }
-    loads
 }
 
 /// A row's inputs from 2-D arrays (n, G).
@@ -170,30 +175,24 @@ impl PyMechanism {
         let n = q.nrows();
         let width = cols.names.len();
         let m = &self.inner;
-        let rows: Vec<Result<Vec<f64>, CoreError>> = py.allow_threads(|| {
+        let mut data = vec![f64::NAN; n * width];
+        let mut errors: Vec<Option<String>> = vec![None; n];
+        py.allow_threads(|| {
             pool().install(|| {
-                (0..n)
-                    .into_par_iter()
-                    .map(|k| cols.row(m, &row(&q, k), &row(&qd, k), &row(&qdd, k), &loads_of(m, &row(&loads, k))))
-                    .collect()
+                let init = || (RowScratch::default(), m.loads());
+                data.par_chunks_mut(width.max(1)).zip(errors.par_iter_mut()).enumerate().for_each_init(init, |(scratch, l), (k, (out, err))| {
+                    set_loads(m, l, loads.row(k).as_slice().expect("contiguous"));
+                    let (a, b, c) = (q.row(k), qd.row(k), qdd.row(k));
+                    let (a, b, c) = (a.as_slice().expect("contiguous"), b.as_slice().expect("contiguous"), c.as_slice().expect("contiguous"));
+                    if let Err(e) = cols.row_into(m, a, b, c, l, scratch, out) {
+                        out.fill(f64::NAN);
+                        *err = Some(e.to_string());
+                    }
+                })
             })
         });
-        let mut data = Vec::with_capacity(n * width);
-        let mut ok = Vec::with_capacity(n);
-        let mut first = None;
-        for r in rows {
-            match r {
-                Ok(v) => {
-                    data.extend(v);
-                    ok.push(true);
-                }
-                Err(e) => {
-                    first.get_or_insert_with(|| e.to_string());
-                    data.extend(std::iter::repeat(f64::NAN).take(width));
-                    ok.push(false);
-                }
-            }
-        }
+        let ok: Vec<bool> = errors.iter().map(Option::is_none).collect();
+        let first = errors.into_iter().flatten().next();
         let data = numpy::ndarray::Array2::from_shape_vec((n, width), data).expect("shape").into_pyarray(py);
         Ok((cols.names, data, ok.into_pyarray(py), first))
     }
@@ -250,10 +249,13 @@ impl PyMechanism {
                         let mut data = vec![f64::NAN; n * width];
                         let mut ok = vec![false; n];
                         if built.is_ok() {
+                            let mut scratch = RowScratch::default();
                             for k in 0..n {
-                                if let Ok(r) = cols.row(&m, &row(&q, k), &row(&qd, k), &row(&qdd, k), &loads_of(&m, &row(&loads, k))) {
-                                    data[k * width..(k + 1) * width].copy_from_slice(&r);
+                                let out = &mut data[k * width..(k + 1) * width];
+                                if cols.row_into(&m, &row(&q, k), &row(&qd, k), &row(&qdd, k), &loads_of(&m, &row(&loads, k)), &mut scratch, out).is_ok() {
                                     ok[k] = true;
+                                } else {
+                                    out.fill(f64::NAN);
                                 }
                             }
                         }
