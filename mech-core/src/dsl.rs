@@ -16,8 +16,18 @@ use syn::{braced, bracketed, parenthesized, Ident, Token};
 /// A parsed mechanism, spans as `proc_macro2::Span`.
 pub struct Parsed(pub Description<Span>);
 
-fn name(id: &Ident) -> Name<Span> {
-    Name { text: id.to_string(), span: id.span() }
+/// A name of the mechanism (struct, link, point, joint, load). Raw identifiers (`r#fn`)
+/// are refused: the generated code names its fields after these, and both readers (the
+/// macro and the run-time loader) must agree on the name.
+fn name(id: &Ident) -> syn::Result<Name<Span>> {
+    let text = id.to_string();
+    if let Some(bare) = text.strip_prefix("r#") {
+        return Err(syn::Error::new(
+            id.span(),
+            format!("`{text}` is a raw identifier, which the DSL does not take as a name: rename it (e.g. `{bare}_`)"),
+        ));
+    }
+    Ok(Name { text, span: id.span() })
 }
 
 fn keyword(input: ParseStream, kw: &str) -> syn::Result<Ident> {
@@ -217,7 +227,7 @@ impl Scope {
             } else {
                 None
             };
-            out.push(PointRef { name: name(&id), at });
+            out.push(PointRef { name: name(&id)?, at });
             comma(input)?;
         }
         Ok(out)
@@ -282,7 +292,7 @@ impl Scope {
         } else {
             None
         };
-        Ok(InputDecl { name: name(&id), from })
+        Ok(InputDecl { name: name(&id)?, from })
     }
 }
 
@@ -355,7 +365,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
         while content.peek(Ident) {
             let k: Ident = content.parse()?;
             match k.to_string().as_str() {
-                "at" => at = Some(name(&content.parse::<Ident>()?)),
+                "at" => at = Some(name(&content.parse::<Ident>()?)?),
                 "along" => {
                     let (u, span) = scope.vector(&content)?;
                     along = Some(Pair { value: [u.x, u.y], span });
@@ -365,7 +375,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                 }
             }
         }
-        out.push(JointDecl { name: name(&id), kind, kind_span: kw.span(), a: name(&a), b: name(&b), at, along });
+        out.push(JointDecl { name: name(&id)?, kind, kind_span: kw.span(), a: name(&a)?, b: name(&b)?, at, along });
         comma(&content)?;
     }
     Ok(out)
@@ -385,12 +395,12 @@ fn loads(input: ParseStream) -> syn::Result<Vec<LoadDecl<Span>>> {
                 let link: Ident = content.parse()?;
                 keyword(&content, "at")?;
                 let point: Ident = content.parse()?;
-                LoadDeclKind::Force { link: name(&link), point: name(&point) }
+                LoadDeclKind::Force { link: name(&link)?, point: name(&point)? }
             }
             "torque" => {
                 keyword(&content, "on")?;
                 let link: Ident = content.parse()?;
-                LoadDeclKind::Torque { link: name(&link) }
+                LoadDeclKind::Torque { link: name(&link)? }
             }
             other => {
                 return Err(syn::Error::new(
@@ -399,7 +409,7 @@ fn loads(input: ParseStream) -> syn::Result<Vec<LoadDecl<Span>>> {
                 ))
             }
         };
-        out.push(LoadDecl { name: name(&id), kind });
+        out.push(LoadDecl { name: name(&id)?, kind });
         comma(&content)?;
     }
     Ok(out)
@@ -450,12 +460,12 @@ impl Parse for Parsed {
                     if ground.is_some() {
                         return Err(syn::Error::new(key.span(), "duplicate `ground` block: list every ground point in one block"));
                     }
-                    ground = Some(link_body(&body, &mut scope, name(&key), true, usize::MAX)?);
+                    ground = Some(link_body(&body, &mut scope, name(&key)?, true, usize::MAX)?);
                 }
                 "link" => {
                     let id: Ident = body.parse()?;
                     let index = links.len();
-                    links.push(link_body(&body, &mut scope, name(&id), false, index)?);
+                    links.push(link_body(&body, &mut scope, name(&id)?, false, index)?);
                 }
                 "consts" => scope.consts.parse_block(&body)?,
                 "joints" => joint_list.extend(joints(&body, &scope)?),
@@ -493,7 +503,7 @@ impl Parse for Parsed {
         scope.place_local_cgs(&mut links)?;
         Ok(Parsed(Description {
             docs,
-            name: name(&struct_name),
+            name: name(&struct_name)?,
             allow_redundant,
             gravity,
             ground,

@@ -87,6 +87,9 @@ impl Constants {
     /// Declare `name` = `q`; an error at `id` when the name is taken or reserved.
     pub fn declare(&mut self, id: &Ident, q: Quantity) -> syn::Result<()> {
         let name = id.to_string();
+        if name.starts_with("r#") {
+            return Err(syn::Error::new(id.span(), format!("`{name}` is a raw identifier, which the DSL does not take as a name: rename it")));
+        }
         if self.get(&name).is_some() {
             return Err(syn::Error::new(id.span(), format!("constant `{name}` is declared twice: give the second another name")));
         }

@@ -72,7 +72,7 @@ const FINAL_ITERATIONS: usize = 60;
 const MIN_STEP: f64 = 1e-12;
 
 /// Most continuation steps of one solve.
-const MAX_STEPS: usize = 100_000;
+const MAX_STEPS: usize = 2_000;
 
 /// A Newton iteration whose step no longer decreases has reached the roundoff floor when
 /// the residual |Φ|∞ (rows scaled to lengths) is at most `RESIDUAL_FLOOR` × ε × L; with a
@@ -373,8 +373,10 @@ impl GenericMechanism {
     /// [`GenericMechanism::parse`] of the text of a file named `origin` (shown in every
     /// message as `origin:LINE:COLUMN`).
     pub fn parse_named(text: &str, origin: Option<&str>) -> Result<Self, MechError> {
-        let desc = parse_str(text).map_err(|e| syntax(text, origin, e))?;
-        Self::from_description(&desc, text, origin)
+        Self::build(on_own_thread(|| {
+            let desc = parse_str(text).map_err(|e| syntax(text, origin, e))?;
+            checked_model(&desc, text, origin)
+        })?)
     }
 
     /// Load the mechanism `name` declared with `mechanism! { ... pub struct name { ... } }`
@@ -383,11 +385,24 @@ impl GenericMechanism {
     /// [`GenericMechanism::parse`]; messages carry `line:column` in `source`.
     /// [`MechError::Invalid`] when the source does not tokenize or declares no such mechanism.
     pub fn from_rust_source(source: &str, name: &str) -> Result<Self, MechError> {
-        Self::from_description(&find_declaration(source, name)?.1, source, None)
+        Self::build(on_own_thread(|| checked_model(&find_declaration(source, name)?.1, source, None))?)
     }
+}
 
-    /// Resolve and validate a parsed description (the macro's pipeline after parsing).
-    fn from_description(desc: &crate::model::Description<Span>, source: &str, origin: Option<&str>) -> Result<Self, MechError> {
+/// Run `f` (a parse and its checks) on a thread of its own: proc-macro2 keeps every parsed
+/// text in a table of its thread for the spans' locations, so parsing on the caller's
+/// thread would keep every text alive (and past 4 GiB on one thread wrap the locations);
+/// the table goes with the thread. The model and the messages come back as plain data.
+fn on_own_thread<T: Send>(f: impl FnOnce() -> Result<T, MechError> + Send) -> Result<T, MechError> {
+    std::thread::scope(|s| {
+        s.spawn(f).join().unwrap_or_else(|_| Err(MechError::Invalid("the mechanism's text could not be read (the parser failed)".into())))
+    })
+}
+
+/// Resolve and validate a parsed description (the macro's pipeline after parsing): the
+/// checked model, or every problem rendered against `source`.
+fn checked_model(desc: &crate::model::Description<Span>, source: &str, origin: Option<&str>) -> Result<Model, MechError> {
+    {
         let model = resolve(desc).map_err(|d| invalid(source, origin, &d))?;
         let issues = crate::validate::check(&model);
         if !issues.is_empty() {
@@ -405,8 +420,11 @@ impl GenericMechanism {
                 ),
             }]));
         }
-        Self::build(model)
+        Ok(model)
     }
+}
+
+impl GenericMechanism {
 
     /// Load a mechanism from a file of DSL text (see [`GenericMechanism::parse`]); an
     /// unreadable file is a [`MechError::Invalid`] naming the path.

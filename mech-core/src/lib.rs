@@ -45,6 +45,7 @@ pub mod instance;
 pub mod kinematics;
 pub mod kinetostatics;
 pub mod linalg;
+pub mod magnitudes;
 pub mod mechanism;
 pub mod link_state;
 pub mod model;

@@ -316,9 +316,11 @@ impl Mechanism {
             // Past a change point the drawing's branches may not close a redundant group:
             // the other combinations are tried, as the generated code does.
             let branches: Scratch<f64> = SmallVec::from_slice(&self.branches);
-            return crate::branches::search(&branches, |b| self.solve_on(b, (q, qd, qdd), upto, s));
+            crate::branches::search(&branches, |b| self.solve_on(b, (q, qd, qdd), upto, s))?;
+            return crate::magnitudes::finite_states(s);
         }
-        self.solve_on(&self.branches, (q, qd, qdd), upto, s)
+        self.solve_on(&self.branches, (q, qd, qdd), upto, s)?;
+        crate::magnitudes::finite_states(s)
     }
 
     /// True when the mechanism was accepted with redundant constraints.
@@ -460,6 +462,7 @@ impl Mechanism {
                 Kernel::System => system(g, |n| n.reactions(g, joints, s, &mut f, scale, &mut r, &mut out.driver))?,
             }
         }
+        crate::magnitudes::finite_reactions(&r, &out.driver)?;
         out.joints.clear();
         out.joints.extend(
             self.model
@@ -544,6 +547,7 @@ impl Mechanism {
             }
             *o = -crate::kinetostatics::virtual_power(&f, &v);
         }
+        crate::magnitudes::finite_result("motor actions", &out)?;
         Ok(out)
     }
 
@@ -579,6 +583,7 @@ impl Mechanism {
                 }
             }
         }
+        crate::magnitudes::finite_result("reduced inertia and moment", &[z.reduced.inertia, z.reduced.inertia_derivative, z.moment])?;
         Ok(z)
     }
 }

@@ -354,7 +354,7 @@ impl Model {
         let mut s: f64 = 0.0;
         for p in &self.points {
             for r in &self.points {
-                s = s.max(((p.pos[0] - r.pos[0]).powi(2) + (p.pos[1] - r.pos[1]).powi(2)).sqrt());
+                s = s.max((p.pos[0] - r.pos[0]).hypot(p.pos[1] - r.pos[1]));
             }
         }
         s.max(1e-300)

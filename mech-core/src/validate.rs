@@ -140,6 +140,7 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
             }
         }
     }
+    out.extend(crate::magnitudes::check(model));
     out
 }
 

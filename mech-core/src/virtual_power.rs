@@ -25,14 +25,15 @@ pub fn driver_actions<const G: usize, V: AsRef<[LinkState]>>(
     let mut out = [0.0; G];
     if G == 1 && qd[0] != 0.0 {
         out[0] = -virtual_power(f, s) / qd[0];
-        return Ok(out);
+    } else {
+        for (k, o) in out.iter_mut().enumerate() {
+            let mut unit = [0.0; G];
+            unit[k] = 1.0;
+            let v = field(&unit)?;
+            *o = -virtual_power(f, v.as_ref());
+        }
     }
-    for (k, o) in out.iter_mut().enumerate() {
-        let mut unit = [0.0; G];
-        unit[k] = 1.0;
-        let v = field(&unit)?;
-        *o = -virtual_power(f, v.as_ref());
-    }
+    crate::magnitudes::finite_result("motor actions", &out)?;
     Ok(out)
 }
 

@@ -41,7 +41,9 @@ pub fn acceleration(r: Reduced, moment: f64, qd: f64, driver: f64) -> Result<f64
     if !(r.inertia > 0.0) {
         return Err(crate::MechError::NonPositiveInertia(r.inertia));
     }
-    Ok((driver + moment - 0.5 * r.inertia_derivative * qd * qd) / r.inertia)
+    let qdd = (driver + moment - 0.5 * r.inertia_derivative * qd * qd) / r.inertia;
+    crate::magnitudes::finite_result("acceleration q̈ (with I*, M* and the driver)", &[qdd, r.inertia_derivative, moment])?;
+    Ok(qdd)
 }
 
 /// Zhukovski's sums accumulated link by link and load by load over the motion with q̇ = 1,

@@ -107,13 +107,15 @@ fn forces_type(cx: &Ctx) -> TokenStream {
         }
     });
     let inputs = &cx.inputs_doc;
+    let dof = cx.dof;
+    let zero = if cx.one_dof() { quote!(0.0) } else { quote!([0.0; #dof]) };
     quote! {
         /// Reactions at every joint (`docs/conventions.md#reactions`).
         #[allow(non_snake_case)]
         #[derive(Clone, Copy, Debug, Default, PartialEq)]
         pub struct #forces_joints { #(#fields)* }
         /// Result of `kinetostatics`: the motor actions and every joint reaction.
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct #forces {
             /// The motor action of each input: torque by a on b (N·m) for a revolute
             /// input, force along the axis on b (N) for a prismatic one.
@@ -122,6 +124,11 @@ fn forces_type(cx: &Ctx) -> TokenStream {
             pub driver: #q_ty,
             /// The reaction at every joint.
             pub joints: #forces_joints,
+        }
+        impl Default for #forces {
+            fn default() -> Self {
+                Self { driver: #zero, joints: Default::default() }
+            }
         }
         impl #forces {
             /// The reaction at the joint named `name`: force by a on b (N) and, for a
@@ -175,7 +182,7 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
     let p = &cx.p;
     let (bn, cn) = plan::system_consts(gi);
     let n = 3 * g.bodies.len();
-    let idx = syn::Index::from(gi);
+    let path = crate::emit::plan::system_path(cx, gi);
     match g.kernel {
         Kernel::Driven(_) => {
             let kn = format_ident!("__G{}_DRIVEN", gi);
@@ -186,7 +193,7 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             quote!(#p::screw::chain_reactions(&Self::#kn, &self.joints, s, &mut f, self.scale, &mut r)?;)
         }
         Kernel::System => quote! {
-            let lam = #p::kinetostatics::group_reactions::<#n>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, s, &mut f, self.scale)?;
+            let lam = #p::kinetostatics::group_reactions::<#n>(m.systems #path.as_ref(), &Self::#bn, &Self::#cn, &self.joints, s, &mut f, self.scale)?;
             #p::kinetostatics::lambda_reactions(&Self::#cn, &self.joints, s, lam.as_slice(), &mut r, &mut d);
         },
     }
@@ -288,6 +295,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
             let mut r = [#p::kinetostatics::Reaction::default(); #n_joints];
             let mut d = [0.0; #dof];
             #(#calls)*
+            #p::magnitudes::finite_reactions(&r, &d)?;
             Ok(#forces { driver: #driver, joints: #forces_joints { #(#values)* } })
         }
     }

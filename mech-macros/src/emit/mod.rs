@@ -17,7 +17,7 @@ mod forces;
 mod names;
 mod outline;
 mod params;
-mod plan;
+pub(crate) mod plan;
 mod results;
 mod traits;
 

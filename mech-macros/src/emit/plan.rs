@@ -152,8 +152,31 @@ fn system_type(cx: &Ctx, g: &Group) -> TokenStream {
 
 /// The tuple of every group's [`system_type`] (the `systems` field of the motion).
 pub(crate) fn systems_type(cx: &Ctx) -> TokenStream {
-    let types = cx.plan.iter().map(|g| system_type(cx, g));
-    quote!((#(#types,)*))
+    nest(cx.plan.iter().map(|g| system_type(cx, g)).collect())
+}
+
+/// Tuples longer than 12 have no `Debug` or `PartialEq`: more groups than that are kept
+/// as a tuple of tuples of at most 12.
+const TUPLE: usize = 12;
+
+/// The tuple of `items`, nested in tuples of at most [`TUPLE`] when longer.
+fn nest(items: Vec<TokenStream>) -> TokenStream {
+    if items.len() <= TUPLE {
+        return quote!((#(#items,)*));
+    }
+    let chunks = items.chunks(TUPLE).map(|c| quote!((#(#c,)*)));
+    quote!((#(#chunks,)*))
+}
+
+/// The field path of group `g`'s system in the (possibly nested) tuple: `.3` or `.1.3`.
+pub(crate) fn system_path(cx: &Ctx, g: usize) -> TokenStream {
+    if cx.n_groups <= TUPLE {
+        let i = syn::Index::from(g);
+        quote!(.#i)
+    } else {
+        let (a, b) = (syn::Index::from(g / TUPLE), syn::Index::from(g % TUPLE));
+        quote!(.#a.#b)
+    }
 }
 
 /// `__solve`: the states (and kept systems) at the inputs, on the drawing's branches;
@@ -178,7 +201,9 @@ fn solve(cx: &Ctx) -> TokenStream {
             qdd: &[f64; #dof],
             upto: #p::kinematics::Level,
         ) -> Result<([#p::kinematics::LinkState; #n_links], #systems), #p::MechError> {
-            #body
+            let solved = #body?;
+            #p::magnitudes::finite_states(&solved.0)?;
+            Ok(solved)
         }
     }
 }
@@ -188,7 +213,10 @@ fn solve_on(cx: &Ctx) -> TokenStream {
     let Ctx { p, n_links, n_groups, dof, .. } = cx;
     let systems = systems_type(cx);
     let calls = cx.plan.iter().enumerate().map(|(gi, g)| solve_call(cx, gi, g));
-    let sys_ids = (0..cx.n_groups).map(|g| format_ident!("sys{}", g));
+    let systems_value = nest((0..cx.n_groups).map(|g| {
+        let id = format_ident!("sys{}", g);
+        quote!(#id)
+    }).collect());
     // Newton starts from the drawing; closed forms overwrite every state they use.
     let initial = if cx.plan.iter().any(|g| g.kernel == Kernel::System) {
         quote!(self.drawing)
@@ -208,7 +236,7 @@ fn solve_on(cx: &Ctx) -> TokenStream {
             let mut s = #initial;
             let drive = (&q[..], &qd[..], &qdd[..]);
             #(#calls)*
-            Ok((s, (#(#sys_ids,)*)))
+            Ok((s, #systems_value))
         }
     }
 }

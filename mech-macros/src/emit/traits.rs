@@ -138,6 +138,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
             let mut z = #p::zhukovski::Reduction::default();
             #inertia
+            #p::magnitudes::finite_result("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
             Ok(z.reduced)
         }
         /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads and gravity
@@ -148,6 +149,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity)?;
             let mut z = #p::zhukovski::Reduction::default();
             #moment
+            #p::magnitudes::finite_result("reduced moment", &[z.moment])?;
             Ok(z.moment)
         }
         /// The direct problem: q̈ (rad/s²) from I* q̈ + ½ dI*/dq q̇² = driver + M*, the
