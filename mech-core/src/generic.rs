@@ -373,10 +373,7 @@ impl GenericMechanism {
     /// [`GenericMechanism::parse`] of the text of a file named `origin` (shown in every
     /// message as `origin:LINE:COLUMN`).
     pub fn parse_named(text: &str, origin: Option<&str>) -> Result<Self, MechError> {
-        Self::build(on_own_thread(|| {
-            let desc = parse_str(text).map_err(|e| syntax(text, origin, e))?;
-            checked_model(&desc, text, origin)
-        })?)
+        Self::build(parse_model(text, origin)?)
     }
 
     /// Load the mechanism `name` declared with `mechanism! { ... pub struct name { ... } }`
@@ -385,8 +382,22 @@ impl GenericMechanism {
     /// [`GenericMechanism::parse`]; messages carry `line:column` in `source`.
     /// [`MechError::Invalid`] when the source does not tokenize or declares no such mechanism.
     pub fn from_rust_source(source: &str, name: &str) -> Result<Self, MechError> {
-        Self::build(on_own_thread(|| checked_model(&find_declaration(source, name)?.1, source, None))?)
+        Self::build(rust_source_model(source, name)?)
     }
+}
+
+/// The checked model of DSL text (every check of the macro; messages located in the
+/// text, `origin` naming it): what both run-time solvers are built from.
+pub(crate) fn parse_model(text: &str, origin: Option<&str>) -> Result<Model, MechError> {
+    on_own_thread(|| {
+        let desc = parse_str(text).map_err(|e| syntax(text, origin, e))?;
+        checked_model(&desc, text, origin)
+    })
+}
+
+/// The checked model of the mechanism `name` declared in Rust source text.
+pub(crate) fn rust_source_model(source: &str, name: &str) -> Result<Model, MechError> {
+    on_own_thread(|| checked_model(&find_declaration(source, name)?.1, source, None))
 }
 
 /// Run `f` (a parse and its checks) on a thread of its own: proc-macro2 keeps every parsed

@@ -25,7 +25,7 @@
 use crate::assur::{Group, Kernel};
 use crate::constraints::{Drive, Level};
 use crate::friction::{add_joint_friction, flat_len, iterate, Flattener, JointFriction};
-use crate::generic::{GenericMechanism, JointReaction, LoadValue};
+use crate::generic::{JointReaction, LoadValue};
 use crate::group::{group_solve, group_velocity_field, GroupSystem};
 use crate::instance::{instance, Instance};
 use crate::kinematics;
@@ -166,23 +166,25 @@ impl Mechanism {
     /// Load from DSL text (the body of a `mechanism! { ... }`): the macro's parse,
     /// resolution and checks; every problem reported together with its line and column.
     pub fn from_dsl(text: &str) -> Result<Self, MechError> {
-        Self::from_model(GenericMechanism::parse(text)?.model().clone())
+        Self::from_checked(crate::generic::parse_model(text, None)?)
     }
 
     /// [`Mechanism::from_dsl`] of the text of a file named `origin`: every message starts
     /// with `origin:LINE:COLUMN:`.
     pub fn from_dsl_named(text: &str, origin: &str) -> Result<Self, MechError> {
-        Self::from_model(GenericMechanism::parse_named(text, Some(origin))?.model().clone())
+        Self::from_checked(crate::generic::parse_model(text, Some(origin))?)
     }
 
     /// Load the mechanism `name` declared with `mechanism!` in Rust source text.
     pub fn from_rust_source(source: &str, name: &str) -> Result<Self, MechError> {
-        Self::from_model(GenericMechanism::from_rust_source(source, name)?.model().clone())
+        Self::from_checked(crate::generic::rust_source_model(source, name)?)
     }
 
-    /// Load from a file of DSL text.
+    /// Load from a file of DSL text; messages name the file.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, MechError> {
-        Self::from_model(GenericMechanism::load(path)?.model().clone())
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| MechError::Invalid(format!("cannot read {}: {e}", path.display())))?;
+        Self::from_dsl_named(&text, &path.display().to_string())
     }
 
     /// A mechanism from a resolved [`Model`]: every check of the macro, the Assur plan and
@@ -193,6 +195,11 @@ impl Mechanism {
         if !issues.is_empty() {
             return Err(MechError::Invalid(issues.iter().map(|i| i.message.as_str()).collect::<Vec<_>>().join("\n")));
         }
+        Self::from_checked(model)
+    }
+
+    /// [`Mechanism::from_model`] of a model that passed every check already.
+    fn from_checked(model: Model) -> Result<Self, MechError> {
         let plan = crate::assur::plan(&model)
             .map_err(|_| MechError::Invalid("the links cannot be solved group by group from the inputs".into()))?;
         if let Some(g) = plan.iter().find(|g| g.bodies.len() > MAX_GROUP_LINKS || g.rows() > 3 * g.bodies.len() + MAX_REDUNDANT_ROWS) {
