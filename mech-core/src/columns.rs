@@ -21,6 +21,8 @@ pub enum Part {
     Inputs,
     /// `<point>.x`, `<point>.y`, `<link>.angle`.
     Positions,
+    /// `<point>.x`, `<point>.y` alone (no link angle, no `atan2`); implied by `Positions`.
+    Points,
     /// `<point>.vx`, `.vy`, `.ax`, `.ay`, `<link>.omega`, `<link>.alpha`.
     Rates,
     /// `<joint>.fx`, `<joint>.fy` (`<joint>.moment`): d'Alembert's reactions.
@@ -68,12 +70,16 @@ impl Columns {
         let model = m.model();
         let g = m.dof();
         let has = |p: Part| parts.contains(&p);
-        let mut parts: Vec<Part> = Part::ALL.iter().copied().filter(|&p| has(p)).collect();
+        let mut parts: Vec<Part> = Part::ALL.iter().copied().chain([Part::Points]).filter(|&p| has(p)).collect();
+        if parts.contains(&Part::Positions) {
+            parts.retain(|&p| p != Part::Points);
+        }
         parts.retain(|&p| !(m.redundant() && matches!(p, Part::Reactions | Part::Driver)) && !(g != 1 && p == Part::Zhukovski));
         let mut c = Columns { parts, names: Vec::new(), units: Vec::new() };
         let has = |p: Part| c.parts.contains(&p);
         let (inputs, positions, rates, reactions, driver, vp, zhukovski) =
             (has(Part::Inputs), has(Part::Positions), has(Part::Rates), has(Part::Reactions), has(Part::Driver), has(Part::VirtualPower), has(Part::Zhukovski));
+        let points = has(Part::Points);
         let input_unit = |k: usize| if model.joints[model.inputs[k]].kind == JointKind::Revolute { ("rad", "N·m") } else { ("m", "N") };
         let per_input = |base: &str, k: usize| if g == 1 { base.to_string() } else { format!("{base}.{}", model.joints[model.inputs[k]].name) };
         if inputs {
@@ -81,11 +87,13 @@ impl Columns {
                 c.push(per_input("q", k), input_unit(k).0);
             }
         }
-        if positions {
+        if positions || points {
             for p in &model.points {
                 c.push(format!("{}.x", p.name), "m");
                 c.push(format!("{}.y", p.name), "m");
             }
+        }
+        if positions {
             for l in &model.links[1..] {
                 c.push(format!("{}.angle", l.name), "rad");
             }
@@ -162,6 +170,9 @@ impl Columns {
             if self.has(Part::Positions) {
                 let n = 2 * m.model().points.len() + m.model().links.len() - 1;
                 m.positions_into(q, &mut scratch.states, &mut out[at..at + n])?;
+            } else if self.has(Part::Points) {
+                let n = 2 * m.model().points.len();
+                m.points_into(q, &mut scratch.states, &mut out[at..at + n])?;
             }
             return Ok(());
         }
@@ -178,10 +189,12 @@ impl Columns {
         }
         let needs_motion = self.has(Part::Rates) || self.has(Part::Reactions) || self.has(Part::Driver) || self.has(Part::VirtualPower);
         if !needs_motion {
-            if self.has(Part::Positions) {
+            if self.has(Part::Positions) || self.has(Part::Points) {
                 let p = m.pose(q)?;
                 row.extend(p.points.iter().flat_map(|p| [p.pos.x, p.pos.y]));
-                row.extend(p.links[1..].iter().map(|l| l.angle));
+                if self.has(Part::Positions) {
+                    row.extend(p.links[1..].iter().map(|l| l.angle));
+                }
             }
         } else {
             let mo = match &mut scratch.motion {
@@ -191,9 +204,11 @@ impl Columns {
                 }
                 slot => slot.insert(m.kinematics(q, qd, qdd)?),
             };
-            if self.has(Part::Positions) {
+            if self.has(Part::Positions) || self.has(Part::Points) {
                 row.extend(mo.points.iter().flat_map(|p| [p.pos.x, p.pos.y]));
-                row.extend(mo.links[1..].iter().map(|l| l.angle));
+                if self.has(Part::Positions) {
+                    row.extend(mo.links[1..].iter().map(|l| l.angle));
+                }
             }
             if self.has(Part::Rates) {
                 row.extend(mo.points.iter().flat_map(|p| [p.vel.x, p.vel.y, p.acc.x, p.acc.y]));

@@ -353,17 +353,25 @@ impl Mechanism {
     /// `out` holds 2 × points + links − 1 values. The row of `crate::columns` for
     /// positions.
     pub fn positions_into(&self, q: &[f64], s: &mut Vec<LinkState>, out: &mut [f64]) -> Result<(), MechError> {
+        let np = self.inst.points.len();
+        self.points_into(q, s, &mut out[..2 * np])?;
+        for (k, (l, st)) in self.inst.links.iter().zip(s.iter()).enumerate().skip(1) {
+            out[2 * np + k - 1] = l.pose(st).angle;
+        }
+        Ok(())
+    }
+
+    /// The points alone, into `out` (x and y of each point, m, in the order of
+    /// [`Model::points`]): [`Mechanism::positions_into`] without the links' angles (no
+    /// `atan2`).
+    pub fn points_into(&self, q: &[f64], s: &mut Vec<LinkState>, out: &mut [f64]) -> Result<(), MechError> {
         const ZEROS: [f64; 16] = [0.0; 16];
         let zero: Scratch<f64> = if q.len() <= ZEROS.len() { SmallVec::from_slice(&ZEROS[..q.len()]) } else { SmallVec::from_elem(0.0, q.len()) };
         self.solve_into(q, &zero, &zero, Level::Position, s)?;
-        let np = self.inst.points.len();
         for (k, &(o, d)) in self.inst.points.iter().enumerate() {
             let p = point_pose(&s[o], d).pos;
             out[2 * k] = p.x;
             out[2 * k + 1] = p.y;
-        }
-        for (k, (l, st)) in self.inst.links.iter().zip(s.iter()).enumerate().skip(1) {
-            out[2 * np + k - 1] = l.pose(st).angle;
         }
         Ok(())
     }

@@ -67,6 +67,7 @@ fn parts_of(names: &[String]) -> PyResult<Vec<Part>> {
         .map(|n| match n.as_str() {
             "inputs" => Ok(Part::Inputs),
             "positions" => Ok(Part::Positions),
+            "points" => Ok(Part::Points),
             "rates" => Ok(Part::Rates),
             "reactions" => Ok(Part::Reactions),
             "driver" => Ok(Part::Driver),

@@ -179,3 +179,12 @@ def test_sweep_over_variants_with_a_mask():
         one = engine()
         one.set_param("links.crank.mass", masses[i])
         assert np.allclose(out["inertia"][i], one.reduced(q)["inertia"], rtol=1e-15, atol=0)
+
+
+def test_pose_without_angles_gives_the_same_points():
+    m = engine()
+    q = np.linspace(0, 2 * math.pi, 25)
+    full, points = m.pose(q), m.pose(q, angles=False)
+    assert set(points) == {k for k in full if k.endswith((".x", ".y"))}
+    for k, v in points.items():
+        assert np.array_equal(v, full[k])

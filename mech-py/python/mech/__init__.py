@@ -183,12 +183,13 @@ class Mechanism:
 
     # -- solvers -----------------------------------------------------------------------
 
-    def pose(self, q, errors="raise"):
-        """Positions: ``<point>.x``, ``<point>.y`` (m), ``<link>.angle`` (rad).
+    def pose(self, q, errors="raise", angles=True):
+        """Positions: ``<point>.x``, ``<point>.y`` (m), ``<link>.angle`` (rad);
+        ``angles=False`` leaves the links' angles out (and their cost, an ``atan2`` each).
 
         ``errors="mask"``: a row that does not solve is NaN and ``out["ok"]`` is False
         there, instead of an exception."""
-        return self._table(["positions"], q, errors=errors)
+        return self._table(["positions" if angles else "points"], q, errors=errors)
 
     def kinematics(self, q, qd=0.0, qdd=0.0, errors="raise"):
         """Positions, velocities (``.vx``, ``.vy``, ``.omega``) and accelerations (``.ax``,

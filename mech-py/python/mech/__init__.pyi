@@ -54,7 +54,7 @@ class Mechanism:
     def set_param(self, path: str, value: ArrayLike) -> None:
         """Change one number of the drawing (points.A, links.rod.mass, ...), re-checked."""
     def columns(self, parts: Optional[Sequence[str]] = ...) -> List[str]: ...
-    def pose(self, q: ArrayLike, errors: str = ...) -> Columns:
+    def pose(self, q: ArrayLike, errors: str = ..., angles: bool = ...) -> Columns:
         """`<point>.x`, `<point>.y` (m), `<link>.angle` (rad)."""
     def kinematics(self, q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., errors: str = ...) -> Columns:
         """Positions, velocities and accelerations of every point and link."""
