@@ -138,7 +138,7 @@ fn run(text: &str) -> (Vec<Finding>, bool) {
     let mut found = Vec::new();
     let mut timed = |what: &'static str, f: &mut dyn FnMut() -> Option<String>| {
         let t = Instant::now();
-        let r = catch_unwind(AssertUnwindSafe(|| f()));
+        let r = catch_unwind(AssertUnwindSafe(&mut *f));
         let dt = t.elapsed();
         if dt > Duration::from_secs(1) {
             found.push(Finding::Slow(dt, what));
@@ -176,7 +176,7 @@ fn run(text: &str) -> (Vec<Finding>, bool) {
                 loads.set_by_name(l.name(), &v[..n]);
             }
             if let Ok(f) = m.kinetostatics(&mo, &loads) {
-                if !all_finite(&f.driver) || !f.joints.iter().all(|r| r.force.iter().all(|x| x.is_finite()) && r.moment.map_or(true, f64::is_finite)) {
+                if !all_finite(&f.driver) || !f.joints.iter().all(|r| r.force.iter().all(|x| x.is_finite()) && r.moment.filter(|m| !m.is_finite()).is_none()) {
                     return Some(format!("kinetostatics at {q:?}, {qd:?}"));
                 }
             }

@@ -18,6 +18,7 @@ const PROGRESS_FROM: usize = 20_000;
 
 /// One configuration in `format`. The table format lists one quantity per line with its
 /// unit; CSV and JSON give the one row.
+#[allow(clippy::too_many_arguments)]
 pub fn solve(m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &LoadSet, level: Level, format: Format, out: impl Write) -> Result<(), Failure> {
     let cols = level.columns(m);
     let row = cols.row(m, q, qd, qdd, &loads.at(m, q[0]))?;

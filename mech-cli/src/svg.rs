@@ -222,20 +222,20 @@ pub fn plot(id: &str, title: &str, unit: &str, x: &[f64], series: &[(String, Vec
     let sx = |v: f64| l + (v - x0) / (x1 - x0).max(1e-300) * (width - l - r);
     let sy = |v: f64| t + (hi - v) / (hi - lo) * (height - t - b);
     let mut out = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n");
-    let _ = write!(out, "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/><text x=\"{l}\" y=\"16\" font-family=\"sans-serif\" font-size=\"13\" font-weight=\"bold\">{} [{}]</text>\n", escape(title), escape(unit));
-    let _ = write!(out, "<rect x=\"{l}\" y=\"{t}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#999\"/>\n", width - l - r, height - t - b);
+    let _ = writeln!(out, "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/><text x=\"{l}\" y=\"16\" font-family=\"sans-serif\" font-size=\"13\" font-weight=\"bold\">{} [{}]</text>", escape(title), escape(unit));
+    let _ = writeln!(out, "<rect x=\"{l}\" y=\"{t}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#999\"/>", width - l - r, height - t - b);
     for v in [lo, 0.5 * (lo + hi), hi] {
-        let _ = write!(out, "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"10\" text-anchor=\"end\">{:.4}</text>\n", l - 4.0, sy(v) + 3.0, v);
+        let _ = writeln!(out, "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"10\" text-anchor=\"end\">{:.4}</text>", l - 4.0, sy(v) + 3.0, v);
     }
     if lo < 0.0 && hi > 0.0 {
-        let _ = write!(out, "<line x1=\"{l}\" x2=\"{}\" y1=\"{y}\" y2=\"{y}\" stroke=\"#ccc\"/>\n", width - r, y = sy(0.0));
+        let _ = writeln!(out, "<line x1=\"{l}\" x2=\"{}\" y1=\"{y}\" y2=\"{y}\" stroke=\"#ccc\"/>", width - r, y = sy(0.0));
     }
-    let _ = write!(out, "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"10\" text-anchor=\"end\">input {:.3} … {:.3}</text>\n", width - r, height - 8.0, x0, x1);
+    let _ = writeln!(out, "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"10\" text-anchor=\"end\">input {:.3} … {:.3}</text>", width - r, height - 8.0, x0, x1);
     for (k, (label, v)) in series.iter().enumerate() {
         let color = COLORS[k % COLORS.len()];
         let pts: Vec<String> = x.iter().zip(v).filter(|(_, y)| y.is_finite()).map(|(&xx, &yy)| format!("{:.1},{:.1}", sx(xx), sy(yy))).collect();
-        let _ = write!(out, "<polyline class=\"series\" data-label=\"{}\" fill=\"none\" stroke=\"{color}\" stroke-width=\"1.6\" points=\"{}\"/>\n", escape(label), pts.join(" "));
-        let _ = write!(out, "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"10\" fill=\"{color}\">{}</text>\n", l + 6.0 + 110.0 * (k % 4) as f64, t + 12.0 + 12.0 * (k / 4) as f64, escape(label));
+        let _ = writeln!(out, "<polyline class=\"series\" data-label=\"{}\" fill=\"none\" stroke=\"{color}\" stroke-width=\"1.6\" points=\"{}\"/>", escape(label), pts.join(" "));
+        let _ = writeln!(out, "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"10\" fill=\"{color}\">{}</text>", l + 6.0 + 110.0 * (k % 4) as f64, t + 12.0 + 12.0 * (k / 4) as f64, escape(label));
     }
     let _ = write!(out, "<line id=\"cursor-{id}\" x1=\"{c}\" x2=\"{c}\" y1=\"{t}\" y2=\"{}\" stroke=\"#000\" stroke-dasharray=\"3 3\"/>\n</svg>\n", height - b, c = sx(x0));
     out

@@ -172,8 +172,8 @@ fn subsets(items: &[usize], k: usize) -> Vec<Vec<usize>> {
 fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
     let kind = |c: &Con| model.joints[c.joint].kind;
     let touches = |c: &Con, b: usize| model.joints[c.joint].a == b || model.joints[c.joint].b == b;
-    match bodies {
-        &[body] => {
+    match *bodies {
+        [body] => {
             let drive = cons.iter().find(|c| matches!(c.kind, ConKind::DriveRevolute(_) | ConKind::DrivePrismatic(_)));
             if let Some(d) = drive {
                 return match d.kind {
@@ -193,7 +193,7 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
             }
             Solver::Newton
         }
-        &[x, y] if cons.len() == 3 => {
+        [x, y] if cons.len() == 3 => {
             // The joint between the two links, and one joint from each to solved links.
             let Some(mid) = cons.iter().find(|c| touches(c, x) && touches(c, y)) else { return Solver::Newton };
             for (b1, b2) in [(x, y), (y, x)] {

@@ -74,7 +74,9 @@ impl Columns {
         if parts.contains(&Part::Positions) {
             parts.retain(|&p| p != Part::Points);
         }
-        parts.retain(|&p| !(m.redundant() && matches!(p, Part::Reactions | Part::Driver)) && !(g != 1 && p == Part::Zhukovski));
+        // A redundant mechanism has no reactions; several inputs have no Zhukovski reduction.
+        let dropped = |p: Part| (m.redundant() && matches!(p, Part::Reactions | Part::Driver)) || (g != 1 && p == Part::Zhukovski);
+        parts.retain(|&p| !dropped(p));
         let mut c = Columns { parts, names: Vec::new(), units: Vec::new() };
         let has = |p: Part| c.parts.contains(&p);
         let (inputs, positions, rates, reactions, driver, vp, zhukovski) =
@@ -159,6 +161,7 @@ impl Columns {
     /// [`Columns::row`] into `out` (as many values as names), reusing `scratch`: rows of
     /// positions allocate nothing once the scratch has grown (a batch keeps one scratch
     /// per thread).
+    #[allow(clippy::too_many_arguments)]
     pub fn row_into(&self, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &Loads, scratch: &mut RowScratch, out: &mut [f64]) -> Result<(), MechError> {
         let needs_motion = self.has(Part::Rates) || self.has(Part::Reactions) || self.has(Part::Driver) || self.has(Part::VirtualPower);
         if !needs_motion && !self.has(Part::Zhukovski) {
@@ -215,7 +218,7 @@ impl Columns {
                 row.extend(mo.links[1..].iter().flat_map(|l| [l.omega, l.alpha]));
             }
             if self.has(Part::Reactions) || self.has(Part::Driver) {
-                let f = m.kinetostatics(&mo, loads)?;
+                let f = m.kinetostatics(mo, loads)?;
                 if self.has(Part::Reactions) {
                     for r in &f.joints {
                         row.extend([r.force.x, r.force.y]);
@@ -227,7 +230,7 @@ impl Columns {
                 }
             }
             if self.has(Part::VirtualPower) {
-                row.extend(m.driver_action(&mo, loads)?);
+                row.extend(m.driver_action(mo, loads)?);
             }
         }
         if self.has(Part::Zhukovski) {

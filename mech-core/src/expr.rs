@@ -151,7 +151,7 @@ impl Constants {
                 (None, None) => None,
                 (a, b) => {
                     let (a, b) = (a.unwrap_or(Dim::NONE), b.unwrap_or(Dim::NONE));
-                    Some(if div { a.div(b) } else { a.mul(b) })
+                    Some(if div { a.per(b) } else { a.times(b) })
                 }
             };
             if div && rhs.value == 0.0 {

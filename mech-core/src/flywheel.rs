@@ -486,7 +486,7 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             }
             let (x, v) = golden_max(h, q_at(k as isize - 1), q_at(k as isize + 1))?;
             let (x, v) = if v >= vals[k] { (x, v) } else { (self.nodes[k].q, vals[k]) };
-            if best.map_or(true, |(_, b)| v > b) {
+            if best.is_none_or(|(_, b)| v > b) {
                 best = Some((x, v));
             }
             if margin == 0.0 {
@@ -708,7 +708,7 @@ impl<'a, M: OneDof, L: Fn(f64) -> Result<M::Loads, MechError> + 'a> CycleBuilder
     /// The cycle and its table of S(q) ([`Cycle::new`]'s errors).
     pub fn build(self) -> Result<Cycle<'a, M>, MechError> {
         let driver = self.driver;
-        Cycle::new(self.machine, self.start, self.period, &self.breakpoints, self.loads, move |q| driver(q))
+        Cycle::new(self.machine, self.start, self.period, &self.breakpoints, self.loads, driver)
     }
 }
 

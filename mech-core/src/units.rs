@@ -42,12 +42,12 @@ impl Dim {
     pub const SPEED: Dim = Dim([0, 0, -1, 1]);
 
     /// The dimension of a product: exponents added.
-    pub fn mul(self, o: Dim) -> Dim {
+    pub fn times(self, o: Dim) -> Dim {
         Dim(std::array::from_fn(|i| self.0[i] + o.0[i]))
     }
 
     /// The dimension of a quotient: exponents subtracted.
-    pub fn div(self, o: Dim) -> Dim {
+    pub fn per(self, o: Dim) -> Dim {
         Dim(std::array::from_fn(|i| self.0[i] - o.0[i]))
     }
 
@@ -177,12 +177,12 @@ mod tests {
 
     #[test]
     fn dimensions_compose() {
-        assert_eq!(Dim::FORCE.mul(Dim::LENGTH), Dim::TORQUE);
-        assert_eq!(Dim::TORQUE.div(Dim::ANGLE), Dim::TORSIONAL_STIFFNESS);
-        assert_eq!(Dim::INERTIA.div(Dim::MASS).sqrt(), Some(Dim::LENGTH));
+        assert_eq!(Dim::FORCE.times(Dim::LENGTH), Dim::TORQUE);
+        assert_eq!(Dim::TORQUE.per(Dim::ANGLE), Dim::TORSIONAL_STIFFNESS);
+        assert_eq!(Dim::INERTIA.per(Dim::MASS).sqrt(), Some(Dim::LENGTH));
         assert_eq!(Dim::LENGTH.sqrt(), None);
         assert_eq!(Dim::LENGTH.describe(), "a length (m)");
         assert_eq!(Dim::LENGTH.words(), "`m`, `cm` or `mm`");
-        assert_eq!(Dim::LENGTH.mul(Dim::LENGTH).to_string(), "m^2");
+        assert_eq!(Dim::LENGTH.times(Dim::LENGTH).to_string(), "m^2");
     }
 }

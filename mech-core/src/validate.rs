@@ -373,8 +373,8 @@ pub fn check(model: &Model) -> Vec<Issue> {
     }
     // Grübler below the inputs with a drawing that really moves (parallel cranks): the
     // rank check tells the true story — redundant constraints — so report that instead.
-    if drawing_ok && !model.allow_redundant {
-        if grubler.is_some() {
+    if drawing_ok && !model.allow_redundant
+        && grubler.is_some() {
             let g = crate::grubler::count(model).grubler;
             if g < model.inputs.len() as i64 {
                 let relaxed = Model { allow_redundant: true, ..model.clone() };
@@ -394,7 +394,6 @@ pub fn check(model: &Model) -> Vec<Issue> {
                 }
             }
         }
-    }
     let counts_ok = grubler.is_none() && pebble.is_empty();
     out.extend(grubler);
     out.extend(pebble);
