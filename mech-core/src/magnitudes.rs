@@ -103,26 +103,44 @@ pub fn check(model: &Model) -> Vec<Issue> {
 
 /// `Ok(())` when every value of `quantity` is finite; else an error naming it: the inputs
 /// (speeds, loads, the driver) are too large for f64 with this mechanism.
+#[inline]
 pub fn finite_result(quantity: &str, values: &[f64]) -> Result<(), MechError> {
-    match values.iter().find(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(v) => Err(MechError::InvalidInput(format!(
-            "the {quantity} overflow ({v}): the inputs, loads or driver are too large for f64 with this mechanism; reduce them"
-        ))),
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        overflow(quantity, values)
     }
 }
 
+#[cold]
+#[inline(never)]
+fn overflow(quantity: &str, values: &[f64]) -> Result<(), MechError> {
+    let v = values.iter().find(|v| !v.is_finite()).copied().unwrap_or(f64::NAN);
+    Err(MechError::InvalidInput(format!("the {quantity} overflow ({v}): the inputs, loads or driver are too large for f64 with this mechanism; reduce them")))
+}
+
 /// `Ok(())` when every link state (position, rotation, velocities, accelerations) is
-/// finite; else [`finite_result`]'s error for the link motions.
-#[inline]
+/// finite; else [`finite_result`]'s error for the link motions. One sum over the fields
+/// (a NaN or an infinity reaches it), the values examined one by one only when it is not
+/// finite.
+#[inline(always)]
 pub fn finite_states(states: &[crate::link_state::LinkState]) -> Result<(), MechError> {
-    let ok = states.iter().all(|s| (s.pos.x + s.pos.y + s.rot.x + s.rot.y + s.vel.x + s.vel.y + s.omega + s.acc.x + s.acc.y + s.alpha).is_finite());
-    if ok {
+    let mut sum = 0.0;
+    for s in states {
+        sum += (s.pos.x + s.pos.y) + (s.rot.x + s.rot.y) + (s.vel.x + s.vel.y + s.omega) + (s.acc.x + s.acc.y + s.alpha);
+    }
+    if sum.is_finite() {
         Ok(())
     } else {
-        let bad: Vec<f64> = states.iter().flat_map(|s| [s.vel.x, s.vel.y, s.omega, s.acc.x, s.acc.y, s.alpha]).collect();
-        finite_result("velocities or accelerations", &bad)
+        states_overflow(states)
     }
+}
+
+#[cold]
+#[inline(never)]
+fn states_overflow(states: &[crate::link_state::LinkState]) -> Result<(), MechError> {
+    let all: Vec<f64> = states.iter().flat_map(|s| [s.pos.x, s.pos.y, s.rot.x, s.rot.y, s.vel.x, s.vel.y, s.omega, s.acc.x, s.acc.y, s.alpha]).collect();
+    finite_result("velocities or accelerations", &all)
 }
 
 /// `Ok(())` when every reaction (force, moment) and motor action is finite.
@@ -132,7 +150,13 @@ pub fn finite_reactions(reactions: &[crate::kinetostatics::Reaction], driver: &[
     if sum.is_finite() {
         Ok(())
     } else {
-        let all: Vec<f64> = reactions.iter().flat_map(|r| [r.force.x, r.force.y, r.moment]).chain(driver.iter().copied()).collect();
-        finite_result("reactions or motor actions", &all)
+        reactions_overflow(reactions, driver)
     }
+}
+
+#[cold]
+#[inline(never)]
+fn reactions_overflow(reactions: &[crate::kinetostatics::Reaction], driver: &[f64]) -> Result<(), MechError> {
+    let all: Vec<f64> = reactions.iter().flat_map(|r| [r.force.x, r.force.y, r.moment]).chain(driver.iter().copied()).collect();
+    finite_result("reactions or motor actions", &all)
 }

@@ -323,11 +323,9 @@ impl Mechanism {
             // Past a change point the drawing's branches may not close a redundant group:
             // the other combinations are tried, as the generated code does.
             let branches: Scratch<f64> = SmallVec::from_slice(&self.branches);
-            crate::branches::search(&branches, |b| self.solve_on(b, (q, qd, qdd), upto, s))?;
-            return crate::magnitudes::finite_states(s);
+            return crate::branches::search(&branches, |b| self.solve_on(b, (q, qd, qdd), upto, s));
         }
-        self.solve_on(&self.branches, (q, qd, qdd), upto, s)?;
-        crate::magnitudes::finite_states(s)
+        self.solve_on(&self.branches, (q, qd, qdd), upto, s)
     }
 
     /// True when the mechanism was accepted with redundant constraints.
@@ -368,6 +366,7 @@ impl Mechanism {
         const ZEROS: [f64; 16] = [0.0; 16];
         let zero: Scratch<f64> = if q.len() <= ZEROS.len() { SmallVec::from_slice(&ZEROS[..q.len()]) } else { SmallVec::from_elem(0.0, q.len()) };
         self.solve_into(q, &zero, &zero, Level::Position, s)?;
+        crate::magnitudes::finite_states(s)?;
         for (k, &(o, d)) in self.inst.points.iter().enumerate() {
             let p = point_pose(&s[o], d).pos;
             out[2 * k] = p.x;
@@ -381,6 +380,7 @@ impl Mechanism {
         let zero = vec![0.0; self.dof()];
         let mut s = Vec::new();
         self.solve_into(q, &zero, &zero, Level::Position, &mut s)?;
+        crate::magnitudes::finite_states(&s)?;
         let links = self.inst.links.iter().zip(&s).map(|(l, st)| l.pose(st)).collect();
         let points = self.inst.points.iter().map(|&(o, d)| point_pose(&s[o], d)).collect();
         Ok(Pose { links, points, model: self.model.clone() })
@@ -397,6 +397,7 @@ impl Mechanism {
     /// have grown (`out` from an earlier call, on this or another mechanism).
     pub fn kinematics_into(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut Motion) -> Result<(), MechError> {
         self.solve_into(q, qd, qdd, Level::Acceleration, &mut out.states)?;
+        crate::magnitudes::finite_states(&out.states)?;
         let s = &out.states;
         out.links.clear();
         out.links.extend(self.inst.links.iter().zip(s).map(|(l, st)| l.motion(st)));

@@ -201,9 +201,7 @@ fn solve(cx: &Ctx) -> TokenStream {
             qdd: &[f64; #dof],
             upto: #p::kinematics::Level,
         ) -> Result<([#p::kinematics::LinkState; #n_links], #systems), #p::MechError> {
-            let solved = #body?;
-            #p::magnitudes::finite_states(&solved.0)?;
-            Ok(solved)
+            #body
         }
     }
 }
@@ -236,6 +234,7 @@ fn solve_on(cx: &Ctx) -> TokenStream {
             let mut s = #initial;
             let drive = (&q[..], &qd[..], &qdd[..]);
             #(#calls)*
+            #p::magnitudes::finite_states(&s)?;
             Ok((s, #systems_value))
         }
     }
