@@ -25,9 +25,19 @@ const DOP853_TOL: f64 = 1e-11;
 const DP5_TOL: f64 = 1e-11;
 
 fn reference_q_end() -> f64 {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/slider_crank.dynamics.json");
-    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).expect("reference file")).expect("json");
-    let case = doc["cases"].as_array().unwrap().iter().find(|c| c["name"] == "constant_torque").unwrap();
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/slider_crank.dynamics.json"
+    );
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).expect("reference file"))
+            .expect("json");
+    let case = doc["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["name"] == "constant_torque")
+        .unwrap();
     let last = case["samples"].as_array().unwrap().last().unwrap();
     assert_eq!(last["t"].as_f64(), Some(T_END));
     last["q"].as_f64().unwrap()
@@ -35,26 +45,51 @@ fn reference_q_end() -> f64 {
 
 fn run<M: Method<2>>(m: &SliderCrank, method: &mut M) -> Outcome<2> {
     let zero = SliderCrankLoads::default();
-    integrate(method, equation_of_motion(m, |_, _, _| (TORQUE, zero)), 0.0, [0.3, 20.0], T_END).unwrap()
+    integrate(
+        method,
+        equation_of_motion(m, |_, _, _| (TORQUE, zero)),
+        0.0,
+        [0.3, 20.0],
+        T_END,
+    )
+    .unwrap()
 }
 
 fn benches(c: &mut Criterion) {
     let m = SliderCrank::new();
     let zero = SliderCrankLoads::default();
     c.bench_function("slider_crank/acceleration", |b| {
-        b.iter(|| m.acceleration(black_box(0.3), black_box(20.0), black_box(TORQUE), black_box(&zero)).unwrap())
+        b.iter(|| {
+            m.acceleration(
+                black_box(0.3),
+                black_box(20.0),
+                black_box(TORQUE),
+                black_box(&zero),
+            )
+            .unwrap()
+        })
     });
 
     let q_ref = reference_q_end();
     for (name, err) in [
-        ("dop853", (run(&m, &mut Dop853::new(DOP853_TOL, DOP853_TOL)).y[0] - q_ref).abs() / q_ref),
-        ("dp5", (run(&m, &mut DormandPrince::new(DP5_TOL, DP5_TOL)).y[0] - q_ref).abs() / q_ref),
+        (
+            "dop853",
+            (run(&m, &mut Dop853::new(DOP853_TOL, DOP853_TOL)).y[0] - q_ref).abs() / q_ref,
+        ),
+        (
+            "dp5",
+            (run(&m, &mut DormandPrince::new(DP5_TOL, DP5_TOL)).y[0] - q_ref).abs() / q_ref,
+        ),
     ] {
         assert!(err <= 1e-10, "{name}: relative error {err:e} in q(0.5 s)");
         println!("{name}: relative error in q(0.5 s) = {err:.2e}");
     }
-    c.bench_function("slider_crank/integrate_0.5s_dop853_1e-10", |b| b.iter(|| run(&m, &mut Dop853::new(DOP853_TOL, DOP853_TOL))));
-    c.bench_function("slider_crank/integrate_0.5s_dp5_1e-10", |b| b.iter(|| run(&m, &mut DormandPrince::new(DP5_TOL, DP5_TOL))));
+    c.bench_function("slider_crank/integrate_0.5s_dop853_1e-10", |b| {
+        b.iter(|| run(&m, &mut Dop853::new(DOP853_TOL, DOP853_TOL)))
+    });
+    c.bench_function("slider_crank/integrate_0.5s_dp5_1e-10", |b| {
+        b.iter(|| run(&m, &mut DormandPrince::new(DP5_TOL, DP5_TOL)))
+    });
 }
 
 criterion_group! {

@@ -72,16 +72,28 @@ fn four_bar(c: &mut Criterion) {
     assert!(loads.set_by_name("resist", &[2.0]));
 
     let mut g = c.benchmark_group("four_bar/pose");
-    g.bench_function("generated", |b| b.iter(|| black_box(&m).pose(black_box(Q)).unwrap()));
-    g.bench_function("hand", |b| b.iter(|| black_box(&h).pose(black_box(Q)).unwrap()));
+    g.bench_function("generated", |b| {
+        b.iter(|| black_box(&m).pose(black_box(Q)).unwrap())
+    });
+    g.bench_function("hand", |b| {
+        b.iter(|| black_box(&h).pose(black_box(Q)).unwrap())
+    });
     g.finish();
 
     let mut g = c.benchmark_group("four_bar/kinematics");
     g.bench_function("generated", |b| {
-        b.iter(|| black_box(&m).kinematics(black_box(Q), black_box(QD), black_box(QDD)).unwrap())
+        b.iter(|| {
+            black_box(&m)
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap()
+        })
     });
     g.bench_function("hand", |b| {
-        b.iter(|| black_box(&h).kinematics(black_box(Q), black_box(QD), black_box(QDD)).unwrap())
+        b.iter(|| {
+            black_box(&h)
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap()
+        })
     });
     g.finish();
 
@@ -89,14 +101,18 @@ fn four_bar(c: &mut Criterion) {
     g.bench_function("generated", |b| {
         b.iter(|| {
             let s = black_box(&m);
-            let mo = s.kinematics(black_box(Q), black_box(QD), black_box(QDD)).unwrap();
+            let mo = s
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap();
             s.kinetostatics(&mo, black_box(&loads)).unwrap()
         })
     });
     g.bench_function("hand", |b| {
         b.iter(|| {
             let s = black_box(&h);
-            let mo = s.kinematics(black_box(Q), black_box(QD), black_box(QDD)).unwrap();
+            let mo = s
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap();
             s.kinetostatics(&mo, black_box(&loads))
         })
     });
@@ -106,14 +122,18 @@ fn four_bar(c: &mut Criterion) {
     g.bench_function("generated", |b| {
         b.iter(|| {
             let s = black_box(&m);
-            let mo = s.kinematics(black_box(Q), black_box(QD), black_box(QDD)).unwrap();
+            let mo = s
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap();
             s.driver_action(&mo, black_box(&loads)).unwrap()
         })
     });
     g.bench_function("hand", |b| {
         b.iter(|| {
             let s = black_box(&h);
-            let mo = s.kinematics(black_box(Q), black_box(QD), black_box(QDD)).unwrap();
+            let mo = s
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap();
             s.driver_action(&mo, black_box(&loads))
         })
     });
@@ -129,16 +149,38 @@ fn slider_crank(c: &mut Criterion) {
     let driver = 5.0;
 
     let mut g = c.benchmark_group("slider_crank/reduced");
-    g.bench_function("generated", |b| b.iter(|| black_box(&m).reduced(black_box(Q)).unwrap()));
-    g.bench_function("hand", |b| b.iter(|| black_box(&h).reduced(black_box(Q)).unwrap()));
+    g.bench_function("generated", |b| {
+        b.iter(|| black_box(&m).reduced(black_box(Q)).unwrap())
+    });
+    g.bench_function("hand", |b| {
+        b.iter(|| black_box(&h).reduced(black_box(Q)).unwrap())
+    });
     g.finish();
 
     let mut g = c.benchmark_group("slider_crank/acceleration");
     g.bench_function("generated", |b| {
-        b.iter(|| black_box(&m).acceleration(black_box(Q), black_box(QD), black_box(driver), black_box(&loads)).unwrap())
+        b.iter(|| {
+            black_box(&m)
+                .acceleration(
+                    black_box(Q),
+                    black_box(QD),
+                    black_box(driver),
+                    black_box(&loads),
+                )
+                .unwrap()
+        })
     });
     g.bench_function("hand", |b| {
-        b.iter(|| black_box(&h).acceleration(black_box(Q), black_box(QD), black_box(driver), black_box(&loads)).unwrap())
+        b.iter(|| {
+            black_box(&h)
+                .acceleration(
+                    black_box(Q),
+                    black_box(QD),
+                    black_box(driver),
+                    black_box(&loads),
+                )
+                .unwrap()
+        })
     });
     g.finish();
 }

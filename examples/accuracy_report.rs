@@ -45,18 +45,42 @@ struct Answer {
     zhukovski: Option<[f64; 3]>,
 }
 
-fn generic_answer(g: &GenericMechanism, m: &GenericMotion, loads: &mech::generic::GenericLoads) -> Answer {
+fn generic_answer(
+    g: &GenericMechanism,
+    m: &GenericMotion,
+    loads: &mech::generic::GenericLoads,
+) -> Answer {
     let model = g.model();
     let f = g.kinetostatics(m, loads).unwrap();
     Answer {
-        links: model.links.iter().zip(&m.links).skip(1).map(|(l, lm)| (l.name.clone(), *lm)).collect(),
-        points: model.points.iter().zip(&m.points).map(|(p, pm)| (p.name.clone(), *pm)).collect(),
-        reactions: model.joints.iter().zip(&f.joints).map(|(j, r)| (j.name.clone(), r.force, r.moment)).collect(),
+        links: model
+            .links
+            .iter()
+            .zip(&m.links)
+            .skip(1)
+            .map(|(l, lm)| (l.name.clone(), *lm))
+            .collect(),
+        points: model
+            .points
+            .iter()
+            .zip(&m.points)
+            .map(|(p, pm)| (p.name.clone(), *pm))
+            .collect(),
+        reactions: model
+            .joints
+            .iter()
+            .zip(&f.joints)
+            .map(|(j, r)| (j.name.clone(), r.force, r.moment))
+            .collect(),
         drivers: f.driver.clone(),
         virtual_power: g.driver_action(m, loads).unwrap(),
         zhukovski: (g.dof() == 1).then(|| {
             let r = g.reduced(m.q[0]).unwrap();
-            [r.inertia, r.inertia_derivative, g.reduced_moment(m.q[0], loads).unwrap()]
+            [
+                r.inertia,
+                r.inertia_derivative,
+                g.reduced_moment(m.q[0], loads).unwrap(),
+            ]
         }),
     }
 }
@@ -79,8 +103,15 @@ fn errors(a: &Answer, c: &Value) -> (f64, f64) {
         }
         v
     };
-    let (pos, vel, acc) = (max_of(&|l| vecs(l, "pos")), max_of(&|l| vecs(l, "vel")), max_of(&|l| vecs(l, "acc")));
-    let (om, al) = (max_of(&|l| nums(&l["omega"])), max_of(&|l| nums(&l["alpha"])));
+    let (pos, vel, acc) = (
+        max_of(&|l| vecs(l, "pos")),
+        max_of(&|l| vecs(l, "vel")),
+        max_of(&|l| vecs(l, "acc")),
+    );
+    let (om, al) = (
+        max_of(&|l| nums(&l["omega"])),
+        max_of(&|l| nums(&l["alpha"])),
+    );
     let rel = |got: f64, want: f64, scale: f64| (got - want).abs() / scale.max(1e-300);
     let relv = |got: Vector2<f64>, want: &Value, scale: f64| {
         let w = nums(want);
@@ -91,21 +122,36 @@ fn errors(a: &Answer, c: &Value) -> (f64, f64) {
         let t = &c["links"][name];
         let d = (lm.angle - t["theta"].as_f64().unwrap()).rem_euclid(std::f64::consts::TAU);
         kin = kin.max(d.min(std::f64::consts::TAU - d));
-        kin = kin.max(rel(lm.omega, t["omega"].as_f64().unwrap(), om)).max(rel(lm.alpha, t["alpha"].as_f64().unwrap(), al));
-        kin = kin.max(relv(lm.cg, &t["cg"]["pos"], pos)).max(relv(lm.cg_vel, &t["cg"]["vel"], vel)).max(relv(lm.cg_acc, &t["cg"]["acc"], acc));
+        kin = kin
+            .max(rel(lm.omega, t["omega"].as_f64().unwrap(), om))
+            .max(rel(lm.alpha, t["alpha"].as_f64().unwrap(), al));
+        kin = kin
+            .max(relv(lm.cg, &t["cg"]["pos"], pos))
+            .max(relv(lm.cg_vel, &t["cg"]["vel"], vel))
+            .max(relv(lm.cg_acc, &t["cg"]["acc"], acc));
         for (pname, pt) in t["points"].as_object().unwrap() {
             let pm = a.points.iter().find(|(n, _)| n == pname).unwrap().1;
-            kin = kin.max(relv(pm.pos, &pt["pos"], pos)).max(relv(pm.vel, &pt["vel"], vel)).max(relv(pm.acc, &pt["acc"], acc));
+            kin = kin
+                .max(relv(pm.pos, &pt["pos"], pos))
+                .max(relv(pm.vel, &pt["vel"], vel))
+                .max(relv(pm.acc, &pt["acc"], acc));
         }
     }
-    let drivers: Vec<f64> = c["drivers"].as_array().unwrap().iter().map(|d| d["value"].as_f64().unwrap()).collect();
+    let drivers: Vec<f64> = c["drivers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["value"].as_f64().unwrap())
+        .collect();
     let mut fscale = drivers.iter().fold(0.0f64, |m, d| m.max(d.abs()));
     for (_, r) in c["reactions"].as_object().unwrap() {
         fscale = fscale.max(nums(&r["force"]).iter().fold(0.0f64, |m, x| m.max(x.abs())));
     }
     let mut force = 0.0f64;
     for (i, d) in drivers.iter().enumerate() {
-        force = force.max(rel(a.drivers[i], *d, fscale)).max(rel(a.virtual_power[i], *d, fscale));
+        force = force
+            .max(rel(a.drivers[i], *d, fscale))
+            .max(rel(a.virtual_power[i], *d, fscale));
     }
     for (name, f, m) in &a.reactions {
         let t = &c["reactions"][name];
@@ -116,8 +162,14 @@ fn errors(a: &Answer, c: &Value) -> (f64, f64) {
     }
     if let Some([i, di, ms]) = a.zhukovski {
         let z = &c["zhukovski"];
-        let (ti, tdi, tms) = (z["I_star"].as_f64().unwrap(), z["dI_star_dq"].as_f64().unwrap(), z["M_star"].as_f64().unwrap());
-        force = force.max(rel(i, ti, ti.abs())).max(rel(di, tdi, ti.abs().max(tdi.abs())));
+        let (ti, tdi, tms) = (
+            z["I_star"].as_f64().unwrap(),
+            z["dI_star_dq"].as_f64().unwrap(),
+            z["M_star"].as_f64().unwrap(),
+        );
+        force = force
+            .max(rel(i, ti, ti.abs()))
+            .max(rel(di, tdi, ti.abs().max(tdi.abs())));
         force = force.max(rel(ms, tms, tms.abs().max(drivers[0].abs())));
     }
     (kin, force)
@@ -164,26 +216,48 @@ macro_rules! report {
         let t = truth($file);
         let gen = $ty::new();
         let g = GenericMechanism::from_rust_source(SOURCE, stringify!($ty)).unwrap();
-        let newton = plan(g.model()).unwrap().iter().any(|grp| grp.solver == Solver::Newton);
+        let newton = plan(g.model())
+            .unwrap()
+            .iter()
+            .any(|grp| grp.solver == Solver::Newton);
         let mut loads = $loads::default();
         let mut gl = g.loads();
         for (n, l) in t["loads"].as_object().unwrap() {
-            assert!(loads.set_by_name(n, &nums(&l["value"])) && gl.set_by_name(n, &nums(&l["value"])));
+            assert!(
+                loads.set_by_name(n, &nums(&l["value"])) && gl.set_by_name(n, &nums(&l["value"]))
+            );
         }
         let to_q = $to_q;
-        let configs: Vec<[Vec<f64>; 3]> =
-            t["configs"].as_array().unwrap().iter().map(|c| [nums(&c["q"]), nums(&c["qd"]), nums(&c["qdd"])]).collect();
+        let configs: Vec<[Vec<f64>; 3]> = t["configs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| [nums(&c["q"]), nums(&c["qd"]), nums(&c["qdd"])])
+            .collect();
         let (mut e_gen, mut e_gnc) = ((0.0f64, 0.0f64), (0.0f64, 0.0f64));
         for (c, [q, qd, qdd]) in t["configs"].as_array().unwrap().iter().zip(&configs) {
             let mo = gen.kinematics(to_q(q), to_q(qd), to_q(qdd)).unwrap();
             let fs = gen.kinetostatics(&mo, &loads).unwrap();
             let a = Answer {
-                links: g.model().links[1..].iter().map(|l| (l.name.clone(), *mo.link(&l.name).unwrap())).collect(),
-                points: g.model().points.iter().map(|p| (p.name.clone(), *mo.point(&p.name).unwrap())).collect(),
-                reactions: g.model().joints.iter().map(|j| {
-                    let (f, m) = fs.reaction(&j.name).unwrap();
-                    (j.name.clone(), f, m)
-                }).collect(),
+                links: g.model().links[1..]
+                    .iter()
+                    .map(|l| (l.name.clone(), *mo.link(&l.name).unwrap()))
+                    .collect(),
+                points: g
+                    .model()
+                    .points
+                    .iter()
+                    .map(|p| (p.name.clone(), *mo.point(&p.name).unwrap()))
+                    .collect(),
+                reactions: g
+                    .model()
+                    .joints
+                    .iter()
+                    .map(|j| {
+                        let (f, m) = fs.reaction(&j.name).unwrap();
+                        (j.name.clone(), f, m)
+                    })
+                    .collect(),
                 drivers: as_vec(&fs.driver),
                 virtual_power: as_vec(&gen.driver_action(&mo, &loads).unwrap()),
                 zhukovski: gen.zhukovski(q[0], &loads),
@@ -199,18 +273,30 @@ macro_rules! report {
         let generated_ns = ns_per_call(|| {
             i = (i + 1) % n;
             let [q, qd, qdd] = &configs[i];
-            let mo = gen.kinematics(black_box(to_q(q)), black_box(to_q(qd)), black_box(to_q(qdd))).unwrap();
+            let mo = gen
+                .kinematics(
+                    black_box(to_q(q)),
+                    black_box(to_q(qd)),
+                    black_box(to_q(qdd)),
+                )
+                .unwrap();
             black_box(gen.kinetostatics(&mo, &loads).unwrap());
         });
         let generic_ns = ns_per_call(|| {
             i = (i + 1) % n;
             let [q, qd, qdd] = &configs[i];
-            let mo = g.kinematics(black_box(q), black_box(qd), black_box(qdd)).unwrap();
+            let mo = g
+                .kinematics(black_box(q), black_box(qd), black_box(qdd))
+                .unwrap();
             black_box(g.kinetostatics(&mo, &gl).unwrap());
         });
         Row {
             name: $file,
-            path: if newton { "Newton fallback" } else { "closed form" },
+            path: if newton {
+                "Newton fallback"
+            } else {
+                "closed form"
+            },
             generated: e_gen,
             generic: e_gnc,
             generated_ns,
@@ -250,18 +336,33 @@ impl ZhukovskiOrNot for FiveBar {
 /// Newton tolerance against error and time of the generic position analysis.
 fn tolerance_study(file: &str, ty: &str) {
     let t = truth(file);
-    let configs: Vec<Vec<f64>> = t["configs"].as_array().unwrap().iter().map(|c| nums(&c["q"])).collect();
-    println!("\n**{file}** (generic `pose`; L = {:.3} m)\n", GenericMechanism::from_rust_source(SOURCE, ty).unwrap().model().scale());
+    let configs: Vec<Vec<f64>> = t["configs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| nums(&c["q"]))
+        .collect();
+    println!(
+        "\n**{file}** (generic `pose`; L = {:.3} m)\n",
+        GenericMechanism::from_rust_source(SOURCE, ty)
+            .unwrap()
+            .model()
+            .scale()
+    );
     println!("| Newton tolerance (× L) | worst position error (× L) | worst angle error (rad) | ns per `pose` |");
     println!("|---:|---:|---:|---:|");
     for tol in [1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-16] {
-        let g = GenericMechanism::from_rust_source(SOURCE, ty).unwrap().with_tolerance(tol).unwrap();
+        let g = GenericMechanism::from_rust_source(SOURCE, ty)
+            .unwrap()
+            .with_tolerance(tol)
+            .unwrap();
         let scale = g.model().scale();
         let (mut pos, mut ang) = (0.0f64, 0.0f64);
         for (q, c) in configs.iter().zip(t["configs"].as_array().unwrap()) {
             let p = g.pose(q).unwrap();
             for (lname, lt) in c["links"].as_object().unwrap() {
-                let d = (p.link(lname).unwrap().angle - lt["theta"].as_f64().unwrap()).rem_euclid(std::f64::consts::TAU);
+                let d = (p.link(lname).unwrap().angle - lt["theta"].as_f64().unwrap())
+                    .rem_euclid(std::f64::consts::TAU);
                 ang = ang.max(d.min(std::f64::consts::TAU - d));
                 for (pname, pt) in lt["points"].as_object().unwrap() {
                     let w = nums(&pt["pos"]);
@@ -283,15 +384,43 @@ fn tolerance_study(file: &str, ty: &str) {
 fn main() {
     let rows = vec![
         report!("four_bar", FourBar, FourBarLoads, |v: &Vec<f64>| v[0]),
-        report!("public_four_bar", PublicFourBar, PublicFourBarLoads, |v: &Vec<f64>| v[0]),
-        report!("slider_crank", SliderCrank, SliderCrankLoads, |v: &Vec<f64>| v[0]),
-        report!("public_slider_crank", PublicSliderCrank, PublicSliderCrankLoads, |v: &Vec<f64>| v[0]),
-        report!("quick_return", QuickReturn, QuickReturnLoads, |v: &Vec<f64>| v[0]),
+        report!(
+            "public_four_bar",
+            PublicFourBar,
+            PublicFourBarLoads,
+            |v: &Vec<f64>| v[0]
+        ),
+        report!("slider_crank", SliderCrank, SliderCrankLoads, |v: &Vec<
+            f64,
+        >| v
+            [0]),
+        report!(
+            "public_slider_crank",
+            PublicSliderCrank,
+            PublicSliderCrankLoads,
+            |v: &Vec<f64>| v[0]
+        ),
+        report!("quick_return", QuickReturn, QuickReturnLoads, |v: &Vec<
+            f64,
+        >| v
+            [0]),
         report!("watt2", Watt2, Watt2Loads, |v: &Vec<f64>| v[0]),
-        report!("stephenson3", Stephenson3, Stephenson3Loads, |v: &Vec<f64>| v[0]),
-        report!("five_bar", FiveBar, FiveBarLoads, |v: &Vec<f64>| [v[0], v[1]]),
-        report!("scotch_yoke", ScotchYoke, ScotchYokeLoads, |v: &Vec<f64>| v[0]),
-        report!("hydraulic_lever", HydraulicLever, HydraulicLeverLoads, |v: &Vec<f64>| v[0]),
+        report!("stephenson3", Stephenson3, Stephenson3Loads, |v: &Vec<
+            f64,
+        >| v
+            [0]),
+        report!("five_bar", FiveBar, FiveBarLoads, |v: &Vec<f64>| [
+            v[0], v[1]
+        ]),
+        report!("scotch_yoke", ScotchYoke, ScotchYokeLoads, |v: &Vec<
+            f64,
+        >| v[0]),
+        report!(
+            "hydraulic_lever",
+            HydraulicLever,
+            HydraulicLeverLoads,
+            |v: &Vec<f64>| v[0]
+        ),
     ];
     println!("## Accuracy against the 50-digit reference, and time per call\n");
     println!("Worst relative error over the 12 reference configurations; time per `kinematics + kinetostatics` call (median of 5 batches).\n");
@@ -300,7 +429,15 @@ fn main() {
     for r in &rows {
         println!(
             "| {} | {} | {:.1e} | {:.1e} | {:.1e} | {:.1e} | {:.0} | {:.0} | {:.0}× |",
-            r.name, r.path, r.generated.0, r.generated.1, r.generic.0, r.generic.1, r.generated_ns, r.generic_ns, r.generic_ns / r.generated_ns
+            r.name,
+            r.path,
+            r.generated.0,
+            r.generated.1,
+            r.generic.0,
+            r.generic.1,
+            r.generated_ns,
+            r.generic_ns,
+            r.generic_ns / r.generated_ns
         );
     }
     println!("\n## Generic position analysis: Newton tolerance against error and time");

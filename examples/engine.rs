@@ -22,7 +22,10 @@ use std::error::Error;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use engine::{pressure, breakpoints, BORE, COMPRESSION_RATIO, IRREGULARITY, OMEGA_MEAN, PERIOD, PISTON_AREA, P_CRANKCASE, Q_TDC, X_BDC, X_TDC};
+use engine::{
+    breakpoints, pressure, BORE, COMPRESSION_RATIO, IRREGULARITY, OMEGA_MEAN, PERIOD, PISTON_AREA,
+    P_CRANKCASE, Q_TDC, X_BDC, X_TDC,
+};
 use mech::flywheel::Cycle;
 use mech::prelude::*;
 
@@ -64,7 +67,9 @@ mechanism! {
 /// cylinder head on the +x side.
 pub fn gas_loads(engine: &Engine, q: f64) -> Result<EngineLoads, MechError> {
     let x_b = engine.pose(q)?.points.B.pos.x;
-    Ok(EngineLoads { gas: Vector2::new(-(pressure(q, x_b) - P_CRANKCASE) * PISTON_AREA, 0.0) })
+    Ok(EngineLoads {
+        gas: Vector2::new(-(pressure(q, x_b) - P_CRANKCASE) * PISTON_AREA, 0.0),
+    })
 }
 
 /// Where the figures go.
@@ -79,7 +84,10 @@ fn main() -> ExitCode {
 pub fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
     let started = std::time::Instant::now();
     let eng = Engine::new();
-    let mut cycle = Cycle::builder(&eng, PERIOD, |q| gas_loads(&eng, q)).start(Q_TDC).breakpoints(&breakpoints()).build()?;
+    let mut cycle = Cycle::builder(&eng, PERIOD, |q| gas_loads(&eng, q))
+        .start(Q_TDC)
+        .breakpoints(&breakpoints())
+        .build()?;
     let gas_only = &cycle;
     println!("Single-cylinder four-stroke engine: bore {:.0} mm, stroke {:.2} mm, rod 143 mm, offset 6 mm, compression ratio {}", BORE * 1e3, (X_TDC - X_BDC) * 1e3, COMPRESSION_RATIO);
     println!("cycle: lambda = 4 pi from the TDC of intake (q0 = {:.4} deg); gas work per cycle W = {:.3} J", Q_TDC.to_degrees(), gas_only.net_work());
@@ -96,8 +104,14 @@ pub fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
 
     println!();
     println!("Turning moment at constant speed w_a = {OMEGA_MEAN:.2} rad/s (alpha = 0); reactions in kN (force by the first link on the second):");
-    println!("{:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}", "phi", "p", "T_driver", "|R_A|", "|R_B|", "|R_O2|", "M*", "I*");
-    println!("{:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}", "deg", "bar", "N m", "crankpin", "gudgeon", "main", "N m", "kg m^2");
+    println!(
+        "{:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}",
+        "phi", "p", "T_driver", "|R_A|", "|R_B|", "|R_O2|", "M*", "I*"
+    );
+    println!(
+        "{:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}",
+        "deg", "bar", "N m", "crankpin", "gudgeon", "main", "N m", "kg m^2"
+    );
     for k in 0..=24 {
         let q = Q_TDC + (30.0 * k as f64).to_radians();
         let motion = eng.kinematics(q, OMEGA_MEAN, 0.0)?;

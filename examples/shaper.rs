@@ -37,7 +37,14 @@ pub fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
     let started = std::time::Instant::now();
     let m = Shaper::new();
     let q0 = working_start(&m);
-    let unbalanced = Cycle::new(&m, q0, PERIOD, &breakpoints(&m), |q| cut_loads(&m, q), |_| 0.0)?;
+    let unbalanced = Cycle::new(
+        &m,
+        q0,
+        PERIOD,
+        &breakpoints(&m),
+        |q| cut_loads(&m, q),
+        |_| 0.0,
+    )?;
     println!("Quick-return shaper: working stroke {:.2} deg of crank, return {:.2} deg (ratio {:.3}); cut {CUT_FORCE} N", working_arc(&m).to_degrees(), 360.0 - working_arc(&m).to_degrees(), working_arc(&m) / (PERIOD - working_arc(&m)));
     println!("cycle: one revolution from the start of the working stroke (q0 = {:.4} deg); work of the cut and gravity W = {:.3} J", q0.to_degrees(), unbalanced.net_work());
     let (cycle, torque) = unbalanced.balanced();
@@ -45,8 +52,14 @@ pub fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
 
     println!();
     println!("At constant speed w_a = {OMEGA_MEAN:.4} rad/s (alpha = 0):");
-    println!("{:>6} {:>9} {:>9} {:>7} {:>10} {:>10} {:>10} {:>9}", "phi", "ram x", "ram v", "cut", "T_driver", "|R_slot|", "M*", "I*");
-    println!("{:>6} {:>9} {:>9} {:>7} {:>10} {:>10} {:>10} {:>9}", "deg", "mm", "m/s", "N", "N m", "N", "N m", "kg m^2");
+    println!(
+        "{:>6} {:>9} {:>9} {:>7} {:>10} {:>10} {:>10} {:>9}",
+        "phi", "ram x", "ram v", "cut", "T_driver", "|R_slot|", "M*", "I*"
+    );
+    println!(
+        "{:>6} {:>9} {:>9} {:>7} {:>10} {:>10} {:>10} {:>9}",
+        "deg", "mm", "m/s", "N", "N m", "N", "N m", "kg m^2"
+    );
     for k in 0..=12 {
         let q = q0 + (30.0 * k as f64).to_radians();
         let motion = m.kinematics(q, OMEGA_MEAN, 0.0)?;

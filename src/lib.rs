@@ -47,10 +47,10 @@ pub mod __private {
 /// Everything a user of a generated struct needs.
 pub mod prelude {
     pub use crate::mechanism;
-    pub use mech_core::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
     pub use mech_core::kinetostatics::{PrismaticReaction, RevoluteReaction, SlotReaction};
-    pub use mech_core::zhukovski::Reduced;
+    pub use mech_core::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
     pub use mech_core::traits::{Machine, OneDof};
+    pub use mech_core::zhukovski::Reduced;
     pub use mech_core::MechError;
     pub use mech_core::Mechanism;
     pub use mech_core::Vector2;

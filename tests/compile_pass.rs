@@ -48,7 +48,10 @@ macro_rules! assert_counts {
         assert_eq!($ty::EQUATIONS, $e, "EQUATIONS");
         assert_eq!($ty::UNKNOWNS, $u, "UNKNOWNS");
         assert_eq!($ty::EQUATIONS, 3 * ($ty::LINKS - 1));
-        assert_eq!($ty::UNKNOWNS, $ty::DOF + 2 * $ty::LOWER_PAIRS + $ty::HIGHER_PAIRS);
+        assert_eq!(
+            $ty::UNKNOWNS,
+            $ty::DOF + 2 * $ty::LOWER_PAIRS + $ty::HIGHER_PAIRS
+        );
     }};
 }
 
@@ -100,13 +103,17 @@ fn four_bar_crank_rocker() {
     // N = 4 (ground, crank, coupler, rocker); P_I = 4 pins; G = 3·3 − 2·4 = 1.
     assert_counts!(CrankRocker, dof: 1, links: 4, lower: 4, higher: 0, equations: 9, unknowns: 9);
     let a = (0.04, 0.06928203230275509);
-    assert_reproduces!(CrankRocker, angle((0.0, 0.0), a), [
-        O2 = (0.0, 0.0),
-        O4 = (0.3, 0.04),
-        A = a,
-        B = (0.2430191330116403, 0.23171119111114735),
-        P = (0.08528408845676129, 0.22077246544174978),
-    ]);
+    assert_reproduces!(
+        CrankRocker,
+        angle((0.0, 0.0), a),
+        [
+            O2 = (0.0, 0.0),
+            O4 = (0.3, 0.04),
+            A = a,
+            B = (0.2430191330116403, 0.23171119111114735),
+            P = (0.08528408845676129, 0.22077246544174978),
+        ]
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -149,11 +156,11 @@ fn offset_slider_crank() {
     // N = 4; P_I = 3 pins + 1 prismatic = 4; G = 9 − 8 = 1.
     assert_counts!(OffsetSliderCrank, dof: 1, links: 4, lower: 4, higher: 0, equations: 9, unknowns: 9);
     let a = (0.042132444371543794, 0.035353318532759664);
-    assert_reproduces!(OffsetSliderCrank, angle((0.0, 0.0), a), [
-        O2 = (0.0, 0.0),
-        A = a,
-        B = (0.23103914733547787, 0.015),
-    ]);
+    assert_reproduces!(
+        OffsetSliderCrank,
+        angle((0.0, 0.0), a),
+        [O2 = (0.0, 0.0), A = a, B = (0.23103914733547787, 0.015),]
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -208,13 +215,17 @@ fn quick_return_crank_shaper() {
     // G = 15 − 14 = 1.
     assert_counts!(CrankShaper, dof: 1, links: 6, lower: 7, higher: 0, equations: 15, unknowns: 15);
     let a = (0.08660254037844388, 0.049999999999999996);
-    assert_reproduces!(CrankShaper, angle((0.0, 0.0), a), [
-        O2 = (0.0, 0.0),
-        O4 = (0.0, -0.3),
-        A = a,
-        C = (0.13210572688919694, 0.2338989388667831),
-        D = (0.27484567281321426, 0.28),
-    ]);
+    assert_reproduces!(
+        CrankShaper,
+        angle((0.0, 0.0), a),
+        [
+            O2 = (0.0, 0.0),
+            O4 = (0.0, -0.3),
+            A = a,
+            C = (0.13210572688919694, 0.2338989388667831),
+            D = (0.27484567281321426, 0.28),
+        ]
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -267,15 +278,19 @@ fn watt_ii_six_bar() {
     // N = 6; P_I = 7 pins; G = 15 − 14 = 1.
     assert_counts!(WattII, dof: 1, links: 6, lower: 7, higher: 0, equations: 15, unknowns: 15);
     let a = (0.049497474683058325, 0.049497474683058325);
-    assert_reproduces!(WattII, angle((0.0, 0.0), a), [
-        O2 = (0.0, 0.0),
-        O4 = (0.26, 0.02),
-        O6 = (0.5, 0.16),
-        A = a,
-        B = (0.24457586704408874, 0.18929883674307502),
-        C = (0.38963382395689183, 0.09546569873998104),
-        D = (0.442738473050409, 0.2986402449918539),
-    ]);
+    assert_reproduces!(
+        WattII,
+        angle((0.0, 0.0), a),
+        [
+            O2 = (0.0, 0.0),
+            O4 = (0.26, 0.02),
+            O6 = (0.5, 0.16),
+            A = a,
+            B = (0.24457586704408874, 0.18929883674307502),
+            C = (0.38963382395689183, 0.09546569873998104),
+            D = (0.442738473050409, 0.2986402449918539),
+        ]
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -328,15 +343,19 @@ fn stephenson_iii_six_bar() {
     // N = 6; P_I = 7 pins; G = 15 − 14 = 1.
     assert_counts!(StephensonIII, dof: 1, links: 6, lower: 7, higher: 0, equations: 15, unknowns: 15);
     let a = (0.025651510749425156, 0.07047694655894313);
-    assert_reproduces!(StephensonIII, angle((0.0, 0.0), a), [
-        O2 = (0.0, 0.0),
-        O4 = (0.28, 0.0),
-        O6 = (-0.05, 0.36),
-        A = a,
-        B = (0.24168333561431513, 0.1962952705246736),
-        C = (0.06173691110908896, 0.2072170060911913),
-        D = (0.11992248500076413, 0.41938307074550024),
-    ]);
+    assert_reproduces!(
+        StephensonIII,
+        angle((0.0, 0.0), a),
+        [
+            O2 = (0.0, 0.0),
+            O4 = (0.28, 0.0),
+            O6 = (-0.05, 0.36),
+            A = a,
+            B = (0.24168333561431513, 0.1962952705246736),
+            C = (0.06173691110908896, 0.2072170060911913),
+            D = (0.11992248500076413, 0.41938307074550024),
+        ]
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -374,11 +393,11 @@ fn scotch_yoke() {
     // unknowns 1 + 4 + 1 = 6.
     assert_counts!(ScotchYoke, dof: 1, links: 3, lower: 2, higher: 1, equations: 6, unknowns: 6);
     let a = (0.03856725658119236, 0.045962666587138684);
-    assert_reproduces!(ScotchYoke, angle((0.0, 0.0), a), [
-        O2 = (0.0, 0.0),
-        A = a,
-        Y = (0.2, 0.0),
-    ]);
+    assert_reproduces!(
+        ScotchYoke,
+        angle((0.0, 0.0), a),
+        [O2 = (0.0, 0.0), A = a, Y = (0.2, 0.0),]
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -427,13 +446,17 @@ fn five_bar_two_dof() {
     let a = (-0.03420201433256687, 0.09396926207859084);
     let b = (0.24648800879147695, 0.0996938565740315);
     let q = [angle((0.0, 0.0), a), angle((0.2, 0.0), b)];
-    assert_reproduces!(FiveBar, q, [
-        O1 = (0.0, 0.0),
-        O5 = (0.2, 0.0),
-        A = a,
-        C = (0.11881875982892463, 0.2788601560539779),
-        B = b,
-    ]);
+    assert_reproduces!(
+        FiveBar,
+        q,
+        [
+            O1 = (0.0, 0.0),
+            O5 = (0.2, 0.0),
+            A = a,
+            C = (0.11881875982892463, 0.2788601560539779),
+            B = b,
+        ]
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -475,12 +498,16 @@ fn hydraulic_lever_prismatic_input() {
     // N = 4 (ground, lever, cylinder, rod); P_I = 3 pins + 1 prismatic = 4; G = 9 − 8 = 1.
     assert_counts!(HydraulicLever, dof: 1, links: 4, lower: 4, higher: 0, equations: 9, unknowns: 9);
     // A prismatic input is 0 in the drawing.
-    assert_reproduces!(HydraulicLever, 0.0, [
-        O = (0.0, 0.0),
-        C0 = (0.12, -0.42),
-        L = (0.26, 0.04),
-        E = (0.72, 0.15),
-    ]);
+    assert_reproduces!(
+        HydraulicLever,
+        0.0,
+        [
+            O = (0.0, 0.0),
+            C0 = (0.12, -0.42),
+            L = (0.26, 0.04),
+            E = (0.72, 0.15),
+        ]
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -552,22 +579,28 @@ fn jansen_leg() {
     // G = 3·7 − 2·10 = 1; equations 21; unknowns 1 + 20 = 21.
     assert_counts!(JansenLeg, dof: 1, links: 8, lower: 10, higher: 0, equations: 21, unknowns: 21);
     let a = (0.07500000000000001, 0.12990381056766578);
-    assert_reproduces!(JansenLeg, angle((0.0, 0.0), a), [
-        O = (0.0, 0.0),
-        B = (-0.38, -0.078),
-        A = a,
-        C = (-0.38009468552880044, 0.3369999891983742),
-        D = (-0.7801557322982775, -0.051992502834197214),
-        E = (-0.19733495562067804, -0.42596908133036826),
-        F = (-0.5614050494921081, -0.3796876946998007),
-        G = (-0.18150294681173765, -0.9157132466831304),
-    ]);
+    assert_reproduces!(
+        JansenLeg,
+        angle((0.0, 0.0), a),
+        [
+            O = (0.0, 0.0),
+            B = (-0.38, -0.078),
+            A = a,
+            C = (-0.38009468552880044, 0.3369999891983742),
+            D = (-0.7801557322982775, -0.051992502834197214),
+            E = (-0.19733495562067804, -0.42596908133036826),
+            F = (-0.5614050494921081, -0.3796876946998007),
+            G = (-0.18150294681173765, -0.9157132466831304),
+        ]
+    );
     // The holy numbers are the link lengths of the drawing (cm → m, to the 1e-12 the
     // drawing's coordinates carry), at the drawing and around the crank's revolution.
     let m = JansenLeg::new();
     for k in 0..12 {
         let q = angle((0.0, 0.0), a) + k as f64 * std::f64::consts::TAU / 12.0;
-        let p = m.pose(q).unwrap_or_else(|e| panic!("crank at {q} rad: {e}"));
+        let p = m
+            .pose(q)
+            .unwrap_or_else(|e| panic!("crank at {q} rad: {e}"));
         let d = |u: &str, v: &str| (p.point(u).unwrap().pos - p.point(v).unwrap().pos).norm();
         for (u, v, len) in [
             ("O", "A", 0.15),
@@ -582,7 +615,11 @@ fn jansen_leg() {
             ("F", "G", 0.657),
             ("E", "G", 0.49),
         ] {
-            assert!((d(u, v) - len).abs() < 1e-12, "crank at {q} rad: |{u}{v}| = {} m, holy number {len} m", d(u, v));
+            assert!(
+                (d(u, v) - len).abs() < 1e-12,
+                "crank at {q} rad: |{u}{v}| = {} m, holy number {len} m",
+                d(u, v)
+            );
         }
         // The frame stays put.
         assert!((p.point("B").unwrap().pos - Vector2::new(-0.38, -0.078)).norm() < 1e-15);
@@ -641,14 +678,18 @@ fn crank_slider_guide_on_moving_link() {
     // G = 15 − 14 = 1.
     assert_counts!(RockingGuide, dof: 1, links: 6, lower: 7, higher: 0, equations: 15, unknowns: 15);
     let a = (0.0383022221559489, 0.03213938048432696);
-    assert_reproduces!(RockingGuide, angle((0.0, 0.0), a), [
-        O2 = (0.0, 0.0),
-        O4 = (0.25, 0.2),
-        A = a,
-        D = (-0.037587704831436336, 0.013680805733026755),
-        C = (0.14260434302204866, 0.25353664971096146),
-        B = (0.3394963808149595, 0.15538612524086548),
-    ]);
+    assert_reproduces!(
+        RockingGuide,
+        angle((0.0, 0.0), a),
+        [
+            O2 = (0.0, 0.0),
+            O4 = (0.25, 0.2),
+            A = a,
+            D = (-0.037587704831436336, 0.013680805733026755),
+            C = (0.14260434302204866, 0.25353664971096146),
+            B = (0.3394963808149595, 0.15538612524086548),
+        ]
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -700,16 +741,24 @@ fn double_parallelogram_allow_redundant() {
     // struct has no reaction solver), the driver action is still determinate.
     assert_counts!(CoupledWheels, dof: 1, links: 5, lower: 6, higher: 0, equations: 12, unknowns: 13);
     assert_eq!(grubler!(CoupledWheels), 0);
-    assert_eq!(CoupledWheels::UNKNOWNS - CoupledWheels::EQUATIONS, 1, "one redundant constraint");
+    assert_eq!(
+        CoupledWheels::UNKNOWNS - CoupledWheels::EQUATIONS,
+        1,
+        "one redundant constraint"
+    );
     let a1 = (0.05, 0.08660254037844387);
-    assert_reproduces!(CoupledWheels, angle((0.0, 0.0), a1), [
-        O1 = (0.0, 0.0),
-        O2 = (0.8, 0.0),
-        O3 = (1.6, 0.0),
-        A1 = a1,
-        A2 = (0.85, 0.08660254037844387),
-        A3 = (1.65, 0.08660254037844387),
-    ]);
+    assert_reproduces!(
+        CoupledWheels,
+        angle((0.0, 0.0), a1),
+        [
+            O1 = (0.0, 0.0),
+            O2 = (0.8, 0.0),
+            O3 = (1.6, 0.0),
+            A1 = a1,
+            A2 = (0.85, 0.08660254037844387),
+            A3 = (1.65, 0.08660254037844387),
+        ]
+    );
 }
 
 #[test]

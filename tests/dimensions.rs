@@ -70,7 +70,10 @@ mechanism! {
 /// acos((d² + c² − r²)/(2 d c)), turned counter-clockwise for `left`.
 fn four_bar_b(left: bool) -> (Vector2<f64>, Vector2<f64>) {
     let (crank, coupler, rocker) = (0.08, 0.26, 0.19);
-    let a = Vector2::new(crank * 60f64.to_radians().cos(), crank * 60f64.to_radians().sin());
+    let a = Vector2::new(
+        crank * 60f64.to_radians().cos(),
+        crank * 60f64.to_radians().sin(),
+    );
     let o4 = Vector2::new(0.3, 0.04);
     let d = (o4 - a).norm();
     let base = (o4.y - a.y).atan2(o4.x - a.x);
@@ -80,15 +83,36 @@ fn four_bar_b(left: bool) -> (Vector2<f64>, Vector2<f64>) {
 }
 
 fn near(what: &str, x: Vector2<f64>, y: Vector2<f64>, tol: f64) {
-    assert!((x - y).norm() <= tol, "{what}: {x:?} against {y:?} ({:.2e} > {tol:.0e})", (x - y).norm());
+    assert!(
+        (x - y).norm() <= tol,
+        "{what}: {x:?} against {y:?} ({:.2e} > {tol:.0e})",
+        (x - y).norm()
+    );
 }
 
 #[test]
 fn a_four_bar_from_its_lengths_on_both_branches() {
     let (l, r) = (FourBarLeft::new(), FourBarRight::new());
     let (pl, pr) = (l.params(), r.params());
-    let drawn = |p: &FourBarLeftParams| [p.points.A, p.points.B, p.points.O4, p.links.crank.cg, p.links.coupler.cg, p.links.rocker.cg];
-    let right = FourBarLeftParams { points: FourBarLeftParamsPoints { O2: pr.points.O2, O4: pr.points.O4, A: pr.points.A, B: pr.points.B }, ..pl.clone() };
+    let drawn = |p: &FourBarLeftParams| {
+        [
+            p.points.A,
+            p.points.B,
+            p.points.O4,
+            p.links.crank.cg,
+            p.links.coupler.cg,
+            p.links.rocker.cg,
+        ]
+    };
+    let right = FourBarLeftParams {
+        points: FourBarLeftParamsPoints {
+            O2: pr.points.O2,
+            O4: pr.points.O4,
+            A: pr.points.A,
+            B: pr.points.B,
+        },
+        ..pl.clone()
+    };
     let mut right = right;
     right.links.crank.cg = pr.links.crank.cg;
     right.links.coupler.cg = pr.links.coupler.cg;
@@ -97,11 +121,18 @@ fn a_four_bar_from_its_lengths_on_both_branches() {
         let (a, b) = four_bar_b(left);
         near("A", pa, a, 1e-15);
         near("B", pb, b, 1e-14);
-        assert!(((pb - pa).norm() - 0.26).abs() < 1e-15 && ((pb - po4).norm() - 0.19).abs() < 1e-15);
+        assert!(
+            ((pb - pa).norm() - 0.26).abs() < 1e-15 && ((pb - po4).norm() - 0.19).abs() < 1e-15
+        );
         // cgs in each link's frame: along(25 mm) on O2 → A, local(110, 40) mm on A → B.
         let e = (b - a) / 0.26;
         near("crank cg", g2, a * (0.025 / 0.08), 1e-16);
-        near("coupler cg", g3, a + e * 0.110 + Vector2::new(-e.y, e.x) * 0.040, 1e-15);
+        near(
+            "coupler cg",
+            g3,
+            a + e * 0.110 + Vector2::new(-e.y, e.x) * 0.040,
+            1e-15,
+        );
         near("rocker cg", g4, po4 + (b - po4) * (0.095 / 0.19), 1e-15);
     }
     assert_eq!(pl.links.crank.inertia, 5.2e-4);
@@ -110,8 +141,14 @@ fn a_four_bar_from_its_lengths_on_both_branches() {
         let q = (30.0 * k as f64).to_radians();
         let (pl, pr) = (l.pose(q).unwrap(), r.pose(q).unwrap());
         let side = |a: Vector2<f64>, b: Vector2<f64>, o4: Vector2<f64>| (o4 - a).perp(&(b - a));
-        assert!(side(pl.points.A.pos, pl.points.B.pos, pl.points.O4.pos) > 0.0, "left at q = {q}");
-        assert!(side(pr.points.A.pos, pr.points.B.pos, pr.points.O4.pos) < 0.0, "right at q = {q}");
+        assert!(
+            side(pl.points.A.pos, pl.points.B.pos, pl.points.O4.pos) > 0.0,
+            "left at q = {q}"
+        );
+        assert!(
+            side(pr.points.A.pos, pr.points.B.pos, pr.points.O4.pos) < 0.0,
+            "right at q = {q}"
+        );
     }
 }
 
@@ -157,14 +194,29 @@ mechanism! {
 fn a_slider_crank_from_its_lengths_on_both_branches() {
     let (r, l, e) = (0.043, 0.143, 0.006);
     for q in [0.3f64, 1.2, 2.5, 4.0, 5.5] {
-        let (a, s) = (r * Vector2::new(q.cos(), q.sin()), (l * l - (e - r * q.sin()).powi(2)).sqrt());
-        let (f, b) = (SliderForward::new().pose(q).unwrap(), SliderBackward::new().pose(q).unwrap());
+        let (a, s) = (
+            r * Vector2::new(q.cos(), q.sin()),
+            (l * l - (e - r * q.sin()).powi(2)).sqrt(),
+        );
+        let (f, b) = (
+            SliderForward::new().pose(q).unwrap(),
+            SliderBackward::new().pose(q).unwrap(),
+        );
         near("A", f.points.A.pos, a, 1e-15);
         near("B forward", f.points.B.pos, Vector2::new(a.x + s, e), 1e-14);
-        near("B backward", b.points.B.pos, Vector2::new(a.x - s, e), 1e-14);
+        near(
+            "B backward",
+            b.points.B.pos,
+            Vector2::new(a.x - s, e),
+            1e-14,
+        );
     }
     let p = SliderForward::new();
-    assert_eq!(p.params().links.piston.cg, p.params().points.B, "`cg: B` is the point B");
+    assert_eq!(
+        p.params().links.piston.cg,
+        p.params().points.B,
+        "`cg: B` is the point B"
+    );
     assert_eq!(p.params().links.rod.mass, 0.58);
 }
 
@@ -227,7 +279,10 @@ mechanism! {
 
 /// x and y equal to within the rounding of one unit conversion (one ulp of each factor).
 fn same(what: &str, x: f64, y: f64) {
-    assert!((x - y).abs() <= 2.0 * f64::EPSILON * y.abs(), "{what}: {x:e} against {y:e}");
+    assert!(
+        (x - y).abs() <= 2.0 * f64::EPSILON * y.abs(),
+        "{what}: {x:e} against {y:e}"
+    );
 }
 
 #[test]
@@ -248,7 +303,11 @@ fn units_and_expressions_give_the_hand_converted_params() {
         same(what, x.x, y.x);
         same(what, x.y, y.y);
     }
-    for (what, x, y) in [("crank", &u.links.crank, &s.links.crank), ("coupler", &u.links.coupler, &s.links.coupler), ("rocker", &u.links.rocker, &s.links.rocker)] {
+    for (what, x, y) in [
+        ("crank", &u.links.crank, &s.links.crank),
+        ("coupler", &u.links.coupler, &s.links.coupler),
+        ("rocker", &u.links.rocker, &s.links.rocker),
+    ] {
         same(what, x.mass, y.mass);
         same(what, x.inertia, y.inertia);
     }
@@ -302,22 +361,47 @@ fn a_vertical_engine_at_45_degrees_after_top_dead_centre() {
     near("TDC", top.points.B.pos, Vector2::new(0.0, r + l), 1e-15);
     let q = 45f64.to_radians();
     let p = m.pose(q).unwrap();
-    assert!((p.links.crank.angle - 135f64.to_radians()).abs() < 1e-15, "{}", p.links.crank.angle);
+    assert!(
+        (p.links.crank.angle - 135f64.to_radians()).abs() < 1e-15,
+        "{}",
+        p.links.crank.angle
+    );
     // The piston's height in closed form: r cos φ + √(l² − r² sin² φ), φ from TDC.
     let y = r * q.cos() + (l * l - (r * q.sin()).powi(2)).sqrt();
-    near("piston at 45° after TDC", p.points.B.pos, Vector2::new(0.0, y), 1e-15);
+    near(
+        "piston at 45° after TDC",
+        p.points.B.pos,
+        Vector2::new(0.0, y),
+        1e-15,
+    );
     // The motor action's sign is the joint's, whatever the zero: the same torque as the
     // absolute input at θ = q + 90°.
-    let loads = VerticalLoads { gas: Vector2::new(0.0, -2500.0) };
+    let loads = VerticalLoads {
+        gas: Vector2::new(0.0, -2500.0),
+    };
     let abs_loads = VerticalAbsoluteLoads { gas: loads.gas };
     for k in 0..8 {
         let q = 0.1 + 0.8 * k as f64;
-        let (mo, ma) = (m.kinematics(q, 150.0, 30.0).unwrap(), abs.kinematics(q + 90f64.to_radians(), 150.0, 30.0).unwrap());
-        let (t, ta) = (m.driver_action(&mo, &loads).unwrap(), abs.driver_action(&ma, &abs_loads).unwrap());
-        assert!((t - ta).abs() <= 1e-12 * ta.abs().max(1.0), "q = {q}: {t} against {ta}");
+        let (mo, ma) = (
+            m.kinematics(q, 150.0, 30.0).unwrap(),
+            abs.kinematics(q + 90f64.to_radians(), 150.0, 30.0).unwrap(),
+        );
+        let (t, ta) = (
+            m.driver_action(&mo, &loads).unwrap(),
+            abs.driver_action(&ma, &abs_loads).unwrap(),
+        );
+        assert!(
+            (t - ta).abs() <= 1e-12 * ta.abs().max(1.0),
+            "q = {q}: {t} against {ta}"
+        );
         let z = m.acceleration(q, 150.0, 40.0, &loads).unwrap();
-        let za = abs.acceleration(q + 90f64.to_radians(), 150.0, 40.0, &abs_loads).unwrap();
-        assert!((z - za).abs() <= 1e-10 * za.abs().max(1.0), "q̈ at q = {q}: {z} against {za}");
+        let za = abs
+            .acceleration(q + 90f64.to_radians(), 150.0, 40.0, &abs_loads)
+            .unwrap();
+        assert!(
+            (z - za).abs() <= 1e-10 * za.abs().max(1.0),
+            "q̈ at q = {q}: {z} against {za}"
+        );
     }
 }
 
@@ -345,15 +429,26 @@ fn a_prismatic_input_counts_from_its_zero() {
     let m = PistonDriven::new();
     let b0 = m.params().points.B;
     for q in [-0.03, -0.01, 0.0, 0.005] {
-        near("piston", m.pose(q).unwrap().points.B.pos, b0 + Vector2::new(0.01 + q, 0.0), 1e-15);
+        near(
+            "piston",
+            m.pose(q).unwrap().points.B.pos,
+            b0 + Vector2::new(0.01 + q, 0.0),
+            1e-15,
+        );
     }
 }
 
 #[test]
 fn the_run_time_loader_reads_the_same_grammar() {
     let source = include_str!("dimensions.rs");
-    for (name, q) in [("Vertical", 0.7), ("FourBarRight", 1.1), ("SliderBackward", 2.0), ("InUnits", 0.4)] {
-        let rt = Mechanism::from_rust_source(source, name).unwrap_or_else(|e| panic!("{name}: {e}"));
+    for (name, q) in [
+        ("Vertical", 0.7),
+        ("FourBarRight", 1.1),
+        ("SliderBackward", 2.0),
+        ("InUnits", 0.4),
+    ] {
+        let rt =
+            Mechanism::from_rust_source(source, name).unwrap_or_else(|e| panic!("{name}: {e}"));
         let reduced = match name {
             "Vertical" => Vertical::new().reduced(q).unwrap(),
             "FourBarRight" => FourBarRight::new().reduced(q).unwrap(),
@@ -361,7 +456,11 @@ fn the_run_time_loader_reads_the_same_grammar() {
             _ => InUnits::new().reduced(q).unwrap(),
         };
         let i = OneDof::reduced(&rt, q).unwrap().inertia;
-        assert!((i - reduced.inertia).abs() <= 1e-12 * reduced.inertia, "{name}: I* {i} against {}", reduced.inertia);
+        assert!(
+            (i - reduced.inertia).abs() <= 1e-12 * reduced.inertia,
+            "{name}: I* {i} against {}",
+            reduced.inertia
+        );
     }
 }
 
@@ -370,11 +469,21 @@ fn the_run_time_loader_explains_a_missing_branch_word() {
     let text = include_str!("dimensions.rs");
     let start = text.find("pub struct FourBarLeft").unwrap();
     let body = &text[start..text[start..].find("\n}\n").unwrap() + start];
-    let bad = body.replace("circle_circle(A, coupler, O4, rocker, left)", "circle_circle(A, coupler, O4, rocker)");
+    let bad = body.replace(
+        "circle_circle(A, coupler, O4, rocker, left)",
+        "circle_circle(A, coupler, O4, rocker)",
+    );
     match Mechanism::from_dsl(&bad) {
         Err(MechError::Invalid(msg)) => {
-            assert!(msg.contains("two points satisfy these lengths") && msg.contains("add `left` or `right`"), "{msg}");
-            assert!(msg.lines().next().unwrap().contains(':'), "a location first: {msg}");
+            assert!(
+                msg.contains("two points satisfy these lengths")
+                    && msg.contains("add `left` or `right`"),
+                "{msg}"
+            );
+            assert!(
+                msg.lines().next().unwrap().contains(':'),
+                "a location first: {msg}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -386,7 +495,10 @@ fn the_run_time_loader_explains_a_missing_branch_word() {
 fn the_readme_mechanism_is_valid() {
     let readme = include_str!("../README.md");
     let at = readme.find("pub struct SliderCrank").unwrap();
-    let (start, end) = (readme[..at].rfind("```rust").unwrap() + 7, at + readme[at..].find("```").unwrap());
+    let (start, end) = (
+        readme[..at].rfind("```rust").unwrap() + 7,
+        at + readme[at..].find("```").unwrap(),
+    );
     let m = Mechanism::from_rust_source(&readme[start..end], "SliderCrank").unwrap();
     let (r, l, e) = (0.05, 0.225, 0.012);
     let q = 0.7f64;

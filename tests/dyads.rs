@@ -55,17 +55,32 @@ mechanism! {
 #[test]
 fn rpp_block_yoke_matches_pin_in_slot_yoke() {
     let (a, b) = (ScotchYoke::new(), YokeWithBlock::new());
-    let la = ScotchYokeLoads { resist: Vector2::new(-120.0, 15.0), drag: -1.5 };
-    let lb = YokeWithBlockLoads { resist: la.resist, drag: la.drag };
+    let la = ScotchYokeLoads {
+        resist: Vector2::new(-120.0, 15.0),
+        drag: -1.5,
+    };
+    let lb = YokeWithBlockLoads {
+        resist: la.resist,
+        drag: la.drag,
+    };
     for k in 0..24 {
         let q = 0.26 * k as f64;
-        let (ma, mb) = (a.kinematics(q, 14.0, -5.0).unwrap(), b.kinematics(q, 14.0, -5.0).unwrap());
+        let (ma, mb) = (
+            a.kinematics(q, 14.0, -5.0).unwrap(),
+            b.kinematics(q, 14.0, -5.0).unwrap(),
+        );
         let (ya, yb) = (ma.links.yoke, mb.links.yoke);
         assert!((ya.cg - yb.cg).norm() < 1e-14, "q={q}");
         assert!((ya.cg_vel - yb.cg_vel).norm() < 1e-13);
         assert!((ya.cg_acc - yb.cg_acc).norm() < 1e-11);
-        assert!((mb.links.block.angle - 0.0).abs() < 1e-15, "the block keeps the yoke's orientation");
-        let (fa, fb) = (a.kinetostatics(&ma, &la).unwrap(), b.kinetostatics(&mb, &lb).unwrap());
+        assert!(
+            (mb.links.block.angle - 0.0).abs() < 1e-15,
+            "the block keeps the yoke's orientation"
+        );
+        let (fa, fb) = (
+            a.kinetostatics(&ma, &la).unwrap(),
+            b.kinetostatics(&mb, &lb).unwrap(),
+        );
         let scale = fa.joints.guide.force.norm().max(fa.driver.abs()).max(1.0);
         assert!((fa.driver - fb.driver).abs() < 1e-12 * scale);
         assert!((fa.joints.guide.force - fb.joints.guide.force).norm() < 1e-12 * scale);
@@ -89,14 +104,26 @@ fn prp_slider_follows_cotangent() {
         let x = h * cs / sn;
         let xd = -h * qd / (sn * sn);
         let xdd = -h * qdd / (sn * sn) + 2.0 * h * qd * qd * cs / (sn * sn * sn);
-        assert!((s.pos - Vector2::new(x, h)).norm() < 1e-15 * (1.0 + x.abs()), "q={q}");
+        assert!(
+            (s.pos - Vector2::new(x, h)).norm() < 1e-15 * (1.0 + x.abs()),
+            "q={q}"
+        );
         assert!((s.vel - Vector2::new(xd, 0.0)).norm() < 1e-13 * (1.0 + xd.abs()));
         assert!((s.acc - Vector2::new(xdd, 0.0)).norm() < 1e-12 * (1.0 + xdd.abs()));
         // A one-point link's angle is its rotation since the drawing: the crank's.
         let turned = mo.links.crank.angle - std::f64::consts::FRAC_PI_4;
-        assert!((mo.links.block.angle - turned).abs() < 1e-14, "block {} crank {}", mo.links.block.angle, turned);
-        let f = m.kinetostatics(&mo, &SlottedCrankSliderLoads::default()).unwrap();
-        let vp = m.driver_action(&mo, &SlottedCrankSliderLoads::default()).unwrap();
+        assert!(
+            (mo.links.block.angle - turned).abs() < 1e-14,
+            "block {} crank {}",
+            mo.links.block.angle,
+            turned
+        );
+        let f = m
+            .kinetostatics(&mo, &SlottedCrankSliderLoads::default())
+            .unwrap();
+        let vp = m
+            .driver_action(&mo, &SlottedCrankSliderLoads::default())
+            .unwrap();
         assert!((f.driver - vp).abs() < 1e-12 * f.driver.abs().max(1e-3));
     }
 }

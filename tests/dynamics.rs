@@ -13,8 +13,8 @@ mod mechanisms;
 mod support;
 
 use mech::dynamics::{
-    equation_of_motion, lagrange_acceleration, lagrange_equations, mass_matrix, quinn_coefficients, total_energy, velocity_terms,
-    EnergyMethod,
+    equation_of_motion, lagrange_acceleration, lagrange_equations, mass_matrix, quinn_coefficients,
+    total_energy, velocity_terms, EnergyMethod,
 };
 use mech::ode::{integrate, sample, solve, Dop853, DormandPrince, Event, Rk4, Stats};
 use mech::prelude::*;
@@ -60,12 +60,21 @@ static ALLOC: counting::Counting = counting::Counting;
 // The reference trajectories
 
 fn dynamics_reference() -> Value {
-    let path = format!("{}/tests/data/slider_crank.dynamics.json", env!("CARGO_MANIFEST_DIR"));
-    serde_json::from_str(&std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))).unwrap()
+    let path = format!(
+        "{}/tests/data/slider_crank.dynamics.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    serde_json::from_str(&std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}")))
+        .unwrap()
 }
 
 fn case<'a>(doc: &'a Value, name: &str) -> &'a Value {
-    doc["cases"].as_array().unwrap().iter().find(|c| c["name"] == name).unwrap_or_else(|| panic!("no case {name}"))
+    doc["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["name"] == name)
+        .unwrap_or_else(|| panic!("no case {name}"))
 }
 
 /// (t, q, q̇, q̈) of every sample of a case.
@@ -99,7 +108,10 @@ fn actions(name: &str) -> impl Fn(f64, f64, f64) -> (f64, SliderCrankLoads) {
 
 /// Both relative errors of (q, q̇) against a sample, relative to |q| and |q̇|.
 fn rel_err(y: &[f64; 2], s: &[f64; 4]) -> (f64, f64) {
-    ((y[0] - s[1]).abs() / s[1].abs(), (y[1] - s[2]).abs() / s[2].abs())
+    (
+        (y[0] - s[1]).abs() / s[1].abs(),
+        (y[1] - s[2]).abs() / s[2].abs(),
+    )
 }
 
 const CASES: [&str; 2] = ["constant_torque", "time_and_speed"];
@@ -115,7 +127,13 @@ fn slider_crank_right_hand_side_matches_reference() {
         for s in samples(case(&doc, name)) {
             let dy = f(s[0], &[s[1], s[2]]).unwrap();
             assert_eq!(dy[0], s[2]);
-            assert!((dy[1] - s[3]).abs() <= 1e-11 * s[3].abs().max(1.0), "{name} t = {}: q'' {} vs {}", s[0], dy[1], s[3]);
+            assert!(
+                (dy[1] - s[3]).abs() <= 1e-11 * s[3].abs().max(1.0),
+                "{name} t = {}: q'' {} vs {}",
+                s[0],
+                dy[1],
+                s[3]
+            );
         }
     }
 }
@@ -138,13 +156,24 @@ fn slider_crank_time_integration_matches_reference() {
             let f = equation_of_motion(&m, actions(name));
             let stats = match label {
                 "dop853" => sample(&mut Dop853::new(1e-13, 1e-13), f, 0.0, y0, &times, &mut out),
-                "dp5" => sample(&mut DormandPrince::new(1e-12, 1e-12), f, 0.0, y0, &times, &mut out),
+                "dp5" => sample(
+                    &mut DormandPrince::new(1e-12, 1e-12),
+                    f,
+                    0.0,
+                    y0,
+                    &times,
+                    &mut out,
+                ),
                 _ => sample(&mut Rk4 { h: 2e-5 }, f, 0.0, y0, &times, &mut out),
             }
             .unwrap();
             for (y, s) in out.iter().zip(&s) {
                 let (eq, eqd) = rel_err(y, s);
-                assert!(eq <= tol && eqd <= tol, "{name} {label} t = {}: rel. error q {eq:.2e}, q' {eqd:.2e} ({stats:?})", s[0]);
+                assert!(
+                    eq <= tol && eqd <= tol,
+                    "{name} {label} t = {}: rel. error q {eq:.2e}, q' {eqd:.2e} ({stats:?})",
+                    s[0]
+                );
             }
         }
     }
@@ -156,7 +185,14 @@ fn slider_crank_time_integration_matches_reference() {
 fn lagrange_route_equals_zhukovski_route_for_one_dof() {
     let m = SliderCrank::new();
     let act = actions("time_and_speed");
-    let zh = integrate(&mut Dop853::new(1e-12, 1e-12), equation_of_motion(&m, &act), 0.0, [0.3, 20.0], 0.1).unwrap();
+    let zh = integrate(
+        &mut Dop853::new(1e-12, 1e-12),
+        equation_of_motion(&m, &act),
+        0.0,
+        [0.3, 20.0],
+        0.1,
+    )
+    .unwrap();
     let lg = integrate(
         &mut Dop853::new(1e-12, 1e-12),
         lagrange_equations(&m, |t, q: &[f64; 1], qd: &[f64; 1]| {
@@ -169,7 +205,12 @@ fn lagrange_route_equals_zhukovski_route_for_one_dof() {
     )
     .unwrap();
     for i in 0..2 {
-        assert!((zh.y[i] - lg.y[i]).abs() <= 1e-10 * zh.y[i].abs(), "{i}: {} vs {}", zh.y[i], lg.y[i]);
+        assert!(
+            (zh.y[i] - lg.y[i]).abs() <= 1e-10 * zh.y[i].abs(),
+            "{i}: {} vs {}",
+            zh.y[i],
+            lg.y[i]
+        );
     }
 }
 
@@ -188,24 +229,64 @@ fn energy_method_agrees_with_reference_and_time_integration() {
     let mut em = EnergyMethod::new(&m, 0.0, 0.3, 20.0, |_| (3.0, zero), 1e-12).unwrap();
     for s in samples(c).iter().skip(1) {
         let p = em.advance_to(s[1]).unwrap();
-        assert!((p.omega - s[2]).abs() <= 1e-9 * s[2], "omega at q = {}: {} vs {}", s[1], p.omega, s[2]);
-        assert!((p.t - s[0]).abs() <= 1e-9 * (1.0 + s[0]), "t at q = {}: {} vs {}", s[1], p.t, s[0]);
+        assert!(
+            (p.omega - s[2]).abs() <= 1e-9 * s[2],
+            "omega at q = {}: {} vs {}",
+            s[1],
+            p.omega,
+            s[2]
+        );
+        assert!(
+            (p.t - s[0]).abs() <= 1e-9 * (1.0 + s[0]),
+            "t at q = {}: {} vs {}",
+            s[1],
+            p.t,
+            s[0]
+        );
     }
 
     let mut em = EnergyMethod::new(&m, 0.0, 0.3, 20.0, |_| (3.0, zero), 1e-12).unwrap();
     for k in [1.0, 5.0, 12.0] {
         let target = 0.3 + TAU * k;
         let mut g = |_: f64, y: &[f64; 2]| y[0] - target;
-        let mut ev = Event { g: &mut g, direction: 1, t_tol: 1e-15 };
-        let r = solve(&mut Dop853::new(1e-13, 1e-13), equation_of_motion(&m, actions("constant_torque")), 0.0, [0.3, 20.0], 10.0, Some(&mut ev), None)
-            .unwrap();
+        let mut ev = Event {
+            g: &mut g,
+            direction: 1,
+            t_tol: 1e-15,
+        };
+        let r = solve(
+            &mut Dop853::new(1e-13, 1e-13),
+            equation_of_motion(&m, actions("constant_torque")),
+            0.0,
+            [0.3, 20.0],
+            10.0,
+            Some(&mut ev),
+            None,
+        )
+        .unwrap();
         assert!(r.event);
         let p = em.advance_to(target).unwrap();
-        assert!((p.omega - r.y[1]).abs() <= 1e-9 * r.y[1], "k = {k}: omega {} vs {}", p.omega, r.y[1]);
-        assert!((p.t - r.t).abs() <= 1e-9 * r.t, "k = {k}: t {} vs {}", p.t, r.t);
+        assert!(
+            (p.omega - r.y[1]).abs() <= 1e-9 * r.y[1],
+            "k = {k}: omega {} vs {}",
+            p.omega,
+            r.y[1]
+        );
+        assert!(
+            (p.t - r.t).abs() <= 1e-9 * r.t,
+            "k = {k}: t {} vs {}",
+            p.t,
+            r.t
+        );
         // Work of the constant torque plus the (conservative) gravity: W = 3·2πk − ΔV.
-        let dv = total_energy(&m, &[target], &[0.0]).unwrap() - total_energy(&m, &[0.3], &[0.0]).unwrap();
-        assert!((p.work - (3.0 * TAU * k - dv)).abs() <= 1e-10 * p.work.abs(), "work {} vs {}", p.work, 3.0 * TAU * k - dv);
+        let dv = total_energy(&m, &[target], &[0.0]).unwrap()
+            - total_energy(&m, &[0.3], &[0.0]).unwrap();
+        assert!(
+            (p.work - (3.0 * TAU * k - dv)).abs() <= 1e-10 * p.work.abs(),
+            "work {} vs {}",
+            p.work,
+            3.0 * TAU * k - dv
+        );
     }
 }
 
@@ -222,10 +303,27 @@ fn energy_method_reports_the_stall() {
         other => panic!("expected a stall, got {other:?}"),
     };
     let mut g = |_: f64, y: &[f64; 2]| y[1];
-    let mut ev = Event { g: &mut g, direction: -1, t_tol: 1e-14 };
-    let r = solve(&mut Dop853::new(1e-13, 1e-13), equation_of_motion(&m, |_, _, _| (-1.0, zero)), 0.0, [0.3, 20.0], 10.0, Some(&mut ev), None).unwrap();
+    let mut ev = Event {
+        g: &mut g,
+        direction: -1,
+        t_tol: 1e-14,
+    };
+    let r = solve(
+        &mut Dop853::new(1e-13, 1e-13),
+        equation_of_motion(&m, |_, _, _| (-1.0, zero)),
+        0.0,
+        [0.3, 20.0],
+        10.0,
+        Some(&mut ev),
+        None,
+    )
+    .unwrap();
     assert!(r.event && r.y[0] < 5.0);
-    assert!((stall - r.y[0]).abs() < 1e-8, "stall at {stall}, time integration stops at {}", r.y[0]);
+    assert!(
+        (stall - r.y[0]).abs() < 1e-8,
+        "stall at {stall}, time integration stops at {}",
+        r.y[0]
+    );
 }
 
 /// From rest (ω0 = 0) the energy method moves in the direction of the moment and its
@@ -238,10 +336,33 @@ fn energy_method_from_rest() {
     for target in [0.31, 0.8, 4.0] {
         let p = em.advance_to(target).unwrap();
         let mut g = |_: f64, y: &[f64; 2]| y[0] - target;
-        let mut ev = Event { g: &mut g, direction: 1, t_tol: 1e-15 };
-        let r = solve(&mut Dop853::new(1e-13, 1e-13), equation_of_motion(&m, |_, _, _| (3.0, zero)), 0.0, [0.3, 0.0], 10.0, Some(&mut ev), None).unwrap();
-        assert!((p.omega - r.y[1]).abs() <= 1e-9 * r.y[1], "q = {target}: omega {} vs {}", p.omega, r.y[1]);
-        assert!((p.t - r.t).abs() <= 1e-9 * r.t, "q = {target}: t {} vs {}", p.t, r.t);
+        let mut ev = Event {
+            g: &mut g,
+            direction: 1,
+            t_tol: 1e-15,
+        };
+        let r = solve(
+            &mut Dop853::new(1e-13, 1e-13),
+            equation_of_motion(&m, |_, _, _| (3.0, zero)),
+            0.0,
+            [0.3, 0.0],
+            10.0,
+            Some(&mut ev),
+            None,
+        )
+        .unwrap();
+        assert!(
+            (p.omega - r.y[1]).abs() <= 1e-9 * r.y[1],
+            "q = {target}: omega {} vs {}",
+            p.omega,
+            r.y[1]
+        );
+        assert!(
+            (p.t - r.t).abs() <= 1e-9 * r.t,
+            "q = {target}: t {} vs {}",
+            p.t,
+            r.t
+        );
     }
 }
 
@@ -249,14 +370,23 @@ fn energy_method_from_rest() {
 // Quinn
 
 fn link_data(file: &str) -> Vec<(String, f64, f64)> {
-    let path = format!("{}/tests/data/{file}.mechanism.json", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/data/{file}.mechanism.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let d: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
     let num = |v: &Value| v.get("float").and_then(|f| f.as_f64()).unwrap_or(0.0);
     d["links"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|l| (l["name"].as_str().unwrap().to_string(), l.get("mass").map_or(0.0, num), l.get("inertia").map_or(0.0, num)))
+        .map(|l| {
+            (
+                l["name"].as_str().unwrap().to_string(),
+                l.get("mass").map_or(0.0, num),
+                l.get("inertia").map_or(0.0, num),
+            )
+        })
         .collect()
 }
 
@@ -284,12 +414,27 @@ macro_rules! quinn_check {
             // The same ratio from Zhukovski's I*: T = ½ I* q̇².
             let qd = c["qd"].as_f64().unwrap();
             let i_star = c["zhukovski"]["I_star"].as_f64().unwrap();
-            assert!((total - 0.5 * i_star * qd * qd).abs() <= 1e-12 * total, "{}: T vs ½ I* q̇²", $file);
+            assert!(
+                (total - 0.5 * i_star * qd * qd).abs() <= 1e-12 * total,
+                "{}: T vs ½ I* q̇²",
+                $file
+            );
             assert_eq!(eps[0], 0.0);
             for (j, name) in $ty::LINK_NAMES.iter().enumerate() {
-                assert!((eps[j + 1] - tj[j] / total).abs() <= 1e-12, "{} q = {q}: eps[{name}] = {} vs {}", $file, eps[j + 1], tj[j] / total);
+                assert!(
+                    (eps[j + 1] - tj[j] / total).abs() <= 1e-12,
+                    "{} q = {q}: eps[{name}] = {} vs {}",
+                    $file,
+                    eps[j + 1],
+                    tj[j] / total
+                );
             }
-            assert!((eps.iter().sum::<f64>() - 1.0).abs() <= 1e-14, "{}: sum {}", $file, eps.iter().sum::<f64>());
+            assert!(
+                (eps.iter().sum::<f64>() - 1.0).abs() <= 1e-14,
+                "{}: sum {}",
+                $file,
+                eps.iter().sum::<f64>()
+            );
         }
     }};
 }
@@ -327,19 +472,33 @@ fn mass_matrix_and_velocity_terms_match_truth() {
     for c in t["configs"].as_array().unwrap() {
         let (q, qd, qdd) = (nums(&c["q"]), nums(&c["qd"]), nums(&c["qdd"]));
         let (q, qd, qdd) = ([q[0], q[1]], [qd[0], qd[1]], [qdd[0], qdd[1]]);
-        let tau: Vec<f64> = c["drivers"].as_array().unwrap().iter().map(|d| d["value"].as_f64().unwrap()).collect();
+        let tau: Vec<f64> = c["drivers"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|d| d["value"].as_f64().unwrap())
+            .collect();
         let mm = mass_matrix(&m, &q).unwrap();
         let b = velocity_terms(&m, &q, &qd, &loads).unwrap();
         let scale = tau.iter().fold(1.0f64, |a, x| a.max(x.abs()));
         for i in 0..2 {
             let got = mm[i][0] * qdd[0] + mm[i][1] * qdd[1] + b[i];
-            assert!((got - tau[i]).abs() <= 1e-12 * scale, "M q'' + b = {got}, truth {}", tau[i]);
+            assert!(
+                (got - tau[i]).abs() <= 1e-12 * scale,
+                "M q'' + b = {got}, truth {}",
+                tau[i]
+            );
         }
         assert!((mm[0][1] - mm[1][0]).abs() <= 1e-13 * mm[0][0].abs().max(mm[1][1].abs()));
         assert!(mm[0][0] > 0.0 && mm[0][0] * mm[1][1] - mm[0][1] * mm[1][0] > 0.0);
         let acc = lagrange_acceleration(&m, &q, &qd, &[tau[0], tau[1]], &loads).unwrap();
         for i in 0..2 {
-            assert!((acc[i] - qdd[i]).abs() <= 1e-10 * qdd[i].abs().max(1.0), "q''[{i}] = {} vs {}", acc[i], qdd[i]);
+            assert!(
+                (acc[i] - qdd[i]).abs() <= 1e-10 * qdd[i].abs().max(1.0),
+                "q''[{i}] = {} vs {}",
+                acc[i],
+                qdd[i]
+            );
         }
     }
 
@@ -352,12 +511,19 @@ fn mass_matrix_and_velocity_terms_match_truth() {
     for c in t["configs"].as_array().unwrap() {
         let (q, qd) = (c["q"].as_f64().unwrap(), c["qd"].as_f64().unwrap());
         let z = &c["zhukovski"];
-        let (i_star, di, m_star) = (z["I_star"].as_f64().unwrap(), z["dI_star_dq"].as_f64().unwrap(), z["M_star"].as_f64().unwrap());
+        let (i_star, di, m_star) = (
+            z["I_star"].as_f64().unwrap(),
+            z["dI_star_dq"].as_f64().unwrap(),
+            z["M_star"].as_f64().unwrap(),
+        );
         let mm = mass_matrix(&m, &[q]).unwrap();
         assert!((mm[0][0] - i_star).abs() <= 1e-12 * i_star);
         let b = velocity_terms(&m, &[q], &[qd], &loads).unwrap()[0];
         let want = 0.5 * di * qd * qd - m_star;
-        assert!((b - want).abs() <= 1e-12 * m_star.abs().max(want.abs()), "b = {b}, want {want}");
+        assert!(
+            (b - want).abs() <= 1e-12 * m_star.abs().max(want.abs()),
+            "b = {b}, want {want}"
+        );
     }
 }
 
@@ -370,7 +536,12 @@ fn five_bar_lagrange_integration_conserves_energy() {
     let m = FiveBar::new();
     let q_ref = [2.0299, 1.0645];
     let k = 20.0;
-    let springs = move |_: f64, q: &[f64; 2], _: &[f64; 2]| ([-k * (q[0] - q_ref[0]), -k * (q[1] - q_ref[1])], FiveBarLoads::default());
+    let springs = move |_: f64, q: &[f64; 2], _: &[f64; 2]| {
+        (
+            [-k * (q[0] - q_ref[0]), -k * (q[1] - q_ref[1])],
+            FiveBarLoads::default(),
+        )
+    };
     let energy = |y: &[f64; 4]| {
         let spring = 0.5 * k * ((y[0] - q_ref[0]).powi(2) + (y[1] - q_ref[1]).powi(2));
         total_energy(&m, &y[..2], &y[2..]).unwrap() + spring
@@ -382,14 +553,42 @@ fn five_bar_lagrange_integration_conserves_energy() {
         use mech::ode::Dense;
         worst = worst.max((energy(&d.y_end()) - e0).abs());
     };
-    let r8 = solve(&mut Dop853::new(1e-12, 1e-12), lagrange_equations(&m, springs), 0.0, y0, 2.0, None, Some(&mut obs)).unwrap();
+    let r8 = solve(
+        &mut Dop853::new(1e-12, 1e-12),
+        lagrange_equations(&m, springs),
+        0.0,
+        y0,
+        2.0,
+        None,
+        Some(&mut obs),
+    )
+    .unwrap();
     assert!(worst <= 1e-10 * e0.abs(), "energy drift {worst:e} of {e0}");
-    let r5 = integrate(&mut DormandPrince::new(1e-11, 1e-12), lagrange_equations(&m, springs), 0.0, y0, 2.0).unwrap();
-    let r4 = integrate(&mut Rk4 { h: 1e-4 }, lagrange_equations(&m, springs), 0.0, y0, 2.0).unwrap();
+    let r5 = integrate(
+        &mut DormandPrince::new(1e-11, 1e-12),
+        lagrange_equations(&m, springs),
+        0.0,
+        y0,
+        2.0,
+    )
+    .unwrap();
+    let r4 = integrate(
+        &mut Rk4 { h: 1e-4 },
+        lagrange_equations(&m, springs),
+        0.0,
+        y0,
+        2.0,
+    )
+    .unwrap();
     for r in [r5, r4] {
         for i in 0..4 {
             let tol = if i < 2 { 1e-8 } else { 1e-7 };
-            assert!((r.y[i] - r8.y[i]).abs() <= tol, "component {i}: {} vs {}", r.y[i], r8.y[i]);
+            assert!(
+                (r.y[i] - r8.y[i]).abs() <= tol,
+                "component {i}: {} vs {}",
+                r.y[i],
+                r8.y[i]
+            );
         }
     }
 }
@@ -421,7 +620,11 @@ fn conservative_four_bar_keeps_its_energy_for_10000_revolutions() {
     for run in 0..1000 {
         let target = q0 + TAU * 10.0;
         let mut g = |_: f64, y: &[f64; 2]| y[0] - target;
-        let mut ev = Event { g: &mut g, direction: 1, t_tol: 1e-13 };
+        let mut ev = Event {
+            g: &mut g,
+            direction: 1,
+            t_tol: 1e-13,
+        };
         let r = solve(
             &mut Dop853::new(RTOL, RTOL),
             equation_of_motion(&m, |_, _, _| (0.0, FourBarLoads::default())),
@@ -432,7 +635,10 @@ fn conservative_four_bar_keeps_its_energy_for_10000_revolutions() {
             None,
         )
         .unwrap();
-        assert!(r.event && r.y[1] > 0.0, "the crank stopped revolving in run {run}");
+        assert!(
+            r.event && r.y[1] > 0.0,
+            "the crank stopped revolving in run {run}"
+        );
         (t, y) = (r.t, [r.y[0] - TAU * 10.0, r.y[1]]);
         work.steps += r.stats.steps;
         work.rhs_evals += r.stats.rhs_evals;
@@ -456,16 +662,51 @@ fn conservative_four_bar_keeps_its_energy_for_10000_revolutions() {
 fn one_dof_stepping_is_allocation_free() {
     let m = SliderCrank::new();
     let act = actions("time_and_speed");
-    let _ = integrate(&mut Rk4 { h: 1e-3 }, equation_of_motion(&m, &act), 0.0, [0.3, 20.0], 0.01).unwrap();
+    let _ = integrate(
+        &mut Rk4 { h: 1e-3 },
+        equation_of_motion(&m, &act),
+        0.0,
+        [0.3, 20.0],
+        0.01,
+    )
+    .unwrap();
     let before = counting::count();
-    let a = integrate(&mut Rk4 { h: 1e-4 }, equation_of_motion(&m, &act), 0.0, [0.3, 20.0], 0.05).unwrap();
-    let b = integrate(&mut DormandPrince::new(1e-10, 1e-10), equation_of_motion(&m, &act), 0.0, [0.3, 20.0], 0.05).unwrap();
+    let a = integrate(
+        &mut Rk4 { h: 1e-4 },
+        equation_of_motion(&m, &act),
+        0.0,
+        [0.3, 20.0],
+        0.05,
+    )
+    .unwrap();
+    let b = integrate(
+        &mut DormandPrince::new(1e-10, 1e-10),
+        equation_of_motion(&m, &act),
+        0.0,
+        [0.3, 20.0],
+        0.05,
+    )
+    .unwrap();
     let mut g = |_: f64, y: &[f64; 2]| y[0] - 2.0;
     let mut ev = Event::new(&mut g);
-    let c = solve(&mut Dop853::new(1e-10, 1e-10), equation_of_motion(&m, &act), 0.0, [0.3, 20.0], 0.05, Some(&mut ev), None).unwrap();
+    let c = solve(
+        &mut Dop853::new(1e-10, 1e-10),
+        equation_of_motion(&m, &act),
+        0.0,
+        [0.3, 20.0],
+        0.05,
+        Some(&mut ev),
+        None,
+    )
+    .unwrap();
     let after = counting::count();
     assert!(a.stats.steps > 0 && b.stats.steps > 0 && c.event);
-    assert_eq!(after - before, 0, "{} allocations while stepping", after - before);
+    assert_eq!(
+        after - before,
+        0,
+        "{} allocations while stepping",
+        after - before
+    );
 }
 
 mechanism! {
@@ -485,34 +726,88 @@ fn bad_input_is_an_error() {
     let z = Massless::new();
     let none = MasslessLoads::default();
     let mut eps = [0.0; 2];
-    assert!(matches!(quinn_coefficients(&z, 0.1, &mut eps), Err(MechError::NonPositiveInertia(_))));
-    assert!(matches!(EnergyMethod::new(&z, 0.0, 0.1, 1.0, |_| (1.0, none), 1e-9).err(), Some(MechError::NonPositiveInertia(_))));
     assert!(matches!(
-        integrate(&mut Rk4 { h: 0.1 }, equation_of_motion(&z, |_, _, _| (1.0, none)), 0.0, [0.0, 1.0], 1.0),
+        quinn_coefficients(&z, 0.1, &mut eps),
         Err(MechError::NonPositiveInertia(_))
     ));
-    assert!(matches!(lagrange_acceleration(&z, &[0.0], &[1.0], &[1.0], &none), Err(MechError::NonPositiveInertia(_))));
+    assert!(matches!(
+        EnergyMethod::new(&z, 0.0, 0.1, 1.0, |_| (1.0, none), 1e-9).err(),
+        Some(MechError::NonPositiveInertia(_))
+    ));
+    assert!(matches!(
+        integrate(
+            &mut Rk4 { h: 0.1 },
+            equation_of_motion(&z, |_, _, _| (1.0, none)),
+            0.0,
+            [0.0, 1.0],
+            1.0
+        ),
+        Err(MechError::NonPositiveInertia(_))
+    ));
+    assert!(matches!(
+        lagrange_acceleration(&z, &[0.0], &[1.0], &[1.0], &none),
+        Err(MechError::NonPositiveInertia(_))
+    ));
 
     let m = SliderCrank::new();
     let zero = SliderCrankLoads::default();
-    assert!(matches!(quinn_coefficients(&m, 0.1, &mut eps), Err(MechError::InvalidInput(_))));
-    assert!(matches!(quinn_coefficients(&m, f64::NAN, &mut [0.0; 4]), Err(MechError::InvalidInput(_))));
-    assert!(matches!(EnergyMethod::new(&m, 0.0, 0.3, 20.0, |_| (3.0, zero), 0.0).err(), Some(MechError::InvalidInput(_))));
-    assert!(matches!(EnergyMethod::new(&m, 0.0, f64::NAN, 20.0, |_| (3.0, zero), 1e-9).err(), Some(MechError::InvalidInput(_))));
+    assert!(matches!(
+        quinn_coefficients(&m, 0.1, &mut eps),
+        Err(MechError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        quinn_coefficients(&m, f64::NAN, &mut [0.0; 4]),
+        Err(MechError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        EnergyMethod::new(&m, 0.0, 0.3, 20.0, |_| (3.0, zero), 0.0).err(),
+        Some(MechError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        EnergyMethod::new(&m, 0.0, f64::NAN, 20.0, |_| (3.0, zero), 1e-9).err(),
+        Some(MechError::InvalidInput(_))
+    ));
     let mut em = EnergyMethod::new(&m, 0.0, 0.3, 20.0, |_| (3.0, zero), 1e-9).unwrap();
-    assert!(matches!(em.advance_to(0.2), Err(MechError::InvalidInput(_))), "backwards");
-    assert!(matches!(em.advance_to(f64::INFINITY), Err(MechError::InvalidInput(_))));
+    assert!(
+        matches!(em.advance_to(0.2), Err(MechError::InvalidInput(_))),
+        "backwards"
+    );
     assert!(matches!(
-        integrate(&mut Dop853::new(1e-9, 1e-9), equation_of_motion(&m, |_, _, _| (3.0, zero)), 0.0, [f64::NAN, 1.0], 1.0),
+        em.advance_to(f64::INFINITY),
         Err(MechError::InvalidInput(_))
     ));
     assert!(matches!(
-        integrate(&mut Dop853::new(1e-9, 1e-9), equation_of_motion(&m, |_, _, _| (f64::NAN, zero)), 0.0, [0.3, 1.0], 1.0),
+        integrate(
+            &mut Dop853::new(1e-9, 1e-9),
+            equation_of_motion(&m, |_, _, _| (3.0, zero)),
+            0.0,
+            [f64::NAN, 1.0],
+            1.0
+        ),
         Err(MechError::InvalidInput(_))
     ));
-    assert!(matches!(mass_matrix(&m, &[0.1, 0.2]), Err(MechError::InvalidInput(_))));
-    assert!(matches!(total_energy(&m, &[0.1, 0.2], &[0.0, 0.0]), Err(MechError::InvalidInput(_))));
+    assert!(matches!(
+        integrate(
+            &mut Dop853::new(1e-9, 1e-9),
+            equation_of_motion(&m, |_, _, _| (f64::NAN, zero)),
+            0.0,
+            [0.3, 1.0],
+            1.0
+        ),
+        Err(MechError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        mass_matrix(&m, &[0.1, 0.2]),
+        Err(MechError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        total_energy(&m, &[0.1, 0.2], &[0.0, 0.0]),
+        Err(MechError::InvalidInput(_))
+    ));
     let mut wrong = lagrange_equations(&m, |_, _: &[f64; 1], _: &[f64; 1]| ([0.0], zero));
-    assert!(matches!(wrong(0.0, &[0.1, 0.2, 0.3]), Err(MechError::InvalidInput(_))));
+    assert!(matches!(
+        wrong(0.0, &[0.1, 0.2, 0.3]),
+        Err(MechError::InvalidInput(_))
+    ));
     let _: Stats = Stats::default();
 }

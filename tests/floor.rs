@@ -56,11 +56,21 @@ struct Samples {
 struct Report(BTreeMap<&'static str, Samples>);
 
 impl Report {
-    fn record(&mut self, name: &'static str, q: f64, scalar: bool, pairs: &[(f64, f64)], angle: bool) {
+    fn record(
+        &mut self,
+        name: &'static str,
+        q: f64,
+        scalar: bool,
+        pairs: &[(f64, f64)],
+        angle: bool,
+    ) {
         let mut diff: f64 = 0.0;
         let mut big: f64 = 0.0;
         for &(g, h) in pairs {
-            assert!(g.is_finite() && h.is_finite(), "{name} at q = {q}: generated {g}, hand {h}");
+            assert!(
+                g.is_finite() && h.is_finite(),
+                "{name} at q = {q}: generated {g}, hand {h}"
+            );
             let d = if angle { wrap(g - h) } else { g - h };
             diff = diff.max(d.abs());
             big = big.max(g.abs()).max(h.abs());
@@ -70,7 +80,10 @@ impl Report {
         s.rows.push((q, diff, big));
     }
     fn vecs(&mut self, name: &'static str, q: f64, pairs: &[(Vector2<f64>, Vector2<f64>)]) {
-        let flat: Vec<(f64, f64)> = pairs.iter().flat_map(|(g, h)| [(g.x, h.x), (g.y, h.y)]).collect();
+        let flat: Vec<(f64, f64)> = pairs
+            .iter()
+            .flat_map(|(g, h)| [(g.x, h.x), (g.y, h.y)])
+            .collect();
         self.record(name, q, false, &flat, false);
     }
     fn scalars(&mut self, name: &'static str, q: f64, pairs: &[(f64, f64)]) {
@@ -85,7 +98,10 @@ impl Report {
     /// Print the worst relative error of each quantity and fail on any above `TOL`.
     fn check(&self, expected: &[&str]) {
         for name in expected {
-            assert!(self.0.contains_key(name), "quantity {name} was not compared");
+            assert!(
+                self.0.contains_key(name),
+                "quantity {name} was not compared"
+            );
         }
         let mut failures = Vec::new();
         for (name, s) in &self.0 {
@@ -93,8 +109,18 @@ impl Report {
             let sweep_big = s.rows.iter().fold(0.0f64, |m, r| m.max(r.2));
             let mut worst = (0.0f64, 0.0);
             for &(q, diff, big) in &s.rows {
-                let scale = if s.scalar { sweep_big } else { big.max(if name.contains("angle") { 1.0 } else { 0.0 }) };
-                let rel = if scale > 0.0 { diff / scale } else if diff == 0.0 { 0.0 } else { f64::INFINITY };
+                let scale = if s.scalar {
+                    sweep_big
+                } else {
+                    big.max(if name.contains("angle") { 1.0 } else { 0.0 })
+                };
+                let rel = if scale > 0.0 {
+                    diff / scale
+                } else if diff == 0.0 {
+                    0.0
+                } else {
+                    f64::INFINITY
+                };
                 if rel > worst.0 {
                     worst = (rel, q);
                 }
@@ -102,9 +128,16 @@ impl Report {
                     failures.push(format!("{name} at q = {q:.6}: |generated − hand| = {diff:.3e}, scale {scale:.3e}, relative {rel:.3e}"));
                 }
             }
-            println!("{name:<40} worst relative {:.2e} (q = {:.4})", worst.0, worst.1);
+            println!(
+                "{name:<40} worst relative {:.2e} (q = {:.4})",
+                worst.0, worst.1
+            );
         }
-        assert!(failures.is_empty(), "hand-written and generated disagree:\n{}", failures.join("\n"));
+        assert!(
+            failures.is_empty(),
+            "hand-written and generated disagree:\n{}",
+            failures.join("\n")
+        );
     }
 }
 
@@ -132,23 +165,35 @@ fn four_bar_hand_matches_generated() {
         // pose
         let gp = m.pose(q).unwrap();
         let hp = h.pose(q).unwrap();
-        r.angles("pose: link angle", q, &[
-            (gp.links.crank.angle, hp.crank.angle),
-            (gp.links.coupler.angle, hp.coupler.angle),
-            (gp.links.rocker.angle, hp.rocker.angle),
-        ]);
-        r.vecs("pose: link cg", q, &[
-            (gp.links.crank.cg, hp.crank.cg),
-            (gp.links.coupler.cg, hp.coupler.cg),
-            (gp.links.rocker.cg, hp.rocker.cg),
-        ]);
-        r.vecs("pose: point pos", q, &[
-            (gp.points.O2.pos, hp.o2),
-            (gp.points.O4.pos, hp.o4),
-            (gp.points.A.pos, hp.a),
-            (gp.points.B.pos, hp.b),
-            (gp.points.P.pos, hp.p),
-        ]);
+        r.angles(
+            "pose: link angle",
+            q,
+            &[
+                (gp.links.crank.angle, hp.crank.angle),
+                (gp.links.coupler.angle, hp.coupler.angle),
+                (gp.links.rocker.angle, hp.rocker.angle),
+            ],
+        );
+        r.vecs(
+            "pose: link cg",
+            q,
+            &[
+                (gp.links.crank.cg, hp.crank.cg),
+                (gp.links.coupler.cg, hp.coupler.cg),
+                (gp.links.rocker.cg, hp.rocker.cg),
+            ],
+        );
+        r.vecs(
+            "pose: point pos",
+            q,
+            &[
+                (gp.points.O2.pos, hp.o2),
+                (gp.points.O4.pos, hp.o4),
+                (gp.points.A.pos, hp.a),
+                (gp.points.B.pos, hp.b),
+                (gp.points.P.pos, hp.p),
+            ],
+        );
 
         // kinematics
         let gm = m.kinematics(q, QD, QDD).unwrap();
@@ -158,12 +203,32 @@ fn four_bar_hand_matches_generated() {
             (&gm.links.coupler, &hm.coupler),
             (&gm.links.rocker, &hm.rocker),
         ];
-        r.angles("kinematics: link angle", q, &links.map(|(g, h)| (g.angle, h.angle)));
-        r.scalars("kinematics: link omega", q, &links.map(|(g, h)| (g.omega, h.omega)));
-        r.scalars("kinematics: link alpha", q, &links.map(|(g, h)| (g.alpha, h.alpha)));
+        r.angles(
+            "kinematics: link angle",
+            q,
+            &links.map(|(g, h)| (g.angle, h.angle)),
+        );
+        r.scalars(
+            "kinematics: link omega",
+            q,
+            &links.map(|(g, h)| (g.omega, h.omega)),
+        );
+        r.scalars(
+            "kinematics: link alpha",
+            q,
+            &links.map(|(g, h)| (g.alpha, h.alpha)),
+        );
         r.vecs("kinematics: link cg", q, &links.map(|(g, h)| (g.cg, h.cg)));
-        r.vecs("kinematics: link cg_vel", q, &links.map(|(g, h)| (g.cg_vel, h.cg_vel)));
-        r.vecs("kinematics: link cg_acc", q, &links.map(|(g, h)| (g.cg_acc, h.cg_acc)));
+        r.vecs(
+            "kinematics: link cg_vel",
+            q,
+            &links.map(|(g, h)| (g.cg_vel, h.cg_vel)),
+        );
+        r.vecs(
+            "kinematics: link cg_acc",
+            q,
+            &links.map(|(g, h)| (g.cg_acc, h.cg_acc)),
+        );
         let points = [
             (&gm.points.O2, &hm.o2),
             (&gm.points.O4, &hm.o4),
@@ -171,25 +236,61 @@ fn four_bar_hand_matches_generated() {
             (&gm.points.B, &hm.b),
             (&gm.points.P, &hm.p),
         ];
-        r.vecs("kinematics: point pos", q, &points.map(|(g, h)| (g.pos, h.pos)));
-        r.vecs("kinematics: point vel", q, &points.map(|(g, h)| (g.vel, h.vel)));
-        r.vecs("kinematics: point acc", q, &points.map(|(g, h)| (g.acc, h.acc)));
+        r.vecs(
+            "kinematics: point pos",
+            q,
+            &points.map(|(g, h)| (g.pos, h.pos)),
+        );
+        r.vecs(
+            "kinematics: point vel",
+            q,
+            &points.map(|(g, h)| (g.vel, h.vel)),
+        );
+        r.vecs(
+            "kinematics: point acc",
+            q,
+            &points.map(|(g, h)| (g.acc, h.acc)),
+        );
 
         // kinetostatics and driver_action
         let gf = m.kinetostatics(&gm, &loads).unwrap();
         let hf = h.kinetostatics(&hm, &loads);
-        r.vecs("kinetostatics: joint force", q, &[
-            (gf.joints.O2.force, hf.o2),
-            (gf.joints.A.force, hf.a),
-            (gf.joints.B.force, hf.b),
-            (gf.joints.O4.force, hf.o4),
-        ]);
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (gf.joints.O2.force, hf.o2),
+                (gf.joints.A.force, hf.a),
+                (gf.joints.B.force, hf.b),
+                (gf.joints.O4.force, hf.o4),
+            ],
+        );
         let gd = m.driver_action(&gm, &loads).unwrap();
         let hd = h.driver_action(&hm, &loads);
-        r.scalar("driver: generated d'Alembert vs hand d'Alembert", q, gf.driver, hf.driver);
-        r.scalar("driver: generated virtual power vs hand virtual power", q, gd, hd);
-        r.scalar("driver: generated d'Alembert vs hand virtual power", q, gf.driver, hd);
-        r.scalar("driver: generated virtual power vs hand d'Alembert", q, gd, hf.driver);
+        r.scalar(
+            "driver: generated d'Alembert vs hand d'Alembert",
+            q,
+            gf.driver,
+            hf.driver,
+        );
+        r.scalar(
+            "driver: generated virtual power vs hand virtual power",
+            q,
+            gd,
+            hd,
+        );
+        r.scalar(
+            "driver: generated d'Alembert vs hand virtual power",
+            q,
+            gf.driver,
+            hd,
+        );
+        r.scalar(
+            "driver: generated virtual power vs hand d'Alembert",
+            q,
+            gd,
+            hf.driver,
+        );
     }
     r.check(&[
         "pose: link angle",
@@ -219,8 +320,18 @@ fn slider_crank_hand_matches_generated() {
         let g = m.reduced(q).unwrap();
         let hr = h.reduced(q).unwrap();
         r.scalar("reduced: I*", q, g.inertia, hr.inertia);
-        r.scalar("reduced: dI*/dq", q, g.inertia_derivative, hr.inertia_derivative);
-        r.scalar("reduced_moment: M*", q, m.reduced_moment(q, &loads).unwrap(), h.reduced_moment(q, &loads).unwrap());
+        r.scalar(
+            "reduced: dI*/dq",
+            q,
+            g.inertia_derivative,
+            hr.inertia_derivative,
+        );
+        r.scalar(
+            "reduced_moment: M*",
+            q,
+            m.reduced_moment(q, &loads).unwrap(),
+            h.reduced_moment(q, &loads).unwrap(),
+        );
         r.scalar(
             "acceleration: q̈ (gravity, loads, driver)",
             q,
@@ -230,15 +341,22 @@ fn slider_crank_hand_matches_generated() {
         r.scalar(
             "acceleration: q̈ (gravity only, no driver)",
             q,
-            m.acceleration(q, QD, 0.0, &SliderCrankLoads::default()).unwrap(),
-            h.acceleration(q, QD, 0.0, &SliderCrankLoads::default()).unwrap(),
+            m.acceleration(q, QD, 0.0, &SliderCrankLoads::default())
+                .unwrap(),
+            h.acceleration(q, QD, 0.0, &SliderCrankLoads::default())
+                .unwrap(),
         );
     }
     r.check(&["reduced: I*", "reduced: dI*/dq", "reduced_moment: M*"]);
 }
 
 /// Central difference of `f` at `q` with step `h`.
-fn diff<T, F: Fn(f64) -> T>(f: F, q: f64, h: f64, get: impl Fn(&T) -> Vector2<f64>) -> Vector2<f64> {
+fn diff<T, F: Fn(f64) -> T>(
+    f: F,
+    q: f64,
+    h: f64,
+    get: impl Fn(&T) -> Vector2<f64>,
+) -> Vector2<f64> {
     (get(&f(q + h)) - get(&f(q - h))) / (2.0 * h)
 }
 
@@ -252,31 +370,57 @@ fn four_bar_hand_by_finite_differences() {
     for q in sweep() {
         let k = h.kinematics(q, 1.0, 0.0).unwrap();
         let pos = |q| h.kinematics(q, 1.0, 0.0).unwrap();
-        let checks: [(&str, fn(&FourBarHandMotion) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>)); 6] = [
+        let checks: [(
+            &str,
+            fn(&FourBarHandMotion) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>),
+        ); 6] = [
             ("A", |m| (m.a.pos, m.a.vel, m.a.acc)),
             ("B", |m| (m.b.pos, m.b.vel, m.b.acc)),
             ("P", |m| (m.p.pos, m.p.vel, m.p.acc)),
             ("crank cg", |m| (m.crank.cg, m.crank.cg_vel, m.crank.cg_acc)),
-            ("coupler cg", |m| (m.coupler.cg, m.coupler.cg_vel, m.coupler.cg_acc)),
-            ("rocker cg", |m| (m.rocker.cg, m.rocker.cg_vel, m.rocker.cg_acc)),
+            ("coupler cg", |m| {
+                (m.coupler.cg, m.coupler.cg_vel, m.coupler.cg_acc)
+            }),
+            ("rocker cg", |m| {
+                (m.rocker.cg, m.rocker.cg_vel, m.rocker.cg_acc)
+            }),
         ];
         for (name, get) in checks {
             let (_, v, a) = get(&k);
             let fv = diff(pos, q, step, |m| get(m).0);
             let fa = diff(pos, q, step, |m| get(m).1);
-            assert!((fv - v).norm() < 1e-8 * v.norm().max(0.1), "{name} velocity at {q}: fd {fv:?} vs {v:?}");
-            assert!((fa - a).norm() < 1e-7 * a.norm().max(0.1), "{name} acceleration at {q}: fd {fa:?} vs {a:?}");
+            assert!(
+                (fv - v).norm() < 1e-8 * v.norm().max(0.1),
+                "{name} velocity at {q}: fd {fv:?} vs {v:?}"
+            );
+            assert!(
+                (fa - a).norm() < 1e-7 * a.norm().max(0.1),
+                "{name} acceleration at {q}: fd {fa:?} vs {a:?}"
+            );
         }
         let ang = |m: &FourBarHandMotion| Vector2::new(m.coupler.angle, m.rocker.angle);
         let fw = diff(pos, q, step, |m| ang(m));
-        let fw = Vector2::new(wrap(fw.x * 2.0 * step) / (2.0 * step), wrap(fw.y * 2.0 * step) / (2.0 * step));
+        let fw = Vector2::new(
+            wrap(fw.x * 2.0 * step) / (2.0 * step),
+            wrap(fw.y * 2.0 * step) / (2.0 * step),
+        );
         let w = Vector2::new(k.coupler.omega, k.rocker.omega);
-        assert!((fw - w).norm() < 1e-8 * w.norm(), "omega at {q}: fd {fw:?} vs {w:?}");
-        let fal = diff(pos, q, step, |m| Vector2::new(m.coupler.omega, m.rocker.omega));
+        assert!(
+            (fw - w).norm() < 1e-8 * w.norm(),
+            "omega at {q}: fd {fw:?} vs {w:?}"
+        );
+        let fal = diff(pos, q, step, |m| {
+            Vector2::new(m.coupler.omega, m.rocker.omega)
+        });
         let al = Vector2::new(k.coupler.alpha, k.rocker.alpha);
-        assert!((fal - al).norm() < 1e-7 * al.norm().max(0.1), "alpha at {q}: fd {fal:?} vs {al:?}");
+        assert!(
+            (fal - al).norm() < 1e-7 * al.norm().max(0.1),
+            "alpha at {q}: fd {fal:?} vs {al:?}"
+        );
         let lin = h.kinematics(q, 0.0, 1.0).unwrap();
-        assert!((lin.coupler.alpha - k.coupler.omega).abs() < 1e-12 * k.coupler.omega.abs().max(1.0));
+        assert!(
+            (lin.coupler.alpha - k.coupler.omega).abs() < 1e-12 * k.coupler.omega.abs().max(1.0)
+        );
         assert!((lin.p.acc - k.p.vel).norm() < 1e-12 * k.p.vel.norm());
     }
 }
@@ -294,24 +438,37 @@ fn slider_crank_hand_independent_checks() {
     let (driver, qd) = (5.0, QD);
     for q in sweep() {
         let r = h.reduced(q).unwrap();
-        let fd = (h.reduced(q + step).unwrap().inertia - h.reduced(q - step).unwrap().inertia) / (2.0 * step);
-        assert!((fd - r.inertia_derivative).abs() < 1e-8 * r.inertia.max(1e-6) , "dI*/dq at {q}: fd {fd} vs {}", r.inertia_derivative);
+        let fd = (h.reduced(q + step).unwrap().inertia - h.reduced(q - step).unwrap().inertia)
+            / (2.0 * step);
+        assert!(
+            (fd - r.inertia_derivative).abs() < 1e-8 * r.inertia.max(1e-6),
+            "dI*/dq at {q}: fd {fd} vs {}",
+            r.inertia_derivative
+        );
 
         // M* = Σ m g·dG/dq + F_gas·dB/dq + T_shaft·1, with positions from the generated pose.
         let gcg = |q: f64| m.pose(q).unwrap();
-        let d = |get: &dyn Fn(&SliderCrankPose) -> Vector2<f64>| (get(&gcg(q + step)) - get(&gcg(q - step))) / (2.0 * step);
+        let d = |get: &dyn Fn(&SliderCrankPose) -> Vector2<f64>| {
+            (get(&gcg(q + step)) - get(&gcg(q - step))) / (2.0 * step)
+        };
         let mstar = p.links.crank.mass * p.gravity.dot(&d(&|s| s.links.crank.cg))
             + p.links.rod.mass * p.gravity.dot(&d(&|s| s.links.rod.cg))
             + p.links.piston.mass * p.gravity.dot(&d(&|s| s.links.piston.cg))
             + loads.gas.dot(&d(&|s| s.points.B.pos))
             + loads.shaft;
         let hm = h.reduced_moment(q, &loads).unwrap();
-        assert!((mstar - hm).abs() < 1e-7 * hm.abs().max(1.0), "M* at {q}: fd {mstar} vs {hm}");
+        assert!(
+            (mstar - hm).abs() < 1e-7 * hm.abs().max(1.0),
+            "M* at {q}: fd {mstar} vs {hm}"
+        );
 
         // Inverse problem: the generated d'Alembert at the hand-written q̈ needs the applied torque.
         let qdd = h.acceleration(q, qd, driver, &loads).unwrap();
         let motion = m.kinematics(q, qd, qdd).unwrap();
         let t = m.kinetostatics(&motion, &loads).unwrap().driver;
-        assert!((t - driver).abs() < 1e-9 * (1.0 + loads.gas.norm() * 0.1), "inverse problem at {q}: {t} vs {driver}");
+        assert!(
+            (t - driver).abs() < 1e-9 * (1.0 + loads.gas.norm() * 0.1),
+            "inverse problem at {q}: {t} vs {driver}"
+        );
     }
 }

@@ -29,7 +29,10 @@ use serde_json::Value;
 const REF_TOL: f64 = 1e-8;
 
 fn reference() -> Value {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/engine.flywheel.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/engine.flywheel.json"
+    );
     serde_json::from_str(&std::fs::read_to_string(path).expect("engine.flywheel.json")).unwrap()
 }
 
@@ -40,13 +43,24 @@ fn num(v: &Value) -> f64 {
 /// |a − b| / scale, asserted ≤ tol; returns the error.
 fn close(what: &str, a: f64, b: f64, scale: f64, tol: f64) -> f64 {
     let e = (a - b).abs() / scale.abs();
-    assert!(e <= tol, "{what}: {a} vs reference {b}: error {e:.3e} > {tol:.0e} (scale {scale})");
+    assert!(
+        e <= tol,
+        "{what}: {a} vs reference {b}: error {e:.3e} > {tol:.0e} (scale {scale})"
+    );
     e
 }
 
 /// The engine's cycle with the gas loads alone (no driver torque).
 fn gas_cycle(eng: &engine::Engine) -> Cycle<'_, engine::Engine> {
-    Cycle::new(eng, engine::Q_TDC, engine::PERIOD, &engine::breakpoints(), |q| engine::gas_loads(eng, q), |_| 0.0).unwrap()
+    Cycle::new(
+        eng,
+        engine::Q_TDC,
+        engine::PERIOD,
+        &engine::breakpoints(),
+        |q| engine::gas_loads(eng, q),
+        |_| 0.0,
+    )
+    .unwrap()
 }
 
 /// The engine's cycle balanced by the constant resisting torque.
@@ -61,11 +75,26 @@ fn engine_flywheel_matches_the_mpmath_reference() {
     let eng = engine::Engine::new();
     let gas = gas_cycle(&eng);
     assert_eq!(num(&r["model"]["period"]), engine::PERIOD);
-    close("gas work per cycle", gas.net_work(), num(&res["net_work_gas"]), num(&res["net_work_gas"]), REF_TOL);
+    close(
+        "gas work per cycle",
+        gas.net_work(),
+        num(&res["net_work_gas"]),
+        num(&res["net_work_gas"]),
+        REF_TOL,
+    );
     let (cycle, t) = gas.balanced();
-    close("balancing torque", t, num(&res["balancing_torque"]), num(&res["balancing_torque"]), REF_TOL);
+    close(
+        "balancing torque",
+        t,
+        num(&res["balancing_torque"]),
+        num(&res["balancing_torque"]),
+        REF_TOL,
+    );
 
-    let (w, eps) = (num(&r["model"]["omega_mean"]), num(&r["model"]["irregularity"]));
+    let (w, eps) = (
+        num(&r["model"]["omega_mean"]),
+        num(&r["model"]["irregularity"]),
+    );
     assert_eq!((w, eps), (engine::OMEGA_MEAN, engine::IRREGULARITY));
     let fw = cycle.flywheel(w, eps).unwrap();
     let a = fw.approximate;
@@ -74,32 +103,89 @@ fn engine_flywheel_matches_the_mpmath_reference() {
     close("S_min", a.s_min, num(&res["s_min"]), ds, REF_TOL);
     close("q(S_max)", a.q_s_max, num(&res["q_s_max"]), 1.0, 1e-6);
     close("q(S_min)", a.q_s_min, num(&res["q_s_min"]), 1.0, 1e-6);
-    let e_approx = close("approximate inertia", a.inertia, num(&res["approximate_inertia"]), num(&res["approximate_inertia"]), REF_TOL);
+    let e_approx = close(
+        "approximate inertia",
+        a.inertia,
+        num(&res["approximate_inertia"]),
+        num(&res["approximate_inertia"]),
+        REF_TOL,
+    );
 
     let x = fw.exact;
-    let e_exact = close("Wittenbauer inertia", x.inertia, num(&res["exact_inertia"]), num(&res["exact_inertia"]), REF_TOL);
-    close("C", x.c, num(&res["energy_constant_C"]), num(&res["energy_constant_C"]), REF_TOL);
+    let e_exact = close(
+        "Wittenbauer inertia",
+        x.inertia,
+        num(&res["exact_inertia"]),
+        num(&res["exact_inertia"]),
+        REF_TOL,
+    );
+    close(
+        "C",
+        x.c,
+        num(&res["energy_constant_C"]),
+        num(&res["energy_constant_C"]),
+        REF_TOL,
+    );
     let f_scale = 2.0 * ds / (w * w);
     for (t, name) in [(&x.upper, "tangent_max"), (&x.lower, "tangent_min")] {
         let rt = &res[name];
         close(&format!("{name} q"), t.q, num(&rt["q"]), 1.0, 1e-6);
-        close(&format!("{name} I*"), t.reduced_inertia, num(&rt["I_star"]), num(&rt["I_star"]), REF_TOL);
+        close(
+            &format!("{name} I*"),
+            t.reduced_inertia,
+            num(&rt["I_star"]),
+            num(&rt["I_star"]),
+            REF_TOL,
+        );
         close(&format!("{name} F"), t.f, num(&rt["F"]), f_scale, REF_TOL);
-        close(&format!("{name} slope"), t.slope, num(&rt["slope"]), 1.0, 1e-15);
+        close(
+            &format!("{name} slope"),
+            t.slope,
+            num(&rt["slope"]),
+            1.0,
+            1e-15,
+        );
     }
     println!("engine: approximate inertia error {e_approx:.2e}, exact inertia error {e_exact:.2e} (relative to the mpmath reference)");
 
     // M*, I*, S every 30 degrees of the cycle.
     let samples = r["samples"].as_array().unwrap();
-    let m_scale = samples.iter().map(|s| num(&s["M_star"]).abs()).fold(0.0, f64::max);
+    let m_scale = samples
+        .iter()
+        .map(|s| num(&s["M_star"]).abs())
+        .fold(0.0, f64::max);
     for s in samples {
         let q = num(&s["q"]);
         let ctx = format!("at {} deg", s["crank_angle_deg"]);
-        close(&format!("M* {ctx}"), cycle.moment(q).unwrap(), num(&s["M_star"]), m_scale, REF_TOL);
-        close(&format!("I* {ctx}"), cycle.reduced(q).unwrap().inertia, num(&s["I_star"]), num(&s["I_star"]), REF_TOL);
-        close(&format!("S {ctx}"), cycle.work(q).unwrap(), num(&s["S"]), ds, REF_TOL);
+        close(
+            &format!("M* {ctx}"),
+            cycle.moment(q).unwrap(),
+            num(&s["M_star"]),
+            m_scale,
+            REF_TOL,
+        );
+        close(
+            &format!("I* {ctx}"),
+            cycle.reduced(q).unwrap().inertia,
+            num(&s["I_star"]),
+            num(&s["I_star"]),
+            REF_TOL,
+        );
+        close(
+            &format!("S {ctx}"),
+            cycle.work(q).unwrap(),
+            num(&s["S"]),
+            ds,
+            REF_TOL,
+        );
         let x_b = eng.pose(q).unwrap().points.B.pos.x;
-        close(&format!("p {ctx}"), engine::pressure(q, x_b), num(&s["pressure"]), num(&s["pressure"]), REF_TOL);
+        close(
+            &format!("p {ctx}"),
+            engine::pressure(q, x_b),
+            num(&s["pressure"]),
+            num(&s["pressure"]),
+            REF_TOL,
+        );
     }
 }
 
@@ -112,8 +198,20 @@ fn both_inertias_match_the_reference_over_a_family_of_irregularities() {
         let eps = num(&f["irregularity"]);
         let fw = cycle.flywheel(engine::OMEGA_MEAN, eps).unwrap();
         let ctx = format!("eps = {eps}");
-        close(&format!("exact, {ctx}"), fw.exact.inertia, num(&f["exact_inertia"]), num(&f["exact_inertia"]), REF_TOL);
-        close(&format!("approximate, {ctx}"), fw.approximate.inertia, num(&f["approximate_inertia"]), num(&f["approximate_inertia"]), REF_TOL);
+        close(
+            &format!("exact, {ctx}"),
+            fw.exact.inertia,
+            num(&f["exact_inertia"]),
+            num(&f["exact_inertia"]),
+            REF_TOL,
+        );
+        close(
+            &format!("approximate, {ctx}"),
+            fw.approximate.inertia,
+            num(&f["approximate_inertia"]),
+            num(&f["approximate_inertia"]),
+            REF_TOL,
+        );
     }
 }
 
@@ -132,7 +230,10 @@ fn approximate_inertia_tends_to_the_exact_one_as_the_flywheel_dominates() {
     let k = 2.0 / (w * w);
     let range = |slope: f64| {
         let hi = cycle.extreme(|s, i| k * s - slope * i, true).unwrap().value;
-        let lo = cycle.extreme(|s, i| k * s - slope * i, false).unwrap().value;
+        let lo = cycle
+            .extreme(|s, i| k * s - slope * i, false)
+            .unwrap()
+            .value;
         hi - lo
     };
     let (r_f, r_fi) = (range(0.0), range(1.0));
@@ -145,10 +246,19 @@ fn approximate_inertia_tends_to_the_exact_one_as_the_flywheel_dominates() {
         let fw = cycle.flywheel(w, eps).unwrap();
         let d = fw.approximate.inertia / fw.exact.inertia - 1.0;
         println!("eps = {eps:<6} I_exact = {:<12.8} I_approx = {:<12.8} difference {:+.6e} (minus the limit {:+.3e})", fw.exact.inertia, fw.approximate.inertia, d, d - limit);
-        assert!(d < prev, "the relative difference must fall with eps: {d} after {prev}");
-        assert!(d > limit, "eps = {eps}: difference {d} below its limit {limit}");
+        assert!(
+            d < prev,
+            "the relative difference must fall with eps: {d} after {prev}"
+        );
+        assert!(
+            d > limit,
+            "eps = {eps}: difference {d} below its limit {limit}"
+        );
         if eps <= 0.05 {
-            assert!(d - limit <= slope_bound * eps, "eps = {eps}: difference {d} not within {slope_bound} eps of its limit {limit}");
+            assert!(
+                d - limit <= slope_bound * eps,
+                "eps = {eps}: difference {d} not within {slope_bound} eps of its limit {limit}"
+            );
         }
         prev = d;
     }
@@ -158,11 +268,20 @@ fn approximate_inertia_tends_to_the_exact_one_as_the_flywheel_dominates() {
         let w = rpm * std::f64::consts::PI / 30.0;
         let fw = cycle.flywheel(w, engine::IRREGULARITY).unwrap();
         let d = (fw.approximate.inertia / fw.exact.inertia - 1.0).abs();
-        println!("{rpm:>6} rpm: I_exact = {:<14.8} I_approx = {:<14.8} |difference| {d:.3e}", fw.exact.inertia, fw.approximate.inertia);
-        assert!(d < prev, "the relative difference must fall with the mean speed");
+        println!(
+            "{rpm:>6} rpm: I_exact = {:<14.8} I_approx = {:<14.8} |difference| {d:.3e}",
+            fw.exact.inertia, fw.approximate.inertia
+        );
+        assert!(
+            d < prev,
+            "the relative difference must fall with the mean speed"
+        );
         prev = d;
     }
-    assert!(prev < 1e-4, "at 30 rpm the flywheel dominates: difference {prev}");
+    assert!(
+        prev < 1e-4,
+        "at 30 rpm the flywheel dominates: difference {prev}"
+    );
 }
 
 #[test]
@@ -176,9 +295,27 @@ fn a_simulated_cycle_with_the_exact_flywheel_has_the_requested_irregularity() {
         println!("eps = {eps}: simulated eps = {:.12} (rel. error {:.2e}), w_max {:.9}, w_min {:.9}, {} steps", sim.speeds.irregularity, sim.speeds.irregularity / eps - 1.0, sim.speeds.omega_max, sim.speeds.omega_min, sim.stats.steps);
         close("simulated eps", sim.speeds.irregularity, eps, eps, 1e-6);
         close("simulated mean speed", sim.speeds.omega_mean, w, w, 1e-9);
-        close("simulated w_max", sim.speeds.omega_max, w * (1.0 + eps / 2.0), w, 1e-9);
-        close("simulated w_min", sim.speeds.omega_min, w * (1.0 - eps / 2.0), w, 1e-9);
-        close("w back at the start (periodic)", sim.omega_end, sim.omega_start, w, 1e-9);
+        close(
+            "simulated w_max",
+            sim.speeds.omega_max,
+            w * (1.0 + eps / 2.0),
+            w,
+            1e-9,
+        );
+        close(
+            "simulated w_min",
+            sim.speeds.omega_min,
+            w * (1.0 - eps / 2.0),
+            w,
+            1e-9,
+        );
+        close(
+            "w back at the start (periodic)",
+            sim.omega_end,
+            sim.omega_start,
+            w,
+            1e-9,
+        );
         close("where w_max", sim.speeds.q_max, fw.upper.q, 1.0, 1e-4);
         close("where w_min", sim.speeds.q_min, fw.lower.q, 1.0, 1e-4);
     }
@@ -186,7 +323,13 @@ fn a_simulated_cycle_with_the_exact_flywheel_has_the_requested_irregularity() {
     let fw = cycle.flywheel(w, engine::IRREGULARITY).unwrap();
     let state = cycle.steady_state(w, fw.approximate.inertia).unwrap();
     let sim = cycle.simulate(&state, 1e-12).unwrap();
-    close("steady state vs simulation (approximate inertia)", sim.speeds.irregularity, state.speeds.irregularity, state.speeds.irregularity, 1e-6);
+    close(
+        "steady state vs simulation (approximate inertia)",
+        sim.speeds.irregularity,
+        state.speeds.irregularity,
+        state.speeds.irregularity,
+        1e-6,
+    );
     assert!((sim.speeds.irregularity / engine::IRREGULARITY - 1.0).abs() > 1e-2);
 }
 
@@ -198,11 +341,29 @@ fn the_steady_state_of_the_exact_inertia_is_the_requested_one() {
     let fw = cycle.wittenbauer(w, engine::IRREGULARITY).unwrap();
     let s = cycle.steady_state(w, fw.inertia).unwrap();
     close("mean speed", s.speeds.omega_mean, w, w, 1e-13);
-    close("irregularity", s.speeds.irregularity, engine::IRREGULARITY, engine::IRREGULARITY, 1e-9);
+    close(
+        "irregularity",
+        s.speeds.irregularity,
+        engine::IRREGULARITY,
+        engine::IRREGULARITY,
+        1e-9,
+    );
     close("energy", s.energy, fw.state.energy, fw.state.energy, 1e-9);
     // ω(q) from the state: the extremes at the tangent points, z = (F + C)/(I + I*).
-    close("w at the upper tangent", cycle.speed(&fw.state, fw.upper.q).unwrap(), w * (1.0 + engine::IRREGULARITY / 2.0), w, 1e-12);
-    close("w at the lower tangent", cycle.speed(&fw.state, fw.lower.q).unwrap(), w * (1.0 - engine::IRREGULARITY / 2.0), w, 1e-12);
+    close(
+        "w at the upper tangent",
+        cycle.speed(&fw.state, fw.upper.q).unwrap(),
+        w * (1.0 + engine::IRREGULARITY / 2.0),
+        w,
+        1e-12,
+    );
+    close(
+        "w at the lower tangent",
+        cycle.speed(&fw.state, fw.lower.q).unwrap(),
+        w * (1.0 - engine::IRREGULARITY / 2.0),
+        w,
+        1e-12,
+    );
     for p in cycle.sample(72).unwrap() {
         let z = (cycle.speed(&fw.state, p.q).unwrap() / w).powi(2);
         let z_formula = (2.0 * p.work / (w * w) + fw.c) / (fw.inertia + p.inertia);
@@ -214,22 +375,53 @@ fn the_steady_state_of_the_exact_inertia_is_the_requested_one() {
 #[test]
 fn the_shaper_flywheel_by_both_methods_and_its_simulation() {
     let m = shaper::Shaper::new();
-    let unbalanced = Cycle::new(&m, shaper::working_start(&m), shaper::PERIOD, &shaper::breakpoints(&m), |q| shaper::cut_loads(&m, q), |_| 0.0).unwrap();
+    let unbalanced = Cycle::new(
+        &m,
+        shaper::working_start(&m),
+        shaper::PERIOD,
+        &shaper::breakpoints(&m),
+        |q| shaper::cut_loads(&m, q),
+        |_| 0.0,
+    )
+    .unwrap();
     assert!(unbalanced.net_work() < 0.0, "the cut absorbs work");
     let (cycle, t) = unbalanced.balanced();
     assert!(t > 0.0, "a motor torque balances it");
-    let fw = cycle.flywheel(shaper::OMEGA_MEAN, shaper::IRREGULARITY).unwrap();
+    let fw = cycle
+        .flywheel(shaper::OMEGA_MEAN, shaper::IRREGULARITY)
+        .unwrap();
     // A slow machine: I ≫ I*, the methods agree closely (the limit of the previous test).
-    close("approximate vs exact", fw.approximate.inertia, fw.exact.inertia, fw.exact.inertia, 1e-3);
+    close(
+        "approximate vs exact",
+        fw.approximate.inertia,
+        fw.exact.inertia,
+        fw.exact.inertia,
+        1e-3,
+    );
     let sim = cycle.simulate(&fw.exact.state, 1e-12).unwrap();
-    close("simulated eps", sim.speeds.irregularity, shaper::IRREGULARITY, shaper::IRREGULARITY, 1e-6);
-    close("w back at the start", sim.omega_end, sim.omega_start, shaper::OMEGA_MEAN, 1e-9);
+    close(
+        "simulated eps",
+        sim.speeds.irregularity,
+        shaper::IRREGULARITY,
+        shaper::IRREGULARITY,
+        1e-6,
+    );
+    close(
+        "w back at the start",
+        sim.omega_end,
+        sim.omega_start,
+        shaper::OMEGA_MEAN,
+        1e-9,
+    );
     // The cutting force starts and stops abruptly: M* jumps at the breakpoints.
     let [b0, _] = shaper::breakpoints(&m);
     let jump = cycle.moment(b0 + 1e-9).unwrap() - cycle.moment(b0 - 1e-9).unwrap();
     assert!(jump < -1.0, "M* jumps at the start of the cut: {jump}");
     // Without a flywheel the shaper cannot turn at 60 rpm: its speed reaches zero.
-    assert!(matches!(cycle.steady_state(shaper::OMEGA_MEAN, 0.0), Err(MechError::Stall { .. })));
+    assert!(matches!(
+        cycle.steady_state(shaper::OMEGA_MEAN, 0.0),
+        Err(MechError::Stall { .. })
+    ));
 }
 
 #[test]
@@ -238,16 +430,34 @@ fn net_work_balancing_and_periodicity() {
     let gas = gas_cycle(&eng);
     let w = gas.net_work();
     assert!(w > 0.0, "the engine produces work");
-    assert_eq!(gas.check_periodic(), Err(MechError::NotPeriodic { net_work: w }));
+    assert_eq!(
+        gas.check_periodic(),
+        Err(MechError::NotPeriodic { net_work: w })
+    );
     let (om, eps) = (engine::OMEGA_MEAN, engine::IRREGULARITY);
-    assert_eq!(gas.wittenbauer(om, eps).unwrap_err(), MechError::NotPeriodic { net_work: w });
-    assert_eq!(gas.approximate(om, eps).unwrap_err(), MechError::NotPeriodic { net_work: w });
-    assert_eq!(gas.steady_state(om, 0.2).unwrap_err(), MechError::NotPeriodic { net_work: w });
+    assert_eq!(
+        gas.wittenbauer(om, eps).unwrap_err(),
+        MechError::NotPeriodic { net_work: w }
+    );
+    assert_eq!(
+        gas.approximate(om, eps).unwrap_err(),
+        MechError::NotPeriodic { net_work: w }
+    );
+    assert_eq!(
+        gas.steady_state(om, 0.2).unwrap_err(),
+        MechError::NotPeriodic { net_work: w }
+    );
     let t = gas.balancing_torque();
     assert_eq!(t, -w / engine::PERIOD);
     // S(q + λ) = S(q) + W for any q.
     let q = 2.345;
-    close("periodic extension of S", gas.work(q + engine::PERIOD).unwrap(), gas.work(q).unwrap() + w, w, 1e-13);
+    close(
+        "periodic extension of S",
+        gas.work(q + engine::PERIOD).unwrap(),
+        gas.work(q).unwrap() + w,
+        w,
+        1e-13,
+    );
 
     let (cycle, t2) = gas.balanced();
     assert_eq!(t2, t);
@@ -255,13 +465,45 @@ fn net_work_balancing_and_periodicity() {
     cycle.check_periodic().unwrap();
     close("driver = T", cycle.driver(1.0), t, t, 0.0);
     // Recomputing the balanced cycle from scratch gives a net work within tolerance.
-    let again = Cycle::new(&eng, engine::Q_TDC, engine::PERIOD, &engine::breakpoints(), |q| engine::gas_loads(&eng, q), move |_| t).unwrap();
-    assert!(again.net_work().abs() <= PERIODIC_TOLERANCE * again.gross_work(), "{}", again.net_work());
+    let again = Cycle::new(
+        &eng,
+        engine::Q_TDC,
+        engine::PERIOD,
+        &engine::breakpoints(),
+        |q| engine::gas_loads(&eng, q),
+        move |_| t,
+    )
+    .unwrap();
+    assert!(
+        again.net_work().abs() <= PERIODIC_TOLERANCE * again.gross_work(),
+        "{}",
+        again.net_work()
+    );
     again.check_periodic().unwrap();
-    close("S(q) recomputed", again.work(q).unwrap(), cycle.work(q).unwrap(), w, 1e-12);
+    close(
+        "S(q) recomputed",
+        again.work(q).unwrap(),
+        cycle.work(q).unwrap(),
+        w,
+        1e-12,
+    );
     // Breakpoints matter: without them the kinked integrand costs accuracy but stays close.
-    let smooth = Cycle::new(&eng, engine::Q_TDC, engine::PERIOD, &[], |q| engine::gas_loads(&eng, q), |_| 0.0).unwrap();
-    close("net work without breakpoints", smooth.net_work(), w, w, 1e-9);
+    let smooth = Cycle::new(
+        &eng,
+        engine::Q_TDC,
+        engine::PERIOD,
+        &[],
+        |q| engine::gas_loads(&eng, q),
+        |_| 0.0,
+    )
+    .unwrap();
+    close(
+        "net work without breakpoints",
+        smooth.net_work(),
+        w,
+        w,
+        1e-9,
+    );
 }
 
 #[test]
@@ -270,9 +512,23 @@ fn bad_input_is_an_error_not_a_panic() {
     let cycle = engine_cycle(&eng);
     let om = engine::OMEGA_MEAN;
     let invalid = |r: Result<_, MechError>| matches!(r, Err(MechError::InvalidInput(_)));
-    for (w, eps) in [(0.0, 0.02), (-1.0, 0.02), (f64::NAN, 0.02), (om, 0.0), (om, 2.0), (om, -0.1), (om, f64::INFINITY)] {
-        assert!(invalid(cycle.wittenbauer(w, eps).map(|_| ())), "wittenbauer({w}, {eps})");
-        assert!(invalid(cycle.approximate(w, eps).map(|_| ())), "approximate({w}, {eps})");
+    for (w, eps) in [
+        (0.0, 0.02),
+        (-1.0, 0.02),
+        (f64::NAN, 0.02),
+        (om, 0.0),
+        (om, 2.0),
+        (om, -0.1),
+        (om, f64::INFINITY),
+    ] {
+        assert!(
+            invalid(cycle.wittenbauer(w, eps).map(|_| ())),
+            "wittenbauer({w}, {eps})"
+        );
+        assert!(
+            invalid(cycle.approximate(w, eps).map(|_| ())),
+            "approximate({w}, {eps})"
+        );
     }
     assert!(invalid(cycle.steady_state(0.0, 0.1).map(|_| ())));
     assert!(invalid(cycle.steady_state(om, f64::NAN).map(|_| ())));
@@ -281,21 +537,54 @@ fn bad_input_is_an_error_not_a_panic() {
     let fw = cycle.wittenbauer(om, 0.02).unwrap();
     assert!(invalid(cycle.simulate(&fw.state, 0.0).map(|_| ())));
     assert!(invalid(cycle.simulate(&fw.state, f64::NAN).map(|_| ())));
-    let new = |start: f64, period: f64, bps: &[f64]| Cycle::new(&eng, start, period, bps, |q| engine::gas_loads(&eng, q), |_| 0.0).map(|_| ());
+    let new = |start: f64, period: f64, bps: &[f64]| {
+        Cycle::new(
+            &eng,
+            start,
+            period,
+            bps,
+            |q| engine::gas_loads(&eng, q),
+            |_| 0.0,
+        )
+        .map(|_| ())
+    };
     assert!(invalid(new(0.0, 0.0, &[])));
     assert!(invalid(new(0.0, -1.0, &[])));
     assert!(invalid(new(f64::NAN, 1.0, &[])));
     assert!(invalid(new(0.0, 1.0, &[1.0])));
     assert!(invalid(new(0.0, 1.0, &[f64::NAN])));
     // A driver that returns NaN is reported.
-    assert!(invalid(Cycle::new(&eng, 0.0, 1.0, &[], |q| engine::gas_loads(&eng, q), |_| f64::NAN).map(|_| ())));
+    assert!(invalid(
+        Cycle::new(
+            &eng,
+            0.0,
+            1.0,
+            &[],
+            |q| engine::gas_loads(&eng, q),
+            |_| f64::NAN
+        )
+        .map(|_| ())
+    ));
     // A flywheel so negative that I + I* ≤ 0 somewhere.
-    assert!(matches!(cycle.steady_state(om, -1.0), Err(MechError::NonPositiveInertia(_))));
+    assert!(matches!(
+        cycle.steady_state(om, -1.0),
+        Err(MechError::NonPositiveInertia(_))
+    ));
     // A very irregular design: the engine alone is steadier, the flywheel comes out negative
     // but I + I* stays positive, and the motion it gives has the requested irregularity.
     let loose = cycle.wittenbauer(om, 1.0).unwrap();
     assert!(loose.inertia < 0.0);
-    close("eps of a negative flywheel", cycle.steady_state(om, loose.inertia).unwrap().speeds.irregularity, 1.0, 1.0, 1e-9);
+    close(
+        "eps of a negative flywheel",
+        cycle
+            .steady_state(om, loose.inertia)
+            .unwrap()
+            .speeds
+            .irregularity,
+        1.0,
+        1.0,
+        1e-9,
+    );
 }
 
 /// The SVG files parse as XML with an <svg> root, and hold one thick polyline per curve
@@ -305,12 +594,39 @@ fn check_svgs(paths: &[PathBuf], curves: &[(&str, usize)]) {
     for (path, (name, n)) in paths.iter().zip(curves) {
         assert_eq!(path.file_name().unwrap().to_str().unwrap(), *name);
         let text = std::fs::read_to_string(path).unwrap();
-        let doc = roxmltree::Document::parse(&text).unwrap_or_else(|e| panic!("{}: not well-formed XML: {e}", path.display()));
-        assert_eq!(doc.root_element().tag_name().name(), "svg", "{}", path.display());
-        let thick: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("polyline") && n.attribute("stroke-width") == Some("2")).collect();
-        assert_eq!(thick.len(), 2 * n, "{}: curves and legend entries", path.display());
-        let longest = thick.iter().map(|p| p.attribute("points").unwrap_or("").split_whitespace().count()).max().unwrap();
-        assert!(longest > 100, "{}: a curve of {longest} points", path.display());
+        let doc = roxmltree::Document::parse(&text)
+            .unwrap_or_else(|e| panic!("{}: not well-formed XML: {e}", path.display()));
+        assert_eq!(
+            doc.root_element().tag_name().name(),
+            "svg",
+            "{}",
+            path.display()
+        );
+        let thick: Vec<_> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("polyline") && n.attribute("stroke-width") == Some("2"))
+            .collect();
+        assert_eq!(
+            thick.len(),
+            2 * n,
+            "{}: curves and legend entries",
+            path.display()
+        );
+        let longest = thick
+            .iter()
+            .map(|p| {
+                p.attribute("points")
+                    .unwrap_or("")
+                    .split_whitespace()
+                    .count()
+            })
+            .max()
+            .unwrap();
+        assert!(
+            longest > 100,
+            "{}: a curve of {longest} points",
+            path.display()
+        );
     }
 }
 
@@ -325,7 +641,15 @@ fn the_engine_example_runs_and_writes_well_formed_svgs() {
     let t = std::time::Instant::now();
     let paths = engine_example::run(&out_dir("engine")).unwrap();
     let secs = t.elapsed().as_secs_f64();
-    check_svgs(&paths, &[("moment.svg", 1), ("inertia.svg", 1), ("wittenbauer.svg", 6), ("speed.svg", 2)]);
+    check_svgs(
+        &paths,
+        &[
+            ("moment.svg", 1),
+            ("inertia.svg", 1),
+            ("wittenbauer.svg", 6),
+            ("speed.svg", 2),
+        ],
+    );
     assert!(secs < 60.0, "the engine example took {secs} s");
 }
 
@@ -333,7 +657,15 @@ fn the_engine_example_runs_and_writes_well_formed_svgs() {
 fn the_shaper_example_runs_and_writes_well_formed_svgs() {
     let paths = shaper_example::run(&out_dir("shaper")).unwrap();
     // Without a flywheel the shaper stalls: the speed diagram has the flywheel's curve only.
-    check_svgs(&paths, &[("moment.svg", 1), ("inertia.svg", 1), ("wittenbauer.svg", 6), ("speed.svg", 1)]);
+    check_svgs(
+        &paths,
+        &[
+            ("moment.svg", 1),
+            ("inertia.svg", 1),
+            ("wittenbauer.svg", 6),
+            ("speed.svg", 1),
+        ],
+    );
 }
 
 /// The example declares the engine by its dimensions (stroke, rod, offset, crank angle,
@@ -344,23 +676,66 @@ fn the_shaper_example_runs_and_writes_well_formed_svgs() {
 fn the_dimensioned_engine_is_the_drawn_one() {
     let (dim, lit) = (engine_example::Engine::new(), engine::Engine::new());
     let (a, b) = (dim.params(), lit.params());
-    let near = |what: &str, x: Vector2<f64>, y: Vector2<f64>| assert!((x - y).norm() <= 1e-12 * y.norm().max(1e-3), "{what}: {x:?} against {y:?}");
-    for (what, x, y) in [("O2", a.points.O2, b.points.O2), ("A", a.points.A, b.points.A), ("B", a.points.B, b.points.B)] {
+    let near = |what: &str, x: Vector2<f64>, y: Vector2<f64>| {
+        assert!(
+            (x - y).norm() <= 1e-12 * y.norm().max(1e-3),
+            "{what}: {x:?} against {y:?}"
+        )
+    };
+    for (what, x, y) in [
+        ("O2", a.points.O2, b.points.O2),
+        ("A", a.points.A, b.points.A),
+        ("B", a.points.B, b.points.B),
+    ] {
         near(what, x, y);
     }
-    for (what, x, y) in [("crank", &a.links.crank, &b.links.crank), ("rod", &a.links.rod, &b.links.rod), ("piston", &a.links.piston, &b.links.piston)] {
+    for (what, x, y) in [
+        ("crank", &a.links.crank, &b.links.crank),
+        ("rod", &a.links.rod, &b.links.rod),
+        ("piston", &a.links.piston, &b.links.piston),
+    ] {
         near(what, x.cg, y.cg);
-        assert!((x.mass - y.mass).abs() <= 1e-15 && (x.inertia - y.inertia).abs() <= 1e-15, "{what}");
+        assert!(
+            (x.mass - y.mass).abs() <= 1e-15 && (x.inertia - y.inertia).abs() <= 1e-15,
+            "{what}"
+        );
     }
     for k in 0..36 {
         let q = engine::Q_TDC + (10.0 * k as f64).to_radians();
         let (rd, rl) = (dim.reduced(q).unwrap(), lit.reduced(q).unwrap());
         close("I*", rd.inertia, rl.inertia, rl.inertia, 1e-12);
-        close("dI*/dq", rd.inertia_derivative, rl.inertia_derivative, rl.inertia, 1e-12);
-        let (gd, gl) = (engine_example::gas_loads(&dim, q).unwrap(), engine::gas_loads(&lit, q).unwrap());
-        close("gas force", gd.gas.x, gl.gas.x, gl.gas.x.abs().max(1.0), 1e-12);
-        let (md, ml) = (dim.kinematics(q, 300.0, 0.0).unwrap(), lit.kinematics(q, 300.0, 0.0).unwrap());
-        let (fd, fl) = (dim.kinetostatics(&md, &gd).unwrap(), lit.kinetostatics(&ml, &gl).unwrap());
-        close("driver torque", fd.driver, fl.driver, fl.driver.abs().max(1.0), 1e-12);
+        close(
+            "dI*/dq",
+            rd.inertia_derivative,
+            rl.inertia_derivative,
+            rl.inertia,
+            1e-12,
+        );
+        let (gd, gl) = (
+            engine_example::gas_loads(&dim, q).unwrap(),
+            engine::gas_loads(&lit, q).unwrap(),
+        );
+        close(
+            "gas force",
+            gd.gas.x,
+            gl.gas.x,
+            gl.gas.x.abs().max(1.0),
+            1e-12,
+        );
+        let (md, ml) = (
+            dim.kinematics(q, 300.0, 0.0).unwrap(),
+            lit.kinematics(q, 300.0, 0.0).unwrap(),
+        );
+        let (fd, fl) = (
+            dim.kinetostatics(&md, &gd).unwrap(),
+            lit.kinetostatics(&ml, &gl).unwrap(),
+        );
+        close(
+            "driver torque",
+            fd.driver,
+            fl.driver,
+            fl.driver.abs().max(1.0),
+            1e-12,
+        );
     }
 }

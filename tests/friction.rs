@@ -71,8 +71,16 @@ fn crank_bearing_friction_adds_mu_r_r() {
         let t0 = i_o * qdd + 3.0 - grav;
         let want = t0 + qd.signum() * mu * r * pin.norm();
         let f = m.kinetostatics_with_friction(&mo, &loads, &fr).unwrap();
-        assert!((f.joints.O.force - pin).norm() < 1e-12 * pin.norm(), "q={q}: R {:?} vs {pin:?}", f.joints.O.force);
-        assert!((f.driver - want).abs() < 1e-12 * want.abs().max(1.0), "q={q}: {} vs {want}", f.driver);
+        assert!(
+            (f.joints.O.force - pin).norm() < 1e-12 * pin.norm(),
+            "q={q}: R {:?} vs {pin:?}",
+            f.joints.O.force
+        );
+        assert!(
+            (f.driver - want).abs() < 1e-12 * want.abs().max(1.0),
+            "q={q}: {} vs {want}",
+            f.driver
+        );
     }
 }
 
@@ -80,12 +88,21 @@ fn crank_bearing_friction_adds_mu_r_r() {
 fn block_on_incline_needs_mg_sin_plus_mu_mg_cos() {
     let m = Incline::new();
     let (mu, th) = (0.3f64, std::f64::consts::FRAC_PI_6);
-    let fr = [JointFriction { mu, pin_radius: 0.0 }];
+    let fr = [JointFriction {
+        mu,
+        pin_radius: 0.0,
+    }];
     for &(v, a) in &[(0.5, 2.0), (-0.5, 2.0), (1.0, -1.0)] {
         let mo = m.kinematics(0.1, v, a).unwrap();
-        let f = m.kinetostatics_with_friction(&mo, &InclineLoads::default(), &fr).unwrap();
+        let f = m
+            .kinetostatics_with_friction(&mo, &InclineLoads::default(), &fr)
+            .unwrap();
         let want = 12.0 * a + 12.0 * 9.81 * th.sin() + v.signum() * mu * 12.0 * 9.81 * th.cos();
-        assert!((f.driver - want).abs() < 1e-12 * want.abs(), "v={v}: {} vs {want}", f.driver);
+        assert!(
+            (f.driver - want).abs() < 1e-12 * want.abs(),
+            "v={v}: {} vs {want}",
+            f.driver
+        );
         assert!((f.joints.stroke.force.norm() - 12.0 * 9.81 * th.cos()).abs() < 1e-11);
     }
 }
@@ -103,7 +120,10 @@ fn stroke_at(theta: f64) -> f64 {
 #[test]
 fn friction_dissipation_closes_the_power_balance() {
     let m = PistonDriven::new();
-    let mut fr = [JointFriction { mu: 0.1, pin_radius: 0.01 }; 4];
+    let mut fr = [JointFriction {
+        mu: 0.1,
+        pin_radius: 0.01,
+    }; 4];
     fr[3].pin_radius = 0.0;
     let loads = PistonDrivenLoads { brake: -4.0 };
     for &theta in &[0.4, 0.7, 1.3, 2.0] {
@@ -113,7 +133,11 @@ fn friction_dissipation_closes_the_power_balance() {
         let f0 = m.kinetostatics(&mo, &loads).unwrap();
         let f = m.kinetostatics_with_friction(&mo, &loads, &fr).unwrap();
         let l = &mo.links;
-        let rel = [l.crank.omega, l.rod.omega - l.crank.omega, l.piston.omega - l.rod.omega];
+        let rel = [
+            l.crank.omega,
+            l.rod.omega - l.crank.omega,
+            l.piston.omega - l.rod.omega,
+        ];
         let pins = [f.joints.O2.force, f.joints.A.force, f.joints.B.force];
         let mut dissipated = 0.0;
         for k in 0..3 {
@@ -121,7 +145,10 @@ fn friction_dissipation_closes_the_power_balance() {
         }
         dissipated += 0.1 * f.joints.guide.force.norm() * mo.points.B.vel.x.abs();
         let balance = f.driver * qd - (f0.driver * qd + dissipated);
-        assert!(balance.abs() < 1e-10 * dissipated.max(1e-3), "q={q}: {balance:e} (dissipated {dissipated})");
+        assert!(
+            balance.abs() < 1e-10 * dissipated.max(1e-3),
+            "q={q}: {balance:e} (dissipated {dissipated})"
+        );
     }
 }
 
@@ -130,13 +157,24 @@ fn friction_dissipation_closes_the_power_balance() {
 #[test]
 fn piston_driven_crank_self_locks_at_the_dead_centre() {
     let m = PistonDriven::new();
-    let fr = [JointFriction { mu: 0.3, pin_radius: 0.03 }, JointFriction::default(), JointFriction::default(), JointFriction::default()];
+    let fr = [
+        JointFriction {
+            mu: 0.3,
+            pin_radius: 0.03,
+        },
+        JointFriction::default(),
+        JointFriction::default(),
+        JointFriction::default(),
+    ];
     let loads = PistonDrivenLoads { brake: -4.0 };
     // Lever arm of the rod about O2 ≈ r sin θ against μ r_pin = 9 mm: locked below θ ≈ 0.18.
     let mo = m.kinematics(stroke_at(0.05), -0.1, 0.0).unwrap();
     assert!((mo.links.crank.angle - 0.05).abs() < 1e-9);
     let locked = m.kinetostatics_with_friction(&mo, &loads, &fr);
-    assert!(matches!(locked, Err(MechError::SelfLocking(_))), "{locked:?}");
+    assert!(
+        matches!(locked, Err(MechError::SelfLocking(_))),
+        "{locked:?}"
+    );
     // Well away from it, the same friction is overcome.
     let mo = m.kinematics(stroke_at(1.0), -0.8, 0.0).unwrap();
     assert!(m.kinetostatics_with_friction(&mo, &loads, &fr).is_ok());

@@ -26,43 +26,129 @@ fn generic(name: &str) -> GenericMechanism {
 mod against_reference;
 use against_reference::motion_agrees;
 
-
-generic_test!(public_slider_crank, PublicSliderCrank, PublicSliderCrankLoads, "public_slider_crank", |v: &[f64]| v[0], one_dof = true);
-generic_test!(public_four_bar, PublicFourBar, PublicFourBarLoads, "public_four_bar", |v: &[f64]| v[0], one_dof = true);
-generic_test!(four_bar, FourBar, FourBarLoads, "four_bar", |v: &[f64]| v[0], one_dof = true);
-generic_test!(slider_crank, SliderCrank, SliderCrankLoads, "slider_crank", |v: &[f64]| v[0], one_dof = true);
-generic_test!(quick_return, QuickReturn, QuickReturnLoads, "quick_return", |v: &[f64]| v[0], one_dof = true);
-generic_test!(watt2, Watt2, Watt2Loads, "watt2", |v: &[f64]| v[0], one_dof = true);
-generic_test!(stephenson3, Stephenson3, Stephenson3Loads, "stephenson3", |v: &[f64]| v[0], one_dof = true);
-generic_test!(scotch_yoke, ScotchYoke, ScotchYokeLoads, "scotch_yoke", |v: &[f64]| v[0], one_dof = true);
-generic_test!(five_bar, FiveBar, FiveBarLoads, "five_bar", |v: &[f64]| [v[0], v[1]], one_dof = false);
-generic_test!(hydraulic_lever, HydraulicLever, HydraulicLeverLoads, "hydraulic_lever", |v: &[f64]| v[0], one_dof = true);
+generic_test!(
+    public_slider_crank,
+    PublicSliderCrank,
+    PublicSliderCrankLoads,
+    "public_slider_crank",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    public_four_bar,
+    PublicFourBar,
+    PublicFourBarLoads,
+    "public_four_bar",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    four_bar,
+    FourBar,
+    FourBarLoads,
+    "four_bar",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    slider_crank,
+    SliderCrank,
+    SliderCrankLoads,
+    "slider_crank",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    quick_return,
+    QuickReturn,
+    QuickReturnLoads,
+    "quick_return",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    watt2,
+    Watt2,
+    Watt2Loads,
+    "watt2",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    stephenson3,
+    Stephenson3,
+    Stephenson3Loads,
+    "stephenson3",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    scotch_yoke,
+    ScotchYoke,
+    ScotchYokeLoads,
+    "scotch_yoke",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    five_bar,
+    FiveBar,
+    FiveBarLoads,
+    "five_bar",
+    |v: &[f64]| [v[0], v[1]],
+    one_dof = false
+);
+generic_test!(
+    hydraulic_lever,
+    HydraulicLever,
+    HydraulicLeverLoads,
+    "hydraulic_lever",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
 
 /// The 361-point sweeps of I*, dI*/dq and M* over a whole revolution (q = θ_ref + 2πk/360):
 /// the continuation keeps the drawing's branch all the way round.
 #[test]
 fn sweeps_over_a_revolution() {
     for (name, ty) in [("four_bar", "FourBar"), ("slider_crank", "SliderCrank")] {
-        let path = format!("{}/tests/data/{name}.sweep.json", env!("CARGO_MANIFEST_DIR"));
-        let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let path = format!(
+            "{}/tests/data/{name}.sweep.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let t: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
         let g = generic(ty);
         let mut loads = g.loads();
         for (n, l) in t["loads"].as_object().unwrap() {
             assert!(loads.set_by_name(n, &nums(&l["value"])));
         }
         let pts = t["points"].as_array().unwrap();
-        let iscale = pts.iter().fold(0.0f64, |a, p| a.max(p["I_star"].as_f64().unwrap().abs()).max(p["dI_star_dq"].as_f64().unwrap().abs()));
-        let mscale = pts.iter().fold(0.0f64, |a, p| a.max(p["M_star"].as_f64().unwrap().abs()));
+        let iscale = pts.iter().fold(0.0f64, |a, p| {
+            a.max(p["I_star"].as_f64().unwrap().abs())
+                .max(p["dI_star_dq"].as_f64().unwrap().abs())
+        });
+        let mscale = pts
+            .iter()
+            .fold(0.0f64, |a, p| a.max(p["M_star"].as_f64().unwrap().abs()));
         for p in pts {
             let q = p["q"].as_f64().unwrap();
             let r = g.reduced(q).unwrap();
             let m = g.reduced_moment(q, &loads).unwrap();
             for (what, got, want, s) in [
                 ("I*", r.inertia, p["I_star"].as_f64().unwrap(), iscale),
-                ("dI*/dq", r.inertia_derivative, p["dI_star_dq"].as_f64().unwrap(), iscale),
+                (
+                    "dI*/dq",
+                    r.inertia_derivative,
+                    p["dI_star_dq"].as_f64().unwrap(),
+                    iscale,
+                ),
                 ("M*", m, p["M_star"].as_f64().unwrap(), mscale),
             ] {
-                assert!((got - want).abs() <= REL * s, "{name} q = {q}: {what} {got:e} vs {want:e}");
+                assert!(
+                    (got - want).abs() <= REL * s,
+                    "{name} q = {q}: {what} {got:e} vs {want:e}"
+                );
             }
         }
     }
@@ -76,7 +162,10 @@ fn sweeps_over_a_revolution() {
 fn load_from_text_file_and_model() {
     let path = std::env::temp_dir().join(format!("mech_generic_{}.mech", std::process::id()));
     let watt2 = mechanism_text(MECHANISMS, "Watt2").unwrap();
-    assert!(watt2.trim_start().starts_with("/// Watt II six-bar") && watt2.trim_end().ends_with('}'), "{watt2}");
+    assert!(
+        watt2.trim_start().starts_with("/// Watt II six-bar") && watt2.trim_end().ends_with('}'),
+        "{watt2}"
+    );
     std::fs::write(&path, watt2).unwrap();
     let g = GenericMechanism::load(&path).unwrap();
     std::fs::remove_file(&path).ok();
@@ -84,7 +173,11 @@ fn load_from_text_file_and_model() {
     let source = generic("Watt2");
     let gen = Watt2::new();
     for q in [0.4, 2.0, -2.5] {
-        let (a, b, c) = (g.pose(&[q]).unwrap(), text.pose(&[q]).unwrap(), source.pose(&[q]).unwrap());
+        let (a, b, c) = (
+            g.pose(&[q]).unwrap(),
+            text.pose(&[q]).unwrap(),
+            source.pose(&[q]).unwrap(),
+        );
         assert_eq!(a.points, b.points);
         assert_eq!(a.points, c.points);
         let p = gen.pose(q).unwrap();
@@ -107,8 +200,14 @@ fn load_from_text_file_and_model() {
         l.inertia /= 2.0;
     });
     let light = GenericMechanism::from_model(model.clone()).unwrap();
-    let (mh, ml) = (heavy.kinematics(&[0.4], &[9.0], &[2.0]).unwrap(), light.kinematics(&[0.4], &[9.0], &[2.0]).unwrap());
-    let (th, tl) = (heavy.driver_action(&mh, &heavy.loads()).unwrap()[0], light.driver_action(&ml, &light.loads()).unwrap()[0]);
+    let (mh, ml) = (
+        heavy.kinematics(&[0.4], &[9.0], &[2.0]).unwrap(),
+        light.kinematics(&[0.4], &[9.0], &[2.0]).unwrap(),
+    );
+    let (th, tl) = (
+        heavy.driver_action(&mh, &heavy.loads()).unwrap()[0],
+        light.driver_action(&ml, &light.loads()).unwrap()[0],
+    );
     assert!((th - 2.0 * tl).abs() <= 1e-13 * th.abs(), "{th} {tl}");
 
     // A bad model is rejected with the validator's message.

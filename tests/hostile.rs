@@ -15,7 +15,9 @@ use mechanisms::*;
 
 fn invalid(r: Result<impl std::fmt::Debug, MechError>, part: &str) {
     match r {
-        Err(MechError::Invalid(m)) | Err(MechError::InvalidInput(m)) => assert!(m.contains(part), "expected “{part}” in\n{m}"),
+        Err(MechError::Invalid(m)) | Err(MechError::InvalidInput(m)) => {
+            assert!(m.contains(part), "expected “{part}” in\n{m}")
+        }
         other => panic!("expected an error with “{part}”, got {other:?}"),
     }
 }
@@ -24,10 +26,18 @@ fn invalid(r: Result<impl std::fmt::Debug, MechError>, part: &str) {
 /// error after at most its step budget, not after 100 000 SVDs.
 #[test]
 fn an_unreachable_input_ends_in_an_error() {
-    let text = mech::generic::GenericMechanism::parse(&mechanism_text("FourBar").replace("input: O2,", "input: O4,")).unwrap();
+    let text = mech::generic::GenericMechanism::parse(
+        &mechanism_text("FourBar").replace("input: O2,", "input: O4,"),
+    )
+    .unwrap();
     // The rocker cannot turn a full turn: somewhere past its limit the continuation stops.
-    let r = (0..12).map(|k| text.pose(&[0.5 * k as f64])).find(|r| r.is_err());
-    assert!(r.is_some(), "a rocker-driven four-bar does not assemble everywhere");
+    let r = (0..12)
+        .map(|k| text.pose(&[0.5 * k as f64]))
+        .find(|r| r.is_err());
+    assert!(
+        r.is_some(),
+        "a rocker-driven four-bar does not assemble everywhere"
+    );
 }
 
 /// The DSL text of a mechanism declared in tests/common/mechanisms.rs.
@@ -42,7 +52,10 @@ fn mechanism_text(name: &str) -> String {
 /// 2. A mechanism with no moving link is refused with the reason, by both loaders.
 #[test]
 fn a_ground_only_mechanism_is_refused() {
-    for text in ["pub struct X { ground { O: (0.0, 0.0) } }", "pub struct X { ground { O: (0.0, 0.0), P: (1.0, 0.0) } }"] {
+    for text in [
+        "pub struct X { ground { O: (0.0, 0.0) } }",
+        "pub struct X { ground { O: (0.0, 0.0), P: (1.0, 0.0) } }",
+    ] {
         invalid(GenericMechanism::parse(text).map(|_| ()), "no moving link");
         invalid(Mechanism::from_dsl(text).map(|_| ()), "no moving link");
     }
@@ -52,7 +65,13 @@ fn a_ground_only_mechanism_is_refused() {
 #[test]
 fn raw_identifiers_are_refused() {
     let text = mechanism_text("FourBar");
-    for bad in [text.replace("link coupler", "link r#fn").replace("(crank, coupler)", "(crank, r#fn)").replace("(coupler, rocker)", "(r#fn, rocker)").replace("on coupler", "on r#fn"), text.replace("pub struct FourBar", "pub struct r#FourBar")] {
+    for bad in [
+        text.replace("link coupler", "link r#fn")
+            .replace("(crank, coupler)", "(crank, r#fn)")
+            .replace("(coupler, rocker)", "(r#fn, rocker)")
+            .replace("on coupler", "on r#fn"),
+        text.replace("pub struct FourBar", "pub struct r#FourBar"),
+    ] {
         invalid(Mechanism::from_dsl(&bad).map(|_| ()), "raw identifier");
     }
 }
@@ -62,11 +81,28 @@ fn raw_identifiers_are_refused() {
 #[test]
 fn overflow_is_an_error_naming_the_quantity() {
     let m = FourBar::new();
-    invalid(m.kinematics(0.3, 1e155, 0.0).map(|_| ()), "velocities or accelerations");
+    invalid(
+        m.kinematics(0.3, 1e155, 0.0).map(|_| ()),
+        "velocities or accelerations",
+    );
     let mo = m.kinematics(0.3, 1e100, 0.0).unwrap();
-    let huge = FourBarLoads { tool: Vector2::new(f64::MAX, -f64::MAX), resist: f64::MAX };
+    let huge = FourBarLoads {
+        tool: Vector2::new(f64::MAX, -f64::MAX),
+        resist: f64::MAX,
+    };
     match m.kinetostatics(&mo, &huge) {
-        Ok(f) => assert!(f.driver.is_finite() && [f.joints.A.force, f.joints.B.force, f.joints.O2.force, f.joints.O4.force].iter().all(|v| v.iter().all(|x| x.is_finite())), "{f:?}"),
+        Ok(f) => assert!(
+            f.driver.is_finite()
+                && [
+                    f.joints.A.force,
+                    f.joints.B.force,
+                    f.joints.O2.force,
+                    f.joints.O4.force
+                ]
+                .iter()
+                .all(|v| v.iter().all(|x| x.is_finite())),
+            "{f:?}"
+        ),
         Err(e) => assert!(e.to_string().contains("overflow"), "{e}"),
     }
     match m.driver_action(&mo, &huge) {
@@ -75,24 +111,54 @@ fn overflow_is_an_error_naming_the_quantity() {
     }
     // Inertia forces at the edge of f64: q̇ = 1e154 (ω² ≈ 1e308): finite or an error.
     for qd in [1e153, 1e154, 3e154] {
-        match m.kinematics(0.3, qd, 0.0).and_then(|mo| Ok((m.kinetostatics(&mo, &FourBarLoads::default())?, m.driver_action(&mo, &FourBarLoads::default())?))) {
-            Ok((f, d)) => assert!(f.driver.is_finite() && d.is_finite() && f.joints.B.force.iter().all(|x| x.is_finite()), "q̇ = {qd}"),
+        match m.kinematics(0.3, qd, 0.0).and_then(|mo| {
+            Ok((
+                m.kinetostatics(&mo, &FourBarLoads::default())?,
+                m.driver_action(&mo, &FourBarLoads::default())?,
+            ))
+        }) {
+            Ok((f, d)) => assert!(
+                f.driver.is_finite()
+                    && d.is_finite()
+                    && f.joints.B.force.iter().all(|x| x.is_finite()),
+                "q̇ = {qd}"
+            ),
             Err(e) => assert!(e.to_string().contains("overflow"), "q̇ = {qd}: {e}"),
         }
     }
     let s = SliderCrank::new();
-    invalid(s.acceleration(0.3, 0.0, f64::MAX, &SliderCrankLoads::default()).map(|_| ()), "acceleration");
+    invalid(
+        s.acceleration(0.3, 0.0, f64::MAX, &SliderCrankLoads::default())
+            .map(|_| ()),
+        "acceleration",
+    );
     for (what, change) in [
-        ("mass", Box::new(|p: &mut FourBarParams| p.links.coupler.mass = f64::MAX) as Box<dyn Fn(&mut FourBarParams)>),
-        ("cg", Box::new(|p: &mut FourBarParams| p.links.coupler.cg = Vector2::new(1e300, 0.0))),
-        ("gravity", Box::new(|p: &mut FourBarParams| p.gravity = Vector2::new(0.0, -1e308))),
-        ("moment of inertia", Box::new(|p: &mut FourBarParams| p.links.coupler.inertia = 5e-324)),
-        ("across", Box::new(|p: &mut FourBarParams| {
-            p.points.O4 *= 1e200;
-            p.points.A *= 1e200;
-            p.points.B *= 1e200;
-            p.points.P *= 1e200;
-        })),
+        (
+            "mass",
+            Box::new(|p: &mut FourBarParams| p.links.coupler.mass = f64::MAX)
+                as Box<dyn Fn(&mut FourBarParams)>,
+        ),
+        (
+            "cg",
+            Box::new(|p: &mut FourBarParams| p.links.coupler.cg = Vector2::new(1e300, 0.0)),
+        ),
+        (
+            "gravity",
+            Box::new(|p: &mut FourBarParams| p.gravity = Vector2::new(0.0, -1e308)),
+        ),
+        (
+            "moment of inertia",
+            Box::new(|p: &mut FourBarParams| p.links.coupler.inertia = 5e-324),
+        ),
+        (
+            "across",
+            Box::new(|p: &mut FourBarParams| {
+                p.points.O4 *= 1e200;
+                p.points.A *= 1e200;
+                p.points.B *= 1e200;
+                p.points.P *= 1e200;
+            }),
+        ),
     ] {
         let mut p = m.params().clone();
         change(&mut p);
@@ -101,11 +167,17 @@ fn overflow_is_an_error_naming_the_quantity() {
     // The run-time mechanism too.
     let mut rt = Mechanism::from_dsl(&mechanism_text("FourBar")).unwrap();
     invalid(rt.set_param("links.coupler.mass", &[1e300]), "mass");
-    invalid(rt.kinematics(&[0.3], &[1e155], &[0.0]).map(|_| ()), "velocities or accelerations");
+    invalid(
+        rt.kinematics(&[0.3], &[1e155], &[0.0]).map(|_| ()),
+        "velocities or accelerations",
+    );
     let r = rt.kinematics(&[0.3], &[1.0], &[0.0]).unwrap();
     let mut l = rt.loads();
     assert!(l.set_by_name("resist", &[f64::MAX]) && l.set_by_name("tool", &[f64::MAX, f64::MAX]));
-    for result in [rt.kinetostatics(&r, &l).map(|f| f.driver), rt.driver_action(&r, &l)] {
+    for result in [
+        rt.kinetostatics(&r, &l).map(|f| f.driver),
+        rt.driver_action(&r, &l),
+    ] {
         match result {
             Ok(d) => assert!(d.iter().all(|x| x.is_finite())),
             Err(e) => assert!(e.to_string().contains("overflow"), "{e}"),
@@ -128,7 +200,10 @@ fn a_drawing_scaled_out_of_range_says_so() {
         }
         match Mechanism::from_model(model) {
             Err(MechError::Invalid(m)) => {
-                assert!(m.contains("across") && m.contains(word) && !m.contains("redundant"), "{m}");
+                assert!(
+                    m.contains("across") && m.contains(word) && !m.contains("redundant"),
+                    "{m}"
+                );
             }
             other => panic!("{other:?}"),
         }
@@ -141,7 +216,11 @@ fn a_drawing_scaled_out_of_range_says_so() {
 fn loading_many_mechanisms_keeps_memory_flat() {
     fn resident_kb() -> usize {
         let s = std::fs::read_to_string("/proc/self/statm").unwrap_or_default();
-        s.split_whitespace().nth(1).and_then(|v| v.parse::<usize>().ok()).unwrap_or(0) * 4
+        s.split_whitespace()
+            .nth(1)
+            .and_then(|v| v.parse::<usize>().ok())
+            .unwrap_or(0)
+            * 4
     }
     let text = mechanism_text("SliderCrank");
     let round = |n: usize| {
@@ -155,5 +234,8 @@ fn loading_many_mechanisms_keeps_memory_flat() {
     round(98_000);
     let after = resident_kb();
     // 700 bytes a parse kept alive would be 69 MB here (10⁵ loads in all).
-    assert!(after < before + 2_000, "resident memory grew from {before} kB to {after} kB");
+    assert!(
+        after < before + 2_000,
+        "resident memory grew from {before} kB to {after} kB"
+    );
 }

@@ -18,24 +18,50 @@ macro_rules! differences {
             let (h1, h2) = (1e-6, 1e-4);
             for k in 0..12 {
                 let q = $q + 0.37 * k as f64;
-                let Ok(unit) = m.kinematics(q, 1.0, 0.0) else { continue };
+                let Ok(unit) = m.kinematics(q, 1.0, 0.0) else {
+                    continue;
+                };
                 let (pp, pm) = (m.pose(q + h1).unwrap(), m.pose(q - h1).unwrap());
-                let (app, amm, a0) = (m.pose(q + h2).unwrap(), m.pose(q - h2).unwrap(), m.pose(q).unwrap());
-                let scale = $ty::POINT_NAMES.iter().fold(1e-3f64, |s, n| s.max(unit.point(n).unwrap().pos.norm()));
+                let (app, amm, a0) = (
+                    m.pose(q + h2).unwrap(),
+                    m.pose(q - h2).unwrap(),
+                    m.pose(q).unwrap(),
+                );
+                let scale = $ty::POINT_NAMES
+                    .iter()
+                    .fold(1e-3f64, |s, n| s.max(unit.point(n).unwrap().pos.norm()));
                 let general = m.kinematics(q, 2.5, -4.0).unwrap();
                 for n in $ty::POINT_NAMES {
                     let u = unit.point(n).unwrap();
                     let fd_v = (pp.point(n).unwrap().pos - pm.point(n).unwrap().pos) / (2.0 * h1);
-                    let fd_a = (app.point(n).unwrap().pos - 2.0 * a0.point(n).unwrap().pos + amm.point(n).unwrap().pos) / (h2 * h2);
-                    assert!((u.vel - fd_v).norm() < 1e-8 * scale, "{} {n} q={q}: vel {:?} vs {:?}", stringify!($ty), u.vel, fd_v);
-                    assert!((u.acc - fd_a).norm() < 1e-5 * scale, "{} {n} q={q}: acc {:?} vs {:?}", stringify!($ty), u.acc, fd_a);
+                    let fd_a = (app.point(n).unwrap().pos - 2.0 * a0.point(n).unwrap().pos
+                        + amm.point(n).unwrap().pos)
+                        / (h2 * h2);
+                    assert!(
+                        (u.vel - fd_v).norm() < 1e-8 * scale,
+                        "{} {n} q={q}: vel {:?} vs {:?}",
+                        stringify!($ty),
+                        u.vel,
+                        fd_v
+                    );
+                    assert!(
+                        (u.acc - fd_a).norm() < 1e-5 * scale,
+                        "{} {n} q={q}: acc {:?} vs {:?}",
+                        stringify!($ty),
+                        u.acc,
+                        fd_a
+                    );
                     let g = general.point(n).unwrap();
                     assert!((g.vel - u.vel * 2.5).norm() < 1e-13 * scale * 2.5);
                     assert!((g.acc - (u.acc * 6.25 - u.vel * 4.0)).norm() < 1e-12 * scale * 10.0);
                 }
                 for n in $ty::LINK_NAMES {
-                    let fd_w = angle_diff(pp.link(n).unwrap().angle, pm.link(n).unwrap().angle) / (2.0 * h1);
-                    assert!((unit.link(n).unwrap().omega - fd_w).abs() < 1e-7 * unit.link(n).unwrap().omega.abs().max(1.0));
+                    let fd_w = angle_diff(pp.link(n).unwrap().angle, pm.link(n).unwrap().angle)
+                        / (2.0 * h1);
+                    assert!(
+                        (unit.link(n).unwrap().omega - fd_w).abs()
+                            < 1e-7 * unit.link(n).unwrap().omega.abs().max(1.0)
+                    );
                 }
             }
         }
@@ -101,7 +127,11 @@ macro_rules! continuity {
                     let v = s0.vel.norm().max(s1.vel.norm());
                     let a = s0.acc.norm().max(s1.acc.norm());
                     let bound = 1.01 * (v * dq + a * dq * dq) + 1e-12;
-                    assert!(step <= bound, "{} {n} jumps {step} > {bound} at step {k}", stringify!($ty));
+                    assert!(
+                        step <= bound,
+                        "{} {n} jumps {step} > {bound} at step {k}",
+                        stringify!($ty)
+                    );
                 }
                 prev = now;
                 prev_speed = speed;
@@ -123,13 +153,21 @@ fn bad_inputs_are_errors() {
     use mech::prelude::MechError;
     let m = FourBar::new();
     assert!(matches!(m.pose(f64::NAN), Err(MechError::InvalidInput(_))));
-    assert!(matches!(m.kinematics(0.0, f64::INFINITY, 0.0), Err(MechError::InvalidInput(_))));
+    assert!(matches!(
+        m.kinematics(0.0, f64::INFINITY, 0.0),
+        Err(MechError::InvalidInput(_))
+    ));
     // A crank four times as long: the loop cannot close for some crank angles.
     let mut p = m.params().clone();
     p.points.A = p.points.O2 + (p.points.A - p.points.O2) * 4.0;
     let long = FourBar::from_params(p).unwrap();
-    let failures = (0..36).filter(|k| matches!(long.pose(0.1745 * *k as f64), Err(MechError::NoAssembly))).count();
-    assert!(failures > 0, "a non-Grashof four-bar must fail to assemble somewhere");
+    let failures = (0..36)
+        .filter(|k| matches!(long.pose(0.1745 * *k as f64), Err(MechError::NoAssembly)))
+        .count();
+    assert!(
+        failures > 0,
+        "a non-Grashof four-bar must fail to assemble somewhere"
+    );
     for k in 0..36 {
         if let Ok(p) = long.pose(0.1745 * k as f64) {
             assert!(p.points.B.pos.iter().all(|x| x.is_finite()));

@@ -146,9 +146,11 @@ mechanism! {
     }
 }
 
-
 fn close(what: &str, a: f64, b: f64, scale: f64) {
-    assert!((a - b).abs() <= 1e-12 * scale.max(1e-300), "{what}: {a} against {b}");
+    assert!(
+        (a - b).abs() <= 1e-12 * scale.max(1e-300),
+        "{what}: {a} against {b}"
+    );
 }
 
 #[test]
@@ -161,23 +163,46 @@ fn forty_modules_in_series() {
         let p = m.pose(q).unwrap();
         let r = rt.kinematics(&[q], &[3.0], &[0.5]).unwrap();
         for (i, name) in Chain40::POINT_NAMES.iter().enumerate() {
-            let (a, b) = (r.point(name).unwrap().pos, rt.pose(&[q]).unwrap().point(name).unwrap().pos);
+            let (a, b) = (
+                r.point(name).unwrap().pos,
+                rt.pose(&[q]).unwrap().point(name).unwrap().pos,
+            );
             assert!((a - b).norm() < 1e-12, "{name}");
             let _ = i;
         }
         // Each coupler closes its loop: |E_{k-1} B_k| = 0.26 m.
         let (e, b) = (p.points.E39.pos, p.points.B40.pos);
         close("|E39 B40|", (b - e).norm(), 0.26, 1.0);
-        close("B40.x run-time", r.point("B40").unwrap().pos.x, mo.points.B40.pos.x, 1.0);
-        close("rocker40 alpha", r.link("rocker40").unwrap().alpha, mo.links.rocker40.alpha, mo.links.rocker40.alpha.abs().max(1.0));
+        close(
+            "B40.x run-time",
+            r.point("B40").unwrap().pos.x,
+            mo.points.B40.pos.x,
+            1.0,
+        );
+        close(
+            "rocker40 alpha",
+            r.link("rocker40").unwrap().alpha,
+            mo.links.rocker40.alpha,
+            mo.links.rocker40.alpha.abs().max(1.0),
+        );
         let loads = Chain40Loads { resist: -3.0 };
         let f = m.kinetostatics(&mo, &loads).unwrap();
         let vp = m.driver_action(&mo, &loads).unwrap();
-        close("d'Alembert = virtual power", f.driver, vp, f.driver.abs().max(1.0));
+        close(
+            "d'Alembert = virtual power",
+            f.driver,
+            vp,
+            f.driver.abs().max(1.0),
+        );
         let mut rl = rt.loads();
         assert!(rl.set_by_name("resist", &[-3.0]));
         let fr = rt.kinetostatics(&r, &rl).unwrap();
-        close("run-time driver", fr.driver[0], f.driver, f.driver.abs().max(1.0));
+        close(
+            "run-time driver",
+            fr.driver[0],
+            f.driver,
+            f.driver.abs().max(1.0),
+        );
     }
 }
 
@@ -194,8 +219,15 @@ fn sixteen_inputs() {
     let qd = [1.0; 16];
     let mo = m.kinematics(q, qd, [0.0; 16]).unwrap();
     let r = rt.kinematics(&q, &qd, &[0.0; 16]).unwrap();
-    close("C7.y", r.point("C7").unwrap().pos.y, mo.points.C7.pos.y, 1.0);
-    let loads = FiveBars8Loads { pen: Vector2::new(10.0, -20.0) };
+    close(
+        "C7.y",
+        r.point("C7").unwrap().pos.y,
+        mo.points.C7.pos.y,
+        1.0,
+    );
+    let loads = FiveBars8Loads {
+        pen: Vector2::new(10.0, -20.0),
+    };
     let f = m.kinetostatics(&mo, &loads).unwrap();
     let vp = m.driver_action(&mo, &loads).unwrap();
     for k in 0..16 {

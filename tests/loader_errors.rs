@@ -13,13 +13,23 @@ fn macro_errors(stderr: &str) -> Vec<(String, usize, usize)> {
     let lines: Vec<&str> = stderr.lines().collect();
     let mut out = Vec::new();
     for (i, l) in lines.iter().enumerate() {
-        let Some(msg) = l.strip_prefix("error: ") else { continue };
+        let Some(msg) = l.strip_prefix("error: ") else {
+            continue;
+        };
         if msg.starts_with("involved here") {
             continue;
         }
-        let Some(at) = lines[i + 1..].iter().find_map(|l| l.trim_start().strip_prefix("--> ")) else { continue };
+        let Some(at) = lines[i + 1..]
+            .iter()
+            .find_map(|l| l.trim_start().strip_prefix("--> "))
+        else {
+            continue;
+        };
         let mut parts = at.rsplitn(3, ':');
-        let (col, line) = (parts.next().unwrap().parse().unwrap(), parts.next().unwrap().parse().unwrap());
+        let (col, line) = (
+            parts.next().unwrap().parse().unwrap(),
+            parts.next().unwrap().parse().unwrap(),
+        );
         out.push((msg.to_string(), line, col));
     }
     out
@@ -29,26 +39,48 @@ fn macro_errors(stderr: &str) -> Vec<(String, usize, usize)> {
 fn every_ui_mistake_loaded_as_text_gets_the_same_message_and_place() {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/ui");
     let mut covered = 0;
-    let mut entries: Vec<_> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut entries: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     entries.sort();
-    for path in entries.iter().filter(|p| p.extension().is_some_and(|e| e == "rs")) {
+    for path in entries
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "rs"))
+    {
         let stderr = std::fs::read_to_string(path.with_extension("stderr")).unwrap();
         let expected = macro_errors(&stderr);
         if expected.is_empty() {
             continue; // not a check of the mechanism (a type error in the user's code)
         }
         let source = std::fs::read_to_string(path).unwrap();
-        let name = source.split("pub struct ").nth(1).and_then(|r| r.split(|c: char| !c.is_alphanumeric() && c != '_').next()).unwrap();
+        let name = source
+            .split("pub struct ")
+            .nth(1)
+            .and_then(|r| r.split(|c: char| !c.is_alphanumeric() && c != '_').next())
+            .unwrap();
         let file = path.file_name().unwrap().to_string_lossy();
         let msg = match GenericMechanism::from_rust_source(&source, name) {
             Err(MechError::Invalid(msg)) => msg,
-            other => panic!("{file}: expected Invalid, got {:?}", other.map(|_| "a mechanism")),
+            other => panic!(
+                "{file}: expected Invalid, got {:?}",
+                other.map(|_| "a mechanism")
+            ),
         };
         for (text, line, col) in expected {
-            assert!(msg.contains(&text), "{file}: the macro's message\n  {text}\nis not in\n{msg}");
-            assert!(msg.contains(&format!("{line}:{col}: ")), "{file}: no {line}:{col} in\n{msg}");
+            assert!(
+                msg.contains(&text),
+                "{file}: the macro's message\n  {text}\nis not in\n{msg}"
+            );
+            assert!(
+                msg.contains(&format!("{line}:{col}: ")),
+                "{file}: no {line}:{col} in\n{msg}"
+            );
             let excerpt = source.lines().nth(line - 1).unwrap().trim();
-            assert!(msg.contains(excerpt), "{file}: the excerpt `{excerpt}` is not in\n{msg}");
+            assert!(
+                msg.contains(excerpt),
+                "{file}: the excerpt `{excerpt}` is not in\n{msg}"
+            );
         }
         covered += 1;
     }
@@ -60,10 +92,15 @@ fn every_ui_mistake_loaded_as_text_gets_the_same_message_and_place() {
 #[test]
 fn a_rendered_error_shows_the_line_and_the_culprit() {
     let text = "pub struct X {\n    ground { O: (0.0, 0.0) },\n    link crank { points { O, A: (1.0, 0.0) }, mass: -2.0, cg: (0.5, 0.0) },\n    joints { O: revolute(ground, crank) },\n    input: O,\n}\n";
-    let Err(MechError::Invalid(msg)) = Mechanism::from_dsl(text) else { panic!("accepted") };
+    let Err(MechError::Invalid(msg)) = Mechanism::from_dsl(text) else {
+        panic!("accepted")
+    };
     eprintln!("{msg}");
     let first = msg.lines().next().unwrap();
     assert!(first.starts_with("3:"), "{msg}");
-    assert!(msg.contains("link crank { points { O, A: (1.0, 0.0) }, mass: -2.0"), "{msg}");
+    assert!(
+        msg.contains("link crank { points { O, A: (1.0, 0.0) }, mass: -2.0"),
+        "{msg}"
+    );
     assert!(msg.lines().any(|l| l.contains('^')), "no underline:\n{msg}");
 }

@@ -9,8 +9,8 @@
 mod mechanisms;
 mod support;
 
-use mech::Mechanism;
 use mech::prelude::*;
+use mech::Mechanism;
 use mechanisms::*;
 use support::*;
 
@@ -27,17 +27,86 @@ fn generic(name: &str) -> Mechanism {
 mod against_reference;
 use against_reference::motion_agrees;
 
-generic_test!(public_slider_crank, PublicSliderCrank, PublicSliderCrankLoads, "public_slider_crank", |v: &[f64]| v[0], one_dof = true);
-generic_test!(public_four_bar, PublicFourBar, PublicFourBarLoads, "public_four_bar", |v: &[f64]| v[0], one_dof = true);
-generic_test!(four_bar, FourBar, FourBarLoads, "four_bar", |v: &[f64]| v[0], one_dof = true);
-generic_test!(slider_crank, SliderCrank, SliderCrankLoads, "slider_crank", |v: &[f64]| v[0], one_dof = true);
-generic_test!(quick_return, QuickReturn, QuickReturnLoads, "quick_return", |v: &[f64]| v[0], one_dof = true);
-generic_test!(watt2, Watt2, Watt2Loads, "watt2", |v: &[f64]| v[0], one_dof = true);
-generic_test!(stephenson3, Stephenson3, Stephenson3Loads, "stephenson3", |v: &[f64]| v[0], one_dof = true);
-generic_test!(scotch_yoke, ScotchYoke, ScotchYokeLoads, "scotch_yoke", |v: &[f64]| v[0], one_dof = true);
-generic_test!(five_bar, FiveBar, FiveBarLoads, "five_bar", |v: &[f64]| [v[0], v[1]], one_dof = false);
-generic_test!(hydraulic_lever, HydraulicLever, HydraulicLeverLoads, "hydraulic_lever", |v: &[f64]| v[0], one_dof = true);
-
+generic_test!(
+    public_slider_crank,
+    PublicSliderCrank,
+    PublicSliderCrankLoads,
+    "public_slider_crank",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    public_four_bar,
+    PublicFourBar,
+    PublicFourBarLoads,
+    "public_four_bar",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    four_bar,
+    FourBar,
+    FourBarLoads,
+    "four_bar",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    slider_crank,
+    SliderCrank,
+    SliderCrankLoads,
+    "slider_crank",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    quick_return,
+    QuickReturn,
+    QuickReturnLoads,
+    "quick_return",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    watt2,
+    Watt2,
+    Watt2Loads,
+    "watt2",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    stephenson3,
+    Stephenson3,
+    Stephenson3Loads,
+    "stephenson3",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    scotch_yoke,
+    ScotchYoke,
+    ScotchYokeLoads,
+    "scotch_yoke",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+generic_test!(
+    five_bar,
+    FiveBar,
+    FiveBarLoads,
+    "five_bar",
+    |v: &[f64]| [v[0], v[1]],
+    one_dof = false
+);
+generic_test!(
+    hydraulic_lever,
+    HydraulicLever,
+    HydraulicLeverLoads,
+    "hydraulic_lever",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
 
 /// Parameters changed by name at run time (`set_param`, re-validated) give the mechanism
 /// that the generated struct's `from_params` gives with the same numbers.
@@ -58,7 +127,8 @@ fn parameters_by_name_match_from_params() {
         ("links.rocker.cg", &[0.27, 0.14]),
         ("gravity", &[0.5, -9.7]),
     ] {
-        rt.set_param(path, v).unwrap_or_else(|e| panic!("{path}: {e}"));
+        rt.set_param(path, v)
+            .unwrap_or_else(|e| panic!("{path}: {e}"));
     }
     let mut loads = FourBarLoads::default();
     let mut rloads = rt.loads();
@@ -67,18 +137,45 @@ fn parameters_by_name_match_from_params() {
     }
     for k in 0..12 {
         let q = -3.0 + 0.5 * k as f64;
-        let (m, rm) = (gen.kinematics(q, 7.0, -2.0).unwrap(), rt.kinematics(&[q], &[7.0], &[-2.0]).unwrap());
-        let (d, rd) = (gen.kinetostatics(&m, &loads).unwrap().driver, rt.kinetostatics(&rm, &rloads).unwrap().driver[0]);
-        assert!((d - rd).abs() <= 1e-12 * d.abs().max(1.0), "q = {q}: driver {d} vs {rd}");
+        let (m, rm) = (
+            gen.kinematics(q, 7.0, -2.0).unwrap(),
+            rt.kinematics(&[q], &[7.0], &[-2.0]).unwrap(),
+        );
+        let (d, rd) = (
+            gen.kinetostatics(&m, &loads).unwrap().driver,
+            rt.kinetostatics(&rm, &rloads).unwrap().driver[0],
+        );
+        assert!(
+            (d - rd).abs() <= 1e-12 * d.abs().max(1.0),
+            "q = {q}: driver {d} vs {rd}"
+        );
         let (r, rr) = (gen.reduced(q).unwrap(), rt.reduced(q).unwrap());
-        assert!((r.inertia - rr.inertia).abs() <= 1e-12 * r.inertia.abs(), "q = {q}: I*");
-        let (ms, rms) = (gen.reduced_moment(q, &loads).unwrap(), rt.reduced_moment(q, &rloads).unwrap());
-        assert!((ms - rms).abs() <= 1e-12 * ms.abs().max(1.0), "q = {q}: M* {ms} vs {rms}");
+        assert!(
+            (r.inertia - rr.inertia).abs() <= 1e-12 * r.inertia.abs(),
+            "q = {q}: I*"
+        );
+        let (ms, rms) = (
+            gen.reduced_moment(q, &loads).unwrap(),
+            rt.reduced_moment(q, &rloads).unwrap(),
+        );
+        assert!(
+            (ms - rms).abs() <= 1e-12 * ms.abs().max(1.0),
+            "q = {q}: M* {ms} vs {rms}"
+        );
     }
     // A bad value is refused and leaves the mechanism as it was.
     let before = rt.model().clone();
-    assert!(matches!(rt.set_param("links.coupler.mass", &[-1.0]), Err(MechError::Invalid(_))));
-    assert!(matches!(rt.set_param("links.nothing.mass", &[1.0]), Err(MechError::InvalidInput(_))));
-    assert!(matches!(rt.set_param("points.A", &[f64::NAN, 0.0]), Err(MechError::InvalidInput(_))));
+    assert!(matches!(
+        rt.set_param("links.coupler.mass", &[-1.0]),
+        Err(MechError::Invalid(_))
+    ));
+    assert!(matches!(
+        rt.set_param("links.nothing.mass", &[1.0]),
+        Err(MechError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        rt.set_param("points.A", &[f64::NAN, 0.0]),
+        Err(MechError::InvalidInput(_))
+    ));
     assert_eq!(rt.model(), &before);
 }

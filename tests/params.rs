@@ -83,7 +83,11 @@ struct Routes {
 }
 
 fn close(what: &str, a: f64, b: f64, scale: f64, tol: f64) {
-    assert!((a - b).abs() <= tol * scale, "{what}: {a:e} vs {b:e} (difference {:e}, scale {scale:e})", a - b);
+    assert!(
+        (a - b).abs() <= tol * scale,
+        "{what}: {a:e} vs {b:e} (difference {:e}, scale {scale:e})",
+        a - b
+    );
 }
 
 /// The configurations: q over a whole turn, q̇ and q̈ of both signs and zero.
@@ -91,7 +95,13 @@ fn configurations() -> Vec<(f64, f64, f64)> {
     let mut out = Vec::new();
     for i in 0..24 {
         let q = -3.0 + 0.26 * i as f64;
-        for (qd, qdd) in [(1.0, 0.0), (7.5, -40.0), (-3.0, 120.0), (0.0, 25.0), (12.0, 3.0)] {
+        for (qd, qdd) in [
+            (1.0, 0.0),
+            (7.5, -40.0),
+            (-3.0, 120.0),
+            (0.0, 25.0),
+            (12.0, 3.0),
+        ] {
             out.push((q, qd, qdd));
         }
     }
@@ -118,20 +128,48 @@ macro_rules! routes {
 
 /// The three routes agree to 1e-10 of the largest term, and Σ T = ½ I* q̇².
 fn check_routes(ctx: &str, r: &Routes) {
-    let scale = r.dalembert.abs().max(r.virtual_power.abs()).max(r.zhukovski.abs()).max(1e-9);
-    close(&format!("{ctx}: virtual power vs d'Alembert"), r.virtual_power, r.dalembert, scale, 1e-10);
-    close(&format!("{ctx}: Zhukovski vs d'Alembert"), r.zhukovski, r.dalembert, scale, 1e-10);
-    close(&format!("{ctx}: Σ T vs ½ I* q̇²"), r.kinetic, r.reduced_kinetic, r.kinetic.abs().max(1e-12), 1e-10);
+    let scale = r
+        .dalembert
+        .abs()
+        .max(r.virtual_power.abs())
+        .max(r.zhukovski.abs())
+        .max(1e-9);
+    close(
+        &format!("{ctx}: virtual power vs d'Alembert"),
+        r.virtual_power,
+        r.dalembert,
+        scale,
+        1e-10,
+    );
+    close(
+        &format!("{ctx}: Zhukovski vs d'Alembert"),
+        r.zhukovski,
+        r.dalembert,
+        scale,
+        1e-10,
+    );
+    close(
+        &format!("{ctx}: Σ T vs ½ I* q̇²"),
+        r.kinetic,
+        r.reduced_kinetic,
+        r.kinetic.abs().max(1e-12),
+        1e-10,
+    );
 }
 
 /// Per link (mass, inertia, cg motion, ω, α): Σ (m v_G·a_G + I ω α), the exact dT/dt.
 fn kinetic_rate(links: &[(f64, f64, &LinkMotion)]) -> f64 {
-    links.iter().map(|(m, i, l)| m * l.cg_vel.dot(&l.cg_acc) + i * l.omega * l.alpha).sum()
+    links
+        .iter()
+        .map(|(m, i, l)| m * l.cg_vel.dot(&l.cg_acc) + i * l.omega * l.alpha)
+        .sum()
 }
 
 /// Σ T along the motion through (q, q̇, q̈) at constant q̈, at time t.
 fn kinetic_at<M: Machine>(m: &M, q: f64, qd: f64, qdd: f64, t: f64) -> f64 {
-    let motion = m.motion(&[q + qd * t + 0.5 * qdd * t * t], &[qd + qdd * t], &[qdd]).unwrap();
+    let motion = m
+        .motion(&[q + qd * t + 0.5 * qdd * t * t], &[qd + qdd * t], &[qdd])
+        .unwrap();
     let mut e = vec![0.0; m.links()];
     m.link_kinetic_energies(&motion, &mut e);
     e.iter().sum()
@@ -147,15 +185,53 @@ fn rate(f: impl Fn(f64) -> f64) -> f64 {
 /// The power balance driver·q̇ + P(loads) + P(gravity) = dT/dt, exactly (1e-10) and by
 /// finite differences in time along the motion (1e-8); and −dV/dt = P(gravity) by finite
 /// differences.
-fn check_power<M: Machine>(ctx: &str, m: &M, q: f64, qd: f64, qdd: f64, input: f64, loads_power: f64, gravity_power: f64, exact: f64) {
+fn check_power<M: Machine>(
+    ctx: &str,
+    m: &M,
+    q: f64,
+    qd: f64,
+    qdd: f64,
+    input: f64,
+    loads_power: f64,
+    gravity_power: f64,
+    exact: f64,
+) {
     let lhs = input + loads_power + gravity_power;
-    let scale = input.abs().max(loads_power.abs()).max(gravity_power.abs()).max(exact.abs()).max(1e-9);
-    close(&format!("{ctx}: power balance (exact dT/dt)"), lhs, exact, scale, 1e-10);
-    let v = |t: f64| m.potential_energy(&m.motion(&[q + qd * t + 0.5 * qdd * t * t], &[qd + qdd * t], &[qdd]).unwrap());
+    let scale = input
+        .abs()
+        .max(loads_power.abs())
+        .max(gravity_power.abs())
+        .max(exact.abs())
+        .max(1e-9);
+    close(
+        &format!("{ctx}: power balance (exact dT/dt)"),
+        lhs,
+        exact,
+        scale,
+        1e-10,
+    );
+    let v = |t: f64| {
+        m.potential_energy(
+            &m.motion(&[q + qd * t + 0.5 * qdd * t * t], &[qd + qdd * t], &[qdd])
+                .unwrap(),
+        )
+    };
     // The differences round off to ε |E| / h: scale them by the energies per second too.
     let fd_scale = scale.max((kinetic_at(m, q, qd, qdd, 0.0).abs() + v(0.0).abs()) / 1.0);
-    close(&format!("{ctx}: power balance (finite-difference dT/dt)"), lhs, rate(|t| kinetic_at(m, q, qd, qdd, t)), fd_scale, 1e-8);
-    close(&format!("{ctx}: −dV/dt vs power of gravity"), -rate(v), gravity_power, fd_scale, 1e-8);
+    close(
+        &format!("{ctx}: power balance (finite-difference dT/dt)"),
+        lhs,
+        rate(|t| kinetic_at(m, q, qd, qdd, t)),
+        fd_scale,
+        1e-8,
+    );
+    close(
+        &format!("{ctx}: −dV/dt vs power of gravity"),
+        -rate(v),
+        gravity_power,
+        fd_scale,
+        1e-8,
+    );
 }
 
 fn four_bar_params() -> FourBarParams {
@@ -179,17 +255,37 @@ fn four_bar_routes_and_power_use_the_run_time_numbers() {
     let p = four_bar_params();
     let m = FourBar::from_params(p.clone()).unwrap();
     assert_eq!(m.params(), &p);
-    let loads = FourBarLoads { tool: V::new(3.0, -2.0), resist: -0.4 };
+    let loads = FourBarLoads {
+        tool: V::new(3.0, -2.0),
+        resist: -0.4,
+    };
     for (q, qd, qdd) in configurations() {
         let ctx = format!("four-bar at q = {q}, q̇ = {qd}, q̈ = {qdd}");
         let r = routes!(m, loads, q, qd, qdd);
         check_routes(&ctx, &r);
         let mo = m.kinematics(q, qd, qdd).unwrap();
         let l = &mo.links;
-        let masses = [(p.links.crank.mass, p.links.crank.inertia, &l.crank), (p.links.coupler.mass, p.links.coupler.inertia, &l.coupler), (p.links.rocker.mass, p.links.rocker.inertia, &l.rocker)];
+        let masses = [
+            (p.links.crank.mass, p.links.crank.inertia, &l.crank),
+            (p.links.coupler.mass, p.links.coupler.inertia, &l.coupler),
+            (p.links.rocker.mass, p.links.rocker.inertia, &l.rocker),
+        ];
         let loads_power = loads.tool.dot(&mo.points.P.vel) + loads.resist * l.rocker.omega;
-        let gravity_power: f64 = masses.iter().map(|(mass, _, lm)| mass * p.gravity.dot(&lm.cg_vel)).sum();
-        check_power(&ctx, &m, q, qd, qdd, r.dalembert * qd, loads_power, gravity_power, kinetic_rate(&masses));
+        let gravity_power: f64 = masses
+            .iter()
+            .map(|(mass, _, lm)| mass * p.gravity.dot(&lm.cg_vel))
+            .sum();
+        check_power(
+            &ctx,
+            &m,
+            q,
+            qd,
+            qdd,
+            r.dalembert * qd,
+            loads_power,
+            gravity_power,
+            kinetic_rate(&masses),
+        );
     }
 }
 
@@ -202,11 +298,29 @@ fn a_link_declared_mass_zero_counts_when_given_mass() {
     p.links.coupler.inertia = 0.0;
     let light = FourBar::from_params(p).unwrap();
     let loads = FourBarLoads::default();
-    let (a, b) = (routes!(heavy, loads, 1.0, 1.0, 0.0), routes!(light, loads, 1.0, 1.0, 0.0));
+    let (a, b) = (
+        routes!(heavy, loads, 1.0, 1.0, 0.0),
+        routes!(light, loads, 1.0, 1.0, 0.0),
+    );
     let diff = a.dalembert - b.dalembert;
-    assert!(diff.abs() > 1e-2 * a.dalembert.abs(), "the coupler's mass must change the driver: {a:?} / {b:?}");
-    close("virtual power difference", a.virtual_power - b.virtual_power, diff, diff.abs(), 1e-9);
-    close("Zhukovski difference", a.zhukovski - b.zhukovski, diff, diff.abs(), 1e-9);
+    assert!(
+        diff.abs() > 1e-2 * a.dalembert.abs(),
+        "the coupler's mass must change the driver: {a:?} / {b:?}"
+    );
+    close(
+        "virtual power difference",
+        a.virtual_power - b.virtual_power,
+        diff,
+        diff.abs(),
+        1e-9,
+    );
+    close(
+        "Zhukovski difference",
+        a.zhukovski - b.zhukovski,
+        diff,
+        diff.abs(),
+        1e-9,
+    );
     assert!(a.kinetic > b.kinetic);
 }
 
@@ -222,17 +336,37 @@ fn slider_crank_with_gravity_routes_and_power_use_the_run_time_numbers() {
     p.links.piston.inertia = 4e-4;
     p.gravity = V::new(-0.8, -9.81);
     let m = SliderCrank::from_params(p.clone()).unwrap();
-    let loads = SliderCrankLoads { gas: V::new(-250.0, 15.0), load: 1.5 };
+    let loads = SliderCrankLoads {
+        gas: V::new(-250.0, 15.0),
+        load: 1.5,
+    };
     for (q, qd, qdd) in configurations() {
         let ctx = format!("slider-crank at q = {q}, q̇ = {qd}, q̈ = {qdd}");
         let r = routes!(m, loads, q, qd, qdd);
         check_routes(&ctx, &r);
         let mo = m.kinematics(q, qd, qdd).unwrap();
         let l = &mo.links;
-        let masses = [(p.links.crank.mass, p.links.crank.inertia, &l.crank), (p.links.rod.mass, p.links.rod.inertia, &l.rod), (p.links.piston.mass, p.links.piston.inertia, &l.piston)];
+        let masses = [
+            (p.links.crank.mass, p.links.crank.inertia, &l.crank),
+            (p.links.rod.mass, p.links.rod.inertia, &l.rod),
+            (p.links.piston.mass, p.links.piston.inertia, &l.piston),
+        ];
         let loads_power = loads.gas.dot(&mo.points.B.vel) + loads.load * l.crank.omega;
-        let gravity_power: f64 = masses.iter().map(|(mass, _, lm)| mass * p.gravity.dot(&lm.cg_vel)).sum();
-        check_power(&ctx, &m, q, qd, qdd, r.dalembert * qd, loads_power, gravity_power, kinetic_rate(&masses));
+        let gravity_power: f64 = masses
+            .iter()
+            .map(|(mass, _, lm)| mass * p.gravity.dot(&lm.cg_vel))
+            .sum();
+        check_power(
+            &ctx,
+            &m,
+            q,
+            qd,
+            qdd,
+            r.dalembert * qd,
+            loads_power,
+            gravity_power,
+            kinetic_rate(&masses),
+        );
     }
 }
 
@@ -242,16 +376,32 @@ fn inertia_only_link_varies_its_inertia_on_every_route() {
     p.links.rocker.inertia = 7e-3;
     p.links.crank.mass = 0.9;
     let m = Bare::from_params(p.clone()).unwrap();
-    let loads = BareLoads { tool: V::new(-1.0, 4.0), resist: 0.3 };
+    let loads = BareLoads {
+        tool: V::new(-1.0, 4.0),
+        resist: 0.3,
+    };
     for (q, qd, qdd) in configurations() {
         let ctx = format!("bare four-bar at q = {q}, q̇ = {qd}, q̈ = {qdd}");
         let r = routes!(m, loads, q, qd, qdd);
         check_routes(&ctx, &r);
         let mo = m.kinematics(q, qd, qdd).unwrap();
         let l = &mo.links;
-        let masses = [(p.links.crank.mass, p.links.crank.inertia, &l.crank), (0.0, p.links.rocker.inertia, &l.rocker)];
+        let masses = [
+            (p.links.crank.mass, p.links.crank.inertia, &l.crank),
+            (0.0, p.links.rocker.inertia, &l.rocker),
+        ];
         let loads_power = loads.tool.dot(&mo.points.P.vel) + loads.resist * l.rocker.omega;
-        check_power(&ctx, &m, q, qd, qdd, r.dalembert * qd, loads_power, 0.0, kinetic_rate(&masses));
+        check_power(
+            &ctx,
+            &m,
+            q,
+            qd,
+            qdd,
+            r.dalembert * qd,
+            loads_power,
+            0.0,
+            kinetic_rate(&masses),
+        );
         assert_eq!(m.potential_energy(&mo), 0.0);
     }
 }
@@ -263,7 +413,10 @@ fn refused(r: Result<Bare, MechError>, parts: &[&str]) {
                 assert!(msg.contains(part), "expected “{part}” in: {msg}");
             }
         }
-        other => panic!("expected InvalidInput, got {:?}", other.map(|_| "a mechanism")),
+        other => panic!(
+            "expected InvalidInput, got {:?}",
+            other.map(|_| "a mechanism")
+        ),
     }
 }
 
@@ -275,16 +428,33 @@ fn mass_on_a_link_declared_without_mass_is_refused() {
     p.links.coupler.inertia = 5e-3;
     refused(
         Bare::from_params(p),
-        &["link `coupler`", "without `mass`", "mass 1 kg", "inertia 0.005 kg·m²", "declare `mass: 0.0` on link `coupler` in `mechanism!` to vary its mass at run time"],
+        &[
+            "link `coupler`",
+            "without `mass`",
+            "mass 1 kg",
+            "inertia 0.005 kg·m²",
+            "declare `mass: 0.0` on link `coupler` in `mechanism!` to vary its mass at run time",
+        ],
     );
     // Inertia alone is refused too: the massless coupler has no inertia moment.
     let mut p = BareParams::default();
     p.links.coupler.inertia = 5e-3;
-    refused(Bare::from_params(p), &["link `coupler`", "inertia 0.005 kg·m²"]);
+    refused(
+        Bare::from_params(p),
+        &["link `coupler`", "inertia 0.005 kg·m²"],
+    );
     // A mass on the rocker, declared with `inertia` alone.
     let mut p = BareParams::default();
     p.links.rocker.mass = 0.2;
-    refused(Bare::from_params(p), &["link `rocker`", "with `inertia` but without `mass`", "mass 0.2 kg", "declare `mass: 0.0` on link `rocker`"]);
+    refused(
+        Bare::from_params(p),
+        &[
+            "link `rocker`",
+            "with `inertia` but without `mass`",
+            "mass 0.2 kg",
+            "declare `mass: 0.0` on link `rocker`",
+        ],
+    );
     // A cg is free on a massless link (it is unused), and zeros are the declaration.
     let mut p = BareParams::default();
     p.links.coupler.cg = V::new(0.5, 0.5);

@@ -29,7 +29,14 @@ mechanism! {
 
 #[test]
 fn coupled_wheels_move_and_need_the_textbook_torque() {
-    assert_eq!((CoupledWheels::DOF, CoupledWheels::EQUATIONS, CoupledWheels::UNKNOWNS), (1, 12, 13));
+    assert_eq!(
+        (
+            CoupledWheels::DOF,
+            CoupledWheels::EQUATIONS,
+            CoupledWheels::UNKNOWNS
+        ),
+        (1, 12, 13)
+    );
     let m = CoupledWheels::new();
     let r = (0.05f64 * 0.05 + 0.0866 * 0.0866).sqrt();
     // Every wheel turns with the first, the rod translates on a circle of radius r.
@@ -38,11 +45,20 @@ fn coupled_wheels_move_and_need_the_textbook_torque() {
     // At q = 0 and π the cranks lie on the line of the pivots: the parallelogram's change
     // point (it could fold into an anti-parallelogram), reported as such.
     let at_change = m.kinematics(0.0, 1.0, 0.0);
-    assert!(matches!(at_change, Err(MechError::Singular { .. } | MechError::NoAssembly)), "{at_change:?}");
+    assert!(
+        matches!(
+            at_change,
+            Err(MechError::Singular { .. } | MechError::NoAssembly)
+        ),
+        "{at_change:?}"
+    );
     // Away from the change points (0.3 rad or more), where the dyad is well conditioned.
     for k in 0..16 {
         let q = 0.3 + 0.4 * k as f64;
-        if (q / std::f64::consts::PI - (q / std::f64::consts::PI).round()).abs() * std::f64::consts::PI < 0.3 {
+        if (q / std::f64::consts::PI - (q / std::f64::consts::PI).round()).abs()
+            * std::f64::consts::PI
+            < 0.3
+        {
             continue;
         }
         let (qd, qdd) = (10.0, 2.0);
@@ -50,13 +66,25 @@ fn coupled_wheels_move_and_need_the_textbook_torque() {
         for w in [mo.links.wheel2, mo.links.wheel3] {
             let d = (w.angle - mo.links.wheel1.angle).rem_euclid(std::f64::consts::TAU);
             assert!(d.min(std::f64::consts::TAU - d) < 1e-12, "q={q}");
-            assert!((w.omega - qd).abs() < 1e-10 * qd && (w.alpha - qdd).abs() < 1e-9 * qd * qd, "q={q}: {} {}", w.omega, w.alpha);
+            assert!(
+                (w.omega - qd).abs() < 1e-10 * qd && (w.alpha - qdd).abs() < 1e-9 * qd * qd,
+                "q={q}: {} {}",
+                w.omega,
+                w.alpha
+            );
         }
-        assert!(mo.links.rod.omega.abs() < 1e-10 * qd, "the rod translates: ω = {}", mo.links.rod.omega);
+        assert!(
+            mo.links.rod.omega.abs() < 1e-10 * qd,
+            "the rod translates: ω = {}",
+            mo.links.rod.omega
+        );
         let torque = m.driver_action(&mo, &loads).unwrap();
         // I* is constant: T = I* q̈ − (traction on a wheel turning at the input's rate).
         let want = i_star * qdd + 50.0;
-        assert!((torque - want).abs() < 1e-10 * want, "q={q}: {torque} vs {want}");
+        assert!(
+            (torque - want).abs() < 1e-10 * want,
+            "q={q}: {torque} vs {want}"
+        );
         let z = m.reduced(q).unwrap();
         assert!((z.inertia - i_star).abs() < 1e-12 * i_star && z.inertia_derivative.abs() < 1e-10);
         // A motion at rest still gets its torque from the solved velocity field.
@@ -69,7 +97,8 @@ fn coupled_wheels_move_and_need_the_textbook_torque() {
 /// motion, the same motor torque (virtual power) and I*, and no reactions.
 #[test]
 fn the_run_time_mechanism_solves_it_too() {
-    let text = mech::generic::mechanism_text(include_str!("redundant.rs"), "CoupledWheels").unwrap();
+    let text =
+        mech::generic::mechanism_text(include_str!("redundant.rs"), "CoupledWheels").unwrap();
     let rt = mech::Mechanism::from_dsl(text).unwrap();
     assert!(rt.redundant());
     let m = CoupledWheels::new();
@@ -78,19 +107,35 @@ fn the_run_time_mechanism_solves_it_too() {
     assert!(rloads.set_by_name("traction", &[-50.0]));
     for k in 0..16 {
         let q = 0.3 + 0.4 * k as f64;
-        if (q / std::f64::consts::PI - (q / std::f64::consts::PI).round()).abs() * std::f64::consts::PI < 0.3 {
+        if (q / std::f64::consts::PI - (q / std::f64::consts::PI).round()).abs()
+            * std::f64::consts::PI
+            < 0.3
+        {
             continue;
         }
-        let (mo, rm) = (m.kinematics(q, 10.0, 2.0).unwrap(), rt.kinematics(&[q], &[10.0], &[2.0]).unwrap());
+        let (mo, rm) = (
+            m.kinematics(q, 10.0, 2.0).unwrap(),
+            rt.kinematics(&[q], &[10.0], &[2.0]).unwrap(),
+        );
         for name in ["wheel2", "wheel3", "rod"] {
             let (a, b) = (mo.link(name).unwrap(), rm.link(name).unwrap());
-            assert!((a.omega - b.omega).abs() < 1e-12 * 10.0 && (a.alpha - b.alpha).abs() < 1e-10 * 100.0, "q={q} {name}");
+            assert!(
+                (a.omega - b.omega).abs() < 1e-12 * 10.0
+                    && (a.alpha - b.alpha).abs() < 1e-10 * 100.0,
+                "q={q} {name}"
+            );
             assert!((a.cg - b.cg).norm() < 1e-12, "q={q} {name}");
         }
-        let (t, rtq) = (m.driver_action(&mo, &loads).unwrap(), rt.driver_action(&rm, &rloads).unwrap()[0]);
+        let (t, rtq) = (
+            m.driver_action(&mo, &loads).unwrap(),
+            rt.driver_action(&rm, &rloads).unwrap()[0],
+        );
         assert!((t - rtq).abs() < 1e-11 * t.abs(), "q={q}: {t} vs {rtq}");
         let (z, rz) = (m.reduced(q).unwrap(), rt.reduced(q).unwrap());
         assert!((z.inertia - rz.inertia).abs() < 1e-12 * z.inertia);
-        assert!(matches!(rt.kinetostatics(&rm, &rloads), Err(MechError::Redundant(_))));
+        assert!(matches!(
+            rt.kinetostatics(&rm, &rloads),
+            Err(MechError::Redundant(_))
+        ));
     }
 }

@@ -91,13 +91,83 @@ macro_rules! reference_test {
     (@zhukovski false, $($rest:tt)*) => {{}};
 }
 
-reference_test!(public_slider_crank, PublicSliderCrank, PublicSliderCrankLoads, "public_slider_crank", |v: &[f64]| v[0], one_dof = true);
-reference_test!(public_four_bar, PublicFourBar, PublicFourBarLoads, "public_four_bar", |v: &[f64]| v[0], one_dof = true);
-reference_test!(four_bar, FourBar, FourBarLoads, "four_bar", |v: &[f64]| v[0], one_dof = true);
-reference_test!(slider_crank, SliderCrank, SliderCrankLoads, "slider_crank", |v: &[f64]| v[0], one_dof = true);
-reference_test!(quick_return, QuickReturn, QuickReturnLoads, "quick_return", |v: &[f64]| v[0], one_dof = true);
-reference_test!(watt2, Watt2, Watt2Loads, "watt2", |v: &[f64]| v[0], one_dof = true);
-reference_test!(stephenson3, Stephenson3, Stephenson3Loads, "stephenson3", |v: &[f64]| v[0], one_dof = true);
-reference_test!(scotch_yoke, ScotchYoke, ScotchYokeLoads, "scotch_yoke", |v: &[f64]| v[0], one_dof = true);
-reference_test!(five_bar, FiveBar, FiveBarLoads, "five_bar", |v: &[f64]| [v[0], v[1]], one_dof = false);
-reference_test!(hydraulic_lever, HydraulicLever, HydraulicLeverLoads, "hydraulic_lever", |v: &[f64]| v[0], one_dof = true);
+reference_test!(
+    public_slider_crank,
+    PublicSliderCrank,
+    PublicSliderCrankLoads,
+    "public_slider_crank",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+reference_test!(
+    public_four_bar,
+    PublicFourBar,
+    PublicFourBarLoads,
+    "public_four_bar",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+reference_test!(
+    four_bar,
+    FourBar,
+    FourBarLoads,
+    "four_bar",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+reference_test!(
+    slider_crank,
+    SliderCrank,
+    SliderCrankLoads,
+    "slider_crank",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+reference_test!(
+    quick_return,
+    QuickReturn,
+    QuickReturnLoads,
+    "quick_return",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+reference_test!(
+    watt2,
+    Watt2,
+    Watt2Loads,
+    "watt2",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+reference_test!(
+    stephenson3,
+    Stephenson3,
+    Stephenson3Loads,
+    "stephenson3",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+reference_test!(
+    scotch_yoke,
+    ScotchYoke,
+    ScotchYokeLoads,
+    "scotch_yoke",
+    |v: &[f64]| v[0],
+    one_dof = true
+);
+reference_test!(
+    five_bar,
+    FiveBar,
+    FiveBarLoads,
+    "five_bar",
+    |v: &[f64]| [v[0], v[1]],
+    one_dof = false
+);
+reference_test!(
+    hydraulic_lever,
+    HydraulicLever,
+    HydraulicLeverLoads,
+    "hydraulic_lever",
+    |v: &[f64]| v[0],
+    one_dof = true
+);

@@ -4,7 +4,7 @@
 //! the direct problem), for mechanisms of up to 8 links and joints. Proved with a counting
 //! global allocator (one test in this file: the harness runs tests in threads).
 
-use mech::kinematics::{LinkState, Level};
+use mech::kinematics::{Level, LinkState};
 use mech::prelude::*;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -54,10 +54,12 @@ fn no_allocation_per_call_with_caller_buffers() {
         let mut states: Vec<LinkState> = Vec::new();
         let mut motion = m.kinematics(&[q0], &[1.0], &[0.0]).unwrap();
         let mut forces = m.kinetostatics(&motion, &loads).unwrap();
-        m.solve_into(&[q0], &[1.0], &[0.0], Level::Acceleration, &mut states).unwrap();
+        m.solve_into(&[q0], &[1.0], &[0.0], Level::Acceleration, &mut states)
+            .unwrap();
         for k in 0..8 {
             let q = [q0 + 0.01 * k as f64];
-            let (n, r) = count(|| m.solve_into(&q, &[2.0], &[-1.0], Level::Acceleration, &mut states));
+            let (n, r) =
+                count(|| m.solve_into(&q, &[2.0], &[-1.0], Level::Acceleration, &mut states));
             r.unwrap();
             assert_eq!(n, 0, "{name}: solve_into allocated");
             let (n, r) = count(|| m.kinematics_into(&q, &[2.0], &[-1.0], &mut motion));
@@ -67,7 +69,13 @@ fn no_allocation_per_call_with_caller_buffers() {
             r.unwrap();
             assert_eq!(n, 0, "{name}: kinetostatics_into allocated");
             assert!(forces.driver[0].is_finite());
-            let (n, r) = count(|| (m.reduced(q[0]), m.reduced_moment(q[0], &loads), m.acceleration(q[0], 2.0, 0.5, &loads)));
+            let (n, r) = count(|| {
+                (
+                    m.reduced(q[0]),
+                    m.reduced_moment(q[0], &loads),
+                    m.acceleration(q[0], 2.0, 0.5, &loads),
+                )
+            });
             let (a, b, c) = r;
             assert!(a.is_ok() && b.is_ok() && c.is_ok());
             assert_eq!(n, 0, "{name}: Zhukovski's route allocated");

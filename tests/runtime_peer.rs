@@ -44,17 +44,54 @@ fn engine_flywheel_from_a_file() {
         assert!(l.set_by_name("gas", &[f, 0.0]));
         Ok(l)
     };
-    let (g_cycle, g_t) = Cycle::new(&gen, engine::Q_TDC, engine::PERIOD, &engine::breakpoints(), |q| engine::gas_loads(&gen, q), |_| 0.0)
-        .unwrap()
-        .balanced();
-    let (r_cycle, r_t) = Cycle::new(&rt, engine::Q_TDC, engine::PERIOD, &engine::breakpoints(), rt_loads, |_| 0.0).unwrap().balanced();
+    let (g_cycle, g_t) = Cycle::new(
+        &gen,
+        engine::Q_TDC,
+        engine::PERIOD,
+        &engine::breakpoints(),
+        |q| engine::gas_loads(&gen, q),
+        |_| 0.0,
+    )
+    .unwrap()
+    .balanced();
+    let (r_cycle, r_t) = Cycle::new(
+        &rt,
+        engine::Q_TDC,
+        engine::PERIOD,
+        &engine::breakpoints(),
+        rt_loads,
+        |_| 0.0,
+    )
+    .unwrap()
+    .balanced();
     assert!(rel(r_t, g_t) < 1e-10, "balancing torque {r_t} vs {g_t}");
-    let g = g_cycle.flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY).unwrap();
-    let r = r_cycle.flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY).unwrap();
-    assert!(rel(r.approximate.inertia, g.approximate.inertia) < 1e-10, "approximate {} vs {}", r.approximate.inertia, g.approximate.inertia);
-    assert!(rel(r.exact.inertia, g.exact.inertia) < 1e-10, "exact {} vs {}", r.exact.inertia, g.exact.inertia);
-    assert!(g.exact.inertia > 0.01 && g.approximate.inertia > 0.01, "a real flywheel: {} kg·m²", g.exact.inertia);
-    eprintln!("flywheel: exact {} / {} kg·m², approximate {} / {}", r.exact.inertia, g.exact.inertia, r.approximate.inertia, g.approximate.inertia);
+    let g = g_cycle
+        .flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY)
+        .unwrap();
+    let r = r_cycle
+        .flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY)
+        .unwrap();
+    assert!(
+        rel(r.approximate.inertia, g.approximate.inertia) < 1e-10,
+        "approximate {} vs {}",
+        r.approximate.inertia,
+        g.approximate.inertia
+    );
+    assert!(
+        rel(r.exact.inertia, g.exact.inertia) < 1e-10,
+        "exact {} vs {}",
+        r.exact.inertia,
+        g.exact.inertia
+    );
+    assert!(
+        g.exact.inertia > 0.01 && g.approximate.inertia > 0.01,
+        "a real flywheel: {} kg·m²",
+        g.exact.inertia
+    );
+    eprintln!(
+        "flywheel: exact {} / {} kg·m², approximate {} / {}",
+        r.exact.inertia, g.exact.inertia, r.approximate.inertia, g.approximate.inertia
+    );
 }
 
 /// The direct problem: DOP853 on the slider-crank under a constant torque for 0.5 s (about
@@ -64,12 +101,34 @@ fn direct_problem() {
     let gen = mechanisms::SliderCrank::new();
     let rt = runtime("SliderCrank");
     let (gl, rl) = (mechanisms::SliderCrankLoads::default(), rt.loads());
-    let a = integrate(&mut Dop853::new(1e-11, 1e-11), equation_of_motion(&gen, |_, _, _| (3.0, gl)), 0.0, [0.3, 20.0], 0.5).unwrap();
-    let b = integrate(&mut Dop853::new(1e-11, 1e-11), equation_of_motion(&rt, |_, _, _| (3.0, rl.clone())), 0.0, [0.3, 20.0], 0.5).unwrap();
-    assert!(rel(b.y[0], a.y[0]) < 1e-10 && rel(b.y[1], a.y[1]) < 1e-10, "{:?} vs {:?}", b.y, a.y);
+    let a = integrate(
+        &mut Dop853::new(1e-11, 1e-11),
+        equation_of_motion(&gen, |_, _, _| (3.0, gl)),
+        0.0,
+        [0.3, 20.0],
+        0.5,
+    )
+    .unwrap();
+    let b = integrate(
+        &mut Dop853::new(1e-11, 1e-11),
+        equation_of_motion(&rt, |_, _, _| (3.0, rl.clone())),
+        0.0,
+        [0.3, 20.0],
+        0.5,
+    )
+    .unwrap();
+    assert!(
+        rel(b.y[0], a.y[0]) < 1e-10 && rel(b.y[1], a.y[1]) < 1e-10,
+        "{:?} vs {:?}",
+        b.y,
+        a.y
+    );
     // Energy: both give the same kinetic + potential energy along the way.
     for q in [0.3, 1.7, 4.0] {
-        let (e1, e2) = (mech::dynamics::total_energy(&gen, &[q], &[20.0]).unwrap(), mech::dynamics::total_energy(&rt, &[q], &[20.0]).unwrap());
+        let (e1, e2) = (
+            mech::dynamics::total_energy(&gen, &[q], &[20.0]).unwrap(),
+            mech::dynamics::total_energy(&rt, &[q], &[20.0]).unwrap(),
+        );
         assert!(rel(e2, e1) < 1e-12, "q={q}: energy {e2} vs {e1}");
     }
 }
@@ -98,17 +157,32 @@ fn lagrange_two_inputs() {
     let (gl, rl) = (mechanisms::FiveBarLoads::default(), rt.loads());
     for k in 0..6 {
         let m = rt.model();
-        let q = [m.reference_input(0) + 0.05 * k as f64, m.reference_input(1) - 0.03 * k as f64];
-        let (ma, mb) = (mass_matrix(&gen, &q).unwrap(), mass_matrix(&rt, &q).unwrap());
+        let q = [
+            m.reference_input(0) + 0.05 * k as f64,
+            m.reference_input(1) - 0.03 * k as f64,
+        ];
+        let (ma, mb) = (
+            mass_matrix(&gen, &q).unwrap(),
+            mass_matrix(&rt, &q).unwrap(),
+        );
         for i in 0..2 {
             for j in 0..2 {
-                assert!((ma[i][j] - mb[i][j]).abs() < 1e-12 * ma[0][0].abs().max(ma[1][1].abs()), "q={q:?} M[{i}][{j}]");
+                assert!(
+                    (ma[i][j] - mb[i][j]).abs() < 1e-12 * ma[0][0].abs().max(ma[1][1].abs()),
+                    "q={q:?} M[{i}][{j}]"
+                );
             }
         }
         let (qd, tau) = ([3.0, -2.0], [0.4, -0.3]);
-        let (aa, ab) = (lagrange_acceleration(&gen, &q, &qd, &tau, &gl).unwrap(), lagrange_acceleration(&rt, &q, &qd, &tau, &rl).unwrap());
+        let (aa, ab) = (
+            lagrange_acceleration(&gen, &q, &qd, &tau, &gl).unwrap(),
+            lagrange_acceleration(&rt, &q, &qd, &tau, &rl).unwrap(),
+        );
         for i in 0..2 {
-            assert!((aa[i] - ab[i]).abs() < 1e-10 * aa[i].abs().max(1.0), "q={q:?}: {aa:?} vs {ab:?}");
+            assert!(
+                (aa[i] - ab[i]).abs() < 1e-10 * aa[i].abs().max(1.0),
+                "q={q:?}: {aa:?} vs {ab:?}"
+            );
         }
     }
 }
@@ -119,20 +193,37 @@ fn lagrange_two_inputs() {
 fn friction() {
     let gen = mechanisms::SliderCrank::new();
     let rt = runtime("SliderCrank");
-    let fr = [JointFriction { mu: 0.1, pin_radius: 0.012 }; 4];
+    let fr = [JointFriction {
+        mu: 0.1,
+        pin_radius: 0.012,
+    }; 4];
     let mut gl = mechanisms::SliderCrankLoads::default();
     let mut rl = rt.loads();
     assert!(gl.set_by_name("gas", &[-1500.0, 0.0]) && rl.set_by_name("gas", &[-1500.0, 0.0]));
     for k in 0..10 {
         let q = 0.3 + 0.6 * k as f64;
-        let (mo, rm) = (gen.kinematics(q, 40.0, 5.0).unwrap(), rt.kinematics(&[q], &[40.0], &[5.0]).unwrap());
-        let (a, b) = (gen.kinetostatics_with_friction(&mo, &gl, &fr), rt.kinetostatics_with_friction(&rm, &rl, &fr));
+        let (mo, rm) = (
+            gen.kinematics(q, 40.0, 5.0).unwrap(),
+            rt.kinematics(&[q], &[40.0], &[5.0]).unwrap(),
+        );
+        let (a, b) = (
+            gen.kinetostatics_with_friction(&mo, &gl, &fr),
+            rt.kinetostatics_with_friction(&rm, &rl, &fr),
+        );
         match (a, b) {
             (Ok(a), Ok(b)) => {
                 let scale = a.driver.abs().max(1500.0);
-                assert!((a.driver - b.driver[0]).abs() < 1e-12 * scale, "q={q}: driver {} vs {}", a.driver, b.driver[0]);
+                assert!(
+                    (a.driver - b.driver[0]).abs() < 1e-12 * scale,
+                    "q={q}: driver {} vs {}",
+                    a.driver,
+                    b.driver[0]
+                );
                 let frictionless = gen.kinetostatics(&mo, &gl).unwrap().driver;
-                assert!((a.driver - frictionless).abs() > 1e-6 * scale, "q={q}: friction changes the torque");
+                assert!(
+                    (a.driver - frictionless).abs() > 1e-6 * scale,
+                    "q={q}: friction changes the torque"
+                );
                 for name in mechanisms::SliderCrank::JOINT_NAMES {
                     let (ga, gm) = a.reaction(name).unwrap();
                     let (ra, rmom) = b.reaction(name).unwrap();
@@ -155,17 +246,34 @@ fn friction() {
 fn degenerate_input_is_an_error_not_a_panic() {
     if let Ok(m) = Mechanism::from_dsl("pub struct X { ground { O: (0.0, 0.0) } }") {
         assert!(m.pose(&[]).is_ok() || m.pose(&[]).is_err());
-        assert!(matches!(m.kinematics(&[1.0], &[0.0], &[0.0]), Err(MechError::InvalidInput(_))));
+        assert!(matches!(
+            m.kinematics(&[1.0], &[0.0], &[0.0]),
+            Err(MechError::InvalidInput(_))
+        ));
     }
     let m = runtime("FourBar");
-    assert!(matches!(m.kinematics(&[], &[], &[]), Err(MechError::InvalidInput(_))));
-    assert!(matches!(m.kinematics(&[f64::NAN], &[0.0], &[0.0]), Err(MechError::InvalidInput(_))));
-    assert!(matches!(m.acceleration(0.5, f64::INFINITY, 0.0, &m.loads()), Err(MechError::InvalidInput(_))));
+    assert!(matches!(
+        m.kinematics(&[], &[], &[]),
+        Err(MechError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        m.kinematics(&[f64::NAN], &[0.0], &[0.0]),
+        Err(MechError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        m.acceleration(0.5, f64::INFINITY, 0.0, &m.loads()),
+        Err(MechError::InvalidInput(_))
+    ));
     let mut loads = m.loads();
     assert!(!loads.set_by_name("nothing", &[1.0, 2.0]) && !loads.set_by_name("tool", &[1.0]));
     assert!(loads.set_by_name("tool", &[f64::NAN, 0.0]));
     let mo = m.kinematics(&[0.5], &[1.0], &[0.0]).unwrap();
-    assert!(matches!(m.kinetostatics(&mo, &loads), Err(MechError::InvalidInput(_))));
+    assert!(matches!(
+        m.kinetostatics(&mo, &loads),
+        Err(MechError::InvalidInput(_))
+    ));
     // Loads of another mechanism's shape (fewer values) count as zero.
-    assert!(m.driver_action(&mo, &mech::mechanism::Loads::default()).is_ok());
+    assert!(m
+        .driver_action(&mo, &mech::mechanism::Loads::default())
+        .is_ok());
 }

@@ -18,7 +18,10 @@
 mod mechanisms;
 mod support;
 
-use mech::generic::{mechanism_text, position_error_bound, rate_error_bound, GenericLoads, GenericMechanism, LoadValue};
+use mech::generic::{
+    mechanism_text, position_error_bound, rate_error_bound, GenericLoads, GenericMechanism,
+    LoadValue,
+};
 use mech::instance::LinkParams;
 use mech::model::{JointKind, Load, Model};
 use mech::prelude::*;
@@ -67,7 +70,11 @@ impl Snap {
         self.angle.push(l.angle);
         self.omega.push(l.omega);
         self.alpha.push(l.alpha);
-        self.push_point(&PointMotion { pos: l.cg, vel: l.cg_vel, acc: l.cg_acc });
+        self.push_point(&PointMotion {
+            pos: l.cg,
+            vel: l.cg_vel,
+            acc: l.cg_acc,
+        });
     }
     fn push_point(&mut self, p: &PointMotion) {
         self.pos.push(p.pos);
@@ -80,19 +87,32 @@ impl Snap {
     }
 }
 
-fn snap_generic(g: &GenericMechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &GenericLoads) -> Result<Snap, MechError> {
+fn snap_generic(
+    g: &GenericMechanism,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    loads: &GenericLoads,
+) -> Result<Snap, MechError> {
     let m = g.kinematics(q, qd, qdd)?;
     let f = g.kinetostatics(&m, loads)?;
     let mut s = Snap::default();
     m.links[1..].iter().for_each(|l| s.push_link(l));
     m.points.iter().for_each(|p| s.push_point(p));
-    f.joints.iter().for_each(|r| s.push_reaction(r.force, r.moment));
+    f.joints
+        .iter()
+        .for_each(|r| s.push_reaction(r.force, r.moment));
     s.driver = f.driver.clone();
     s.vp = g.driver_action(&m, loads)?;
     if g.dof() == 1 {
         let r = g.reduced(q[0])?;
         let ms = g.reduced_moment(q[0], loads)?;
-        s.zhukovski = Some([r.inertia, r.inertia_derivative, ms, g.acceleration(q[0], qd[0], s.driver[0], loads)?]);
+        s.zhukovski = Some([
+            r.inertia,
+            r.inertia_derivative,
+            ms,
+            g.acceleration(q[0], qd[0], s.driver[0], loads)?,
+        ]);
     }
     Ok(s)
 }
@@ -144,12 +164,23 @@ struct Units {
     inertia_derivative: f64,
     qdd: f64,
 }
-const SAME: Units = Units { length: 1.0, force: 1.0, torque: 1.0, driver: 1.0, inertia: 1.0, inertia_derivative: 1.0, qdd: 1.0 };
+const SAME: Units = Units {
+    length: 1.0,
+    force: 1.0,
+    torque: 1.0,
+    driver: 1.0,
+    inertia: 1.0,
+    inertia_derivative: 1.0,
+    qdd: 1.0,
+};
 
 /// `a` and `b` (in units `u`) agree to `rel` of the largest entry of each kind.
 fn agree(ctx: &str, a: &Snap, b: &Snap, u: Units, rel: f64) {
     let close = |what: &str, x: f64, y: f64, scale: f64| {
-        assert!((x - y).abs() <= rel * scale.max(1e-300), "{ctx}: {what}: {x:.17e} vs {y:.17e} (scale {scale:e}, rel {rel:e})");
+        assert!(
+            (x - y).abs() <= rel * scale.max(1e-300),
+            "{ctx}: {what}: {x:.17e} vs {y:.17e} (scale {scale:e}, rel {rel:e})"
+        );
     };
     let scalars = |what: &str, x: &[f64], y: &[f64], k: f64| {
         let scale = amax(x);
@@ -166,7 +197,10 @@ fn agree(ctx: &str, a: &Snap, b: &Snap, u: Units, rel: f64) {
     };
     for (i, (p, q)) in a.angle.iter().zip(&b.angle).enumerate() {
         let d = (p - q).rem_euclid(std::f64::consts::TAU);
-        assert!(d.min(std::f64::consts::TAU - d) <= rel * std::f64::consts::PI, "{ctx}: angle[{i}] {p} vs {q}");
+        assert!(
+            d.min(std::f64::consts::TAU - d) <= rel * std::f64::consts::PI,
+            "{ctx}: angle[{i}] {p} vs {q}"
+        );
     }
     scalars("omega", &a.omega, &b.omega, 1.0);
     scalars("alpha", &a.alpha, &b.alpha, 1.0);
@@ -178,17 +212,29 @@ fn agree(ctx: &str, a: &Snap, b: &Snap, u: Units, rel: f64) {
     for (i, (p, q)) in a.moment.iter().zip(&b.moment).enumerate() {
         close(&format!("moment[{i}]"), *p, q / u.torque, mscale);
     }
-    let dscale = amax(&a.driver).max(amax(&a.vp));
+    // A motor action is a sum of moments (a torque) or of forces: its roundoff is that of
+    // the forces times their lever arms, as for the prismatic moments above.
+    let dscale = amax(&a.driver).max(amax(&a.vp)).max(mscale);
     for i in 0..a.driver.len() {
         close("driver", a.driver[i], b.driver[i] / u.driver, dscale);
-        close("driver (virtual power)", a.vp[i], b.vp[i] / u.driver, dscale);
+        close(
+            "driver (virtual power)",
+            a.vp[i],
+            b.vp[i] / u.driver,
+            dscale,
+        );
     }
     if let (Some(x), Some(y)) = (a.zhukovski, b.zhukovski) {
         let iscale = x[0].abs().max(x[1].abs());
         close("I*", x[0], y[0] / u.inertia, iscale);
         close("dI*/dq", x[1], y[1] / u.inertia_derivative, iscale);
         close("M*", x[2], y[2] / u.driver, x[2].abs().max(dscale));
-        close("q'' (direct)", x[3], y[3] / u.qdd, x[3].abs().max(dscale.max(x[2].abs()) / x[0].abs()));
+        close(
+            "q'' (direct)",
+            x[3],
+            y[3] / u.qdd,
+            x[3].abs().max(dscale.max(x[2].abs()) / x[0].abs()),
+        );
     }
 }
 
@@ -196,37 +242,80 @@ fn agree(ctx: &str, a: &Snap, b: &Snap, u: Units, rel: f64) {
 /// d'Alembert = virtual power (= Zhukovski I* q̈ + ½ I*′ q̇² − M* for one DOF); Newton–Euler
 /// of every moving link with the reported reactions (+R on b, −R on a); the power balance
 /// Σ Q q̇ + P_loads + P_gravity = dT/dt, dT/dt = Σ (m v_G·a_G + I ω α).
-fn balances(ctx: &str, model: &Model, s: &Snap, loads: &[LoadValue], qd: &[f64], qdd: &[f64], rel: f64) {
+fn balances(
+    ctx: &str,
+    model: &Model,
+    s: &Snap,
+    loads: &[LoadValue],
+    qd: &[f64],
+    qdd: &[f64],
+    rel: f64,
+) {
     let nl = model.links.len() - 1;
-    let g = model.gravity.map(|g| V::new(g[0], g[1])).unwrap_or_else(V::zeros);
+    let g = model
+        .gravity
+        .map(|g| V::new(g[0], g[1]))
+        .unwrap_or_else(V::zeros);
     let point = |p: usize| s.pos[nl + p];
     // Motor actions.
-    let dscale = amax(&s.driver).max(vmax(&s.force) * vmax(&s.pos)).max(amax(&s.moment));
+    let dscale = amax(&s.driver)
+        .max(vmax(&s.force) * vmax(&s.pos))
+        .max(amax(&s.moment));
     for k in 0..s.driver.len() {
-        assert!((s.driver[k] - s.vp[k]).abs() <= rel * dscale, "{ctx}: d'Alembert {} vs virtual power {}", s.driver[k], s.vp[k]);
+        assert!(
+            (s.driver[k] - s.vp[k]).abs() <= rel * dscale,
+            "{ctx}: d'Alembert {} vs virtual power {}",
+            s.driver[k],
+            s.vp[k]
+        );
     }
     if let Some([i, di, ms, acc]) = s.zhukovski {
         let zh = i * qdd[0] + 0.5 * di * qd[0] * qd[0] - ms;
-        let scale = dscale.max((i * qdd[0]).abs()).max((0.5 * di * qd[0] * qd[0]).abs()).max(ms.abs());
-        assert!((zh - s.driver[0]).abs() <= rel * scale, "{ctx}: Zhukovski {zh} vs d'Alembert {}", s.driver[0]);
-        assert!((acc - qdd[0]).abs() <= rel * scale / i.abs().max(1e-300) + rel * qdd[0].abs(), "{ctx}: direct q'' {acc} vs {}", qdd[0]);
+        let scale = dscale
+            .max((i * qdd[0]).abs())
+            .max((0.5 * di * qd[0] * qd[0]).abs())
+            .max(ms.abs());
+        assert!(
+            (zh - s.driver[0]).abs() <= rel * scale,
+            "{ctx}: Zhukovski {zh} vs d'Alembert {}",
+            s.driver[0]
+        );
+        assert!(
+            (acc - qdd[0]).abs() <= rel * scale / i.abs().max(1e-300) + rel * qdd[0].abs(),
+            "{ctx}: direct q'' {acc} vs {}",
+            qdd[0]
+        );
     }
     // Newton–Euler of every moving link, about its cg.
     for l in 1..model.links.len() {
         let link = &model.links[l];
         let (m, inertia) = (link.mass.unwrap_or(0.0), link.inertia);
         let rg = s.pos[l - 1];
-        let mut terms: Vec<(V, f64)> = vec![(g * m, 0.0), (-s.acc[l - 1] * m, -inertia * s.alpha[l - 1])];
+        let mut terms: Vec<(V, f64)> =
+            vec![(g * m, 0.0), (-s.acc[l - 1] * m, -inertia * s.alpha[l - 1])];
         let mut at = |f: V, p: V, t: f64| terms.push((f, (p - rg).perp(&f) + t));
         for (k, ld) in model.loads.iter().enumerate() {
             match (ld, loads[k]) {
-                (Load::Force { link: ll, point: p, .. }, LoadValue::Force(f)) if *ll == l => at(f, point(*p), 0.0),
-                (Load::Torque { link: ll, .. }, LoadValue::Torque(t)) if *ll == l => at(V::zeros(), rg, t),
+                (
+                    Load::Force {
+                        link: ll, point: p, ..
+                    },
+                    LoadValue::Force(f),
+                ) if *ll == l => at(f, point(*p), 0.0),
+                (Load::Torque { link: ll, .. }, LoadValue::Torque(t)) if *ll == l => {
+                    at(V::zeros(), rg, t)
+                }
                 _ => {}
             }
         }
         for (j, jt) in model.joints.iter().enumerate() {
-            let sign = if jt.b == l { 1.0 } else if jt.a == l { -1.0 } else { continue };
+            let sign = if jt.b == l {
+                1.0
+            } else if jt.a == l {
+                -1.0
+            } else {
+                continue;
+            };
             let p = point(jt.point);
             at(s.force[j] * sign, p, s.moment[j] * sign);
             if let Some(k) = model.inputs.iter().position(|&i| i == j) {
@@ -240,7 +329,10 @@ fn balances(ctx: &str, model: &Model, s: &Snap, loads: &[LoadValue], qd: &[f64],
                             None => 0.0,
                         };
                         let u = V::new(jt.axis[0], jt.axis[1]).normalize();
-                        let u = V::new(rot.cos() * u.x - rot.sin() * u.y, rot.sin() * u.x + rot.cos() * u.y);
+                        let u = V::new(
+                            rot.cos() * u.x - rot.sin() * u.y,
+                            rot.sin() * u.x + rot.cos() * u.y,
+                        );
                         at(u * (s.driver[k] * sign), p, 0.0);
                     }
                 }
@@ -250,8 +342,16 @@ fn balances(ctx: &str, model: &Model, s: &Snap, loads: &[LoadValue], qd: &[f64],
         let sum_m: f64 = terms.iter().map(|t| t.1).sum();
         let fscale = terms.iter().fold(0.0f64, |a, t| a.max(t.0.amax()));
         let mscale = terms.iter().fold(0.0f64, |a, t| a.max(t.1.abs()));
-        assert!(sum_f.amax() <= rel * fscale, "{ctx}: link {}: ΣF = {sum_f:?} (largest term {fscale:e})", link.name);
-        assert!(sum_m.abs() <= rel * mscale.max(fscale * model.scale()), "{ctx}: link {}: ΣM = {sum_m:e} (largest term {mscale:e})", link.name);
+        assert!(
+            sum_f.amax() <= rel * fscale,
+            "{ctx}: link {}: ΣF = {sum_f:?} (largest term {fscale:e})",
+            link.name
+        );
+        assert!(
+            sum_m.abs() <= rel * mscale.max(fscale * model.scale()),
+            "{ctx}: link {}: ΣM = {sum_m:e} (largest term {mscale:e})",
+            link.name
+        );
     }
     // Power balance.
     let mut terms = vec![];
@@ -260,7 +360,9 @@ fn balances(ctx: &str, model: &Model, s: &Snap, loads: &[LoadValue], qd: &[f64],
     }
     for (k, ld) in model.loads.iter().enumerate() {
         match (ld, loads[k]) {
-            (Load::Force { point: p, .. }, LoadValue::Force(f)) => terms.push(f.dot(&s.vel[nl + p])),
+            (Load::Force { point: p, .. }, LoadValue::Force(f)) => {
+                terms.push(f.dot(&s.vel[nl + p]))
+            }
             (Load::Torque { link: l, .. }, LoadValue::Torque(t)) => terms.push(t * s.omega[l - 1]),
             _ => unreachable!(),
         }
@@ -272,7 +374,11 @@ fn balances(ctx: &str, model: &Model, s: &Snap, loads: &[LoadValue], qd: &[f64],
         terms.push(-i * s.omega[l - 1] * s.alpha[l - 1]);
     }
     let sum: f64 = terms.iter().sum();
-    assert!(sum.abs() <= rel * amax(&terms), "{ctx}: power balance {sum:e} (largest term {:e})", amax(&terms));
+    assert!(
+        sum.abs() <= rel * amax(&terms),
+        "{ctx}: power balance {sum:e} (largest term {:e})",
+        amax(&terms)
+    );
 }
 
 // =======================================================================================
@@ -305,20 +411,66 @@ mechanism! {
 /// by `tools/reference.py` (mpmath, Newton with continuation from the drawing) on this
 /// drawing's f64 numbers.
 const TOGGLE_TRUTH: [(f64, f64, f64, f64, f64); 7] = [
-    (1e-1, 1.2512190399336858, -17.194334127089157, -5003.7756718130878, 19778.892236879795),
-    (1e-2, 1.2529550775840586, -175.00230201085202, -4997661.2983885556, 190354213.72657791),
-    (1e-3, 1.2529724474132404, -1753.3247722672932, -4997596812.1703655, 1896302312687.5713),
-    (1e-4, 1.2529726211124785, -17536.574838394076, -4997597340083.5594, 18955833771007519.0),
-    (1e-5, 1.2529726228494709, -175369.71300520342, -4997651748569531.0, 1.8955389900881929e20),
-    (1e-6, 1.2529726228668407, -1754137.316598313, -5.0013875206646059e18, 1.8974212623384052e24),
-    (1e-7, 1.2529726228670146, -18940244.411004323, -6.2958769448906318e21, 2.5789993343654491e28),
+    (
+        1e-1,
+        1.2512190399336858,
+        -17.194334127089157,
+        -5003.7756718130878,
+        19778.892236879795,
+    ),
+    (
+        1e-2,
+        1.2529550775840586,
+        -175.00230201085202,
+        -4997661.2983885556,
+        190354213.72657791,
+    ),
+    (
+        1e-3,
+        1.2529724474132404,
+        -1753.3247722672932,
+        -4997596812.1703655,
+        1896302312687.5713,
+    ),
+    (
+        1e-4,
+        1.2529726211124785,
+        -17536.574838394076,
+        -4997597340083.5594,
+        18955833771007519.0,
+    ),
+    (
+        1e-5,
+        1.2529726228494709,
+        -175369.71300520342,
+        -4997651748569531.0,
+        1.8955389900881929e20,
+    ),
+    (
+        1e-6,
+        1.2529726228668407,
+        -1754137.316598313,
+        -5.0013875206646059e18,
+        1.8974212623384052e24,
+    ),
+    (
+        1e-7,
+        1.2529726228670146,
+        -18940244.411004323,
+        -6.2958769448906318e21,
+        2.5789993343654491e28,
+    ),
 ];
 /// The next f64 crank angles are past the toggle: the 50-digit Newton finds no assembly.
 const PAST_TOGGLE: [f64; 4] = [1.2529726228670164, 1.25297262287, 1.2539726228670164, 2.0];
 
 /// The drawing's lengths (from its f64 points, as the solvers compute them).
 fn toggle_lengths() -> (f64, f64, f64, V) {
-    let (o4, pa, pb) = (V::new(1.2, 0.0), V::new(0.7648421872844884, 0.644217687237691), V::new(1.2402862761794526, 0.7989849910677878));
+    let (o4, pa, pb) = (
+        V::new(1.2, 0.0),
+        V::new(0.7648421872844884, 0.644217687237691),
+        V::new(1.2402862761794526, 0.7989849910677878),
+    );
     (pa.norm(), (pb - pa).norm(), (pb - o4).norm(), o4)
 }
 
@@ -341,7 +493,14 @@ fn textbook(a: f64, b: f64, c: f64, o4: V, q: f64, w2: f64, a2: f64) -> [f64; 6]
     let sv = ex(q) * (a * w2 * w2) + ex(t3) * (b * w3 * w3) - ex(t4) * (c * w4 * w4);
     let r = -ex(q) * (a * a2) + V::new(sv.y, -sv.x);
     let im = |t: f64, z: V| -t.sin() * z.x + t.cos() * z.y; // Im(e^{-it} z)
-    [t3, t4, w3, w4, im(t4, r) / (b * (t3 - t4).sin()), -im(t3, r) / (c * (t4 - t3).sin())]
+    [
+        t3,
+        t4,
+        w3,
+        w4,
+        im(t4, r) / (b * (t3 - t4).sin()),
+        -im(t3, r) / (c * (t4 - t3).sin()),
+    ]
 }
 
 /// Driven towards its toggle, every result of the generated and the generic solver is
@@ -363,36 +522,89 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
         let ctx = format!("transmission angle {delta:e} rad, q = {q:?}");
         let tb = textbook(a, b, c, o4, q, 1.0, 0.5);
         // The permissive generic solver always answers here (κ < 1e10), within its bound.
-        let m = any.kinematics(&[q], &[1.0], &[0.5]).unwrap_or_else(|e| panic!("{ctx}: {e}"));
+        let m = any
+            .kinematics(&[q], &[1.0], &[0.5])
+            .unwrap_or_else(|e| panic!("{ctx}: {e}"));
         let kappa = m.condition;
         let (pb, rb) = (position_error_bound(kappa), rate_error_bound(kappa));
         assert_eq!(m.error_bound(), rb);
-        assert!(kappa > 0.5 / delta && kappa < 50.0 / delta, "{ctx}: κ = {kappa:e}");
+        assert!(
+            kappa > 0.5 / delta && kappa < 50.0 / delta,
+            "{ctx}: κ = {kappa:e}"
+        );
         let check = |who: &str, th: [f64; 2], w: [f64; 2], al: [f64; 2], t: f64, vp: f64| {
             for i in 0..2 {
-                assert!((th[i] - tb[i]).abs() <= 2.0 * pb + 4.0 * EPS, "{ctx}: {who}: θ{} {} vs textbook {} (bound {pb:e})", i + 3, th[i], tb[i]);
+                assert!(
+                    (th[i] - tb[i]).abs() <= 2.0 * pb + 4.0 * EPS,
+                    "{ctx}: {who}: θ{} {} vs textbook {} (bound {pb:e})",
+                    i + 3,
+                    th[i],
+                    tb[i]
+                );
                 let ws = tb[2].abs().max(tb[3].abs());
                 let als = tb[4].abs().max(tb[5].abs());
-                assert!((w[i] - tb[2 + i]).abs() <= 2.0 * rb * ws, "{ctx}: {who}: ω{} {} vs textbook {} (bound {rb:e})", i + 3, w[i], tb[2 + i]);
-                assert!((al[i] - tb[4 + i]).abs() <= 2.0 * rb * als, "{ctx}: {who}: α{} {} vs textbook {}", i + 3, al[i], tb[4 + i]);
+                assert!(
+                    (w[i] - tb[2 + i]).abs() <= 2.0 * rb * ws,
+                    "{ctx}: {who}: ω{} {} vs textbook {} (bound {rb:e})",
+                    i + 3,
+                    w[i],
+                    tb[2 + i]
+                );
+                assert!(
+                    (al[i] - tb[4 + i]).abs() <= 2.0 * rb * als,
+                    "{ctx}: {who}: α{} {} vs textbook {}",
+                    i + 3,
+                    al[i],
+                    tb[4 + i]
+                );
             }
-            assert!((w[0] - w3).abs() <= rb * w3.abs(), "{ctx}: {who}: ω3 {} vs reference {w3} (bound {rb:e})", w[0]);
-            assert!((al[0] - a3).abs() <= rb * a3.abs(), "{ctx}: {who}: α3 {} vs reference {a3}", al[0]);
-            assert!((t - torque).abs() <= rb * torque.abs(), "{ctx}: {who}: torque {t:e} vs reference {torque:e} (bound {rb:e})");
-            assert!((vp - torque).abs() <= rb * torque.abs(), "{ctx}: {who}: virtual-power torque {vp:e} vs reference {torque:e}");
+            assert!(
+                (w[0] - w3).abs() <= rb * w3.abs(),
+                "{ctx}: {who}: ω3 {} vs reference {w3} (bound {rb:e})",
+                w[0]
+            );
+            assert!(
+                (al[0] - a3).abs() <= rb * a3.abs(),
+                "{ctx}: {who}: α3 {} vs reference {a3}",
+                al[0]
+            );
+            assert!(
+                (t - torque).abs() <= rb * torque.abs(),
+                "{ctx}: {who}: torque {t:e} vs reference {torque:e} (bound {rb:e})"
+            );
+            assert!(
+                (vp - torque).abs() <= rb * torque.abs(),
+                "{ctx}: {who}: virtual-power torque {vp:e} vs reference {torque:e}"
+            );
         };
         let (l3, l4) = (m.link("coupler").unwrap(), m.link("rocker").unwrap());
         let f = any.kinetostatics(&m, &gl).unwrap();
         let vp = any.driver_action(&m, &gl).unwrap();
-        check("generic", [l3.angle, l4.angle], [l3.omega, l4.omega], [l3.alpha, l4.alpha], f.driver[0], vp[0]);
+        check(
+            "generic",
+            [l3.angle, l4.angle],
+            [l3.omega, l4.omega],
+            [l3.alpha, l4.alpha],
+            f.driver[0],
+            vp[0],
+        );
         // The pose alone is within its (much smaller) bound.
         let p = any.pose(&[q]).unwrap();
-        assert!((p.link("coupler").unwrap().angle - tb[0]).abs() <= 2.0 * p.error_bound() + 4.0 * EPS, "{ctx}: pose");
+        assert!(
+            (p.link("coupler").unwrap().angle - tb[0]).abs() <= 2.0 * p.error_bound() + 4.0 * EPS,
+            "{ctx}: pose"
+        );
 
         // The default generic solver: within its bound, or Singular once 16 ε κ² > 1e-6.
         match strict.kinematics(&[q], &[1.0], &[0.5]) {
-            Ok(sm) => assert!(sm.error_bound() <= strict.max_error() && sm.links == m.links, "{ctx}"),
-            Err(MechError::Singular { condition }) => assert!(rate_error_bound(condition) > strict.max_error(), "{ctx}: {condition:e}"),
+            Ok(sm) => assert!(
+                sm.error_bound() <= strict.max_error() && sm.links == m.links,
+                "{ctx}"
+            ),
+            Err(MechError::Singular { condition }) => assert!(
+                rate_error_bound(condition) > strict.max_error(),
+                "{ctx}: {condition:e}"
+            ),
             Err(e) => panic!("{ctx}: generic: {e}"),
         }
 
@@ -402,10 +614,19 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
                 let (l3, l4) = (gm.links.coupler, gm.links.rocker);
                 let f = gen.kinetostatics(&gm, &loads).unwrap();
                 let vp = gen.driver_action(&gm, &loads).unwrap();
-                check("generated", [l3.angle, l4.angle], [l3.omega, l4.omega], [l3.alpha, l4.alpha], f.driver, vp);
+                check(
+                    "generated",
+                    [l3.angle, l4.angle],
+                    [l3.omega, l4.omega],
+                    [l3.alpha, l4.alpha],
+                    f.driver,
+                    vp,
+                );
             }
             // Refused only close to the toggle (SINGULAR_CONDITION = 1e6 on the groups' κ).
-            Err(MechError::Singular { .. }) => assert!(kappa > 1e5, "{ctx}: generated Singular at κ = {kappa:e}"),
+            Err(MechError::Singular { .. }) => {
+                assert!(kappa > 1e5, "{ctx}: generated Singular at κ = {kappa:e}")
+            }
             Err(e) => panic!("{ctx}: generated: {e}"),
         }
     }
@@ -420,7 +641,12 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
             Err(MechError::NoAssembly | MechError::Singular { .. }) => {}
             other => panic!("generic past the toggle, q = {q}: {other:?}"),
         }
-        assert!(matches!(strict.pose(&[q]), Err(MechError::NoAssembly | MechError::Singular { .. })) || q == PAST_TOGGLE[0]);
+        assert!(
+            matches!(
+                strict.pose(&[q]),
+                Err(MechError::NoAssembly | MechError::Singular { .. })
+            ) || q == PAST_TOGGLE[0]
+        );
     }
 }
 
@@ -437,8 +663,15 @@ fn generated_toggle_is_accurate_to_a_thousandth_or_singular() {
         match gen.kinematics(q, 1.0, 0.5) {
             Ok(m) => {
                 let t = gen.kinetostatics(&m, &loads).unwrap().driver;
-                assert!((m.links.coupler.omega - w3).abs() <= 1e-3 * w3.abs(), "δ = {delta:e}: ω {} vs {w3}", m.links.coupler.omega);
-                assert!((t - torque).abs() <= 1e-3 * torque.abs(), "δ = {delta:e}: torque {t:e} vs {torque:e}");
+                assert!(
+                    (m.links.coupler.omega - w3).abs() <= 1e-3 * w3.abs(),
+                    "δ = {delta:e}: ω {} vs {w3}",
+                    m.links.coupler.omega
+                );
+                assert!(
+                    (t - torque).abs() <= 1e-3 * torque.abs(),
+                    "δ = {delta:e}: torque {t:e} vs {torque:e}"
+                );
             }
             Err(MechError::Singular { .. }) => {}
             Err(e) => panic!("{e}"),
@@ -514,10 +747,24 @@ mechanism! {
 }
 
 /// mm/g against m/kg: lengths ×1e3, forces (g·mm/s²) ×1e6, torques (g·mm²/s²) ×1e9.
-const MM_G: Units = Units { length: 1e3, force: 1e6, torque: 1e9, driver: 1e9, inertia: 1e9, inertia_derivative: 1e9, qdd: 1.0 };
+const MM_G: Units = Units {
+    length: 1e3,
+    force: 1e6,
+    torque: 1e9,
+    driver: 1e9,
+    inertia: 1e9,
+    inertia_derivative: 1e9,
+    qdd: 1.0,
+};
 /// The same for a prismatic input: the actuator force ×1e6, I* (g) ×1e3, dI*/dq (g/mm) ×1,
 /// M* (g·mm/s²) ×1e6, q̈ (mm/s²) ×1e3.
-const MM_G_PRISMATIC: Units = Units { driver: 1e6, inertia: 1e3, inertia_derivative: 1.0, qdd: 1e3, ..MM_G };
+const MM_G_PRISMATIC: Units = Units {
+    driver: 1e6,
+    inertia: 1e3,
+    inertia_derivative: 1.0,
+    qdd: 1e3,
+    ..MM_G
+};
 
 /// The same machine in metres and kilograms and in millimetres and grams gives the same
 /// results after unit conversion, to 1e-12 relative (largest entry of each kind), with
@@ -525,9 +772,18 @@ const MM_G_PRISMATIC: Units = Units { driver: 1e6, inertia: 1e3, inertia_derivat
 #[test]
 fn metres_and_millimetres_agree() {
     let (m, mm) = (SliderCrank::new(), SliderCrankMm::new());
-    let (g, gmm) = (generic(MECHANISMS, "SliderCrank"), generic(SELF, "SliderCrankMm"));
-    let loads = SliderCrankLoads { gas: V::new(-2500.0, 40.0), shaft: 12.0 };
-    let loads_mm = SliderCrankMmLoads { gas: loads.gas * 1e6, shaft: loads.shaft * 1e9 };
+    let (g, gmm) = (
+        generic(MECHANISMS, "SliderCrank"),
+        generic(SELF, "SliderCrankMm"),
+    );
+    let loads = SliderCrankLoads {
+        gas: V::new(-2500.0, 40.0),
+        shaft: 12.0,
+    };
+    let loads_mm = SliderCrankMmLoads {
+        gas: loads.gas * 1e6,
+        shaft: loads.shaft * 1e9,
+    };
     let (mut gl, mut glmm) = (g.loads(), gmm.loads());
     gl.set_by_name("gas", &[-2500.0, 40.0]);
     gl.set_by_name("shaft", &[12.0]);
@@ -541,13 +797,28 @@ fn metres_and_millimetres_agree() {
         let c = snap_generic(&g, &[q], &[qd], &[qdd], &gl).unwrap();
         let d = snap_generic(&gmm, &[q], &[qd], &[qdd], &glmm).unwrap();
         agree(&format!("{ctx} (generic)"), &c, &d, MM_G, 1e-12);
-        agree(&format!("{ctx} (generic vs generated)"), &a, &c, SAME, 1e-12);
+        agree(
+            &format!("{ctx} (generic vs generated)"),
+            &a,
+            &c,
+            SAME,
+            1e-12,
+        );
     }
 
     let (m, mm) = (HydraulicLever::new(), HydraulicLeverMm::new());
-    let (g, gmm) = (generic(MECHANISMS, "HydraulicLever"), generic(SELF, "HydraulicLeverMm"));
-    let loads = HydraulicLeverLoads { payload: V::new(300.0, -2000.0), damper: -40.0 };
-    let loads_mm = HydraulicLeverMmLoads { payload: loads.payload * 1e6, damper: loads.damper * 1e9 };
+    let (g, gmm) = (
+        generic(MECHANISMS, "HydraulicLever"),
+        generic(SELF, "HydraulicLeverMm"),
+    );
+    let loads = HydraulicLeverLoads {
+        payload: V::new(300.0, -2000.0),
+        damper: -40.0,
+    };
+    let loads_mm = HydraulicLeverMmLoads {
+        payload: loads.payload * 1e6,
+        damper: loads.damper * 1e9,
+    };
     let (mut gl, mut glmm) = (g.loads(), gmm.loads());
     gl.set_by_name("payload", &[300.0, -2000.0]);
     gl.set_by_name("damper", &[-40.0]);
@@ -556,12 +827,27 @@ fn metres_and_millimetres_agree() {
     for (q, qd, qdd) in [(-0.08, 0.2, -1.5), (0.0, -0.35, 0.0), (0.11, 0.05, 2.5)] {
         let ctx = format!("hydraulic lever stroke = {q} m");
         let a = snap_generated!(m, g.model(), q, qd, qdd, loads, one_dof = true).unwrap();
-        let b = snap_generated!(mm, gmm.model(), q * 1e3, qd * 1e3, qdd * 1e3, loads_mm, one_dof = true).unwrap();
+        let b = snap_generated!(
+            mm,
+            gmm.model(),
+            q * 1e3,
+            qd * 1e3,
+            qdd * 1e3,
+            loads_mm,
+            one_dof = true
+        )
+        .unwrap();
         agree(&ctx, &a, &b, MM_G_PRISMATIC, 1e-12);
         let c = snap_generic(&g, &[q], &[qd], &[qdd], &gl).unwrap();
         let d = snap_generic(&gmm, &[q * 1e3], &[qd * 1e3], &[qdd * 1e3], &glmm).unwrap();
         agree(&format!("{ctx} (generic)"), &c, &d, MM_G_PRISMATIC, 1e-12);
-        agree(&format!("{ctx} (generic vs generated)"), &a, &c, SAME, 1e-12);
+        agree(
+            &format!("{ctx} (generic vs generated)"),
+            &a,
+            &c,
+            SAME,
+            1e-12,
+        );
     }
 }
 
@@ -576,9 +862,19 @@ fn metres_and_millimetres_agree() {
 fn mass_ratios_from_1e_minus_6_to_1e6() {
     let base = generic(MECHANISMS, "Watt2");
     let t = support::truth("watt2");
-    let configs: Vec<[f64; 3]> = t["configs"].as_array().unwrap().iter().step_by(3).map(|c| {
-        [c["q"].as_f64().unwrap(), c["qd"].as_f64().unwrap(), c["qdd"].as_f64().unwrap()]
-    }).collect();
+    let configs: Vec<[f64; 3]> = t["configs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .step_by(3)
+        .map(|c| {
+            [
+                c["q"].as_f64().unwrap(),
+                c["qd"].as_f64().unwrap(),
+                c["qdd"].as_f64().unwrap(),
+            ]
+        })
+        .collect();
     for r in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
         let mut p = Watt2Params::default();
         let mut model = base.model().clone();
@@ -587,7 +883,16 @@ fn mass_ratios_from_1e_minus_6_to_1e6() {
             lp.mass *= f;
             lp.inertia *= f;
         };
-        for (k, lp) in [&mut p.links.crank, &mut p.links.coupler, &mut p.links.rocker, &mut p.links.link5, &mut p.links.rocker6].into_iter().enumerate() {
+        for (k, lp) in [
+            &mut p.links.crank,
+            &mut p.links.coupler,
+            &mut p.links.rocker,
+            &mut p.links.link5,
+            &mut p.links.rocker6,
+        ]
+        .into_iter()
+        .enumerate()
+        {
             scale(lp, k);
             let l = &mut model.links[k + 1];
             l.mass = Some(lp.mass);
@@ -595,7 +900,10 @@ fn mass_ratios_from_1e_minus_6_to_1e6() {
         }
         let gen = Watt2::from_params(p).unwrap();
         let g = GenericMechanism::from_model(model).unwrap();
-        let loads = Watt2Loads { output: V::new(-30.0, 12.0), resist: -4.0 };
+        let loads = Watt2Loads {
+            output: V::new(-30.0, 12.0),
+            resist: -4.0,
+        };
         let mut gl = g.loads();
         gl.set_by_name("output", &[-30.0, 12.0]);
         gl.set_by_name("resist", &[-4.0]);
@@ -605,7 +913,15 @@ fn mass_ratios_from_1e_minus_6_to_1e6() {
             let b = snap_generic(&g, &[*q], &[*qd], &[*qdd], &gl).unwrap();
             agree(&ctx, &a, &b, SAME, 1e-12);
             balances(&ctx, g.model(), &a, &gl.values, &[*qd], &[*qdd], 1e-12);
-            balances(&format!("{ctx} (generic)"), g.model(), &b, &gl.values, &[*qd], &[*qdd], 1e-12);
+            balances(
+                &format!("{ctx} (generic)"),
+                g.model(),
+                &b,
+                &gl.values,
+                &[*qd],
+                &[*qdd],
+                1e-12,
+            );
         }
     }
 }
@@ -640,13 +956,24 @@ fn sin_between(u: V, v: V) -> f64 {
 }
 
 fn link_data(n: usize) -> impl Strategy<Value = Vec<(f64, f64, V)>> {
-    prop::collection::vec((0.01f64..10.0, 1e-4f64..1.0, -0.3f64..0.3, -0.3f64..0.3), n)
-        .prop_map(|v| v.into_iter().map(|(m, i, x, y)| (m, i, V::new(x, y))).collect())
+    prop::collection::vec((0.01f64..10.0, 1e-4f64..1.0, -0.3f64..0.3, -0.3f64..0.3), n).prop_map(
+        |v| {
+            v.into_iter()
+                .map(|(m, i, x, y)| (m, i, V::new(x, y)))
+                .collect()
+        },
+    )
 }
 
-fn motion_and_loads(forces: usize, torques: usize) -> impl Strategy<Value = (Vec<V>, Vec<f64>, V, f64, f64, f64)> {
+fn motion_and_loads(
+    forces: usize,
+    torques: usize,
+) -> impl Strategy<Value = (Vec<V>, Vec<f64>, V, f64, f64, f64)> {
     (
-        prop::collection::vec((-100.0f64..100.0, -100.0f64..100.0).prop_map(|(x, y)| V::new(x, y)), forces),
+        prop::collection::vec(
+            (-100.0f64..100.0, -100.0f64..100.0).prop_map(|(x, y)| V::new(x, y)),
+            forces,
+        ),
         prop::collection::vec(-10.0f64..10.0, torques),
         (-10.0f64..10.0, -10.0f64..10.0).prop_map(|(x, y)| V::new(x, y)),
         -0.3f64..0.3,
@@ -659,23 +986,52 @@ fn motion_and_loads(forces: usize, torques: usize) -> impl Strategy<Value = (Vec
 /// at least 0.3 rad, links at least 5 cm.
 fn four_bar_case() -> impl Strategy<Value = Case> {
     (
-        (0.2f64..1.0, -0.5f64..0.5, 0.05f64..0.5, 0.0f64..std::f64::consts::TAU, 0.1f64..1.0, 0.0f64..std::f64::consts::TAU, 0.0f64..1.0, -0.3f64..0.3),
+        (
+            0.2f64..1.0,
+            -0.5f64..0.5,
+            0.05f64..0.5,
+            0.0f64..std::f64::consts::TAU,
+            0.1f64..1.0,
+            0.0f64..std::f64::consts::TAU,
+            0.0f64..1.0,
+            -0.3f64..0.3,
+        ),
         link_data(3),
         motion_and_loads(1, 1),
     )
-        .prop_map(|((d, beta, a, t, c, phi, s, h), links, (forces, torques, gravity, dq, qd, qdd))| {
-            let o4 = polar(d, beta);
-            let pa = polar(a, t);
-            let pb = o4 + polar(c, phi);
-            let pp = pa + (pb - pa) * s + V::new(pa.y - pb.y, pb.x - pa.x) * h;
-            // cgs near the middle of each link.
-            let mids = [pa * 0.5, (pa + pb) * 0.5, (o4 + pb) * 0.5];
-            let links = links.iter().zip(mids).map(|(&(m, i, off), mid)| (m, i, mid + off * 0.3)).collect();
-            Case { points: vec![V::zeros(), o4, pa, pb, pp], links, forces, torques, gravity, axis: None, dq, qd, qdd }
-        })
+        .prop_map(
+            |((d, beta, a, t, c, phi, s, h), links, (forces, torques, gravity, dq, qd, qdd))| {
+                let o4 = polar(d, beta);
+                let pa = polar(a, t);
+                let pb = o4 + polar(c, phi);
+                let pp = pa + (pb - pa) * s + V::new(pa.y - pb.y, pb.x - pa.x) * h;
+                // cgs near the middle of each link.
+                let mids = [pa * 0.5, (pa + pb) * 0.5, (o4 + pb) * 0.5];
+                let links = links
+                    .iter()
+                    .zip(mids)
+                    .map(|(&(m, i, off), mid)| (m, i, mid + off * 0.3))
+                    .collect();
+                Case {
+                    points: vec![V::zeros(), o4, pa, pb, pp],
+                    links,
+                    forces,
+                    torques,
+                    gravity,
+                    axis: None,
+                    dq,
+                    qd,
+                    qdd,
+                }
+            },
+        )
         .prop_filter("drawing away from a dead point", |c| {
-            let [_, o4, pa, pb, _] = c.points[..] else { return false };
-            (pb - pa).norm() > 0.05 && (pb - o4).norm() > 0.05 && sin_between(pa - pb, o4 - pb) > 0.3
+            let [_, o4, pa, pb, _] = c.points[..] else {
+                return false;
+            };
+            (pb - pa).norm() > 0.05
+                && (pb - o4).norm() > 0.05
+                && sin_between(pa - pb, o4 - pb) > 0.3
         })
 }
 
@@ -683,18 +1039,40 @@ fn four_bar_case() -> impl Strategy<Value = Case> {
 /// at least 0.3 (sine) off the guide normal in the drawing.
 fn slider_crank_case() -> impl Strategy<Value = Case> {
     (
-        (0.02f64..0.3, 0.0f64..std::f64::consts::TAU, 2.0f64..5.0, -1.2f64..1.2, -0.5f64..0.5),
+        (
+            0.02f64..0.3,
+            0.0f64..std::f64::consts::TAU,
+            2.0f64..5.0,
+            -1.2f64..1.2,
+            -0.5f64..0.5,
+        ),
         link_data(3),
         motion_and_loads(1, 1),
     )
-        .prop_map(|((a, t, ratio, psi, gamma), links, (forces, torques, gravity, dq, qd, qdd))| {
-            let pa = polar(a, t);
-            let pb = pa + polar(ratio * a, psi + gamma);
-            let axis = polar(1.0, gamma);
-            let mids = [pa * 0.5, (pa + pb) * 0.5, pb];
-            let links = links.iter().zip(mids).map(|(&(m, i, off), mid)| (m, i, mid + off * 0.2 * a)).collect();
-            Case { points: vec![V::zeros(), pa, pb], links, forces, torques, gravity, axis: Some(axis), dq, qd, qdd }
-        })
+        .prop_map(
+            |((a, t, ratio, psi, gamma), links, (forces, torques, gravity, dq, qd, qdd))| {
+                let pa = polar(a, t);
+                let pb = pa + polar(ratio * a, psi + gamma);
+                let axis = polar(1.0, gamma);
+                let mids = [pa * 0.5, (pa + pb) * 0.5, pb];
+                let links = links
+                    .iter()
+                    .zip(mids)
+                    .map(|(&(m, i, off), mid)| (m, i, mid + off * 0.2 * a))
+                    .collect();
+                Case {
+                    points: vec![V::zeros(), pa, pb],
+                    links,
+                    forces,
+                    torques,
+                    gravity,
+                    axis: Some(axis),
+                    dq,
+                    qd,
+                    qdd,
+                }
+            },
+        )
         .prop_filter("rod not normal to the guide", |c| {
             let u = c.axis.unwrap();
             ((c.points[2] - c.points[1]).normalize().dot(&u)).abs() > 0.3
@@ -706,26 +1084,69 @@ fn slider_crank_case() -> impl Strategy<Value = Case> {
 fn watt2_case() -> impl Strategy<Value = Case> {
     use std::f64::consts::TAU;
     (
-        (0.2f64..0.6, -0.5f64..0.5, 0.04f64..0.15, 0.0f64..TAU, 0.1f64..0.4, 0.0f64..TAU, 0.1f64..0.4, 0.0f64..TAU),
+        (
+            0.2f64..0.6,
+            -0.5f64..0.5,
+            0.04f64..0.15,
+            0.0f64..TAU,
+            0.1f64..0.4,
+            0.0f64..TAU,
+            0.1f64..0.4,
+            0.0f64..TAU,
+        ),
         (0.2f64..0.6, 0.0f64..TAU, 0.1f64..0.5, 0.0f64..TAU),
         link_data(5),
         motion_and_loads(1, 1),
     )
-        .prop_map(|((d, beta, a, t, c, phi, e, chi), (f, om, g6, w6), links, (forces, torques, gravity, dq, qd, qdd))| {
-            let o4 = polar(d, beta);
-            let pa = polar(a, t);
-            let pb = o4 + polar(c, phi);
-            let pc = o4 + polar(e, chi);
-            let o6 = pc + polar(f, om);
-            let pd = o6 + polar(g6, w6);
-            let mids = [pa * 0.5, (pa + pb) * 0.5, (o4 + pb + pc) / 3.0, (pc + pd) * 0.5, (o6 + pd) * 0.5];
-            let links = links.iter().zip(mids).map(|(&(m, i, off), mid)| (m, i, mid + off * 0.2)).collect();
-            Case { points: vec![V::zeros(), o4, o6, pa, pb, pc, pd], links, forces, torques, gravity, axis: None, dq, qd, qdd }
-        })
+        .prop_map(
+            |(
+                (d, beta, a, t, c, phi, e, chi),
+                (f, om, g6, w6),
+                links,
+                (forces, torques, gravity, dq, qd, qdd),
+            )| {
+                let o4 = polar(d, beta);
+                let pa = polar(a, t);
+                let pb = o4 + polar(c, phi);
+                let pc = o4 + polar(e, chi);
+                let o6 = pc + polar(f, om);
+                let pd = o6 + polar(g6, w6);
+                let mids = [
+                    pa * 0.5,
+                    (pa + pb) * 0.5,
+                    (o4 + pb + pc) / 3.0,
+                    (pc + pd) * 0.5,
+                    (o6 + pd) * 0.5,
+                ];
+                let links = links
+                    .iter()
+                    .zip(mids)
+                    .map(|(&(m, i, off), mid)| (m, i, mid + off * 0.2))
+                    .collect();
+                Case {
+                    points: vec![V::zeros(), o4, o6, pa, pb, pc, pd],
+                    links,
+                    forces,
+                    torques,
+                    gravity,
+                    axis: None,
+                    dq,
+                    qd,
+                    qdd,
+                }
+            },
+        )
         .prop_filter("drawing away from dead points", |c| {
-            let [_, o4, o6, pa, pb, pc, pd] = c.points[..] else { return false };
+            let [_, o4, o6, pa, pb, pc, pd] = c.points[..] else {
+                return false;
+            };
             let far = |p: V, q: V| (p - q).norm() > 0.05;
-            far(pa, pb) && far(pb, o4) && far(pc, o4) && far(pc, pb) && far(pc, pd) && far(pd, o6)
+            far(pa, pb)
+                && far(pb, o4)
+                && far(pc, o4)
+                && far(pc, pb)
+                && far(pc, pd)
+                && far(pd, o6)
                 && sin_between(pa - pb, o4 - pb) > 0.3
                 && sin_between(pc - pd, o6 - pd) > 0.3
         })
@@ -769,7 +1190,12 @@ fn generic_loads(g: &GenericMechanism, c: &Case) -> GenericLoads {
 }
 
 fn lp(c: &Case, k: usize) -> LinkParams {
-    LinkParams { mass: c.links[k].0, inertia: c.links[k].1, flywheel: 0.0, cg: c.links[k].2 }
+    LinkParams {
+        mass: c.links[k].0,
+        inertia: c.links[k].1,
+        flywheel: 0.0,
+        cg: c.links[k].2,
+    }
 }
 
 /// One random case through both solvers: the generic one from the run-time model, the
@@ -880,25 +1306,65 @@ fn loader_rejects_bad_descriptions_with_locations() {
     assert!(GenericMechanism::parse(slider).is_ok());
     let b = "B: (0.2430191330116403, 0.23171119111114735)";
     let cases: &[(&str, &str, &str, &str)] = &[
-        (four_bar, b, "B: (0.2430191330116403, 0.23171119111114735", "cannot parse"),
-        (four_bar, "mass: 1.45", "mass: NaN", "unknown constant `NaN`"),
-        (four_bar, "revolute(coupler, rocker)", "revolute(coupler, rockr)", "unknown link `rockr`"),
+        (
+            four_bar,
+            b,
+            "B: (0.2430191330116403, 0.23171119111114735",
+            "cannot parse",
+        ),
+        (
+            four_bar,
+            "mass: 1.45",
+            "mass: NaN",
+            "unknown constant `NaN`",
+        ),
+        (
+            four_bar,
+            "revolute(coupler, rocker)",
+            "revolute(coupler, rockr)",
+            "unknown link `rockr`",
+        ),
         // P on A: two points of the coupler coincide (a zero-length link side).
-        (four_bar, "P: (0.08528408845676129, 0.22077246544174978)", "P: (0.04, 0.06928203230275509)", "coincide"),
+        (
+            four_bar,
+            "P: (0.08528408845676129, 0.22077246544174978)",
+            "P: (0.04, 0.06928203230275509)",
+            "coincide",
+        ),
         (four_bar, "O4: (0.3, 0.04)", "O4: (1e999, 0.04)", "finite"),
         (four_bar, "mass: 0.95", "mass: -0.95", "mass -0.95 kg"),
-        (four_bar, "inertia: 0.0036", "inertia: -0.0036", "moment of inertia"),
-        (four_bar, "gravity: (0.0, -9.81)", "gravity: (0.0, 1e400)", "gravity"),
+        (
+            four_bar,
+            "inertia: 0.0036",
+            "inertia: -0.0036",
+            "moment of inertia",
+        ),
+        (
+            four_bar,
+            "gravity: (0.0, -9.81)",
+            "gravity: (0.0, 1e400)",
+            "gravity",
+        ),
         // B halfway between A and O4: coupler and rocker in line, a dead point.
         (four_bar, b, "B: (0.17, 0.054641016151377545)", "dead point"),
         (four_bar, "input: O2,", "inputs: [O2, O4],", "Grübler"),
         (four_bar, "input: O2,", "", "0 inputs were declared"),
-        (four_bar, "tool: force on coupler at P", "tool: force on rocker at P", "does not have"),
+        (
+            four_bar,
+            "tool: force on coupler at P",
+            "tool: force on rocker at P",
+            "does not have",
+        ),
         (four_bar, "ground {", "grund {", "unknown item"),
         (slider, "along (1.0, 0.0)", "along (0.0, 0.0)", "zero"),
         (slider, " along (1.0, 0.0)", "", "needs its sliding axis"),
         // B on A: the rod has zero length.
-        (slider, "B: (0.23103914733547787, 0.015)", "B: (0.042132444371543794, 0.035353318532759664)", "coincide"),
+        (
+            slider,
+            "B: (0.23103914733547787, 0.015)",
+            "B: (0.042132444371543794, 0.035353318532759664)",
+            "coincide",
+        ),
         (slider, "input: O2,", "inputs: [O2, guide],", "Grübler"),
     ];
     for (text, from, to, expect) in cases {
@@ -906,18 +1372,33 @@ fn loader_rejects_bad_descriptions_with_locations() {
         let bad = text.replacen(from, to, 1);
         match GenericMechanism::parse(&bad) {
             Err(MechError::Invalid(msg)) => {
-                assert!(msg.contains(expect), "`{from}` → `{to}`: expected “{expect}” in:\n{msg}");
+                assert!(
+                    msg.contains(expect),
+                    "`{from}` → `{to}`: expected “{expect}” in:\n{msg}"
+                );
                 let first = msg.lines().next().unwrap();
                 let (line, rest) = first.split_once(':').unwrap();
                 let (col, _) = rest.split_once(':').unwrap();
                 let (line, col): (usize, usize) = (line.parse().unwrap(), col.parse().unwrap());
-                assert!(line >= 1 && line <= bad.lines().count() && col >= 1, "`{to}`: location {line}:{col} in\n{msg}");
+                assert!(
+                    line >= 1 && line <= bad.lines().count() && col >= 1,
+                    "`{to}`: location {line}:{col} in\n{msg}"
+                );
             }
-            other => panic!("`{from}` → `{to}`: expected Invalid, got {:?}", other.map(|_| "a mechanism")),
+            other => panic!(
+                "`{from}` → `{to}`: expected Invalid, got {:?}",
+                other.map(|_| "a mechanism")
+            ),
         }
     }
-    assert!(matches!(GenericMechanism::load("/nonexistent/dir/mechanism.mech"), Err(MechError::Invalid(_))));
-    assert!(matches!(GenericMechanism::from_rust_source("fn main() { let x = \"unterminated; }", "X"), Err(MechError::Invalid(_))));
+    assert!(matches!(
+        GenericMechanism::load("/nonexistent/dir/mechanism.mech"),
+        Err(MechError::Invalid(_))
+    ));
+    assert!(matches!(
+        GenericMechanism::from_rust_source("fn main() { let x = \"unterminated; }", "X"),
+        Err(MechError::Invalid(_))
+    ));
 }
 
 proptest! {
@@ -964,32 +1445,56 @@ fn from_params_rejects_bad_numbers() {
         ("NaN point", Box::new(move |p| p.points.B.x = nan)),
         ("infinite point", Box::new(move |p| p.points.O4.y = inf)),
         ("zero-length crank", Box::new(|p| p.points.A = p.points.O2)),
-        ("coincident coupler points", Box::new(|p| p.points.P = p.points.A)),
+        (
+            "coincident coupler points",
+            Box::new(|p| p.points.P = p.points.A),
+        ),
         ("NaN mass", Box::new(move |p| p.links.coupler.mass = nan)),
         ("negative mass", Box::new(|p| p.links.rocker.mass = -1.0)),
-        ("negative inertia", Box::new(|p| p.links.crank.inertia = -1e-3)),
-        ("infinite inertia", Box::new(move |p| p.links.crank.inertia = inf)),
+        (
+            "negative inertia",
+            Box::new(|p| p.links.crank.inertia = -1e-3),
+        ),
+        (
+            "infinite inertia",
+            Box::new(move |p| p.links.crank.inertia = inf),
+        ),
         ("NaN cg", Box::new(move |p| p.links.rocker.cg.y = nan)),
         ("NaN gravity", Box::new(move |p| p.gravity.x = nan)),
         // B on the line A–O4: coupler and rocker in line, the drawing is a dead point.
-        ("dead point", Box::new(|p| p.points.B = p.points.A + (p.points.O4 - p.points.A) * 0.4)),
+        (
+            "dead point",
+            Box::new(|p| p.points.B = p.points.A + (p.points.O4 - p.points.A) * 0.4),
+        ),
     ];
     for (what, f) in &bad {
         let mut p = FourBarParams::default();
         f(&mut p);
-        assert!(matches!(FourBar::from_params(p), Err(MechError::Invalid(_))), "{what}");
+        assert!(
+            matches!(FourBar::from_params(p), Err(MechError::Invalid(_))),
+            "{what}"
+        );
     }
     let mut p = SliderCrankParams::default();
     p.axes.guide = V::zeros();
-    assert!(matches!(SliderCrank::from_params(p), Err(MechError::Invalid(_))), "zero axis");
+    assert!(
+        matches!(SliderCrank::from_params(p), Err(MechError::Invalid(_))),
+        "zero axis"
+    );
     let mut p = SliderCrankParams::default();
     p.axes.guide = V::new(nan, 1.0);
-    assert!(matches!(SliderCrank::from_params(p), Err(MechError::Invalid(_))), "NaN axis");
+    assert!(
+        matches!(SliderCrank::from_params(p), Err(MechError::Invalid(_))),
+        "NaN axis"
+    );
     // The generic solver's run-time model is checked the same way.
     let base = generic(MECHANISMS, "FourBar");
     let mut model = base.model().clone();
     model.points[2].pos = [nan, 0.0];
-    assert!(matches!(GenericMechanism::from_model(model), Err(MechError::Invalid(_))));
+    assert!(matches!(
+        GenericMechanism::from_model(model),
+        Err(MechError::Invalid(_))
+    ));
 }
 
 /// NaN and infinite inputs to every solver are `MechError::InvalidInput`, for the generated
@@ -997,10 +1502,21 @@ fn from_params_rejects_bad_numbers() {
 #[test]
 fn nan_and_infinite_inputs_are_errors() {
     let (nan, inf) = (f64::NAN, f64::INFINITY);
-    let invalid = |r: Result<(), MechError>, what: &str| assert!(matches!(r, Err(MechError::InvalidInput(_))), "{what}: {r:?}");
+    let invalid = |r: Result<(), MechError>, what: &str| {
+        assert!(
+            matches!(r, Err(MechError::InvalidInput(_))),
+            "{what}: {r:?}"
+        )
+    };
     let m = FourBar::new();
     let ok = FourBarLoads::default();
-    let bad_loads = [FourBarLoads { resist: nan, ..ok }, FourBarLoads { tool: V::new(inf, 0.0), ..ok }];
+    let bad_loads = [
+        FourBarLoads { resist: nan, ..ok },
+        FourBarLoads {
+            tool: V::new(inf, 0.0),
+            ..ok
+        },
+    ];
     let mo = m.kinematics(1.0, 1.0, 0.0).unwrap();
     for x in [nan, inf, -inf] {
         invalid(m.pose(x).map(drop), "pose");
@@ -1010,40 +1526,86 @@ fn nan_and_infinite_inputs_are_errors() {
         invalid(m.reduced(x).map(drop), "reduced");
         invalid(m.reduced_moment(x, &ok).map(drop), "reduced_moment");
         invalid(m.acceleration(x, 1.0, 0.0, &ok).map(drop), "acceleration q");
-        invalid(m.acceleration(1.0, x, 0.0, &ok).map(drop), "acceleration qd");
-        invalid(m.acceleration(1.0, 1.0, x, &ok).map(drop), "acceleration driver");
+        invalid(
+            m.acceleration(1.0, x, 0.0, &ok).map(drop),
+            "acceleration qd",
+        );
+        invalid(
+            m.acceleration(1.0, 1.0, x, &ok).map(drop),
+            "acceleration driver",
+        );
     }
     for l in &bad_loads {
         invalid(m.kinetostatics(&mo, l).map(drop), "kinetostatics loads");
         invalid(m.driver_action(&mo, l).map(drop), "driver_action loads");
         invalid(m.reduced_moment(1.0, l).map(drop), "reduced_moment loads");
-        invalid(m.acceleration(1.0, 1.0, 0.0, l).map(drop), "acceleration loads");
+        invalid(
+            m.acceleration(1.0, 1.0, 0.0, l).map(drop),
+            "acceleration loads",
+        );
     }
     let five = FiveBar::new();
     invalid(five.pose([nan, 1.0]).map(drop), "five-bar pose");
-    invalid(five.kinematics([2.0, 1.0], [0.0, inf], [0.0, 0.0]).map(drop), "five-bar kinematics");
+    invalid(
+        five.kinematics([2.0, 1.0], [0.0, inf], [0.0, 0.0])
+            .map(drop),
+        "five-bar kinematics",
+    );
 
     let g = generic(MECHANISMS, "FourBar");
     let gm = g.kinematics(&[1.0], &[1.0], &[0.0]).unwrap();
     for x in [nan, inf, -inf] {
         invalid(g.pose(&[x]).map(drop), "generic pose");
-        invalid(g.kinematics(&[x], &[1.0], &[0.0]).map(drop), "generic kinematics q");
-        invalid(g.kinematics(&[1.0], &[x], &[0.0]).map(drop), "generic kinematics qd");
-        invalid(g.kinematics(&[1.0], &[1.0], &[x]).map(drop), "generic kinematics qdd");
+        invalid(
+            g.kinematics(&[x], &[1.0], &[0.0]).map(drop),
+            "generic kinematics q",
+        );
+        invalid(
+            g.kinematics(&[1.0], &[x], &[0.0]).map(drop),
+            "generic kinematics qd",
+        );
+        invalid(
+            g.kinematics(&[1.0], &[1.0], &[x]).map(drop),
+            "generic kinematics qdd",
+        );
         invalid(g.reduced(x).map(drop), "generic reduced");
-        invalid(g.acceleration(1.0, x, 0.0, &g.loads()).map(drop), "generic acceleration qd");
-        invalid(g.acceleration(1.0, 1.0, x, &g.loads()).map(drop), "generic acceleration driver");
+        invalid(
+            g.acceleration(1.0, x, 0.0, &g.loads()).map(drop),
+            "generic acceleration qd",
+        );
+        invalid(
+            g.acceleration(1.0, 1.0, x, &g.loads()).map(drop),
+            "generic acceleration driver",
+        );
         let mut l = g.loads();
         assert!(l.set_by_name("resist", &[x]));
-        invalid(g.kinetostatics(&gm, &l).map(drop), "generic kinetostatics loads");
-        invalid(g.driver_action(&gm, &l).map(drop), "generic driver_action loads");
-        invalid(g.reduced_moment(1.0, &l).map(drop), "generic reduced_moment loads");
+        invalid(
+            g.kinetostatics(&gm, &l).map(drop),
+            "generic kinetostatics loads",
+        );
+        invalid(
+            g.driver_action(&gm, &l).map(drop),
+            "generic driver_action loads",
+        );
+        invalid(
+            g.reduced_moment(1.0, &l).map(drop),
+            "generic reduced_moment loads",
+        );
     }
-    invalid(g.kinematics(&[1.0, 2.0], &[1.0], &[0.0]).map(drop), "generic wrong length");
+    invalid(
+        g.kinematics(&[1.0, 2.0], &[1.0], &[0.0]).map(drop),
+        "generic wrong length",
+    );
     let other = generic(MECHANISMS, "Watt2");
     let om = other.kinematics(&[1.0], &[1.0], &[0.0]).unwrap();
-    invalid(g.kinetostatics(&om, &g.loads()).map(drop), "motion of another mechanism");
-    invalid(g.kinetostatics(&gm, &other.loads()).map(drop), "loads of another mechanism");
+    invalid(
+        g.kinetostatics(&om, &g.loads()).map(drop),
+        "motion of another mechanism",
+    );
+    invalid(
+        g.kinetostatics(&gm, &other.loads()).map(drop),
+        "loads of another mechanism",
+    );
 }
 
 /// Huge but finite inputs: a crank angle of 1e20 or 1e300 rad is some angle (both
@@ -1120,7 +1682,11 @@ fn generic_nine_prismatic_inputs() {
     let m = g.kinematics(&q, &[1.0; 9], &[2.0; 9]).unwrap();
     for k in 1..=9 {
         let l = m.link(&format!("s{k}")).unwrap();
-        assert!((l.cg - V::new(0.1 * k as f64, k as f64)).amax() < 1e-14 && (l.cg_vel.x - 1.0).abs() < 1e-14, "s{k}: {l:?}");
+        assert!(
+            (l.cg - V::new(0.1 * k as f64, k as f64)).amax() < 1e-14
+                && (l.cg_vel.x - 1.0).abs() < 1e-14,
+            "s{k}: {l:?}"
+        );
     }
     // Each actuator pushes its own slider: F = m a = 2 N.
     let d = g.driver_action(&m, &g.loads()).unwrap();
@@ -1134,6 +1700,9 @@ fn generic_nine_prismatic_inputs() {
 fn wrap_reduces_huge_angles() {
     for a in [1e17, 1e20, -3e19, 1e300] {
         let w = mech::kinematics::wrap(a);
-        assert!(w > -std::f64::consts::PI && w <= std::f64::consts::PI, "wrap({a:e}) = {w}");
+        assert!(
+            w > -std::f64::consts::PI && w <= std::f64::consts::PI,
+            "wrap({a:e}) = {w}"
+        );
     }
 }

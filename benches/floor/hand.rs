@@ -248,9 +248,18 @@ impl FourBarHand {
         let a3 = b - a;
         let a4 = b - self.o4;
         Some(FourBarHandPose {
-            crank: HandLinkPose { angle: q, cg: at(self.o2, a2, self.g2) },
-            coupler: HandLinkPose { angle: a3.y.atan2(a3.x), cg: at(a, a3, self.g3) },
-            rocker: HandLinkPose { angle: a4.y.atan2(a4.x), cg: at(self.o4, a4, self.g4) },
+            crank: HandLinkPose {
+                angle: q,
+                cg: at(self.o2, a2, self.g2),
+            },
+            coupler: HandLinkPose {
+                angle: a3.y.atan2(a3.x),
+                cg: at(a, a3, self.g3),
+            },
+            rocker: HandLinkPose {
+                angle: a4.y.atan2(a4.x),
+                cg: at(self.o4, a4, self.g4),
+            },
             o2: self.o2,
             o4: self.o4,
             a,
@@ -323,15 +332,27 @@ impl FourBarHand {
             cg_vel: perp(r) * w4,
             cg_acc: perp(r) * al4 - r * (w4 * w4),
         };
-        let fixed = |pos| HandPointMotion { pos, vel: V2::zeros(), acc: V2::zeros() };
+        let fixed = |pos| HandPointMotion {
+            pos,
+            vel: V2::zeros(),
+            acc: V2::zeros(),
+        };
         Some(FourBarHandMotion {
             crank,
             coupler,
             rocker,
             o2: fixed(self.o2),
             o4: fixed(self.o4),
-            a: HandPointMotion { pos: a, vel: va, acc: aa },
-            b: HandPointMotion { pos: b, vel: vb, acc: ab },
+            a: HandPointMotion {
+                pos: a,
+                vel: va,
+                acc: aa,
+            },
+            b: HandPointMotion {
+                pos: b,
+                vel: vb,
+                acc: ab,
+            },
             p,
         })
     }
@@ -356,15 +377,25 @@ impl FourBarHand {
         let f3 = self.w3 - m.coupler.cg_acc * self.m3;
         let f4 = self.w4 - m.rocker.cg_acc * self.m4;
         let m2 = cross(m.crank.cg - self.o2, f2) - self.i2 * m.crank.alpha;
-        let m3 = cross(m.coupler.cg - m.a.pos, f3) + cross(m.p.pos - m.a.pos, loads.tool) - self.i3 * m.coupler.alpha;
+        let m3 = cross(m.coupler.cg - m.a.pos, f3) + cross(m.p.pos - m.a.pos, loads.tool)
+            - self.i3 * m.coupler.alpha;
         let m4 = cross(m.rocker.cg - self.o4, f4) + loads.resist - self.i4 * m.rocker.alpha;
         let w3 = f3 + loads.tool;
         let inv_det = 1.0 / cross(a3, a4);
-        let rb = V2::new((m3 * a4.x + m4 * a3.x) * inv_det, (m3 * a4.y + m4 * a3.y) * inv_det);
+        let rb = V2::new(
+            (m3 * a4.x + m4 * a3.x) * inv_det,
+            (m3 * a4.y + m4 * a3.y) * inv_det,
+        );
         let ra = rb - w3;
         let ro4 = -rb - f4;
         let ro2 = ra - f2;
-        FourBarHandForces { driver: cross(a2, ra) - m2, o2: ro2, a: ra, b: rb, o4: ro4 }
+        FourBarHandForces {
+            driver: cross(a2, ra) - m2,
+            o2: ro2,
+            a: ra,
+            b: rb,
+            o4: ro4,
+        }
     }
 
     /// The driver torque by virtual power, no reaction computed:
@@ -372,9 +403,12 @@ impl FourBarHand {
     /// so T = −(…)/ω₂. Needs q̇ = ω₂ ≠ 0 (the motion's velocities are used as the
     /// virtual ones).
     pub fn driver_action(&self, m: &FourBarHandMotion, loads: &FourBarLoads) -> f64 {
-        let p2 = (self.w2 - m.crank.cg_acc * self.m2).dot(&m.crank.cg_vel) - self.i2 * m.crank.alpha * m.crank.omega;
-        let p3 = (self.w3 - m.coupler.cg_acc * self.m3).dot(&m.coupler.cg_vel) - self.i3 * m.coupler.alpha * m.coupler.omega;
-        let p4 = (self.w4 - m.rocker.cg_acc * self.m4).dot(&m.rocker.cg_vel) - self.i4 * m.rocker.alpha * m.rocker.omega;
+        let p2 = (self.w2 - m.crank.cg_acc * self.m2).dot(&m.crank.cg_vel)
+            - self.i2 * m.crank.alpha * m.crank.omega;
+        let p3 = (self.w3 - m.coupler.cg_acc * self.m3).dot(&m.coupler.cg_vel)
+            - self.i3 * m.coupler.alpha * m.coupler.omega;
+        let p4 = (self.w4 - m.rocker.cg_acc * self.m4).dot(&m.rocker.cg_vel)
+            - self.i4 * m.rocker.alpha * m.rocker.omega;
         let pl = loads.tool.dot(&m.p.vel) + loads.resist * m.rocker.omega;
         -(p2 + p3 + p4 + pl) / m.crank.omega
     }
@@ -500,7 +534,16 @@ impl SliderCrankHand {
         let dy = self.g3.0 * y + self.g3.1 * x;
         let g3 = V2::new(-ya - k3 * dy, xa + k3 * dx);
         let g3d = V2::new(-xa - k3d * dy - k3sq * dx, -ya + k3d * dx - k3sq * dy);
-        Some(Coefficients { xa, ya, k3, k3d, ks, ksd, g3, g3d })
+        Some(Coefficients {
+            xa,
+            ya,
+            k3,
+            k3d,
+            ks,
+            ksd,
+            g3,
+            g3d,
+        })
     }
 
     /// I* = I_O2 + m₃|g_G3|² + I₃ k₃² + m₄ k_s²,
@@ -509,8 +552,12 @@ impl SliderCrankHand {
     #[inline(always)]
     fn inertia_of(&self, k: &Coefficients) -> HandReduced {
         HandReduced {
-            inertia: self.io2 + self.m3 * k.g3.norm_squared() + self.i3 * k.k3 * k.k3 + self.m4 * k.ks * k.ks,
-            inertia_derivative: 2.0 * (self.m3 * k.g3.dot(&k.g3d) + self.i3 * k.k3 * k.k3d + self.m4 * k.ks * k.ksd),
+            inertia: self.io2
+                + self.m3 * k.g3.norm_squared()
+                + self.i3 * k.k3 * k.k3
+                + self.m4 * k.ks * k.ks,
+            inertia_derivative: 2.0
+                * (self.m3 * k.g3.dot(&k.g3d) + self.i3 * k.k3 * k.k3d + self.m4 * k.ks * k.ksd),
         }
     }
 
@@ -518,8 +565,14 @@ impl SliderCrankHand {
     /// g_G2 = perp(G₂ − O2) = g₂ᵤ perp(a₂) − g₂ᵥ a₂.
     #[inline(always)]
     fn moment_of(&self, k: &Coefficients, loads: &SliderCrankLoads) -> f64 {
-        let g2 = V2::new(-self.g2.0 * k.ya - self.g2.1 * k.xa, self.g2.0 * k.xa - self.g2.1 * k.ya);
-        self.w2.dot(&g2) + self.w3.dot(&k.g3) + (self.w4.x + loads.gas.dot(&self.u)) * k.ks + loads.shaft
+        let g2 = V2::new(
+            -self.g2.0 * k.ya - self.g2.1 * k.xa,
+            self.g2.0 * k.xa - self.g2.1 * k.ya,
+        );
+        self.w2.dot(&g2)
+            + self.w3.dot(&k.g3)
+            + (self.w4.x + loads.gas.dot(&self.u)) * k.ks
+            + loads.shaft
     }
 
     /// Zhukovski's I*(q) and dI*/dq; `None` when the rod cannot reach the guide.
@@ -533,9 +586,17 @@ impl SliderCrankHand {
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
-    pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &SliderCrankLoads) -> Option<f64> {
+    pub fn acceleration(
+        &self,
+        q: f64,
+        qd: f64,
+        driver: f64,
+        loads: &SliderCrankLoads,
+    ) -> Option<f64> {
         let k = self.coefficients(q)?;
         let r = self.inertia_of(&k);
-        Some((driver + self.moment_of(&k, loads) - 0.5 * r.inertia_derivative * qd * qd) / r.inertia)
+        Some(
+            (driver + self.moment_of(&k, loads) - 0.5 * r.inertia_derivative * qd * qd) / r.inertia,
+        )
     }
 }

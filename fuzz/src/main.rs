@@ -46,7 +46,9 @@ fn seeds(root: &Path) -> Vec<String> {
     }
     files.sort();
     for f in files {
-        let Ok(text) = std::fs::read_to_string(&f) else { continue };
+        let Ok(text) = std::fs::read_to_string(&f) else {
+            continue;
+        };
         if f.extension().is_some_and(|e| e == "mech") {
             out.push(text);
             continue;
@@ -54,7 +56,9 @@ fn seeds(root: &Path) -> Vec<String> {
         let mut at = 0;
         while let Some(i) = text[at..].find("mechanism! {\n") {
             let start = at + i + "mechanism! {\n".len();
-            let Some(end) = text[start..].find("\n}\n") else { break };
+            let Some(end) = text[start..].find("\n}\n") else {
+                break;
+            };
             out.push(text[start..start + end].to_string());
             at = start + end;
         }
@@ -62,8 +66,27 @@ fn seeds(root: &Path) -> Vec<String> {
     out
 }
 
-const NUMBERS: [&str; 16] = ["0", "-0.0", "1e308", "-1.7976931348623157e308", "1e-308", "5e-324", "1e999", "1e16", "-1e-300", "0.5", "3", "1e200", "1e-200", "4294967296", "-2", "1e6"];
-const TOKENS: [&str; 12] = [",", "(", ")", "{", "}", "[", "]", ":", "-", "r#x", "0.0", "ground"];
+const NUMBERS: [&str; 16] = [
+    "0",
+    "-0.0",
+    "1e308",
+    "-1.7976931348623157e308",
+    "1e-308",
+    "5e-324",
+    "1e999",
+    "1e16",
+    "-1e-300",
+    "0.5",
+    "3",
+    "1e200",
+    "1e-200",
+    "4294967296",
+    "-2",
+    "1e6",
+];
+const TOKENS: [&str; 12] = [
+    ",", "(", ")", "{", "}", "[", "]", ":", "-", "r#x", "0.0", "ground",
+];
 
 /// One mutation of `text`.
 fn mutate(text: &str, rng: &mut Rng) -> String {
@@ -75,13 +98,26 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
     match rng.below(6) {
         0 => {
             // A number replaced by a hostile one.
-            let starts: Vec<usize> = bytes.windows(2).filter(|w| w[1].1.is_ascii_digit() && !w[0].1.is_ascii_alphanumeric() && w[0].1 != '.').map(|w| w[1].0).collect();
+            let starts: Vec<usize> = bytes
+                .windows(2)
+                .filter(|w| {
+                    w[1].1.is_ascii_digit() && !w[0].1.is_ascii_alphanumeric() && w[0].1 != '.'
+                })
+                .map(|w| w[1].0)
+                .collect();
             if starts.is_empty() {
                 return text.to_string();
             }
             let s = starts[rng.below(starts.len())];
-            let e = s + text[s..].find(|c: char| !(c.is_ascii_alphanumeric() || c == '.' || c == '-')).unwrap_or(text.len() - s);
-            format!("{}{}{}", &text[..s], NUMBERS[rng.below(NUMBERS.len())], &text[e..])
+            let e = s + text[s..]
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '.' || c == '-'))
+                .unwrap_or(text.len() - s);
+            format!(
+                "{}{}{}",
+                &text[..s],
+                NUMBERS[rng.below(NUMBERS.len())],
+                &text[e..]
+            )
         }
         1 => {
             // A span deleted.
@@ -102,7 +138,10 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
         }
         3 => {
             // A name replaced by another name of the text.
-            let words: Vec<&str> = text.split(|c: char| !(c.is_alphanumeric() || c == '_')).filter(|w| w.chars().next().is_some_and(|c| c.is_alphabetic())).collect();
+            let words: Vec<&str> = text
+                .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .filter(|w| w.chars().next().is_some_and(|c| c.is_alphabetic()))
+                .collect();
             if words.len() < 2 {
                 return text.to_string();
             }
@@ -111,7 +150,12 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
         }
         4 => {
             let a = pick(rng);
-            format!("{}{}{}", &text[..a], TOKENS[rng.below(TOKENS.len())], &text[a..])
+            format!(
+                "{}{}{}",
+                &text[..a],
+                TOKENS[rng.below(TOKENS.len())],
+                &text[a..]
+            )
         }
         _ => {
             // A point or a whole number tweaked slightly (a near-dead point, a near-tangency).
@@ -144,7 +188,13 @@ fn run(text: &str) -> (Vec<Finding>, bool) {
             found.push(Finding::Slow(dt, what));
         }
         match r {
-            Err(p) => found.push(Finding::Panic(format!("{what}: {}", p.downcast_ref::<String>().cloned().or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default()))),
+            Err(p) => found.push(Finding::Panic(format!(
+                "{what}: {}",
+                p.downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_default()
+            ))),
             Ok(Some(msg)) => found.push(Finding::NonFinite(format!("{what}: {msg}"))),
             Ok(None) => {}
         }
@@ -154,29 +204,48 @@ fn run(text: &str) -> (Vec<Finding>, bool) {
         loaded = Mechanism::from_dsl(text).ok();
         None
     });
-    let Some(m) = loaded else { return (found, false) };
+    let Some(m) = loaded else {
+        return (found, false);
+    };
     let g = m.dof();
     let zero = vec![0.0; g];
     for (k, q0) in [0.0, 0.7, 2.0, -1.3, 1e6].iter().enumerate() {
         let q: Vec<f64> = (0..g).map(|i| q0 + 0.1 * i as f64).collect();
-        let qd: Vec<f64> = (0..g).map(|i| [1.0, 100.0, 1e20, 0.0, 3.0][k] * (1.0 + i as f64)).collect();
+        let qd: Vec<f64> = (0..g)
+            .map(|i| [1.0, 100.0, 1e20, 0.0, 3.0][k] * (1.0 + i as f64))
+            .collect();
         timed("pose", &mut || match m.pose(&q) {
-            Ok(p) => (!p.points.iter().all(|p| p.pos.iter().all(|x| x.is_finite())) || !p.links.iter().all(|l| l.angle.is_finite())).then(|| format!("pose at {q:?}")),
+            Ok(p) => (!p.points.iter().all(|p| p.pos.iter().all(|x| x.is_finite()))
+                || !p.links.iter().all(|l| l.angle.is_finite()))
+            .then(|| format!("pose at {q:?}")),
             Err(_) => None,
         });
         timed("kinematics and forces", &mut || {
             let mo = m.kinematics(&q, &qd, &zero).ok()?;
-            if !mo.links.iter().all(|l| all_finite(&[l.angle, l.omega, l.alpha, l.cg.x, l.cg.y, l.cg_acc.x, l.cg_acc.y])) {
+            if !mo.links.iter().all(|l| {
+                all_finite(&[
+                    l.angle, l.omega, l.alpha, l.cg.x, l.cg.y, l.cg_acc.x, l.cg_acc.y,
+                ])
+            }) {
                 return Some(format!("kinematics at {q:?}, {qd:?}"));
             }
             let mut loads = m.loads();
             for l in &m.model().loads {
                 let v = [1e3, -2e3];
-                let n = if matches!(l, mech_core::model::Load::Force { .. }) { 2 } else { 1 };
+                let n = if matches!(l, mech_core::model::Load::Force { .. }) {
+                    2
+                } else {
+                    1
+                };
                 loads.set_by_name(l.name(), &v[..n]);
             }
             if let Ok(f) = m.kinetostatics(&mo, &loads) {
-                if !all_finite(&f.driver) || !f.joints.iter().all(|r| r.force.iter().all(|x| x.is_finite()) && r.moment.filter(|m| !m.is_finite()).is_none()) {
+                if !all_finite(&f.driver)
+                    || !f.joints.iter().all(|r| {
+                        r.force.iter().all(|x| x.is_finite())
+                            && r.moment.filter(|m| !m.is_finite()).is_none()
+                    })
+                {
                     return Some(format!("kinetostatics at {q:?}, {qd:?}"));
                 }
             }
@@ -205,16 +274,24 @@ fn run(text: &str) -> (Vec<Finding>, bool) {
 
 fn arg(name: &str) -> Option<String> {
     let args: Vec<String> = std::env::args().collect();
-    args.iter().position(|a| a == name).and_then(|i| args.get(i + 1).cloned())
+    args.iter()
+        .position(|a| a == name)
+        .and_then(|i| args.get(i + 1).cloned())
 }
 
 fn main() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
     let seconds: Option<f64> = arg("--seconds").and_then(|s| s.parse().ok());
     let cases: Option<u64> = arg("--cases").and_then(|s| s.parse().ok());
-    let mut rng = Rng(arg("--seed").and_then(|s| s.parse().ok()).unwrap_or(0x9E37_79B9_7F4A_7C15));
+    let mut rng = Rng(arg("--seed")
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0x9E37_79B9_7F4A_7C15));
     let seeds = seeds(&root);
-    assert!(!seeds.is_empty(), "no seed mechanisms under {}", root.display());
+    assert!(
+        !seeds.is_empty(),
+        "no seed mechanisms under {}",
+        root.display()
+    );
     // Panics inside the solvers are findings (caught and written out); keep them quiet.
     let default_hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
@@ -226,7 +303,10 @@ fn main() {
     let start = Instant::now();
     let (mut n, mut loaded, mut bad, mut slow) = (0u64, 0u64, 0u64, 0u64);
     loop {
-        if cases.is_some_and(|c| n >= c) || seconds.is_some_and(|s| start.elapsed().as_secs_f64() >= s) || (cases.is_none() && seconds.is_none() && n >= 10_000) {
+        if cases.is_some_and(|c| n >= c)
+            || seconds.is_some_and(|s| start.elapsed().as_secs_f64() >= s)
+            || (cases.is_none() && seconds.is_none() && n >= 10_000)
+        {
             break;
         }
         let mut text = seeds[rng.below(seeds.len())].clone();
@@ -241,12 +321,18 @@ fn main() {
                 _ => bad += 1,
             }
             let _ = std::fs::create_dir_all(&out);
-            let _ = std::fs::write(out.join(format!("case-{n}.txt")), format!("// {f:?}\n{text}"));
+            let _ = std::fs::write(
+                out.join(format!("case-{n}.txt")),
+                format!("// {f:?}\n{text}"),
+            );
             eprintln!("case {n}: {f:?}");
         }
         n += 1;
         if n % 100_000 == 0 {
-            eprintln!("{n} cases, {loaded} loaded, {bad} failures, {slow} slow, {:.0} s", start.elapsed().as_secs_f64());
+            eprintln!(
+                "{n} cases, {loaded} loaded, {bad} failures, {slow} slow, {:.0} s",
+                start.elapsed().as_secs_f64()
+            );
         }
     }
     println!(

@@ -33,16 +33,43 @@ pub fn summary(m: &Mechanism) -> String {
     let unknowns = g + 2 * pi + pii;
     let mut s = String::new();
     let _ = writeln!(s, "mechanism `{}`: valid", model.name);
-    let _ = writeln!(s, "  N = {n} links (ground included), P_I = {pi} lower pairs, P_II = {pii} higher pairs");
-    let _ = writeln!(s, "  Grübler: G = 3(N − 1) − 2 P_I − P_II = {} − {} − {pii} = {}; inputs declared: {g}", eqs, 2 * pi, eqs as i64 - 2 * pi as i64 - pii as i64);
-    let _ = writeln!(s, "  equations 3(N − 1) = {eqs}, unknowns G + 2 P_I + P_II = {unknowns}{}", if m.redundant() { " (redundant constraints accepted: motor actions only, no reactions)" } else { "" });
+    let _ = writeln!(
+        s,
+        "  N = {n} links (ground included), P_I = {pi} lower pairs, P_II = {pii} higher pairs"
+    );
+    let _ = writeln!(
+        s,
+        "  Grübler: G = 3(N − 1) − 2 P_I − P_II = {} − {} − {pii} = {}; inputs declared: {g}",
+        eqs,
+        2 * pi,
+        eqs as i64 - 2 * pi as i64 - pii as i64
+    );
+    let _ = writeln!(
+        s,
+        "  equations 3(N − 1) = {eqs}, unknowns G + 2 P_I + P_II = {unknowns}{}",
+        if m.redundant() {
+            " (redundant constraints accepted: motor actions only, no reactions)"
+        } else {
+            ""
+        }
+    );
     match assur::plan(model) {
         Ok(plan) => {
             let _ = writeln!(s, "  Assur groups in solve order:");
             for (i, grp) in plan.iter().enumerate() {
                 let (kind, closed) = group_kind(grp);
-                let links: Vec<&str> = grp.bodies.iter().map(|&b| model.links[b].name.as_str()).collect();
-                let _ = writeln!(s, "    {}. {kind}: {} ({})", i + 1, links.join(", "), if closed { "closed form" } else { "iterative" });
+                let links: Vec<&str> = grp
+                    .bodies
+                    .iter()
+                    .map(|&b| model.links[b].name.as_str())
+                    .collect();
+                let _ = writeln!(
+                    s,
+                    "    {}. {kind}: {} ({})",
+                    i + 1,
+                    links.join(", "),
+                    if closed { "closed form" } else { "iterative" }
+                );
             }
         }
         Err(_) => {

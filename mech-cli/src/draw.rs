@@ -15,7 +15,12 @@ pub struct DrawArgs {
     /// The mechanism file (`-` = standard input).
     pub file: PathBuf,
     /// Input values q, one per input (rad or m; `deg`, `mm` allowed).
-    #[arg(long = "at", required = true, value_delimiter = ',', allow_hyphen_values = true)]
+    #[arg(
+        long = "at",
+        required = true,
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
     pub at: Vec<String>,
     /// The SVG file to write.
     #[arg(short = 'o', long = "output")]
@@ -103,24 +108,46 @@ pub fn default_range(m: &Mechanism) -> (f64, f64) {
 }
 
 /// The first input's range and the other inputs from the arguments.
-pub fn inputs(m: &Mechanism, from: &Option<String>, to: &Option<String>, rest: &[String]) -> Result<(f64, f64, Vec<f64>), Failure> {
+pub fn inputs(
+    m: &Mechanism,
+    from: &Option<String>,
+    to: &Option<String>,
+    rest: &[String],
+) -> Result<(f64, f64, Vec<f64>), Failure> {
     let model = m.model();
     let (d, _) = quantity::input_dims(model, 0);
     let (a0, b0) = default_range(m);
-    let a = from.as_deref().map(|t| quantity::parse(t, d, "--from")).transpose()?.unwrap_or(a0);
-    let b = to.as_deref().map(|t| quantity::parse(t, d, "--to")).transpose()?.unwrap_or(b0);
+    let a = from
+        .as_deref()
+        .map(|t| quantity::parse(t, d, "--from"))
+        .transpose()?
+        .unwrap_or(a0);
+    let b = to
+        .as_deref()
+        .map(|t| quantity::parse(t, d, "--to"))
+        .transpose()?
+        .unwrap_or(b0);
     if rest.len() + 1 != m.dof() {
-        return Err(Failure::usage(format!("--rest: {} value(s) for the {} input(s) after the first", rest.len(), m.dof() - 1)));
+        return Err(Failure::usage(format!(
+            "--rest: {} value(s) for the {} input(s) after the first",
+            rest.len(),
+            m.dof() - 1
+        )));
     }
     let mut q = vec![a];
     for (k, t) in rest.iter().enumerate() {
-        q.push(quantity::parse(t, quantity::input_dims(model, k + 1).0, "--rest")?);
+        q.push(quantity::parse(
+            t,
+            quantity::input_dims(model, k + 1).0,
+            "--rest",
+        )?);
     }
     Ok((a, b, q))
 }
 
 fn write(path: &PathBuf, text: &str) -> Result<(), Failure> {
-    std::fs::write(path, text).map_err(|e| Failure::usage(format!("cannot write {}: {e}", path.display())))?;
+    std::fs::write(path, text)
+        .map_err(|e| Failure::usage(format!("cannot write {}: {e}", path.display())))?;
     eprintln!("wrote {}", path.display());
     Ok(())
 }
@@ -142,7 +169,14 @@ pub fn draw(args: DrawArgs) -> Result<(), Failure> {
         let qd = quantity::per_input(&args.speed, model, 1, "--speed", 0.0)?;
         let qdd = quantity::per_input(&args.accel, model, 2, "--accel", 0.0)?;
         let loads = LoadSet::parse(&args.load, model)?.at(&m, q[0]);
-        extra.extend(scene::arrows(&m, &q, &qd, &qdd, &loads, 0.25 * scene::size(model))?);
+        extra.extend(scene::arrows(
+            &m,
+            &q,
+            &qd,
+            &qdd,
+            &loads,
+            0.25 * scene::size(model),
+        )?);
     }
     let (text, _) = svg::still(&frame, &extra, args.width, args.height);
     write(&args.output, &text)
@@ -151,13 +185,20 @@ pub fn draw(args: DrawArgs) -> Result<(), Failure> {
 /// Run `mech animate`.
 pub fn animate(args: AnimateArgs) -> Result<(), Failure> {
     if args.frames < 2 || !(args.seconds > 0.0) {
-        return Err(Failure::usage(format!("--frames {} and --seconds {}: need at least 2 frames and a positive duration", args.frames, args.seconds)));
+        return Err(Failure::usage(format!(
+            "--frames {} and --seconds {}: need at least 2 frames and a positive duration",
+            args.frames, args.seconds
+        )));
     }
     let m = source::load(&args.file)?;
     let (a, b, q) = inputs(&m, &args.from, &args.to, &args.rest)?;
     let qs = range(&q, a, b, args.frames - 1);
     let frames = scene::frames(&m, &qs)?;
-    let extra: Vec<_> = args.path.iter().map(|p| scene::path(&m, p, &qs)).collect::<Result<_, _>>()?;
+    let extra: Vec<_> = args
+        .path
+        .iter()
+        .map(|p| scene::path(&m, p, &qs))
+        .collect::<Result<_, _>>()?;
     let (text, _) = svg::animated(&frames, &extra, args.width, args.height, args.seconds);
     write(&args.output, &text)
 }

@@ -51,21 +51,40 @@ pub struct FlywheelArgs {
 /// The results' names, units and values, in order.
 fn results(args: &FlywheelArgs) -> Result<Vec<(&'static str, &'static str, f64)>, Failure> {
     let m = source::load(&args.file)?;
-    if m.dof() != 1 || m.model().joints[m.model().inputs[0]].kind != mech_core::model::JointKind::Revolute {
-        return Err(Failure::usage("`mech flywheel` sizes the flywheel of a machine with one revolute input"));
+    if m.dof() != 1
+        || m.model().joints[m.model().inputs[0]].kind != mech_core::model::JointKind::Revolute
+    {
+        return Err(Failure::usage(
+            "`mech flywheel` sizes the flywheel of a machine with one revolute input",
+        ));
     }
     let period = quantity::parse(&args.period, Dim::ANGLE, "--period")?;
     let start = quantity::parse(&args.start, Dim::ANGLE, "--start")?;
     let omega = quantity::parse(&args.speed, Dim::SPEED, "--speed")?;
-    let breakpoints: Vec<f64> = args.breakpoints.iter().map(|b| quantity::parse(b, Dim::ANGLE, "--breakpoints")).collect::<Result<_, _>>()?;
+    let breakpoints: Vec<f64> = args
+        .breakpoints
+        .iter()
+        .map(|b| quantity::parse(b, Dim::ANGLE, "--breakpoints"))
+        .collect::<Result<_, _>>()?;
     let loads = LoadSet::parse(&args.load, m.model())?;
     let driver = match &args.driver {
         Some(d) => Some(quantity::parse(d, Dim::TORQUE, "--driver")?),
         None => None,
     };
-    let cycle = Cycle::new(&m, start, period, &breakpoints, |q| Ok(loads.at(&m, q)), move |_| driver.unwrap_or(0.0))?;
+    let cycle = Cycle::new(
+        &m,
+        start,
+        period,
+        &breakpoints,
+        |q| Ok(loads.at(&m, q)),
+        move |_| driver.unwrap_or(0.0),
+    )?;
     let net = cycle.net_work();
-    let (cycle, torque) = if driver.is_some() { (cycle, 0.0) } else { cycle.balanced() };
+    let (cycle, torque) = if driver.is_some() {
+        (cycle, 0.0)
+    } else {
+        cycle.balanced()
+    };
     cycle.check_periodic()?;
     let fw = cycle.flywheel(omega, args.irregularity)?;
     let sim = cycle.simulate(&fw.exact.state, args.rtol)?;

@@ -37,15 +37,29 @@ pub struct ImportArgs {
 }
 
 fn parse_pair(s: &str) -> Result<(usize, usize), String> {
-    let (a, b) = s.split_once(',').ok_or_else(|| format!("`{s}`: expected two joint indices `B,D`"))?;
-    Ok((a.trim().parse().map_err(|e| format!("`{a}`: {e}"))?, b.trim().parse().map_err(|e| format!("`{b}`: {e}"))?))
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| format!("`{s}`: expected two joint indices `B,D`"))?;
+    Ok((
+        a.trim().parse().map_err(|e| format!("`{a}`: {e}"))?,
+        b.trim().parse().map_err(|e| format!("`{b}`: {e}"))?,
+    ))
 }
 
 const GROUND: &str = "ground";
 
 /// A name the DSL accepts for a link (pyslvs allows `-`).
 fn ident(name: &str) -> String {
-    let s: String = name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '_' { c } else { '_' }).collect();
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
     if s.chars().next().is_some_and(|c| c.is_ascii_digit()) {
         format!("L_{s}")
     } else {
@@ -54,11 +68,19 @@ fn ident(name: &str) -> String {
 }
 
 /// The `.mech` text of the expression's joints with the pyslvs inputs.
-pub fn to_mech(joints: &[pmks::Joint], name: &str, inputs: &[(usize, usize)], unit: Option<&str>) -> Result<String, Failure> {
+pub fn to_mech(
+    joints: &[pmks::Joint],
+    name: &str,
+    inputs: &[(usize, usize)],
+    unit: Option<&str>,
+) -> Result<String, Failure> {
     let n = joints.len();
     for &(b, d) in inputs {
         if b >= n || d >= n {
-            return Err(Failure::usage(format!("--input {b},{d}: the expression has {n} joints (0 to {})", n.saturating_sub(1))));
+            return Err(Failure::usage(format!(
+                "--input {b},{d}: the expression has {n} joints (0 to {})",
+                n.saturating_sub(1)
+            )));
         }
     }
     // The links in order of appearance, and the points of each.
@@ -66,7 +88,11 @@ pub fn to_mech(joints: &[pmks::Joint], name: &str, inputs: &[(usize, usize)], un
     let mut points: Vec<Vec<usize>> = Vec::new();
     let mut ground_points = Vec::new();
     for (i, j) in joints.iter().enumerate() {
-        let holders: &[String] = if j.kind == Kind::R { &j.links } else { j.links.get(1..).unwrap_or(&[]) };
+        let holders: &[String] = if j.kind == Kind::R {
+            &j.links
+        } else {
+            j.links.get(1..).unwrap_or(&[])
+        };
         for l in holders {
             if l == GROUND {
                 ground_points.push(i);
@@ -97,28 +123,47 @@ pub fn to_mech(joints: &[pmks::Joint], name: &str, inputs: &[(usize, usize)], un
     for &(b, d) in inputs {
         if b == d {
             if joints[b].kind == Kind::R {
-                return Err(Failure::usage(format!("--input {b},{d}: joint {b} is a pin; a pair (i, i) drives a slider")));
+                return Err(Failure::usage(format!(
+                    "--input {b},{d}: joint {b} is a pin; a pair (i, i) drives a slider"
+                )));
             }
             input_joints.push(format!("J{b}"));
             continue;
         }
-        let k = (0..links.len()).find(|&k| points[k].contains(&b) && points[k].contains(&d)).ok_or_else(|| {
-            Failure::usage(format!("--input {b},{d}: no link holds both joint {b} and joint {d}"))
-        })?;
+        let k = (0..links.len())
+            .find(|&k| points[k].contains(&b) && points[k].contains(&d))
+            .ok_or_else(|| {
+                Failure::usage(format!(
+                    "--input {b},{d}: no link holds both joint {b} and joint {d}"
+                ))
+            })?;
         points[k].retain(|&p| p != b && p != d);
         points[k].splice(0..0, [b, d]);
         let base = &joints[b];
         if base.kind != Kind::R {
-            return Err(Failure::usage(format!("--input {b},{d}: the base joint {b} must be a pin (R)")));
+            return Err(Failure::usage(format!(
+                "--input {b},{d}: the base joint {b} must be a pin (R)"
+            )));
         }
-        let other = if base.links.iter().any(|l| l == GROUND) { GROUND.to_string() } else { base.links.iter().find(|l| **l != links[k]).cloned().unwrap_or_default() };
+        let other = if base.links.iter().any(|l| l == GROUND) {
+            GROUND.to_string()
+        } else {
+            base.links
+                .iter()
+                .find(|l| **l != links[k])
+                .cloned()
+                .unwrap_or_default()
+        };
         input_joints.push(revolute_name(base, b, &other, &links[k]));
     }
     let unit = unit.map(|u| format!(" {u}")).unwrap_or_default();
     let at = |i: usize| format!("({}{unit}, {}{unit})", joints[i].at.0, joints[i].at.1);
     let mut out = String::new();
     let _ = writeln!(out, "/// Imported from a pyslvs PMKS expression by `mech import`. No masses: the expression has none;");
-    let _ = writeln!(out, "/// add `mass`, `inertia` and `cg` to the links for kinetostatics and dynamics.");
+    let _ = writeln!(
+        out,
+        "/// add `mass`, `inertia` and `cg` to the links for kinetostatics and dynamics."
+    );
     let _ = writeln!(out, "pub struct {name} {{");
     let defined = |i: usize, seen: &mut Vec<usize>| -> String {
         if seen.contains(&i) {
@@ -129,28 +174,65 @@ pub fn to_mech(joints: &[pmks::Joint], name: &str, inputs: &[(usize, usize)], un
         }
     };
     let mut seen = Vec::new();
-    let ground: Vec<String> = ground_points.iter().map(|&i| defined(i, &mut seen)).collect();
+    let ground: Vec<String> = ground_points
+        .iter()
+        .map(|&i| defined(i, &mut seen))
+        .collect();
     let _ = writeln!(out, "    ground {{ {} }},", ground.join(", "));
     for (k, l) in links.iter().enumerate() {
         let pts: Vec<String> = points[k].iter().map(|&i| defined(i, &mut seen)).collect();
-        let _ = writeln!(out, "    link {} {{ points {{ {} }} }},", ident(l), pts.join(", "));
+        let _ = writeln!(
+            out,
+            "    link {} {{ points {{ {} }} }},",
+            ident(l),
+            pts.join(", ")
+        );
     }
     let _ = writeln!(out, "    joints {{");
     for (i, j) in joints.iter().enumerate() {
         match j.kind {
             Kind::R => {
-                let first = if j.links.iter().any(|l| l == GROUND) { GROUND.to_string() } else { j.links.first().cloned().unwrap_or_default() };
+                let first = if j.links.iter().any(|l| l == GROUND) {
+                    GROUND.to_string()
+                } else {
+                    j.links.first().cloned().unwrap_or_default()
+                };
                 for other in j.links.iter().filter(|l| **l != first) {
-                    let _ = writeln!(out, "        {}: revolute({}, {}) at P{i},", revolute_name(j, i, &first, other), ident(&first), ident(other));
+                    let _ = writeln!(
+                        out,
+                        "        {}: revolute({}, {}) at P{i},",
+                        revolute_name(j, i, &first, other),
+                        ident(&first),
+                        ident(other)
+                    );
                 }
             }
             Kind::P | Kind::RP => {
-                let (Some(slot), Some(pin)) = (j.links.first(), j.links.get(1)) else { continue };
-                let kw = if j.kind == Kind::P { "prismatic" } else { "pin_in_slot" };
+                let (Some(slot), Some(pin)) = (j.links.first(), j.links.get(1)) else {
+                    continue;
+                };
+                let kw = if j.kind == Kind::P {
+                    "prismatic"
+                } else {
+                    "pin_in_slot"
+                };
                 let a = j.angle.to_radians();
-                let _ = writeln!(out, "        J{i}: {kw}({}, {}) at P{i} along ({:.15}, {:.15}),", ident(slot), ident(pin), a.cos(), a.sin());
+                let _ = writeln!(
+                    out,
+                    "        J{i}: {kw}({}, {}) at P{i} along ({:.15}, {:.15}),",
+                    ident(slot),
+                    ident(pin),
+                    a.cos(),
+                    a.sin()
+                );
                 for (n, other) in j.links[2..].iter().enumerate() {
-                    let _ = writeln!(out, "        J{i}p{}: revolute({}, {}) at P{i},", n + 1, ident(pin), ident(other));
+                    let _ = writeln!(
+                        out,
+                        "        J{i}p{}: revolute({}, {}) at P{i},",
+                        n + 1,
+                        ident(pin),
+                        ident(other)
+                    );
                 }
             }
         }
@@ -184,11 +266,13 @@ fn revolute_name(j: &pmks::Joint, i: usize, first: &str, other: &str) -> String 
 /// Run `mech import`.
 pub fn run(args: ImportArgs) -> Result<(), Failure> {
     let (text, origin) = crate::source::read(&args.file)?;
-    let joints = pmks::parse(&text).map_err(|f| Failure::mechanism(format!("{origin}:{}", f.message)))?;
+    let joints =
+        pmks::parse(&text).map_err(|f| Failure::mechanism(format!("{origin}:{}", f.message)))?;
     let mech = to_mech(&joints, &args.name, &args.input, args.unit.as_deref())?;
     match &args.output {
         Some(path) => {
-            std::fs::write(path, &mech).map_err(|e| Failure::usage(format!("cannot write {}: {e}", path.display())))?;
+            std::fs::write(path, &mech)
+                .map_err(|e| Failure::usage(format!("cannot write {}: {e}", path.display())))?;
             eprintln!("wrote {}", path.display());
         }
         None => print!("{mech}"),
@@ -204,12 +288,18 @@ mod tests {
     fn a_crank_rocker_imports_and_checks() {
         let expr = "M[J[R, color[Green], P[0.0, 0.0], L[ground, L1]], J[R, color[Green], P[12.92, 32.53], L[L1, L2]], J[R, color[Green], P[73.28, 67.97], L[L2, L3]], J[R, color[Green], P[33.3, 66.95], L[L2]], J[R, color[Green], P[90.0, 0.0], L[ground, L3]]]";
         let text = to_mech(&pmks::parse(expr).unwrap(), "CrankRocker", &[(0, 1)], None).unwrap();
-        assert!(text.contains("J0: revolute(ground, L1) at P0") && text.contains("input: J0"), "{text}");
+        assert!(
+            text.contains("J0: revolute(ground, L1) at P0") && text.contains("input: J0"),
+            "{text}"
+        );
         let m = mech_core::Mechanism::from_dsl(&text).unwrap();
         // The drawing's input angle is pyslvs's: the angle of P0 → P1.
         let q = 32.53f64.atan2(12.92);
         let p = m.pose(&[q]).unwrap();
         let p2 = p.point("P2").unwrap().pos;
-        assert!((p2.x - 73.28).abs() < 1e-9 && (p2.y - 67.97).abs() < 1e-9, "{p2:?}");
+        assert!(
+            (p2.x - 73.28).abs() < 1e-9 && (p2.y - 67.97).abs() < 1e-9,
+            "{p2:?}"
+        );
     }
 }

@@ -39,11 +39,17 @@ pub struct Failure {
 impl Failure {
     /// A mechanism or solver error (status 1).
     pub fn mechanism(message: impl Into<String>) -> Self {
-        Failure { message: message.into(), status: 1 }
+        Failure {
+            message: message.into(),
+            status: 1,
+        }
     }
     /// A usage error (status 2).
     pub fn usage(message: impl Into<String>) -> Self {
-        Failure { message: message.into(), status: 2 }
+        Failure {
+            message: message.into(),
+            status: 2,
+        }
     }
 }
 

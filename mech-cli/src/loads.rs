@@ -22,8 +22,13 @@ pub struct Table {
 impl Table {
     /// Read a table of `width` value columns from CSV text (`origin` for messages).
     pub fn parse(text: &str, width: usize, origin: &str) -> Result<Self, Failure> {
-        let mut r = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
-        let headers = r.headers().map_err(|e| Failure::usage(format!("{origin}: {e}")))?.clone();
+        let mut r = csv::ReaderBuilder::new()
+            .trim(csv::Trim::All)
+            .from_reader(text.as_bytes());
+        let headers = r
+            .headers()
+            .map_err(|e| Failure::usage(format!("{origin}: {e}")))?
+            .clone();
         let scale = match headers.get(0) {
             Some("q") => 1.0,
             Some("q_deg") => std::f64::consts::PI / 180.0,
@@ -35,18 +40,27 @@ impl Table {
             let nums: Result<Vec<f64>, _> = rec.iter().map(str::parse::<f64>).collect();
             let nums = nums.map_err(|e| Failure::usage(format!("{origin}: row {}: {e}", i + 2)))?;
             if nums.len() != width + 1 || nums.iter().any(|x| !x.is_finite()) {
-                return Err(Failure::usage(format!("{origin}: row {}: expected q and {width} finite value(s), found {:?}", i + 2, nums)));
+                return Err(Failure::usage(format!(
+                    "{origin}: row {}: expected q and {width} finite value(s), found {:?}",
+                    i + 2,
+                    nums
+                )));
             }
             if let Some(&last) = q.last() {
                 if !(nums[0] * scale > last) {
-                    return Err(Failure::usage(format!("{origin}: row {}: q must increase", i + 2)));
+                    return Err(Failure::usage(format!(
+                        "{origin}: row {}: q must increase",
+                        i + 2
+                    )));
                 }
             }
             q.push(nums[0] * scale);
             values.push(nums[1..].to_vec());
         }
         if q.len() < 2 {
-            return Err(Failure::usage(format!("{origin}: a table needs at least two rows")));
+            return Err(Failure::usage(format!(
+                "{origin}: a table needs at least two rows"
+            )));
         }
         Ok(Table { q, values })
     }
@@ -56,10 +70,17 @@ impl Table {
         let (q0, qn) = (self.q[0], *self.q.last().unwrap());
         let span = qn - q0;
         let x = q0 + (q - q0).rem_euclid(span);
-        let k = self.q.partition_point(|&t| t <= x).clamp(1, self.q.len() - 1);
+        let k = self
+            .q
+            .partition_point(|&t| t <= x)
+            .clamp(1, self.q.len() - 1);
         let (a, b) = (self.q[k - 1], self.q[k]);
         let t = (x - a) / (b - a);
-        self.values[k - 1].iter().zip(&self.values[k]).map(|(u, v)| u + t * (v - u)).collect()
+        self.values[k - 1]
+            .iter()
+            .zip(&self.values[k])
+            .map(|(u, v)| u + t * (v - u))
+            .collect()
     }
 }
 
@@ -84,7 +105,14 @@ fn width(model: &Model, name: &str) -> Result<usize, Failure> {
         Some(Load::Torque { .. }) => Ok(1),
         None => {
             let names: Vec<&str> = model.loads.iter().map(|l| l.name()).collect();
-            Err(Failure::usage(format!("no load named `{name}`: the mechanism's loads are {}", if names.is_empty() { "none".into() } else { names.join(", ") })))
+            Err(Failure::usage(format!(
+                "no load named `{name}`: the mechanism's loads are {}",
+                if names.is_empty() {
+                    "none".into()
+                } else {
+                    names.join(", ")
+                }
+            )))
         }
     }
 }
@@ -95,21 +123,37 @@ impl LoadSet {
         let mut given = Vec::new();
         for a in args {
             let Some((name, value)) = a.split_once('=') else {
-                return Err(Failure::usage(format!("--load `{a}`: expected NAME=VALUE, e.g. `gas=-1500,0` or `gas=@gas.csv`")));
+                return Err(Failure::usage(format!(
+                    "--load `{a}`: expected NAME=VALUE, e.g. `gas=-1500,0` or `gas=@gas.csv`"
+                )));
             };
             let name = name.trim();
             let w = width(model, name)?;
             let value = if let Some(path) = value.strip_prefix('@') {
-                let text = std::fs::read_to_string(Path::new(path)).map_err(|e| Failure::usage(format!("--load {name}: cannot read {path}: {e}")))?;
+                let text = std::fs::read_to_string(Path::new(path)).map_err(|e| {
+                    Failure::usage(format!("--load {name}: cannot read {path}: {e}"))
+                })?;
                 Value::Table(Table::parse(&text, w, path)?)
             } else {
                 let dim = if w == 2 { Dim::FORCE } else { Dim::TORQUE };
                 let parts: Vec<&str> = value.split(',').collect();
                 if parts.len() != w {
-                    let shape = if w == 2 { "a force: two components `fx,fy` (N)" } else { "a torque: one value (N·m)" };
-                    return Err(Failure::usage(format!("--load {name}: `{value}` has {} component(s), but `{name}` is {shape}", parts.len())));
+                    let shape = if w == 2 {
+                        "a force: two components `fx,fy` (N)"
+                    } else {
+                        "a torque: one value (N·m)"
+                    };
+                    return Err(Failure::usage(format!(
+                        "--load {name}: `{value}` has {} component(s), but `{name}` is {shape}",
+                        parts.len()
+                    )));
                 }
-                Value::Constant(parts.iter().map(|p| quantity::parse(p, dim, &format!("--load {name}"))).collect::<Result<_, _>>()?)
+                Value::Constant(
+                    parts
+                        .iter()
+                        .map(|p| quantity::parse(p, dim, &format!("--load {name}")))
+                        .collect::<Result<_, _>>()?,
+                )
             };
             given.push((name.to_string(), value));
         }
@@ -141,7 +185,10 @@ mod tests {
         assert!((t.at(quarter / 2.0)[0] - 5.0).abs() < 1e-12);
         assert!((t.at(quarter / 2.0 + 2.0 * std::f64::consts::PI)[0] - 5.0).abs() < 1e-12);
         assert!((t.at(-1.5 * quarter)[0] - t.at(4.0 * quarter - 1.5 * quarter)[0]).abs() < 1e-12);
-        assert!((t.at(-1.5 * quarter)[0] - 5.0).abs() < 1e-12, "at 225° = −135°: 10 (1 − 135/270)");
+        assert!(
+            (t.at(-1.5 * quarter)[0] - 5.0).abs() < 1e-12,
+            "at 225° = −135°: 10 (1 − 135/270)"
+        );
         assert!(Table::parse("x, f\n0, 1\n1, 2\n", 1, "t.csv").is_err());
         assert!(Table::parse("q, f\n0, 1\n0, 2\n", 1, "t.csv").is_err());
         assert!(Table::parse("q, fx\n0, 1\n1, 2\n", 2, "t.csv").is_err());

@@ -58,7 +58,12 @@ enum Command {
         /// The mechanism file (`-` = standard input).
         file: PathBuf,
         /// Input values q, one per input (rad or m; `deg`, `mm` allowed).
-        #[arg(long = "at", required = true, value_delimiter = ',', allow_hyphen_values = true)]
+        #[arg(
+            long = "at",
+            required = true,
+            value_delimiter = ',',
+            allow_hyphen_values = true
+        )]
         at: Vec<String>,
         #[command(flatten)]
         state: State,
@@ -113,7 +118,10 @@ fn main() -> ExitCode {
 }
 
 /// The rates and the loads of `state` for mechanism `m`.
-fn rates(m: &mech_core::Mechanism, state: &State) -> Result<(Vec<f64>, Vec<f64>, LoadSet), Failure> {
+fn rates(
+    m: &mech_core::Mechanism,
+    state: &State,
+) -> Result<(Vec<f64>, Vec<f64>, LoadSet), Failure> {
     let model = m.model();
     Ok((
         quantity::per_input(&state.speed, model, 1, "--speed", 0.0)?,
@@ -136,21 +144,49 @@ fn run(command: Command) -> Result<(), Failure> {
             let (qd, qdd, loads) = rates(&m, &state)?;
             solve::solve(&m, &q, &qd, &qdd, &loads, state.level, state.format, stdout)
         }
-        Command::Sweep { file, from, to, steps, rest, state } => {
+        Command::Sweep {
+            file,
+            from,
+            to,
+            steps,
+            rest,
+            state,
+        } => {
             let m = source::load(&file)?;
             let model = m.model();
             let (d, _) = quantity::input_dims(model, 0);
-            let (a, b) = (quantity::parse(&from, d, "--from")?, quantity::parse(&to, d, "--to")?);
+            let (a, b) = (
+                quantity::parse(&from, d, "--from")?,
+                quantity::parse(&to, d, "--to")?,
+            );
             let g = m.dof();
             if rest.len() + 1 != g {
-                return Err(Failure::usage(format!("--rest: {} value(s) for the {} input(s) after the first", rest.len(), g - 1)));
+                return Err(Failure::usage(format!(
+                    "--rest: {} value(s) for the {} input(s) after the first",
+                    rest.len(),
+                    g - 1
+                )));
             }
             let mut q = vec![a];
             for (k, t) in rest.iter().enumerate() {
-                q.push(quantity::parse(t, quantity::input_dims(model, k + 1).0, "--rest")?);
+                q.push(quantity::parse(
+                    t,
+                    quantity::input_dims(model, k + 1).0,
+                    "--rest",
+                )?);
             }
             let (qd, qdd, loads) = rates(&m, &state)?;
-            solve::sweep(&m, (a, b, steps), &q, &qd, &qdd, &loads, state.level, state.format, stdout)
+            solve::sweep(
+                &m,
+                (a, b, steps),
+                &q,
+                &qd,
+                &qdd,
+                &loads,
+                state.level,
+                state.format,
+                stdout,
+            )
         }
         Command::Flywheel(args) => flywheel::run(args, stdout),
         Command::Simulate(args) => simulate::run(args, stdout),

@@ -40,7 +40,11 @@ impl<W: Write> Writer<W> {
     pub fn new(mut out: W, format: Format, names: &[String], units: &[&str]) -> io::Result<Self> {
         match format {
             Format::Table => {
-                let head: Vec<String> = names.iter().zip(units).map(|(n, u)| format!("{:>WIDTH$}", format!("{n} [{u}]"))).collect();
+                let head: Vec<String> = names
+                    .iter()
+                    .zip(units)
+                    .map(|(n, u)| format!("{:>WIDTH$}", format!("{n} [{u}]")))
+                    .collect();
                 writeln!(out, "{}", head.join(" "))?;
             }
             Format::Csv => {
@@ -50,7 +54,14 @@ impl<W: Write> Writer<W> {
             }
             Format::Json => write!(out, "[")?,
         }
-        Ok(Writer { out, renderer: Renderer { format, names: names.to_vec() }, rows: 0 })
+        Ok(Writer {
+            out,
+            renderer: Renderer {
+                format,
+                names: names.to_vec(),
+            },
+            rows: 0,
+        })
     }
 
     /// The renderer of this writer's rows.
@@ -61,7 +72,11 @@ impl<W: Write> Writer<W> {
     /// Write a rendered row.
     pub fn push(&mut self, rendered: &str) -> io::Result<()> {
         match self.renderer.format {
-            Format::Json => write!(self.out, "{}  {rendered}", if self.rows == 0 { "\n" } else { ",\n" })?,
+            Format::Json => write!(
+                self.out,
+                "{}  {rendered}",
+                if self.rows == 0 { "\n" } else { ",\n" }
+            )?,
             _ => writeln!(self.out, "{rendered}")?,
         }
         self.rows += 1;
@@ -88,14 +103,28 @@ impl Renderer {
     /// for CSV and JSON, 10 significant digits in the table.
     pub fn render(&self, values: &[f64]) -> String {
         match self.format {
-            Format::Csv => values.iter().map(f64::to_string).collect::<Vec<_>>().join(","),
-            Format::Table => values.iter().map(|v| format!("{:>WIDTH$}", format!("{v:.9e}"))).collect::<Vec<_>>().join(" "),
+            Format::Csv => values
+                .iter()
+                .map(f64::to_string)
+                .collect::<Vec<_>>()
+                .join(","),
+            Format::Table => values
+                .iter()
+                .map(|v| format!("{:>WIDTH$}", format!("{v:.9e}")))
+                .collect::<Vec<_>>()
+                .join(" "),
             Format::Json => {
                 let obj: serde_json::Map<String, serde_json::Value> = self
                     .names
                     .iter()
                     .zip(values)
-                    .map(|(n, v)| (n.clone(), serde_json::Number::from_f64(*v).map_or(serde_json::Value::Null, serde_json::Value::Number)))
+                    .map(|(n, v)| {
+                        (
+                            n.clone(),
+                            serde_json::Number::from_f64(*v)
+                                .map_or(serde_json::Value::Null, serde_json::Value::Number),
+                        )
+                    })
                     .collect();
                 serde_json::Value::Object(obj).to_string()
             }

@@ -93,7 +93,9 @@ impl<'a> Cursor<'a> {
     fn word(&mut self) -> Result<String, Failure> {
         self.skip();
         let rest = &self.text[self.at..];
-        let n = rest.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '-')).unwrap_or(rest.len());
+        let n = rest
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '-'))
+            .unwrap_or(rest.len());
         if n == 0 {
             return Err(self.error("expected a name"));
         }
@@ -104,7 +106,9 @@ impl<'a> Cursor<'a> {
     fn number(&mut self) -> Result<f64, Failure> {
         self.skip();
         let rest = &self.text[self.at..];
-        let n = rest.find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E'))).unwrap_or(rest.len());
+        let n = rest
+            .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')))
+            .unwrap_or(rest.len());
         match rest[..n].parse::<f64>() {
             Ok(v) if v.is_finite() => {
                 self.at += n;
@@ -177,7 +181,12 @@ pub fn parse(text: &str) -> Result<Vec<Joint>, Failure> {
             links.push(c.word()?);
         }
         c.expect("]")?;
-        joints.push(Joint { kind, angle, at: (x, y), links });
+        joints.push(Joint {
+            kind,
+            angle,
+            at: (x, y),
+            links,
+        });
     }
     c.skip();
     if c.at != text.len() {
@@ -194,7 +203,15 @@ mod tests {
     fn parses_every_form() {
         let j = parse("M[J[R, color[Green], P[0.0, 0.0], L[ground, L1]], J[RP, A[30.5], color[(1, 2, 3)], P[1e1, -2], L[L2, ground, ]],\n # note\n J[P, P[3, 4], L[]]]").unwrap();
         assert_eq!(j.len(), 3);
-        assert_eq!(j[1], Joint { kind: Kind::RP, angle: 30.5, at: (10.0, -2.0), links: vec!["L2".into(), "ground".into()] });
+        assert_eq!(
+            j[1],
+            Joint {
+                kind: Kind::RP,
+                angle: 30.5,
+                at: (10.0, -2.0),
+                links: vec!["L2".into(), "ground".into()]
+            }
+        );
         assert_eq!(j[2].kind, Kind::P);
         assert!(j[2].links.is_empty());
     }
@@ -202,9 +219,17 @@ mod tests {
     #[test]
     fn mistakes_give_line_and_column() {
         let e = parse("M[\n  J[R, P[0.0, zero], L[ground]]]").unwrap_err();
-        assert!(e.message.starts_with("2:15: expected a number"), "{}", e.message);
+        assert!(
+            e.message.starts_with("2:15: expected a number"),
+            "{}",
+            e.message
+        );
         let e = parse("M[J[Q, P[0, 0], L[a]]]").unwrap_err();
-        assert!(e.message.starts_with("1:5: expected a joint type"), "{}", e.message);
+        assert!(
+            e.message.starts_with("1:5: expected a joint type"),
+            "{}",
+            e.message
+        );
         assert!(parse("M[J[R, P[0, 0], L[a]]] tail").is_err());
     }
 }

@@ -13,8 +13,13 @@ pub fn parse(text: &str, dim: Dim, what: &str) -> Result<f64, Failure> {
     let c = Constants::default();
     // `4pi`, `2 pi`, `4π`: a multiple of π, as written on the command line.
     let trimmed = text.trim();
-    let expr = match trimmed.strip_suffix("pi").or_else(|| trimmed.strip_suffix('π')) {
-        Some(k) if !k.trim().is_empty() && k.trim().parse::<f64>().is_ok() => format!("{} * PI", k.trim()),
+    let expr = match trimmed
+        .strip_suffix("pi")
+        .or_else(|| trimmed.strip_suffix('π'))
+    {
+        Some(k) if !k.trim().is_empty() && k.trim().parse::<f64>().is_ok() => {
+            format!("{} * PI", k.trim())
+        }
         _ => trimmed.to_string(),
     };
     let text = expr.as_str();
@@ -27,7 +32,8 @@ pub fn parse(text: &str, dim: Dim, what: &str) -> Result<f64, Failure> {
     })
     .parse_str(text)
     .map_err(|e| Failure::usage(format!("{what} `{text}`: {e}")))?;
-    q.expect(dim, what).map_err(|e| Failure::usage(format!("{what} `{text}`: {e}")))
+    q.expect(dim, what)
+        .map_err(|e| Failure::usage(format!("{what} `{text}`: {e}")))
 }
 
 /// The dimension of input `k`'s coordinate and of its rate: (angle, angular speed) for a
@@ -41,7 +47,13 @@ pub fn input_dims(model: &mech_core::model::Model, k: usize) -> (Dim, Dim) {
 
 /// One value per input from a list of texts (`--at 30deg --at 10mm`, or `--at 30deg,10mm`);
 /// `default` when the list is empty.
-pub fn per_input(texts: &[String], model: &mech_core::model::Model, rate: usize, what: &str, default: f64) -> Result<Vec<f64>, Failure> {
+pub fn per_input(
+    texts: &[String],
+    model: &mech_core::model::Model,
+    rate: usize,
+    what: &str,
+    default: f64,
+) -> Result<Vec<f64>, Failure> {
     let g = model.inputs.len();
     if texts.is_empty() {
         return Ok(vec![default; g]);
@@ -73,12 +85,28 @@ mod tests {
         assert!((parse("30deg", Dim::ANGLE, "q").unwrap() - 30f64.to_radians()).abs() < 1e-16);
         assert!((parse("30 deg", Dim::ANGLE, "q").unwrap() - 30f64.to_radians()).abs() < 1e-16);
         assert_eq!(parse("0.5", Dim::ANGLE, "q").unwrap(), 0.5);
-        assert!((parse("3000rpm", Dim::SPEED, "speed").unwrap() - 100.0 * std::f64::consts::PI).abs() < 1e-12);
-        assert!((parse("4*PI", Dim::ANGLE, "period").unwrap() - 4.0 * std::f64::consts::PI).abs() < 1e-15);
-        assert_eq!(parse("4pi", Dim::ANGLE, "period").unwrap(), 4.0 * std::f64::consts::PI);
-        assert_eq!(parse("2 π", Dim::ANGLE, "period").unwrap(), 2.0 * std::f64::consts::PI);
+        assert!(
+            (parse("3000rpm", Dim::SPEED, "speed").unwrap() - 100.0 * std::f64::consts::PI).abs()
+                < 1e-12
+        );
+        assert!(
+            (parse("4*PI", Dim::ANGLE, "period").unwrap() - 4.0 * std::f64::consts::PI).abs()
+                < 1e-15
+        );
+        assert_eq!(
+            parse("4pi", Dim::ANGLE, "period").unwrap(),
+            4.0 * std::f64::consts::PI
+        );
+        assert_eq!(
+            parse("2 π", Dim::ANGLE, "period").unwrap(),
+            2.0 * std::f64::consts::PI
+        );
         let e = parse("30 mm", Dim::ANGLE, "--at").unwrap_err();
-        assert!(e.message.contains("an angle") && e.status == 2, "{}", e.message);
+        assert!(
+            e.message.contains("an angle") && e.status == 2,
+            "{}",
+            e.message
+        );
         assert!(parse("thirty", Dim::ANGLE, "--at").is_err());
     }
 }

@@ -46,7 +46,10 @@ pub struct ReportArgs {
 /// One column's values over the frames (NaN where the row failed).
 fn column(names: &[String], rows: &[Option<Vec<f64>>], name: &str) -> Vec<f64> {
     match names.iter().position(|n| n == name) {
-        Some(i) => rows.iter().map(|r| r.as_ref().map_or(f64::NAN, |r| r[i])).collect(),
+        Some(i) => rows
+            .iter()
+            .map(|r| r.as_ref().map_or(f64::NAN, |r| r[i]))
+            .collect(),
         None => vec![f64::NAN; rows.len()],
     }
 }
@@ -84,66 +87,153 @@ pub fn run(args: ReportArgs) -> Result<(), Failure> {
     let qdd = vec![0.0; m.dof()];
     let loads = LoadSet::parse(&args.load, model)?;
     let cols = Columns::new(&m, Part::ALL);
-    let rows: Vec<Option<Vec<f64>>> = qs.iter().map(|q| cols.row(&m, q, &qd, &qdd, &loads.at(&m, q[0])).ok()).collect();
+    let rows: Vec<Option<Vec<f64>>> = qs
+        .iter()
+        .map(|q| cols.row(&m, q, &qd, &qdd, &loads.at(&m, q[0])).ok())
+        .collect();
     let x: Vec<f64> = qs.iter().map(|q| q[0]).collect();
     let names = &cols.names;
     let g = m.dof();
-    let per_input = |base: &str, k: usize| if g == 1 { base.to_string() } else { format!("{base}.{}", model.joints[model.inputs[k]].name) };
+    let per_input = |base: &str, k: usize| {
+        if g == 1 {
+            base.to_string()
+        } else {
+            format!("{base}.{}", model.joints[model.inputs[k]].name)
+        }
+    };
 
     // The plots.
     let (w, h) = (560.0, 220.0);
     let mut plots: Vec<(String, String)> = Vec::new();
-    let torque_unit = if quantity::input_dims(model, 0).0 == mech_core::units::Dim::ANGLE { "N·m" } else { "N" };
+    let torque_unit = if quantity::input_dims(model, 0).0 == mech_core::units::Dim::ANGLE {
+        "N·m"
+    } else {
+        "N"
+    };
     let mut drivers = Vec::new();
     for k in 0..g {
         for (label, base) in [("d'Alembert", "driver"), ("virtual power", "virtual_power")] {
             let name = per_input(base, k);
             if names.contains(&name) {
-                drivers.push((format!("{} {label}", per_input("driver", k)), column(names, &rows, &name)));
+                drivers.push((
+                    format!("{} {label}", per_input("driver", k)),
+                    column(names, &rows, &name),
+                ));
             }
         }
     }
-    plots.push(("driver".into(), svg::plot("driver", "motor action (applied by the motor)", torque_unit, &x, &drivers, w, h)));
+    plots.push((
+        "driver".into(),
+        svg::plot(
+            "driver",
+            "motor action (applied by the motor)",
+            torque_unit,
+            &x,
+            &drivers,
+            w,
+            h,
+        ),
+    ));
     if !m.redundant() {
         let reactions: Vec<(String, Vec<f64>)> = model
             .joints
             .iter()
             .map(|j| {
-                let (fx, fy) = (column(names, &rows, &format!("{}.fx", j.name)), column(names, &rows, &format!("{}.fy", j.name)));
-                (format!("|R {}|", j.name), fx.iter().zip(&fy).map(|(a, b)| a.hypot(*b)).collect())
+                let (fx, fy) = (
+                    column(names, &rows, &format!("{}.fx", j.name)),
+                    column(names, &rows, &format!("{}.fy", j.name)),
+                );
+                (
+                    format!("|R {}|", j.name),
+                    fx.iter().zip(&fy).map(|(a, b)| a.hypot(*b)).collect(),
+                )
             })
             .collect();
-        plots.push(("reactions".into(), svg::plot("reactions", "reactions", "N", &x, &reactions, w, h)));
+        plots.push((
+            "reactions".into(),
+            svg::plot("reactions", "reactions", "N", &x, &reactions, w, h),
+        ));
     }
     if g == 1 {
-        plots.push(("inertia".into(), svg::plot("inertia", "reduced inertia I*", "kg·m²", &x, &[("I*".into(), column(names, &rows, "inertia"))], w, h)));
-        plots.push(("moment".into(), svg::plot("moment", "reduced moment M*", torque_unit, &x, &[("M*".into(), column(names, &rows, "moment"))], w, h)));
+        plots.push((
+            "inertia".into(),
+            svg::plot(
+                "inertia",
+                "reduced inertia I*",
+                "kg·m²",
+                &x,
+                &[("I*".into(), column(names, &rows, "inertia"))],
+                w,
+                h,
+            ),
+        ));
+        plots.push((
+            "moment".into(),
+            svg::plot(
+                "moment",
+                "reduced moment M*",
+                torque_unit,
+                &x,
+                &[("M*".into(), column(names, &rows, "moment"))],
+                w,
+                h,
+            ),
+        ));
     }
-    let points: Vec<String> = if args.point.is_empty() { model.points.last().map(|p| vec![p.name.clone()]).unwrap_or_default() } else { args.point.clone() };
+    let points: Vec<String> = if args.point.is_empty() {
+        model
+            .points
+            .last()
+            .map(|p| vec![p.name.clone()])
+            .unwrap_or_default()
+    } else {
+        args.point.clone()
+    };
     let mut speeds = Vec::new();
     for p in &points {
         if model.point_index(p).is_none() {
             return Err(Failure::usage(format!("--point {p}: no such point")));
         }
-        let (vx, vy) = (column(names, &rows, &format!("{p}.vx")), column(names, &rows, &format!("{p}.vy")));
-        speeds.push((format!("|v {p}|"), vx.iter().zip(&vy).map(|(a, b)| a.hypot(*b)).collect()));
+        let (vx, vy) = (
+            column(names, &rows, &format!("{p}.vx")),
+            column(names, &rows, &format!("{p}.vy")),
+        );
+        speeds.push((
+            format!("|v {p}|"),
+            vx.iter().zip(&vy).map(|(a, b)| a.hypot(*b)).collect(),
+        ));
     }
-    plots.push(("speed".into(), svg::plot("speed", "speed of points", "m/s", &x, &speeds, w, h)));
+    plots.push((
+        "speed".into(),
+        svg::plot("speed", "speed of points", "m/s", &x, &speeds, w, h),
+    ));
 
     // The linkage and its frames.
     let view = svg::View::fit(frames.iter().flat_map(|f| f.shapes.iter()), 640.0, 320.0);
     let mut shapes_json = Vec::new();
     for i in 0..frames[0].shapes.len() {
-        let per: Vec<Vec<(&str, String)>> = frames.iter().map(|f| svg::attributes(&view, &f.shapes[i])).collect();
+        let per: Vec<Vec<(&str, String)>> = frames
+            .iter()
+            .map(|f| svg::attributes(&view, &f.shapes[i]))
+            .collect();
         let attrs: Vec<&str> = per[0].iter().map(|(a, _)| *a).collect();
-        let values: Vec<Vec<&str>> = per.iter().map(|p| p.iter().map(|(_, v)| v.as_str()).collect()).collect();
+        let values: Vec<Vec<&str>> = per
+            .iter()
+            .map(|p| p.iter().map(|(_, v)| v.as_str()).collect())
+            .collect();
         shapes_json.push(serde_json::json!({ "attrs": attrs, "values": values }));
     }
     let (l, r) = (56.0, 12.0);
     let (x0, x1) = (x[0], *x.last().unwrap());
-    let cx: Vec<f64> = x.iter().map(|&v| l + (v - x0) / (x1 - x0).max(1e-300) * (w - l - r)).collect();
+    let cx: Vec<f64> = x
+        .iter()
+        .map(|&v| l + (v - x0) / (x1 - x0).max(1e-300) * (w - l - r))
+        .collect();
     let cursors: Vec<&str> = plots.iter().map(|(id, _)| id.as_str()).collect();
-    let cx_map: serde_json::Map<String, serde_json::Value> = cursors.iter().map(|c| (c.to_string(), serde_json::json!(cx))).collect();
+    let cx_map: serde_json::Map<String, serde_json::Value> = cursors
+        .iter()
+        .map(|c| (c.to_string(), serde_json::json!(cx)))
+        .collect();
     let data = serde_json::json!({
         "q": x.iter().map(|v| format!("{v:.4}")).collect::<Vec<_>>(),
         "shapes": shapes_json,
@@ -169,13 +259,16 @@ pub fn run(args: ReportArgs) -> Result<(), Failure> {
         page.push_str(p);
     }
     let _ = write!(page, "</div>\n<script type=\"application/json\" id=\"data\">{}</script>\n<script>{SCRIPT}</script>\n</body></html>\n", data);
-    std::fs::write(&args.output, page).map_err(|e| Failure::usage(format!("cannot write {}: {e}", args.output.display())))?;
+    std::fs::write(&args.output, page)
+        .map_err(|e| Failure::usage(format!("cannot write {}: {e}", args.output.display())))?;
     eprintln!("wrote {}", args.output.display());
     Ok(())
 }
 
 fn html(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 /// The doc comment of the mechanism file (its `///` lines), for the page's heading.

@@ -94,11 +94,23 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
         let half = GUIDE * s;
         let (a, b) = (p - u * half, p + u * half);
         if j.kind == JointKind::Prismatic {
-            shapes.push(Shape { role: Role::Guide, name: j.name.clone(), points: vec![a, b] });
+            shapes.push(Shape {
+                role: Role::Guide,
+                name: j.name.clone(),
+                points: vec![a, b],
+            });
         } else {
             let w = perp(u) * (0.012 * s);
-            shapes.push(Shape { role: Role::Guide, name: j.name.clone(), points: vec![a + w, b + w] });
-            shapes.push(Shape { role: Role::Guide, name: j.name.clone(), points: vec![a - w, b - w] });
+            shapes.push(Shape {
+                role: Role::Guide,
+                name: j.name.clone(),
+                points: vec![a + w, b + w],
+            });
+            shapes.push(Shape {
+                role: Role::Guide,
+                name: j.name.clone(),
+                points: vec![a - w, b - w],
+            });
         }
     }
     for (l, link) in model.links.iter().enumerate().skip(1) {
@@ -107,17 +119,35 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
             0 => {}
             1 => {
                 // A slider block along the guide it slides on, else square to the frame.
-                let guide = model.joints.iter().find(|j| j.kind == JointKind::Prismatic && (j.b == l || j.a == l));
+                let guide = model
+                    .joints
+                    .iter()
+                    .find(|j| j.kind == JointKind::Prismatic && (j.b == l || j.a == l));
                 let u = match guide {
-                    Some(j) => rotate(turn(model, j.a, pose.links[j.a].angle), V2::new(j.axis[0], j.axis[1]).normalize()),
+                    Some(j) => rotate(
+                        turn(model, j.a, pose.links[j.a].angle),
+                        V2::new(j.axis[0], j.axis[1]).normalize(),
+                    ),
                     None => turn(model, l, pose.links[l].angle),
                 };
                 let (h, w) = (u * (BLOCK.0 * s), perp(u) * (BLOCK.1 * s));
                 let c = pts[0];
-                shapes.push(Shape { role: Role::Block, name: link.name.clone(), points: vec![c - h - w, c + h - w, c + h + w, c - h + w] });
+                shapes.push(Shape {
+                    role: Role::Block,
+                    name: link.name.clone(),
+                    points: vec![c - h - w, c + h - w, c + h + w, c - h + w],
+                });
             }
-            2 => shapes.push(Shape { role: Role::Bar, name: link.name.clone(), points: pts }),
-            _ => shapes.push(Shape { role: Role::Plate, name: link.name.clone(), points: pts }),
+            2 => shapes.push(Shape {
+                role: Role::Bar,
+                name: link.name.clone(),
+                points: pts,
+            }),
+            _ => shapes.push(Shape {
+                role: Role::Plate,
+                name: link.name.clone(),
+                points: pts,
+            }),
         }
     }
     for j in &model.joints {
@@ -127,21 +157,38 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
         let p = at(j.point);
         if j.a == 0 || j.b == 0 {
             let (w, h) = (0.035 * s, 0.05 * s);
-            shapes.push(Shape { role: Role::Pivot, name: j.name.clone(), points: vec![p, p + V2::new(-w, -h), p + V2::new(w, -h)] });
+            shapes.push(Shape {
+                role: Role::Pivot,
+                name: j.name.clone(),
+                points: vec![p, p + V2::new(-w, -h), p + V2::new(w, -h)],
+            });
         }
-        shapes.push(Shape { role: Role::Pin, name: j.name.clone(), points: vec![p] });
+        shapes.push(Shape {
+            role: Role::Pin,
+            name: j.name.clone(),
+            points: vec![p],
+        });
     }
     for (i, p) in model.points.iter().enumerate() {
-        shapes.push(Shape { role: Role::Label, name: p.name.clone(), points: vec![at(i) + V2::new(0.015 * s, 0.015 * s)] });
+        shapes.push(Shape {
+            role: Role::Label,
+            name: p.name.clone(),
+            points: vec![at(i) + V2::new(0.015 * s, 0.015 * s)],
+        });
     }
-    Ok(Frame { q: q.to_vec(), shapes })
+    Ok(Frame {
+        q: q.to_vec(),
+        shapes,
+    })
 }
 
 /// The frames of `m` at each of `qs`; an input where the mechanism does not assemble
 /// repeats the previous frame (the first solvable one when it is the first).
 pub fn frames(m: &Mechanism, qs: &[Vec<f64>]) -> Result<Vec<Frame>, Failure> {
     let solved: Vec<Option<Frame>> = qs.iter().map(|q| frame(m, q).ok()).collect();
-    let first = solved.iter().flatten().next().cloned().ok_or_else(|| Failure::mechanism("the mechanism does not assemble at any of these inputs"))?;
+    let first = solved.iter().flatten().next().cloned().ok_or_else(|| {
+        Failure::mechanism("the mechanism does not assemble at any of these inputs")
+    })?;
     let mut last = first;
     Ok(solved
         .into_iter()
@@ -158,18 +205,40 @@ pub fn frames(m: &Mechanism, qs: &[Vec<f64>]) -> Result<Vec<Frame>, Failure> {
 pub fn path(m: &Mechanism, name: &str, qs: &[Vec<f64>]) -> Result<Shape, Failure> {
     let i = m.model().point_index(name).ok_or_else(|| {
         let names: Vec<&str> = m.model().points.iter().map(|p| p.name.as_str()).collect();
-        Failure::usage(format!("--path {name}: no such point; the points are {}", names.join(", ")))
+        Failure::usage(format!(
+            "--path {name}: no such point; the points are {}",
+            names.join(", ")
+        ))
     })?;
-    let points = qs.iter().filter_map(|q| m.pose(q).ok()).map(|p| p.points[i].pos).collect();
-    Ok(Shape { role: Role::Path, name: name.to_string(), points })
+    let points = qs
+        .iter()
+        .filter_map(|q| m.pose(q).ok())
+        .map(|p| p.points[i].pos)
+        .collect();
+    Ok(Shape {
+        role: Role::Path,
+        name: name.to_string(),
+        points,
+    })
 }
 
 /// The reaction arrows of `m` at (q, q̇, q̈) with `loads`: at each joint point, the force
 /// by the joint's first link on its second, scaled so that the largest is `length` m.
-pub fn arrows(m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &mech_core::mechanism::Loads, length: f64) -> Result<Vec<Shape>, Failure> {
+pub fn arrows(
+    m: &Mechanism,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    loads: &mech_core::mechanism::Loads,
+    length: f64,
+) -> Result<Vec<Shape>, Failure> {
     let motion = m.kinematics(q, qd, qdd)?;
     let forces = m.kinetostatics(&motion, loads)?;
-    let largest = forces.joints.iter().map(|r| r.force.norm()).fold(0.0, f64::max);
+    let largest = forces
+        .joints
+        .iter()
+        .map(|r| r.force.norm())
+        .fold(0.0, f64::max);
     if !(largest > 0.0) {
         return Ok(Vec::new());
     }
@@ -179,7 +248,11 @@ pub fn arrows(m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &mech_co
         .zip(&forces.joints)
         .map(|(j, r)| {
             let p = motion.points[j.point].pos;
-            Shape { role: Role::Arrow, name: j.name.clone(), points: vec![p, p + r.force * (length / largest)] }
+            Shape {
+                role: Role::Arrow,
+                name: j.name.clone(),
+                points: vec![p, p + r.force * (length / largest)],
+            }
         })
         .collect())
 }

@@ -81,7 +81,15 @@ impl Driver {
 }
 
 /// Integrate with `method` and write (t, q, q̇, q̈) at the sample times.
-fn integrate<Mt: Method<2>>(mut method: Mt, m: &Mechanism, args: &SimulateArgs, y0: [f64; 2], driver: &Driver, loads: &LoadSet, w: &mut Writer<impl Write>) -> Result<(), Failure> {
+fn integrate<Mt: Method<2>>(
+    mut method: Mt,
+    m: &Mechanism,
+    args: &SimulateArgs,
+    y0: [f64; 2],
+    driver: &Driver,
+    loads: &LoadSet,
+    w: &mut Writer<impl Write>,
+) -> Result<(), Failure> {
     let n = args.samples.max(1);
     let times: Vec<f64> = (0..=n).map(|k| args.t_end * k as f64 / n as f64).collect();
     let mut rows: Vec<[f64; 2]> = vec![y0];
@@ -93,7 +101,15 @@ fn integrate<Mt: Method<2>>(mut method: Mt, m: &Mechanism, args: &SimulateArgs, 
             next += 1;
         }
     };
-    let out = ode::solve(&mut method, f, 0.0, y0, args.t_end, None, Some(&mut observe))?;
+    let out = ode::solve(
+        &mut method,
+        f,
+        0.0,
+        y0,
+        args.t_end,
+        None,
+        Some(&mut observe),
+    )?;
     while rows.len() < times.len() {
         rows.push(out.y);
     }
@@ -101,18 +117,35 @@ fn integrate<Mt: Method<2>>(mut method: Mt, m: &Mechanism, args: &SimulateArgs, 
         let qdd = m.acceleration_at(y[0], y[1], driver.at(y[0]), &loads.at(m, y[0]))?;
         w.row(&[*t, y[0], y[1], qdd])?;
     }
-    eprintln!("{} steps, {} evaluations of q̈", out.stats.steps, out.stats.rhs_evals);
+    eprintln!(
+        "{} steps, {} evaluations of q̈",
+        out.stats.steps, out.stats.rhs_evals
+    );
     Ok(())
 }
 
 /// q̈ of the run-time mechanism (Zhukovski), as the equation of motion computes it.
 trait Acceleration {
-    fn acceleration_at(&self, q: f64, qd: f64, driver: f64, loads: &mech_core::mechanism::Loads) -> Result<f64, Failure>;
+    fn acceleration_at(
+        &self,
+        q: f64,
+        qd: f64,
+        driver: f64,
+        loads: &mech_core::mechanism::Loads,
+    ) -> Result<f64, Failure>;
 }
 
 impl Acceleration for Mechanism {
-    fn acceleration_at(&self, q: f64, qd: f64, driver: f64, loads: &mech_core::mechanism::Loads) -> Result<f64, Failure> {
-        Ok(mech_core::traits::OneDof::acceleration(self, q, qd, driver, loads)?)
+    fn acceleration_at(
+        &self,
+        q: f64,
+        qd: f64,
+        driver: f64,
+        loads: &mech_core::mechanism::Loads,
+    ) -> Result<f64, Failure> {
+        Ok(mech_core::traits::OneDof::acceleration(
+            self, q, qd, driver, loads,
+        )?)
     }
 }
 
@@ -120,24 +153,59 @@ impl Acceleration for Mechanism {
 pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
     let m = source::load(&args.file)?;
     if m.dof() != 1 {
-        return Err(Failure::usage(format!("`mech simulate` integrates a machine with one input; this one has {}", m.dof())));
+        return Err(Failure::usage(format!(
+            "`mech simulate` integrates a machine with one input; this one has {}",
+            m.dof()
+        )));
     }
     let (dq, dv) = quantity::input_dims(m.model(), 0);
-    let y0 = [quantity::parse(&args.q0, dq, "--q0")?, quantity::parse(&args.speed, dv, "--speed")?];
+    let y0 = [
+        quantity::parse(&args.q0, dq, "--q0")?,
+        quantity::parse(&args.speed, dv, "--speed")?,
+    ];
     let driver = match args.driver.strip_prefix('@') {
         Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| Failure::usage(format!("--driver: cannot read {path}: {e}")))?;
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| Failure::usage(format!("--driver: cannot read {path}: {e}")))?;
             Driver::Table(Table::parse(&text, 1, path)?)
         }
-        None => Driver::Constant(quantity::parse(&args.driver, if dq == Dim::ANGLE { Dim::TORQUE } else { Dim::FORCE }, "--driver")?),
+        None => Driver::Constant(quantity::parse(
+            &args.driver,
+            if dq == Dim::ANGLE {
+                Dim::TORQUE
+            } else {
+                Dim::FORCE
+            },
+            "--driver",
+        )?),
     };
     let loads = LoadSet::parse(&args.load, m.model())?;
-    let unit = if dq == Dim::ANGLE { ["s", "rad", "rad/s", "rad/s²"] } else { ["s", "m", "m/s", "m/s²"] };
+    let unit = if dq == Dim::ANGLE {
+        ["s", "rad", "rad/s", "rad/s²"]
+    } else {
+        ["s", "m", "m/s", "m/s²"]
+    };
     let names = ["t", "q", "qd", "qdd"].map(String::from);
     let mut w = Writer::new(out, args.format, &names, &unit)?;
     match args.method {
-        Integrator::Dop853 => integrate(Dop853::new(args.rtol, args.atol), &m, &args, y0, &driver, &loads, &mut w)?,
-        Integrator::Dopri5 => integrate(DormandPrince::new(args.rtol, args.atol), &m, &args, y0, &driver, &loads, &mut w)?,
+        Integrator::Dop853 => integrate(
+            Dop853::new(args.rtol, args.atol),
+            &m,
+            &args,
+            y0,
+            &driver,
+            &loads,
+            &mut w,
+        )?,
+        Integrator::Dopri5 => integrate(
+            DormandPrince::new(args.rtol, args.atol),
+            &m,
+            &args,
+            y0,
+            &driver,
+            &loads,
+            &mut w,
+        )?,
         Integrator::Rk4 => integrate(Rk4 { h: args.step }, &m, &args, y0, &driver, &loads, &mut w)?,
     }
     w.finish()?;

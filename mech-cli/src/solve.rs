@@ -19,7 +19,16 @@ const PROGRESS_FROM: usize = 20_000;
 /// One configuration in `format`. The table format lists one quantity per line with its
 /// unit; CSV and JSON give the one row.
 #[allow(clippy::too_many_arguments)]
-pub fn solve(m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &LoadSet, level: Level, format: Format, out: impl Write) -> Result<(), Failure> {
+pub fn solve(
+    m: &Mechanism,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    loads: &LoadSet,
+    level: Level,
+    format: Format,
+    out: impl Write,
+) -> Result<(), Failure> {
     let cols = level.columns(m);
     let row = cols.row(m, q, qd, qdd, &loads.at(m, q[0]))?;
     if format == Format::Table {
@@ -66,7 +75,12 @@ pub fn sweep(
     let renderer = w.renderer().clone();
     let bar = if total >= PROGRESS_FROM {
         let b = indicatif::ProgressBar::new(total as u64);
-        b.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} configurations, {per_sec}, eta {eta}").expect("template"));
+        b.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{bar:40} {pos}/{len} configurations, {per_sec}, eta {eta}",
+            )
+            .expect("template"),
+        );
         Some(b)
     } else {
         None
@@ -78,7 +92,9 @@ pub fn sweep(
             .map(|k| {
                 let mut q = rest.to_vec();
                 q[0] = inputs(from, to, steps, k);
-                let row = cols.row(m, &q, qd, qdd, &loads.at(m, q[0])).map_err(|e| Failure::mechanism(format!("at q = {}: {}", q[0], e)))?;
+                let row = cols
+                    .row(m, &q, qd, qdd, &loads.at(m, q[0]))
+                    .map_err(|e| Failure::mechanism(format!("at q = {}: {}", q[0], e)))?;
                 Ok(renderer.render(&row))
             })
             .collect();

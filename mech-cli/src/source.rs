@@ -13,7 +13,8 @@ pub fn read(path: &Path) -> Result<(String, String), Failure> {
         std::io::stdin().read_to_string(&mut text)?;
         return Ok((text, "<stdin>".to_string()));
     }
-    let text = std::fs::read_to_string(path).map_err(|e| Failure::usage(format!("cannot read {}: {e}", path.display())))?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| Failure::usage(format!("cannot read {}: {e}", path.display())))?;
     Ok((text, path.display().to_string()))
 }
 

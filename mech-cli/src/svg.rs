@@ -29,7 +29,10 @@ impl View {
     /// The view that fits every point of `shapes` into `width` px (the height follows the
     /// aspect ratio, at least `min_height`), with a margin of 6 %.
     pub fn fit<'a>(shapes: impl Iterator<Item = &'a Shape>, width: f64, min_height: f64) -> Self {
-        let (mut lo, mut hi) = (V2::new(f64::INFINITY, f64::INFINITY), V2::new(f64::NEG_INFINITY, f64::NEG_INFINITY));
+        let (mut lo, mut hi) = (
+            V2::new(f64::INFINITY, f64::INFINITY),
+            V2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
         for s in shapes {
             for p in &s.points {
                 lo = lo.inf(p);
@@ -42,17 +45,30 @@ impl View {
         let height = ((hi.y - lo.y) * k + 2.0 * pad).max(min_height);
         // Centre vertically when the height was raised.
         let extra = (height - ((hi.y - lo.y) * k + 2.0 * pad)) / 2.0;
-        View { x_min: lo.x, y_max: hi.y + extra / k, k, pad, width, height }
+        View {
+            x_min: lo.x,
+            y_max: hi.y + extra / k,
+            k,
+            pad,
+            width,
+            height,
+        }
     }
 
     /// A point of the drawing in the picture, px.
     pub fn px(&self, p: V2) -> (f64, f64) {
-        ((p.x - self.x_min) * self.k + self.pad, (self.y_max - p.y) * self.k + self.pad)
+        (
+            (p.x - self.x_min) * self.k + self.pad,
+            (self.y_max - p.y) * self.k + self.pad,
+        )
     }
 
     /// A picture point back in the drawing, m (the inverse of [`View::px`]).
     pub fn world(&self, x: f64, y: f64) -> V2 {
-        V2::new((x - self.pad) / self.k + self.x_min, self.y_max - (y - self.pad) / self.k)
+        V2::new(
+            (x - self.pad) / self.k + self.x_min,
+            self.y_max - (y - self.pad) / self.k,
+        )
     }
 }
 
@@ -83,10 +99,13 @@ fn num(x: f64) -> String {
 }
 
 fn points_attr(view: &View, pts: &[V2]) -> String {
-    pts.iter().map(|&p| {
-        let (x, y) = view.px(p);
-        format!("{},{}", num(x), num(y))
-    }).collect::<Vec<_>>().join(" ")
+    pts.iter()
+        .map(|&p| {
+            let (x, y) = view.px(p);
+            format!("{},{}", num(x), num(y))
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// The attributes (name, value) that place a shape.
@@ -94,7 +113,12 @@ pub fn attributes(view: &View, s: &Shape) -> Vec<(&'static str, String)> {
     match s.role {
         Role::Bar | Role::Guide | Role::Arrow => {
             let ((x1, y1), (x2, y2)) = (view.px(s.points[0]), view.px(s.points[1]));
-            vec![("x1", num(x1)), ("y1", num(y1)), ("x2", num(x2)), ("y2", num(y2))]
+            vec![
+                ("x1", num(x1)),
+                ("y1", num(y1)),
+                ("x2", num(x2)),
+                ("y2", num(y2)),
+            ]
         }
         Role::Pin => {
             let (x, y) = view.px(s.points[0]);
@@ -104,7 +128,9 @@ pub fn attributes(view: &View, s: &Shape) -> Vec<(&'static str, String)> {
             let (x, y) = view.px(s.points[0]);
             vec![("x", num(x)), ("y", num(y))]
         }
-        Role::Plate | Role::Block | Role::Pivot | Role::Path => vec![("points", points_attr(view, &s.points))],
+        Role::Plate | Role::Block | Role::Pivot | Role::Path => {
+            vec![("points", points_attr(view, &s.points))]
+        }
     }
 }
 
@@ -119,12 +145,27 @@ fn tag(r: Role) -> &'static str {
 }
 
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// One element; `animation` holds its `<animate>` children.
-fn element(out: &mut String, s: &Shape, attrs: &[(&'static str, String)], animation: &str, id: Option<usize>) {
-    let _ = write!(out, "<{} class=\"{}\" data-name=\"{}\"", tag(s.role), class(s.role), escape(&s.name));
+fn element(
+    out: &mut String,
+    s: &Shape,
+    attrs: &[(&'static str, String)],
+    animation: &str,
+    id: Option<usize>,
+) {
+    let _ = write!(
+        out,
+        "<{} class=\"{}\" data-name=\"{}\"",
+        tag(s.role),
+        class(s.role),
+        escape(&s.name)
+    );
     if let Some(i) = id {
         let _ = write!(out, " id=\"s{i}\"");
     }
@@ -159,7 +200,12 @@ fn open(view: &View) -> String {
 pub fn still(frame: &Frame, extra: &[Shape], width: f64, height: f64) -> (String, View) {
     let view = View::fit(frame.shapes.iter().chain(extra), width, height);
     let mut out = open(&view);
-    for s in extra.iter().filter(|s| s.role == Role::Path).chain(&frame.shapes).chain(extra.iter().filter(|s| s.role != Role::Path)) {
+    for s in extra
+        .iter()
+        .filter(|s| s.role == Role::Path)
+        .chain(&frame.shapes)
+        .chain(extra.iter().filter(|s| s.role != Role::Path))
+    {
         element(&mut out, s, &attributes(&view, s), "", None);
     }
     out.push_str("</svg>\n");
@@ -168,15 +214,28 @@ pub fn still(frame: &Frame, extra: &[Shape], width: f64, height: f64) -> (String
 
 /// An animated drawing of `frames` (the same shapes in each), looping every `seconds`,
 /// with `extra` still shapes (paths) under it.
-pub fn animated(frames: &[Frame], extra: &[Shape], width: f64, height: f64, seconds: f64) -> (String, View) {
-    let view = View::fit(frames.iter().flat_map(|f| f.shapes.iter()).chain(extra), width, height);
+pub fn animated(
+    frames: &[Frame],
+    extra: &[Shape],
+    width: f64,
+    height: f64,
+    seconds: f64,
+) -> (String, View) {
+    let view = View::fit(
+        frames.iter().flat_map(|f| f.shapes.iter()).chain(extra),
+        width,
+        height,
+    );
     let mut out = open(&view);
     for s in extra {
         element(&mut out, s, &attributes(&view, s), "", None);
     }
     let first = &frames[0];
     for (i, s) in first.shapes.iter().enumerate() {
-        let per_frame: Vec<Vec<(&'static str, String)>> = frames.iter().map(|f| attributes(&view, &f.shapes[i])).collect();
+        let per_frame: Vec<Vec<(&'static str, String)>> = frames
+            .iter()
+            .map(|f| attributes(&view, &f.shapes[i]))
+            .collect();
         let mut animation = String::new();
         for (a, (name, v0)) in per_frame[0].iter().enumerate() {
             if per_frame.iter().all(|attrs| &attrs[a].1 == v0) {
@@ -207,12 +266,30 @@ pub fn open_picture(view: &View) -> String {
 
 /// A line plot of series (label, values) against `x`, `width` × `height` px, with its
 /// title, axes, the range of y, a legend, and a cursor line `id="cursor-<id>"` at x[0].
-pub fn plot(id: &str, title: &str, unit: &str, x: &[f64], series: &[(String, Vec<f64>)], width: f64, height: f64) -> String {
-    const COLORS: [&str; 6] = ["#3b6ea8", "#c0504d", "#2a9d3a", "#8064a2", "#d2691e", "#4bacc6"];
+pub fn plot(
+    id: &str,
+    title: &str,
+    unit: &str,
+    x: &[f64],
+    series: &[(String, Vec<f64>)],
+    width: f64,
+    height: f64,
+) -> String {
+    const COLORS: [&str; 6] = [
+        "#3b6ea8", "#c0504d", "#2a9d3a", "#8064a2", "#d2691e", "#4bacc6",
+    ];
     let (l, r, t, b) = (56.0, 12.0, 26.0, 28.0);
-    let (x0, x1) = (x.first().copied().unwrap_or(0.0), x.last().copied().unwrap_or(1.0));
-    let finite = series.iter().flat_map(|(_, v)| v.iter().copied()).filter(|v| v.is_finite());
-    let (mut lo, mut hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (x0, x1) = (
+        x.first().copied().unwrap_or(0.0),
+        x.last().copied().unwrap_or(1.0),
+    );
+    let finite = series
+        .iter()
+        .flat_map(|(_, v)| v.iter().copied())
+        .filter(|v| v.is_finite());
+    let (mut lo, mut hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
     if !(lo.is_finite() && hi.is_finite()) {
         (lo, hi) = (0.0, 1.0);
     }
@@ -223,17 +300,32 @@ pub fn plot(id: &str, title: &str, unit: &str, x: &[f64], series: &[(String, Vec
     let sy = |v: f64| t + (hi - v) / (hi - lo) * (height - t - b);
     let mut out = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n");
     let _ = writeln!(out, "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/><text x=\"{l}\" y=\"16\" font-family=\"sans-serif\" font-size=\"13\" font-weight=\"bold\">{} [{}]</text>", escape(title), escape(unit));
-    let _ = writeln!(out, "<rect x=\"{l}\" y=\"{t}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#999\"/>", width - l - r, height - t - b);
+    let _ = writeln!(
+        out,
+        "<rect x=\"{l}\" y=\"{t}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#999\"/>",
+        width - l - r,
+        height - t - b
+    );
     for v in [lo, 0.5 * (lo + hi), hi] {
         let _ = writeln!(out, "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"10\" text-anchor=\"end\">{:.4}</text>", l - 4.0, sy(v) + 3.0, v);
     }
     if lo < 0.0 && hi > 0.0 {
-        let _ = writeln!(out, "<line x1=\"{l}\" x2=\"{}\" y1=\"{y}\" y2=\"{y}\" stroke=\"#ccc\"/>", width - r, y = sy(0.0));
+        let _ = writeln!(
+            out,
+            "<line x1=\"{l}\" x2=\"{}\" y1=\"{y}\" y2=\"{y}\" stroke=\"#ccc\"/>",
+            width - r,
+            y = sy(0.0)
+        );
     }
     let _ = writeln!(out, "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"10\" text-anchor=\"end\">input {:.3} … {:.3}</text>", width - r, height - 8.0, x0, x1);
     for (k, (label, v)) in series.iter().enumerate() {
         let color = COLORS[k % COLORS.len()];
-        let pts: Vec<String> = x.iter().zip(v).filter(|(_, y)| y.is_finite()).map(|(&xx, &yy)| format!("{:.1},{:.1}", sx(xx), sy(yy))).collect();
+        let pts: Vec<String> = x
+            .iter()
+            .zip(v)
+            .filter(|(_, y)| y.is_finite())
+            .map(|(&xx, &yy)| format!("{:.1},{:.1}", sx(xx), sy(yy)))
+            .collect();
         let _ = writeln!(out, "<polyline class=\"series\" data-label=\"{}\" fill=\"none\" stroke=\"{color}\" stroke-width=\"1.6\" points=\"{}\"/>", escape(label), pts.join(" "));
         let _ = writeln!(out, "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"10\" fill=\"{color}\">{}</text>", l + 6.0 + 110.0 * (k % 4) as f64, t + 12.0 + 12.0 * (k / 4) as f64, escape(label));
     }

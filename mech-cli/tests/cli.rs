@@ -70,28 +70,60 @@ fn csv(out: &[u8]) -> (Vec<String>, Vec<Vec<f64>>) {
     let text = String::from_utf8(out.to_vec()).unwrap();
     let mut lines = text.lines();
     let header = lines.next().unwrap().split(',').map(String::from).collect();
-    (header, lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect())
+    (
+        header,
+        lines
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect(),
+    )
 }
 
 fn close(what: &str, a: f64, b: f64, tol: f64) {
-    assert!((a - b).abs() <= tol * b.abs().max(1.0), "{what}: {a} against {b}");
+    assert!(
+        (a - b).abs() <= tol * b.abs().max(1.0),
+        "{what}: {a} against {b}"
+    );
 }
 
 #[test]
 fn check_summarises_a_good_mechanism_and_locates_a_mistake() {
     let dir = tempfile::tempdir().unwrap();
     let f = mech_file(&dir, "Slider");
-    let out = mech().arg("check").arg(&f).assert().success().get_output().stdout.clone();
+    let out = mech()
+        .arg("check")
+        .arg(&f)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
     let text = String::from_utf8(out).unwrap();
-    for part in ["N = 4 links", "P_I = 4", "G = 3(N − 1) − 2 P_I − P_II = 9 − 8 − 0 = 1", "1. driven crank: crank (closed form)", "2. RRP dyad: rod, piston (closed form)"] {
+    for part in [
+        "N = 4 links",
+        "P_I = 4",
+        "G = 3(N − 1) − 2 P_I − P_II = 9 − 8 − 0 = 1",
+        "1. driven crank: crank (closed form)",
+        "2. RRP dyad: rod, piston (closed form)",
+    ] {
         assert!(text.contains(part), "{part} in\n{text}");
     }
     // A mistake on line 7, column 51 of the file: `rod` for `l`.
     let text = std::fs::read_to_string(&f).unwrap();
     let bad = text.replacen("circle_line(A, l,", "circle_line(A, rod,", 1);
-    let (line, col) = bad.lines().enumerate().find_map(|(i, l)| l.find("rod,").map(|c| (i + 1, c + 1))).unwrap();
+    let (line, col) = bad
+        .lines()
+        .enumerate()
+        .find_map(|(i, l)| l.find("rod,").map(|c| (i + 1, c + 1)))
+        .unwrap();
     std::fs::write(&f, bad).unwrap();
-    let err = mech().arg("check").arg(&f).assert().code(1).get_output().stderr.clone();
+    let err = mech()
+        .arg("check")
+        .arg(&f)
+        .assert()
+        .code(1)
+        .get_output()
+        .stderr
+        .clone();
     let err = String::from_utf8(err).unwrap();
     let head = format!("{}:{line}:{col}: unknown constant `rod`", f.display());
     assert!(err.starts_with(&head), "expected `{head}` first in\n{err}");
@@ -102,7 +134,22 @@ fn solve_gives_the_generated_numbers() {
     let dir = tempfile::tempdir().unwrap();
     let f = mech_file(&dir, "Slider");
     let out = mech()
-        .args(["solve", f.to_str().unwrap(), "--at", "40deg", "--speed", "3000rpm", "--accel", "-50", "--load", "gas=-2.5kN,0", "--load", "shaft=-4", "--format", "csv"])
+        .args([
+            "solve",
+            f.to_str().unwrap(),
+            "--at",
+            "40deg",
+            "--speed",
+            "3000rpm",
+            "--accel",
+            "-50",
+            "--load",
+            "gas=-2.5kN,0",
+            "--load",
+            "shaft=-4",
+            "--format",
+            "csv",
+        ])
         .assert()
         .success()
         .get_output()
@@ -110,10 +157,18 @@ fn solve_gives_the_generated_numbers() {
         .clone();
     let (names, rows) = csv(&out);
     let row = &rows[0];
-    let col = |n: &str| row[names.iter().position(|c| c == n).unwrap_or_else(|| panic!("column {n} in {names:?}"))];
+    let col = |n: &str| {
+        row[names
+            .iter()
+            .position(|c| c == n)
+            .unwrap_or_else(|| panic!("column {n} in {names:?}"))]
+    };
     let m = Slider::new();
     let (q, qd, qdd) = (40f64.to_radians(), 100.0 * std::f64::consts::PI, -50.0);
-    let loads = SliderLoads { gas: Vector2::new(-2500.0, 0.0), shaft: -4.0 };
+    let loads = SliderLoads {
+        gas: Vector2::new(-2500.0, 0.0),
+        shaft: -4.0,
+    };
     let mo = m.kinematics(q, qd, qdd).unwrap();
     let f = m.kinetostatics(&mo, &loads).unwrap();
     let z = m.reduced(q).unwrap();
@@ -124,7 +179,12 @@ fn solve_gives_the_generated_numbers() {
     close("rod.angle", col("rod.angle"), mo.links.rod.angle, 1e-12);
     close("rod.omega", col("rod.omega"), mo.links.rod.omega, 1e-12);
     close("rod.alpha", col("rod.alpha"), mo.links.rod.alpha, 1e-12);
-    for (j, force, moment) in [("O2", f.joints.O2.force, None), ("A", f.joints.A.force, None), ("B", f.joints.B.force, None), ("guide", f.joints.guide.force, Some(f.joints.guide.moment))] {
+    for (j, force, moment) in [
+        ("O2", f.joints.O2.force, None),
+        ("A", f.joints.A.force, None),
+        ("B", f.joints.B.force, None),
+        ("guide", f.joints.guide.force, Some(f.joints.guide.moment)),
+    ] {
         close(&format!("{j}.fx"), col(&format!("{j}.fx")), force.x, 1e-12);
         close(&format!("{j}.fy"), col(&format!("{j}.fy")), force.y, 1e-12);
         if let Some(mm) = moment {
@@ -132,24 +192,63 @@ fn solve_gives_the_generated_numbers() {
         }
     }
     close("driver", col("driver"), f.driver, 1e-12);
-    close("virtual_power", col("virtual_power"), m.driver_action(&mo, &loads).unwrap(), 1e-12);
+    close(
+        "virtual_power",
+        col("virtual_power"),
+        m.driver_action(&mo, &loads).unwrap(),
+        1e-12,
+    );
     close("inertia", col("inertia"), z.inertia, 1e-12);
-    close("inertia_derivative", col("inertia_derivative"), z.inertia_derivative, 1e-12);
-    close("moment", col("moment"), m.reduced_moment(q, &loads).unwrap(), 1e-12);
+    close(
+        "inertia_derivative",
+        col("inertia_derivative"),
+        z.inertia_derivative,
+        1e-12,
+    );
+    close(
+        "moment",
+        col("moment"),
+        m.reduced_moment(q, &loads).unwrap(),
+        1e-12,
+    );
 }
 
 #[test]
 fn sweep_gives_the_generated_numbers_in_order_in_every_format() {
     let dir = tempfile::tempdir().unwrap();
     let f = mech_file(&dir, "FiveBar");
-    let args = ["sweep", f.to_str().unwrap(), "--from", "60deg", "--to", "80deg", "--steps", "40", "--rest", "100deg", "--speed", "2,-1", "--load", "pen=10,-20"];
-    let out = mech().args(args).args(["--format", "csv"]).assert().success().get_output().stdout.clone();
+    let args = [
+        "sweep",
+        f.to_str().unwrap(),
+        "--from",
+        "60deg",
+        "--to",
+        "80deg",
+        "--steps",
+        "40",
+        "--rest",
+        "100deg",
+        "--speed",
+        "2,-1",
+        "--load",
+        "pen=10,-20",
+    ];
+    let out = mech()
+        .args(args)
+        .args(["--format", "csv"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
     let (names, rows) = csv(&out);
     assert_eq!(rows.len(), 41);
     assert_eq!(&names[..2], ["q.O1", "q.O5"]);
     assert!(names.contains(&"driver.O1".to_string()) && names.contains(&"driver.O5".to_string()));
     let m = FiveBar::new();
-    let loads = FiveBarLoads { pen: Vector2::new(10.0, -20.0) };
+    let loads = FiveBarLoads {
+        pen: Vector2::new(10.0, -20.0),
+    };
     for (k, row) in rows.iter().enumerate() {
         let q = [(60.0 + 0.5 * k as f64).to_radians(), 100f64.to_radians()];
         let mo = m.kinematics(q, [2.0, -1.0], [0.0, 0.0]).unwrap();
@@ -160,18 +259,47 @@ fn sweep_gives_the_generated_numbers_in_order_in_every_format() {
         close("C.y", col("C.y"), mo.points.C.pos.y, 1e-12);
         close("driver.O1", col("driver.O1"), f.driver[0], 1e-12);
         close("driver.O5", col("driver.O5"), f.driver[1], 1e-12);
-        close("virtual_power.O5", col("virtual_power.O5"), m.driver_action(&mo, &loads).unwrap()[1], 1e-12);
+        close(
+            "virtual_power.O5",
+            col("virtual_power.O5"),
+            m.driver_action(&mo, &loads).unwrap()[1],
+            1e-12,
+        );
     }
     // JSON: an array of objects with the same keys and numbers.
-    let out = mech().args(args).args(["--format", "json"]).assert().success().get_output().stdout.clone();
+    let out = mech()
+        .args(args)
+        .args(["--format", "json"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
     let json: serde_json::Value = serde_json::from_slice(&out).unwrap();
     let arr = json.as_array().unwrap();
     assert_eq!(arr.len(), 41);
-    assert_eq!(arr[7]["C.y"].as_f64().unwrap(), rows[7][names.iter().position(|c| c == "C.y").unwrap()]);
+    assert_eq!(
+        arr[7]["C.y"].as_f64().unwrap(),
+        rows[7][names.iter().position(|c| c == "C.y").unwrap()]
+    );
     // Table: units in the header.
-    let out = mech().args(args).assert().success().get_output().stdout.clone();
-    let head = String::from_utf8(out).unwrap().lines().next().unwrap().to_string();
-    assert!(head.contains("q.O1 [rad]") && head.contains("C.x [m]") && head.contains("driver.O1 [N·m]"), "{head}");
+    let out = mech()
+        .args(args)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let head = String::from_utf8(out)
+        .unwrap()
+        .lines()
+        .next()
+        .unwrap()
+        .to_string();
+    assert!(
+        head.contains("q.O1 [rad]") && head.contains("C.x [m]") && head.contains("driver.O1 [N·m]"),
+        "{head}"
+    );
 }
 
 /// The flywheel of the slider-crank under a gas force given as a table against the crank
@@ -182,11 +310,13 @@ fn flywheel_gives_the_generated_numbers() {
     let dir = tempfile::tempdir().unwrap();
     let f = mech_file(&dir, "Slider");
     // A gas force over 4π: a pressure peak after the TDC of the second turn.
-    let table: Vec<(f64, f64)> = (0..=72).map(|k| {
-        let q = 10.0 * k as f64;
-        let x = (q - 380.0) / 40.0;
-        (q, -(100.0 + 4000.0 * (-x * x).exp()))
-    }).collect();
+    let table: Vec<(f64, f64)> = (0..=72)
+        .map(|k| {
+            let q = 10.0 * k as f64;
+            let x = (q - 380.0) / 40.0;
+            (q, -(100.0 + 4000.0 * (-x * x).exp()))
+        })
+        .collect();
     let csv_path = dir.path().join("gas.csv");
     let mut text = String::from("q_deg, fx, fy\n");
     for (q, v) in &table {
@@ -194,7 +324,17 @@ fn flywheel_gives_the_generated_numbers() {
     }
     std::fs::write(&csv_path, text).unwrap();
     let out = mech()
-        .args(["flywheel", f.to_str().unwrap(), "--period", "4pi", "--speed", "3000rpm", "--irregularity", "0.02", "--load"])
+        .args([
+            "flywheel",
+            f.to_str().unwrap(),
+            "--period",
+            "4pi",
+            "--speed",
+            "3000rpm",
+            "--irregularity",
+            "0.02",
+            "--load",
+        ])
         .arg(format!("gas=@{}", csv_path.display()))
         .args(["--format", "json"])
         .assert()
@@ -212,16 +352,54 @@ fn flywheel_gives_the_generated_numbers() {
         table[k].1 + t * (table[k + 1].1 - table[k].1)
     };
     let breaks: Vec<f64> = vec![];
-    let cycle = Cycle::new(&m, 0.0, 4.0 * std::f64::consts::PI, &breaks, |q| Ok(SliderLoads { gas: Vector2::new(gas(q), 0.0), shaft: 0.0 }), |_| 0.0).unwrap();
+    let cycle = Cycle::new(
+        &m,
+        0.0,
+        4.0 * std::f64::consts::PI,
+        &breaks,
+        |q| {
+            Ok(SliderLoads {
+                gas: Vector2::new(gas(q), 0.0),
+                shaft: 0.0,
+            })
+        },
+        |_| 0.0,
+    )
+    .unwrap();
     let w = cycle.net_work();
     let (cycle, t) = cycle.balanced();
     let fw = cycle.flywheel(100.0 * std::f64::consts::PI, 0.02).unwrap();
     close("net work", r["net_work"].as_f64().unwrap(), w, 1e-12);
-    close("balancing torque", r["balancing_torque"].as_f64().unwrap(), t, 1e-12);
-    close("ΔE", r["fluctuation"].as_f64().unwrap(), fw.approximate.s_max - fw.approximate.s_min, 1e-12);
-    close("approximate", r["inertia_approximate"].as_f64().unwrap(), fw.approximate.inertia, 1e-12);
-    close("exact", r["inertia_exact"].as_f64().unwrap(), fw.exact.inertia, 1e-12);
-    close("simulated ε", r["irregularity_simulated"].as_f64().unwrap(), 0.02, 1e-6);
+    close(
+        "balancing torque",
+        r["balancing_torque"].as_f64().unwrap(),
+        t,
+        1e-12,
+    );
+    close(
+        "ΔE",
+        r["fluctuation"].as_f64().unwrap(),
+        fw.approximate.s_max - fw.approximate.s_min,
+        1e-12,
+    );
+    close(
+        "approximate",
+        r["inertia_approximate"].as_f64().unwrap(),
+        fw.approximate.inertia,
+        1e-12,
+    );
+    close(
+        "exact",
+        r["inertia_exact"].as_f64().unwrap(),
+        fw.exact.inertia,
+        1e-12,
+    );
+    close(
+        "simulated ε",
+        r["irregularity_simulated"].as_f64().unwrap(),
+        0.02,
+        1e-6,
+    );
 }
 
 #[test]
@@ -229,7 +407,24 @@ fn simulate_gives_the_generated_trajectory() {
     let dir = tempfile::tempdir().unwrap();
     let f = mech_file(&dir, "Slider");
     let out = mech()
-        .args(["simulate", f.to_str().unwrap(), "--q0", "0.3", "--speed", "20", "--driver", "3", "--load", "gas=-200,0", "--t-end", "0.2", "--samples", "4", "--format", "csv"])
+        .args([
+            "simulate",
+            f.to_str().unwrap(),
+            "--q0",
+            "0.3",
+            "--speed",
+            "20",
+            "--driver",
+            "3",
+            "--load",
+            "gas=-200,0",
+            "--t-end",
+            "0.2",
+            "--samples",
+            "4",
+            "--format",
+            "csv",
+        ])
         .assert()
         .success()
         .get_output()
@@ -239,16 +434,33 @@ fn simulate_gives_the_generated_trajectory() {
     assert_eq!(names, ["t", "q", "qd", "qdd"]);
     assert_eq!(rows.len(), 5);
     let m = Slider::new();
-    let loads = SliderLoads { gas: Vector2::new(-200.0, 0.0), shaft: 0.0 };
+    let loads = SliderLoads {
+        gas: Vector2::new(-200.0, 0.0),
+        shaft: 0.0,
+    };
     let mut y = [0.3, 20.0];
     let mut t0 = 0.0;
     for row in &rows[1..] {
         let mut method = mech::ode::Dop853::new(1e-12, 1e-12);
-        let out = mech::ode::solve(&mut method, mech::dynamics::equation_of_motion(&m, |_, _, _| (3.0, loads)), t0, y, row[0], None, None).unwrap();
+        let out = mech::ode::solve(
+            &mut method,
+            mech::dynamics::equation_of_motion(&m, |_, _, _| (3.0, loads)),
+            t0,
+            y,
+            row[0],
+            None,
+            None,
+        )
+        .unwrap();
         (y, t0) = (out.y, row[0]);
         close("q", row[1], y[0], 1e-8);
         close("q̇", row[2], y[1], 1e-8);
-        close("q̈", row[3], m.acceleration(row[1], row[2], 3.0, &loads).unwrap(), 1e-12);
+        close(
+            "q̈",
+            row[3],
+            m.acceleration(row[1], row[2], 3.0, &loads).unwrap(),
+            1e-12,
+        );
     }
 }
 
@@ -260,15 +472,49 @@ fn bad_arguments_are_usage_errors() {
     for (args, status, part) in [
         (vec!["solve", f], 2, "--at"),
         (vec!["solve", f, "--at", "30mm"], 2, "an angle"),
-        (vec!["solve", f, "--at", "30deg", "--load", "wind=3"], 2, "no load named `wind`: the mechanism's loads are gas, shaft"),
-        (vec!["solve", f, "--at", "30deg", "--load", "gas=3"], 2, "two components"),
-        (vec!["solve", f, "--at", "30deg,40deg"], 2, "2 value(s) given for 1 input(s)"),
+        (
+            vec!["solve", f, "--at", "30deg", "--load", "wind=3"],
+            2,
+            "no load named `wind`: the mechanism's loads are gas, shaft",
+        ),
+        (
+            vec!["solve", f, "--at", "30deg", "--load", "gas=3"],
+            2,
+            "two components",
+        ),
+        (
+            vec!["solve", f, "--at", "30deg,40deg"],
+            2,
+            "2 value(s) given for 1 input(s)",
+        ),
         (vec!["sweep", f, "--from", "0", "--to", "1"], 2, "--steps"),
-        (vec!["solve", "/nonexistent.mech", "--at", "1"], 2, "cannot read"),
+        (
+            vec!["solve", "/nonexistent.mech", "--at", "1"],
+            2,
+            "cannot read",
+        ),
         (vec!["frobnicate"], 2, "unrecognized subcommand"),
-        (vec!["flywheel", f, "--speed", "100", "--irregularity", "0.02", "--period", "-1"], 1, "period must be positive"),
+        (
+            vec![
+                "flywheel",
+                f,
+                "--speed",
+                "100",
+                "--irregularity",
+                "0.02",
+                "--period",
+                "-1",
+            ],
+            1,
+            "period must be positive",
+        ),
     ] {
-        let out = mech().args(&args).assert().code(status).get_output().clone();
+        let out = mech()
+            .args(&args)
+            .assert()
+            .code(status)
+            .get_output()
+            .clone();
         let err = String::from_utf8(out.stderr).unwrap();
         assert!(err.contains(part), "{args:?}: expected “{part}” in\n{err}");
         assert!(!err.contains("panicked"), "{args:?}: {err}");
@@ -301,14 +547,29 @@ mod engine;
 #[test]
 fn the_engine_flywheel_from_files() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let breaks: Vec<String> = engine::breakpoints().iter().map(|b| format!("{b:.17}")).collect();
+    let breaks: Vec<String> = engine::breakpoints()
+        .iter()
+        .map(|b| format!("{b:.17}"))
+        .collect();
     let out = mech()
         .arg("flywheel")
         .arg(root.join("examples/mech/engine.mech"))
-        .args(["--period", "4pi", "--start", &format!("{:.17}", engine::Q_TDC), "--speed", "3000rpm", "--irregularity", "0.02"])
+        .args([
+            "--period",
+            "4pi",
+            "--start",
+            &format!("{:.17}", engine::Q_TDC),
+            "--speed",
+            "3000rpm",
+            "--irregularity",
+            "0.02",
+        ])
         .arg("--breakpoints")
         .arg(breaks.join(","))
-        .arg(format!("--load=gas=@{}", root.join("examples/mech/engine_gas.csv").display()))
+        .arg(format!(
+            "--load=gas=@{}",
+            root.join("examples/mech/engine_gas.csv").display()
+        ))
         .args(["--format", "json"])
         .assert()
         .success()
@@ -316,11 +577,30 @@ fn the_engine_flywheel_from_files() {
         .stdout
         .clone();
     let r = &serde_json::from_slice::<serde_json::Value>(&out).unwrap()[0];
-    let reference: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(root.join("tests/data/engine.flywheel.json")).unwrap()).unwrap();
+    let reference: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root.join("tests/data/engine.flywheel.json")).unwrap(),
+    )
+    .unwrap();
     let x = &reference["results"];
-    for (ours, theirs) in [("net_work", "net_work_gas"), ("balancing_torque", "balancing_torque"), ("s_max", "s_max"), ("s_min", "s_min"), ("inertia_approximate", "approximate_inertia"), ("inertia_exact", "exact_inertia")] {
+    for (ours, theirs) in [
+        ("net_work", "net_work_gas"),
+        ("balancing_torque", "balancing_torque"),
+        ("s_max", "s_max"),
+        ("s_min", "s_min"),
+        ("inertia_approximate", "approximate_inertia"),
+        ("inertia_exact", "exact_inertia"),
+    ] {
         let (a, b) = (r[ours].as_f64().unwrap(), x[theirs].as_f64().unwrap());
-        assert!((a - b).abs() <= 1e-6 * b.abs(), "{ours}: {a} against the reference {b} ({:.1e})", (a - b).abs() / b.abs());
+        assert!(
+            (a - b).abs() <= 1e-6 * b.abs(),
+            "{ours}: {a} against the reference {b} ({:.1e})",
+            (a - b).abs() / b.abs()
+        );
     }
-    close("simulated ε", r["irregularity_simulated"].as_f64().unwrap(), 0.02, 1e-6);
+    close(
+        "simulated ε",
+        r["irregularity_simulated"].as_f64().unwrap(),
+        0.02,
+        1e-6,
+    );
 }

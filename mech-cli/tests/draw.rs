@@ -22,7 +22,13 @@ fn engine() -> PathBuf {
 fn pins(doc: &roxmltree::Document) -> Vec<(String, f64, f64)> {
     doc.descendants()
         .filter(|n| n.has_tag_name("circle") && n.attribute("class") == Some("pin"))
-        .map(|n| (n.attribute("data-name").unwrap().to_string(), n.attribute("cx").unwrap().parse().unwrap(), n.attribute("cy").unwrap().parse().unwrap()))
+        .map(|n| {
+            (
+                n.attribute("data-name").unwrap().to_string(),
+                n.attribute("cx").unwrap().parse().unwrap(),
+                n.attribute("cy").unwrap().parse().unwrap(),
+            )
+        })
         .collect()
 }
 
@@ -30,7 +36,24 @@ fn pins(doc: &roxmltree::Document) -> Vec<(String, f64, f64)> {
 fn draw_puts_every_pin_where_the_solver_puts_its_point() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("engine.svg");
-    mech().arg("draw").arg(engine()).args(["--at", "40deg", "--path", "A", "--forces", "--speed", "3000rpm", "--load", "gas=-5kN,0", "-o"]).arg(&out).assert().success();
+    mech()
+        .arg("draw")
+        .arg(engine())
+        .args([
+            "--at",
+            "40deg",
+            "--path",
+            "A",
+            "--forces",
+            "--speed",
+            "3000rpm",
+            "--load",
+            "gas=-5kN,0",
+            "-o",
+        ])
+        .arg(&out)
+        .assert()
+        .success();
     let text = std::fs::read_to_string(&out).unwrap();
     let doc = roxmltree::Document::parse(&text).unwrap();
     let m = Mechanism::from_dsl(&std::fs::read_to_string(engine()).unwrap()).unwrap();
@@ -45,11 +68,17 @@ fn draw_puts_every_pin_where_the_solver_puts_its_point() {
     for (name, cx, cy) in &p {
         let w = world(name);
         let (x, y) = (a.1 + (w.x - wa.x) * k, a.2 - (w.y - wa.y) * k);
-        assert!((x - cx).abs() < 0.01 && (y - cy).abs() < 0.01, "pin {name}: ({cx}, {cy}) against ({x}, {y})");
+        assert!(
+            (x - cx).abs() < 0.01 && (y - cy).abs() < 0.01,
+            "pin {name}: ({cx}, {cy}) against ({x}, {y})"
+        );
     }
     assert_eq!(p.len(), 3, "O2, A, B");
     // The path of A is the crank's circle: its points are all at |O2 A| from O2.
-    let path = doc.descendants().find(|n| n.attribute("class") == Some("path")).unwrap();
+    let path = doc
+        .descendants()
+        .find(|n| n.attribute("class") == Some("path"))
+        .unwrap();
     let o2 = p.iter().find(|x| x.0 == "O2").unwrap();
     let r = 0.043 * k;
     for xy in path.attribute("points").unwrap().split(' ') {
@@ -57,23 +86,53 @@ fn draw_puts_every_pin_where_the_solver_puts_its_point() {
         let d = (x.parse::<f64>().unwrap() - o2.1).hypot(y.parse::<f64>().unwrap() - o2.2);
         assert!((d - r).abs() < 0.02, "{d} against {r}");
     }
-    assert_eq!(doc.descendants().filter(|n| n.attribute("class") == Some("arrow")).count(), 4, "one reaction arrow per joint");
-    assert!(doc.descendants().any(|n| n.attribute("class") == Some("block")) && doc.descendants().any(|n| n.attribute("class") == Some("guide")));
-    assert!(doc.descendants().any(|n| n.attribute("class") == Some("pivot")));
+    assert_eq!(
+        doc.descendants()
+            .filter(|n| n.attribute("class") == Some("arrow"))
+            .count(),
+        4,
+        "one reaction arrow per joint"
+    );
+    assert!(
+        doc.descendants()
+            .any(|n| n.attribute("class") == Some("block"))
+            && doc
+                .descendants()
+                .any(|n| n.attribute("class") == Some("guide"))
+    );
+    assert!(doc
+        .descendants()
+        .any(|n| n.attribute("class") == Some("pivot")));
 }
 
 #[test]
 fn animate_traces_the_crank_circle_frame_by_frame() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("watt.svg");
-    mech().arg("animate").arg(root().join("examples/mech/watt_ii.mech")).args(["--frames", "48", "-o"]).arg(&out).assert().success();
+    mech()
+        .arg("animate")
+        .arg(root().join("examples/mech/watt_ii.mech"))
+        .args(["--frames", "48", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
     let text = std::fs::read_to_string(&out).unwrap();
     let doc = roxmltree::Document::parse(&text).unwrap();
-    let pin = |name: &str| doc.descendants().find(|n| n.attribute("class") == Some("pin") && n.attribute("data-name") == Some(name)).unwrap();
+    let pin = |name: &str| {
+        doc.descendants()
+            .find(|n| n.attribute("class") == Some("pin") && n.attribute("data-name") == Some(name))
+            .unwrap()
+    };
     let values = |n: roxmltree::Node, attr: &str| -> Vec<f64> {
         n.children()
             .find(|c| c.has_tag_name("animate") && c.attribute("attributeName") == Some(attr))
-            .map(|c| c.attribute("values").unwrap().split(';').map(|v| v.parse().unwrap()).collect())
+            .map(|c| {
+                c.attribute("values")
+                    .unwrap()
+                    .split(';')
+                    .map(|v| v.parse().unwrap())
+                    .collect()
+            })
             .unwrap_or_default()
     };
     let (ax, ay) = (values(pin("A"), "cx"), values(pin("A"), "cy"));
@@ -81,26 +140,69 @@ fn animate_traces_the_crank_circle_frame_by_frame() {
     assert_eq!(ay.len(), 48);
     let o2 = pin("O2");
     assert!(values(o2, "cx").is_empty(), "a ground pivot does not move");
-    let (cx, cy): (f64, f64) = (o2.attribute("cx").unwrap().parse().unwrap(), o2.attribute("cy").unwrap().parse().unwrap());
-    let r: Vec<f64> = ax.iter().zip(&ay).map(|(x, y)| (x - cx).hypot(y - cy)).collect();
+    let (cx, cy): (f64, f64) = (
+        o2.attribute("cx").unwrap().parse().unwrap(),
+        o2.attribute("cy").unwrap().parse().unwrap(),
+    );
+    let r: Vec<f64> = ax
+        .iter()
+        .zip(&ay)
+        .map(|(x, y)| (x - cx).hypot(y - cy))
+        .collect();
     let mean = r.iter().sum::<f64>() / r.len() as f64;
-    assert!(r.iter().all(|d| (d - mean).abs() < 0.02), "A stays on a circle about O2: {r:?}");
+    assert!(
+        r.iter().all(|d| (d - mean).abs() < 0.02),
+        "A stays on a circle about O2: {r:?}"
+    );
     // One turn: the first and the last frame are the same place.
     assert!((ax[0] - ax[47]).abs() < 0.02 && (ay[0] - ay[47]).abs() < 0.02);
-    assert!(doc.descendants().filter(|n| n.has_tag_name("animate")).all(|n| n.attribute("repeatCount") == Some("indefinite")));
+    assert!(doc
+        .descendants()
+        .filter(|n| n.has_tag_name("animate"))
+        .all(|n| n.attribute("repeatCount") == Some("indefinite")));
 }
 
 #[test]
 fn report_is_one_self_contained_page() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("engine.html");
-    mech().arg("report").arg(engine()).args(["--speed", "3000rpm", "--load", "gas=-2kN,0", "--point", "B", "--frames", "40", "-o"]).arg(&out).assert().success();
+    mech()
+        .arg("report")
+        .arg(engine())
+        .args([
+            "--speed",
+            "3000rpm",
+            "--load",
+            "gas=-2kN,0",
+            "--point",
+            "B",
+            "--frames",
+            "40",
+            "-o",
+        ])
+        .arg(&out)
+        .assert()
+        .success();
     let html = std::fs::read_to_string(&out).unwrap();
-    for needed in ["<svg", "id=\"slider\"", "id=\"play\"", "cursor-driver", "cursor-reactions", "cursor-inertia", "cursor-moment", "cursor-speed", "|v B|", "frame="] {
+    for needed in [
+        "<svg",
+        "id=\"slider\"",
+        "id=\"play\"",
+        "cursor-driver",
+        "cursor-reactions",
+        "cursor-inertia",
+        "cursor-moment",
+        "cursor-speed",
+        "|v B|",
+        "frame=",
+    ] {
         assert!(html.contains(needed), "{needed}");
     }
     let without_ns = html.replace("http://www.w3.org/2000/svg", "");
-    assert!(!without_ns.contains("http://") && !without_ns.contains("https://"), "no network resource");
+    assert!(
+        !without_ns.contains("http://") && !without_ns.contains("https://"),
+        "no network resource"
+    );
     // The embedded frames: as many as asked, the crank pin moving.
     let open = "<script type=\"application/json\" id=\"data\">";
     let start = html.find(open).unwrap() + open.len();
@@ -122,13 +224,49 @@ fn bad_arguments_are_errors_not_panics() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("x.svg");
     for (args, part) in [
-        (vec!["draw", engine().to_str().unwrap(), "-o", out.to_str().unwrap()], "--at"),
-        (vec!["draw", engine().to_str().unwrap(), "--at", "1", "--path", "Z", "-o", out.to_str().unwrap()], "no such point"),
-        (vec!["animate", engine().to_str().unwrap(), "--frames", "1", "-o", out.to_str().unwrap()], "at least 2 frames"),
-        (vec!["report", "/nonexistent.mech", "-o", out.to_str().unwrap()], "cannot read"),
+        (
+            vec![
+                "draw",
+                engine().to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            "--at",
+        ),
+        (
+            vec![
+                "draw",
+                engine().to_str().unwrap(),
+                "--at",
+                "1",
+                "--path",
+                "Z",
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            "no such point",
+        ),
+        (
+            vec![
+                "animate",
+                engine().to_str().unwrap(),
+                "--frames",
+                "1",
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            "at least 2 frames",
+        ),
+        (
+            vec!["report", "/nonexistent.mech", "-o", out.to_str().unwrap()],
+            "cannot read",
+        ),
     ] {
         let o = mech().args(&args).assert().failure().get_output().clone();
         let err = String::from_utf8(o.stderr).unwrap();
-        assert!(err.contains(part) && !err.contains("panicked"), "{args:?}: {err}");
+        assert!(
+            err.contains(part) && !err.contains("panicked"),
+            "{args:?}: {err}"
+        );
     }
 }

@@ -60,20 +60,51 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             jt.a
         }
     };
-    let rot = |joint| JointScrew { joint, slide: false };
+    let rot = |joint| JointScrew {
+        joint,
+        slide: false,
+    };
     let slide = |joint| JointScrew { joint, slide: true };
-    let sc = |j: usize| if model.joints[j].kind == JointKind::Revolute { rot(j) } else { slide(j) };
+    let sc = |j: usize| {
+        if model.joints[j].kind == JointKind::Revolute {
+            rot(j)
+        } else {
+            slide(j)
+        }
+    };
     let dyad = |b1, b2, j1: usize, j2: usize, j3: usize| {
         let screws = [sc(j1), sc(j2), sc(j3)];
-        Kernel::Chain(Chain { from: other(j1, b1), to: other(j3, b2), screws, links: [b1, b2], pivot: pivot(&screws) })
+        Kernel::Chain(Chain {
+            from: other(j1, b1),
+            to: other(j3, b2),
+            screws,
+            links: [b1, b2],
+            pivot: pivot(&screws),
+        })
     };
     match solver {
-        Solver::DrivenRevolute { body, joint, input } => Kernel::Driven(Driven { from: other(joint, body), body, screw: rot(joint), input }),
-        Solver::DrivenPrismatic { body, joint, input } => Kernel::Driven(Driven { from: other(joint, body), body, screw: slide(joint), input }),
+        Solver::DrivenRevolute { body, joint, input } => Kernel::Driven(Driven {
+            from: other(joint, body),
+            body,
+            screw: rot(joint),
+            input,
+        }),
+        Solver::DrivenPrismatic { body, joint, input } => Kernel::Driven(Driven {
+            from: other(joint, body),
+            body,
+            screw: slide(joint),
+            input,
+        }),
         Solver::Rrr { b1, b2, ja, jc, jb } => dyad(b1, b2, ja, jc, jb),
         Solver::Rrp { b1, b2, ja, jc, jp } => dyad(b1, b2, ja, jc, jp),
         Solver::Rpr { b1, b2, ja, jp, jb } => dyad(b1, b2, ja, jp, jb),
-        Solver::Prp { b1, b2, jp1, jc, jp2 } => dyad(b1, b2, jp1, jc, jp2),
+        Solver::Prp {
+            b1,
+            b2,
+            jp1,
+            jc,
+            jp2,
+        } => dyad(b1, b2, jp1, jc, jp2),
         Solver::Rpp { b1, b2, ja, jp, jq } => dyad(b1, b2, ja, jp, jq),
         // Pin of `body` in a slot of a solved link: rotation about the pin, then the slide.
         Solver::PinInFixedSlot { body, ja, js } => Kernel::Chain(Chain {
@@ -137,7 +168,9 @@ pub fn plan(model: &Model) -> Result<Vec<Group>, Vec<usize>> {
                 }
             }
         }
-        let Some((bodies, cons)) = found else { return Err(unknown) };
+        let Some((bodies, cons)) = found else {
+            return Err(unknown);
+        };
         for &b in &bodies {
             known[b] = true;
         }
@@ -149,7 +182,12 @@ pub fn plan(model: &Model) -> Result<Vec<Group>, Vec<usize>> {
             Solver::Newton
         };
         let kernel = kernel(model, solver);
-        groups.push(Group { bodies, cons, solver, kernel });
+        groups.push(Group {
+            bodies,
+            cons,
+            solver,
+            kernel,
+        });
     }
     Ok(groups)
 }
@@ -174,11 +212,24 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
     let touches = |c: &Con, b: usize| model.joints[c.joint].a == b || model.joints[c.joint].b == b;
     match *bodies {
         [body] => {
-            let drive = cons.iter().find(|c| matches!(c.kind, ConKind::DriveRevolute(_) | ConKind::DrivePrismatic(_)));
+            let drive = cons.iter().find(|c| {
+                matches!(
+                    c.kind,
+                    ConKind::DriveRevolute(_) | ConKind::DrivePrismatic(_)
+                )
+            });
             if let Some(d) = drive {
                 return match d.kind {
-                    ConKind::DriveRevolute(k) => Solver::DrivenRevolute { body, joint: d.joint, input: k },
-                    ConKind::DrivePrismatic(k) => Solver::DrivenPrismatic { body, joint: d.joint, input: k },
+                    ConKind::DriveRevolute(k) => Solver::DrivenRevolute {
+                        body,
+                        joint: d.joint,
+                        input: k,
+                    },
+                    ConKind::DrivePrismatic(k) => Solver::DrivenPrismatic {
+                        body,
+                        joint: d.joint,
+                        input: k,
+                    },
                     _ => unreachable!(),
                 };
             }
@@ -186,35 +237,77 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
             let slot = cons.iter().find(|c| c.kind == ConKind::Slot);
             if let (Some(r), Some(s), 2) = (rev, slot, cons.len()) {
                 return if model.joints[s.joint].b == body {
-                    Solver::PinInFixedSlot { body, ja: r.joint, js: s.joint }
+                    Solver::PinInFixedSlot {
+                        body,
+                        ja: r.joint,
+                        js: s.joint,
+                    }
                 } else {
-                    Solver::SlottedLever { body, ja: r.joint, js: s.joint }
+                    Solver::SlottedLever {
+                        body,
+                        ja: r.joint,
+                        js: s.joint,
+                    }
                 };
             }
             Solver::Newton
         }
         [x, y] if cons.len() == 3 => {
             // The joint between the two links, and one joint from each to solved links.
-            let Some(mid) = cons.iter().find(|c| touches(c, x) && touches(c, y)) else { return Solver::Newton };
+            let Some(mid) = cons.iter().find(|c| touches(c, x) && touches(c, y)) else {
+                return Solver::Newton;
+            };
             for (b1, b2) in [(x, y), (y, x)] {
                 let outer1 = cons.iter().find(|c| touches(c, b1) && !touches(c, b2));
                 let outer2 = cons.iter().find(|c| touches(c, b2) && !touches(c, b1));
-                let (Some(o1), Some(o2)) = (outer1, outer2) else { return Solver::Newton };
+                let (Some(o1), Some(o2)) = (outer1, outer2) else {
+                    return Solver::Newton;
+                };
                 match (kind(o1), kind(mid), kind(o2)) {
                     (JointKind::Revolute, JointKind::Revolute, JointKind::Revolute) => {
-                        return Solver::Rrr { b1, b2, ja: o1.joint, jc: mid.joint, jb: o2.joint }
+                        return Solver::Rrr {
+                            b1,
+                            b2,
+                            ja: o1.joint,
+                            jc: mid.joint,
+                            jb: o2.joint,
+                        }
                     }
                     (JointKind::Revolute, JointKind::Revolute, JointKind::Prismatic) => {
-                        return Solver::Rrp { b1, b2, ja: o1.joint, jc: mid.joint, jp: o2.joint }
+                        return Solver::Rrp {
+                            b1,
+                            b2,
+                            ja: o1.joint,
+                            jc: mid.joint,
+                            jp: o2.joint,
+                        }
                     }
                     (JointKind::Revolute, JointKind::Prismatic, JointKind::Revolute) => {
-                        return Solver::Rpr { b1, b2, ja: o1.joint, jp: mid.joint, jb: o2.joint }
+                        return Solver::Rpr {
+                            b1,
+                            b2,
+                            ja: o1.joint,
+                            jp: mid.joint,
+                            jb: o2.joint,
+                        }
                     }
                     (JointKind::Prismatic, JointKind::Revolute, JointKind::Prismatic) => {
-                        return Solver::Prp { b1, b2, jp1: o1.joint, jc: mid.joint, jp2: o2.joint }
+                        return Solver::Prp {
+                            b1,
+                            b2,
+                            jp1: o1.joint,
+                            jc: mid.joint,
+                            jp2: o2.joint,
+                        }
                     }
                     (JointKind::Revolute, JointKind::Prismatic, JointKind::Prismatic) => {
-                        return Solver::Rpp { b1, b2, ja: o1.joint, jp: mid.joint, jq: o2.joint }
+                        return Solver::Rpp {
+                            b1,
+                            b2,
+                            ja: o1.joint,
+                            jp: mid.joint,
+                            jq: o2.joint,
+                        }
                     }
                     _ => {}
                 }

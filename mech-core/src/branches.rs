@@ -16,7 +16,10 @@ pub const MAX_FLIPPED: usize = 8;
 /// the sign of group k when bit k of c is set. The first answer that is not `NoAssembly`
 /// is returned, else the last `NoAssembly`.
 #[inline(always)]
-pub fn search<B: AsRef<[f64]> + AsMut<[f64]> + Clone, T>(drawing: &B, mut solve: impl FnMut(&B) -> Result<T, MechError>) -> Result<T, MechError> {
+pub fn search<B: AsRef<[f64]> + AsMut<[f64]> + Clone, T>(
+    drawing: &B,
+    mut solve: impl FnMut(&B) -> Result<T, MechError>,
+) -> Result<T, MechError> {
     let mut result = solve(drawing);
     let g = drawing.as_ref().len();
     let combinations = 1u32 << g.min(MAX_FLIPPED);
@@ -50,7 +53,15 @@ mod tests {
             }
         });
         assert_eq!(r, Ok(7));
-        assert_eq!(tried, vec![[1.0, 1.0, -1.0], [-1.0, 1.0, -1.0], [1.0, -1.0, -1.0], [-1.0, -1.0, -1.0]]);
+        assert_eq!(
+            tried,
+            vec![
+                [1.0, 1.0, -1.0],
+                [-1.0, 1.0, -1.0],
+                [1.0, -1.0, -1.0],
+                [-1.0, -1.0, -1.0]
+            ]
+        );
     }
 
     #[test]

@@ -41,7 +41,15 @@ impl Part {
     /// Positions, velocities, accelerations.
     pub const KINEMATICS: &'static [Part] = &[Part::Inputs, Part::Positions, Part::Rates];
     /// Everything.
-    pub const ALL: &'static [Part] = &[Part::Inputs, Part::Positions, Part::Rates, Part::Reactions, Part::Driver, Part::VirtualPower, Part::Zhukovski];
+    pub const ALL: &'static [Part] = &[
+        Part::Inputs,
+        Part::Positions,
+        Part::Rates,
+        Part::Reactions,
+        Part::Driver,
+        Part::VirtualPower,
+        Part::Zhukovski,
+    ];
 }
 
 /// Buffers reused from row to row ([`Columns::row_into`]).
@@ -70,20 +78,51 @@ impl Columns {
         let model = m.model();
         let g = m.dof();
         let has = |p: Part| parts.contains(&p);
-        let mut parts: Vec<Part> = Part::ALL.iter().copied().chain([Part::Points]).filter(|&p| has(p)).collect();
+        let mut parts: Vec<Part> = Part::ALL
+            .iter()
+            .copied()
+            .chain([Part::Points])
+            .filter(|&p| has(p))
+            .collect();
         if parts.contains(&Part::Positions) {
             parts.retain(|&p| p != Part::Points);
         }
         // A redundant mechanism has no reactions; several inputs have no Zhukovski reduction.
-        let dropped = |p: Part| (m.redundant() && matches!(p, Part::Reactions | Part::Driver)) || (g != 1 && p == Part::Zhukovski);
+        let dropped = |p: Part| {
+            (m.redundant() && matches!(p, Part::Reactions | Part::Driver))
+                || (g != 1 && p == Part::Zhukovski)
+        };
         parts.retain(|&p| !dropped(p));
-        let mut c = Columns { parts, names: Vec::new(), units: Vec::new() };
+        let mut c = Columns {
+            parts,
+            names: Vec::new(),
+            units: Vec::new(),
+        };
         let has = |p: Part| c.parts.contains(&p);
-        let (inputs, positions, rates, reactions, driver, vp, zhukovski) =
-            (has(Part::Inputs), has(Part::Positions), has(Part::Rates), has(Part::Reactions), has(Part::Driver), has(Part::VirtualPower), has(Part::Zhukovski));
+        let (inputs, positions, rates, reactions, driver, vp, zhukovski) = (
+            has(Part::Inputs),
+            has(Part::Positions),
+            has(Part::Rates),
+            has(Part::Reactions),
+            has(Part::Driver),
+            has(Part::VirtualPower),
+            has(Part::Zhukovski),
+        );
         let points = has(Part::Points);
-        let input_unit = |k: usize| if model.joints[model.inputs[k]].kind == JointKind::Revolute { ("rad", "N·m") } else { ("m", "N") };
-        let per_input = |base: &str, k: usize| if g == 1 { base.to_string() } else { format!("{base}.{}", model.joints[model.inputs[k]].name) };
+        let input_unit = |k: usize| {
+            if model.joints[model.inputs[k]].kind == JointKind::Revolute {
+                ("rad", "N·m")
+            } else {
+                ("m", "N")
+            }
+        };
+        let per_input = |base: &str, k: usize| {
+            if g == 1 {
+                base.to_string()
+            } else {
+                format!("{base}.{}", model.joints[model.inputs[k]].name)
+            }
+        };
         if inputs {
             for k in 0..g {
                 c.push(per_input("q", k), input_unit(k).0);
@@ -131,7 +170,12 @@ impl Columns {
             }
         }
         if zhukovski {
-            let (m_unit, i_unit, d_unit) = if model.joints[model.inputs[0]].kind == JointKind::Revolute { ("N·m", "kg·m²", "kg·m²/rad") } else { ("N", "kg", "kg/m") };
+            let (m_unit, i_unit, d_unit) =
+                if model.joints[model.inputs[0]].kind == JointKind::Revolute {
+                    ("N·m", "kg·m²", "kg·m²/rad")
+                } else {
+                    ("N", "kg", "kg/m")
+                };
             c.push("inertia".into(), i_unit);
             c.push("inertia_derivative".into(), d_unit);
             c.push("moment".into(), m_unit);
@@ -152,7 +196,14 @@ impl Columns {
     /// The row at inputs (q, q̇, q̈) with `loads`, in the order of [`Columns::names`]:
     /// computes what the parts need and nothing else (positions alone for [`Part::POSE`],
     /// no reaction for the virtual-power driver or Zhukovski's columns).
-    pub fn row(&self, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &Loads) -> Result<Vec<f64>, MechError> {
+    pub fn row(
+        &self,
+        m: &Mechanism,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        loads: &Loads,
+    ) -> Result<Vec<f64>, MechError> {
         let mut row = vec![0.0; self.names.len()];
         self.row_into(m, q, qd, qdd, loads, &mut RowScratch::default(), &mut row)?;
         Ok(row)
@@ -162,8 +213,20 @@ impl Columns {
     /// positions allocate nothing once the scratch has grown (a batch keeps one scratch
     /// per thread).
     #[allow(clippy::too_many_arguments)]
-    pub fn row_into(&self, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &Loads, scratch: &mut RowScratch, out: &mut [f64]) -> Result<(), MechError> {
-        let needs_motion = self.has(Part::Rates) || self.has(Part::Reactions) || self.has(Part::Driver) || self.has(Part::VirtualPower);
+    pub fn row_into(
+        &self,
+        m: &Mechanism,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        loads: &Loads,
+        scratch: &mut RowScratch,
+        out: &mut [f64],
+    ) -> Result<(), MechError> {
+        let needs_motion = self.has(Part::Rates)
+            || self.has(Part::Reactions)
+            || self.has(Part::Driver)
+            || self.has(Part::VirtualPower);
         if !needs_motion && !self.has(Part::Zhukovski) {
             let mut at = 0;
             if self.has(Part::Inputs) {
@@ -185,12 +248,23 @@ impl Columns {
     }
 
     /// Every part but positions-only: through the motion (reused from `scratch`).
-    fn full_row(&self, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &Loads, scratch: &mut RowScratch) -> Result<Vec<f64>, MechError> {
+    fn full_row(
+        &self,
+        m: &Mechanism,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        loads: &Loads,
+        scratch: &mut RowScratch,
+    ) -> Result<Vec<f64>, MechError> {
         let mut row = Vec::with_capacity(self.names.len());
         if self.has(Part::Inputs) {
             row.extend_from_slice(q);
         }
-        let needs_motion = self.has(Part::Rates) || self.has(Part::Reactions) || self.has(Part::Driver) || self.has(Part::VirtualPower);
+        let needs_motion = self.has(Part::Rates)
+            || self.has(Part::Reactions)
+            || self.has(Part::Driver)
+            || self.has(Part::VirtualPower);
         if !needs_motion {
             if self.has(Part::Positions) || self.has(Part::Points) {
                 let p = m.pose(q)?;
@@ -214,7 +288,11 @@ impl Columns {
                 }
             }
             if self.has(Part::Rates) {
-                row.extend(mo.points.iter().flat_map(|p| [p.vel.x, p.vel.y, p.acc.x, p.acc.y]));
+                row.extend(
+                    mo.points
+                        .iter()
+                        .flat_map(|p| [p.vel.x, p.vel.y, p.acc.x, p.acc.y]),
+                );
                 row.extend(mo.links[1..].iter().flat_map(|l| [l.omega, l.alpha]));
             }
             if self.has(Part::Reactions) || self.has(Part::Driver) {
@@ -235,7 +313,11 @@ impl Columns {
         }
         if self.has(Part::Zhukovski) {
             let z = OneDof::reduced(m, q[0])?;
-            row.extend([z.inertia, z.inertia_derivative, OneDof::reduced_moment(m, q[0], loads)?]);
+            row.extend([
+                z.inertia,
+                z.inertia_derivative,
+                OneDof::reduced_moment(m, q[0], loads)?,
+            ]);
         }
         debug_assert_eq!(row.len(), self.names.len());
         Ok(row)

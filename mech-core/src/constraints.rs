@@ -37,6 +37,17 @@ pub struct JointGeom {
     pub q_ref: f64,
 }
 
+impl JointGeom {
+    /// This joint's geometry with its links given as `a` and `b`. The generated code
+    /// rebuilds its joints with the topology as literal constants (the same values as the
+    /// stored ones), so that every `a`/`b` test of a kernel (which side is solved, is it
+    /// the ground) folds at compile time; only the vectors are read at run time.
+    #[inline(always)]
+    pub fn with_links(&self, a: usize, b: usize) -> JointGeom {
+        JointGeom { a, b, ..*self }
+    }
+}
+
 /// The kind of a constraint contributed by one joint to a group.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ConKind {
@@ -62,7 +73,10 @@ impl ConKind {
     }
     /// Rows whose unit is an angle (scaled by the length scale in group systems).
     pub const fn angle_row(self, k: usize) -> bool {
-        matches!((self, k), (ConKind::Prismatic, 1) | (ConKind::DriveRevolute(_), 0))
+        matches!(
+            (self, k),
+            (ConKind::Prismatic, 1) | (ConKind::DriveRevolute(_), 0)
+        )
     }
 }
 
@@ -120,12 +134,24 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
     let (sa, sb) = (&s[g.a], &s[g.b]);
     let ra = sa.r(g.da);
     let rb = sb.r(g.db);
-    let z = Row { a: Vector3::zeros(), b: Vector3::zeros() };
-    let mut out = ConEval { rows: [z, z], val: [0.0, 0.0] };
+    let z = Row {
+        a: Vector3::zeros(),
+        b: Vector3::zeros(),
+    };
+    let mut out = ConEval {
+        rows: [z, z],
+        val: [0.0, 0.0],
+    };
     match c.kind {
         ConKind::Revolute => {
-            out.rows[0] = Row { a: Vector3::new(-1.0, 0.0, ra.y), b: Vector3::new(1.0, 0.0, -rb.y) };
-            out.rows[1] = Row { a: Vector3::new(0.0, -1.0, -ra.x), b: Vector3::new(0.0, 1.0, rb.x) };
+            out.rows[0] = Row {
+                a: Vector3::new(-1.0, 0.0, ra.y),
+                b: Vector3::new(1.0, 0.0, -rb.y),
+            };
+            out.rows[1] = Row {
+                a: Vector3::new(0.0, -1.0, -ra.x),
+                b: Vector3::new(0.0, 1.0, rb.x),
+            };
             let v = match level {
                 Level::Jacobian => V2::zeros(),
                 Level::Position => (sb.pos + rb) - (sa.pos + ra),
@@ -161,7 +187,10 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
                 }
             };
             if c.kind == ConKind::Prismatic {
-                out.rows[1] = Row { a: Vector3::new(0.0, 0.0, -1.0), b: Vector3::new(0.0, 0.0, 1.0) };
+                out.rows[1] = Row {
+                    a: Vector3::new(0.0, 0.0, -1.0),
+                    b: Vector3::new(0.0, 0.0, 1.0),
+                };
                 out.val[1] = match level {
                     Level::Jacobian => 0.0,
                     Level::Position => cross(sa.rot, sb.rot).atan2(sa.rot.dot(&sb.rot)),
@@ -171,10 +200,15 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
             }
         }
         ConKind::DriveRevolute(k) => {
-            out.rows[0] = Row { a: Vector3::new(0.0, 0.0, -1.0), b: Vector3::new(0.0, 0.0, 1.0) };
+            out.rows[0] = Row {
+                a: Vector3::new(0.0, 0.0, -1.0),
+                b: Vector3::new(0.0, 0.0, 1.0),
+            };
             out.val[0] = match level {
                 Level::Jacobian => 0.0,
-                Level::Position => wrap(cross(sa.rot, sb.rot).atan2(sa.rot.dot(&sb.rot)) - (drive.0[k] - g.q_ref)),
+                Level::Position => {
+                    wrap(cross(sa.rot, sb.rot).atan2(sa.rot.dot(&sb.rot)) - (drive.0[k] - g.q_ref))
+                }
                 Level::Velocity => sb.omega - sa.omega - drive.1[k],
                 Level::Acceleration => sb.alpha - sa.alpha - drive.2[k],
             };
@@ -203,7 +237,13 @@ pub fn row_scale(kind: ConKind, k: usize, scale: f64) -> f64 {
 /// and each of its two links, `put(k, link, [∂C/∂x, ∂C/∂y, ∂C/∂(φL)] × row scale)`, all
 /// dimensionless (module docs). The one place the scaling rule is applied.
 #[inline(always)]
-pub fn scaled_rows(c: Con, g: &JointGeom, s: &[LinkState], scale: f64, mut put: impl FnMut(usize, usize, [f64; 3])) {
+pub fn scaled_rows(
+    c: Con,
+    g: &JointGeom,
+    s: &[LinkState],
+    scale: f64,
+    mut put: impl FnMut(usize, usize, [f64; 3]),
+) {
     // The input index only selects a drive value, which the Jacobian does not use.
     let kind = match c.kind {
         ConKind::DriveRevolute(_) => ConKind::DriveRevolute(0),
@@ -211,7 +251,16 @@ pub fn scaled_rows(c: Con, g: &JointGeom, s: &[LinkState], scale: f64, mut put: 
         k => k,
     };
     let zero = [0.0];
-    let e = eval(Con { joint: c.joint, kind }, g, s, (&zero, &zero, &zero), Level::Jacobian);
+    let e = eval(
+        Con {
+            joint: c.joint,
+            kind,
+        },
+        g,
+        s,
+        (&zero, &zero, &zero),
+        Level::Jacobian,
+    );
     for k in 0..c.kind.rows() {
         let rs = row_scale(c.kind, k, scale);
         for (link, r) in [(g.a, &e.rows[k].a), (g.b, &e.rows[k].b)] {
@@ -251,7 +300,13 @@ pub fn assemble<const M: usize, const N: usize>(
 
 /// Minus the constraint values of a group at `level` (unknown rates must be zero in `s`).
 #[inline(always)]
-pub fn group_rhs<const N: usize>(cons: &[Con], joints: &[JointGeom], s: &[LinkState], drive: Drive, level: Level) -> SVector<f64, N> {
+pub fn group_rhs<const N: usize>(
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    drive: Drive,
+    level: Level,
+) -> SVector<f64, N> {
     let mut b = SVector::<f64, N>::zeros();
     let mut row = 0;
     for c in cons {

@@ -27,7 +27,10 @@ pub const CIRCLE_LINE_WORDS: (&str, &str) = ("forward", "backward");
 const TANGENT: f64 = 1e-9;
 
 fn fmt(x: f64) -> String {
-    format!("{:.6}", x).trim_end_matches('0').trim_end_matches('.').to_string()
+    format!("{:.6}", x)
+        .trim_end_matches('0')
+        .trim_end_matches('.')
+        .to_string()
 }
 
 fn point(p: V2) -> String {
@@ -45,7 +48,11 @@ pub fn polar(r: f64, theta: f64) -> V2 {
 fn circles(c1: V2, r1: f64, c2: V2, r2: f64, names: (&str, &str)) -> Result<(V2, V2), String> {
     let d = (c2 - c1).norm();
     if !(r1 > 0.0 && r2 > 0.0) {
-        return Err(format!("the radii must be positive, got {} m and {} m", fmt(r1), fmt(r2)));
+        return Err(format!(
+            "the radii must be positive, got {} m and {} m",
+            fmt(r1),
+            fmt(r2)
+        ));
     }
     let meet = |sign| dyad::circle_circle(c1, r1 * r1, c2, r2 * r2, sign);
     match (meet(1.0), meet(-1.0)) {
@@ -72,7 +79,12 @@ fn circles(c1: V2, r1: f64, c2: V2, r2: f64, names: (&str, &str)) -> Result<(V2,
 
 /// Pick one of two intersections `(plus, minus)` by `branch`; with no branch word the
 /// two must coincide (a tangency), else the message lists both.
-fn pick((plus, minus): (V2, V2), branch: Branch, words: (&str, &str), scale: f64) -> Result<V2, String> {
+fn pick(
+    (plus, minus): (V2, V2),
+    branch: Branch,
+    words: (&str, &str),
+    scale: f64,
+) -> Result<V2, String> {
     match branch {
         Some(s) if s > 0.0 => Ok(plus),
         Some(_) => Ok(minus),
@@ -91,19 +103,36 @@ fn pick((plus, minus): (V2, V2), branch: Branch, words: (&str, &str), scale: f64
 
 /// The intersection of the circle (c1, r1) with the circle (c2, r2) on the side
 /// `branch` of the directed line c1 → c2 (+1 = left). `names` name c1 and c2 in messages.
-pub fn circle_circle(c1: V2, r1: f64, c2: V2, r2: f64, branch: Branch, names: (&str, &str)) -> Result<V2, String> {
+pub fn circle_circle(
+    c1: V2,
+    r1: f64,
+    c2: V2,
+    r2: f64,
+    branch: Branch,
+    names: (&str, &str),
+) -> Result<V2, String> {
     let both = circles(c1, r1, c2, r2, names)?;
     pick(both, branch, CIRCLE_CIRCLE_WORDS, r1.max(r2))
 }
 
 /// The intersection of the circle (c, r) with the line through p at angle `theta` (rad),
 /// the one further along the direction when `branch` = +1.
-pub fn circle_line(c: V2, r: f64, p: V2, theta: f64, branch: Branch, centre: &str) -> Result<V2, String> {
+pub fn circle_line(
+    c: V2,
+    r: f64,
+    p: V2,
+    theta: f64,
+    branch: Branch,
+    centre: &str,
+) -> Result<V2, String> {
     if !(r > 0.0) {
         return Err(format!("the radius must be positive, got {} m", fmt(r)));
     }
     let u = polar(1.0, theta);
-    match (dyad::circle_line(c, r * r, p, u, 1.0), dyad::circle_line(c, r * r, p, u, -1.0)) {
+    match (
+        dyad::circle_line(c, r * r, p, u, 1.0),
+        dyad::circle_line(c, r * r, p, u, -1.0),
+    ) {
         (Ok(f), Ok(b)) => pick((f, b), branch, CIRCLE_LINE_WORDS, r),
         _ => {
             let dist = crate::link_state::cross(u, c - p).abs();
@@ -124,7 +153,10 @@ pub fn local(p0: V2, p1: V2, u: f64, v: f64) -> Result<V2, String> {
     let d = p1 - p0;
     let n = d.norm();
     if !(n > 0.0) {
-        return Err(format!("the link's first two points coincide at {}: its frame has no direction", point(p0)));
+        return Err(format!(
+            "the link's first two points coincide at {}: its frame has no direction",
+            point(p0)
+        ));
     }
     let e = d / n;
     Ok(p0 + e * u + perp(e) * v)
@@ -142,10 +174,25 @@ mod tests {
         let r = circle_circle(a, 0.5, o4, 0.5, Some(-1.0), ("A", "O4")).unwrap();
         assert!((l - V2::new(0.3, 0.4)).norm() < 1e-15 && (r - V2::new(0.3, -0.4)).norm() < 1e-15);
         let e = circle_circle(a, 0.5, o4, 0.5, None, ("A", "O4")).unwrap_err();
-        assert!(e.contains("(0.3, 0.4) (left) and (0.3, -0.4) (right)") && e.contains("add `left` or `right`"), "{e}");
+        assert!(
+            e.contains("(0.3, 0.4) (left) and (0.3, -0.4) (right)")
+                && e.contains("add `left` or `right`"),
+            "{e}"
+        );
         // Touching circles need no word.
-        assert!((circle_circle(a, 0.3, o4, 0.3, None, ("A", "O4")).unwrap() - V2::new(0.3, 0.0)).norm() < 1e-12);
-        let e = circle_circle(V2::new(0.0, 0.0), 0.6, V2::new(1.52, 0.0), 0.8, Some(1.0), ("A", "O4")).unwrap_err();
+        assert!(
+            (circle_circle(a, 0.3, o4, 0.3, None, ("A", "O4")).unwrap() - V2::new(0.3, 0.0)).norm()
+                < 1e-12
+        );
+        let e = circle_circle(
+            V2::new(0.0, 0.0),
+            0.6,
+            V2::new(1.52, 0.0),
+            0.8,
+            Some(1.0),
+            ("A", "O4"),
+        )
+        .unwrap_err();
         assert_eq!(e, "the circles do not meet: |A O4| = 1.52 m > 0.6 m + 0.8 m (too far apart for these lengths)");
         let e = circle_circle(a, 0.1, o4, 0.8, Some(1.0), ("A", "O4")).unwrap_err();
         assert!(e.contains("0.6 m < |0.1 m − 0.8 m|"), "{e}");
@@ -159,7 +206,10 @@ mod tests {
         let b = circle_line(a, 0.5, V2::zeros(), 0.0, Some(-1.0), "A").unwrap();
         assert!((f - V2::new(0.6, 0.0)).norm() < 1e-15 && (b - V2::new(0.0, 0.0)).norm() < 1e-15);
         let e = circle_line(a, 0.3, V2::zeros(), 0.0, Some(1.0), "A").unwrap_err();
-        assert!(e.contains("radius 0.3 m") && e.contains("the line is 0.4 m from A"), "{e}");
+        assert!(
+            e.contains("radius 0.3 m") && e.contains("the line is 0.4 m from A"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -6,7 +6,8 @@ use crate::construction::{self, Branch, CIRCLE_CIRCLE_WORDS, CIRCLE_LINE_WORDS};
 use crate::expr::{Constants, Quantity};
 use crate::link_state::V2;
 use crate::model::{
-    Description, InputDecl, JointDecl, JointKind, LinkDecl, LoadDecl, LoadDeclKind, Measure, Name, Num, Pair, PointRef,
+    Description, InputDecl, JointDecl, JointKind, LinkDecl, LoadDecl, LoadDeclKind, Measure, Name,
+    Num, Pair, PointRef,
 };
 use crate::units::Dim;
 use proc_macro2::Span;
@@ -27,13 +28,19 @@ fn name(id: &Ident) -> syn::Result<Name<Span>> {
             format!("`{text}` is a raw identifier, which the DSL does not take as a name: rename it (e.g. `{bare}_`)"),
         ));
     }
-    Ok(Name { text, span: id.span() })
+    Ok(Name {
+        text,
+        span: id.span(),
+    })
 }
 
 fn keyword(input: ParseStream, kw: &str) -> syn::Result<Ident> {
     let id: Ident = input.call(syn::ext::IdentExt::parse_any)?;
     if id != kw {
-        return Err(syn::Error::new(id.span(), format!("expected `{kw}`, found `{id}`")));
+        return Err(syn::Error::new(
+            id.span(),
+            format!("expected `{kw}`, found `{id}`"),
+        ));
     }
     Ok(id)
 }
@@ -67,7 +74,10 @@ impl Scope {
     /// An expression where a quantity of dimension `dim` goes.
     fn scalar(&self, input: ParseStream, dim: Dim, what: &str) -> syn::Result<Num<Span>> {
         let q = self.consts.expr(input)?;
-        Ok(Num { value: q.expect(dim, what)?, span: q.span })
+        Ok(Num {
+            value: q.expect(dim, what)?,
+            span: q.span,
+        })
     }
 
     /// `(x, y)`, each an expression of dimension `dim`.
@@ -81,7 +91,10 @@ impl Scope {
         if !content.is_empty() {
             return Err(content.error("expected `(x, y)`: two numbers"));
         }
-        Ok(Pair { value: [x.value, y.value], span: paren.span.join() })
+        Ok(Pair {
+            value: [x.value, y.value],
+            span: paren.span.join(),
+        })
     }
 
     /// The position of a point defined earlier.
@@ -90,7 +103,11 @@ impl Scope {
         if let Some((_, p)) = self.points.iter().find(|(m, _)| *m == n) {
             return Ok(*p);
         }
-        let hint = if self.consts.get(&n).is_some() { format!("`{n}` is a constant, not a point") } else { format!("point `{n}` is not defined yet") };
+        let hint = if self.consts.get(&n).is_some() {
+            format!("`{n}` is a constant, not a point")
+        } else {
+            format!("point `{n}` is not defined yet")
+        };
         Err(syn::Error::new(
             id.span(),
             format!("{hint}: a point built from others may use the ground's points and those defined above it (points are read in order: `ground`, then each link)"),
@@ -102,7 +119,12 @@ impl Scope {
         if input.peek(Ident) && input.peek2(syn::token::Paren) {
             let id: Ident = input.parse()?;
             if id != "polar" {
-                return Err(syn::Error::new(id.span(), format!("expected a vector, `(dx, dy)` or `polar(length, angle)`, found `{id}(..)`")));
+                return Err(syn::Error::new(
+                    id.span(),
+                    format!(
+                        "expected a vector, `(dx, dy)` or `polar(length, angle)`, found `{id}(..)`"
+                    ),
+                ));
             }
             let content;
             parenthesized!(content in input);
@@ -139,7 +161,10 @@ impl Scope {
                 input.parse::<Token![-]>()?;
                 p -= self.vector(input)?.0;
             } else {
-                return Ok(Pair { value: [p.x, p.y], span });
+                return Ok(Pair {
+                    value: [p.x, p.y],
+                    span,
+                });
             }
         }
     }
@@ -147,7 +172,11 @@ impl Scope {
     /// The name a point argument is shown with in messages.
     fn label(input: ParseStream) -> String {
         if input.peek(Ident) && !input.peek2(syn::token::Paren) {
-            input.fork().parse::<Ident>().map(|i| i.to_string()).unwrap_or_default()
+            input
+                .fork()
+                .parse::<Ident>()
+                .map(|i| i.to_string())
+                .unwrap_or_default()
         } else {
             "the point".to_string()
         }
@@ -183,9 +212,15 @@ impl Scope {
         };
         let branch = Self::branch(&content, words)?;
         if !content.is_empty() {
-            return Err(content.error(format!("expected `)` after the branch word `{}` or `{}`", words.0, words.1)));
+            return Err(content.error(format!(
+                "expected `)` after the branch word `{}` or `{}`",
+                words.0, words.1
+            )));
         }
-        let (c, o) = (V2::new(c.value[0], c.value[1]), V2::new(other.value[0], other.value[1]));
+        let (c, o) = (
+            V2::new(c.value[0], c.value[1]),
+            V2::new(other.value[0], other.value[1]),
+        );
         let result = if kind == "circle_circle" {
             construction::circle_circle(c, r.value, o, x.value, branch, (&c_name, &other_name))
         } else {
@@ -207,7 +242,13 @@ impl Scope {
         match w.to_string() {
             s if s == words.0 => Ok(Some(1.0)),
             s if s == words.1 => Ok(Some(-1.0)),
-            s => Err(syn::Error::new(w.span(), format!("unknown branch word `{s}`: expected `{}` or `{}`", words.0, words.1))),
+            s => Err(syn::Error::new(
+                w.span(),
+                format!(
+                    "unknown branch word `{s}`: expected `{}` or `{}`",
+                    words.0, words.1
+                ),
+            )),
         }
     }
 
@@ -227,7 +268,10 @@ impl Scope {
             } else {
                 None
             };
-            out.push(PointRef { name: name(&id)?, at });
+            out.push(PointRef {
+                name: name(&id)?,
+                at,
+            });
             comma(input)?;
         }
         Ok(out)
@@ -246,15 +290,23 @@ impl Scope {
                 let u = self.scalar(&content, Dim::LENGTH, "a distance along the link")?;
                 let v = if id == "local" {
                     content.parse::<Token![,]>()?;
-                    self.scalar(&content, Dim::LENGTH, "a distance across the link")?.value
+                    self.scalar(&content, Dim::LENGTH, "a distance across the link")?
+                        .value
                 } else {
                     0.0
                 };
                 let _: Option<Token![,]> = content.parse()?;
                 if !content.is_empty() {
-                    return Err(content.error(format!("expected `)`: `{id}` takes {} number(s)", if id == "local" { 2 } else { 1 })));
+                    return Err(content.error(format!(
+                        "expected `)`: `{id}` takes {} number(s)",
+                        if id == "local" { 2 } else { 1 }
+                    )));
                 }
-                self.local_cgs.push(LocalCg { link, at: (u.value, v), span });
+                self.local_cgs.push(LocalCg {
+                    link,
+                    at: (u.value, v),
+                    span,
+                });
                 return Ok(None);
             }
         }
@@ -270,13 +322,28 @@ impl Scope {
                     return Err(syn::Error::new(c.span, format!("`along` and `local` place the cg on the line from the link's first to its second point, but link `{}` has {} point(s)", l.name.text, l.points.len())));
                 };
                 let n = &p.name.text;
-                self.points.iter().find(|(m, _)| m == n).map(|(_, v)| *v).ok_or_else(|| {
-                    syn::Error::new(c.span, format!("point `{n}` of link `{}` is never given coordinates", l.name.text))
-                })
+                self.points
+                    .iter()
+                    .find(|(m, _)| m == n)
+                    .map(|(_, v)| *v)
+                    .ok_or_else(|| {
+                        syn::Error::new(
+                            c.span,
+                            format!(
+                                "point `{n}` of link `{}` is never given coordinates",
+                                l.name.text
+                            ),
+                        )
+                    })
             };
             let (p0, p1) = (at(0)?, at(1)?);
-            let g = construction::local(p0, p1, c.at.0, c.at.1).map_err(|m| syn::Error::new(c.span, format!("the cg of link `{}`: {m}", l.name.text)))?;
-            l.cg = Some(Pair { value: [g.x, g.y], span: c.span });
+            let g = construction::local(p0, p1, c.at.0, c.at.1).map_err(|m| {
+                syn::Error::new(c.span, format!("the cg of link `{}`: {m}", l.name.text))
+            })?;
+            l.cg = Some(Pair {
+                value: [g.x, g.y],
+                span: c.span,
+            });
         }
         Ok(())
     }
@@ -288,18 +355,37 @@ impl Scope {
         let from = if input.peek(Ident) {
             keyword(input, "from")?;
             let q: Quantity = self.consts.expr(input)?;
-            Some(Measure { value: q.value, dim: q.dim, span: q.span })
+            Some(Measure {
+                value: q.value,
+                dim: q.dim,
+                span: q.span,
+            })
         } else {
             None
         };
-        Ok(InputDecl { name: name(&id)?, from })
+        Ok(InputDecl {
+            name: name(&id)?,
+            from,
+        })
     }
 }
 
-fn link_body(input: ParseStream, scope: &mut Scope, link_name: Name<Span>, ground: bool, index: usize) -> syn::Result<LinkDecl<Span>> {
+fn link_body(
+    input: ParseStream,
+    scope: &mut Scope,
+    link_name: Name<Span>,
+    ground: bool,
+    index: usize,
+) -> syn::Result<LinkDecl<Span>> {
     let content;
     braced!(content in input);
-    let mut decl = LinkDecl { name: link_name, points: Vec::new(), mass: None, inertia: None, cg: None };
+    let mut decl = LinkDecl {
+        name: link_name,
+        points: Vec::new(),
+        mass: None,
+        inertia: None,
+        cg: None,
+    };
     // `ground { O2: (0, 0), O4: (..) }` lists points directly.
     if ground && !content.peek2(syn::token::Brace) {
         decl.points = scope.point_list(&content)?;
@@ -326,8 +412,15 @@ fn link_body(input: ParseStream, scope: &mut Scope, link_name: Name<Span>, groun
                 decl.cg = scope.cg(&content, index)?;
             }
             other => {
-                let expected = if ground { "`points`" } else { "`points`, `mass`, `inertia` or `cg`" };
-                return Err(syn::Error::new(key.span(), format!("unknown link property `{other}`: expected {expected}")));
+                let expected = if ground {
+                    "`points`"
+                } else {
+                    "`points`, `mass`, `inertia` or `cg`"
+                };
+                return Err(syn::Error::new(
+                    key.span(),
+                    format!("unknown link property `{other}`: expected {expected}"),
+                ));
             }
         }
         comma(&content)?;
@@ -368,14 +461,28 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                 "at" => at = Some(name(&content.parse::<Ident>()?)?),
                 "along" => {
                     let (u, span) = scope.vector(&content)?;
-                    along = Some(Pair { value: [u.x, u.y], span });
+                    along = Some(Pair {
+                        value: [u.x, u.y],
+                        span,
+                    });
                 }
                 other => {
-                    return Err(syn::Error::new(k.span(), format!("unexpected `{other}`: expected `at POINT` or `along (ux, uy)`")))
+                    return Err(syn::Error::new(
+                        k.span(),
+                        format!("unexpected `{other}`: expected `at POINT` or `along (ux, uy)`"),
+                    ))
                 }
             }
         }
-        out.push(JointDecl { name: name(&id)?, kind, kind_span: kw.span(), a: name(&a)?, b: name(&b)?, at, along });
+        out.push(JointDecl {
+            name: name(&id)?,
+            kind,
+            kind_span: kw.span(),
+            a: name(&a)?,
+            b: name(&b)?,
+            at,
+            along,
+        });
         comma(&content)?;
     }
     Ok(out)
@@ -395,21 +502,27 @@ fn loads(input: ParseStream) -> syn::Result<Vec<LoadDecl<Span>>> {
                 let link: Ident = content.parse()?;
                 keyword(&content, "at")?;
                 let point: Ident = content.parse()?;
-                LoadDeclKind::Force { link: name(&link)?, point: name(&point)? }
+                LoadDeclKind::Force {
+                    link: name(&link)?,
+                    point: name(&point)?,
+                }
             }
             "torque" => {
                 keyword(&content, "on")?;
                 let link: Ident = content.parse()?;
                 LoadDeclKind::Torque { link: name(&link)? }
             }
-            other => {
-                return Err(syn::Error::new(
-                    kw.span(),
-                    format!("unknown load `{other}`: expected `force on LINK at POINT` or `torque on LINK`"),
-                ))
-            }
+            other => return Err(syn::Error::new(
+                kw.span(),
+                format!(
+                    "unknown load `{other}`: expected `force on LINK at POINT` or `torque on LINK`"
+                ),
+            )),
         };
-        out.push(LoadDecl { name: name(&id)?, kind });
+        out.push(LoadDecl {
+            name: name(&id)?,
+            kind,
+        });
         comma(&content)?;
     }
     Ok(out)
@@ -422,18 +535,28 @@ impl Parse for Parsed {
         for attr in input.call(syn::Attribute::parse_outer)? {
             if attr.path().is_ident("doc") {
                 if let syn::Meta::NameValue(nv) = &attr.meta {
-                    if let syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(s), .. }) = &nv.value {
+                    if let syn::Expr::Lit(syn::ExprLit {
+                        lit: syn::Lit::Str(s),
+                        ..
+                    }) = &nv.value
+                    {
                         docs.push(s.value());
                     }
                 }
             } else if attr.path().is_ident("allow") {
                 let arg: Ident = attr.parse_args()?;
                 if arg != "redundant" {
-                    return Err(syn::Error::new(arg.span(), "only `#[allow(redundant)]` is understood here"));
+                    return Err(syn::Error::new(
+                        arg.span(),
+                        "only `#[allow(redundant)]` is understood here",
+                    ));
                 }
                 allow_redundant = true;
             } else {
-                return Err(syn::Error::new_spanned(attr, "unsupported attribute: use doc comments or `#[allow(redundant)]`"));
+                return Err(syn::Error::new_spanned(
+                    attr,
+                    "unsupported attribute: use doc comments or `#[allow(redundant)]`",
+                ));
             }
         }
         input.parse::<Token![pub]>()?;

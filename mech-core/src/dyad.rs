@@ -174,7 +174,9 @@ pub fn circle_line(c: V2, rsq: f64, p: V2, u: V2, sign: f64) -> Result<V2, MechE
 pub fn line_line(p1: V2, u1: V2, p2: V2, u2: V2) -> Result<V2, MechError> {
     let den = cross(u1, u2);
     if den.abs() < 1e-12 {
-        return Err(MechError::Singular { condition: 1.0 / den.abs().max(f64::MIN_POSITIVE) });
+        return Err(MechError::Singular {
+            condition: 1.0 / den.abs().max(f64::MIN_POSITIVE),
+        });
     }
     Ok(p1 + u1 * (cross(p2 - p1, u2) / den))
 }
@@ -186,12 +188,15 @@ pub fn place_by_point(s: &mut LinkState, rot: V2, d: V2, p: V2) {
     s.pos = p - rotate(rot, d);
 }
 
-/// Place a link from two of its points (local vectors d1, d2) at global positions p1, p2.
+/// Place a link from two of its points (local vectors d1, d2) at global positions p1, p2
+/// the same distance apart (|p2 − p1| = |d2 − d1|, as a closed form places them): the
+/// rotation from a = d2 − d1 to b = p2 − p1 is (a·b, a × b)/(|a| |b|) = (a·b, a × b)/|a|²,
+/// unit to roundoff, with no square root.
 #[inline]
 pub fn place_by_two_points(s: &mut LinkState, d1: V2, d2: V2, p1: V2, p2: V2) {
     let a = d2 - d1;
     let b = p2 - p1;
-    let rot = V2::new(a.dot(&b), cross(a, b)).normalize();
+    let rot = V2::new(a.dot(&b), cross(a, b)) * (1.0 / a.norm_squared());
     place_by_point(s, rot, d1, p1);
 }
 
@@ -269,7 +274,11 @@ fn rpr_data(gp: &JointGeom, pin_a: (V2, V2), pin_b: (V2, V2), b_moves: bool) -> 
     // slider rotates with the guide, or P_b = pin_b (a solved link's pin).
     let n0 = perp(gp.axis);
     let dvec = pin_b.0 - pin_a.0;
-    let wb = if b_moves { gp.db - pin_b.1 } else { V2::zeros() };
+    let wb = if b_moves {
+        gp.db - pin_b.1
+    } else {
+        V2::zeros()
+    };
     let w = -(wb - (gp.da - pin_a.1));
     (n0, dvec, w)
 }
@@ -278,11 +287,24 @@ fn rpr_data(gp: &JointGeom, pin_a: (V2, V2), pin_b: (V2, V2), b_moves: bool) -> 
 /// slider to solved links (current position, local vector).
 #[inline(always)]
 #[allow(clippy::type_complexity)]
-fn rpr_pins<'a>(joints: &'a [JointGeom], s: &[LinkState], b1: usize, ja: usize, jp: usize, jb: usize) -> (&'a JointGeom, usize, usize, (V2, V2), (V2, V2)) {
+fn rpr_pins<'a>(
+    joints: &'a [JointGeom],
+    s: &[LinkState],
+    b1: usize,
+    ja: usize,
+    jp: usize,
+    jb: usize,
+) -> (&'a JointGeom, usize, usize, (V2, V2), (V2, V2)) {
     let gp = &joints[jp];
     let (ga, gb) = if gp.a == b1 { (ja, jb) } else { (jb, ja) };
     let (guide, slider) = (gp.a, gp.b);
-    (gp, guide, slider, pin(&joints[ga], s, guide), pin(&joints[gb], s, slider))
+    (
+        gp,
+        guide,
+        slider,
+        pin(&joints[ga], s, guide),
+        pin(&joints[gb], s, slider),
+    )
 }
 
 /// The signed quantity whose sign is the group's assembly branch, at the current states.
@@ -328,15 +350,34 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
 /// Place the links of a closed-form group. `sign` is the branch of the drawing (from
 /// [`branch_quantity`]); `s` holds the solved links' states. [`Solver::Newton`] has no
 /// closed form (it is solved by [`crate::group::group_solve`]) and gives `NoAssembly` here.
+///
+/// Returns the group's joint points found on the way, for the rates that follow
+/// ([`crate::natural`]): an RRR dyad's [A, B, C] (b₁'s pin, the middle pin, b₂'s pin),
+/// an RRP dyad's [A, C, 0] (b₁'s pin, the slider's pin); zeros for the other kinds.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
-pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive: Drive, sign: f64) -> Result<(), MechError> {
+pub fn position(
+    solver: Solver,
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    drive: Drive,
+    sign: f64,
+) -> Result<[V2; 3], MechError> {
+    let mut points = [V2::zeros(); 3];
     match solver {
         Solver::DrivenRevolute { body, joint, input } => {
             let g = &joints[joint];
             let (sn, cs) = (drive.0[input] - g.q_ref).sin_cos();
-            let (other, rel) = if g.b == body { (g.a, V2::new(cs, sn)) } else { (g.b, V2::new(cs, -sn)) };
-            let rot = if other == 0 { rel } else { rotate(s[other].rot, rel) };
+            let (other, rel) = if g.b == body {
+                (g.a, V2::new(cs, sn))
+            } else {
+                (g.b, V2::new(cs, -sn))
+            };
+            let rot = if other == 0 {
+                rel
+            } else {
+                rotate(s[other].rot, rel)
+            };
             let (p, d) = pin(g, s, body);
             place_by_point(&mut s[body], rot, d, p);
         }
@@ -357,21 +398,50 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
             let (a, da) = pin(&joints[ja], s, b1);
             let (b, db) = pin(&joints[jb], s, b2);
             let gc = &joints[jc];
-            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
-            let c = circle_circle(a, (dc1 - da).norm_squared(), b, (dc2 - db).norm_squared(), sign)?;
+            let (dc1, dc2) = if gc.a == b1 {
+                (gc.da, gc.db)
+            } else {
+                (gc.db, gc.da)
+            };
+            let c = circle_circle(
+                a,
+                (dc1 - da).norm_squared(),
+                b,
+                (dc2 - db).norm_squared(),
+                sign,
+            )?;
             place_by_two_points(&mut s[b1], da, dc1, a, c);
             place_by_two_points(&mut s[b2], db, dc2, b, c);
+            points = [a, c, b];
         }
         Solver::Rrp { b1, b2, ja, jc, jp } => {
             let (a, da) = pin(&joints[ja], s, b1);
             let gp = &joints[jp];
-            let rot2 = if gp.b == b2 { s[gp.a].rot } else { s[gp.b].rot };
+            // The slider turns with the guide: its vectors are the guide's rotation of its
+            // local ones (none on the ground).
+            let guide = if gp.b == b2 { gp.a } else { gp.b };
             let gc = &joints[jc];
-            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
-            let (p, u) = slide_line(gp, s, b2, rot2, dc2);
+            let (dc1, dc2) = if gc.a == b1 {
+                (gc.da, gc.db)
+            } else {
+                (gc.db, gc.da)
+            };
+            let (q, dq) = if gp.b == b2 {
+                (point_of(s, gp.a, gp.da), gp.db)
+            } else {
+                (point_of(s, gp.b, gp.db), gp.da)
+            };
+            let p = q + dir_of(s, guide, dc2 - dq);
+            let u = dir_of(s, guide, gp.axis);
             let c = circle_line(a, (dc1 - da).norm_squared(), p, u, sign)?;
             place_by_two_points(&mut s[b1], da, dc1, a, c);
-            place_by_point(&mut s[b2], rot2, dc2, c);
+            s[b2].rot = if guide == 0 {
+                V2::new(1.0, 0.0)
+            } else {
+                s[guide].rot
+            };
+            s[b2].pos = c - dir_of(s, guide, dc2);
+            points = [a, c, V2::zeros()];
         }
         Solver::Rpr { b1, ja, jp, jb, .. } => {
             let (gp, guide, slider, pa, pb) = rpr_pins(joints, s, b1, ja, jp, jb);
@@ -380,12 +450,22 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
             place_by_point(&mut s[guide], rot, pa.1, pa.0);
             place_by_point(&mut s[slider], rot, pb.1, pb.0);
         }
-        Solver::Prp { b1, b2, jp1, jc, jp2 } => {
+        Solver::Prp {
+            b1,
+            b2,
+            jp1,
+            jc,
+            jp2,
+        } => {
             let (g1, g2) = (&joints[jp1], &joints[jp2]);
             let rot1 = if g1.b == b1 { s[g1.a].rot } else { s[g1.b].rot };
             let rot2 = if g2.b == b2 { s[g2.a].rot } else { s[g2.b].rot };
             let gc = &joints[jc];
-            let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
+            let (dc1, dc2) = if gc.a == b1 {
+                (gc.da, gc.db)
+            } else {
+                (gc.db, gc.da)
+            };
             let (p1, u1) = slide_line(g1, s, b1, rot1, dc1);
             let (p2, u2) = slide_line(g2, s, b2, rot2, dc2);
             let c = line_line(p1, u1, p2, u2)?;
@@ -422,5 +502,5 @@ pub fn position(solver: Solver, joints: &[JointGeom], s: &mut [LinkState], drive
         }
         Solver::Newton => return Err(MechError::NoAssembly),
     }
-    Ok(())
+    Ok(points)
 }

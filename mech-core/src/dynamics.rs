@@ -56,7 +56,10 @@ pub fn kinetic_energy<M: Machine>(machine: &M, motion: &M::Motion) -> f64 {
 /// loads have no potential). `q`, `qd` have length G.
 pub fn total_energy<M: Machine>(machine: &M, q: &[f64], qd: &[f64]) -> Result<f64, MechError> {
     if q.len() != machine.dof() || qd.len() != machine.dof() {
-        return Err(MechError::InvalidInput(format!("expected {} input values", machine.dof())));
+        return Err(MechError::InvalidInput(format!(
+            "expected {} input values",
+            machine.dof()
+        )));
     }
     // The accelerations do not enter T or V: q̇ serves as any finite q̈ of the right length.
     let motion = machine.motion(q, qd, qd)?;
@@ -68,9 +71,17 @@ pub fn total_energy<M: Machine>(machine: &M, q: &[f64], qd: &[f64]) -> Result<f6
 /// `out` (length N = `machine.links()`, the ground's entry 0). They sum to 1.
 /// Errors: `out` of the wrong length, a configuration error, and
 /// [`MechError::NonPositiveInertia`] when T = 0 (a massless chain).
-pub fn quinn_coefficients<M: OneDof>(machine: &M, q: f64, out: &mut [f64]) -> Result<(), MechError> {
+pub fn quinn_coefficients<M: OneDof>(
+    machine: &M,
+    q: f64,
+    out: &mut [f64],
+) -> Result<(), MechError> {
     if out.len() != machine.links() {
-        return Err(MechError::InvalidInput(format!("Quinn coefficients need a slice of {} links, got {}", machine.links(), out.len())));
+        return Err(MechError::InvalidInput(format!(
+            "Quinn coefficients need a slice of {} links, got {}",
+            machine.links(),
+            out.len()
+        )));
     }
     crate::error::check_finite("q", &[q])?;
     let motion = machine.motion(&[q], &[1.0], &[0.0])?;
@@ -158,19 +169,30 @@ where
 {
     crate::error::check_finite("integration limits", &[a, b])?;
     if !(rtol >= 0.0 && atol >= 0.0) || (rtol == 0.0 && atol == 0.0) {
-        return Err(MechError::InvalidInput(format!("quadrature tolerances rtol = {rtol}, atol = {atol}")));
+        return Err(MechError::InvalidInput(format!(
+            "quadrature tolerances rtol = {rtol}, atol = {atol}"
+        )));
     }
     if a == b {
         return Ok(0.0);
     }
     let span = (b - a).abs();
-    fn rec<F: FnMut(f64) -> Result<f64, MechError>>(f: &mut F, a: f64, b: f64, rtol: f64, atol_per: f64, depth: u32) -> Result<f64, MechError> {
+    fn rec<F: FnMut(f64) -> Result<f64, MechError>>(
+        f: &mut F,
+        a: f64,
+        b: f64,
+        rtol: f64,
+        atol_per: f64,
+        depth: u32,
+    ) -> Result<f64, MechError> {
         let x = gk15_nodes(a, b);
         let mut fx = [0.0; 15];
         for (v, xi) in fx.iter_mut().zip(x) {
             *v = f(xi)?;
             if !v.is_finite() {
-                return Err(MechError::InvalidInput(format!("integrand non-finite at {xi}")));
+                return Err(MechError::InvalidInput(format!(
+                    "integrand non-finite at {xi}"
+                )));
             }
         }
         let (k, g) = gk15_sums(a, b, &fx);
@@ -272,10 +294,19 @@ where
     /// driver action (N·m or N) and the loads at q. `rtol` (> 0) is the relative tolerance
     /// of both quadratures. Errors: non-finite input, `rtol` ≤ 0, I*(q0) ≤ 0, and a start
     /// from rest where the moment is zero (the machine stays: [`MechError::Stall`]).
-    pub fn new(machine: &'a M, t0: f64, q0: f64, omega0: f64, actions: A, rtol: f64) -> Result<Self, MechError> {
+    pub fn new(
+        machine: &'a M,
+        t0: f64,
+        q0: f64,
+        omega0: f64,
+        actions: A,
+        rtol: f64,
+    ) -> Result<Self, MechError> {
         crate::error::check_finite("t0, q0, omega0, rtol", &[t0, q0, omega0, rtol])?;
         if !(rtol > 0.0) {
-            return Err(MechError::InvalidInput(format!("rtol must be positive, got {rtol}")));
+            return Err(MechError::InvalidInput(format!(
+                "rtol must be positive, got {rtol}"
+            )));
         }
         let inertia = machine.reduced(q0)?.inertia;
         if !(inertia > 0.0) {
@@ -287,7 +318,12 @@ where
             rtol,
             kinetic0: 0.5 * inertia * omega0 * omega0,
             sign: omega0.signum(),
-            here: EnergyPoint { q: q0, omega: omega0, t: t0, work: 0.0 },
+            here: EnergyPoint {
+                q: q0,
+                omega: omega0,
+                t: t0,
+                work: 0.0,
+            },
             leg: 0.25,
         };
         if omega0 == 0.0 {
@@ -316,7 +352,13 @@ where
     /// scale `scale` (J).
     fn work(&mut self, a: f64, b: f64, scale: f64) -> Result<f64, MechError> {
         let rtol = self.rtol;
-        gauss_kronrod(|q| self.moment(q), a, b, rtol, rtol * scale.max(f64::MIN_POSITIVE))
+        gauss_kronrod(
+            |q| self.moment(q),
+            a,
+            b,
+            rtol,
+            rtol * scale.max(f64::MIN_POSITIVE),
+        )
     }
 
     /// The kinetic-energy scale of the tolerance on the work: T0 + |W| at `w`.
@@ -329,7 +371,9 @@ where
     fn speed(&mut self, q: f64, w: f64, a: f64, w_a: f64) -> Result<f64, MechError> {
         let inertia = self.machine.reduced(q)?.inertia;
         match speed_from_energy(self.kinetic0, w, inertia, q) {
-            Err(MechError::Stall { .. }) => Err(MechError::Stall { q: self.stall_between(a, w_a, q)? }),
+            Err(MechError::Stall { .. }) => Err(MechError::Stall {
+                q: self.stall_between(a, w_a, q)?,
+            }),
             r => r.map(|s| self.sign * s),
         }
     }
@@ -354,7 +398,14 @@ where
 
     /// One interval [ua, ub] of the time integral in the variable u of `map`, whose start
     /// q(ua) has work `w_a`: returns (Δt, W at q(ub)).
-    fn time_leg(&mut self, map: Map, ua: f64, ub: f64, w_a: f64, depth: u32) -> Result<(f64, f64), MechError> {
+    fn time_leg(
+        &mut self,
+        map: Map,
+        ua: f64,
+        ub: f64,
+        w_a: f64,
+        depth: u32,
+    ) -> Result<(f64, f64), MechError> {
         let qa = map.q(ua);
         let scale = self.energy_scale(w_a);
         let us = gk15_nodes(ua, ub);
@@ -400,7 +451,14 @@ where
         let legs = (dq.abs() / self.leg).ceil().max(1.0) as usize;
         let mut here = self.here;
         for i in 0..legs {
-            let (a, b) = (here.q, if i + 1 == legs { q } else { self.here.q + dq * (i + 1) as f64 / legs as f64 });
+            let (a, b) = (
+                here.q,
+                if i + 1 == legs {
+                    q
+                } else {
+                    self.here.q + dq * (i + 1) as f64 / legs as f64
+                },
+            );
             let (dt, w_b) = if here.omega == 0.0 {
                 self.time_leg(Map::FromRest { a, len: b - a }, 0.0, 1.0, here.work, 0)?
             } else {
@@ -408,7 +466,12 @@ where
             };
             let inertia = self.machine.reduced(b)?.inertia;
             let omega = self.sign * speed_from_energy(self.kinetic0, w_b, inertia, b)?;
-            here = EnergyPoint { q: b, omega, t: here.t + dt, work: w_b };
+            here = EnergyPoint {
+                q: b,
+                omega,
+                t: here.t + dt,
+                work: w_b,
+            };
         }
         self.here = here;
         Ok(here)
@@ -422,7 +485,10 @@ where
 /// y' = (q̇, q̈), q̈ = (driver + M*(q) − ½ dI*/dq q̇²) / I*(q) ([`OneDof::acceleration`]).
 /// `actions(t, q, q̇)` returns the driver action (N·m or N) and the loads. The closure is
 /// the right-hand side for [`crate::ode::solve`]; it allocates nothing.
-pub fn equation_of_motion<'a, M, A>(machine: &'a M, mut actions: A) -> impl FnMut(f64, &[f64; 2]) -> Result<[f64; 2], MechError> + 'a
+pub fn equation_of_motion<'a, M, A>(
+    machine: &'a M,
+    mut actions: A,
+) -> impl FnMut(f64, &[f64; 2]) -> Result<[f64; 2], MechError> + 'a
 where
     M: OneDof,
     A: FnMut(f64, f64, f64) -> (f64, M::Loads) + 'a,
@@ -440,12 +506,21 @@ fn check_dof<M: Machine>(machine: &M, g: usize) -> Result<(), MechError> {
     if g == machine.dof() {
         Ok(())
     } else {
-        Err(MechError::InvalidInput(format!("the machine has {} inputs, {g} given", machine.dof())))
+        Err(MechError::InvalidInput(format!(
+            "the machine has {} inputs, {g} given",
+            machine.dof()
+        )))
     }
 }
 
 /// The motor actions D(q, q̇, q̈, loads) of virtual power (N·m or N per input), as an array.
-fn actions_at<M: Machine, const G: usize>(machine: &M, q: &[f64; G], qd: &[f64; G], qdd: &[f64; G], loads: &M::Loads) -> Result<[f64; G], MechError> {
+fn actions_at<M: Machine, const G: usize>(
+    machine: &M,
+    q: &[f64; G],
+    qd: &[f64; G],
+    qdd: &[f64; G],
+    loads: &M::Loads,
+) -> Result<[f64; G], MechError> {
     let motion = machine.motion(q, qd, qdd)?;
     let mut out = [0.0; G];
     machine.driver_actions(&motion, loads, &mut out)?;
@@ -455,7 +530,10 @@ fn actions_at<M: Machine, const G: usize>(machine: &M, q: &[f64; G], qd: &[f64; 
 /// The generalized mass matrix M(q) (kg·m², kg·m or kg by input type), column k:
 /// M e_k = D(q, 0, e_k, no loads) − D(q, 0, 0, no loads), D the motor actions of virtual
 /// power (the gravity terms cancel). For one DOF, M = (I*), the 1 × 1 matrix.
-pub fn mass_matrix<M: Machine, const G: usize>(machine: &M, q: &[f64; G]) -> Result<[[f64; G]; G], MechError> {
+pub fn mass_matrix<M: Machine, const G: usize>(
+    machine: &M,
+    q: &[f64; G],
+) -> Result<[[f64; G]; G], MechError> {
     check_dof(machine, G)?;
     let none = M::Loads::default();
     let zero = [0.0; G];
@@ -475,7 +553,12 @@ pub fn mass_matrix<M: Machine, const G: usize>(machine: &M, q: &[f64; G]) -> Res
 /// The velocity, gravity and load terms b(q, q̇) = D(q, q̇, 0, loads) of Lagrange's
 /// equations M q̈ + b = τ (N·m or N per input): Coriolis and centrifugal terms minus the
 /// generalized forces of gravity and the loads. For one DOF, b = ½ dI*/dq q̇² − M*.
-pub fn velocity_terms<M: Machine, const G: usize>(machine: &M, q: &[f64; G], qd: &[f64; G], loads: &M::Loads) -> Result<[f64; G], MechError> {
+pub fn velocity_terms<M: Machine, const G: usize>(
+    machine: &M,
+    q: &[f64; G],
+    qd: &[f64; G],
+    loads: &M::Loads,
+) -> Result<[f64; G], MechError> {
     check_dof(machine, G)?;
     actions_at(machine, q, qd, &[0.0; G], loads)
 }
@@ -483,7 +566,13 @@ pub fn velocity_terms<M: Machine, const G: usize>(machine: &M, q: &[f64; G], qd:
 /// q̈ = M(q)⁻¹ (τ − b(q, q̇)) (rad/s² or m/s² per input) for motor actions τ, by Cholesky.
 /// Errors: [`MechError::NonPositiveInertia`] (carrying the smallest diagonal entry of M)
 /// when M is not positive definite, and those of the kinematics.
-pub fn lagrange_acceleration<M: Machine, const G: usize>(machine: &M, q: &[f64; G], qd: &[f64; G], tau: &[f64; G], loads: &M::Loads) -> Result<[f64; G], MechError> {
+pub fn lagrange_acceleration<M: Machine, const G: usize>(
+    machine: &M,
+    q: &[f64; G],
+    qd: &[f64; G],
+    tau: &[f64; G],
+    loads: &M::Loads,
+) -> Result<[f64; G], MechError> {
     crate::error::check_finite("q", q)?;
     crate::error::check_finite("qd", qd)?;
     crate::error::check_finite("tau", tau)?;
@@ -496,7 +585,9 @@ pub fn lagrange_acceleration<M: Machine, const G: usize>(machine: &M, q: &[f64; 
             let x = c.solve(&rhs);
             Ok(core::array::from_fn(|i| x[i]))
         }
-        None => Err(MechError::NonPositiveInertia((0..G).map(|i| m[i][i]).fold(f64::INFINITY, f64::min))),
+        None => Err(MechError::NonPositiveInertia(
+            (0..G).map(|i| m[i][i]).fold(f64::INFINITY, f64::min),
+        )),
     }
 }
 
@@ -505,20 +596,28 @@ pub fn lagrange_acceleration<M: Machine, const G: usize>(machine: &M, q: &[f64; 
 /// loads. The closure is the right-hand side for [`crate::ode::solve`]; it allocates nothing.
 /// Errors (per call): N ≠ 2G or G ≠ the machine's DOF, and those of
 /// [`lagrange_acceleration`].
-pub fn lagrange_equations<'a, M, A, const G: usize, const N: usize>(machine: &'a M, mut actions: A) -> impl FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError> + 'a
+pub fn lagrange_equations<'a, M, A, const G: usize, const N: usize>(
+    machine: &'a M,
+    mut actions: A,
+) -> impl FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError> + 'a
 where
     M: Machine,
     A: FnMut(f64, &[f64; G], &[f64; G]) -> ([f64; G], M::Loads) + 'a,
 {
     move |t, y| {
         if N != 2 * G {
-            return Err(MechError::InvalidInput(format!("a state of {N} values for {G} inputs: need {}", 2 * G)));
+            return Err(MechError::InvalidInput(format!(
+                "a state of {N} values for {G} inputs: need {}",
+                2 * G
+            )));
         }
         let q: [f64; G] = core::array::from_fn(|i| y[i]);
         let qd: [f64; G] = core::array::from_fn(|i| y[G + i]);
         let (tau, loads) = actions(t, &q, &qd);
         let qdd = lagrange_acceleration(machine, &q, &qd, &tau, &loads)?;
-        Ok(core::array::from_fn(|i| if i < G { qd[i] } else { qdd[i - G] }))
+        Ok(core::array::from_fn(
+            |i| if i < G { qd[i] } else { qdd[i - G] },
+        ))
     }
 }
 
@@ -533,7 +632,11 @@ mod tests {
         for d in 0..=22u32 {
             let fx: [f64; 15] = core::array::from_fn(|i| x[i].powi(d as i32));
             let (k, g) = gk15_sums(-1.0, 1.0, &fx);
-            let exact = if d % 2 == 1 { 0.0 } else { 2.0 / (d as f64 + 1.0) };
+            let exact = if d % 2 == 1 {
+                0.0
+            } else {
+                2.0 / (d as f64 + 1.0)
+            };
             assert!((k - exact).abs() < 1e-15, "K15, degree {d}: {k} vs {exact}");
             if d <= 13 {
                 assert!((g - exact).abs() < 1e-15, "G7, degree {d}: {g} vs {exact}");
@@ -550,7 +653,10 @@ mod tests {
         assert!((v - 200.0 * 100f64.atan()).abs() < 1e-9, "{v}");
         let v = gauss_kronrod(|x| Ok(x.exp()), 2.0, 0.0, 1e-14, 0.0).unwrap();
         assert!((v - (1.0 - 2f64.exp())).abs() < 1e-13);
-        assert!(matches!(gauss_kronrod(Ok, 0.0, f64::NAN, 1e-9, 0.0), Err(MechError::InvalidInput(_))));
+        assert!(matches!(
+            gauss_kronrod(Ok, 0.0, f64::NAN, 1e-9, 0.0),
+            Err(MechError::InvalidInput(_))
+        ));
         assert!(gauss_kronrod(|x| Ok(1.0 / x), -1.0, 1.0, 1e-9, 0.0).is_err());
     }
 
@@ -558,7 +664,13 @@ mod tests {
     fn speed_from_energy_formula() {
         // T0 = 2 J, W = 6 J, I* = 4 kg·m²: ω = √(2·8/4) = 2.
         assert_eq!(speed_from_energy(2.0, 6.0, 4.0, 0.0).unwrap(), 2.0);
-        assert_eq!(speed_from_energy(2.0, -2.0, 4.0, 1.5), Err(MechError::Stall { q: 1.5 }));
-        assert_eq!(speed_from_energy(2.0, 1.0, 0.0, 1.5), Err(MechError::NonPositiveInertia(0.0)));
+        assert_eq!(
+            speed_from_energy(2.0, -2.0, 4.0, 1.5),
+            Err(MechError::Stall { q: 1.5 })
+        );
+        assert_eq!(
+            speed_from_energy(2.0, 1.0, 0.0, 1.5),
+            Err(MechError::NonPositiveInertia(0.0))
+        );
     }
 }

@@ -24,7 +24,9 @@ fn positive(what: &str, v: f64) -> Result<f64, MechError> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(MechError::InvalidInput(format!("{what} must be finite and > 0, got {v}")))
+        Err(MechError::InvalidInput(format!(
+            "{what} must be finite and > 0, got {v}"
+        )))
     }
 }
 
@@ -32,7 +34,9 @@ fn non_negative(what: &str, v: f64) -> Result<f64, MechError> {
     if v.is_finite() && v >= 0.0 {
         Ok(v)
     } else {
-        Err(MechError::InvalidInput(format!("{what} must be finite and ≥ 0, got {v}")))
+        Err(MechError::InvalidInput(format!(
+            "{what} must be finite and ≥ 0, got {v}"
+        )))
     }
 }
 
@@ -43,7 +47,11 @@ pub fn bar_three_masses(m: f64, i_g: f64, r_a: f64, r_b: f64) -> Result<BarMasse
     let (m, i_g) = (non_negative("mass", m)?, non_negative("inertia", i_g)?);
     let (r_a, r_b) = (positive("r_A", r_a)?, positive("r_B", r_b)?);
     let l = r_a + r_b;
-    Ok(BarMasses { at_a: i_g / (r_a * l), at_b: i_g / (r_b * l), at_g: m - i_g / (r_a * r_b) })
+    Ok(BarMasses {
+        at_a: i_g / (r_a * l),
+        at_b: i_g / (r_b * l),
+        at_g: m - i_g / (r_a * r_b),
+    })
 }
 
 /// Static equivalence of a bar by two masses at its ends: m_A = m r_B / l, m_B = m r_A / l.
@@ -58,7 +66,11 @@ pub fn bar_two_masses_static(m: f64, r_a: f64, r_b: f64) -> Result<(f64, f64), M
 /// on the far side at r_B = I_G/(m r_A) (the centre of percussion of A), so that m_G = 0:
 /// returns (m_A, m_B, r_B) with m_A = m r_B/(r_A + r_B), m_B = m r_A/(r_A + r_B).
 pub fn bar_two_masses_complete(m: f64, i_g: f64, r_a: f64) -> Result<(f64, f64, f64), MechError> {
-    let (m, i_g, r_a) = (positive("mass", m)?, positive("inertia", i_g)?, positive("r_A", r_a)?);
+    let (m, i_g, r_a) = (
+        positive("mass", m)?,
+        positive("inertia", i_g)?,
+        positive("r_A", r_a)?,
+    );
     let r_b = i_g / (m * r_a);
     Ok((m * r_b / (r_a + r_b), m * r_a / (r_a + r_b), r_b))
 }
@@ -103,14 +115,36 @@ pub struct SpatialInertia {
 /// G, m): the ten linear conditions of `docs/theory.md` §9.3 — Σ m_i = m,
 /// Σ m_i (x_i, y_i, z_i) = 0, the three moments and the three products of inertia.
 /// `Singular` when the points do not determine the masses.
-pub fn spatial_ten_masses(m: f64, inertia: SpatialInertia, points: [[f64; 3]; 10]) -> Result<[f64; 10], MechError> {
+pub fn spatial_ten_masses(
+    m: f64,
+    inertia: SpatialInertia,
+    points: [[f64; 3]; 10],
+) -> Result<[f64; 10], MechError> {
     let m = non_negative("mass", m)?;
-    let SpatialInertia { ix, iy, iz, cx, cy, cz } = inertia;
+    let SpatialInertia {
+        ix,
+        iy,
+        iz,
+        cx,
+        cy,
+        cz,
+    } = inertia;
     crate::error::check_finite("inertia", &[ix, iy, iz, cx, cy, cz])?;
     crate::error::check_finite("points", points.as_flattened())?;
     let a = SMatrix::<f64, 10, 10>::from_fn(|r, c| {
         let [x, y, z] = points[c];
-        [1.0, x, y, z, y * y + z * z, x * x + z * z, x * x + y * y, y * z, x * z, x * y][r]
+        [
+            1.0,
+            x,
+            y,
+            z,
+            y * y + z * z,
+            x * x + z * z,
+            x * x + y * y,
+            y * z,
+            x * z,
+            x * y,
+        ][r]
     });
     let b = SVector::<f64, 10>::from([m, 0.0, 0.0, 0.0, ix, iy, iz, cx, cy, cz]);
     let x = solve(a, b)?;
@@ -118,7 +152,10 @@ pub fn spatial_ten_masses(m: f64, inertia: SpatialInertia, points: [[f64; 3]; 10
 }
 
 /// Solve a small square system, `Singular` (with a condition estimate) when it is.
-fn solve<const N: usize>(a: SMatrix<f64, N, N>, b: SVector<f64, N>) -> Result<SVector<f64, N>, MechError> {
+fn solve<const N: usize>(
+    a: SMatrix<f64, N, N>,
+    b: SVector<f64, N>,
+) -> Result<SVector<f64, N>, MechError> {
     let lu = crate::linalg::Lu::new(a);
     let condition = lu.condition();
     if !(condition < 1e12) {
@@ -163,10 +200,15 @@ mod tests {
         assert!((w.iter().sum::<f64>() - m).abs() < 1e-14);
         let sx: f64 = (0..3).map(|k| w[k] * pts[k][0]).sum();
         let sy: f64 = (0..3).map(|k| w[k] * pts[k][1]).sum();
-        let si: f64 = (0..3).map(|k| w[k] * (pts[k][0].powi(2) + pts[k][1].powi(2))).sum();
+        let si: f64 = (0..3)
+            .map(|k| w[k] * (pts[k][0].powi(2) + pts[k][1].powi(2)))
+            .sum();
         assert!(sx.abs() < 1e-16 && sy.abs() < 1e-16 && (si - i_g).abs() < 1e-17);
         // Three points on one line through G cannot hold both cg conditions and the inertia.
-        assert!(matches!(planar_four_masses(m, i_g, [[0.1, 0.0], [0.2, 0.0], [-0.1, 0.0]]), Err(MechError::Singular { .. })));
+        assert!(matches!(
+            planar_four_masses(m, i_g, [[0.1, 0.0], [0.2, 0.0], [-0.1, 0.0]]),
+            Err(MechError::Singular { .. })
+        ));
     }
 
     #[test]
@@ -202,6 +244,10 @@ mod tests {
         assert!((sum(&|p| p[1] * p[1] + p[2] * p[2]) - inertia.ix).abs() < 1e-12);
         assert!((sum(&|p| p[0] * p[0] + p[2] * p[2]) - inertia.iy).abs() < 1e-12);
         assert!((sum(&|p| p[0] * p[0] + p[1] * p[1]) - inertia.iz).abs() < 1e-12);
-        assert!(sum(&|p| p[1] * p[2]).abs() < 1e-12 && sum(&|p| p[0] * p[2]).abs() < 1e-12 && sum(&|p| p[0] * p[1]).abs() < 1e-12);
+        assert!(
+            sum(&|p| p[1] * p[2]).abs() < 1e-12
+                && sum(&|p| p[0] * p[2]).abs() < 1e-12
+                && sum(&|p| p[0] * p[1]).abs() < 1e-12
+        );
     }
 }

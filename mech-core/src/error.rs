@@ -53,6 +53,13 @@ pub fn check_finite(what: &str, values: &[f64]) -> Result<(), MechError> {
     if values.iter().all(|v| v.is_finite()) {
         Ok(())
     } else {
-        Err(MechError::InvalidInput(format!("{what} must be finite, got {values:?}")))
+        Err(not_finite(what, values))
     }
+}
+
+/// The error of [`check_finite`], out of line (the success path builds no message).
+#[cold]
+#[inline(never)]
+fn not_finite(what: &str, values: &[f64]) -> MechError {
+    MechError::InvalidInput(format!("{what} must be finite, got {values:?}"))
 }

@@ -33,7 +33,11 @@ pub struct Quantity {
 
 impl Quantity {
     fn plain(value: f64, span: Span) -> Self {
-        Quantity { value, dim: None, span }
+        Quantity {
+            value,
+            dim: None,
+            span,
+        }
     }
 
     /// The dimension, a plain number and a dimensionless ratio alike giving `None`.
@@ -62,7 +66,10 @@ impl Quantity {
 }
 
 fn si_unit(d: Dim) -> String {
-    d.describe().rsplit_once('(').map(|(_, u)| u.trim_end_matches(')').to_string()).unwrap_or_else(|| d.to_string())
+    d.describe()
+        .rsplit_once('(')
+        .map(|(_, u)| u.trim_end_matches(')').to_string())
+        .unwrap_or_else(|| d.to_string())
 }
 
 /// The named constants declared so far (`consts { r: 200 mm, l: 4.5 * r }`).
@@ -72,11 +79,25 @@ pub struct Constants {
 }
 
 /// The functions of the DSL and their number of arguments.
-const FUNCTIONS: [(&str, usize); 7] =
-    [("sqrt", 1), ("sin", 1), ("cos", 1), ("tan", 1), ("atan2", 2), ("hypot", 2), ("to_radians", 1)];
+const FUNCTIONS: [(&str, usize); 7] = [
+    ("sqrt", 1),
+    ("sin", 1),
+    ("cos", 1),
+    ("tan", 1),
+    ("atan2", 2),
+    ("hypot", 2),
+    ("to_radians", 1),
+];
 
 /// Names that cannot be constants.
-const RESERVED: [&str; 6] = ["PI", "polar", "circle_circle", "circle_line", "along", "local"];
+const RESERVED: [&str; 6] = [
+    "PI",
+    "polar",
+    "circle_circle",
+    "circle_line",
+    "along",
+    "local",
+];
 
 impl Constants {
     /// The constant `name`, if declared.
@@ -91,9 +112,15 @@ impl Constants {
             return Err(syn::Error::new(id.span(), format!("`{name}` is a raw identifier, which the DSL does not take as a name: rename it")));
         }
         if self.get(&name).is_some() {
-            return Err(syn::Error::new(id.span(), format!("constant `{name}` is declared twice: give the second another name")));
+            return Err(syn::Error::new(
+                id.span(),
+                format!("constant `{name}` is declared twice: give the second another name"),
+            ));
         }
-        if RESERVED.contains(&name.as_str()) || FUNCTIONS.iter().any(|(f, _)| *f == name) || units::lookup(&name).is_some() {
+        if RESERVED.contains(&name.as_str())
+            || FUNCTIONS.iter().any(|(f, _)| *f == name)
+            || units::lookup(&name).is_some()
+        {
             return Err(syn::Error::new(id.span(), format!("`{name}` is a reserved word of the DSL (a function, a unit or `PI`): name the constant otherwise")));
         }
         self.items.push((name, q));
@@ -131,8 +158,16 @@ impl Constants {
             };
             let rhs = self.term(input)?;
             let dim = same_dim(acc, rhs, if minus { "subtract" } else { "add" })?;
-            let value = if minus { acc.value - rhs.value } else { acc.value + rhs.value };
-            acc = finite(Quantity { value, dim, span: acc.span })?;
+            let value = if minus {
+                acc.value - rhs.value
+            } else {
+                acc.value + rhs.value
+            };
+            acc = finite(Quantity {
+                value,
+                dim,
+                span: acc.span,
+            })?;
         }
     }
 
@@ -155,10 +190,21 @@ impl Constants {
                 }
             };
             if div && rhs.value == 0.0 {
-                return Err(syn::Error::new(op_span, format!("division by zero: the divisor evaluates to {}", rhs.value)));
+                return Err(syn::Error::new(
+                    op_span,
+                    format!("division by zero: the divisor evaluates to {}", rhs.value),
+                ));
             }
-            let value = if div { acc.value / rhs.value } else { acc.value * rhs.value };
-            acc = finite(Quantity { value, dim, span: acc.span })?;
+            let value = if div {
+                acc.value / rhs.value
+            } else {
+                acc.value * rhs.value
+            };
+            acc = finite(Quantity {
+                value,
+                dim,
+                span: acc.span,
+            })?;
         }
     }
 
@@ -166,7 +212,10 @@ impl Constants {
         if input.peek(Token![-]) {
             input.parse::<Token![-]>()?;
             let q = self.unary(input)?;
-            return Ok(Quantity { value: -q.value, ..q });
+            return Ok(Quantity {
+                value: -q.value,
+                ..q
+            });
         }
         self.atom(input)
     }
@@ -182,7 +231,11 @@ impl Constants {
                 (l.base10_parse::<f64>()?, l.suffix().to_string())
             };
             let q = Quantity::plain(value, span);
-            let q = if suffix.is_empty() { q } else { with_unit(q, &suffix, span)? };
+            let q = if suffix.is_empty() {
+                q
+            } else {
+                with_unit(q, &suffix, span)?
+            };
             return self.unit(input, q);
         }
         if input.peek(syn::token::Paren) {
@@ -213,7 +266,11 @@ impl Constants {
 
     fn unknown(&self, name: &str) -> String {
         let known: Vec<&str> = self.items.iter().map(|(n, _)| n.as_str()).collect();
-        let listed = if known.is_empty() { "none is declared yet".to_string() } else { format!("declared so far: {}", known.join(", ")) };
+        let listed = if known.is_empty() {
+            "none is declared yet".to_string()
+        } else {
+            format!("declared so far: {}", known.join(", "))
+        };
         format!("unknown constant `{name}`: declare it in `consts {{ {name}: ... }}` before the section that uses it ({listed})")
     }
 
@@ -236,7 +293,13 @@ impl Constants {
         let span = id.span();
         let Some(&(_, arity)) = FUNCTIONS.iter().find(|(f, _)| *f == name) else {
             let list: Vec<&str> = FUNCTIONS.iter().map(|(f, _)| *f).collect();
-            return Err(syn::Error::new(span, format!("unknown function `{name}`: the functions are {}", list.join(", "))));
+            return Err(syn::Error::new(
+                span,
+                format!(
+                    "unknown function `{name}`: the functions are {}",
+                    list.join(", ")
+                ),
+            ));
         };
         let content;
         parenthesized!(content in input);
@@ -248,7 +311,10 @@ impl Constants {
             }
         }
         if args.len() != arity {
-            return Err(syn::Error::new(span, format!("`{name}` takes {arity} argument(s), got {}", args.len())));
+            return Err(syn::Error::new(
+                span,
+                format!("`{name}` takes {arity} argument(s), got {}", args.len()),
+            ));
         }
         let x = args[0];
         let angle_arg = |x: Quantity| -> syn::Result<f64> {
@@ -263,22 +329,45 @@ impl Constants {
         let q = match name.as_str() {
             "sqrt" => {
                 if x.value < 0.0 {
-                    return Err(syn::Error::new(x.span, format!("`sqrt` of a negative number: its argument evaluates to {}", x.value)));
+                    return Err(syn::Error::new(
+                        x.span,
+                        format!(
+                            "`sqrt` of a negative number: its argument evaluates to {}",
+                            x.value
+                        ),
+                    ));
                 }
                 let dim = match x.dim {
                     None => None,
-                    Some(d) => Some(d.sqrt().ok_or_else(|| syn::Error::new(x.span, format!("`sqrt` of {}: the result has no unit", d.describe())))?),
+                    Some(d) => Some(d.sqrt().ok_or_else(|| {
+                        syn::Error::new(
+                            x.span,
+                            format!("`sqrt` of {}: the result has no unit", d.describe()),
+                        )
+                    })?),
                 };
-                Quantity { value: x.value.sqrt(), dim, span }
+                Quantity {
+                    value: x.value.sqrt(),
+                    dim,
+                    span,
+                }
             }
             "sin" => Quantity::plain(angle_arg(x)?.sin(), span),
             "cos" => Quantity::plain(angle_arg(x)?.cos(), span),
             "tan" => Quantity::plain(angle_arg(x)?.tan(), span),
             "atan2" => {
                 same_dim(x, args[1], "compare")?;
-                Quantity { value: x.value.atan2(args[1].value), dim: Some(Dim::ANGLE), span }
+                Quantity {
+                    value: x.value.atan2(args[1].value),
+                    dim: Some(Dim::ANGLE),
+                    span,
+                }
             }
-            "hypot" => Quantity { value: x.value.hypot(args[1].value), dim: same_dim(x, args[1], "combine")?, span },
+            "hypot" => Quantity {
+                value: x.value.hypot(args[1].value),
+                dim: same_dim(x, args[1], "combine")?,
+                span,
+            },
             _ => {
                 if let Some(d) = x.physical() {
                     return Err(syn::Error::new(
@@ -286,7 +375,11 @@ impl Constants {
                         format!("`to_radians` takes a plain number of degrees, but its argument is {}: write `{} deg` or drop `to_radians`", d.describe(), x.value),
                     ));
                 }
-                Quantity { value: x.value.to_radians(), dim: Some(Dim::ANGLE), span }
+                Quantity {
+                    value: x.value.to_radians(),
+                    dim: Some(Dim::ANGLE),
+                    span,
+                }
             }
         };
         finite(q)
@@ -296,24 +389,45 @@ impl Constants {
 /// `q` with the unit `word` applied; an error when `word` is not a unit or `q` has one.
 fn with_unit(q: Quantity, word: &str, span: Span) -> syn::Result<Quantity> {
     let Some(u) = units::lookup(word) else {
-        return Err(syn::Error::new(span, format!("unknown unit `{word}`: the unit words are {}", units::all_words())));
+        return Err(syn::Error::new(
+            span,
+            format!(
+                "unknown unit `{word}`: the unit words are {}",
+                units::all_words()
+            ),
+        ));
     };
     if u.dim == Dim::NONE {
         return Ok(q);
     }
     if let Some(d) = q.physical() {
-        return Err(syn::Error::new(span, format!("`{word}` on a value that is already {}: a unit word applies to a plain number", d.describe())));
+        return Err(syn::Error::new(
+            span,
+            format!(
+                "`{word}` on a value that is already {}: a unit word applies to a plain number",
+                d.describe()
+            ),
+        ));
     }
-    finite(Quantity { value: q.value * u.factor, dim: Some(u.dim), span: q.span })
+    finite(Quantity {
+        value: q.value * u.factor,
+        dim: Some(u.dim),
+        span: q.span,
+    })
 }
 
 /// The dimension of a sum (or of the two arguments of atan2, hypot): both the same, a
 /// plain number taking the other's.
 fn same_dim(a: Quantity, b: Quantity, verb: &str) -> syn::Result<Option<Dim>> {
     match (a.physical(), b.physical()) {
-        (Some(x), Some(y)) if x != y => {
-            Err(syn::Error::new(b.span, format!("cannot {verb} {} and {}: give both the same kind of unit", x.describe(), y.describe())))
-        }
+        (Some(x), Some(y)) if x != y => Err(syn::Error::new(
+            b.span,
+            format!(
+                "cannot {verb} {} and {}: give both the same kind of unit",
+                x.describe(),
+                y.describe()
+            ),
+        )),
         (x, y) => Ok(x.or(y).or(a.dim).or(b.dim)),
     }
 }
@@ -322,7 +436,13 @@ fn finite(q: Quantity) -> syn::Result<Quantity> {
     if q.value.is_finite() {
         Ok(q)
     } else {
-        Err(syn::Error::new(q.span, format!("this expression evaluates to {}, not a finite number", q.value)))
+        Err(syn::Error::new(
+            q.span,
+            format!(
+                "this expression evaluates to {}, not a finite number",
+                q.value
+            ),
+        ))
     }
 }
 
@@ -334,7 +454,9 @@ mod tests {
     fn eval_with(consts: &str, text: &str) -> Result<Quantity, String> {
         let mut c = Constants::default();
         if !consts.is_empty() {
-            (|input: ParseStream| c.parse_block(input)).parse_str(&format!("{{ {consts} }}")).map_err(|e| e.to_string())?;
+            (|input: ParseStream| c.parse_block(input))
+                .parse_str(&format!("{{ {consts} }}"))
+                .map_err(|e| e.to_string())?;
         }
         (|input: ParseStream| {
             let q = c.expr(input)?;
@@ -361,7 +483,10 @@ mod tests {
         assert_eq!(eval("-(1 + 2) * 3 / 4").unwrap().value, -2.25);
         assert_eq!(eval("2 - 3 - 4").unwrap().value, -5.0);
         assert_eq!(eval("hypot(3 mm, 4 mm)").unwrap().value, 5e-3);
-        assert_eq!(eval("atan2(1, 1)").unwrap().value, std::f64::consts::FRAC_PI_4);
+        assert_eq!(
+            eval("atan2(1, 1)").unwrap().value,
+            std::f64::consts::FRAC_PI_4
+        );
         assert_eq!(eval("to_radians(180)").unwrap().value, std::f64::consts::PI);
         assert_eq!(eval("sin(PI / 2)").unwrap().value, 1.0);
         assert!((eval("cos(60 deg)").unwrap().value - 0.5).abs() < 1e-15);
@@ -374,9 +499,15 @@ mod tests {
     #[test]
     fn mistakes_are_explained() {
         let e = eval_with("r: 200 mm", "r + 10 deg").unwrap_err();
-        assert!(e.contains("cannot add a length (m) and an angle (rad)"), "{e}");
+        assert!(
+            e.contains("cannot add a length (m) and an angle (rad)"),
+            "{e}"
+        );
         let e = eval_with("r: 200 mm", "2 * s").unwrap_err();
-        assert!(e.contains("unknown constant `s`") && e.contains("declared so far: r"), "{e}");
+        assert!(
+            e.contains("unknown constant `s`") && e.contains("declared so far: r"),
+            "{e}"
+        );
         let e = eval("1 / (2 - 2)").unwrap_err();
         assert!(e.contains("division by zero"), "{e}");
         let e = eval("3 furlong").unwrap_err();
@@ -395,8 +526,16 @@ mod tests {
         assert!(e.contains("declared twice"), "{e}");
         let e = eval_with("mm: 1", "1").unwrap_err();
         assert!(e.contains("reserved"), "{e}");
-        let e = eval("45 mm").unwrap().expect(Dim::ANGLE, "a polar angle").unwrap_err().to_string();
-        assert!(e.contains("a polar angle is an angle (rad), but this value is a length (m)") && e.contains("`deg` or `rad`"), "{e}");
+        let e = eval("45 mm")
+            .unwrap()
+            .expect(Dim::ANGLE, "a polar angle")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("a polar angle is an angle (rad), but this value is a length (m)")
+                && e.contains("`deg` or `rad`"),
+            "{e}"
+        );
         assert_eq!(eval("0.5").unwrap().expect(Dim::ANGLE, "x").unwrap(), 0.5);
     }
 }

@@ -51,7 +51,8 @@ pub const QUADRATURE_RTOL: f64 = 1e-13;
 pub const PERIODIC_TOLERANCE: f64 = 1e-9;
 
 /// The loads of a cycle as a function of the input position q.
-type LoadsFn<'a, M> = Box<dyn Fn(f64) -> Result<<M as crate::traits::Machine>::Loads, MechError> + 'a>;
+type LoadsFn<'a, M> =
+    Box<dyn Fn(f64) -> Result<<M as crate::traits::Machine>::Loads, MechError> + 'a>;
 
 /// A panel end: position, work and reduced inertia there.
 #[derive(Clone, Copy, Debug)]
@@ -142,7 +143,14 @@ impl SpeedRange {
     /// From the extremes (rad/s) and where they are reached (rad): ω_a and ε.
     pub fn new(omega_max: f64, q_max: f64, omega_min: f64, q_min: f64) -> Self {
         let omega_mean = 0.5 * (omega_max + omega_min);
-        SpeedRange { omega_max, q_max, omega_min, q_min, omega_mean, irregularity: (omega_max - omega_min) / omega_mean }
+        SpeedRange {
+            omega_max,
+            q_max,
+            omega_min,
+            q_min,
+            omega_mean,
+            irregularity: (omega_max - omega_min) / omega_mean,
+        }
     }
 }
 
@@ -249,16 +257,30 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         crate::error::check_finite("cycle start and period", &[start, period])?;
         crate::error::check_finite("breakpoints", breakpoints)?;
         if !(period > 0.0) {
-            return Err(MechError::InvalidInput(format!("the cycle's period must be positive, got {period}")));
+            return Err(MechError::InvalidInput(format!(
+                "the cycle's period must be positive, got {period}"
+            )));
         }
         let end = start + period;
         let mut cuts: Vec<f64> = breakpoints.to_vec();
         cuts.sort_by(f64::total_cmp);
         cuts.dedup();
         if let Some(b) = cuts.iter().find(|&&b| !(b > start && b < end)) {
-            return Err(MechError::InvalidInput(format!("breakpoint {b} is not inside the cycle ({start}, {end})")));
+            return Err(MechError::InvalidInput(format!(
+                "breakpoint {b} is not inside the cycle ({start}, {end})"
+            )));
         }
-        let mut me = Cycle { machine, loads: Box::new(loads), driver: Box::new(driver), start, period, breakpoints: cuts, nodes: Vec::new(), atol_rate: 0.0, gross_work: 0.0 };
+        let mut me = Cycle {
+            machine,
+            loads: Box::new(loads),
+            driver: Box::new(driver),
+            start,
+            period,
+            breakpoints: cuts,
+            nodes: Vec::new(),
+            atol_rate: 0.0,
+            gross_work: 0.0,
+        };
         me.tabulate()?;
         Ok(me)
     }
@@ -267,7 +289,11 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     /// or 4π for a four-stroke engine), no breakpoints, no driver torque — only the loads,
     /// a function of q. Balance it with [`Cycle::balance`]; for a start, breakpoints or a
     /// driver use [`CycleBuilder`] ([`Cycle::builder`]) or [`Cycle::new`].
-    pub fn of(machine: &'a M, period: f64, loads: impl Fn(f64) -> Result<M::Loads, MechError> + 'a) -> Result<Self, MechError> {
+    pub fn of(
+        machine: &'a M,
+        period: f64,
+        loads: impl Fn(f64) -> Result<M::Loads, MechError> + 'a,
+    ) -> Result<Self, MechError> {
         Self::new(machine, 0.0, period, &[], loads, |_| 0.0)
     }
 
@@ -277,24 +303,46 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     where
         L: Fn(f64) -> Result<M::Loads, MechError> + 'a,
     {
-        CycleBuilder { machine, period, loads, start: 0.0, breakpoints: Vec::new(), driver: Box::new(|_| 0.0) }
+        CycleBuilder {
+            machine,
+            period,
+            loads,
+            start: 0.0,
+            breakpoints: Vec::new(),
+            driver: Box::new(|_| 0.0),
+        }
     }
 
     /// The panel ends, their I*, then S by quadrature panel by panel.
     fn tabulate(&mut self) -> Result<(), MechError> {
         let width = self.period / PANELS_PER_CYCLE as f64;
         let mut edges = vec![self.start];
-        let cuts: Vec<f64> = self.breakpoints.iter().copied().chain([self.start + self.period]).collect();
+        let cuts: Vec<f64> = self
+            .breakpoints
+            .iter()
+            .copied()
+            .chain([self.start + self.period])
+            .collect();
         for b in cuts {
             let a = *edges.last().unwrap();
             let n = ((b - a) / width).ceil().max(1.0) as usize;
-            edges.extend((1..=n).map(|i| if i == n { b } else { a + (b - a) * i as f64 / n as f64 }));
+            edges.extend((1..=n).map(|i| {
+                if i == n {
+                    b
+                } else {
+                    a + (b - a) * i as f64 / n as f64
+                }
+            }));
         }
         let mut scale = 0.0f64;
         self.nodes.clear();
         for &q in &edges {
             scale = scale.max(self.moment(q)?.abs());
-            self.nodes.push(Node { q, work: 0.0, inertia: self.reduced(q)?.inertia });
+            self.nodes.push(Node {
+                q,
+                work: 0.0,
+                inertia: self.reduced(q)?.inertia,
+            });
         }
         self.atol_rate = QUADRATURE_RTOL * scale.max(f64::MIN_POSITIVE);
         let (mut s, mut gross) = (0.0, 0.0);
@@ -310,7 +358,13 @@ impl<'a, M: OneDof> Cycle<'a, M> {
 
     /// ∫_a^b M* dq inside one panel, J.
     fn integral(&self, a: f64, b: f64) -> Result<f64, MechError> {
-        gauss_kronrod(|q| self.moment(q), a, b, QUADRATURE_RTOL, self.atol_rate * (b - a).abs())
+        gauss_kronrod(
+            |q| self.moment(q),
+            a,
+            b,
+            QUADRATURE_RTOL,
+            self.atol_rate * (b - a).abs(),
+        )
     }
 
     /// The machine.
@@ -362,9 +416,17 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         let r = q - turns * self.period;
         let n = self.nodes.len();
         // The panel [q_k, q_k+1] holding r (the last one if rounding put r at the end).
-        let k = self.nodes.partition_point(|node| node.q <= r).clamp(1, n - 1) - 1;
+        let k = self
+            .nodes
+            .partition_point(|node| node.q <= r)
+            .clamp(1, n - 1)
+            - 1;
         let node = self.nodes[k];
-        let inside = if r > node.q { self.integral(node.q, r)? } else { 0.0 };
+        let inside = if r > node.q {
+            self.integral(node.q, r)?
+        } else {
+            0.0
+        };
         Ok(node.work + inside + turns * self.net_work())
     }
 
@@ -434,7 +496,13 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         self.check_periodic()?;
         let hi = self.extreme(|s, _| s, true)?;
         let lo = self.extreme(|s, _| s, false)?;
-        Ok(Fluctuation { energy: hi.value - lo.value, s_max: hi.value, q_s_max: hi.q, s_min: lo.value, q_s_min: lo.q })
+        Ok(Fluctuation {
+            energy: hi.value - lo.value,
+            s_max: hi.value,
+            q_s_max: hi.q,
+            s_min: lo.value,
+            q_s_min: lo.q,
+        })
     }
 
     /// The coefficient of fluctuation of speed δ = (ω_max − ω_min)/ω_a that a flywheel of
@@ -450,32 +518,60 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     /// n + 1 evenly spaced samples q0 + k λ / n, k = 0..=n, of M*, I*, dI*/dq and S.
     pub fn sample(&self, n: usize) -> Result<Vec<CyclePoint>, MechError> {
         if n == 0 {
-            return Err(MechError::InvalidInput("sample needs at least one interval".into()));
+            return Err(MechError::InvalidInput(
+                "sample needs at least one interval".into(),
+            ));
         }
         (0..=n)
             .map(|k| {
                 let q = self.start + self.period * k as f64 / n as f64;
                 let r = self.reduced(q)?;
-                Ok(CyclePoint { q, moment: self.moment(q)?, inertia: r.inertia, inertia_derivative: r.inertia_derivative, work: self.work(q)? })
+                Ok(CyclePoint {
+                    q,
+                    moment: self.moment(q)?,
+                    inertia: r.inertia,
+                    inertia_derivative: r.inertia_derivative,
+                    work: self.work(q)?,
+                })
             })
             .collect()
     }
 
     /// The largest (`maximize`) or smallest value over the cycle of f(S(q), I*(q)):
     /// bracketed on the panel ends, refined by golden-section search.
-    pub fn extreme(&self, f: impl Fn(f64, f64) -> f64, maximize: bool) -> Result<Extreme, MechError> {
+    pub fn extreme(
+        &self,
+        f: impl Fn(f64, f64) -> f64,
+        maximize: bool,
+    ) -> Result<Extreme, MechError> {
         let sign = if maximize { 1.0 } else { -1.0 };
-        let h = |q: f64| -> Result<f64, MechError> { Ok(sign * f(self.work(q)?, self.reduced(q)?.inertia)) };
+        let h = |q: f64| -> Result<f64, MechError> {
+            Ok(sign * f(self.work(q)?, self.reduced(q)?.inertia))
+        };
         // Panel ends without the last (it is the first again, one period on).
         let m = self.nodes.len() - 1;
-        let vals: Vec<f64> = self.nodes[..m].iter().map(|n| sign * f(n.work, n.inertia)).collect();
+        let vals: Vec<f64> = self.nodes[..m]
+            .iter()
+            .map(|n| sign * f(n.work, n.inertia))
+            .collect();
         if let Some(k) = vals.iter().position(|v| !v.is_finite()) {
-            return Err(MechError::InvalidInput(format!("non-finite value at q = {}", self.nodes[k].q)));
+            return Err(MechError::InvalidInput(format!(
+                "non-finite value at q = {}",
+                self.nodes[k].q
+            )));
         }
-        let (lo, hi) = vals.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        let (lo, hi) = vals
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+                (a.min(v), b.max(v))
+            });
         let margin = 0.05 * (hi - lo);
         let q_at = |i: isize| -> f64 {
-            let (k, shift) = if i < 0 { ((i + m as isize) as usize, -self.period) } else { (i as usize, 0.0) };
+            let (k, shift) = if i < 0 {
+                ((i + m as isize) as usize, -self.period)
+            } else {
+                (i as usize, 0.0)
+            };
             self.nodes[k].q + shift
         };
         let mut best: Option<(f64, f64)> = None;
@@ -485,7 +581,11 @@ impl<'a, M: OneDof> Cycle<'a, M> {
                 continue;
             }
             let (x, v) = golden_max(h, q_at(k as isize - 1), q_at(k as isize + 1))?;
-            let (x, v) = if v >= vals[k] { (x, v) } else { (self.nodes[k].q, vals[k]) };
+            let (x, v) = if v >= vals[k] {
+                (x, v)
+            } else {
+                (self.nodes[k].q, vals[k])
+            };
             if best.is_none_or(|(_, b)| v > b) {
                 best = Some((x, v));
             }
@@ -493,12 +593,18 @@ impl<'a, M: OneDof> Cycle<'a, M> {
                 break;
             }
         }
-        let (mut q, _) = best.ok_or_else(|| MechError::InvalidInput("no extreme found over the cycle".into()))?;
+        let (mut q, _) =
+            best.ok_or_else(|| MechError::InvalidInput("no extreme found over the cycle".into()))?;
         if q < self.start {
             q += self.period;
         }
         let (work, inertia) = (self.work(q)?, self.reduced(q)?.inertia);
-        Ok(Extreme { q, work, inertia, value: f(work, inertia) })
+        Ok(Extreme {
+            q,
+            work,
+            inertia,
+            value: f(work, inertia),
+        })
     }
 
     /// The smallest I* over the cycle, kg·m².
@@ -509,10 +615,20 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     /// The approximate flywheel (`docs/theory.md` §7.5, I ≫ I*):
     /// I = (S_max − S_min)/(ε ω_a²), kg·m².
     /// Errors: ω_a ≤ 0, ε ∉ (0, 2), non-finite input, [`MechError::NotPeriodic`].
-    pub fn approximate(&self, omega_mean: f64, irregularity: f64) -> Result<Approximate, MechError> {
+    pub fn approximate(
+        &self,
+        omega_mean: f64,
+        irregularity: f64,
+    ) -> Result<Approximate, MechError> {
         check_design(omega_mean, irregularity)?;
         let f = self.fluctuation()?;
-        Ok(Approximate { inertia: f.energy / (irregularity * omega_mean * omega_mean), s_max: f.s_max, q_s_max: f.q_s_max, s_min: f.s_min, q_s_min: f.q_s_min })
+        Ok(Approximate {
+            inertia: f.energy / (irregularity * omega_mean * omega_mean),
+            s_max: f.s_max,
+            q_s_max: f.q_s_max,
+            s_min: f.s_min,
+            q_s_min: f.q_s_min,
+        })
     }
 
     /// The exact flywheel by Wittenbauer's method (module documentation):
@@ -521,15 +637,28 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     /// [`MechError::NonPositiveInertia`] (with min(I + I*)) when the result leaves
     /// I + I*(q) ≤ 0 somewhere: the machine alone is steadier than ε and no flywheel of
     /// this kind gives exactly ε.
-    pub fn wittenbauer(&self, omega_mean: f64, irregularity: f64) -> Result<Wittenbauer, MechError> {
+    pub fn wittenbauer(
+        &self,
+        omega_mean: f64,
+        irregularity: f64,
+    ) -> Result<Wittenbauer, MechError> {
         check_design(omega_mean, irregularity)?;
         self.check_periodic()?;
         let k = 2.0 / (omega_mean * omega_mean);
         let tangent = |slope: f64, maximize: bool| -> Result<Tangent, MechError> {
             let e = self.extreme(|s, i| k * s - slope * i, maximize)?;
-            Ok(Tangent { slope, intercept: e.value, q: e.q, reduced_inertia: e.inertia, f: k * e.work })
+            Ok(Tangent {
+                slope,
+                intercept: e.value,
+                q: e.q,
+                reduced_inertia: e.inertia,
+                f: k * e.work,
+            })
         };
-        let (a, b) = ((1.0 + 0.5 * irregularity).powi(2), (1.0 - 0.5 * irregularity).powi(2));
+        let (a, b) = (
+            (1.0 + 0.5 * irregularity).powi(2),
+            (1.0 - 0.5 * irregularity).powi(2),
+        );
         let upper = tangent(a, true)?;
         let lower = tangent(b, false)?;
         let inertia = (upper.intercept - lower.intercept) / (a - b);
@@ -541,14 +670,32 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         let state = SteadyState {
             flywheel: inertia,
             energy: 0.5 * c * omega_mean * omega_mean,
-            speeds: SpeedRange { omega_max: omega_mean * (1.0 + 0.5 * irregularity), q_max: upper.q, omega_min: omega_mean * (1.0 - 0.5 * irregularity), q_min: lower.q, omega_mean, irregularity },
+            speeds: SpeedRange {
+                omega_max: omega_mean * (1.0 + 0.5 * irregularity),
+                q_max: upper.q,
+                omega_min: omega_mean * (1.0 - 0.5 * irregularity),
+                q_min: lower.q,
+                omega_mean,
+                irregularity,
+            },
         };
-        Ok(Wittenbauer { inertia, c, upper, lower, state })
+        Ok(Wittenbauer {
+            inertia,
+            c,
+            upper,
+            lower,
+            state,
+        })
     }
 
     /// Both flywheels for the mean speed ω_a (rad/s) and the irregularity ε.
     pub fn flywheel(&self, omega_mean: f64, irregularity: f64) -> Result<Flywheel, MechError> {
-        Ok(Flywheel { omega_mean, irregularity, exact: self.wittenbauer(omega_mean, irregularity)?, approximate: self.approximate(omega_mean, irregularity)? })
+        Ok(Flywheel {
+            omega_mean,
+            irregularity,
+            exact: self.wittenbauer(omega_mean, irregularity)?,
+            approximate: self.approximate(omega_mean, irregularity)?,
+        })
     }
 
     /// The periodic motion with a flywheel of inertia I (kg·m², 0 for none) whose mean speed
@@ -572,9 +719,22 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             let hi = self.extreme(|s, i| (e + s) / (flywheel + i), true)?;
             let lo = self.extreme(|s, i| (e + s) / (flywheel + i), false)?;
             let (w_hi, w_lo) = ((2.0 * hi.value).sqrt(), (2.0 * lo.value.max(0.0)).sqrt());
-            let d = 0.5 / (w_hi * (flywheel + hi.inertia)) + if w_lo > 0.0 { 0.5 / (w_lo * (flywheel + lo.inertia)) } else { f64::INFINITY };
+            let d = 0.5 / (w_hi * (flywheel + hi.inertia))
+                + if w_lo > 0.0 {
+                    0.5 / (w_lo * (flywheel + lo.inertia))
+                } else {
+                    f64::INFINITY
+                };
             let speeds = SpeedRange::new(w_hi, hi.q, w_lo, lo.q);
-            Ok((speeds.omega_mean - omega_mean, d, SteadyState { flywheel, energy: e, speeds }))
+            Ok((
+                speeds.omega_mean - omega_mean,
+                d,
+                SteadyState {
+                    flywheel,
+                    energy: e,
+                    speeds,
+                },
+            ))
         };
         let mut lo = -s_min.value;
         let (g_lo, _, _) = eval(lo)?;
@@ -583,14 +743,17 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         }
         // An upper bracket: at E = −S_min + ½ (I + max I*) ω_a², (E + S)/(I + I*) ≥ ω_a²/2
         // everywhere, so even the slowest point turns at ω_a or faster.
-        let mut hi = lo + 0.5 * (flywheel + self.extreme(|_, i| i, true)?.value) * omega_mean * omega_mean;
+        let mut hi =
+            lo + 0.5 * (flywheel + self.extreme(|_, i| i, true)?.value) * omega_mean * omega_mean;
         while eval(hi)?.0 < 0.0 {
             hi = lo + 2.0 * (hi - lo);
         }
         let mut e = hi;
         for _ in 0..200 {
             let (g, d, state) = eval(e)?;
-            if g.abs() <= 4.0 * f64::EPSILON * omega_mean || hi - lo <= 4.0 * f64::EPSILON * hi.abs() {
+            if g.abs() <= 4.0 * f64::EPSILON * omega_mean
+                || hi - lo <= 4.0 * f64::EPSILON * hi.abs()
+            {
                 return Ok(state);
             }
             if g < 0.0 {
@@ -599,7 +762,11 @@ impl<'a, M: OneDof> Cycle<'a, M> {
                 hi = e;
             }
             let newton = e - g / d;
-            e = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+            e = if newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
         }
         Ok(eval(e)?.2)
     }
@@ -607,7 +774,12 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     /// ω(q) = √(2 (E + S(q)) / (I + I*(q))) in the steady state `state`, rad/s.
     /// Errors: [`MechError::Stall`] where E + S ≤ 0, [`MechError::NonPositiveInertia`].
     pub fn speed(&self, state: &SteadyState, q: f64) -> Result<f64, MechError> {
-        speed_from_energy(state.energy, self.work(q)?, state.flywheel + self.reduced(q)?.inertia, q)
+        speed_from_energy(
+            state.energy,
+            self.work(q)?,
+            state.flywheel + self.reduced(q)?.inertia,
+            q,
+        )
     }
 
     /// The check by time integration: the machine with the flywheel (I + I*) q̈ + ½ dI*/dq q̇²
@@ -617,19 +789,30 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     pub fn simulate(&self, state: &SteadyState, rtol: f64) -> Result<CycleSimulation, MechError> {
         crate::error::check_finite("rtol", &[rtol])?;
         if !(rtol > 0.0) {
-            return Err(MechError::InvalidInput(format!("rtol must be positive, got {rtol}")));
+            return Err(MechError::InvalidInput(format!(
+                "rtol must be positive, got {rtol}"
+            )));
         }
         let (q0, q_end) = (self.start, self.start + self.period);
         let omega0 = self.speed(state, q0)?;
         let flywheel = state.flywheel;
         let mut rhs = |_t: f64, y: &[f64; 2]| -> Result<[f64; 2], MechError> {
             let r = self.reduced(y[0])?;
-            let total = Reduced { inertia: flywheel + r.inertia, ..r };
-            Ok([y[1], zhukovski::acceleration(total, self.moment(y[0])?, y[1], 0.0)?])
+            let total = Reduced {
+                inertia: flywheel + r.inertia,
+                ..r
+            };
+            Ok([
+                y[1],
+                zhukovski::acceleration(total, self.moment(y[0])?, y[1], 0.0)?,
+            ])
         };
         let acc0 = rhs(0.0, &[q0, omega0])?[1];
         // Extremes of q̇ over the steps, clipped to q ≤ q0 + λ (the event step overshoots).
-        let mut best = Best { max: (omega0, q0), min: (omega0, q0) };
+        let mut best = Best {
+            max: (omega0, q0),
+            min: (omega0, q0),
+        };
         let mut prev_acc = acc0;
         let mut failure: Option<MechError> = None;
         let mut observe = |d: &<Dop853 as ode::Method<2>>::Dense| {
@@ -641,7 +824,11 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             best.add(yb[1], yb[0]);
             let acc = d.dy_end()[1];
             if prev_acc * acc <= 0.0 && tb > ta {
-                let s = if prev_acc > 0.0 || acc < 0.0 { 1.0 } else { -1.0 };
+                let s = if prev_acc > 0.0 || acc < 0.0 {
+                    1.0
+                } else {
+                    -1.0
+                };
                 match golden_max(|t| Ok(s * d.eval(t)[1]), ta, tb) {
                     Ok((t, _)) => {
                         let y = d.eval(t);
@@ -653,11 +840,23 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             prev_acc = acc;
         };
         let mut g = |_t: f64, y: &[f64; 2]| y[0] - q_end;
-        let mut event = Event { g: &mut g, direction: 1, t_tol: 1e-15 };
+        let mut event = Event {
+            g: &mut g,
+            direction: 1,
+            t_tol: 1e-15,
+        };
         // Long enough to pass q0 + λ at the slowest speed the state allows.
         let t_end = 4.0 * self.period / state.speeds.omega_min.max(1e-3 * omega0);
         let mut method = Dop853::new(rtol, rtol * 1e-6);
-        let out = ode::solve(&mut method, &mut rhs, 0.0, [q0, omega0], t_end, Some(&mut event), Some(&mut observe))?;
+        let out = ode::solve(
+            &mut method,
+            &mut rhs,
+            0.0,
+            [q0, omega0],
+            t_end,
+            Some(&mut event),
+            Some(&mut observe),
+        )?;
         if let Some(e) = failure {
             return Err(e);
         }
@@ -708,7 +907,14 @@ impl<'a, M: OneDof, L: Fn(f64) -> Result<M::Loads, MechError> + 'a> CycleBuilder
     /// The cycle and its table of S(q) ([`Cycle::new`]'s errors).
     pub fn build(self) -> Result<Cycle<'a, M>, MechError> {
         let driver = self.driver;
-        Cycle::new(self.machine, self.start, self.period, &self.breakpoints, self.loads, driver)
+        Cycle::new(
+            self.machine,
+            self.start,
+            self.period,
+            &self.breakpoints,
+            self.loads,
+            driver,
+        )
     }
 }
 
@@ -735,7 +941,9 @@ fn check_speed(omega_mean: f64) -> Result<(), MechError> {
     if omega_mean > 0.0 {
         Ok(())
     } else {
-        Err(MechError::InvalidInput(format!("the mean speed must be positive, got {omega_mean}")))
+        Err(MechError::InvalidInput(format!(
+            "the mean speed must be positive, got {omega_mean}"
+        )))
     }
 }
 
@@ -744,14 +952,20 @@ fn check_design(omega_mean: f64, irregularity: f64) -> Result<(), MechError> {
     check_speed(omega_mean)?;
     crate::error::check_finite("irregularity", &[irregularity])?;
     if !(irregularity > 0.0 && irregularity < 2.0) {
-        return Err(MechError::InvalidInput(format!("the irregularity must be in (0, 2), got {irregularity}")));
+        return Err(MechError::InvalidInput(format!(
+            "the irregularity must be in (0, 2), got {irregularity}"
+        )));
     }
     Ok(())
 }
 
 /// The maximum of h on [a, b] (h unimodal there) by golden-section search to
 /// |b − a| ≤ 1e-13 max(1, |x|): (x, h(x)).
-fn golden_max(mut h: impl FnMut(f64) -> Result<f64, MechError>, mut a: f64, mut b: f64) -> Result<(f64, f64), MechError> {
+fn golden_max(
+    mut h: impl FnMut(f64) -> Result<f64, MechError>,
+    mut a: f64,
+    mut b: f64,
+) -> Result<(f64, f64), MechError> {
     const R: f64 = 0.618_033_988_749_894_9; // (√5 − 1)/2
     let (mut x1, mut x2) = (b - R * (b - a), a + R * (b - a));
     let (mut h1, mut h2) = (h(x1)?, h(x2)?);

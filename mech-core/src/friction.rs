@@ -32,7 +32,13 @@ pub struct JointFriction {
 
 /// Add the friction moment of a revolute joint with reaction `force` (N, by a on b).
 #[inline]
-pub fn revolute(extra: &mut [Wrench], g: &JointGeom, s: &[LinkState], fr: &JointFriction, force: V2) {
+pub fn revolute(
+    extra: &mut [Wrench],
+    g: &JointGeom,
+    s: &[LinkState],
+    fr: &JointFriction,
+    force: V2,
+) {
     let rel = s[g.b].omega - s[g.a].omega;
     if rel == 0.0 {
         return;
@@ -45,7 +51,13 @@ pub fn revolute(extra: &mut [Wrench], g: &JointGeom, s: &[LinkState], fr: &Joint
 /// Add the friction force of a sliding joint (prismatic or slot) with normal reaction
 /// `force` (N, by a on b).
 #[inline]
-pub fn sliding(extra: &mut [Wrench], g: &JointGeom, s: &[LinkState], fr: &JointFriction, force: V2) {
+pub fn sliding(
+    extra: &mut [Wrench],
+    g: &JointGeom,
+    s: &[LinkState],
+    fr: &JointFriction,
+    force: V2,
+) {
     let (sa, sb) = (&s[g.a], &s[g.b]);
     let rb = sb.r(g.db);
     let p = sb.pos + rb;
@@ -79,7 +91,9 @@ pub fn add_joint_friction(
         let force = V2::new(prev[at], prev[at + 1]);
         match kind {
             JointKind::Revolute => revolute(extra, &joints[j], s, &friction[j], force),
-            JointKind::Prismatic | JointKind::PinInSlot => sliding(extra, &joints[j], s, &friction[j], force),
+            JointKind::Prismatic | JointKind::PinInSlot => {
+                sliding(extra, &joints[j], s, &friction[j], force)
+            }
         }
         at += flat_width(kind);
     }
@@ -155,7 +169,10 @@ impl<'a> Flattener<'a> {
     #[inline]
     pub fn new(out: &'a mut [f64], drivers: &[f64]) -> Self {
         out[..drivers.len()].copy_from_slice(drivers);
-        Flattener { out, at: drivers.len() }
+        Flattener {
+            out,
+            at: drivers.len(),
+        }
     }
     /// Append the next joint's reaction.
     #[inline]
@@ -172,14 +189,21 @@ pub const MAX_ITERATIONS: usize = 200;
 /// kinetostatics with the friction of the previous ones), from the frictionless `first`:
 /// converged when the largest change is below 1e-13 of the largest value;
 /// `SelfLocking` when the changes stop shrinking (gain ≥ 1) or the values blow up.
-pub fn iterate<V: AsRef<[f64]> + Clone>(first: V, mut step: impl FnMut(&V) -> Result<V, MechError>) -> Result<V, MechError> {
+pub fn iterate<V: AsRef<[f64]> + Clone>(
+    first: V,
+    mut step: impl FnMut(&V) -> Result<V, MechError>,
+) -> Result<V, MechError> {
     let size = |v: &V| v.as_ref().iter().fold(0.0f64, |a, x| a.max(x.abs()));
     let mut prev = first.clone();
     let mut last_change = f64::INFINITY;
     let mut growing = 0;
     for _ in 0..MAX_ITERATIONS {
         let next = step(&prev)?;
-        let change = next.as_ref().iter().zip(prev.as_ref()).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+        let change = next
+            .as_ref()
+            .iter()
+            .zip(prev.as_ref())
+            .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
         let scale = size(&next).max(size(&first)).max(f64::MIN_POSITIVE);
         if !change.is_finite() || scale > 1e12 * size(&first).max(1.0) {
             break;
@@ -187,7 +211,11 @@ pub fn iterate<V: AsRef<[f64]> + Clone>(first: V, mut step: impl FnMut(&V) -> Re
         if change <= 1e-13 * scale {
             return Ok(next);
         }
-        growing = if change >= last_change { growing + 1 } else { 0 };
+        growing = if change >= last_change {
+            growing + 1
+        } else {
+            0
+        };
         if growing >= 5 {
             break;
         }
@@ -205,13 +233,31 @@ mod tests {
 
     #[test]
     fn the_layout_is_read_where_it_is_written() {
-        let kinds = [JointKind::Revolute, JointKind::Prismatic, JointKind::PinInSlot];
+        let kinds = [
+            JointKind::Revolute,
+            JointKind::Prismatic,
+            JointKind::PinInSlot,
+        ];
         assert_eq!(flat_len(2, &kinds), 2 + 2 + 3 + 2);
-        let mut out = [0.0; flat_len(2, &[JointKind::Revolute, JointKind::Prismatic, JointKind::PinInSlot])];
+        let mut out = [0.0; flat_len(
+            2,
+            &[
+                JointKind::Revolute,
+                JointKind::Prismatic,
+                JointKind::PinInSlot,
+            ],
+        )];
         let mut w = Flattener::new(&mut out, &[-1.0, -2.0]);
-        w.push(&RevoluteReaction { force: V2::new(1.0, 2.0) });
-        w.push(&PrismaticReaction { force: V2::new(3.0, 4.0), moment: 5.0 });
-        w.push(&SlotReaction { force: V2::new(6.0, 7.0) });
+        w.push(&RevoluteReaction {
+            force: V2::new(1.0, 2.0),
+        });
+        w.push(&PrismaticReaction {
+            force: V2::new(3.0, 4.0),
+            moment: 5.0,
+        });
+        w.push(&SlotReaction {
+            force: V2::new(6.0, 7.0),
+        });
         assert_eq!(out, [-1.0, -2.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
     }
 }

@@ -30,13 +30,17 @@
 //!
 //! Units are SI (m, kg, kg·m², N, N·m, rad, s), as everywhere in `mech`.
 
+use crate::constraints::{eval, row_scale, scaled_rows, Con, ConEval, ConKind, Drive, Level};
 use crate::dsl::parse_str;
 use crate::error::check_finite;
 use crate::geometry::all_cons;
 use crate::instance::{instance, Instance};
-use crate::constraints::{eval, row_scale, scaled_rows, Con, ConKind, ConEval, Drive, Level};
-use crate::link_state::{point_motion, point_pose, rotate, LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2};
-use crate::kinetostatics::{add_force, add_gravity, add_inertia, add_torque, slide_force, virtual_power, Wrench};
+use crate::kinetostatics::{
+    add_force, add_gravity, add_inertia, add_torque, slide_force, virtual_power, Wrench,
+};
+use crate::link_state::{
+    point_motion, point_pose, rotate, LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2,
+};
 use crate::model::{JointKind, Load, Model};
 use crate::resolve::{resolve, Diagnostic};
 use crate::zhukovski::{self, Reduced};
@@ -119,8 +123,12 @@ pub enum LoadValue {
 /// components: 2 for a force (N), 1 for a torque (N·m); false when there is no such load
 /// or the length is wrong. Shared by [`GenericLoads`] and [`crate::mechanism::Loads`].
 pub fn set_load(model: &Model, values: &mut [LoadValue], name: &str, value: &[f64]) -> bool {
-    let Some(k) = model.loads.iter().position(|l| l.name() == name) else { return false };
-    let Some(slot) = values.get_mut(k) else { return false };
+    let Some(k) = model.loads.iter().position(|l| l.name() == name) else {
+        return false;
+    };
+    let Some(slot) = values.get_mut(k) else {
+        return false;
+    };
     match (&model.loads[k], value) {
         (Load::Force { .. }, [x, y]) => *slot = LoadValue::Force(V2::new(*x, *y)),
         (Load::Torque { .. }, [t]) => *slot = LoadValue::Torque(*t),
@@ -146,7 +154,11 @@ impl GenericLoads {
     }
     /// The value of the load named `name`, if any.
     pub fn get(&self, name: &str) -> Option<LoadValue> {
-        self.model.loads.iter().position(|l| l.name() == name).map(|k| self.values[k])
+        self.model
+            .loads
+            .iter()
+            .position(|l| l.name() == name)
+            .map(|k| self.values[k])
     }
 }
 
@@ -243,7 +255,9 @@ impl GenericForces {
     /// The reaction at the joint named `name`: force by a on b (N) and, for a prismatic
     /// joint, the moment (N·m) — the shape of a generated `<Name>Forces::reaction`.
     pub fn reaction(&self, name: &str) -> Option<(V2, Option<f64>)> {
-        self.model.joint_index(name).map(|j| (self.joints[j].force, self.joints[j].moment))
+        self.model
+            .joint_index(name)
+            .map(|j| (self.joints[j].force, self.joints[j].moment))
     }
 }
 
@@ -270,7 +284,9 @@ impl System {
         };
         match x {
             Some(x) if x.iter().all(|v| v.is_finite()) => Ok(x),
-            _ => Err(MechError::Singular { condition: self.condition }),
+            _ => Err(MechError::Singular {
+                condition: self.condition,
+            }),
         }
     }
 }
@@ -306,10 +322,14 @@ fn invalid(source: &str, origin: Option<&str>, diags: &[Diagnostic<Span>]) -> Me
 
 /// The `mechanism! { ... }` invocation declaring `pub struct name` in Rust source text:
 /// its braced group of tokens and the parsed description (spans located in `source`).
-fn find_declaration(source: &str, name: &str) -> Result<(proc_macro2::Group, crate::model::Description<Span>), MechError> {
+fn find_declaration(
+    source: &str,
+    name: &str,
+) -> Result<(proc_macro2::Group, crate::model::Description<Span>), MechError> {
     use proc_macro2::TokenTree;
-    let tokens: proc_macro2::TokenStream =
-        source.parse().map_err(|e: proc_macro2::LexError| MechError::Invalid(format!("{}: {e}", location(&e.span()))))?;
+    let tokens: proc_macro2::TokenStream = source.parse().map_err(|e: proc_macro2::LexError| {
+        MechError::Invalid(format!("{}: {e}", location(&e.span())))
+    })?;
     let mut found = Vec::new();
     let mut stack = vec![tokens];
     while let Some(ts) = stack.pop() {
@@ -326,12 +346,17 @@ fn find_declaration(source: &str, name: &str) -> Result<(proc_macro2::Group, cra
             match syn::parse2::<crate::dsl::Parsed>(g.stream()) {
                 Ok(p) if p.0.name.text == name => return Ok((g.clone(), p.0)),
                 Ok(p) => found.push(p.0.name.text),
-                Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => return Err(syntax(source, None, e)),
+                Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => {
+                    return Err(syntax(source, None, e))
+                }
                 Err(_) => {}
             }
         }
     }
-    Err(MechError::Invalid(format!("no `mechanism!` declares `{name}` here; found: {}", found.join(", "))))
+    Err(MechError::Invalid(format!(
+        "no `mechanism!` declares `{name}` here; found: {}",
+        found.join(", ")
+    )))
 }
 
 /// The DSL text of the mechanism `name` declared with `mechanism! { ... }` in Rust source
@@ -348,7 +373,9 @@ fn positive(what: &str, value: f64) -> Result<f64, MechError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(MechError::InvalidInput(format!("{what} must be finite and > 0, got {value}")))
+        Err(MechError::InvalidInput(format!(
+            "{what} must be finite and > 0, got {value}"
+        )))
     }
 }
 
@@ -406,23 +433,38 @@ pub(crate) fn rust_source_model(source: &str, name: &str) -> Result<Model, MechE
 /// the table goes with the thread. The model and the messages come back as plain data.
 fn on_own_thread<T: Send>(f: impl FnOnce() -> Result<T, MechError> + Send) -> Result<T, MechError> {
     std::thread::scope(|s| {
-        s.spawn(f).join().unwrap_or_else(|_| Err(MechError::Invalid("the mechanism's text could not be read (the parser failed)".into())))
+        s.spawn(f).join().unwrap_or_else(|_| {
+            Err(MechError::Invalid(
+                "the mechanism's text could not be read (the parser failed)".into(),
+            ))
+        })
     })
 }
 
 /// Resolve and validate a parsed description (the macro's pipeline after parsing): the
 /// checked model, or every problem rendered against `source`.
-fn checked_model(desc: &crate::model::Description<Span>, source: &str, origin: Option<&str>) -> Result<Model, MechError> {
+fn checked_model(
+    desc: &crate::model::Description<Span>,
+    source: &str,
+    origin: Option<&str>,
+) -> Result<Model, MechError> {
     {
         let model = resolve(desc).map_err(|d| invalid(source, origin, &d))?;
         let issues = crate::validate::check(&model);
         if !issues.is_empty() {
-            let diags: Vec<Diagnostic<Span>> = issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
+            let diags: Vec<Diagnostic<Span>> =
+                issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
             return Err(invalid(source, origin, &diags));
         }
         if let Err(links) = crate::assur::plan(&model) {
-            let names: Vec<String> = links.iter().map(|&l| format!("`{}`", model.links[l].name)).collect();
-            let spans = links.iter().map(|&l| desc.locate(&model, crate::resolve::Culprit::Link(l))).collect();
+            let names: Vec<String> = links
+                .iter()
+                .map(|&l| format!("`{}`", model.links[l].name))
+                .collect();
+            let spans = links
+                .iter()
+                .map(|&l| desc.locate(&model, crate::resolve::Culprit::Link(l)))
+                .collect();
             return Err(invalid(source, origin, &[Diagnostic {
                 spans,
                 message: format!(
@@ -436,7 +478,6 @@ fn checked_model(desc: &crate::model::Description<Span>, source: &str, origin: O
 }
 
 impl GenericMechanism {
-
     /// Load a mechanism from a file of DSL text (see [`GenericMechanism::parse`]); an
     /// unreadable file is a [`MechError::Invalid`] naming the path.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, MechError> {
@@ -452,10 +493,18 @@ impl GenericMechanism {
     pub fn from_model(model: Model) -> Result<Self, MechError> {
         let issues = crate::validate::check(&model);
         if !issues.is_empty() {
-            return Err(MechError::Invalid(issues.iter().map(|i| i.message.as_str()).collect::<Vec<_>>().join("\n")));
+            return Err(MechError::Invalid(
+                issues
+                    .iter()
+                    .map(|i| i.message.as_str())
+                    .collect::<Vec<_>>()
+                    .join("\n"),
+            ));
         }
         if crate::assur::plan(&model).is_err() {
-            return Err(MechError::Invalid("the links cannot be solved group by group from the inputs".into()));
+            return Err(MechError::Invalid(
+                "the links cannot be solved group by group from the inputs".into(),
+            ));
         }
         Self::build(model)
     }
@@ -469,7 +518,9 @@ impl GenericMechanism {
             first_row.push(rows);
             rows += c.kind.rows();
         }
-        let q_ref = (0..model.inputs.len()).map(|k| model.reference_input(k)).collect();
+        let q_ref = (0..model.inputs.len())
+            .map(|k| model.reference_input(k))
+            .collect();
         let mut g = GenericMechanism {
             model: Arc::new(model),
             inst,
@@ -483,7 +534,11 @@ impl GenericMechanism {
         };
         // The one scaling rule of `constraints`: L for the rows whose unit is an angle.
         let scale = g.inst.scale;
-        let row_scale = g.cons.iter().flat_map(|c| (0..c.kind.rows()).map(move |k| row_scale(c.kind, k, scale))).collect();
+        let row_scale = g
+            .cons
+            .iter()
+            .flat_map(|c| (0..c.kind.rows()).map(move |k| row_scale(c.kind, k, scale)))
+            .collect();
         g.row_scale = row_scale;
         Ok(g)
     }
@@ -546,7 +601,10 @@ impl GenericMechanism {
                 Load::Torque { .. } => LoadValue::Torque(0.0),
             })
             .collect();
-        GenericLoads { values, model: self.model.clone() }
+        GenericLoads {
+            values,
+            model: self.model.clone(),
+        }
     }
 
     // ---------------------------------------------------------------------------------
@@ -575,16 +633,27 @@ impl GenericMechanism {
 
     /// The scaled Jacobian J (rows × 3(N − 1)) at the states `s` and the scaled right-hand
     /// side b = −(row scale × constraint values at `level`).
-    fn assemble(&self, s: &[LinkState], drive: Drive, level: Level) -> (DMatrix<f64>, DVector<f64>) {
+    fn assemble(
+        &self,
+        s: &[LinkState],
+        drive: Drive,
+        level: Level,
+    ) -> (DMatrix<f64>, DVector<f64>) {
         let mut j = DMatrix::zeros(self.rows, self.cols());
         for (c, &r0) in self.cons.iter().zip(&self.first_row) {
-            scaled_rows(*c, &self.inst.joints[c.joint], s, self.inst.scale, |k, link, e| {
-                if link != 0 {
-                    for (i, x) in e.iter().enumerate() {
-                        j[(r0 + k, 3 * (link - 1) + i)] += x;
+            scaled_rows(
+                *c,
+                &self.inst.joints[c.joint],
+                s,
+                self.inst.scale,
+                |k, link, e| {
+                    if link != 0 {
+                        for (i, x) in e.iter().enumerate() {
+                            j[(r0 + k, 3 * (link - 1) + i)] += x;
+                        }
                     }
-                }
-            });
+                },
+            );
         }
         (j, self.rhs(s, drive, level))
     }
@@ -592,7 +661,9 @@ impl GenericMechanism {
     /// The right-hand side only (for a second solve with the same Jacobian).
     fn rhs(&self, s: &[LinkState], drive: Drive, level: Level) -> DVector<f64> {
         let mut b = DVector::zeros(self.rows);
-        self.for_rows(s, drive, level, |r, _, e, k| b[r] = -self.row_scale[r] * e.val[k]);
+        self.for_rows(s, drive, level, |r, _, e, k| {
+            b[r] = -self.row_scale[r] * e.val[k]
+        });
         b
     }
 
@@ -600,7 +671,11 @@ impl GenericMechanism {
     fn factor(j: DMatrix<f64>) -> Result<System, MechError> {
         let (m, n) = j.shape();
         if n == 0 {
-            return Ok(System { factor: Factor::Lu(j.lu()), condition: 1.0, det_sign: 1.0 });
+            return Ok(System {
+                factor: Factor::Lu(j.lu()),
+                condition: 1.0,
+                det_sign: 1.0,
+            });
         }
         let sys = if m == n {
             let lu = j.lu();
@@ -612,17 +687,31 @@ impl GenericMechanism {
                 sign *= d.signum();
             }
             let condition = if lo > 0.0 { hi / lo } else { f64::INFINITY };
-            System { factor: Factor::Lu(lu), condition, det_sign: sign }
+            System {
+                factor: Factor::Lu(lu),
+                condition,
+                det_sign: sign,
+            }
         } else {
             let svd = SVD::new(j, true, true);
             let sv = &svd.singular_values;
             let lo = sv.iter().cloned().fold(f64::INFINITY, f64::min);
-            let condition = if lo > 0.0 { sv.max() / lo } else { f64::INFINITY };
-            System { factor: Factor::Svd(svd), condition, det_sign: 1.0 }
+            let condition = if lo > 0.0 {
+                sv.max() / lo
+            } else {
+                f64::INFINITY
+            };
+            System {
+                factor: Factor::Svd(svd),
+                condition,
+                det_sign: 1.0,
+            }
         };
         // Written to be true for a NaN condition as well.
         if !(sys.condition < HARD_CONDITION) {
-            return Err(MechError::Singular { condition: sys.condition });
+            return Err(MechError::Singular {
+                condition: sys.condition,
+            });
         }
         Ok(sys)
     }
@@ -646,7 +735,10 @@ impl GenericMechanism {
             st.pos += V2::new(dx[c], dx[c + 1]);
             let (sn, cs) = dx[c + 2].sin_cos();
             st.rot = rotate(st.rot, V2::new(cs, sn)).normalize();
-            step = step.max(dx[c].abs()).max(dx[c + 1].abs()).max((dx[c + 2] * scale).abs());
+            step = step
+                .max(dx[c].abs())
+                .max(dx[c + 1].abs())
+                .max((dx[c + 2] * scale).abs());
         }
         if step.is_finite() {
             step
@@ -657,7 +749,13 @@ impl GenericMechanism {
 
     /// Scaled ∞-norm of a coordinate vector (x, y, φ·L).
     fn norm(&self, dx: &DVector<f64>) -> f64 {
-        dx.iter().enumerate().fold(0.0f64, |a, (i, v)| a.max(if i % 3 == 2 { (v * self.inst.scale).abs() } else { v.abs() }))
+        dx.iter().enumerate().fold(0.0f64, |a, (i, v)| {
+            a.max(if i % 3 == 2 {
+                (v * self.inst.scale).abs()
+            } else {
+                v.abs()
+            })
+        })
     }
 
     /// Set the links' velocities (`level` = Velocity) or accelerations (Acceleration) from
@@ -680,7 +778,13 @@ impl GenericMechanism {
     /// roundoff floor if the residual is at it ([`RESIDUAL_FLOOR`]), else no solution
     /// ([`MechError::NoAssembly`]). Returns the total correction (sum of the steps'
     /// scaled ∞-norms).
-    fn newton(&self, s: &mut [LinkState], q: &[f64], tol: f64, max_iter: usize) -> Result<f64, MechError> {
+    fn newton(
+        &self,
+        s: &mut [LinkState],
+        q: &[f64],
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<f64, MechError> {
         let zero = vec![0.0; q.len()];
         let scale = self.inst.scale;
         let (mut prev, mut total) = (f64::INFINITY, 0.0);
@@ -698,7 +802,11 @@ impl GenericMechanism {
                 return Ok(total + step);
             }
             if step >= prev {
-                return if residual <= RESIDUAL_FLOOR * f64::EPSILON * scale { Ok(total) } else { Err(MechError::NoAssembly) };
+                return if residual <= RESIDUAL_FLOOR * f64::EPSILON * scale {
+                    Ok(total)
+                } else {
+                    Err(MechError::NoAssembly)
+                };
             }
             self.advance(s, &dx);
             total += step;
@@ -714,12 +822,20 @@ impl GenericMechanism {
     /// revolute input whose short way fails, the long way round is tried as well.
     fn positions(&self, q: &[f64]) -> Result<(Vec<LinkState>, System), MechError> {
         if q.len() != self.dof() {
-            return Err(MechError::InvalidInput(format!("expected {} input values, got {}", self.dof(), q.len())));
+            return Err(MechError::InvalidInput(format!(
+                "expected {} input values, got {}",
+                self.dof(),
+                q.len()
+            )));
         }
         check_finite("q", q)?;
         let tau = std::f64::consts::TAU;
-        let revolute: Vec<bool> =
-            self.model.inputs.iter().map(|&j| self.model.joints[j].kind == JointKind::Revolute).collect();
+        let revolute: Vec<bool> = self
+            .model
+            .inputs
+            .iter()
+            .map(|&j| self.model.joints[j].kind == JointKind::Revolute)
+            .collect();
         let delta: Vec<f64> = (0..q.len())
             .map(|k| {
                 let d = q[k] - self.q_ref[k];
@@ -735,9 +851,9 @@ impl GenericMechanism {
             .collect();
         match self.continuation(&delta) {
             Ok(r) => Ok(r),
-            Err(e) if q.len() == 1 && revolute[0] && delta[0] != 0.0 => {
-                self.continuation(&[delta[0] - tau.copysign(delta[0])]).map_err(|_| e)
-            }
+            Err(e) if q.len() == 1 && revolute[0] && delta[0] != 0.0 => self
+                .continuation(&[delta[0] - tau.copysign(delta[0])])
+                .map_err(|_| e),
             Err(e) => Err(e),
         }
     }
@@ -764,7 +880,10 @@ impl GenericMechanism {
             let d1 = self.solve(&sys, &self.rhs(&s, (&qt, delta, &zero), Level::Velocity))?;
             let mut sv = s.clone();
             Self::store(&mut sv, &d1, Level::Velocity);
-            let d2 = self.solve(&sys, &self.rhs(&sv, (&qt, delta, &zero), Level::Acceleration))?;
+            let d2 = self.solve(
+                &sys,
+                &self.rhs(&sv, (&qt, delta, &zero), Level::Acceleration),
+            )?;
             let speed = self.norm(&d1);
             h = h.min(1.0 - t);
             if speed > 0.0 {
@@ -776,24 +895,37 @@ impl GenericMechanism {
                     return Err(last_err);
                 }
                 let last = t + h >= 1.0;
-                let q_new: Vec<f64> =
-                    if last { q_end.clone() } else { (0..dof).map(|k| self.q_ref[k] + (t + h) * delta[k]).collect() };
+                let q_new: Vec<f64> = if last {
+                    q_end.clone()
+                } else {
+                    (0..dof)
+                        .map(|k| self.q_ref[k] + (t + h) * delta[k])
+                        .collect()
+                };
                 let mut trial = s.clone();
                 let pred = &d1 * h + &d2 * (0.5 * h * h);
                 let predicted = self.advance(&mut trial, &pred);
-                let (tol, iters) = if last { (self.tol, FINAL_ITERATIONS) } else { (PATH_TOLERANCE, PATH_ITERATIONS) };
-                let corrected = self.newton(&mut trial, &q_new, tol, iters).and_then(|corr| {
-                    if corr > MAX_CORRECTION * predicted + PATH_TOLERANCE * scale && !last {
-                        return Err(MechError::NoAssembly);
-                    }
-                    let (j, _) = self.assemble(&trial, (&q_new, &zero, &zero), Level::Position);
-                    let next = Self::factor(j)?;
-                    if next.det_sign != sys.det_sign {
-                        // The path crossed a dead point, or jumped to another branch.
-                        return Err(MechError::Singular { condition: next.condition.max(sys.condition) });
-                    }
-                    Ok(next)
-                });
+                let (tol, iters) = if last {
+                    (self.tol, FINAL_ITERATIONS)
+                } else {
+                    (PATH_TOLERANCE, PATH_ITERATIONS)
+                };
+                let corrected = self
+                    .newton(&mut trial, &q_new, tol, iters)
+                    .and_then(|corr| {
+                        if corr > MAX_CORRECTION * predicted + PATH_TOLERANCE * scale && !last {
+                            return Err(MechError::NoAssembly);
+                        }
+                        let (j, _) = self.assemble(&trial, (&q_new, &zero, &zero), Level::Position);
+                        let next = Self::factor(j)?;
+                        if next.det_sign != sys.det_sign {
+                            // The path crossed a dead point, or jumped to another branch.
+                            return Err(MechError::Singular {
+                                condition: next.condition.max(sys.condition),
+                            });
+                        }
+                        Ok(next)
+                    });
                 match corrected {
                     Ok(next) => {
                         s = trial;
@@ -823,16 +955,27 @@ impl GenericMechanism {
     }
 
     /// Positions, velocities and (if `upto` is Acceleration) accelerations at (q, q̇, q̈).
-    fn solve_states(&self, q: &[f64], qd: &[f64], qdd: &[f64], upto: Level) -> Result<(Vec<LinkState>, f64), MechError> {
+    fn solve_states(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        upto: Level,
+    ) -> Result<(Vec<LinkState>, f64), MechError> {
         if qd.len() != self.dof() || qdd.len() != self.dof() {
-            return Err(MechError::InvalidInput(format!("expected {} input rates", self.dof())));
+            return Err(MechError::InvalidInput(format!(
+                "expected {} input rates",
+                self.dof()
+            )));
         }
         check_finite("q, qd, qdd", q)?;
         check_finite("q, qd, qdd", qd)?;
         check_finite("q, qd, qdd", qdd)?;
         let (mut s, sys) = self.positions(q)?;
         if !(rate_error_bound(sys.condition) <= self.max_error) {
-            return Err(MechError::Singular { condition: sys.condition });
+            return Err(MechError::Singular {
+                condition: sys.condition,
+            });
         }
         let x = self.solve(&sys, &self.rhs(&s, (q, qd, qdd), Level::Velocity))?;
         Self::store(&mut s, &x, Level::Velocity);
@@ -856,11 +999,24 @@ impl GenericMechanism {
     pub fn pose(&self, q: &[f64]) -> Result<GenericPose, MechError> {
         let (s, sys) = self.positions(q)?;
         if !(position_error_bound(sys.condition) <= self.max_error) {
-            return Err(MechError::Singular { condition: sys.condition });
+            return Err(MechError::Singular {
+                condition: sys.condition,
+            });
         }
         Ok(GenericPose {
-            links: self.inst.links.iter().zip(&s).map(|(l, st)| l.pose(st)).collect(),
-            points: self.inst.points.iter().map(|&(o, d)| point_pose(&s[o], d)).collect(),
+            links: self
+                .inst
+                .links
+                .iter()
+                .zip(&s)
+                .map(|(l, st)| l.pose(st))
+                .collect(),
+            points: self
+                .inst
+                .points
+                .iter()
+                .map(|&(o, d)| point_pose(&s, o, d))
+                .collect(),
             condition: sys.condition,
             model: self.model.clone(),
         })
@@ -869,11 +1025,27 @@ impl GenericMechanism {
     /// Position, velocity and acceleration analysis at (q, q̇, q̈): J ẋ = −Φ̇ and
     /// J ẍ = −Φ̈ with the same factored Jacobian J. Errors as [`GenericMechanism::pose`],
     /// with the bound [`rate_error_bound`].
-    pub fn kinematics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<GenericMotion, MechError> {
+    pub fn kinematics(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) -> Result<GenericMotion, MechError> {
         let (s, condition) = self.solve_states(q, qd, qdd, Level::Acceleration)?;
         Ok(GenericMotion {
-            links: self.inst.links.iter().zip(&s).map(|(l, st)| l.motion(st)).collect(),
-            points: self.inst.points.iter().map(|&(o, d)| point_motion(&s[o], d)).collect(),
+            links: self
+                .inst
+                .links
+                .iter()
+                .zip(&s)
+                .map(|(l, st)| l.motion(st))
+                .collect(),
+            points: self
+                .inst
+                .points
+                .iter()
+                .map(|&(o, d)| point_motion(&s, o, d))
+                .collect(),
             q: q.to_vec(),
             qd: qd.to_vec(),
             qdd: qdd.to_vec(),
@@ -885,7 +1057,12 @@ impl GenericMechanism {
 
     /// The generalised forces (F_x, F_y, M about the anchor; N, N·m) on every link: loads,
     /// gravity m·g at the cg and, when `inertia`, d'Alembert's −m·a_G and −I_G·α.
-    fn wrenches(&self, s: &[LinkState], loads: &GenericLoads, inertia: bool) -> Result<Vec<Wrench>, MechError> {
+    fn wrenches(
+        &self,
+        s: &[LinkState],
+        loads: &GenericLoads,
+        inertia: bool,
+    ) -> Result<Vec<Wrench>, MechError> {
         if loads.values.len() != self.model.loads.len() {
             return Err(MechError::InvalidInput(format!(
                 "expected {} load values, got {}",
@@ -895,7 +1072,14 @@ impl GenericMechanism {
         }
         let mut f = vec![Wrench::zeros(); self.model.links.len()];
         if self.model.gravity.is_some() {
-            for (l, geom) in self.inst.links.iter().enumerate().skip(1).filter(|(_, g)| g.mass != 0.0) {
+            for (l, geom) in self
+                .inst
+                .links
+                .iter()
+                .enumerate()
+                .skip(1)
+                .filter(|(_, g)| g.mass != 0.0)
+            {
                 add_gravity(&mut f[l], &s[l], geom, self.inst.gravity);
             }
         }
@@ -931,10 +1115,14 @@ impl GenericMechanism {
     fn check_owner(&self, m: &GenericMotion, loads: &GenericLoads) -> Result<(), MechError> {
         let same = |other: &Arc<Model>| Arc::ptr_eq(other, &self.model) || **other == *self.model;
         if !same(&m.model) {
-            return Err(MechError::InvalidInput("the motion belongs to another mechanism".into()));
+            return Err(MechError::InvalidInput(
+                "the motion belongs to another mechanism".into(),
+            ));
         }
         if !(Arc::ptr_eq(&loads.model, &self.model) || loads.model.loads == self.model.loads) {
-            return Err(MechError::InvalidInput("the loads belong to another mechanism".into()));
+            return Err(MechError::InvalidInput(
+                "the loads belong to another mechanism".into(),
+            ));
         }
         Ok(())
     }
@@ -945,7 +1133,11 @@ impl GenericMechanism {
     /// link ON its second, N; prismatic joints add the moment, N·m, CCW on the second link).
     /// [`MechError::Redundant`] for a mechanism declared `#[allow(redundant)]` (its
     /// reactions are statically indeterminate), [`MechError::Singular`] at a dead point.
-    pub fn kinetostatics(&self, m: &GenericMotion, loads: &GenericLoads) -> Result<GenericForces, MechError> {
+    pub fn kinetostatics(
+        &self,
+        m: &GenericMotion,
+        loads: &GenericLoads,
+    ) -> Result<GenericForces, MechError> {
         self.check_owner(m, loads)?;
         if self.rows != self.cols() {
             return Err(MechError::Redundant(format!(
@@ -965,7 +1157,9 @@ impl GenericMechanism {
             rhs[3 * k + 1] = -w.y;
             rhs[3 * k + 2] = -w.z / self.inst.scale;
         }
-        let lam = sys.solve(&rhs)?.component_mul(&DVector::from_column_slice(&self.row_scale));
+        let lam = sys
+            .solve(&rhs)?
+            .component_mul(&DVector::from_column_slice(&self.row_scale));
         let mut driver = vec![0.0; self.dof()];
         let mut joints = vec![JointReaction::default(); self.model.joints.len()];
         for (c, &r) in self.cons.iter().zip(&self.first_row) {
@@ -974,20 +1168,32 @@ impl GenericMechanism {
                 ConKind::DriveRevolute(k) | ConKind::DrivePrismatic(k) => driver[k] = lam[r],
                 ConKind::Revolute => joints[c.joint].force = V2::new(lam[r], lam[r + 1]),
                 ConKind::Prismatic => {
-                    joints[c.joint] = JointReaction { force: slide_force(g, s, lam[r]), moment: Some(lam[r + 1]) }
+                    joints[c.joint] = JointReaction {
+                        force: slide_force(g, s, lam[r]),
+                        moment: Some(lam[r + 1]),
+                    }
                 }
                 ConKind::Slot => joints[c.joint].force = slide_force(g, s, lam[r]),
                 // One row of a revolute (never produced by `all_cons`; kept total).
             }
         }
-        Ok(GenericForces { driver, joints, condition: sys.condition, model: self.model.clone() })
+        Ok(GenericForces {
+            driver,
+            joints,
+            condition: sys.condition,
+            model: self.model.clone(),
+        })
     }
 
     /// The motor actions by the principle of virtual power, computing no reaction: for
     /// each input k the velocity field with q̇_k = 1, the others 0, and
     /// Q_k = −Σ (F·v + M·ω) over loads, gravity and inertia wrenches (N·m or N).
     /// Works for `#[allow(redundant)]` mechanisms too.
-    pub fn driver_action(&self, m: &GenericMotion, loads: &GenericLoads) -> Result<Vec<f64>, MechError> {
+    pub fn driver_action(
+        &self,
+        m: &GenericMotion,
+        loads: &GenericLoads,
+    ) -> Result<Vec<f64>, MechError> {
         self.check_owner(m, loads)?;
         let s = &m.states;
         let f = self.wrenches(s, loads, true)?;
@@ -1014,7 +1220,10 @@ impl GenericMechanism {
         if self.dof() == 1 {
             Ok(())
         } else {
-            Err(MechError::InvalidInput(format!("Zhukovski's reduction needs one DOF, the mechanism has {}", self.dof())))
+            Err(MechError::InvalidInput(format!(
+                "Zhukovski's reduction needs one DOF, the mechanism has {}",
+                self.dof()
+            )))
         }
     }
 
@@ -1038,12 +1247,23 @@ impl GenericMechanism {
 
     /// The direct problem of a one-DOF mechanism: q̈ from I* q̈ + ½ dI*/dq q̇² = driver + M*
     /// (driver in N·m or N). [`MechError::NonPositiveInertia`] when I* ≤ 0.
-    pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &GenericLoads) -> Result<f64, MechError> {
+    pub fn acceleration(
+        &self,
+        q: f64,
+        qd: f64,
+        driver: f64,
+        loads: &GenericLoads,
+    ) -> Result<f64, MechError> {
         self.one_dof()?;
         check_finite("q, qd, driver", &[q, qd, driver])?;
         let (s, _) = self.solve_states(&[q], &[1.0], &[0.0], Level::Acceleration)?;
         let f = self.wrenches(&s, loads, false)?;
-        zhukovski::acceleration(zhukovski::reduced(&self.inst.links, &s), virtual_power(&f, &s), qd, driver)
+        zhukovski::acceleration(
+            zhukovski::reduced(&self.inst.links, &s),
+            virtual_power(&f, &s),
+            qd,
+            driver,
+        )
     }
 }
 
@@ -1090,7 +1310,11 @@ mod tests {
     fn generic_four_bar_matches_closed_form_and_routes_agree() {
         let m = GenericMechanism::parse(FOUR_BAR).unwrap();
         assert_eq!(m.dof(), 1);
-        let (a, b, c) = (0.1, (0.25f64.powi(2) + 0.15f64.powi(2)).sqrt(), (0.05f64.powi(2) + 0.25f64.powi(2)).sqrt());
+        let (a, b, c) = (
+            0.1,
+            (0.25f64.powi(2) + 0.15f64.powi(2)).sqrt(),
+            (0.05f64.powi(2) + 0.25f64.powi(2)).sqrt(),
+        );
         let mut loads = m.loads();
         assert!(loads.set_by_name("resist", &[-2.0]));
         assert!(loads.set_by_name("push", &[3.0, -1.0]));
@@ -1101,15 +1325,27 @@ mod tests {
             let (t3, t4) = four_bar_angles(a, b, c, V2::new(0.3, 0.0), q, true);
             let d3 = wrap(mo.link("coupler").unwrap().angle - t3);
             let d4 = wrap(mo.link("rocker").unwrap().angle - t4);
-            assert!(d3.abs() < 1e-13 && d4.abs() < 1e-13, "q = {q}: {d3:e} {d4:e}");
+            assert!(
+                d3.abs() < 1e-13 && d4.abs() < 1e-13,
+                "q = {q}: {d3:e} {d4:e}"
+            );
             let fs = m.kinetostatics(&mo, &loads).unwrap();
             let vp = m.driver_action(&mo, &loads).unwrap();
             let r = m.reduced(q).unwrap();
             let ms = m.reduced_moment(q, &loads).unwrap();
             let zh = r.inertia * -4.0 + 0.5 * r.inertia_derivative * 100.0 - ms;
             let scale = fs.driver[0].abs().max(ms.abs());
-            assert!((fs.driver[0] - vp[0]).abs() < 1e-12 * scale, "{} {}", fs.driver[0], vp[0]);
-            assert!((fs.driver[0] - zh).abs() < 1e-12 * scale, "{} {zh}", fs.driver[0]);
+            assert!(
+                (fs.driver[0] - vp[0]).abs() < 1e-12 * scale,
+                "{} {}",
+                fs.driver[0],
+                vp[0]
+            );
+            assert!(
+                (fs.driver[0] - zh).abs() < 1e-12 * scale,
+                "{} {zh}",
+                fs.driver[0]
+            );
             let acc = m.acceleration(q, 10.0, fs.driver[0], &loads).unwrap();
             assert!((acc + 4.0).abs() < 1e-10, "{acc}");
         }
@@ -1117,28 +1353,56 @@ mod tests {
 
     #[test]
     fn load_errors_carry_line_and_column() {
-        let e = GenericMechanism::parse(&FOUR_BAR.replace("revolute(coupler, rocker)", "revolute(coupler, rockr)")).unwrap_err();
-        let MechError::Invalid(msg) = e else { panic!("{e:?}") };
+        let e = GenericMechanism::parse(
+            &FOUR_BAR.replace("revolute(coupler, rocker)", "revolute(coupler, rockr)"),
+        )
+        .unwrap_err();
+        let MechError::Invalid(msg) = e else {
+            panic!("{e:?}")
+        };
         assert!(msg.starts_with("12:38: unknown link `rockr`"), "{msg}");
-        let e = GenericMechanism::parse(&FOUR_BAR.replace("input: O2,", "inputs: [O2, O4],")).unwrap_err();
-        let MechError::Invalid(msg) = e else { panic!("{e:?}") };
+        let e = GenericMechanism::parse(&FOUR_BAR.replace("input: O2,", "inputs: [O2, O4],"))
+            .unwrap_err();
+        let MechError::Invalid(msg) = e else {
+            panic!("{e:?}")
+        };
         assert!(msg.contains("Grübler") && msg.contains("15:13"), "{msg}");
-        let e = GenericMechanism::parse("pub struct X { ground { O: (0.0, 0.0) } link }").unwrap_err();
-        let MechError::Invalid(msg) = e else { panic!("{e:?}") };
+        let e =
+            GenericMechanism::parse("pub struct X { ground { O: (0.0, 0.0) } link }").unwrap_err();
+        let MechError::Invalid(msg) = e else {
+            panic!("{e:?}")
+        };
         assert!(msg.starts_with("1:"), "{msg}");
-        assert!(matches!(GenericMechanism::load("/nonexistent/mechanism.txt"), Err(MechError::Invalid(_))));
+        assert!(matches!(
+            GenericMechanism::load("/nonexistent/mechanism.txt"),
+            Err(MechError::Invalid(_))
+        ));
     }
 
     #[test]
     fn mechanisms_are_found_in_rust_source() {
-        let source = format!("use mech::prelude::*;\n\nfn main() {{}}\n\nmechanism! {{{FOUR_BAR}}}\n");
+        let source =
+            format!("use mech::prelude::*;\n\nfn main() {{}}\n\nmechanism! {{{FOUR_BAR}}}\n");
         let m = GenericMechanism::from_rust_source(&source, "FourBar").unwrap();
-        assert_eq!(m.pose(&[0.5]).unwrap().points, GenericMechanism::parse(FOUR_BAR).unwrap().pose(&[0.5]).unwrap().points);
-        let Err(MechError::Invalid(msg)) = GenericMechanism::from_rust_source(&source, "Nothing") else { panic!() };
+        assert_eq!(
+            m.pose(&[0.5]).unwrap().points,
+            GenericMechanism::parse(FOUR_BAR)
+                .unwrap()
+                .pose(&[0.5])
+                .unwrap()
+                .points
+        );
+        let Err(MechError::Invalid(msg)) = GenericMechanism::from_rust_source(&source, "Nothing")
+        else {
+            panic!()
+        };
         assert!(msg.contains("found: FourBar"), "{msg}");
         // Locations are in the source file: the DSL starts on line 5.
         let bad = source.replace("revolute(coupler, rocker)", "revolute(coupler, rockr)");
-        let Err(MechError::Invalid(msg)) = GenericMechanism::from_rust_source(&bad, "FourBar") else { panic!() };
+        let Err(MechError::Invalid(msg)) = GenericMechanism::from_rust_source(&bad, "FourBar")
+        else {
+            panic!()
+        };
         assert!(msg.starts_with("16:38: unknown link `rockr`"), "{msg}");
         // The declaration's text, as written.
         assert_eq!(mechanism_text(&source, "FourBar").unwrap(), FOUR_BAR);
@@ -1167,7 +1431,10 @@ mod tests {
         let cg = mo.link("coupler").unwrap();
         assert!((cg.cg - V2::new(1.0 + q.cos(), q.sin())).norm() < 1e-13);
         assert!((cg.cg_acc + V2::new(q.cos(), q.sin()) * 4.0).norm() < 1e-12);
-        assert!(matches!(m.kinetostatics(&mo, &m.loads()), Err(MechError::Redundant(_))));
+        assert!(matches!(
+            m.kinetostatics(&mo, &m.loads()),
+            Err(MechError::Redundant(_))
+        ));
         // Virtual power: the driver balances the centripetal inertia force only (no gravity).
         let d = m.driver_action(&mo, &m.loads()).unwrap();
         assert!(d[0].abs() < 1e-12, "{d:?}");
@@ -1176,15 +1443,33 @@ mod tests {
     #[test]
     fn bad_inputs_are_errors() {
         let m = GenericMechanism::parse(FOUR_BAR).unwrap();
-        assert!(matches!(m.pose(&[f64::NAN]), Err(MechError::InvalidInput(_))));
-        assert!(matches!(m.pose(&[1.0, 2.0]), Err(MechError::InvalidInput(_))));
-        assert!(matches!(m.kinematics(&[1.0], &[f64::INFINITY], &[0.0]), Err(MechError::InvalidInput(_))));
+        assert!(matches!(
+            m.pose(&[f64::NAN]),
+            Err(MechError::InvalidInput(_))
+        ));
+        assert!(matches!(
+            m.pose(&[1.0, 2.0]),
+            Err(MechError::InvalidInput(_))
+        ));
+        assert!(matches!(
+            m.kinematics(&[1.0], &[f64::INFINITY], &[0.0]),
+            Err(MechError::InvalidInput(_))
+        ));
         let mo = m.kinematics(&[1.0], &[1.0], &[0.0]).unwrap();
         let mut loads = m.loads();
         loads.set_by_name("resist", &[f64::NAN]);
-        assert!(matches!(m.kinetostatics(&mo, &loads), Err(MechError::InvalidInput(_))));
-        assert!(matches!(m.driver_action(&mo, &loads), Err(MechError::InvalidInput(_))));
-        assert!(matches!(m.acceleration(1.0, f64::NAN, 0.0, &m.loads()), Err(MechError::InvalidInput(_))));
+        assert!(matches!(
+            m.kinetostatics(&mo, &loads),
+            Err(MechError::InvalidInput(_))
+        ));
+        assert!(matches!(
+            m.driver_action(&mo, &loads),
+            Err(MechError::InvalidInput(_))
+        ));
+        assert!(matches!(
+            m.acceleration(1.0, f64::NAN, 0.0, &m.loads()),
+            Err(MechError::InvalidInput(_))
+        ));
         assert!(m.clone().with_tolerance(0.0).is_err());
         assert!(m.clone().with_tolerance(f64::NAN).is_err());
     }

@@ -11,7 +11,11 @@ pub fn anchor(model: &Model, l: usize) -> V2 {
         return V2::zeros();
     }
     let link = &model.links[l];
-    let p = link.points.first().map(|&p| model.points[p].pos).unwrap_or(link.cg);
+    let p = link
+        .points
+        .first()
+        .map(|&p| model.points[p].pos)
+        .unwrap_or(link.cg);
     V2::new(p[0], p[1])
 }
 
@@ -34,7 +38,9 @@ pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
         axis: if n > 0.0 { ax / n } else { V2::zeros() },
         q_ref: match model.inputs.iter().position(|&i| i == j) {
             Some(k) => model.reference_input(k),
-            None if jt.kind == JointKind::Revolute => model.reference_angle(jt.b) - model.reference_angle(jt.a),
+            None if jt.kind == JointKind::Revolute => {
+                model.reference_angle(jt.b) - model.reference_angle(jt.a)
+            }
             None => 0.0,
         },
     }
@@ -42,7 +48,9 @@ pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
 
 /// Every joint's geometry, in joint order.
 pub fn joint_geoms(model: &Model) -> Vec<JointGeom> {
-    (0..model.joints.len()).map(|j| joint_geom(model, j)).collect()
+    (0..model.joints.len())
+        .map(|j| joint_geom(model, j))
+        .collect()
 }
 
 /// The constraints a joint imposes: its own kind, plus a driver row when it is input `k`.
@@ -59,7 +67,11 @@ pub fn joint_cons(model: &Model, j: usize) -> Vec<Con> {
     if let Some(k) = model.inputs.iter().position(|&i| i == j) {
         out.push(Con {
             joint: j,
-            kind: if kind == JointKind::Revolute { ConKind::DriveRevolute(k) } else { ConKind::DrivePrismatic(k) },
+            kind: if kind == JointKind::Revolute {
+                ConKind::DriveRevolute(k)
+            } else {
+                ConKind::DrivePrismatic(k)
+            },
         });
     }
     out
@@ -67,10 +79,14 @@ pub fn joint_cons(model: &Model, j: usize) -> Vec<Con> {
 
 /// Every constraint of the mechanism (joints, then their drivers), in joint order.
 pub fn all_cons(model: &Model) -> Vec<Con> {
-    (0..model.joints.len()).flat_map(|j| joint_cons(model, j)).collect()
+    (0..model.joints.len())
+        .flat_map(|j| joint_cons(model, j))
+        .collect()
 }
 
 /// The links' states in the drawing (at rest).
 pub fn drawing_states(model: &Model) -> Vec<LinkState> {
-    (0..model.links.len()).map(|l| LinkState::at(anchor(model, l))).collect()
+    (0..model.links.len())
+        .map(|l| LinkState::at(anchor(model, l)))
+        .collect()
 }

@@ -26,14 +26,24 @@ impl<const N: usize> GroupSystem<N> {
     /// Assemble and factor the Jacobian of the group's constraints with respect to its
     /// links' coordinates at the current positions. `scale` is the drawing's length (m).
     #[inline(always)]
-    pub fn new(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
+    pub fn new(
+        bodies: &[usize],
+        cons: &[Con],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        scale: f64,
+    ) -> Result<Self, MechError> {
         let (j, row_scale) = assemble::<N, N>(bodies, cons, joints, s, scale);
         let lu = Lu::new(j);
         let cond = lu.condition();
         if !(cond < SINGULAR_CONDITION) {
             return Err(MechError::Singular { condition: cond });
         }
-        Ok(GroupSystem { lu, row_scale, scale })
+        Ok(GroupSystem {
+            lu,
+            row_scale,
+            scale,
+        })
     }
 
     /// Solve J x = b for the links' coordinates rates (x, y, φ per link).
@@ -73,14 +83,27 @@ pub struct LsSystem<const N: usize, const M: usize> {
 impl<const N: usize, const M: usize> LsSystem<N, M> {
     /// Assemble J and factor JᵀJ at the current positions.
     #[inline(always)]
-    pub fn new(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
+    pub fn new(
+        bodies: &[usize],
+        cons: &[Con],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        scale: f64,
+    ) -> Result<Self, MechError> {
         let (j, row_scale) = assemble::<M, N>(bodies, cons, joints, s, scale);
         let lu = Lu::new(j.transpose() * j);
         let cond = lu.condition();
         if !(cond < SINGULAR_CONDITION * SINGULAR_CONDITION) {
-            return Err(MechError::Singular { condition: cond.sqrt() });
+            return Err(MechError::Singular {
+                condition: cond.sqrt(),
+            });
         }
-        Ok(LsSystem { j, lu, row_scale, scale })
+        Ok(LsSystem {
+            j,
+            lu,
+            row_scale,
+            scale,
+        })
     }
 
     /// Solve J x = b (consistent, M ≥ N) through the normal equations.
@@ -98,7 +121,12 @@ impl<const N: usize, const M: usize> LsSystem<N, M> {
 /// Write the solved rates `x` (x, y, φ per link) of a group into its links' velocities
 /// (`acc` false) or accelerations (`acc` true).
 #[inline(always)]
-fn store_rates<const N: usize>(bodies: &[usize], s: &mut [LinkState], x: &SVector<f64, N>, acc: bool) {
+fn store_rates<const N: usize>(
+    bodies: &[usize],
+    s: &mut [LinkState],
+    x: &SVector<f64, N>,
+    acc: bool,
+) {
     for (k, &b) in bodies.iter().enumerate() {
         if acc {
             s[b].acc = V2::new(x[3 * k], x[3 * k + 1]);
@@ -112,13 +140,21 @@ fn store_rates<const N: usize>(bodies: &[usize], s: &mut [LinkState], x: &SVecto
 
 /// Move a group's links by the coordinate step `dx`; the largest component (m, φ×L).
 #[inline(always)]
-fn apply_step<const N: usize>(bodies: &[usize], s: &mut [LinkState], dx: &SVector<f64, N>, scale: f64) -> f64 {
+fn apply_step<const N: usize>(
+    bodies: &[usize],
+    s: &mut [LinkState],
+    dx: &SVector<f64, N>,
+    scale: f64,
+) -> f64 {
     let mut step: f64 = 0.0;
     for (k, &b) in bodies.iter().enumerate() {
         s[b].pos += V2::new(dx[3 * k], dx[3 * k + 1]);
         let (sn, cs) = dx[3 * k + 2].sin_cos();
         s[b].rot = rotate(s[b].rot, V2::new(cs, sn)).normalize();
-        step = step.max(dx[3 * k].abs()).max(dx[3 * k + 1].abs()).max((dx[3 * k + 2] * scale).abs());
+        step = step
+            .max(dx[3 * k].abs())
+            .max(dx[3 * k + 1].abs())
+            .max((dx[3 * k + 2] * scale).abs());
     }
     step
 }
@@ -136,36 +172,80 @@ pub fn group_rates<const N: usize>(
     drive: Drive,
     level: Level,
 ) {
-    store_rates(bodies, s, &sys.rates(cons, joints, s, drive, level), level == Level::Acceleration);
+    store_rates(
+        bodies,
+        s,
+        &sys.rates(cons, joints, s, drive, level),
+        level == Level::Acceleration,
+    );
 }
 
 /// A group's factored linear system: the square [`GroupSystem`] or the least-squares
 /// [`LsSystem`] of a redundant group.
 pub trait RateSystem<const N: usize>: Copy {
     /// Assemble and factor at the current positions.
-    fn build(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError>;
+    fn build(
+        bodies: &[usize],
+        cons: &[Con],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        scale: f64,
+    ) -> Result<Self, MechError>;
     /// The links' rates (x, y, φ per link) at `level`, J x = −Φ̇ or −Φ̈ of the known rates.
-    fn rates(&self, cons: &[Con], joints: &[JointGeom], s: &[LinkState], drive: Drive, level: Level) -> SVector<f64, N>;
+    fn rates(
+        &self,
+        cons: &[Con],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        drive: Drive,
+        level: Level,
+    ) -> SVector<f64, N>;
 }
 
 impl<const N: usize> RateSystem<N> for GroupSystem<N> {
     #[inline(always)]
-    fn build(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
+    fn build(
+        bodies: &[usize],
+        cons: &[Con],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        scale: f64,
+    ) -> Result<Self, MechError> {
         GroupSystem::new(bodies, cons, joints, s, scale)
     }
     #[inline(always)]
-    fn rates(&self, cons: &[Con], joints: &[JointGeom], s: &[LinkState], drive: Drive, level: Level) -> SVector<f64, N> {
+    fn rates(
+        &self,
+        cons: &[Con],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        drive: Drive,
+        level: Level,
+    ) -> SVector<f64, N> {
         self.solve(&group_rhs::<N>(cons, joints, s, drive, level))
     }
 }
 
 impl<const N: usize, const M: usize> RateSystem<N> for LsSystem<N, M> {
     #[inline(always)]
-    fn build(bodies: &[usize], cons: &[Con], joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
+    fn build(
+        bodies: &[usize],
+        cons: &[Con],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        scale: f64,
+    ) -> Result<Self, MechError> {
         LsSystem::new(bodies, cons, joints, s, scale)
     }
     #[inline(always)]
-    fn rates(&self, cons: &[Con], joints: &[JointGeom], s: &[LinkState], drive: Drive, level: Level) -> SVector<f64, N> {
+    fn rates(
+        &self,
+        cons: &[Con],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        drive: Drive,
+        level: Level,
+    ) -> SVector<f64, N> {
         self.solve(&group_rhs::<M>(cons, joints, s, drive, level))
     }
 }
@@ -187,7 +267,12 @@ pub fn group_velocity_field<const N: usize, S: RateSystem<N>>(
         Some(sys) => *sys,
         None => S::build(bodies, cons, joints, s, scale)?,
     };
-    store_rates(bodies, s, &sys.rates(cons, joints, s, drive, Level::Velocity), false);
+    store_rates(
+        bodies,
+        s,
+        &sys.rates(cons, joints, s, drive, Level::Velocity),
+        false,
+    );
     Ok(())
 }
 
@@ -284,9 +369,19 @@ pub fn group_solve_ls<const N: usize, const M: usize>(
         return Ok(None);
     }
     let sys = LsSystem::<N, M>::new(bodies, cons, joints, s, scale)?;
-    store_rates(bodies, s, &sys.rates(cons, joints, s, drive, Level::Velocity), false);
+    store_rates(
+        bodies,
+        s,
+        &sys.rates(cons, joints, s, drive, Level::Velocity),
+        false,
+    );
     if upto == Level::Acceleration {
-        store_rates(bodies, s, &sys.rates(cons, joints, s, drive, Level::Acceleration), true);
+        store_rates(
+            bodies,
+            s,
+            &sys.rates(cons, joints, s, drive, Level::Acceleration),
+            true,
+        );
     }
     Ok(Some(sys))
 }

@@ -87,7 +87,10 @@ pub fn check(model: &Model) -> Option<Issue> {
         ""
     };
     let fix = if g > 0 && inputs == 0 {
-        format!("declare {} (`input: J` or `inputs: [J1, J2, ...]`)", plural(g, "input", "inputs"))
+        format!(
+            "declare {} (`input: J` or `inputs: [J1, J2, ...]`)",
+            plural(g, "input", "inputs")
+        )
     } else if g > 0 {
         format!(
             "declare {} (`input: J` or `inputs: [J1, J2, ...]`), or add/remove links or joints so that G = {}",
@@ -134,7 +137,11 @@ pub fn check(model: &Model) -> Option<Issue> {
 /// IV, V: higher pairs). 6(N − 1) is the number of equations, the sum the number of
 /// reaction components.
 pub fn spatial_mobility(n_links: usize, pairs_by_class: [usize; 5]) -> i64 {
-    let reactions: i64 = pairs_by_class.iter().enumerate().map(|(k, &p)| (5 - k as i64) * p as i64).sum();
+    let reactions: i64 = pairs_by_class
+        .iter()
+        .enumerate()
+        .map(|(k, &p)| (5 - k as i64) * p as i64)
+        .sum();
     6 * (n_links as i64 - 1) - reactions
 }
 
@@ -166,7 +173,15 @@ mod tests {
         let c = count(&m);
         assert_eq!(
             c,
-            Count { n: 4, lower_pairs: 4, higher_pairs: 0, grubler: 1, equations: 9, unknowns: 9, inputs: 1 }
+            Count {
+                n: 4,
+                lower_pairs: 4,
+                higher_pairs: 0,
+                grubler: 1,
+                equations: 9,
+                unknowns: 9,
+                inputs: 1
+            }
         );
         assert_eq!(check(&m), None);
     }
@@ -188,7 +203,17 @@ mod tests {
             }"#,
         );
         let c = count(&m);
-        assert_eq!((c.n, c.lower_pairs, c.higher_pairs, c.grubler, c.equations, c.unknowns), (3, 2, 1, 1, 6, 6));
+        assert_eq!(
+            (
+                c.n,
+                c.lower_pairs,
+                c.higher_pairs,
+                c.grubler,
+                c.equations,
+                c.unknowns
+            ),
+            (3, 2, 1, 1, 6, 6)
+        );
         assert_eq!(check(&m), None);
     }
 
@@ -217,7 +242,10 @@ mod tests {
         // No input at all: the fix is to declare one.
         let m = model(&FOUR_BAR.replace("INPUTS", ""));
         let msg = check(&m).expect("no input").message;
-        assert!(msg.contains("but 0 inputs were declared: declare 1 input (`input: J`"), "{msg}");
+        assert!(
+            msg.contains("but 0 inputs were declared: declare 1 input (`input: J`"),
+            "{msg}"
+        );
         assert!(!msg.contains("so that G = 0"), "{msg}");
     }
 
@@ -232,7 +260,13 @@ mod tests {
                 input: O,
             }"#;
         let issue = check(&model(text)).expect("a structure with an input");
-        assert!(issue.message.contains("= 0 (zero: the chain is a structure"), "{}", issue.message);
+        assert!(
+            issue
+                .message
+                .contains("= 0 (zero: the chain is a structure"),
+            "{}",
+            issue.message
+        );
         // With #[allow(redundant)], G < inputs is left to the geometric check.
         let m = model(&format!("#[allow(redundant)] {text}"));
         assert!(m.allow_redundant);

@@ -1,9 +1,9 @@
 //! The numbers a generated struct (or the generic solver) works with, derived from a
 //! resolved [`Model`]: local joint geometry, link data, the drawing's states.
 
+use crate::constraints::JointGeom;
 use crate::dyad::{branch, branch_quantity, Solver};
 use crate::geometry::{anchor, drawing_states, joint_geoms, local};
-use crate::constraints::JointGeom;
 use crate::link_state::{LinkGeom, LinkState, V2};
 use crate::model::{Load, Model};
 use crate::MechError;
@@ -32,7 +32,11 @@ pub struct Instance {
 pub fn instance(model: &Model) -> Result<Instance, MechError> {
     let issues = crate::validate::runtime(model);
     if !issues.is_empty() {
-        let msg = issues.iter().map(|i| i.message.as_str()).collect::<Vec<_>>().join("\n");
+        let msg = issues
+            .iter()
+            .map(|i| i.message.as_str())
+            .collect::<Vec<_>>()
+            .join("\n");
         return Err(MechError::Invalid(msg));
     }
     let links = (0..model.links.len())
@@ -50,7 +54,9 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
         .collect();
     let points = (0..model.points.len())
         .map(|p| {
-            let owner = (0..model.links.len()).find(|&l| model.links[l].points.contains(&p)).unwrap_or(0);
+            let owner = (0..model.links.len())
+                .find(|&l| model.links[l].points.contains(&p))
+                .unwrap_or(0);
             (owner, local(model, owner, model.points[p].pos))
         })
         .collect();
@@ -69,14 +75,20 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
         points,
         loads,
         scale: model.scale(),
-        gravity: model.gravity.map(|g| V2::new(g[0], g[1])).unwrap_or_else(V2::zeros),
+        gravity: model
+            .gravity
+            .map(|g| V2::new(g[0], g[1]))
+            .unwrap_or_else(V2::zeros),
     })
 }
 
 impl Instance {
     /// The branch sign of each group's closed form in the drawing.
     pub fn branches(&self, solvers: &[Solver]) -> Vec<f64> {
-        solvers.iter().map(|&s| branch(branch_quantity(s, &self.joints, &self.drawing))).collect()
+        solvers
+            .iter()
+            .map(|&s| branch(branch_quantity(s, &self.joints, &self.drawing)))
+            .collect()
     }
 }
 

@@ -17,14 +17,17 @@
 
 pub use crate::constraints::{eval, Con, ConEval, ConKind, Drive, JointGeom, Level, Row};
 pub use crate::dyad::Solver;
+use crate::kinetostatics::{Reaction, Wrench};
 pub use crate::link_state::{
-    cross, perp, point_motion, point_pose, rotate, wrap, LinkGeom, LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2,
+    cross, perp, point_motion, point_pose, rotate, wrap, LinkGeom, LinkMotion, LinkPose, LinkState,
+    PointMotion, PointPose, V2,
 };
 use crate::screw::{chain_rates, driven_rates, Chain, Driven};
 use crate::MechError;
 
 /// Solve a closed-form group up to `upto`: place its links by `solver` on the drawing's
-/// branch `sign`, then its velocities and accelerations by the chain's joint screws.
+/// branch `sign`, then its velocities and accelerations in natural coordinates for an RRR
+/// or RRP dyad ([`crate::natural`]), by the chain's joint screws for the others.
 /// `Singular` near a change point, `NoAssembly` where the group does not close.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
@@ -39,15 +42,58 @@ pub fn solve_chain(
     scale: f64,
     upto: Level,
 ) -> Result<(), MechError> {
-    crate::dyad::position(solver, joints, s, drive, sign)?;
-    chain_rates(chain, joints, s, scale, upto)
+    let points = crate::dyad::position(solver, joints, s, drive, sign)?;
+    match solver {
+        Solver::Rrr { b1, b2, ja, jb, .. } => {
+            crate::natural::rrr_rates(joints, s, b1, b2, ja, jb, points, upto)
+        }
+        Solver::Rrp { b1, b2, ja, jp, .. } => {
+            crate::natural::rrp_rates(joints, s, b1, b2, ja, jp, points, scale, upto)
+        }
+        _ => chain_rates(chain, joints, s, scale, upto),
+    }
+}
+
+/// d'Alembert for a closed-form group: the reaction at each of its joints into `out`
+/// (joint order), and the reactions on the solved links it is jointed to added to their
+/// wrenches in `f` (every link's applied and inertia wrench about its anchor, plus the
+/// reactions of the groups solved before). In natural coordinates for an RRR or RRP dyad
+/// ([`crate::natural`]), by the chain's joint screws for the others. Called from the
+/// outermost group inward.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub fn chain_reactions(
+    solver: Solver,
+    chain: &Chain,
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    scale: f64,
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    match solver {
+        Solver::Rrr { b1, b2, ja, jc, jb } => {
+            crate::natural::rrr_reactions(joints, s, f, b1, b2, ja, jc, jb, out)
+        }
+        Solver::Rrp { b1, b2, ja, jc, jp } => {
+            crate::natural::rrp_reactions(joints, s, f, b1, b2, ja, jc, jp, scale, out)
+        }
+        _ => crate::screw::chain_reactions(chain, joints, s, f, scale, out),
+    }
 }
 
 /// Solve a driven crank or slider up to `upto`: its pose from the input q, then its
 /// velocity and acceleration from q̇ and q̈.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
-pub fn solve_driven(solver: Solver, driven: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive: Drive, upto: Level) -> Result<(), MechError> {
+pub fn solve_driven(
+    solver: Solver,
+    driven: &Driven,
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    drive: Drive,
+    upto: Level,
+) -> Result<(), MechError> {
     crate::dyad::position(solver, joints, s, drive, 1.0)?;
     driven_rates(driven, joints, s, drive, upto)
 }

@@ -40,8 +40,8 @@ pub fn add_gravity(w: &mut Wrench, s: &LinkState, l: &LinkGeom, g: V2) {
 #[inline(always)]
 pub fn add_inertia(w: &mut Wrench, s: &LinkState, l: &LinkGeom) {
     let r = s.r(l.dcg);
-    add_force(w, s, l.dcg, -s.acc_at(r) * l.mass);
-    w.z -= l.inertia * s.alpha;
+    let force = -s.acc_at(r) * l.mass;
+    *w += Vector3::new(force.x, force.y, cross(r, force) - l.inertia * s.alpha);
 }
 
 /// The multipliers of one group (row order of its constraints): solve Jᵀ λ = −f for
@@ -95,7 +95,10 @@ pub fn slide_force(g: &JointGeom, s: &[LinkState], lambda: f64) -> V2 {
 /// moves alone in `s` at unit rate is minus this.
 #[inline]
 pub fn virtual_power(f: &[Wrench], s: &[LinkState]) -> f64 {
-    f.iter().zip(s).map(|(w, st)| w.x * st.vel.x + w.y * st.vel.y + w.z * st.omega).sum()
+    f.iter()
+        .zip(s)
+        .map(|(w, st)| w.x * st.vel.x + w.y * st.vel.y + w.z * st.omega)
+        .sum()
 }
 
 /// The reaction at one joint as the kernels produce it: the force BY a ON b (N, global)
@@ -113,14 +116,36 @@ pub struct Reaction {
 /// [`group_reactions`]): each joint's into `out`, each driver row's motor action into
 /// `drivers` (by a on b: torque, or axial force).
 #[inline]
-pub fn lambda_reactions(cons: &[Con], joints: &[JointGeom], s: &[LinkState], lam: &[f64], out: &mut [Reaction], drivers: &mut [f64]) {
+pub fn lambda_reactions(
+    cons: &[Con],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    lam: &[f64],
+    out: &mut [Reaction],
+    drivers: &mut [f64],
+) {
     let mut row = 0;
     for c in cons {
         let g = &joints[c.joint];
         match c.kind {
-            ConKind::Revolute => out[c.joint] = Reaction { force: V2::new(lam[row], lam[row + 1]), moment: 0.0 },
-            ConKind::Prismatic => out[c.joint] = Reaction { force: slide_force(g, s, lam[row]), moment: lam[row + 1] },
-            ConKind::Slot => out[c.joint] = Reaction { force: slide_force(g, s, lam[row]), moment: 0.0 },
+            ConKind::Revolute => {
+                out[c.joint] = Reaction {
+                    force: V2::new(lam[row], lam[row + 1]),
+                    moment: 0.0,
+                }
+            }
+            ConKind::Prismatic => {
+                out[c.joint] = Reaction {
+                    force: slide_force(g, s, lam[row]),
+                    moment: lam[row + 1],
+                }
+            }
+            ConKind::Slot => {
+                out[c.joint] = Reaction {
+                    force: slide_force(g, s, lam[row]),
+                    moment: 0.0,
+                }
+            }
             ConKind::DriveRevolute(k) | ConKind::DrivePrismatic(k) => drivers[k] = lam[row],
         }
         row += c.kind.rows();

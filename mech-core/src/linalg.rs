@@ -110,14 +110,13 @@ impl<const N: usize> Lu<N> {
     }
 }
 
-/// The inverse of a 2×2 matrix [[a, b], [c, d]] with its condition estimate
-/// κ_F = ‖A‖_F ‖A⁻¹‖_F = ‖A‖²_F / |det A| (exact for 2×2: ‖A⁻¹‖_F = ‖A‖_F / |det A|).
+/// The inverse of a 2×2 matrix A = [[a, b], [c, d]], refused near singularity by the
+/// condition estimate of A·diag(c₀, c₁) (the columns scaled to be dimensionless):
+/// κ_F = ‖A C‖_F ‖(A C)⁻¹‖_F = ‖A C‖²_F / |det A C| (exact for 2×2: ‖B⁻¹‖_F = ‖B‖_F / |det B|).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inverse2 {
     /// A⁻¹, row major.
     pub inv: [[f64; 2]; 2],
-    /// κ_F(A).
-    pub condition: f64,
 }
 
 impl Inverse2 {
@@ -125,25 +124,56 @@ impl Inverse2 {
     /// `Singular` when κ_F ≥ [`SINGULAR_CONDITION`] or it is not finite.
     #[inline(always)]
     pub fn new(m: [[f64; 2]; 2]) -> Result<Self, crate::MechError> {
+        Self::scaled(m, [1.0, 1.0])
+    }
+    /// Invert `m` (row major), the condition estimate taken on `m` with its columns
+    /// multiplied by `c` (which makes them dimensionless): `Singular` when
+    /// ‖A C‖²_F ≥ [`SINGULAR_CONDITION`] |det A C| or either is not finite. The test
+    /// multiplies, so that the one division is 1/det.
+    #[inline(always)]
+    pub fn scaled(m: [[f64; 2]; 2], c: [f64; 2]) -> Result<Self, crate::MechError> {
         let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-        let norm2 = m[0][0] * m[0][0] + m[0][1] * m[0][1] + m[1][0] * m[1][0] + m[1][1] * m[1][1];
-        let condition = norm2 / det.abs();
-        if !(condition < SINGULAR_CONDITION) {
-            return Err(crate::MechError::Singular { condition: if condition.is_nan() { f64::INFINITY } else { condition } });
+        let norm2 = c[0] * c[0] * (m[0][0] * m[0][0] + m[1][0] * m[1][0])
+            + c[1] * c[1] * (m[0][1] * m[0][1] + m[1][1] * m[1][1]);
+        let sdet = (c[0] * c[1] * det).abs();
+        if !(norm2 < SINGULAR_CONDITION * sdet) {
+            return Err(singular2(norm2, sdet));
         }
         let r = 1.0 / det;
-        Ok(Inverse2 { inv: [[m[1][1] * r, -m[0][1] * r], [-m[1][0] * r, m[0][0] * r]], condition })
+        Ok(Inverse2 {
+            inv: [[m[1][1] * r, -m[0][1] * r], [-m[1][0] * r, m[0][0] * r]],
+        })
     }
     /// A⁻¹ b.
     #[inline(always)]
     pub fn solve(&self, b: [f64; 2]) -> [f64; 2] {
         let m = &self.inv;
-        [m[0][0] * b[0] + m[0][1] * b[1], m[1][0] * b[0] + m[1][1] * b[1]]
+        [
+            m[0][0] * b[0] + m[0][1] * b[1],
+            m[1][0] * b[0] + m[1][1] * b[1],
+        ]
     }
     /// A⁻ᵀ b.
     #[inline(always)]
     pub fn solve_transpose(&self, b: [f64; 2]) -> [f64; 2] {
         let m = &self.inv;
-        [m[0][0] * b[0] + m[1][0] * b[1], m[0][1] * b[0] + m[1][1] * b[1]]
+        [
+            m[0][0] * b[0] + m[1][0] * b[1],
+            m[0][1] * b[0] + m[1][1] * b[1],
+        ]
+    }
+}
+
+/// The `Singular` error of a 2×2 system with ‖A C‖²_F = `norm2` and |det A C| = `sdet`.
+#[cold]
+#[inline(never)]
+fn singular2(norm2: f64, sdet: f64) -> crate::MechError {
+    let condition = norm2 / sdet;
+    crate::MechError::Singular {
+        condition: if condition.is_nan() {
+            f64::INFINITY
+        } else {
+            condition
+        },
     }
 }

@@ -39,7 +39,11 @@ pub fn wrap(a: f64) -> f64 {
     if !(a.abs() < 1e9) {
         let (s, c) = a.sin_cos();
         let r = s.atan2(c);
-        return if r <= -std::f64::consts::PI { std::f64::consts::PI } else { r };
+        return if r <= -std::f64::consts::PI {
+            std::f64::consts::PI
+        } else {
+            r
+        };
     }
     let t = std::f64::consts::TAU;
     let r = a - t * (a / t).round();
@@ -68,6 +72,7 @@ pub struct LinkState {
 }
 
 impl Default for LinkState {
+    #[inline]
     fn default() -> Self {
         LinkState::at(V2::zeros())
     }
@@ -182,7 +187,10 @@ impl LinkGeom {
     /// The link's pose when its angle θ is already known (a crank on the ground: ±q).
     #[inline]
     pub fn pose_at(&self, s: &LinkState, angle: f64) -> LinkPose {
-        LinkPose { angle, cg: s.point(self.dcg) }
+        LinkPose {
+            angle,
+            cg: s.point(self.dcg),
+        }
     }
     /// The link's motion.
     #[inline]
@@ -226,15 +234,30 @@ pub fn dir_of(s: &[LinkState], l: usize, d: V2) -> V2 {
     }
 }
 
-/// The motion of the material point of local vector `d` on a link.
+/// The motion of the material point of local vector `d` on link `l` of the states `s`
+/// (at rest on the ground, link 0, whose points are their local vectors).
 #[inline]
-pub fn point_motion(s: &LinkState, d: V2) -> PointMotion {
+pub fn point_motion(s: &[LinkState], l: usize, d: V2) -> PointMotion {
+    if l == 0 {
+        return PointMotion {
+            pos: d,
+            vel: V2::zeros(),
+            acc: V2::zeros(),
+        };
+    }
+    let s = &s[l];
     let r = s.r(d);
-    PointMotion { pos: s.pos + r, vel: s.vel_at(r), acc: s.acc_at(r) }
+    PointMotion {
+        pos: s.pos + r,
+        vel: s.vel_at(r),
+        acc: s.acc_at(r),
+    }
 }
 
-/// The position of the material point of local vector `d` on a link.
+/// The position of the material point of local vector `d` on link `l` of the states `s`.
 #[inline]
-pub fn point_pose(s: &LinkState, d: V2) -> PointPose {
-    PointPose { pos: s.point(d) }
+pub fn point_pose(s: &[LinkState], l: usize, d: V2) -> PointPose {
+    PointPose {
+        pos: point_of(s, l, d),
+    }
 }

@@ -17,6 +17,7 @@
 //! | a moment of inertia, a flywheel | 0, or 1e-36 kg·m² to 1e15 kg·m² |
 //! | gravity | \|g\| ≤ 1e4 m/s² |
 
+use crate::constraints::Level;
 use crate::model::Model;
 use crate::resolve::{Culprit, Issue};
 use crate::MechError;
@@ -49,7 +50,10 @@ pub fn check(model: &Model) -> Vec<Issue> {
             message: "the mechanism has no moving link: declare at least one `link NAME { points { ... } }` joined to the ground, and an input".into(),
         });
     }
-    let finite = model.points.iter().all(|p| p.pos.iter().all(|v| v.is_finite()));
+    let finite = model
+        .points
+        .iter()
+        .all(|p| p.pos.iter().all(|v| v.is_finite()));
     for (i, p) in model.points.iter().enumerate() {
         if finite && p.pos.iter().any(|v| v.abs() > COORDINATE) {
             out.push(Issue {
@@ -69,13 +73,22 @@ pub fn check(model: &Model) -> Vec<Issue> {
         });
     }
     for (i, l) in model.links.iter().enumerate().skip(1) {
-        if let Some(m) = l.mass.filter(|m| m.is_finite() && *m >= 0.0 && !in_range(*m, MASS)) {
+        if let Some(m) = l
+            .mass
+            .filter(|m| m.is_finite() && *m >= 0.0 && !in_range(*m, MASS))
+        {
             out.push(Issue {
                 culprits: vec![Culprit::Mass(i), Culprit::Link(i)],
-                message: format!("link `{}` has mass {m:e} kg: a mass is 0 or from {:e} kg to {:e} kg ({WHY})", l.name, MASS.0, MASS.1),
+                message: format!(
+                    "link `{}` has mass {m:e} kg: a mass is 0 or from {:e} kg to {:e} kg ({WHY})",
+                    l.name, MASS.0, MASS.1
+                ),
             });
         }
-        for (what, v, c) in [("moment of inertia", l.inertia, Culprit::Inertia(i)), ("flywheel inertia", l.flywheel, Culprit::Link(i))] {
+        for (what, v, c) in [
+            ("moment of inertia", l.inertia, Culprit::Inertia(i)),
+            ("flywheel inertia", l.flywheel, Culprit::Link(i)),
+        ] {
             if v.is_finite() && v >= 0.0 && !in_range(v, INERTIA) {
                 out.push(Issue {
                     culprits: vec![c, Culprit::Link(i)],
@@ -115,19 +128,33 @@ pub fn finite_result(quantity: &str, values: &[f64]) -> Result<(), MechError> {
 #[cold]
 #[inline(never)]
 fn overflow(quantity: &str, values: &[f64]) -> Result<(), MechError> {
-    let v = values.iter().find(|v| !v.is_finite()).copied().unwrap_or(f64::NAN);
+    let v = values
+        .iter()
+        .find(|v| !v.is_finite())
+        .copied()
+        .unwrap_or(f64::NAN);
     Err(MechError::InvalidInput(format!("the {quantity} overflow ({v}): the inputs, loads or driver are too large for f64 with this mechanism; reduce them")))
 }
 
-/// `Ok(())` when every link state (position, rotation, velocities, accelerations) is
-/// finite; else [`finite_result`]'s error for the link motions. One sum over the fields
-/// (a NaN or an infinity reaches it), the values examined one by one only when it is not
-/// finite.
+/// `Ok(())` when every moving link's state is finite up to the level `upto` solved
+/// (position and rotation; velocities from [`Level::Velocity`]; accelerations at
+/// [`Level::Acceleration`]); else [`finite_result`]'s error for the link motions. The
+/// ground (link 0) never moves and is skipped. One sum over the fields (a NaN or an
+/// infinity reaches it), the values examined one by one only when it is not finite.
 #[inline(always)]
-pub fn finite_states(states: &[crate::link_state::LinkState]) -> Result<(), MechError> {
+pub fn finite_states(
+    states: &[crate::link_state::LinkState],
+    upto: Level,
+) -> Result<(), MechError> {
     let mut sum = 0.0;
-    for s in states {
-        sum += (s.pos.x + s.pos.y) + (s.rot.x + s.rot.y) + (s.vel.x + s.vel.y + s.omega) + (s.acc.x + s.acc.y + s.alpha);
+    for s in states.iter().skip(1) {
+        sum += (s.pos.x + s.pos.y) + (s.rot.x + s.rot.y);
+        if upto != Level::Position {
+            sum += s.vel.x + s.vel.y + s.omega;
+        }
+        if upto == Level::Acceleration {
+            sum += s.acc.x + s.acc.y + s.alpha;
+        }
     }
     if sum.is_finite() {
         Ok(())
@@ -139,14 +166,29 @@ pub fn finite_states(states: &[crate::link_state::LinkState]) -> Result<(), Mech
 #[cold]
 #[inline(never)]
 fn states_overflow(states: &[crate::link_state::LinkState]) -> Result<(), MechError> {
-    let all: Vec<f64> = states.iter().flat_map(|s| [s.pos.x, s.pos.y, s.rot.x, s.rot.y, s.vel.x, s.vel.y, s.omega, s.acc.x, s.acc.y, s.alpha]).collect();
+    let all: Vec<f64> = states
+        .iter()
+        .flat_map(|s| {
+            [
+                s.pos.x, s.pos.y, s.rot.x, s.rot.y, s.vel.x, s.vel.y, s.omega, s.acc.x, s.acc.y,
+                s.alpha,
+            ]
+        })
+        .collect();
     finite_result("velocities or accelerations", &all)
 }
 
 /// `Ok(())` when every reaction (force, moment) and motor action is finite.
 #[inline]
-pub fn finite_reactions(reactions: &[crate::kinetostatics::Reaction], driver: &[f64]) -> Result<(), MechError> {
-    let sum: f64 = reactions.iter().map(|r| r.force.x + r.force.y + r.moment).sum::<f64>() + driver.iter().sum::<f64>();
+pub fn finite_reactions(
+    reactions: &[crate::kinetostatics::Reaction],
+    driver: &[f64],
+) -> Result<(), MechError> {
+    let sum: f64 = reactions
+        .iter()
+        .map(|r| r.force.x + r.force.y + r.moment)
+        .sum::<f64>()
+        + driver.iter().sum::<f64>();
     if sum.is_finite() {
         Ok(())
     } else {
@@ -156,7 +198,14 @@ pub fn finite_reactions(reactions: &[crate::kinetostatics::Reaction], driver: &[
 
 #[cold]
 #[inline(never)]
-fn reactions_overflow(reactions: &[crate::kinetostatics::Reaction], driver: &[f64]) -> Result<(), MechError> {
-    let all: Vec<f64> = reactions.iter().flat_map(|r| [r.force.x, r.force.y, r.moment]).chain(driver.iter().copied()).collect();
+fn reactions_overflow(
+    reactions: &[crate::kinetostatics::Reaction],
+    driver: &[f64],
+) -> Result<(), MechError> {
+    let all: Vec<f64> = reactions
+        .iter()
+        .flat_map(|r| [r.force.x, r.force.y, r.moment])
+        .chain(driver.iter().copied())
+        .collect();
     finite_result("reactions or motor actions", &all)
 }

@@ -30,9 +30,12 @@ use crate::group::{group_solve, group_velocity_field, GroupSystem};
 use crate::instance::{instance, Instance};
 use crate::kinematics;
 use crate::kinetostatics::{
-    add_force, add_gravity, add_inertia, add_torque, group_reactions, lambda_reactions, PrismaticReaction, Reaction, RevoluteReaction, Wrench,
+    add_force, add_gravity, add_inertia, add_torque, group_reactions, lambda_reactions,
+    PrismaticReaction, Reaction, RevoluteReaction, Wrench,
 };
-use crate::link_state::{point_motion, point_pose, LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2};
+use crate::link_state::{
+    point_motion, point_pose, LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2,
+};
 use crate::model::{JointKind, Load, Model};
 use crate::params::LinkTerms;
 use crate::screw;
@@ -61,6 +64,10 @@ pub struct Mechanism {
     plan: Vec<Group>,
     branches: Vec<f64>,
     terms: Vec<LinkTerms>,
+    /// Per link: it turns about its anchor on a ground pin ([`Model::pinned_at_anchor`]).
+    pinned: Vec<bool>,
+    /// Per link: it slides on the ground ([`Model::translates`]).
+    translates: Vec<bool>,
 }
 
 /// The values of a run-time mechanism's loads, in declaration order. [`Mechanism::loads`]
@@ -158,7 +165,9 @@ impl Forces {
     /// The reaction at the joint named `name`: force by a on b (N) and, for a prismatic
     /// joint, the moment (N·m) — the shape of a generated `<Name>Forces::reaction`.
     pub fn reaction(&self, name: &str) -> Option<(V2, Option<f64>)> {
-        self.model.joint_index(name).map(|j| (self.joints[j].force, self.joints[j].moment))
+        self.model
+            .joint_index(name)
+            .map(|j| (self.joints[j].force, self.joints[j].moment))
     }
 }
 
@@ -183,7 +192,8 @@ impl Mechanism {
     /// Load from a file of DSL text; messages name the file.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, MechError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| MechError::Invalid(format!("cannot read {}: {e}", path.display())))?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| MechError::Invalid(format!("cannot read {}: {e}", path.display())))?;
         Self::from_dsl_named(&text, &path.display().to_string())
     }
 
@@ -193,17 +203,30 @@ impl Mechanism {
     pub fn from_model(model: Model) -> Result<Self, MechError> {
         let issues = crate::validate::check(&model);
         if !issues.is_empty() {
-            return Err(MechError::Invalid(issues.iter().map(|i| i.message.as_str()).collect::<Vec<_>>().join("\n")));
+            return Err(MechError::Invalid(
+                issues
+                    .iter()
+                    .map(|i| i.message.as_str())
+                    .collect::<Vec<_>>()
+                    .join("\n"),
+            ));
         }
         Self::from_checked(model)
     }
 
     /// [`Mechanism::from_model`] of a model that passed every check already.
     fn from_checked(model: Model) -> Result<Self, MechError> {
-        let plan = crate::assur::plan(&model)
-            .map_err(|_| MechError::Invalid("the links cannot be solved group by group from the inputs".into()))?;
-        if let Some(g) = plan.iter().find(|g| g.bodies.len() > MAX_GROUP_LINKS || g.rows() > 3 * g.bodies.len() + MAX_REDUNDANT_ROWS) {
-            let names: Vec<&str> = g.bodies.iter().map(|&b| model.links[b].name.as_str()).collect();
+        let plan = crate::assur::plan(&model).map_err(|_| {
+            MechError::Invalid("the links cannot be solved group by group from the inputs".into())
+        })?;
+        if let Some(g) = plan.iter().find(|g| {
+            g.bodies.len() > MAX_GROUP_LINKS || g.rows() > 3 * g.bodies.len() + MAX_REDUNDANT_ROWS
+        }) {
+            let names: Vec<&str> = g
+                .bodies
+                .iter()
+                .map(|&b| model.links[b].name.as_str())
+                .collect();
             return Err(MechError::InvalidInput(format!(
                 "the group of links {} has {} links and {} equations: the run-time interpreter takes groups of at most {MAX_GROUP_LINKS} links with at most {MAX_REDUNDANT_ROWS} redundant equations; load it with `GenericMechanism`",
                 names.join(", "),
@@ -215,7 +238,21 @@ impl Mechanism {
         let solvers: Vec<_> = plan.iter().map(|g| g.solver).collect();
         let branches = inst.branches(&solvers);
         let terms = model.links.iter().map(LinkTerms::of).collect();
-        Ok(Mechanism { model: Arc::new(model), inst, plan, branches, terms })
+        let pinned = (0..model.links.len())
+            .map(|l| model.pinned_at_anchor(l))
+            .collect();
+        let translates = (0..model.links.len())
+            .map(|l| model.translates(l))
+            .collect();
+        Ok(Mechanism {
+            model: Arc::new(model),
+            inst,
+            plan,
+            branches,
+            terms,
+            pinned,
+            translates,
+        })
     }
 
     /// Change one number of the drawing by name, re-validated by every check of the
@@ -235,13 +272,19 @@ impl Mechanism {
         let pair = |v: &[f64]| -> Result<[f64; 2], MechError> {
             match v {
                 [x, y] => Ok([*x, *y]),
-                _ => Err(MechError::InvalidInput(format!("`{path}` takes 2 numbers, got {}", v.len()))),
+                _ => Err(MechError::InvalidInput(format!(
+                    "`{path}` takes 2 numbers, got {}",
+                    v.len()
+                ))),
             }
         };
         let one = |v: &[f64]| -> Result<f64, MechError> {
             match v {
                 [x] => Ok(*x),
-                _ => Err(MechError::InvalidInput(format!("`{path}` takes 1 number, got {}", v.len()))),
+                _ => Err(MechError::InvalidInput(format!(
+                    "`{path}` takes 1 number, got {}",
+                    v.len()
+                ))),
             }
         };
         let parts: Vec<&str> = path.split('.').collect();
@@ -251,7 +294,10 @@ impl Mechanism {
                 model.points[i].pos = pair(value)?;
             }
             ["links", l, what] => {
-                let i = model.link_index(l).filter(|&i| i > 0).ok_or_else(|| bad("unknown moving link"))?;
+                let i = model
+                    .link_index(l)
+                    .filter(|&i| i > 0)
+                    .ok_or_else(|| bad("unknown moving link"))?;
                 let link = &mut model.links[i];
                 match *what {
                     "cg" => link.cg = pair(value)?,
@@ -268,8 +314,18 @@ impl Mechanism {
                 }
                 model.joints[i].axis = pair(value)?;
             }
-            ["gravity"] => model.gravity = if value.is_empty() { None } else { Some(pair(value)?) },
-            _ => return Err(bad("use points.<P>, links.<l>.{cg, mass, inertia}, axes.<joint> or gravity")),
+            ["gravity"] => {
+                model.gravity = if value.is_empty() {
+                    None
+                } else {
+                    Some(pair(value)?)
+                }
+            }
+            _ => {
+                return Err(bad(
+                    "use points.<P>, links.<l>.{cg, mass, inertia}, axes.<joint> or gravity",
+                ))
+            }
         }
         *self = Mechanism::from_model(model)?;
         Ok(())
@@ -296,13 +352,20 @@ impl Mechanism {
                 Load::Torque { .. } => LoadValue::Torque(0.0),
             })
             .collect();
-        Loads { values, model: Some(self.model.clone()) }
+        Loads {
+            values,
+            model: Some(self.model.clone()),
+        }
     }
 
     fn check_inputs(&self, v: &[&[f64]]) -> Result<(), MechError> {
         for x in v {
             if x.len() != self.dof() {
-                return Err(MechError::InvalidInput(format!("expected {} input values, got {}", self.dof(), x.len())));
+                return Err(MechError::InvalidInput(format!(
+                    "expected {} input values, got {}",
+                    self.dof(),
+                    x.len()
+                )));
             }
             crate::error::check_finite("q, qd, qdd", x)?;
         }
@@ -311,13 +374,27 @@ impl Mechanism {
 
     /// Solve the plan up to `upto` at (q, q̇, q̈) into `s` (one state per link), reusing its
     /// allocation: the run-time counterpart of the generated `__solve`.
-    pub fn solve_into(&self, q: &[f64], qd: &[f64], qdd: &[f64], upto: Level, s: &mut Vec<LinkState>) -> Result<(), MechError> {
+    pub fn solve_into(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        upto: Level,
+        s: &mut Vec<LinkState>,
+    ) -> Result<(), MechError> {
         s.resize(self.inst.drawing.len(), LinkState::default());
         self.solve_slice(q, qd, qdd, upto, s)
     }
 
     /// [`Mechanism::solve_into`] into a slice of one state per link.
-    fn solve_slice(&self, q: &[f64], qd: &[f64], qdd: &[f64], upto: Level, s: &mut [LinkState]) -> Result<(), MechError> {
+    fn solve_slice(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        upto: Level,
+        s: &mut [LinkState],
+    ) -> Result<(), MechError> {
         self.check_inputs(&[q, qd, qdd])?;
         if self.redundant() {
             // Past a change point the drawing's branches may not close a redundant group:
@@ -333,13 +410,21 @@ impl Mechanism {
         self.model.allow_redundant && self.plan.iter().any(|g| g.redundant())
     }
 
-    fn solve_on(&self, branches: &[f64], drive: Drive, upto: Level, s: &mut [LinkState]) -> Result<(), MechError> {
+    fn solve_on(
+        &self,
+        branches: &[f64],
+        drive: Drive,
+        upto: Level,
+        s: &mut [LinkState],
+    ) -> Result<(), MechError> {
         s.copy_from_slice(&self.inst.drawing);
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
         for (g, &sign) in self.plan.iter().zip(branches) {
             match &g.kernel {
                 Kernel::Driven(d) => kinematics::solve_driven(g.solver, d, joints, s, drive, upto)?,
-                Kernel::Chain(c) => kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)?,
+                Kernel::Chain(c) => {
+                    kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)?
+                }
                 Kernel::System => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
             }
         }
@@ -350,7 +435,12 @@ impl Mechanism {
     /// and y (m, in the order of [`Model::points`]), then every moving link's angle (rad).
     /// `out` holds 2 × points + links − 1 values. The row of `crate::columns` for
     /// positions.
-    pub fn positions_into(&self, q: &[f64], s: &mut Vec<LinkState>, out: &mut [f64]) -> Result<(), MechError> {
+    pub fn positions_into(
+        &self,
+        q: &[f64],
+        s: &mut Vec<LinkState>,
+        out: &mut [f64],
+    ) -> Result<(), MechError> {
         let np = self.inst.points.len();
         self.points_into(q, s, &mut out[..2 * np])?;
         for (k, (l, st)) in self.inst.links.iter().zip(s.iter()).enumerate().skip(1) {
@@ -362,13 +452,22 @@ impl Mechanism {
     /// The points alone, into `out` (x and y of each point, m, in the order of
     /// [`Model::points`]): [`Mechanism::positions_into`] without the links' angles (no
     /// `atan2`).
-    pub fn points_into(&self, q: &[f64], s: &mut Vec<LinkState>, out: &mut [f64]) -> Result<(), MechError> {
+    pub fn points_into(
+        &self,
+        q: &[f64],
+        s: &mut Vec<LinkState>,
+        out: &mut [f64],
+    ) -> Result<(), MechError> {
         const ZEROS: [f64; 16] = [0.0; 16];
-        let zero: Scratch<f64> = if q.len() <= ZEROS.len() { SmallVec::from_slice(&ZEROS[..q.len()]) } else { SmallVec::from_elem(0.0, q.len()) };
+        let zero: Scratch<f64> = if q.len() <= ZEROS.len() {
+            SmallVec::from_slice(&ZEROS[..q.len()])
+        } else {
+            SmallVec::from_elem(0.0, q.len())
+        };
         self.solve_into(q, &zero, &zero, Level::Position, s)?;
-        crate::magnitudes::finite_states(s)?;
+        crate::magnitudes::finite_states(s, Level::Position)?;
         for (k, &(o, d)) in self.inst.points.iter().enumerate() {
-            let p = point_pose(&s[o], d).pos;
+            let p = point_pose(&s, o, d).pos;
             out[2 * k] = p.x;
             out[2 * k + 1] = p.y;
         }
@@ -380,29 +479,58 @@ impl Mechanism {
         let zero = vec![0.0; self.dof()];
         let mut s = Vec::new();
         self.solve_into(q, &zero, &zero, Level::Position, &mut s)?;
-        crate::magnitudes::finite_states(&s)?;
-        let links = self.inst.links.iter().zip(&s).map(|(l, st)| l.pose(st)).collect();
-        let points = self.inst.points.iter().map(|&(o, d)| point_pose(&s[o], d)).collect();
-        Ok(Pose { links, points, model: self.model.clone() })
+        crate::magnitudes::finite_states(&s, Level::Position)?;
+        let links = self
+            .inst
+            .links
+            .iter()
+            .zip(&s)
+            .map(|(l, st)| l.pose(st))
+            .collect();
+        let points = self
+            .inst
+            .points
+            .iter()
+            .map(|&(o, d)| point_pose(&s, o, d))
+            .collect();
+        Ok(Pose {
+            links,
+            points,
+            model: self.model.clone(),
+        })
     }
 
     /// Positions, velocities and accelerations at (q, q̇, q̈).
     pub fn kinematics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<Motion, MechError> {
-        let mut m = Motion { links: Vec::new(), points: Vec::new(), inputs: SmallVec::new(), states: Vec::new(), model: self.model.clone() };
+        let mut m = Motion {
+            links: Vec::new(),
+            points: Vec::new(),
+            inputs: SmallVec::new(),
+            states: Vec::new(),
+            model: self.model.clone(),
+        };
         self.kinematics_into(q, qd, qdd, &mut m)?;
         Ok(m)
     }
 
     /// [`Mechanism::kinematics`] into `out`, reusing its buffers: no allocation once they
     /// have grown (`out` from an earlier call, on this or another mechanism).
-    pub fn kinematics_into(&self, q: &[f64], qd: &[f64], qdd: &[f64], out: &mut Motion) -> Result<(), MechError> {
+    pub fn kinematics_into(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut Motion,
+    ) -> Result<(), MechError> {
         self.solve_into(q, qd, qdd, Level::Acceleration, &mut out.states)?;
-        crate::magnitudes::finite_states(&out.states)?;
+        crate::magnitudes::finite_states(&out.states, Level::Acceleration)?;
         let s = &out.states;
         out.links.clear();
-        out.links.extend(self.inst.links.iter().zip(s).map(|(l, st)| l.motion(st)));
+        out.links
+            .extend(self.inst.links.iter().zip(s).map(|(l, st)| l.motion(st)));
         out.points.clear();
-        out.points.extend(self.inst.points.iter().map(|&(o, d)| point_motion(&s[o], d)));
+        out.points
+            .extend(self.inst.points.iter().map(|&(o, d)| point_motion(s, o, d)));
         out.inputs.clear();
         out.inputs.extend_from_slice(q);
         out.inputs.extend_from_slice(qd);
@@ -415,7 +543,13 @@ impl Mechanism {
 
     /// The applied wrenches (loads, gravity) and, when `inertia`, d'Alembert's inertia
     /// wrenches, per link, with the terms each link's declaration gives it.
-    fn wrenches(&self, s: &[LinkState], loads: &Loads, inertia: bool, f: &mut Scratch<Wrench>) -> Result<(), MechError> {
+    fn wrenches(
+        &self,
+        s: &[LinkState],
+        loads: &Loads,
+        inertia: bool,
+        f: &mut Scratch<Wrench>,
+    ) -> Result<(), MechError> {
         f.clear();
         f.resize(s.len(), Wrench::zeros());
         for (l, t) in self.terms.iter().enumerate().skip(1) {
@@ -445,15 +579,30 @@ impl Mechanism {
     /// d'Alembert: the motor action of every input and the reaction at every joint, group
     /// by group from the outermost Assur group inward. `extra` adds wrenches per link
     /// (friction).
-    pub fn kinetostatics_with(&self, m: &Motion, loads: &Loads, extra: Option<&[Wrench]>) -> Result<Forces, MechError> {
-        let mut out = Forces { driver: Vec::new(), joints: Vec::new(), model: self.model.clone() };
+    pub fn kinetostatics_with(
+        &self,
+        m: &Motion,
+        loads: &Loads,
+        extra: Option<&[Wrench]>,
+    ) -> Result<Forces, MechError> {
+        let mut out = Forces {
+            driver: Vec::new(),
+            joints: Vec::new(),
+            model: self.model.clone(),
+        };
         self.kinetostatics_into(m, loads, extra, &mut out)?;
         Ok(out)
     }
 
     /// [`Mechanism::kinetostatics_with`] into `out`, reusing its buffers: no allocation
     /// once they have grown, for mechanisms of up to 8 links and joints.
-    pub fn kinetostatics_into(&self, m: &Motion, loads: &Loads, extra: Option<&[Wrench]>, out: &mut Forces) -> Result<(), MechError> {
+    pub fn kinetostatics_into(
+        &self,
+        m: &Motion,
+        loads: &Loads,
+        extra: Option<&[Wrench]>,
+        out: &mut Forces,
+    ) -> Result<(), MechError> {
         if self.redundant() {
             return Err(MechError::Redundant(
                 "this mechanism has redundant constraints (`#[allow(redundant)]`): its reactions are statically indeterminate; the motor actions are still determined: call `driver_action` (virtual power)".into(),
@@ -473,20 +622,24 @@ impl Mechanism {
         out.driver.resize(self.dof(), 0.0);
         for g in self.plan.iter().rev() {
             match &g.kernel {
-                Kernel::Driven(k) => screw::driven_reactions(k, joints, s, &mut f, &mut r, &mut out.driver),
-                Kernel::Chain(c) => screw::chain_reactions(c, joints, s, &mut f, scale, &mut r)?,
-                Kernel::System => system(g, |n| n.reactions(g, joints, s, &mut f, scale, &mut r, &mut out.driver))?,
+                Kernel::Driven(k) => {
+                    screw::driven_reactions(k, joints, s, &mut f, &mut r, &mut out.driver)
+                }
+                Kernel::Chain(c) => {
+                    kinematics::chain_reactions(g.solver, c, joints, s, &mut f, scale, &mut r)?
+                }
+                Kernel::System => system(g, |n| {
+                    n.reactions(g, joints, s, &mut f, scale, &mut r, &mut out.driver)
+                })?,
             }
         }
         crate::magnitudes::finite_reactions(&r, &out.driver)?;
         out.joints.clear();
-        out.joints.extend(
-            self.model
-                .joints
-                .iter()
-                .zip(r)
-                .map(|(j, r)| JointReaction { force: r.force, moment: (j.kind == JointKind::Prismatic).then_some(r.moment) }),
-        );
+        out.joints
+            .extend(self.model.joints.iter().zip(r).map(|(j, r)| JointReaction {
+                force: r.force,
+                moment: (j.kind == JointKind::Prismatic).then_some(r.moment),
+            }));
         if !Arc::ptr_eq(&out.model, &self.model) {
             out.model = self.model.clone();
         }
@@ -502,10 +655,18 @@ impl Mechanism {
     /// declaration order, `mech::friction`): d'Alembert iterated to a fixed point, the
     /// friction from the reactions of the previous iterate; `SelfLocking` when no finite
     /// motor action moves the mechanism. The same iteration as the generated struct's.
-    pub fn kinetostatics_with_friction(&self, m: &Motion, loads: &Loads, friction: &[JointFriction]) -> Result<Forces, MechError> {
+    pub fn kinetostatics_with_friction(
+        &self,
+        m: &Motion,
+        loads: &Loads,
+        friction: &[JointFriction],
+    ) -> Result<Forces, MechError> {
         let n = self.model.joints.len();
         if friction.len() != n {
-            return Err(MechError::InvalidInput(format!("expected the friction of {n} joints, got {}", friction.len())));
+            return Err(MechError::InvalidInput(format!(
+                "expected the friction of {n} joints, got {}",
+                friction.len()
+            )));
         }
         let kinds: Vec<JointKind> = self.model.joints.iter().map(|j| j.kind).collect();
         let len = flat_len(self.dof(), &kinds);
@@ -514,7 +675,10 @@ impl Mechanism {
             let mut w = Flattener::new(&mut out, &f.driver);
             for (r, k) in f.joints.iter().zip(&kinds) {
                 match k {
-                    JointKind::Prismatic => w.push(&PrismaticReaction { force: r.force, moment: r.moment.unwrap_or(0.0) }),
+                    JointKind::Prismatic => w.push(&PrismaticReaction {
+                        force: r.force,
+                        moment: r.moment.unwrap_or(0.0),
+                    }),
                     _ => w.push(&RevoluteReaction { force: r.force }),
                 }
             }
@@ -523,7 +687,15 @@ impl Mechanism {
         let mut last = None;
         iterate(flat(&self.kinetostatics(m, loads)?), |prev| {
             let mut extra = vec![Wrench::zeros(); self.model.links.len()];
-            add_joint_friction(&mut extra, &self.inst.joints, &kinds, &m.states, friction, self.dof(), prev);
+            add_joint_friction(
+                &mut extra,
+                &self.inst.joints,
+                &kinds,
+                &m.states,
+                friction,
+                self.dof(),
+                prev,
+            );
             let f = self.kinetostatics_with(m, loads, Some(&extra))?;
             let out = flat(&f);
             last = Some(f);
@@ -556,8 +728,12 @@ impl Mechanism {
             let drive: Drive = (&zero, &qd, &zero);
             for grp in &self.plan {
                 match &grp.kernel {
-                    Kernel::Driven(d) => screw::driven_rates(d, joints, &mut v, drive, Level::Velocity)?,
-                    Kernel::Chain(c) => screw::chain_rates(c, joints, &mut v, scale, Level::Velocity)?,
+                    Kernel::Driven(d) => {
+                        screw::driven_rates(d, joints, &mut v, drive, Level::Velocity)?
+                    }
+                    Kernel::Chain(c) => {
+                        screw::chain_rates(c, joints, &mut v, scale, Level::Velocity)?
+                    }
                     Kernel::System => system(grp, |n| n.field(grp, joints, &mut v, drive, scale))?,
                 }
             }
@@ -568,9 +744,17 @@ impl Mechanism {
     }
 
     /// Zhukovski's sums over the motion with q̇ = 1, q̈ = 0 (one input).
-    fn reduction(&self, q: f64, loads: Option<&Loads>, upto: Level) -> Result<Reduction, MechError> {
+    fn reduction(
+        &self,
+        q: f64,
+        loads: Option<&Loads>,
+        upto: Level,
+    ) -> Result<Reduction, MechError> {
         if self.dof() != 1 {
-            return Err(MechError::InvalidInput(format!("Zhukovski's reduction needs one input, the mechanism has {}", self.dof())));
+            return Err(MechError::InvalidInput(format!(
+                "Zhukovski's reduction needs one input, the mechanism has {}",
+                self.dof()
+            )));
         }
         let mut s: Scratch<LinkState> = SmallVec::from_slice(&self.inst.drawing);
         self.solve_slice(&[q], &[1.0], &[0.0], upto, &mut s)?;
@@ -578,10 +762,20 @@ impl Mechanism {
         for (l, t) in self.terms.iter().enumerate().skip(1) {
             let geom = &self.inst.links[l];
             if upto == Level::Acceleration && t.inertia() {
-                z.inertia(geom, &s[l]);
+                if self.pinned[l] {
+                    z.inertia_about_anchor(geom, &s[l]);
+                } else if self.translates[l] {
+                    z.inertia_translating(geom, &s[l]);
+                } else {
+                    z.inertia(geom, &s[l]);
+                }
             }
             if loads.is_some() && t.gravity() {
-                z.gravity(geom, &s[l], self.inst.gravity);
+                if self.translates[l] {
+                    z.gravity_translating(geom, &s[l], self.inst.gravity);
+                } else {
+                    z.gravity(geom, &s[l], self.inst.gravity);
+                }
             }
         }
         if let Some(loads) = loads {
@@ -599,7 +793,10 @@ impl Mechanism {
                 }
             }
         }
-        crate::magnitudes::finite_result("reduced inertia and moment", &[z.reduced.inertia, z.reduced.inertia_derivative, z.moment])?;
+        crate::magnitudes::finite_result(
+            "reduced inertia and moment",
+            &[z.reduced.inertia, z.reduced.inertia_derivative, z.moment],
+        )?;
         Ok(z)
     }
 }
@@ -608,7 +805,15 @@ impl Mechanism {
 struct Newton<const N: usize>;
 
 impl<const N: usize> Newton<N> {
-    fn solve(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64, upto: Level) -> Result<(), MechError> {
+    fn solve(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &mut [LinkState],
+        drive: Drive,
+        scale: f64,
+        upto: Level,
+    ) -> Result<(), MechError> {
         group_solve::<N>(&g.bodies, &g.cons, joints, s, drive, scale, upto).map(|_| ())
     }
     #[allow(clippy::too_many_arguments)]
@@ -626,14 +831,24 @@ impl<const N: usize> Newton<N> {
         lambda_reactions(&g.cons, joints, s, lam.as_slice(), r, d);
         Ok(())
     }
-    fn field(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64) -> Result<(), MechError> {
+    fn field(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &mut [LinkState],
+        drive: Drive,
+        scale: f64,
+    ) -> Result<(), MechError> {
         group_velocity_field::<N, GroupSystem<N>>(None, &g.bodies, &g.cons, joints, s, drive, scale)
     }
 }
 
 /// Call `f` with the fixed-size solver of group `g`'s size: N = 3 × links unknowns, and M
 /// equations for a redundant group (least squares).
-fn system<T>(g: &Group, f: impl FnOnce(&dyn NewtonAny) -> Result<T, MechError>) -> Result<T, MechError> {
+fn system<T>(
+    g: &Group,
+    f: impl FnOnce(&dyn NewtonAny) -> Result<T, MechError>,
+) -> Result<T, MechError> {
     macro_rules! dispatch {
         ($($links:literal => $n:literal [$($m:literal)*]),*) => {
             match (g.bodies.len(), g.rows()) {
@@ -654,33 +869,110 @@ fn system<T>(g: &Group, f: impl FnOnce(&dyn NewtonAny) -> Result<T, MechError>) 
 struct LeastSquares<const N: usize, const M: usize>;
 
 impl<const N: usize, const M: usize> NewtonAny for LeastSquares<N, M> {
-    fn solve(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64, upto: Level) -> Result<(), MechError> {
-        crate::group::group_solve_ls::<N, M>(&g.bodies, &g.cons, joints, s, drive, scale, upto).map(|_| ())
+    fn solve(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &mut [LinkState],
+        drive: Drive,
+        scale: f64,
+        upto: Level,
+    ) -> Result<(), MechError> {
+        crate::group::group_solve_ls::<N, M>(&g.bodies, &g.cons, joints, s, drive, scale, upto)
+            .map(|_| ())
     }
-    fn reactions(&self, _: &Group, _: &[crate::constraints::JointGeom], _: &[LinkState], _: &mut [Wrench], _: f64, _: &mut [Reaction], _: &mut [f64]) -> Result<(), MechError> {
-        Err(MechError::Redundant("a redundant group's reactions are statically indeterminate".into()))
+    fn reactions(
+        &self,
+        _: &Group,
+        _: &[crate::constraints::JointGeom],
+        _: &[LinkState],
+        _: &mut [Wrench],
+        _: f64,
+        _: &mut [Reaction],
+        _: &mut [f64],
+    ) -> Result<(), MechError> {
+        Err(MechError::Redundant(
+            "a redundant group's reactions are statically indeterminate".into(),
+        ))
     }
-    fn field(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64) -> Result<(), MechError> {
-        group_velocity_field::<N, crate::group::LsSystem<N, M>>(None, &g.bodies, &g.cons, joints, s, drive, scale)
+    fn field(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &mut [LinkState],
+        drive: Drive,
+        scale: f64,
+    ) -> Result<(), MechError> {
+        group_velocity_field::<N, crate::group::LsSystem<N, M>>(
+            None, &g.bodies, &g.cons, joints, s, drive, scale,
+        )
     }
 }
 
 /// The size-erased interface of [`Newton`].
 trait NewtonAny {
-    fn solve(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64, upto: Level) -> Result<(), MechError>;
+    fn solve(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &mut [LinkState],
+        drive: Drive,
+        scale: f64,
+        upto: Level,
+    ) -> Result<(), MechError>;
     #[allow(clippy::too_many_arguments)]
-    fn reactions(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &[LinkState], f: &mut [Wrench], scale: f64, r: &mut [Reaction], d: &mut [f64]) -> Result<(), MechError>;
-    fn field(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64) -> Result<(), MechError>;
+    fn reactions(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &[LinkState],
+        f: &mut [Wrench],
+        scale: f64,
+        r: &mut [Reaction],
+        d: &mut [f64],
+    ) -> Result<(), MechError>;
+    fn field(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &mut [LinkState],
+        drive: Drive,
+        scale: f64,
+    ) -> Result<(), MechError>;
 }
 
 impl<const N: usize> NewtonAny for Newton<N> {
-    fn solve(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64, upto: Level) -> Result<(), MechError> {
+    fn solve(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &mut [LinkState],
+        drive: Drive,
+        scale: f64,
+        upto: Level,
+    ) -> Result<(), MechError> {
         Newton::<N>::solve(self, g, joints, s, drive, scale, upto)
     }
-    fn reactions(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &[LinkState], f: &mut [Wrench], scale: f64, r: &mut [Reaction], d: &mut [f64]) -> Result<(), MechError> {
+    fn reactions(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &[LinkState],
+        f: &mut [Wrench],
+        scale: f64,
+        r: &mut [Reaction],
+        d: &mut [f64],
+    ) -> Result<(), MechError> {
         Newton::<N>::reactions(self, g, joints, s, f, scale, r, d)
     }
-    fn field(&self, g: &Group, joints: &[crate::constraints::JointGeom], s: &mut [LinkState], drive: Drive, scale: f64) -> Result<(), MechError> {
+    fn field(
+        &self,
+        g: &Group,
+        joints: &[crate::constraints::JointGeom],
+        s: &mut [LinkState],
+        drive: Drive,
+        scale: f64,
+    ) -> Result<(), MechError> {
         Newton::<N>::field(self, g, joints, s, drive, scale)
     }
 }
@@ -700,7 +992,11 @@ impl Machine for Mechanism {
     fn driver_actions(&self, m: &Motion, loads: &Loads, out: &mut [f64]) -> Result<(), MechError> {
         let d = self.driver_action(m, loads)?;
         if out.len() != d.len() {
-            return Err(MechError::InvalidInput(format!("expected {} driver slots, got {}", d.len(), out.len())));
+            return Err(MechError::InvalidInput(format!(
+                "expected {} driver slots, got {}",
+                d.len(),
+                out.len()
+            )));
         }
         out.copy_from_slice(&d);
         Ok(())
@@ -708,7 +1004,9 @@ impl Machine for Mechanism {
     fn link_kinetic_energies(&self, m: &Motion, out: &mut [f64]) {
         for (l, o) in out.iter_mut().enumerate() {
             *o = match (self.terms.get(l), m.links.get(l)) {
-                (Some(t), Some(lm)) if l > 0 && t.inertia() => crate::energy::kinetic(&self.inst.links[l], lm),
+                (Some(t), Some(lm)) if l > 0 && t.inertia() => {
+                    crate::energy::kinetic(&self.inst.links[l], lm)
+                }
                 _ => 0.0,
             };
         }
@@ -719,7 +1017,9 @@ impl Machine for Mechanism {
             .enumerate()
             .skip(1)
             .filter(|(_, t)| t.gravity())
-            .map(|(l, _)| crate::energy::potential(&self.inst.links[l], &m.links[l], self.inst.gravity))
+            .map(|(l, _)| {
+                crate::energy::potential(&self.inst.links[l], &m.links[l], self.inst.gravity)
+            })
             .sum()
     }
 }

@@ -307,13 +307,41 @@ impl Model {
     pub fn n_links(&self) -> usize {
         self.links.len()
     }
+    /// True when moving link `l` slides on the ground (a prismatic joint with link 0):
+    /// it never turns (ω = α = 0, its rotation the ground's), so its cg moves as its anchor.
+    pub fn translates(&self, l: usize) -> bool {
+        l != 0
+            && self.joints.iter().any(|j| {
+                j.kind == JointKind::Prismatic && ((j.a == 0 && j.b == l) || (j.a == l && j.b == 0))
+            })
+    }
+    /// True when moving link `l` turns about its anchor (its first point) on a revolute
+    /// joint with the ground: that point never moves, so the link's inertia about it,
+    /// I_O = I_G + m |G − O|², is all Zhukovski's route needs.
+    pub fn pinned_at_anchor(&self, l: usize) -> bool {
+        let Some(&first) = self.links[l].points.first() else {
+            return false;
+        };
+        l != 0
+            && self.joints.iter().any(|j| {
+                j.kind == JointKind::Revolute
+                    && ((j.a == 0 && j.b == l) || (j.a == l && j.b == 0))
+                    && j.point == first
+            })
+    }
     /// P_I: lower pairs (revolute and prismatic joints).
     pub fn lower_pairs(&self) -> usize {
-        self.joints.iter().filter(|j| j.kind != JointKind::PinInSlot).count()
+        self.joints
+            .iter()
+            .filter(|j| j.kind != JointKind::PinInSlot)
+            .count()
     }
     /// P_II: higher pairs (pins in slots).
     pub fn higher_pairs(&self) -> usize {
-        self.joints.iter().filter(|j| j.kind == JointKind::PinInSlot).count()
+        self.joints
+            .iter()
+            .filter(|j| j.kind == JointKind::PinInSlot)
+            .count()
     }
     /// The index of the link named `name`.
     pub fn link_index(&self, name: &str) -> Option<usize> {

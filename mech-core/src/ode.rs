@@ -71,17 +71,39 @@ pub trait Method<const N: usize> {
     type Dense: Dense<N>;
     /// Prepare a run from (t0, y0, f(t0, y0)) towards `t_end`: check the settings, forget
     /// the step history, choose the first step of an adaptive method.
-    fn start<F>(&mut self, f: &mut F, t0: f64, y0: &[f64; N], dy0: &[f64; N], t_end: f64, stats: &mut Stats) -> Result<(), MechError>
+    fn start<F>(
+        &mut self,
+        f: &mut F,
+        t0: f64,
+        y0: &[f64; N],
+        dy0: &[f64; N],
+        t_end: f64,
+        stats: &mut Stats,
+    ) -> Result<(), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>;
     /// One accepted step from (t, y, dy = f(t, y)), never past `t_end`. With `dense` the
     /// method prepares its full-order interpolant (DOP853 spends 3 more evaluations).
-    fn step<F>(&mut self, f: &mut F, t: f64, y: &[f64; N], dy: &[f64; N], t_end: f64, dense: bool, stats: &mut Stats) -> Result<Self::Dense, MechError>
+    fn step<F>(
+        &mut self,
+        f: &mut F,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        t_end: f64,
+        dense: bool,
+        stats: &mut Stats,
+    ) -> Result<Self::Dense, MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>;
     /// Complete the full-order interpolant of a step taken with `dense = false` (DOP853:
     /// 3 more evaluations); the other methods' dense output is always complete.
-    fn densify<F>(&mut self, _f: &mut F, _d: &mut Self::Dense, _stats: &mut Stats) -> Result<(), MechError>
+    fn densify<F>(
+        &mut self,
+        _f: &mut F,
+        _d: &mut Self::Dense,
+        _stats: &mut Stats,
+    ) -> Result<(), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
@@ -102,13 +124,22 @@ pub struct Event<'a, const N: usize> {
 impl<'a, const N: usize> Event<'a, N> {
     /// A crossing in either direction, located to 1e-13 s.
     pub fn new(g: &'a mut dyn FnMut(f64, &[f64; N]) -> f64) -> Self {
-        Event { g, direction: 0, t_tol: 1e-13 }
+        Event {
+            g,
+            direction: 0,
+            t_tol: 1e-13,
+        }
     }
 }
 
 /// y + h Σ_j a_j k_j, skipping zero coefficients (a stage of an explicit tableau row).
 #[inline]
-fn lincomb<const N: usize, const S: usize>(y: &[f64; N], h: f64, a: &[f64; S], k: &[[f64; N]; S]) -> [f64; N] {
+fn lincomb<const N: usize, const S: usize>(
+    y: &[f64; N],
+    h: f64,
+    a: &[f64; S],
+    k: &[[f64; N]; S],
+) -> [f64; N] {
     let mut out = *y;
     for (aj, kj) in a.iter().zip(k) {
         if *aj != 0.0 {
@@ -132,7 +163,12 @@ fn check_run<const N: usize>(t0: f64, y0: &[f64; N], t_end: f64) -> Result<(), M
 }
 
 #[inline]
-fn eval<const N: usize, F>(f: &mut F, t: f64, y: &[f64; N], stats: &mut Stats) -> Result<[f64; N], MechError>
+fn eval<const N: usize, F>(
+    f: &mut F,
+    t: f64,
+    y: &[f64; N],
+    stats: &mut Stats,
+) -> Result<[f64; N], MechError>
 where
     F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
 {
@@ -165,7 +201,12 @@ where
     let mut stats = Stats::default();
     let (mut t, mut y) = (t0, y0);
     if t0 == t_end {
-        return Ok(Outcome { t, y, event: false, stats });
+        return Ok(Outcome {
+            t,
+            y,
+            event: false,
+            stats,
+        });
     }
     let mut dy = eval(&mut f, t, &y, &mut stats)?;
     method.start(&mut f, t, &y, &dy, t_end, &mut stats)?;
@@ -177,11 +218,15 @@ where
         stats.steps += 1;
         let y1 = d.y_end();
         if !finite(&y1) {
-            return Err(MechError::InvalidInput(format!("the state became non-finite at t = {:.6e} s", d.t_end())));
+            return Err(MechError::InvalidInput(format!(
+                "the state became non-finite at t = {:.6e} s",
+                d.t_end()
+            )));
         }
         if let Some(e) = event.as_mut() {
             let g1 = (e.g)(d.t_end(), &y1);
-            let crossed = (g_prev < 0.0 && g1 >= 0.0 && e.direction >= 0) || (g_prev > 0.0 && g1 <= 0.0 && e.direction <= 0);
+            let crossed = (g_prev < 0.0 && g1 >= 0.0 && e.direction >= 0)
+                || (g_prev > 0.0 && g1 <= 0.0 && e.direction <= 0);
             if crossed {
                 if !dense {
                     method.densify(&mut f, &mut d, &mut stats)?;
@@ -191,7 +236,12 @@ where
                 if let Some(o) = observer.as_mut() {
                     o(&d);
                 }
-                return Ok(Outcome { t: te, y: ye, event: true, stats });
+                return Ok(Outcome {
+                    t: te,
+                    y: ye,
+                    event: true,
+                    stats,
+                });
             }
             if g1 != 0.0 || g_prev == 0.0 {
                 g_prev = g1;
@@ -204,12 +254,23 @@ where
         y = y1;
         dy = d.dy_end();
     }
-    Ok(Outcome { t, y, event: false, stats })
+    Ok(Outcome {
+        t,
+        y,
+        event: false,
+        stats,
+    })
 }
 
 /// The zero of g on the step's dense output between its ends (g(a) = ga, g(b) = gb of
 /// opposite signs or gb = 0): Illinois regula falsi, bracket kept, to |Δt| ≤ tol.
-fn locate<const N: usize, D: Dense<N>>(g: &mut dyn FnMut(f64, &[f64; N]) -> f64, d: &D, ga: f64, gb: f64, tol: f64) -> f64 {
+fn locate<const N: usize, D: Dense<N>>(
+    g: &mut dyn FnMut(f64, &[f64; N]) -> f64,
+    d: &D,
+    ga: f64,
+    gb: f64,
+    tol: f64,
+) -> f64 {
     let (mut a, mut b, mut fa, mut fb) = (d.t_start(), d.t_end(), ga, gb);
     if fb == 0.0 {
         return b;
@@ -249,7 +310,13 @@ fn locate<const N: usize, D: Dense<N>>(g: &mut dyn FnMut(f64, &[f64; N]) -> f64,
 }
 
 /// Integrate from (t0, y0) to `t_end`, no event, no observer: the final state and the work.
-pub fn integrate<const N: usize, M, F>(method: &mut M, f: F, t0: f64, y0: [f64; N], t_end: f64) -> Result<Outcome<N>, MechError>
+pub fn integrate<const N: usize, M, F>(
+    method: &mut M,
+    f: F,
+    t0: f64,
+    y0: [f64; N],
+    t_end: f64,
+) -> Result<Outcome<N>, MechError>
 where
     M: Method<N>,
     F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
@@ -259,19 +326,34 @@ where
 
 /// Integrate from (t0, y0) through the increasing (or, backwards, decreasing) `times` and
 /// write the dense-output state at each into `out` (same length): one run to the last time.
-pub fn sample<const N: usize, M, F>(method: &mut M, f: F, t0: f64, y0: [f64; N], times: &[f64], out: &mut [[f64; N]]) -> Result<Stats, MechError>
+pub fn sample<const N: usize, M, F>(
+    method: &mut M,
+    f: F,
+    t0: f64,
+    y0: [f64; N],
+    times: &[f64],
+    out: &mut [[f64; N]],
+) -> Result<Stats, MechError>
 where
     M: Method<N>,
     F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
 {
     if times.len() != out.len() {
-        return Err(MechError::InvalidInput(format!("{} times for {} outputs", times.len(), out.len())));
+        return Err(MechError::InvalidInput(format!(
+            "{} times for {} outputs",
+            times.len(),
+            out.len()
+        )));
     }
     crate::error::check_finite("times", times)?;
-    let Some(&t_last) = times.last() else { return Ok(Stats::default()) };
+    let Some(&t_last) = times.last() else {
+        return Ok(Stats::default());
+    };
     let dir = if t_last >= t0 { 1.0 } else { -1.0 };
     if times.windows(2).any(|w| dir * (w[1] - w[0]) < 0.0) || dir * (times[0] - t0) < 0.0 {
-        return Err(MechError::InvalidInput("sample times must be ordered in the direction of integration".into()));
+        return Err(MechError::InvalidInput(
+            "sample times must be ordered in the direction of integration".into(),
+        ));
     }
     let mut next = 0;
     while next < times.len() && times[next] == t0 {
@@ -280,7 +362,11 @@ where
     }
     let mut obs = |d: &M::Dense| {
         while next < times.len() && dir * (times[next] - d.t_end()) <= 0.0 {
-            out[next] = if times[next] == d.t_end() { d.y_end() } else { d.eval(times[next]) };
+            out[next] = if times[next] == d.t_end() {
+                d.y_end()
+            } else {
+                d.eval(times[next])
+            };
             next += 1;
         }
     };
@@ -339,7 +425,10 @@ impl<const N: usize> Interpolant<N> for Hermite<N> {
         let mut out = [0.0; N];
         for i in 0..N {
             let dy = d.y1[i] - d.y0[i];
-            out[i] = (1.0 - s) * d.y0[i] + s * d.y1[i] + s * (s - 1.0) * ((1.0 - 2.0 * s) * dy + (s - 1.0) * d.h * d.poly.f0[i] + s * d.h * d.f1[i]);
+            out[i] = (1.0 - s) * d.y0[i]
+                + s * d.y1[i]
+                + s * (s - 1.0)
+                    * ((1.0 - 2.0 * s) * dy + (s - 1.0) * d.h * d.poly.f0[i] + s * d.h * d.f1[i]);
         }
         out
     }
@@ -371,16 +460,36 @@ fn clip_step(t: f64, h_abs: f64, t_end: f64) -> (f64, f64) {
 
 impl<const N: usize> Method<N> for Rk4 {
     type Dense = StepDense<N, Hermite<N>>;
-    fn start<F>(&mut self, _: &mut F, _: f64, _: &[f64; N], _: &[f64; N], _: f64, _: &mut Stats) -> Result<(), MechError>
+    fn start<F>(
+        &mut self,
+        _: &mut F,
+        _: f64,
+        _: &[f64; N],
+        _: &[f64; N],
+        _: f64,
+        _: &mut Stats,
+    ) -> Result<(), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
         if !(self.h > 0.0 && self.h.is_finite()) {
-            return Err(MechError::InvalidInput(format!("RK4 step must be positive and finite, got {}", self.h)));
+            return Err(MechError::InvalidInput(format!(
+                "RK4 step must be positive and finite, got {}",
+                self.h
+            )));
         }
         Ok(())
     }
-    fn step<F>(&mut self, f: &mut F, t: f64, y: &[f64; N], dy: &[f64; N], t_end: f64, _: bool, stats: &mut Stats) -> Result<Self::Dense, MechError>
+    fn step<F>(
+        &mut self,
+        f: &mut F,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        t_end: f64,
+        _: bool,
+        stats: &mut Stats,
+    ) -> Result<Self::Dense, MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
@@ -391,7 +500,14 @@ impl<const N: usize> Method<N> for Rk4 {
         let k4 = eval(f, t1, &lincomb(y, h, &[1.0], &[k3]), stats)?;
         let y1 = lincomb(y, h / 6.0, &[1.0, 2.0, 2.0, 1.0], &[k1, k2, k3, k4]);
         let f1 = eval(f, t1, &y1, stats)?;
-        Ok(StepDense { t0: t, h, y0: *y, y1, f1, poly: Hermite { f0: k1 } })
+        Ok(StepDense {
+            t0: t,
+            h,
+            y0: *y,
+            y1,
+            f1,
+            poly: Hermite { f0: k1 },
+        })
     }
 }
 
@@ -417,7 +533,12 @@ pub struct Tolerance {
 impl Tolerance {
     /// rtol and atol, no step limit, automatic first step.
     pub fn new(rtol: f64, atol: f64) -> Self {
-        Tolerance { rtol, atol, h_max: f64::INFINITY, h_init: None }
+        Tolerance {
+            rtol,
+            atol,
+            h_max: f64::INFINITY,
+            h_init: None,
+        }
     }
     /// The error scale of one component, atol + rtol·max(|a|, |b|) (the state's unit).
     #[inline]
@@ -437,15 +558,20 @@ struct Control {
 
 impl Control {
     fn check(tol: &Tolerance) -> Result<(), MechError> {
-        let ok = tol.rtol > 0.0 && tol.rtol.is_finite() && tol.atol >= 0.0 && tol.atol.is_finite() && tol.h_max > 0.0
+        let ok = tol.rtol > 0.0
+            && tol.rtol.is_finite()
+            && tol.atol >= 0.0
+            && tol.atol.is_finite()
+            && tol.h_max > 0.0
             && !matches!(tol.h_init, Some(h) if !(h > 0.0 && h.is_finite()));
         if ok {
             Ok(())
         } else {
-            Err(MechError::InvalidInput(format!("bad tolerance {tol:?}: rtol > 0, atol >= 0, h_max > 0, h_init > 0 required")))
+            Err(MechError::InvalidInput(format!(
+                "bad tolerance {tol:?}: rtol > 0, atol >= 0, h_max > 0, h_init > 0 required"
+            )))
         }
     }
-
 
     /// RMS of e / sc(y0, y1).
     #[inline]
@@ -459,21 +585,39 @@ impl Control {
     }
 
     /// Hairer's starting step (Solving ODEs I, II.4), for a method of error order `p`.
-    fn start<const N: usize, F>(tol: Tolerance, p: u32, f: &mut F, t0: f64, y0: &[f64; N], f0: &[f64; N], t_end: f64, stats: &mut Stats) -> Result<Control, MechError>
+    fn start<const N: usize, F>(
+        tol: Tolerance,
+        p: u32,
+        f: &mut F,
+        t0: f64,
+        y0: &[f64; N],
+        f0: &[f64; N],
+        t_end: f64,
+        stats: &mut Stats,
+    ) -> Result<Control, MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
         Self::check(&tol)?;
         let span = (t_end - t0).abs();
         let h_max = tol.h_max.min(span);
-        let mut c = Control { tol, h: 0.0, err_old: 1e-4 };
+        let mut c = Control {
+            tol,
+            h: 0.0,
+            err_old: 1e-4,
+        };
         if let Some(h) = tol.h_init {
             c.h = h.min(h_max);
             return Ok(c);
         }
         let d0 = c.norm(y0, y0, y0);
         let d1 = c.norm(f0, y0, y0);
-        let h0 = if d0 < 1e-5 || d1 < 1e-5 { 1e-6 } else { 0.01 * d0 / d1 }.min(h_max);
+        let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+            1e-6
+        } else {
+            0.01 * d0 / d1
+        }
+        .min(h_max);
         let dir = if t_end >= t0 { 1.0 } else { -1.0 };
         let y1 = lincomb(y0, dir * h0, &[1.0], &[*f0]);
         let f1 = eval(f, t0 + dir * h0, &y1, stats)?;
@@ -483,7 +627,11 @@ impl Control {
         }
         let d2 = c.norm(&diff, y0, y0) / h0;
         let dm = d1.max(d2);
-        let h1 = if dm <= 1e-15 { (h0 * 1e-3).max(1e-6) } else { (0.01 / dm).powf(1.0 / (p as f64 + 1.0)) };
+        let h1 = if dm <= 1e-15 {
+            (h0 * 1e-3).max(1e-6)
+        } else {
+            (0.01 / dm).powf(1.0 / (p as f64 + 1.0))
+        };
         c.h = (100.0 * h0).min(h1).min(h_max);
         Ok(c)
     }
@@ -492,7 +640,16 @@ impl Control {
     /// norm is ≤ 1, shrinking h; returns (h, extra) and sets the next step,
     /// h·0.9·err^(−1/(p+1) + 0.75β)·err_prev^β (Lund stabilization with β; β = 0 is the
     /// plain controller).
-    fn advance<const N: usize, A, X>(&mut self, p: u32, beta: f64, t: f64, y: &[f64; N], t_end: f64, stats: &mut Stats, mut attempt: A) -> Result<(f64, X), MechError>
+    fn advance<const N: usize, A, X>(
+        &mut self,
+        p: u32,
+        beta: f64,
+        t: f64,
+        y: &[f64; N],
+        t_end: f64,
+        stats: &mut Stats,
+        mut attempt: A,
+    ) -> Result<(f64, X), MechError>
     where
         A: FnMut(f64, &mut Stats) -> Result<([f64; N], [f64; N], X), MechError>,
     {
@@ -512,7 +669,8 @@ impl Control {
             let err = self.norm(&e, y, &y1);
             if err <= 1.0 {
                 let e = err.max(1e-10);
-                let mut fac = (SAFETY * e.powf(expo + 0.75 * beta) * self.err_old.powf(beta)).min(FAC_MAX);
+                let mut fac =
+                    (SAFETY * e.powf(expo + 0.75 * beta) * self.err_old.powf(beta)).min(FAC_MAX);
                 if rejected {
                     fac = fac.min(1.0);
                 }
@@ -522,7 +680,11 @@ impl Control {
             }
             stats.rejected += 1;
             rejected = true;
-            let fac = if err.is_finite() { (SAFETY * err.powf(expo)).max(FAC_MIN) } else { FAC_MIN };
+            let fac = if err.is_finite() {
+                (SAFETY * err.powf(expo)).max(FAC_MIN)
+            } else {
+                FAC_MIN
+            };
             self.h = h.abs() * fac;
         }
     }
@@ -538,12 +700,24 @@ pub trait Tableau<const N: usize> {
     /// One step of size h from (t, y, dy = f(t, y)): (y1, error estimate, f(t + h, y1), the
     /// interpolant). `tol` gives the scale of the error norm where the estimate needs it.
     #[allow(clippy::too_many_arguments)]
-    fn attempt<F>(f: &mut F, t: f64, y: &[f64; N], dy: &[f64; N], h: f64, tol: &Tolerance, stats: &mut Stats) -> Result<([f64; N], [f64; N], [f64; N], Self::Poly), MechError>
+    fn attempt<F>(
+        f: &mut F,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        h: f64,
+        tol: &Tolerance,
+        stats: &mut Stats,
+    ) -> Result<([f64; N], [f64; N], [f64; N], Self::Poly), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>;
     /// Complete the interpolant of a step attempted without it (see [`Method::densify`]);
     /// a no-op for a pair whose interpolant needs no more stages.
-    fn densify<F>(_f: &mut F, _d: &mut StepDense<N, Self::Poly>, _stats: &mut Stats) -> Result<(), MechError>
+    fn densify<F>(
+        _f: &mut F,
+        _d: &mut StepDense<N, Self::Poly>,
+        _stats: &mut Stats,
+    ) -> Result<(), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
@@ -568,36 +742,81 @@ impl<T> Adaptive<T> {
     }
     /// With full tolerance settings.
     pub fn with(tol: Tolerance) -> Self {
-        Adaptive { tol, control: None, tableau: core::marker::PhantomData }
+        Adaptive {
+            tol,
+            control: None,
+            tableau: core::marker::PhantomData,
+        }
     }
 }
 
 impl<const N: usize, T: Tableau<N>> Method<N> for Adaptive<T> {
     type Dense = StepDense<N, T::Poly>;
-    fn start<F>(&mut self, f: &mut F, t0: f64, y0: &[f64; N], dy0: &[f64; N], t_end: f64, stats: &mut Stats) -> Result<(), MechError>
+    fn start<F>(
+        &mut self,
+        f: &mut F,
+        t0: f64,
+        y0: &[f64; N],
+        dy0: &[f64; N],
+        t_end: f64,
+        stats: &mut Stats,
+    ) -> Result<(), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
-        self.control = Some(Control::start(self.tol, T::ERROR_ORDER, f, t0, y0, dy0, t_end, stats)?);
+        self.control = Some(Control::start(
+            self.tol,
+            T::ERROR_ORDER,
+            f,
+            t0,
+            y0,
+            dy0,
+            t_end,
+            stats,
+        )?);
         Ok(())
     }
-    fn step<F>(&mut self, f: &mut F, t: f64, y: &[f64; N], dy: &[f64; N], t_end: f64, dense: bool, stats: &mut Stats) -> Result<Self::Dense, MechError>
+    fn step<F>(
+        &mut self,
+        f: &mut F,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        t_end: f64,
+        dense: bool,
+        stats: &mut Stats,
+    ) -> Result<Self::Dense, MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
-        let control = self.control.as_mut().ok_or_else(|| MechError::InvalidInput("an adaptive method stepped before start".into()))?;
-        let tol = control.tol;
-        let (h, (y1, f1, poly)) = control.advance(T::ERROR_ORDER, 0.04, t, y, t_end, stats, |h, stats| {
-            let (y1, e, f1, poly) = T::attempt(f, t, y, dy, h, &tol, stats)?;
-            Ok((y1, e, (y1, f1, poly)))
+        let control = self.control.as_mut().ok_or_else(|| {
+            MechError::InvalidInput("an adaptive method stepped before start".into())
         })?;
-        let mut d = StepDense { t0: t, h, y0: *y, y1, f1, poly };
+        let tol = control.tol;
+        let (h, (y1, f1, poly)) =
+            control.advance(T::ERROR_ORDER, 0.04, t, y, t_end, stats, |h, stats| {
+                let (y1, e, f1, poly) = T::attempt(f, t, y, dy, h, &tol, stats)?;
+                Ok((y1, e, (y1, f1, poly)))
+            })?;
+        let mut d = StepDense {
+            t0: t,
+            h,
+            y0: *y,
+            y1,
+            f1,
+            poly,
+        };
         if dense {
             T::densify(f, &mut d, stats)?;
         }
         Ok(d)
     }
-    fn densify<F>(&mut self, f: &mut F, d: &mut Self::Dense, stats: &mut Stats) -> Result<(), MechError>
+    fn densify<F>(
+        &mut self,
+        f: &mut F,
+        d: &mut Self::Dense,
+        stats: &mut Stats,
+    ) -> Result<(), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
@@ -622,21 +841,77 @@ mod dp5 {
     pub const A2: [f64; 1] = [1.0 / 5.0];
     pub const A3: [f64; 2] = [3.0 / 40.0, 9.0 / 40.0];
     pub const A4: [f64; 3] = [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0];
-    pub const A5: [f64; 4] = [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0];
-    pub const A6: [f64; 5] = [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0];
+    pub const A5: [f64; 4] = [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+    ];
+    pub const A6: [f64; 5] = [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+    ];
     /// The fifth-order weights (also the 7th stage's row: FSAL).
-    pub const B: [f64; 6] = [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0];
+    pub const B: [f64; 6] = [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ];
     /// b − b̂ (fifth minus fourth order), over the 7 stages.
-    pub const E: [f64; 7] = [71.0 / 57600.0, 0.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0];
+    pub const E: [f64; 7] = [
+        71.0 / 57600.0,
+        0.0,
+        -71.0 / 16695.0,
+        71.0 / 1920.0,
+        -17253.0 / 339200.0,
+        22.0 / 525.0,
+        -1.0 / 40.0,
+    ];
     /// Shampine's dense output: y(t0 + θh) = y0 + h Σ_j k_j Σ_m P[j][m] θ^(m+1).
     pub const P: [[f64; 4]; 7] = [
-        [1.0, -8048581381.0 / 2820520608.0, 8663915743.0 / 2820520608.0, -12715105075.0 / 11282082432.0],
+        [
+            1.0,
+            -8048581381.0 / 2820520608.0,
+            8663915743.0 / 2820520608.0,
+            -12715105075.0 / 11282082432.0,
+        ],
         [0.0, 0.0, 0.0, 0.0],
-        [0.0, 131558114200.0 / 32700410799.0, -68118460800.0 / 10900136933.0, 87487479700.0 / 32700410799.0],
-        [0.0, -1754552775.0 / 470086768.0, 14199869525.0 / 1410260304.0, -10690763975.0 / 1880347072.0],
-        [0.0, 127303824393.0 / 49829197408.0, -318862633887.0 / 49829197408.0, 701980252875.0 / 199316789632.0],
-        [0.0, -282668133.0 / 205662961.0, 2019193451.0 / 616988883.0, -1453857185.0 / 822651844.0],
-        [0.0, 40617522.0 / 29380423.0, -110615467.0 / 29380423.0, 69997945.0 / 29380423.0],
+        [
+            0.0,
+            131558114200.0 / 32700410799.0,
+            -68118460800.0 / 10900136933.0,
+            87487479700.0 / 32700410799.0,
+        ],
+        [
+            0.0,
+            -1754552775.0 / 470086768.0,
+            14199869525.0 / 1410260304.0,
+            -10690763975.0 / 1880347072.0,
+        ],
+        [
+            0.0,
+            127303824393.0 / 49829197408.0,
+            -318862633887.0 / 49829197408.0,
+            701980252875.0 / 199316789632.0,
+        ],
+        [
+            0.0,
+            -282668133.0 / 205662961.0,
+            2019193451.0 / 616988883.0,
+            -1453857185.0 / 822651844.0,
+        ],
+        [
+            0.0,
+            40617522.0 / 29380423.0,
+            -110615467.0 / 29380423.0,
+            69997945.0 / 29380423.0,
+        ],
     ];
 }
 
@@ -661,7 +936,15 @@ impl<const N: usize> Interpolant<N> for Dp5Poly<N> {
 impl<const N: usize> Tableau<N> for Dp5 {
     const ERROR_ORDER: u32 = 4;
     type Poly = Dp5Poly<N>;
-    fn attempt<F>(f: &mut F, t: f64, y: &[f64; N], dy: &[f64; N], h: f64, _: &Tolerance, stats: &mut Stats) -> Result<([f64; N], [f64; N], [f64; N], Dp5Poly<N>), MechError>
+    fn attempt<F>(
+        f: &mut F,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        h: f64,
+        _: &Tolerance,
+        stats: &mut Stats,
+    ) -> Result<([f64; N], [f64; N], [f64; N], Dp5Poly<N>), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
@@ -670,9 +953,24 @@ impl<const N: usize> Tableau<N> for Dp5 {
         k[0] = *dy;
         k[1] = eval(f, t + C[1] * h, &lincomb(y, h, &A2, &[k[0]]), stats)?;
         k[2] = eval(f, t + C[2] * h, &lincomb(y, h, &A3, &[k[0], k[1]]), stats)?;
-        k[3] = eval(f, t + C[3] * h, &lincomb(y, h, &A4, &[k[0], k[1], k[2]]), stats)?;
-        k[4] = eval(f, t + C[4] * h, &lincomb(y, h, &A5, &[k[0], k[1], k[2], k[3]]), stats)?;
-        k[5] = eval(f, t + C[5] * h, &lincomb(y, h, &A6, &[k[0], k[1], k[2], k[3], k[4]]), stats)?;
+        k[3] = eval(
+            f,
+            t + C[3] * h,
+            &lincomb(y, h, &A4, &[k[0], k[1], k[2]]),
+            stats,
+        )?;
+        k[4] = eval(
+            f,
+            t + C[4] * h,
+            &lincomb(y, h, &A5, &[k[0], k[1], k[2], k[3]]),
+            stats,
+        )?;
+        k[5] = eval(
+            f,
+            t + C[5] * h,
+            &lincomb(y, h, &A6, &[k[0], k[1], k[2], k[3], k[4]]),
+            stats,
+        )?;
         let y1 = lincomb(y, h, &B, &[k[0], k[1], k[2], k[3], k[4], k[5]]);
         k[6] = eval(f, t + h, &y1, stats)?;
         let e = lincomb(&[0.0; N], h, &E, &k);
@@ -943,7 +1241,15 @@ impl<const N: usize> Interpolant<N> for Dop8Poly<N> {
 impl<const N: usize> Tableau<N> for Dop8 {
     const ERROR_ORDER: u32 = 7;
     type Poly = Dop8Poly<N>;
-    fn attempt<F>(f: &mut F, t: f64, y: &[f64; N], dy: &[f64; N], h: f64, tol: &Tolerance, stats: &mut Stats) -> Result<([f64; N], [f64; N], [f64; N], Dop8Poly<N>), MechError>
+    fn attempt<F>(
+        f: &mut F,
+        t: f64,
+        y: &[f64; N],
+        dy: &[f64; N],
+        h: f64,
+        tol: &Tolerance,
+        stats: &mut Stats,
+    ) -> Result<([f64; N], [f64; N], [f64; N], Dop8Poly<N>), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
@@ -971,7 +1277,11 @@ impl<const N: usize> Tableau<N> for Dop8 {
             n5 += (a5 / sc).powi(2);
             n3 += (a3 / sc).powi(2);
         }
-        let ratio = if n5 == 0.0 && n3 == 0.0 { 0.0 } else { h.abs() * n5.sqrt() / (n5 + 0.01 * n3).sqrt() };
+        let ratio = if n5 == 0.0 && n3 == 0.0 {
+            0.0
+        } else {
+            h.abs() * n5.sqrt() / (n5 + 0.01 * n3).sqrt()
+        };
         let e = e5.map(|v| ratio * v);
         let mut coef = [[0.0; N]; 7];
         for i in 0..N {
@@ -980,10 +1290,23 @@ impl<const N: usize> Tableau<N> for Dop8 {
             coef[1][i] = h * k[0][i] - dyi;
             coef[2][i] = 2.0 * dyi - h * (k[12][i] + k[0][i]);
         }
-        Ok((y1, e, k[12], Dop8Poly { coef, k, degree7: false }))
+        Ok((
+            y1,
+            e,
+            k[12],
+            Dop8Poly {
+                coef,
+                k,
+                degree7: false,
+            },
+        ))
     }
 
-    fn densify<F>(f: &mut F, d: &mut StepDense<N, Dop8Poly<N>>, stats: &mut Stats) -> Result<(), MechError>
+    fn densify<F>(
+        f: &mut F,
+        d: &mut StepDense<N, Dop8Poly<N>>,
+        stats: &mut Stats,
+    ) -> Result<(), MechError>
     where
         F: FnMut(f64, &[f64; N]) -> Result<[f64; N], MechError>,
     {
@@ -1018,7 +1341,13 @@ mod tests {
 
     #[test]
     fn rk4_is_fourth_order_on_exp() {
-        let e = |h: f64| (integrate(&mut Rk4 { h }, exp_rhs, 0.0, [1.0], 1.0).unwrap().y[0] - 1f64.exp()).abs();
+        let e = |h: f64| {
+            (integrate(&mut Rk4 { h }, exp_rhs, 0.0, [1.0], 1.0)
+                .unwrap()
+                .y[0]
+                - 1f64.exp())
+            .abs()
+        };
         let (e1, e2) = (e(0.02), e(0.01));
         assert!(e2 < 1e-9, "{e2}");
         let order = (e1 / e2).log2();
@@ -1032,15 +1361,52 @@ mod tests {
     fn adaptive_methods_on_the_harmonic_oscillator() {
         let t_end = 20.0 * std::f64::consts::PI + 0.3;
         for (name, r, tol) in [
-            ("dp5", integrate(&mut DormandPrince::new(1e-11, 1e-13), oscillator, 0.0, [1.0, 0.0], t_end).unwrap(), 2e-9),
-            ("dop853", integrate(&mut Dop853::new(1e-12, 1e-14), oscillator, 0.0, [1.0, 0.0], t_end).unwrap(), 2e-10),
+            (
+                "dp5",
+                integrate(
+                    &mut DormandPrince::new(1e-11, 1e-13),
+                    oscillator,
+                    0.0,
+                    [1.0, 0.0],
+                    t_end,
+                )
+                .unwrap(),
+                2e-9,
+            ),
+            (
+                "dop853",
+                integrate(
+                    &mut Dop853::new(1e-12, 1e-14),
+                    oscillator,
+                    0.0,
+                    [1.0, 0.0],
+                    t_end,
+                )
+                .unwrap(),
+                2e-10,
+            ),
         ] {
-            assert!((r.y[0] - t_end.cos()).abs() < tol, "{name}: {:e}", r.y[0] - t_end.cos());
-            assert!((r.y[1] + t_end.sin()).abs() < tol, "{name}: {:e}", r.y[1] + t_end.sin());
+            assert!(
+                (r.y[0] - t_end.cos()).abs() < tol,
+                "{name}: {:e}",
+                r.y[0] - t_end.cos()
+            );
+            assert!(
+                (r.y[1] + t_end.sin()).abs() < tol,
+                "{name}: {:e}",
+                r.y[1] + t_end.sin()
+            );
             assert_eq!(r.t, t_end);
         }
         // Backwards in time.
-        let r = integrate(&mut Dop853::new(1e-12, 1e-14), oscillator, 1.0, [1f64.cos(), -1f64.sin()], -2.0).unwrap();
+        let r = integrate(
+            &mut Dop853::new(1e-12, 1e-14),
+            oscillator,
+            1.0,
+            [1f64.cos(), -1f64.sin()],
+            -2.0,
+        )
+        .unwrap();
         assert!((r.y[0] - 2f64.cos()).abs() < 1e-10 && (r.y[1] - 2f64.sin()).abs() < 1e-10);
     }
 
@@ -1048,10 +1414,25 @@ mod tests {
     fn tolerance_proportionality_and_order() {
         // Tighter tolerance => smaller error, roughly in proportion.
         let err = |m: &mut dyn FnMut() -> Outcome<1>| (m().y[0] - 3f64.exp()).abs() / 3f64.exp();
-        let e_hi = err(&mut || integrate(&mut DormandPrince::new(1e-6, 0.0), exp_rhs, 0.0, [1.0], 3.0).unwrap());
-        let e_lo = err(&mut || integrate(&mut DormandPrince::new(1e-10, 0.0), exp_rhs, 0.0, [1.0], 3.0).unwrap());
-        assert!(e_lo < 1e-8 && e_hi < 1e-4 && e_lo < e_hi / 100.0, "{e_hi:e} {e_lo:e}");
-        let e8 = err(&mut || integrate(&mut Dop853::new(1e-13, 0.0), exp_rhs, 0.0, [1.0], 3.0).unwrap());
+        let e_hi = err(&mut || {
+            integrate(&mut DormandPrince::new(1e-6, 0.0), exp_rhs, 0.0, [1.0], 3.0).unwrap()
+        });
+        let e_lo = err(&mut || {
+            integrate(
+                &mut DormandPrince::new(1e-10, 0.0),
+                exp_rhs,
+                0.0,
+                [1.0],
+                3.0,
+            )
+            .unwrap()
+        });
+        assert!(
+            e_lo < 1e-8 && e_hi < 1e-4 && e_lo < e_hi / 100.0,
+            "{e_hi:e} {e_lo:e}"
+        );
+        let e8 =
+            err(&mut || integrate(&mut Dop853::new(1e-13, 0.0), exp_rhs, 0.0, [1.0], 3.0).unwrap());
         assert!(e8 < 1e-12, "{e8:e}");
     }
 
@@ -1061,14 +1442,43 @@ mod tests {
         let mut out = vec![[0.0; 2]; times.len()];
         for (name, tol) in [("rk4", 1e-8), ("dp5", 1e-8), ("dop853", 1e-11)] {
             match name {
-                "rk4" => sample(&mut Rk4 { h: 0.01 }, oscillator, 0.0, [1.0, 0.0], &times, &mut out),
-                "dp5" => sample(&mut DormandPrince::new(1e-12, 1e-14), oscillator, 0.0, [1.0, 0.0], &times, &mut out),
-                _ => sample(&mut Dop853::new(1e-13, 1e-15), oscillator, 0.0, [1.0, 0.0], &times, &mut out),
+                "rk4" => sample(
+                    &mut Rk4 { h: 0.01 },
+                    oscillator,
+                    0.0,
+                    [1.0, 0.0],
+                    &times,
+                    &mut out,
+                ),
+                "dp5" => sample(
+                    &mut DormandPrince::new(1e-12, 1e-14),
+                    oscillator,
+                    0.0,
+                    [1.0, 0.0],
+                    &times,
+                    &mut out,
+                ),
+                _ => sample(
+                    &mut Dop853::new(1e-13, 1e-15),
+                    oscillator,
+                    0.0,
+                    [1.0, 0.0],
+                    &times,
+                    &mut out,
+                ),
             }
             .unwrap();
             for (t, y) in times.iter().zip(&out) {
-                assert!((y[0] - t.cos()).abs() < tol, "{name} at {t}: {:e}", y[0] - t.cos());
-                assert!((y[1] + t.sin()).abs() < tol, "{name} at {t}: {:e}", y[1] + t.sin());
+                assert!(
+                    (y[0] - t.cos()).abs() < tol,
+                    "{name} at {t}: {:e}",
+                    y[0] - t.cos()
+                );
+                assert!(
+                    (y[1] + t.sin()).abs() < tol,
+                    "{name} at {t}: {:e}",
+                    y[1] + t.sin()
+                );
             }
         }
         // Interpolants reproduce the step's ends.
@@ -1089,22 +1499,67 @@ mod tests {
     fn event_is_located_on_the_dense_output() {
         for method in 0..3 {
             let mut g = |_: f64, y: &[f64; 2]| y[0];
-            let mut ev = Event { g: &mut g, direction: -1, t_tol: 1e-14 };
+            let mut ev = Event {
+                g: &mut g,
+                direction: -1,
+                t_tol: 1e-14,
+            };
             let r = match method {
-                0 => solve(&mut Rk4 { h: 1e-3 }, oscillator, 0.0, [1.0, 0.0], 10.0, Some(&mut ev), None),
-                1 => solve(&mut DormandPrince::new(1e-12, 1e-14), oscillator, 0.0, [1.0, 0.0], 10.0, Some(&mut ev), None),
-                _ => solve(&mut Dop853::new(1e-12, 1e-14), oscillator, 0.0, [1.0, 0.0], 10.0, Some(&mut ev), None),
+                0 => solve(
+                    &mut Rk4 { h: 1e-3 },
+                    oscillator,
+                    0.0,
+                    [1.0, 0.0],
+                    10.0,
+                    Some(&mut ev),
+                    None,
+                ),
+                1 => solve(
+                    &mut DormandPrince::new(1e-12, 1e-14),
+                    oscillator,
+                    0.0,
+                    [1.0, 0.0],
+                    10.0,
+                    Some(&mut ev),
+                    None,
+                ),
+                _ => solve(
+                    &mut Dop853::new(1e-12, 1e-14),
+                    oscillator,
+                    0.0,
+                    [1.0, 0.0],
+                    10.0,
+                    Some(&mut ev),
+                    None,
+                ),
             }
             .unwrap();
             assert!(r.event);
             let tol = if method == 0 { 1e-11 } else { 1e-10 };
-            assert!((r.t - std::f64::consts::FRAC_PI_2).abs() < tol, "method {method}: {:e}", r.t - std::f64::consts::FRAC_PI_2);
+            assert!(
+                (r.t - std::f64::consts::FRAC_PI_2).abs() < tol,
+                "method {method}: {:e}",
+                r.t - std::f64::consts::FRAC_PI_2
+            );
             assert!((r.y[1] + 1.0).abs() < 1e-9);
         }
         // Upward crossings only: x = cos t first rises through 0 at 3π/2.
         let mut g = |_: f64, y: &[f64; 2]| y[0];
-        let mut ev = Event { g: &mut g, direction: 1, t_tol: 1e-14 };
-        let r = solve(&mut Dop853::new(1e-12, 1e-14), oscillator, 0.0, [1.0, 0.0], 10.0, Some(&mut ev), None).unwrap();
+        let mut ev = Event {
+            g: &mut g,
+            direction: 1,
+            t_tol: 1e-14,
+        };
+        let r = solve(
+            &mut Dop853::new(1e-12, 1e-14),
+            oscillator,
+            0.0,
+            [1.0, 0.0],
+            10.0,
+            Some(&mut ev),
+            None,
+        )
+        .unwrap();
         assert!((r.t - 1.5 * std::f64::consts::PI).abs() < 1e-10);
     }
 
@@ -1117,11 +1572,32 @@ mod tests {
             Err(MechError::InvalidInput(_)) => {}
             other => panic!("{other:?}"),
         }
-        assert!(matches!(integrate(&mut Rk4 { h: 0.0 }, exp_rhs, 0.0, [1.0], 1.0), Err(MechError::InvalidInput(_))));
-        assert!(matches!(integrate(&mut Rk4 { h: 0.1 }, exp_rhs, 0.0, [f64::NAN], 1.0), Err(MechError::InvalidInput(_))));
-        assert!(matches!(integrate(&mut DormandPrince::new(-1.0, 0.0), exp_rhs, 0.0, [1.0], 1.0), Err(MechError::InvalidInput(_))));
-        assert!(matches!(integrate(&mut Rk4 { h: 0.6 }, blow, 0.0, [1.0], 2.0), Err(MechError::InvalidInput(_))));
-        let fails = |t: f64, _: &[f64; 1]| -> Result<[f64; 1], MechError> { if t > 0.5 { Err(MechError::NoAssembly) } else { Ok([1.0]) } };
-        assert_eq!(integrate(&mut Dop853::new(1e-6, 1e-6), fails, 0.0, [0.0], 1.0).unwrap_err(), MechError::NoAssembly);
+        assert!(matches!(
+            integrate(&mut Rk4 { h: 0.0 }, exp_rhs, 0.0, [1.0], 1.0),
+            Err(MechError::InvalidInput(_))
+        ));
+        assert!(matches!(
+            integrate(&mut Rk4 { h: 0.1 }, exp_rhs, 0.0, [f64::NAN], 1.0),
+            Err(MechError::InvalidInput(_))
+        ));
+        assert!(matches!(
+            integrate(&mut DormandPrince::new(-1.0, 0.0), exp_rhs, 0.0, [1.0], 1.0),
+            Err(MechError::InvalidInput(_))
+        ));
+        assert!(matches!(
+            integrate(&mut Rk4 { h: 0.6 }, blow, 0.0, [1.0], 2.0),
+            Err(MechError::InvalidInput(_))
+        ));
+        let fails = |t: f64, _: &[f64; 1]| -> Result<[f64; 1], MechError> {
+            if t > 0.5 {
+                Err(MechError::NoAssembly)
+            } else {
+                Ok([1.0])
+            }
+        };
+        assert_eq!(
+            integrate(&mut Dop853::new(1e-6, 1e-6), fails, 0.0, [0.0], 1.0).unwrap_err(),
+            MechError::NoAssembly
+        );
     }
 }

@@ -82,11 +82,23 @@ mod tests {
     use crate::link_state::V2;
 
     fn link(mass: Option<f64>, inertia: f64) -> Link {
-        Link { name: "coupler".into(), points: vec![], mass, inertia, flywheel: 0.0, cg: [0.0, 0.0] }
+        Link {
+            name: "coupler".into(),
+            points: vec![],
+            mass,
+            inertia,
+            flywheel: 0.0,
+            cg: [0.0, 0.0],
+        }
     }
 
     fn params(mass: f64, inertia: f64) -> LinkParams {
-        LinkParams { mass, inertia, flywheel: 0.0, cg: V2::new(0.1, 0.2) }
+        LinkParams {
+            mass,
+            inertia,
+            flywheel: 0.0,
+            cg: V2::new(0.1, 0.2),
+        }
     }
 
     #[test]
@@ -102,19 +114,36 @@ mod tests {
 
     #[test]
     fn numbers_the_structure_ignores_are_refused() {
-        assert!(LinkTerms::Massive.check("coupler", &params(3.0, 1e-2)).is_ok());
-        assert!(LinkTerms::Massless.check("coupler", &params(0.0, 0.0)).is_ok());
-        assert!(LinkTerms::InertiaOnly.check("coupler", &params(0.0, 4e-3)).is_ok());
+        assert!(LinkTerms::Massive
+            .check("coupler", &params(3.0, 1e-2))
+            .is_ok());
+        assert!(LinkTerms::Massless
+            .check("coupler", &params(0.0, 0.0))
+            .is_ok());
+        assert!(LinkTerms::InertiaOnly
+            .check("coupler", &params(0.0, 4e-3))
+            .is_ok());
         match LinkTerms::Massless.check("coupler", &params(1.0, 5e-3)) {
             Err(MechError::InvalidInput(msg)) => {
-                for part in ["link `coupler`", "mass 1 kg", "inertia 0.005 kg·m²", "declare `mass: 0.0` on link `coupler` in `mechanism!`"] {
+                for part in [
+                    "link `coupler`",
+                    "mass 1 kg",
+                    "inertia 0.005 kg·m²",
+                    "declare `mass: 0.0` on link `coupler` in `mechanism!`",
+                ] {
                     assert!(msg.contains(part), "{part} in {msg}");
                 }
             }
             other => panic!("{other:?}"),
         }
-        assert!(LinkTerms::Massless.check("coupler", &params(0.0, 5e-3)).is_err());
-        assert!(LinkTerms::Massless.check("coupler", &params(f64::NAN, 0.0)).is_err());
-        assert!(LinkTerms::InertiaOnly.check("coupler", &params(1.0, 0.0)).is_err());
+        assert!(LinkTerms::Massless
+            .check("coupler", &params(0.0, 5e-3))
+            .is_err());
+        assert!(LinkTerms::Massless
+            .check("coupler", &params(f64::NAN, 0.0))
+            .is_err());
+        assert!(LinkTerms::InertiaOnly
+            .check("coupler", &params(1.0, 0.0))
+            .is_err());
     }
 }

@@ -44,7 +44,10 @@ struct Game {
 
 impl Game {
     fn new(bodies: usize) -> Self {
-        Game { pebbles: vec![K; bodies], out: vec![Vec::new(); bodies] }
+        Game {
+            pebbles: vec![K; bodies],
+            out: vec![Vec::new(); bodies],
+        }
     }
 
     /// Move one free pebble to `root` along a directed path, not taking any from (nor
@@ -178,15 +181,24 @@ fn blocks(model: &Model) -> Vec<Block> {
             continue;
         }
         let k = links.iter().filter(|&&x| x).count();
-        let among = bars.iter().filter(|&&(x, y, _)| x < n && y < n && links[x] && links[y]).count();
-        cands.push(Block { excess: among.saturating_sub(3 * k - 3), links });
+        let among = bars
+            .iter()
+            .filter(|&&(x, y, _)| x < n && y < n && links[x] && links[y])
+            .count();
+        cands.push(Block {
+            excess: among.saturating_sub(3 * k - 3),
+            links,
+        });
     }
     cands.sort_by_key(|c| c.links.iter().filter(|&&x| x).count());
     // Keep a block unless its excess is only that of smaller blocks inside it.
     let mut kept: Vec<Block> = Vec::new();
     for c in cands {
-        let inner: usize =
-            kept.iter().filter(|k| k.links.iter().zip(&c.links).all(|(&x, &y)| !x || y)).map(|k| k.excess).sum();
+        let inner: usize = kept
+            .iter()
+            .filter(|k| k.links.iter().zip(&c.links).all(|(&x, &y)| !x || y))
+            .map(|k| k.excess)
+            .sum();
         if c.excess > inner {
             kept.push(c);
         }
@@ -195,7 +207,10 @@ fn blocks(model: &Model) -> Vec<Block> {
 }
 
 fn names(items: impl Iterator<Item = String>) -> String {
-    items.map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+    items
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn plural(n: usize, one: &str, many: &str) -> String {
@@ -221,21 +236,37 @@ pub fn check(model: &Model) -> Vec<Issue> {
         let k = links.len();
         let with_ground = b.links[0];
         let moving: Vec<usize> = links.iter().copied().filter(|&l| l != 0).collect();
-        let joints: Vec<usize> =
-            (0..model.joints.len()).filter(|&j| b.links[model.joints[j].a] && b.links[model.joints[j].b]).collect();
-        let inputs: Vec<usize> = model.inputs.iter().copied().filter(|j| joints.contains(j)).collect();
+        let joints: Vec<usize> = (0..model.joints.len())
+            .filter(|&j| b.links[model.joints[j].a] && b.links[model.joints[j].b])
+            .collect();
+        let inputs: Vec<usize> = model
+            .inputs
+            .iter()
+            .copied()
+            .filter(|j| joints.contains(j))
+            .collect();
         let by_joints: usize = joints.iter().map(|&j| model.joints[j].kind.removed()).sum();
         let capacity = 3 * k - 3;
         let link_list = format!(
             "{} {}{}",
             if moving.len() == 1 { "link" } else { "links" },
             names(moving.iter().map(|&l| model.links[l].name.clone())),
-            if with_ground { " (with the ground)" } else { "" }
+            if with_ground {
+                " (with the ground)"
+            } else {
+                ""
+            }
         );
         let has = if with_ground {
-            format!("the {} only {}", plural(moving.len(), "moving link has", "moving links have"), capacity)
+            format!(
+                "the {} only {}",
+                plural(moving.len(), "moving link has", "moving links have"),
+                capacity
+            )
         } else {
-            format!("{k} links moving as one rigid body have only 3·{k} − 3 = {capacity} relative DOF")
+            format!(
+                "{k} links moving as one rigid body have only 3·{k} − 3 = {capacity} relative DOF"
+            )
         };
         let joint_list = names(joints.iter().map(|&j| model.joints[j].name.clone()));
         let redundant = plural(b.excess, "redundant constraint", "redundant constraints");
@@ -308,7 +339,17 @@ mod tests {
     }
 
     fn named_links(issue: &Issue) -> Vec<usize> {
-        issue.culprits.iter().filter_map(|c| if let Culprit::Link(l) = c { Some(*l) } else { None }).collect()
+        issue
+            .culprits
+            .iter()
+            .filter_map(|c| {
+                if let Culprit::Link(l) = c {
+                    Some(*l)
+                } else {
+                    None
+                }
+            })
+            .collect()
     }
 
     #[test]
@@ -366,7 +407,11 @@ mod tests {
     #[test]
     fn hidden_truss_is_named() {
         let m = model(TRUSS);
-        assert_eq!(crate::grubler::check(&m), None, "the overall count looks right");
+        assert_eq!(
+            crate::grubler::check(&m),
+            None,
+            "the overall count looks right"
+        );
         let issues = check(&m);
         assert_eq!(issues.len(), 1, "{issues:#?}");
         let issue = &issues[0];
@@ -374,18 +419,37 @@ mod tests {
         let mut named = named_links(issue);
         named.sort();
         assert_eq!(named, vec![0, t("t1"), t("t2"), t("t3")]);
-        assert_eq!(issue.culprits[0], Culprit::Link(t("t1")), "the truss, not the ground, is the culprit");
+        assert_eq!(
+            issue.culprits[0],
+            Culprit::Link(t("t1")),
+            "the truss, not the ground, is the culprit"
+        );
         let msg = &issue.message;
         assert!(
-            msg.starts_with("links `t1`, `t2`, `t3` (with the ground) form an over-constrained sub-chain"),
+            msg.starts_with(
+                "links `t1`, `t2`, `t3` (with the ground) form an over-constrained sub-chain"
+            ),
             "{msg}"
         );
-        assert!(msg.contains("their 5 joints (`G1`, `G2`, `P`, `Q`, `T12`) remove 10 DOF"), "{msg}");
-        assert!(msg.contains("the 3 moving links have only 9 (1 redundant constraint)"), "{msg}");
+        assert!(
+            msg.contains("their 5 joints (`G1`, `G2`, `P`, `Q`, `T12`) remove 10 DOF"),
+            "{msg}"
+        );
+        assert!(
+            msg.contains("the 3 moving links have only 9 (1 redundant constraint)"),
+            "{msg}"
+        );
         for j in ["G1", "G2", "P", "Q", "T12"] {
-            assert!(issue.culprits.contains(&Culprit::Joint(m.joint_index(j).unwrap())), "{j}");
+            assert!(
+                issue
+                    .culprits
+                    .contains(&Culprit::Joint(m.joint_index(j).unwrap())),
+                "{j}"
+            );
         }
-        assert!(!issue.culprits.contains(&Culprit::Joint(m.joint_index("O2").unwrap())));
+        assert!(!issue
+            .culprits
+            .contains(&Culprit::Joint(m.joint_index("O2").unwrap())));
         assert!(!issue.culprits.contains(&Culprit::Inputs));
         // Accepted on request.
         let mut m2 = m.clone();
@@ -397,8 +461,14 @@ mod tests {
     fn doubled_joint_is_caught() {
         let m = four_bar("A2: revolute(crank, coupler) at A,", "input: O2,");
         let issues = check(&m);
-        let pair = vec![m.link_index("crank").unwrap(), m.link_index("coupler").unwrap()];
-        let issue = issues.iter().find(|i| named_links(i) == pair).unwrap_or_else(|| panic!("{issues:#?}"));
+        let pair = vec![
+            m.link_index("crank").unwrap(),
+            m.link_index("coupler").unwrap(),
+        ];
+        let issue = issues
+            .iter()
+            .find(|i| named_links(i) == pair)
+            .unwrap_or_else(|| panic!("{issues:#?}"));
         assert!(
             issue.message.starts_with(
                 "links `crank`, `coupler` form an over-constrained sub-chain: their 2 joints (`A`, `A2`) remove 4 DOF but 2 links moving as one rigid body have only 3·2 − 3 = 3 relative DOF (1 redundant constraint)"
@@ -417,7 +487,10 @@ mod tests {
                 .replace("EXTRA", "D: revolute(ground, dangle),")
                 .replace("INPUTS", "inputs: [O2, O4],")
                 .replace("O4: (3.0, 0.0) }", "O4: (3.0, 0.0), D: (-1.0, 0.0) }")
-                .replace("link rocker", "link dangle { points { D, E: (-1.0, 1.0) } }, link rocker"),
+                .replace(
+                    "link rocker",
+                    "link dangle { points { D, E: (-1.0, 1.0) } }, link rocker",
+                ),
         );
         assert_eq!(crate::grubler::check(&m), None);
         let issues = check(&m);
@@ -435,20 +508,27 @@ mod tests {
         // Exhaustive check of the game's verdict against the definition on small graphs:
         // independent iff every subset of k bodies spans at most 3k − 3 accepted bars.
         let n = 4;
-        let pairs: Vec<(usize, usize)> = (0..n).flat_map(|a| (a + 1..n).map(move |b| (a, b))).collect();
+        let pairs: Vec<(usize, usize)> = (0..n)
+            .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+            .collect();
         let mut seed = 12345u64;
         for _ in 0..300 {
             let mut game = Game::new(n);
             let mut accepted: Vec<(usize, usize)> = Vec::new();
             for i in 0..12 {
-                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
                 let (a, b) = pairs[(seed >> 33) as usize % pairs.len()];
                 let ok = game.insert(i, a, b);
                 let mut trial = accepted.clone();
                 trial.push((a, b));
                 let sparse = (1u32..(1 << n)).all(|mask| {
                     let k = mask.count_ones() as usize;
-                    let e = trial.iter().filter(|&&(x, y)| mask & (1 << x) != 0 && mask & (1 << y) != 0).count();
+                    let e = trial
+                        .iter()
+                        .filter(|&&(x, y)| mask & (1 << x) != 0 && mask & (1 << y) != 0)
+                        .count();
                     e <= 3 * k - 3
                 });
                 assert_eq!(ok, sparse);

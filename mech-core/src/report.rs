@@ -16,7 +16,11 @@ fn offset(source: &str, lc: LineColumn) -> usize {
     let mut at = 0;
     for (i, line) in source.split_inclusive('\n').enumerate() {
         if i + 1 == lc.line {
-            return at + line.char_indices().nth(lc.column).map_or(line.trim_end_matches('\n').len(), |(b, _)| b);
+            return at
+                + line
+                    .char_indices()
+                    .nth(lc.column)
+                    .map_or(line.trim_end_matches('\n').len(), |(b, _)| b);
         }
         at += line.len();
     }
@@ -43,7 +47,9 @@ pub fn location(span: &Span) -> String {
 /// One error: `LINE:COL: message`, then the excerpt with the culprit (`spans[0]`) and the
 /// other declarations involved (`spans[1..]`) underlined.
 fn render_one(source: &str, origin: Option<&str>, message: &str, spans: &[Span]) -> String {
-    let Some(first) = spans.first() else { return message.to_string() };
+    let Some(first) = spans.first() else {
+        return message.to_string();
+    };
     let head = match origin {
         Some(o) => format!("{o}:{}: {message}", location(first)),
         None => format!("{}: {message}", location(first)),
@@ -54,20 +60,34 @@ fn render_one(source: &str, origin: Option<&str>, message: &str, spans: &[Span])
     }
     for (i, s) in spans.iter().enumerate() {
         let r = range(source, s);
-        snippet = snippet.annotation(if i == 0 { Level::Error.span(r).label("here") } else { Level::Info.span(r).label("involved") });
+        snippet = snippet.annotation(if i == 0 {
+            Level::Error.span(r).label("here")
+        } else {
+            Level::Info.span(r).label("involved")
+        });
     }
     let title = message.split(':').next().unwrap_or(message);
-    let rendered = Renderer::plain().render(Level::Error.title(title).snippet(snippet)).to_string();
+    let rendered = Renderer::plain()
+        .render(Level::Error.title(title).snippet(snippet))
+        .to_string();
     format!("{head}\n{rendered}")
 }
 
 /// Every diagnostic of the checks, rendered against the text they were found in
 /// (`origin`: a file name shown in the excerpt's `-->` line, if any), blank-line separated.
 pub fn render(source: &str, origin: Option<&str>, diags: &[Diagnostic<Span>]) -> String {
-    diags.iter().map(|d| render_one(source, origin, &d.message, &d.spans)).collect::<Vec<_>>().join("\n\n")
+    diags
+        .iter()
+        .map(|d| render_one(source, origin, &d.message, &d.spans))
+        .collect::<Vec<_>>()
+        .join("\n\n")
 }
 
 /// A syntax error (every message of it), rendered as [`render`] does.
 pub fn render_syntax(source: &str, origin: Option<&str>, e: &syn::Error) -> String {
-    e.clone().into_iter().map(|e| render_one(source, origin, &e.to_string(), &[e.span()])).collect::<Vec<_>>().join("\n\n")
+    e.clone()
+        .into_iter()
+        .map(|e| render_one(source, origin, &e.to_string(), &[e.span()]))
+        .collect::<Vec<_>>()
+        .join("\n\n")
 }

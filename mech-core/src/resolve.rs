@@ -17,7 +17,10 @@ pub struct Diagnostic<S> {
 impl<S> Diagnostic<S> {
     /// A diagnostic at one place.
     pub fn at(span: S, message: impl Into<String>) -> Self {
-        Diagnostic { spans: vec![span], message: message.into() }
+        Diagnostic {
+            spans: vec![span],
+            message: message.into(),
+        }
     }
 }
 
@@ -71,20 +74,31 @@ impl<S: Clone> Description<S> {
             Culprit::Link(i) => self.link_decl(i).name.span.clone(),
             Culprit::Mass(i) => {
                 let l = self.link_decl(i);
-                l.mass.as_ref().map(|m| m.span.clone()).unwrap_or_else(|| l.name.span.clone())
+                l.mass
+                    .as_ref()
+                    .map(|m| m.span.clone())
+                    .unwrap_or_else(|| l.name.span.clone())
             }
             Culprit::Inertia(i) => {
                 let l = self.link_decl(i);
-                l.inertia.as_ref().map(|m| m.span.clone()).unwrap_or_else(|| l.name.span.clone())
+                l.inertia
+                    .as_ref()
+                    .map(|m| m.span.clone())
+                    .unwrap_or_else(|| l.name.span.clone())
             }
             Culprit::Cg(i) => {
                 let l = self.link_decl(i);
-                l.cg.as_ref().map(|m| m.span.clone()).unwrap_or_else(|| l.name.span.clone())
+                l.cg.as_ref()
+                    .map(|m| m.span.clone())
+                    .unwrap_or_else(|| l.name.span.clone())
             }
             Culprit::Joint(i) => self.joints[i].name.span.clone(),
             Culprit::Axis(i) => {
                 let j = &self.joints[i];
-                j.along.as_ref().map(|a| a.span.clone()).unwrap_or_else(|| j.kind_span.clone())
+                j.along
+                    .as_ref()
+                    .map(|a| a.span.clone())
+                    .unwrap_or_else(|| j.kind_span.clone())
             }
             Culprit::Point(i) => {
                 let n = &model.points[i].name;
@@ -96,17 +110,28 @@ impl<S: Clone> Description<S> {
                     .unwrap_or_else(|| self.name.span.clone())
             }
             Culprit::Inputs => self.inputs_span.clone(),
-            Culprit::Gravity => self.gravity.as_ref().map(|g| g.span.clone()).unwrap_or_else(|| self.name.span.clone()),
+            Culprit::Gravity => self
+                .gravity
+                .as_ref()
+                .map(|g| g.span.clone())
+                .unwrap_or_else(|| self.name.span.clone()),
         }
     }
 
     /// An [`Issue`] located in this description.
     pub fn diagnostic(&self, model: &Model, issue: &Issue) -> Diagnostic<S> {
-        let mut spans: Vec<S> = issue.culprits.iter().map(|&c| self.locate(model, c)).collect();
+        let mut spans: Vec<S> = issue
+            .culprits
+            .iter()
+            .map(|&c| self.locate(model, c))
+            .collect();
         if spans.is_empty() {
             spans.push(self.name.span.clone());
         }
-        Diagnostic { spans, message: issue.message.clone() }
+        Diagnostic {
+            spans,
+            message: issue.message.clone(),
+        }
     }
 }
 
@@ -120,7 +145,10 @@ fn dup_check<'a, S: Clone + 'a>(
         if seen.insert(n.text.as_str(), ()).is_some() {
             errs.push(Diagnostic::at(
                 n.span.clone(),
-                format!("duplicate {what} `{}`: every {what} needs its own name", n.text),
+                format!(
+                    "duplicate {what} `{}`: every {what} needs its own name",
+                    n.text
+                ),
             ));
         }
     }
@@ -130,7 +158,11 @@ fn list(names: &[&str]) -> String {
     if names.is_empty() {
         return "(none)".into();
     }
-    names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+    names
+        .iter()
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Resolve names; on success the model's links, joints and loads are in declaration
@@ -160,7 +192,10 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                     ));
                 } else {
                     point_ix.insert(p.name.text.clone(), points.len());
-                    points.push(Point { name: p.name.text.clone(), pos: at.value });
+                    points.push(Point {
+                        name: p.name.text.clone(),
+                        pos: at.value,
+                    });
                 }
             }
         }
@@ -202,7 +237,11 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
             inertia: l.inertia.as_ref().map(|m| m.value).unwrap_or(0.0),
             flywheel: 0.0,
             cg: l.cg.as_ref().map(|c| c.value).unwrap_or_else(|| {
-                l.points.iter().find_map(|p| point_ix.get(&p.name.text)).map(|&i| points[i].pos).unwrap_or([0.0, 0.0])
+                l.points
+                    .iter()
+                    .find_map(|p| point_ix.get(&p.name.text))
+                    .map(|&i| points[i].pos)
+                    .unwrap_or([0.0, 0.0])
             }),
         });
     }
@@ -212,7 +251,11 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         if r.is_none() {
             errs.push(Diagnostic::at(
                 n.span.clone(),
-                format!("unknown link `{}`: the links are {}", n.text, list(&link_names)),
+                format!(
+                    "unknown link `{}`: the links are {}",
+                    n.text,
+                    list(&link_names)
+                ),
             ));
         }
         r
@@ -239,7 +282,10 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
             if a == b {
                 errs.push(Diagnostic::at(
                     j.b.span.clone(),
-                    format!("joint `{}` joins link `{}` with itself: a joint needs two different links", j.name.text, links[a].name),
+                    format!(
+                        "joint `{}` joins link `{}` with itself: a joint needs two different links",
+                        j.name.text, links[a].name
+                    ),
                 ));
             } else {
                 reached[a] = true;
@@ -248,7 +294,10 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         }
         let axis = match (j.kind, &j.along) {
             (JointKind::Revolute, Some(al)) => {
-                errs.push(Diagnostic::at(al.span.clone(), format!("revolute joint `{}` takes no `along` axis", j.name.text)));
+                errs.push(Diagnostic::at(
+                    al.span.clone(),
+                    format!("revolute joint `{}` takes no `along` axis", j.name.text),
+                ));
                 [0.0, 0.0]
             }
             (JointKind::Revolute, None) => [0.0, 0.0],
@@ -256,7 +305,11 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
             (k, None) => {
                 errs.push(Diagnostic::at(
                     j.kind_span.clone(),
-                    format!("{} joint `{}` needs its sliding axis: add `along (ux, uy)`", k.keyword(), j.name.text),
+                    format!(
+                        "{} joint `{}` needs its sliding axis: add `along (ux, uy)`",
+                        k.keyword(),
+                        j.name.text
+                    ),
                 ));
                 [1.0, 0.0]
             }
@@ -313,7 +366,10 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         if !reached[i] && first_of_its_name {
             errs.push(Diagnostic::at(
                 l.name.span.clone(),
-                format!("link `{}` is not reached by any joint: connect it with a joint or remove it", l.name.text),
+                format!(
+                    "link `{}` is not reached by any joint: connect it with a joint or remove it",
+                    l.name.text
+                ),
             ));
         }
     }
@@ -322,12 +378,16 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
     // a misspelt link in a joint would otherwise look like a missing pin).
     let names_ok = errs.is_empty();
     for (pi, p) in points.iter().enumerate().filter(|_| names_ok) {
-        let owners: Vec<usize> = (0..links.len()).filter(|&l| links[l].points.contains(&pi)).collect();
+        let owners: Vec<usize> = (0..links.len())
+            .filter(|&l| links[l].points.contains(&pi))
+            .collect();
         for w in 1..owners.len() {
             for v in 0..w {
                 let (l1, l2) = (owners[v], owners[w]);
                 let pinned = joints.iter().any(|j| {
-                    j.kind == JointKind::Revolute && j.point == pi && ((j.a == l1 && j.b == l2) || (j.a == l2 && j.b == l1))
+                    j.kind == JointKind::Revolute
+                        && j.point == pi
+                        && ((j.a == l1 && j.b == l2) || (j.a == l2 && j.b == l1))
                 });
                 // Links pinned through a third at the same point (a ternary pin) are fine.
                 let via_third = owners.iter().any(|&l3| {
@@ -335,7 +395,9 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                         && l3 != l2
                         && [l1, l2].iter().all(|&lx| {
                             joints.iter().any(|j| {
-                                j.kind == JointKind::Revolute && j.point == pi && ((j.a == lx && j.b == l3) || (j.a == l3 && j.b == lx))
+                                j.kind == JointKind::Revolute
+                                    && j.point == pi
+                                    && ((j.a == lx && j.b == l3) || (j.a == l3 && j.b == lx))
                             })
                         })
                 });
@@ -373,7 +435,11 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         match d.joints.iter().position(|j| j.name.text == i.text) {
             None => errs.push(Diagnostic::at(
                 i.span.clone(),
-                format!("unknown joint `{}` as input: the joints are {}", i.text, list(&joint_names)),
+                format!(
+                    "unknown joint `{}` as input: the joints are {}",
+                    i.text,
+                    list(&joint_names)
+                ),
             )),
             Some(k) => {
                 if d.joints[k].kind == JointKind::PinInSlot {
@@ -396,7 +462,10 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         match &l.kind {
             LoadDeclKind::Torque { link } => {
                 if let Some(li) = find_link(link, &mut errs) {
-                    loads.push(Load::Torque { name: l.name.text.clone(), link: li });
+                    loads.push(Load::Torque {
+                        name: l.name.text.clone(),
+                        link: li,
+                    });
                 }
             }
             LoadDeclKind::Force { link, point } => {
@@ -404,10 +473,18 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                 let pi = point_ix.get(&point.text).copied();
                 match (li, pi) {
                     (Some(li), Some(pi)) if links[li].points.contains(&pi) => {
-                        loads.push(Load::Force { name: l.name.text.clone(), link: li, point: pi })
+                        loads.push(Load::Force {
+                            name: l.name.text.clone(),
+                            link: li,
+                            point: pi,
+                        })
                     }
                     (Some(li), _) => {
-                        let names: Vec<&str> = links[li].points.iter().map(|&p| points[p].name.as_str()).collect();
+                        let names: Vec<&str> = links[li]
+                            .points
+                            .iter()
+                            .map(|&p| points[p].name.as_str())
+                            .collect();
                         errs.push(Diagnostic::at(
                             point.span.clone(),
                             format!(
@@ -442,7 +519,11 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
 /// prismatic one (a plain number is SI: rad or m).
 fn input_zero_of<S: Clone>(decl: &InputDecl<S>, kind: JointKind) -> Result<f64, Diagnostic<S>> {
     let Some(z) = &decl.from else { return Ok(0.0) };
-    let want = if kind == JointKind::Revolute { crate::units::Dim::ANGLE } else { crate::units::Dim::LENGTH };
+    let want = if kind == JointKind::Revolute {
+        crate::units::Dim::ANGLE
+    } else {
+        crate::units::Dim::LENGTH
+    };
     match z.dim.filter(|d| *d != crate::units::Dim::NONE) {
         Some(d) if d != want => Err(Diagnostic::at(
             z.span.clone(),

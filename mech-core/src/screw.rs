@@ -48,23 +48,35 @@ impl Twist {
     /// t + k s.
     #[inline(always)]
     fn plus(self, k: f64, s: Twist) -> Twist {
-        Twist { w: self.w + k * s.w, v: self.v + s.v * k }
+        Twist {
+            w: self.w + k * s.w,
+            v: self.v + s.v * k,
+        }
     }
     /// The planar spatial cross product (ω₁, v₁) × (ω₂, v₂) = (0, ω₁ perp(v₂) − ω₂ perp(v₁)).
     #[inline(always)]
     fn cross(self, s: Twist) -> Twist {
-        Twist { w: 0.0, v: perp(s.v) * self.w - perp(self.v) * s.w }
+        Twist {
+            w: 0.0,
+            v: perp(s.v) * self.w - perp(self.v) * s.w,
+        }
     }
     /// The twist of a link's state at the point `o`: (ω, v + ω perp(o − pos)).
     #[inline(always)]
     fn of(s: &LinkState, o: V2) -> Twist {
-        Twist { w: s.omega, v: s.vel_at(o - s.pos) }
+        Twist {
+            w: s.omega,
+            v: s.vel_at(o - s.pos),
+        }
     }
     /// The spatial acceleration of a link's state at `o`: (α, a(o) − ω perp(v_O)).
     #[inline(always)]
     fn acc_of(s: &LinkState, o: V2) -> Twist {
         let r = o - s.pos;
-        Twist { w: s.alpha, v: s.acc_at(r) - perp(s.vel_at(r)) * s.omega }
+        Twist {
+            w: s.alpha,
+            v: s.acc_at(r) - perp(s.vel_at(r)) * s.omega,
+        }
     }
     /// The twist of link `l` at `o`, zero for the ground (link 0), whose state is not read.
     #[inline(always)]
@@ -118,7 +130,10 @@ impl Force {
     #[inline(always)]
     fn at(w: &Wrench, pos: V2, o: V2) -> Force {
         let f = V2::new(w.x, w.y);
-        Force { f, m: w.z + cross(pos - o, f) }
+        Force {
+            f,
+            m: w.z + cross(pos - o, f),
+        }
     }
     /// Back to a link wrench about the anchor `pos`.
     #[inline(always)]
@@ -127,7 +142,10 @@ impl Force {
     }
     #[inline(always)]
     fn plus(self, o: Force) -> Force {
-        Force { f: self.f + o.f, m: self.m + o.m }
+        Force {
+            f: self.f + o.f,
+            m: self.m + o.m,
+        }
     }
 }
 
@@ -146,9 +164,15 @@ impl JointScrew {
     fn at(self, joints: &[JointGeom], s: &[LinkState], o: V2) -> Twist {
         let g = &joints[self.joint];
         if self.slide {
-            Twist { w: 0.0, v: dir_of(s, g.a, g.axis) }
+            Twist {
+                w: 0.0,
+                v: dir_of(s, g.a, g.axis),
+            }
         } else {
-            Twist { w: 1.0, v: perp(o - point_of(s, g.b, g.db)) }
+            Twist {
+                w: 1.0,
+                v: perp(o - point_of(s, g.b, g.db)),
+            }
         }
     }
     /// The joint's point now (the point of its second link), m.
@@ -210,18 +234,36 @@ struct ChainSystem {
 
 impl ChainSystem {
     #[inline(always)]
-    fn new(c: &Chain, joints: &[JointGeom], s: &[LinkState], scale: f64) -> Result<Self, MechError> {
+    fn new(
+        c: &Chain,
+        joints: &[JointGeom],
+        s: &[LinkState],
+        scale: f64,
+    ) -> Result<Self, MechError> {
         let p = c.pivot;
         let others = [[1, 2], [0, 2], [0, 1]][p];
         let o = c.screws[p].point(joints, s);
-        let mut sc = [Twist { w: 1.0, v: V2::zeros() }; 3];
+        let mut sc = [Twist {
+            w: 1.0,
+            v: V2::zeros(),
+        }; 3];
         for k in others {
             sc[k] = c.screws[k].at(joints, s, o);
         }
         let col_scale = others.map(|k| if c.screws[k].slide { 1.0 } else { 1.0 / scale });
-        let (a, b) = (sc[others[0]].v * col_scale[0], sc[others[1]].v * col_scale[1]);
+        let (a, b) = (
+            sc[others[0]].v * col_scale[0],
+            sc[others[1]].v * col_scale[1],
+        );
         let inv = Inverse2::new([[a.x, b.x], [a.y, b.y]])?;
-        Ok(ChainSystem { o, sc, pivot: p, others, col_scale, inv })
+        Ok(ChainSystem {
+            o,
+            sc,
+            pivot: p,
+            others,
+            col_scale,
+            inv,
+        })
     }
     /// ρ from S ρ = b.
     #[inline(always)]
@@ -240,15 +282,24 @@ impl ChainSystem {
     fn solve_transpose(&self, c: [f64; 3]) -> Force {
         let [i, j] = self.others;
         let m = c[self.pivot];
-        let y = [(c[i] - self.sc[i].w * m) * self.col_scale[0], (c[j] - self.sc[j].w * m) * self.col_scale[1]];
+        let y = [
+            (c[i] - self.sc[i].w * m) * self.col_scale[0],
+            (c[j] - self.sc[j].w * m) * self.col_scale[1],
+        ];
         let f = self.inv.solve_transpose(y);
-        Force { f: V2::new(f[0], f[1]), m }
+        Force {
+            f: V2::new(f[0], f[1]),
+            m,
+        }
     }
     /// t + ρ $_k.
     #[inline(always)]
     fn step(&self, t: Twist, k: usize, rho: f64) -> Twist {
         if k == self.pivot {
-            Twist { w: t.w + rho, v: t.v }
+            Twist {
+                w: t.w + rho,
+                v: t.v,
+            }
         } else {
             t.plus(rho, self.sc[k])
         }
@@ -257,7 +308,10 @@ impl ChainSystem {
     #[inline(always)]
     fn bias(&self, t: Twist, k: usize) -> Twist {
         if k == self.pivot {
-            Twist { w: 0.0, v: -perp(t.v) }
+            Twist {
+                w: 0.0,
+                v: -perp(t.v),
+            }
         } else {
             t.cross(self.sc[k])
         }
@@ -278,7 +332,13 @@ impl ChainSystem {
 /// [`Level::Position`]. `Singular` near a change point (condition ≥ 1e6).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
-pub fn chain_rates(c: &Chain, joints: &[JointGeom], s: &mut [LinkState], scale: f64, upto: Level) -> Result<(), MechError> {
+pub fn chain_rates(
+    c: &Chain,
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    scale: f64,
+    upto: Level,
+) -> Result<(), MechError> {
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
         return Ok(());
     }
@@ -328,7 +388,13 @@ fn orientation(g: &JointGeom, from: usize) -> f64 {
 /// Velocity (and acceleration) of a driven link: t = t₀ + σ q̇ $, â = â₀ + σ (q̈ $ + q̇ t₀ × $).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
-pub fn driven_rates(d: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive: Drive, upto: Level) -> Result<(), MechError> {
+pub fn driven_rates(
+    d: &Driven,
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    drive: Drive,
+    upto: Level,
+) -> Result<(), MechError> {
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
         return Ok(());
     }
@@ -354,7 +420,9 @@ pub fn driven_rates(d: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive
     let t0 = Twist::of_link(s, d.from, o);
     set_velocity(&mut s[d.body], t0.plus(qd, sc), o);
     if upto == Level::Acceleration {
-        let a = Twist::acc_of_link(s, d.from, o).plus(qdd, sc).plus(qd, t0.cross(sc));
+        let a = Twist::acc_of_link(s, d.from, o)
+            .plus(qdd, sc)
+            .plus(qd, t0.cross(sc));
         set_acceleration(&mut s[d.body], a, o);
     }
     Ok(())
@@ -364,10 +432,24 @@ pub fn driven_rates(d: &Driven, joints: &[JointGeom], s: &mut [LinkState], drive
 /// `o`) that link `before` exerts through it on the next link of the chain: the force,
 /// and the moment about the joint's point (zero but for a prismatic joint).
 #[inline(always)]
-fn reaction(g: &JointGeom, s: &[LinkState], before: usize, w: Force, o: V2, moment: bool) -> Reaction {
+fn reaction(
+    g: &JointGeom,
+    s: &[LinkState],
+    before: usize,
+    w: Force,
+    o: V2,
+    moment: bool,
+) -> Reaction {
     let sigma = orientation(g, before);
-    let moment = if moment { sigma * (w.m - cross(point_of(s, g.b, g.db) - o, w.f)) } else { 0.0 };
-    Reaction { force: w.f * sigma, moment }
+    let moment = if moment {
+        sigma * (w.m - cross(point_of(s, g.b, g.db) - o, w.f))
+    } else {
+        0.0
+    };
+    Reaction {
+        force: w.f * sigma,
+        moment,
+    }
 }
 
 /// d'Alembert for a chain: the reaction at each of its joints into `out` (joint order),
@@ -388,7 +470,11 @@ pub fn chain_reactions(
     let o = sys.o;
     let [l1, l2] = c.links;
     let f1 = Force::at(&f[l1], s[l1].pos, o);
-    let f2 = if l2 != VIRTUAL { Force::at(&f[l2], s[l2].pos, o) } else { Force::default() };
+    let f2 = if l2 != VIRTUAL {
+        Force::at(&f[l2], s[l2].pos, o)
+    } else {
+        Force::default()
+    };
     let f12 = f1.plus(f2);
     let w1 = sys.solve_transpose([0.0, -sys.power(1, &f1), -sys.power(2, &f12)]);
     let ws = [w1, w1.plus(f1), w1.plus(f12)];
@@ -416,7 +502,14 @@ pub fn chain_reactions(
 /// the reaction).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
-pub fn driven_reactions(d: &Driven, joints: &[JointGeom], s: &[LinkState], f: &mut [Wrench], out: &mut [Reaction], drivers: &mut [f64]) {
+pub fn driven_reactions(
+    d: &Driven,
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    out: &mut [Reaction],
+    drivers: &mut [f64],
+) {
     let g = &joints[d.screw.joint];
     let o = d.screw.point(joints, s);
     let sc = d.screw.at(joints, s, o);
@@ -426,16 +519,25 @@ pub fn driven_reactions(d: &Driven, joints: &[JointGeom], s: &[LinkState], f: &m
     let action = sc.power(&w1);
     drivers[d.input] = sigma * action;
     // Take the motor's component out: what is left does no work along the screw.
-    let constraint = if d.screw.slide { Force { f: w1.f - sc.v * action, m: w1.m } } else { Force { f: w1.f, m: 0.0 } };
+    let constraint = if d.screw.slide {
+        Force {
+            f: w1.f - sc.v * action,
+            m: w1.m,
+        }
+    } else {
+        Force { f: w1.f, m: 0.0 }
+    };
     out[d.screw.joint] = reaction(g, s, d.from, constraint, o, d.screw.slide);
     f[d.from] += Force { f: -w1.f, m: -w1.m }.about(s[d.from].pos, o);
 }
 
 #[cfg(test)]
 mod tests {
-    //! The screw kernels against the absolute-coordinate route: the same positions, then
-    //! velocities and accelerations from the group's scaled Jacobian (LU) and reactions
-    //! from its transpose, for every closed-form group kind.
+    //! The closed-form kernels (joint screws, and natural coordinates for RRR and RRP,
+    //! through `kinematics::solve_chain` and `kinematics::chain_reactions`) against the
+    //! absolute-coordinate route: the same positions, then velocities and accelerations
+    //! from the group's scaled Jacobian (LU) and reactions from its transpose, for every
+    //! closed-form group kind.
     use super::*;
     use crate::assur::{plan, Kernel};
     use crate::group::{group_rates, GroupSystem};
@@ -515,42 +617,118 @@ mod tests {
             let n_in = model.inputs.len();
             let mut assembled = 0;
             'q: for k in 0..7 {
-                let q: Vec<f64> = (0..n_in).map(|i| 0.3 * k as f64 - 0.8 + 0.1 * i as f64).collect();
-                let q: Vec<f64> = if model.joints[model.inputs[0]].kind == crate::model::JointKind::Revolute {
-                    q.iter().map(|&x| inst.joints[model.inputs[0]].q_ref + x).collect()
-                } else {
-                    q.iter().map(|&x| 0.05 * x).collect()
-                };
+                let q: Vec<f64> = (0..n_in)
+                    .map(|i| 0.3 * k as f64 - 0.8 + 0.1 * i as f64)
+                    .collect();
+                let q: Vec<f64> =
+                    if model.joints[model.inputs[0]].kind == crate::model::JointKind::Revolute {
+                        q.iter()
+                            .map(|&x| inst.joints[model.inputs[0]].q_ref + x)
+                            .collect()
+                    } else {
+                        q.iter().map(|&x| 0.05 * x).collect()
+                    };
                 let qd: Vec<f64> = (0..n_in).map(|i| 3.0 - 1.3 * i as f64).collect();
                 let qdd: Vec<f64> = (0..n_in).map(|i| -2.0 + 0.7 * i as f64).collect();
                 let drive = (&q[..], &qd[..], &qdd[..]);
                 let (mut sa, mut sb) = (inst.drawing.clone(), inst.drawing.clone());
                 for (g, &sign) in groups.iter().zip(&branches) {
-                    if crate::dyad::position(g.solver, &inst.joints, &mut sa.clone(), drive, sign) == Err(MechError::NoAssembly) {
+                    if crate::dyad::position(g.solver, &inst.joints, &mut sa.clone(), drive, sign)
+                        == Err(MechError::NoAssembly)
+                    {
                         continue 'q;
                     }
-                    kinds.insert(format!("{:?}", g.solver).split([' ', '{']).next().unwrap().to_string());
+                    kinds.insert(
+                        format!("{:?}", g.solver)
+                            .split([' ', '{'])
+                            .next()
+                            .unwrap()
+                            .to_string(),
+                    );
                     match &g.kernel {
-                        Kernel::Chain(c) => crate::kinematics::solve_chain(g.solver, c, &inst.joints, &mut sa, drive, sign, inst.scale, Level::Acceleration),
-                        Kernel::Driven(d) => crate::kinematics::solve_driven(g.solver, d, &inst.joints, &mut sa, drive, Level::Acceleration),
+                        Kernel::Chain(c) => crate::kinematics::solve_chain(
+                            g.solver,
+                            c,
+                            &inst.joints,
+                            &mut sa,
+                            drive,
+                            sign,
+                            inst.scale,
+                            Level::Acceleration,
+                        ),
+                        Kernel::Driven(d) => crate::kinematics::solve_driven(
+                            g.solver,
+                            d,
+                            &inst.joints,
+                            &mut sa,
+                            drive,
+                            Level::Acceleration,
+                        ),
                         Kernel::System => panic!("{text}: no closed form"),
                     }
                     .expect("screw route");
-                    crate::dyad::position(g.solver, &inst.joints, &mut sb, drive, sign).expect("position");
-                    let sys = GroupSystem::<6>::new(&g.bodies, &g.cons, &inst.joints, &sb, inst.scale);
+                    crate::dyad::position(g.solver, &inst.joints, &mut sb, drive, sign)
+                        .expect("position");
+                    let sys =
+                        GroupSystem::<6>::new(&g.bodies, &g.cons, &inst.joints, &sb, inst.scale);
                     // One-link groups: a 3×3 system.
                     if g.bodies.len() == 1 {
-                        let sys = GroupSystem::<3>::new(&g.bodies, &g.cons, &inst.joints, &sb, inst.scale).expect("lu");
-                        group_rates(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive, Level::Velocity);
-                        group_rates(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive, Level::Acceleration);
+                        let sys = GroupSystem::<3>::new(
+                            &g.bodies,
+                            &g.cons,
+                            &inst.joints,
+                            &sb,
+                            inst.scale,
+                        )
+                        .expect("lu");
+                        group_rates(
+                            &sys,
+                            &g.bodies,
+                            &g.cons,
+                            &inst.joints,
+                            &mut sb,
+                            drive,
+                            Level::Velocity,
+                        );
+                        group_rates(
+                            &sys,
+                            &g.bodies,
+                            &g.cons,
+                            &inst.joints,
+                            &mut sb,
+                            drive,
+                            Level::Acceleration,
+                        );
                     } else {
                         let sys = sys.expect("lu");
-                        group_rates(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive, Level::Velocity);
-                        group_rates(&sys, &g.bodies, &g.cons, &inst.joints, &mut sb, drive, Level::Acceleration);
+                        group_rates(
+                            &sys,
+                            &g.bodies,
+                            &g.cons,
+                            &inst.joints,
+                            &mut sb,
+                            drive,
+                            Level::Velocity,
+                        );
+                        group_rates(
+                            &sys,
+                            &g.bodies,
+                            &g.cons,
+                            &inst.joints,
+                            &mut sb,
+                            drive,
+                            Level::Acceleration,
+                        );
                     }
                 }
                 for (a, b) in sa.iter().zip(&sb) {
-                    for (x, y) in [(a.pos.x, b.pos.x), (a.pos.y, b.pos.y), (a.vel.x, b.vel.x), (a.vel.y, b.vel.y), (a.omega, b.omega)] {
+                    for (x, y) in [
+                        (a.pos.x, b.pos.x),
+                        (a.pos.y, b.pos.y),
+                        (a.vel.x, b.vel.x),
+                        (a.vel.y, b.vel.y),
+                        (a.omega, b.omega),
+                    ] {
                         assert!(close(x, y, 10.0), "{text}: velocity level {x} vs {y}");
                     }
                     for (x, y) in [(a.acc.x, b.acc.x), (a.acc.y, b.acc.y), (a.alpha, b.alpha)] {
@@ -560,27 +738,79 @@ mod tests {
                 assembled += 1;
                 // Reactions from arbitrary wrenches on every moving link.
                 let n = inst.links.len();
-                let w0: Vec<Wrench> = (0..n).map(|l| Wrench::new(10.0 - 3.0 * l as f64, 4.0 + l as f64, 0.5 - 0.2 * l as f64)).collect();
+                let w0: Vec<Wrench> = (0..n)
+                    .map(|l| {
+                        Wrench::new(10.0 - 3.0 * l as f64, 4.0 + l as f64, 0.5 - 0.2 * l as f64)
+                    })
+                    .collect();
                 let (mut fa, mut fb) = (w0.clone(), w0);
                 let nj = inst.joints.len();
-                let (mut ra, mut rb) = (vec![Reaction::default(); nj], vec![Reaction::default(); nj]);
+                let (mut ra, mut rb) =
+                    (vec![Reaction::default(); nj], vec![Reaction::default(); nj]);
                 let (mut da, mut db) = (vec![0.0; n_in], vec![0.0; n_in]);
                 for g in groups.iter().rev() {
                     match &g.kernel {
-                        Kernel::Chain(c) => chain_reactions(c, &inst.joints, &sa, &mut fa, inst.scale, &mut ra).expect("chain"),
-                        Kernel::Driven(d) => driven_reactions(d, &inst.joints, &sa, &mut fa, &mut ra, &mut da),
+                        Kernel::Chain(c) => crate::kinematics::chain_reactions(
+                            g.solver,
+                            c,
+                            &inst.joints,
+                            &sa,
+                            &mut fa,
+                            inst.scale,
+                            &mut ra,
+                        )
+                        .expect("chain"),
+                        Kernel::Driven(d) => {
+                            driven_reactions(d, &inst.joints, &sa, &mut fa, &mut ra, &mut da)
+                        }
                         Kernel::System => unreachable!(),
                     }
                     if g.bodies.len() == 1 {
-                        let lam = group_reactions::<3>(None, &g.bodies, &g.cons, &inst.joints, &sb, &mut fb, inst.scale).expect("lu");
-                        lambda_reactions(&g.cons, &inst.joints, &sb, lam.as_slice(), &mut rb, &mut db);
+                        let lam = group_reactions::<3>(
+                            None,
+                            &g.bodies,
+                            &g.cons,
+                            &inst.joints,
+                            &sb,
+                            &mut fb,
+                            inst.scale,
+                        )
+                        .expect("lu");
+                        lambda_reactions(
+                            &g.cons,
+                            &inst.joints,
+                            &sb,
+                            lam.as_slice(),
+                            &mut rb,
+                            &mut db,
+                        );
                     } else {
-                        let lam = group_reactions::<6>(None, &g.bodies, &g.cons, &inst.joints, &sb, &mut fb, inst.scale).expect("lu");
-                        lambda_reactions(&g.cons, &inst.joints, &sb, lam.as_slice(), &mut rb, &mut db);
+                        let lam = group_reactions::<6>(
+                            None,
+                            &g.bodies,
+                            &g.cons,
+                            &inst.joints,
+                            &sb,
+                            &mut fb,
+                            inst.scale,
+                        )
+                        .expect("lu");
+                        lambda_reactions(
+                            &g.cons,
+                            &inst.joints,
+                            &sb,
+                            lam.as_slice(),
+                            &mut rb,
+                            &mut db,
+                        );
                     }
                 }
                 for (a, b) in ra.iter().zip(&rb) {
-                    for (x, y) in [(a.force.x, b.force.x), (a.force.y, b.force.y), (a.moment, b.moment)] {
+                    for (x, y) in [
+                        (a.force.x, b.force.x),
+                        (a.force.y, b.force.y),
+                        (a.moment, b.moment),
+                    ] {
                         assert!(close(x, y, 100.0), "{text}: reaction {x} vs {y}");
                     }
                 }
@@ -588,11 +818,27 @@ mod tests {
                     assert!(close(*x, *y, 100.0), "{text}: driver {x} vs {y}");
                 }
             }
-            assert!(assembled >= 4, "{text}: only {assembled} of 7 inputs assemble");
+            assert!(
+                assembled >= 4,
+                "{text}: only {assembled} of 7 inputs assemble"
+            );
         }
-        let want = ["DrivenRevolute", "DrivenPrismatic", "Rrr", "Rrp", "Rpr", "Prp", "Rpp", "PinInFixedSlot", "SlottedLever"];
+        let want = [
+            "DrivenRevolute",
+            "DrivenPrismatic",
+            "Rrr",
+            "Rrp",
+            "Rpr",
+            "Prp",
+            "Rpp",
+            "PinInFixedSlot",
+            "SlottedLever",
+        ];
         for k in want {
-            assert!(kinds.contains(k), "no test mechanism exercises {k}: {kinds:?}");
+            assert!(
+                kinds.contains(k),
+                "no test mechanism exercises {k}: {kinds:?}"
+            );
         }
     }
 }

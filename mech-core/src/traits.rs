@@ -18,7 +18,12 @@ pub trait Machine {
     /// Kinematics at (q, q̇, q̈), slices of length G.
     fn motion(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<Self::Motion, MechError>;
     /// The motor actions by virtual power into `out` (length G): torque (N·m) or force (N).
-    fn driver_actions(&self, m: &Self::Motion, loads: &Self::Loads, out: &mut [f64]) -> Result<(), MechError>;
+    fn driver_actions(
+        &self,
+        m: &Self::Motion,
+        loads: &Self::Loads,
+        out: &mut [f64],
+    ) -> Result<(), MechError>;
     /// Kinetic energy of each link (J) into `out` (length N, the ground's is 0).
     fn link_kinetic_energies(&self, m: &Self::Motion, out: &mut [f64]);
     /// Potential energy of gravity Σ −m g·r_G (J); 0 without gravity.
@@ -32,7 +37,13 @@ pub trait OneDof: Machine {
     /// M*(q) (N·m), loads and gravity included.
     fn reduced_moment(&self, q: f64, loads: &Self::Loads) -> Result<f64, MechError>;
     /// q̈ from I* q̈ + ½ dI*/dq q̇² = driver + M*.
-    fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &Self::Loads) -> Result<f64, MechError>;
+    fn acceleration(
+        &self,
+        q: f64,
+        qd: f64,
+        driver: f64,
+        loads: &Self::Loads,
+    ) -> Result<f64, MechError>;
 }
 
 mod sealed {

@@ -53,7 +53,10 @@ impl Dim {
 
     /// The dimension of a square root; `None` when an exponent is odd.
     pub fn sqrt(self) -> Option<Dim> {
-        self.0.iter().all(|e| e % 2 == 0).then(|| Dim(self.0.map(|e| e / 2)))
+        self.0
+            .iter()
+            .all(|e| e % 2 == 0)
+            .then(|| Dim(self.0.map(|e| e / 2)))
     }
 
     /// What a quantity of this dimension is, in words ("a length (m)").
@@ -81,7 +84,11 @@ impl Dim {
 
     /// The unit words that give this dimension, for messages ("`m`, `cm` or `mm`").
     pub fn words(self) -> String {
-        let words: Vec<String> = UNITS.iter().filter(|u| u.dim == self).map(|u| format!("`{}`", u.word)).collect();
+        let words: Vec<String> = UNITS
+            .iter()
+            .filter(|u| u.dim == self)
+            .map(|u| format!("`{}`", u.word))
+            .collect();
         match words.len() {
             0 => "no unit word (write it in SI)".to_string(),
             1 => words[0].clone(),
@@ -97,7 +104,13 @@ impl fmt::Display for Dim {
             .iter()
             .zip(self.0)
             .filter(|(_, e)| *e != 0)
-            .map(|(u, e)| if e == 1 { u.to_string() } else { format!("{u}^{e}") })
+            .map(|(u, e)| {
+                if e == 1 {
+                    u.to_string()
+                } else {
+                    format!("{u}^{e}")
+                }
+            })
             .collect();
         if parts.is_empty() {
             f.write_str("1")
@@ -157,7 +170,12 @@ pub fn lookup(word: &str) -> Option<&'static Unit> {
 
 /// The unit words, for an "unknown unit" message.
 pub fn all_words() -> String {
-    UNITS.iter().filter(|u| u.dim != Dim::NONE).map(|u| u.word).collect::<Vec<_>>().join(", ")
+    UNITS
+        .iter()
+        .filter(|u| u.dim != Dim::NONE)
+        .map(|u| u.word)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 #[cfg(test)]

@@ -4,8 +4,8 @@
 //! [`crate::pebble::check`]) and the rank of the constraint Jacobian at the drawing
 //! (check 4, [`geometric`]). [`check`] runs them all and collects every [`Issue`].
 
-use crate::geometry::{all_cons, drawing_states, joint_geoms};
 use crate::constraints::ConKind;
+use crate::geometry::{all_cons, drawing_states, joint_geoms};
 use crate::model::{JointKind, Model};
 use crate::resolve::{Culprit, Issue};
 use nalgebra::{DMatrix, DVector};
@@ -28,7 +28,10 @@ pub const AXIS_TOL: f64 = 1e-12;
 const SIGNIFICANT: f64 = 1e-6;
 
 fn names(items: impl Iterator<Item = String>) -> String {
-    items.map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+    items
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn plural(n: usize, one: &str, many: &str) -> String {
@@ -89,7 +92,10 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
         if !l.cg.iter().all(|v| v.is_finite()) {
             out.push(Issue {
                 culprits: vec![Culprit::Cg(i), Culprit::Link(i)],
-                message: format!("link `{}` has cg ({}, {}) m: the cg must be finite", l.name, l.cg[0], l.cg[1]),
+                message: format!(
+                    "link `{}` has cg ({}, {}) m: the cg must be finite",
+                    l.name, l.cg[0], l.cg[1]
+                ),
             });
         }
     }
@@ -196,11 +202,19 @@ pub fn jacobian(model: &Model) -> Jacobian {
         });
         for _ in 0..c.kind.rows() {
             joint.push(c.joint);
-            driver.push(matches!(c.kind, ConKind::DriveRevolute(_) | ConKind::DrivePrismatic(_)));
+            driver.push(matches!(
+                c.kind,
+                ConKind::DriveRevolute(_) | ConKind::DrivePrismatic(_)
+            ));
         }
         r += c.kind.rows();
     }
-    Jacobian { matrix, joint, driver, scale }
+    Jacobian {
+        matrix,
+        joint,
+        driver,
+        scale,
+    }
 }
 
 /// Rank and null spaces of a matrix by SVD.
@@ -221,7 +235,11 @@ fn rank_info(j: &DMatrix<f64>) -> Option<RankInfo> {
     }
     let s = m.max(n);
     if s == 0 {
-        return Some(RankInfo { rank: 0, left_null: Vec::new(), right_null: Vec::new() });
+        return Some(RankInfo {
+            rank: 0,
+            left_null: Vec::new(),
+            right_null: Vec::new(),
+        });
     }
     let mut a = DMatrix::zeros(s, s);
     a.view_mut((0, 0), (m, n)).copy_from(j);
@@ -235,14 +253,28 @@ fn rank_info(j: &DMatrix<f64>) -> Option<RankInfo> {
     // Padded rows / columns contribute null vectors supported outside J's range; the
     // restrictions to J's rows / columns of the whole small-σ basis span the true spaces.
     let restrict = |v: DVector<f64>| if v.amax() > 1e-8 { Some(v) } else { None };
-    let left_null = small.iter().filter_map(|&i| restrict(u.column(i).rows(0, m).into_owned())).collect();
-    let right_null = small.iter().filter_map(|&i| restrict(vt.row(i).columns(0, n).transpose())).collect();
-    Some(RankInfo { rank, left_null, right_null })
+    let left_null = small
+        .iter()
+        .filter_map(|&i| restrict(u.column(i).rows(0, m).into_owned()))
+        .collect();
+    let right_null = small
+        .iter()
+        .filter_map(|&i| restrict(vt.row(i).columns(0, n).transpose()))
+        .collect();
+    Some(RankInfo {
+        rank,
+        left_null,
+        right_null,
+    })
 }
 
 /// Indices `g` of the groups (joints or links) whose entries in any of `vectors` are
 /// significant; `group_of(i)` gives the group of entry `i`.
-fn significant(vectors: &[DVector<f64>], groups: usize, group_of: impl Fn(usize) -> usize) -> Vec<usize> {
+fn significant(
+    vectors: &[DVector<f64>],
+    groups: usize,
+    group_of: impl Fn(usize) -> usize,
+) -> Vec<usize> {
     let mut hit = vec![false; groups];
     for v in vectors {
         let mut mag = vec![0.0f64; groups];
@@ -338,7 +370,10 @@ pub fn geometric(model: &Model) -> Vec<Issue> {
             return out;
         };
         if ai.rank < cols {
-            let moving: Vec<usize> = significant(&ai.right_null, n - 1, |i| i / 3).into_iter().map(|l| l + 1).collect();
+            let moving: Vec<usize> = significant(&ai.right_null, n - 1, |i| i / 3)
+                .into_iter()
+                .map(|l| l + 1)
+                .collect();
             let mut culprits = vec![Culprit::Inputs];
             culprits.extend(moving.iter().map(|&l| Culprit::Link(l)));
             out.push(Issue {
@@ -369,19 +404,27 @@ pub fn check(model: &Model) -> Vec<Issue> {
     let mut pebble = crate::pebble::check(model);
     if grubler.is_some() {
         let n = model.n_links();
-        pebble.retain(|i| i.culprits.iter().filter(|c| matches!(c, Culprit::Link(_))).count() < n);
+        pebble.retain(|i| {
+            i.culprits
+                .iter()
+                .filter(|c| matches!(c, Culprit::Link(_)))
+                .count()
+                < n
+        });
     }
     // Grübler below the inputs with a drawing that really moves (parallel cranks): the
     // rank check tells the true story — redundant constraints — so report that instead.
-    if drawing_ok && !model.allow_redundant
-        && grubler.is_some() {
-            let g = crate::grubler::count(model).grubler;
-            if g < model.inputs.len() as i64 {
-                let relaxed = Model { allow_redundant: true, ..model.clone() };
-                if geometric(&relaxed).is_empty() {
-                    let strict = geometric(model);
-                    if !strict.is_empty() {
-                        out.extend(strict.into_iter().map(|mut i| {
+    if drawing_ok && !model.allow_redundant && grubler.is_some() {
+        let g = crate::grubler::count(model).grubler;
+        if g < model.inputs.len() as i64 {
+            let relaxed = Model {
+                allow_redundant: true,
+                ..model.clone()
+            };
+            if geometric(&relaxed).is_empty() {
+                let strict = geometric(model);
+                if !strict.is_empty() {
+                    out.extend(strict.into_iter().map(|mut i| {
                             i.message = format!(
                                 "{} (Grübler's count gives G = {g} for {} input(s), but the drawing moves: the count is fooled by the redundant constraints)",
                                 i.message,
@@ -389,11 +432,11 @@ pub fn check(model: &Model) -> Vec<Issue> {
                             );
                             i
                         }));
-                        return out;
-                    }
+                    return out;
                 }
             }
         }
+    }
     let counts_ok = grubler.is_none() && pebble.is_empty();
     out.extend(grubler);
     out.extend(pebble);
@@ -489,7 +532,16 @@ mod tests {
     "#;
 
     fn culprit_links(i: &Issue) -> Vec<usize> {
-        i.culprits.iter().filter_map(|c| if let Culprit::Link(l) = c { Some(*l) } else { None }).collect()
+        i.culprits
+            .iter()
+            .filter_map(|c| {
+                if let Culprit::Link(l) = c {
+                    Some(*l)
+                } else {
+                    None
+                }
+            })
+            .collect()
     }
 
     #[test]
@@ -505,7 +557,10 @@ mod tests {
 
     #[test]
     fn four_bar_and_slot_pass() {
-        assert_eq!(check(&model(&FOUR_BAR.replace("B_AT", "(2.5, 2.0)"))), vec![]);
+        assert_eq!(
+            check(&model(&FOUR_BAR.replace("B_AT", "(2.5, 2.0)"))),
+            vec![]
+        );
         let yoke = model(
             r#"pub struct Yoke {
                 ground { O: (0.0, 0.0) },
@@ -541,12 +596,22 @@ mod tests {
 
     #[test]
     fn grubler_mismatch_is_reported_with_numbers() {
-        let m = model(&FOUR_BAR.replace("B_AT", "(2.5, 2.0)").replace("input: O2", "inputs: [O2, O4]"));
+        let m = model(
+            &FOUR_BAR
+                .replace("B_AT", "(2.5, 2.0)")
+                .replace("input: O2", "inputs: [O2, O4]"),
+        );
         let issues = check(&m);
         assert_eq!(issues.len(), 1, "{issues:#?}");
         let msg = &issues[0].message;
-        assert!(msg.contains("N = 4") && msg.contains("P_I = 4") && msg.contains("P_II = 0"), "{msg}");
-        assert!(msg.contains("= 1") && msg.contains("9 equations") && msg.contains("9 unknowns"), "{msg}");
+        assert!(
+            msg.contains("N = 4") && msg.contains("P_I = 4") && msg.contains("P_II = 0"),
+            "{msg}"
+        );
+        assert!(
+            msg.contains("= 1") && msg.contains("9 equations") && msg.contains("9 unknowns"),
+            "{msg}"
+        );
         assert!(msg.contains("2 inputs were declared"), "{msg}");
     }
 
@@ -557,26 +622,43 @@ mod tests {
         assert_eq!(issues.len(), 1, "{issues:#?}");
         let msg = &issues[0].message;
         assert!(msg.starts_with("redundant constraints at the drawing: the joints' 12 constraint equations have rank 11, so 1 constraint is redundant"), "{msg}");
-        assert!(msg.contains("joints `O1`, `O2`, `O3`, `A1`, `A2`, `A3` take part"), "{msg}");
+        assert!(
+            msg.contains("joints `O1`, `O2`, `O3`, `A1`, `A2`, `A3` take part"),
+            "{msg}"
+        );
         assert!(msg.contains("#[allow(redundant)]"), "{msg}");
         assert_eq!(issues[0].culprits.len(), 6);
         // Through `check`, Grübler (G = 0 with one input) would say it cannot move; the
         // rank shows it does, so the redundancy is what is reported.
         let all = check(&m);
         assert_eq!(all.len(), 1, "{all:#?}");
-        assert!(all[0].message.starts_with("redundant constraints at the drawing"), "{}", all[0].message);
-        assert!(all[0].message.contains("G = 0 for 1 input(s)"), "{}", all[0].message);
+        assert!(
+            all[0]
+                .message
+                .starts_with("redundant constraints at the drawing"),
+            "{}",
+            all[0].message
+        );
+        assert!(
+            all[0].message.contains("G = 0 for 1 input(s)"),
+            "{}",
+            all[0].message
+        );
         assert!(all[0].message.contains("#[allow(redundant)]"));
         // Accepted when declared.
         let ok = model(&format!("#[allow(redundant)] {DOUBLE_PARALLELOGRAM}"));
         assert_eq!(check(&ok), vec![]);
         // ... but with #[allow(redundant)] the inputs must still match the true mobility.
-        let two =
-            model(&format!("#[allow(redundant)] {}", DOUBLE_PARALLELOGRAM.replace("input: O1", "inputs: [O1, O2]")));
+        let two = model(&format!(
+            "#[allow(redundant)] {}",
+            DOUBLE_PARALLELOGRAM.replace("input: O1", "inputs: [O1, O2]")
+        ));
         let issues = check(&two);
         assert_eq!(issues.len(), 1, "{issues:#?}");
         assert!(
-            issues[0].message.contains("leaves 1 DOF, but 2 inputs were declared: declare 1 input"),
+            issues[0]
+                .message
+                .contains("leaves 1 DOF, but 2 inputs were declared: declare 1 input"),
             "{}",
             issues[0].message
         );
@@ -598,18 +680,29 @@ mod tests {
             "{msg}"
         );
         assert!(msg.contains("have rank 8 < 3(N−1) = 9"), "{msg}");
-        assert!(msg.contains("redraw the mechanism away from the dead point, or add an input"), "{msg}");
+        assert!(
+            msg.contains("redraw the mechanism away from the dead point, or add an input"),
+            "{msg}"
+        );
         assert_eq!(issues[0].culprits[0], Culprit::Inputs);
         assert_eq!(culprit_links(&issues[0]), vec![2, 3]);
         // Crank and coupler collinear is the crank's own dead point only when the rocker
         // drives; with the crank as input the drawing is determinate.
-        let m = model(&FOUR_BAR.replace("B_AT", "(0.0, 2.5)").replace("O4: (3.0, 0.0)", "O4: (2.0, 0.5)"));
+        let m = model(
+            &FOUR_BAR
+                .replace("B_AT", "(0.0, 2.5)")
+                .replace("O4: (3.0, 0.0)", "O4: (2.0, 0.5)"),
+        );
         assert_eq!(check(&m), vec![]);
     }
 
     #[test]
     fn missing_input_fails_determinacy() {
-        let m = model(&FOUR_BAR.replace("B_AT", "(2.5, 2.0)").replace("input: O2,", ""));
+        let m = model(
+            &FOUR_BAR
+                .replace("B_AT", "(2.5, 2.0)")
+                .replace("input: O2,", ""),
+        );
         let issues = geometric(&m);
         assert_eq!(issues.len(), 1, "{issues:#?}");
         assert_eq!(culprit_links(&issues[0]), vec![1, 2, 3]);
@@ -622,7 +715,9 @@ mod tests {
         assert_eq!(issues.len(), 1, "{issues:#?}");
         assert_eq!(issues[0].culprits[0], Culprit::Mass(2));
         assert!(
-            issues[0].message.starts_with("link `rod` has mass -2.4 kg: a mass must be finite and ≥ 0"),
+            issues[0]
+                .message
+                .starts_with("link `rod` has mass -2.4 kg: a mass must be finite and ≥ 0"),
             "{}",
             issues[0].message
         );
@@ -632,14 +727,22 @@ mod tests {
         let issues = drawing(&neg_i);
         assert_eq!(issues.len(), 1);
         assert_eq!(issues[0].culprits[0], Culprit::Inertia(1));
-        assert!(issues[0].message.contains("moment of inertia -0.0021 kg·m²"), "{}", issues[0].message);
+        assert!(
+            issues[0]
+                .message
+                .contains("moment of inertia -0.0021 kg·m²"),
+            "{}",
+            issues[0].message
+        );
 
         let zero_axis = model(&SLIDER_CRANK.replace("along (1.0, 0.0)", "along (0.0, 0.0)"));
         let issues = drawing(&zero_axis);
         assert_eq!(issues.len(), 1, "{issues:#?}");
         assert_eq!(issues[0].culprits[0], Culprit::Axis(3));
         assert!(
-            issues[0].message.starts_with("prismatic joint `guide` has sliding axis along (0, 0), which is zero"),
+            issues[0].message.starts_with(
+                "prismatic joint `guide` has sliding axis along (0, 0), which is zero"
+            ),
             "{}",
             issues[0].message
         );
@@ -653,8 +756,17 @@ mod tests {
         );
         let issues = drawing(&same);
         assert_eq!(issues.len(), 1, "{issues:#?}");
-        assert_eq!(issues[0].culprits, vec![Culprit::Point(2), Culprit::Link(2)]);
-        assert!(issues[0].message.starts_with("points `A` and `B` of link `rod` coincide"), "{}", issues[0].message);
+        assert_eq!(
+            issues[0].culprits,
+            vec![Culprit::Point(2), Culprit::Link(2)]
+        );
+        assert!(
+            issues[0]
+                .message
+                .starts_with("points `A` and `B` of link `rod` coincide"),
+            "{}",
+            issues[0].message
+        );
         assert_eq!(check(&same).len(), 1);
 
         let mut nan = model(SLIDER_CRANK);

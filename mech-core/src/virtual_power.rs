@@ -3,8 +3,8 @@
 //! and Q_k = −Σ (F·v + M·ω) over the applied, gravity and inertia wrenches (N·m for a
 //! revolute input, N for a prismatic one).
 
-use crate::link_state::LinkState;
 use crate::kinetostatics::{virtual_power, Wrench};
+use crate::link_state::LinkState;
 use crate::MechError;
 
 /// The G motor actions Q_k = −Σ (F·v_k + M·ω_k) (N·m or N) of the wrenches `f` (N, N·m
@@ -53,7 +53,9 @@ mod tests {
     fn one_moving_input_uses_the_motion_itself() {
         let f = [Wrench::new(0.0, 0.0, 0.0), Wrench::new(3.0, 1.0, -2.0)];
         let s = [LinkState::default(), moving(5.0)];
-        let q = driver_actions(&f, &s, &[5.0], |_| -> Result<[LinkState; 2], MechError> { panic!("no field needed") });
+        let q = driver_actions(&f, &s, &[5.0], |_| -> Result<[LinkState; 2], MechError> {
+            panic!("no field needed")
+        });
         assert_eq!(q, Ok([-(3.0 * 2.0 - 2.0)]));
     }
 

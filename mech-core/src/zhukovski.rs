@@ -37,12 +37,24 @@ pub fn reduced(links: &[LinkGeom], s: &[LinkState]) -> Reduced {
 
 /// The generalised acceleration q̈ = (driver + M* − ½ dI*/dq q̇²) / I*.
 #[inline]
-pub fn acceleration(r: Reduced, moment: f64, qd: f64, driver: f64) -> Result<f64, crate::MechError> {
+pub fn acceleration(
+    r: Reduced,
+    moment: f64,
+    qd: f64,
+    driver: f64,
+) -> Result<f64, crate::MechError> {
+    crate::magnitudes::finite_result(
+        "reduced inertia and moment",
+        &[r.inertia, r.inertia_derivative, moment],
+    )?;
     if !(r.inertia > 0.0) {
         return Err(crate::MechError::NonPositiveInertia(r.inertia));
     }
     let qdd = (driver + moment - 0.5 * r.inertia_derivative * qd * qd) / r.inertia;
-    crate::magnitudes::finite_result("acceleration q̈ (with I*, M* and the driver)", &[qdd, r.inertia_derivative, moment])?;
+    crate::magnitudes::finite_result(
+        "acceleration q̈ (with I*, M* and the driver)",
+        &[qdd, r.inertia_derivative, moment],
+    )?;
     Ok(qdd)
 }
 
@@ -66,7 +78,32 @@ impl Reduction {
         let r = s.r(l.dcg);
         let (v, a) = (s.vel_at(r), s.acc_at(r));
         self.reduced.inertia += l.mass * v.norm_squared() + l.inertia * s.omega * s.omega;
-        self.reduced.inertia_derivative += 2.0 * (l.mass * v.dot(&a) + l.inertia * s.omega * s.alpha);
+        self.reduced.inertia_derivative +=
+            2.0 * (l.mass * v.dot(&a) + l.inertia * s.omega * s.alpha);
+    }
+    /// Add the inertia of a link turning about its anchor O, a fixed pin
+    /// ([`crate::model::Model::pinned_at_anchor`]): there v_G = ω perp(r) and
+    /// v_G·a_G = ω α |r|² (r = G − O), so I* += I_O ω² and dI*/dq += 2 I_O ω α with
+    /// I_O = I_G + m |r|² (kg·m²); no cg is placed.
+    #[inline(always)]
+    pub fn inertia_about_anchor(&mut self, l: &LinkGeom, s: &LinkState) {
+        let io = l.inertia + l.mass * l.dcg.norm_squared();
+        self.reduced.inertia += io * s.omega * s.omega;
+        self.reduced.inertia_derivative += 2.0 * io * s.omega * s.alpha;
+    }
+    /// Add the inertia of a link that slides on the ground
+    /// ([`crate::model::Model::translates`]): ω = α = 0, so I* += m |g_G|² and
+    /// dI*/dq += 2 m g_G·g'_G with the cg moving as the anchor; no cg is placed.
+    #[inline(always)]
+    pub fn inertia_translating(&mut self, l: &LinkGeom, s: &LinkState) {
+        self.reduced.inertia += l.mass * s.vel.norm_squared();
+        self.reduced.inertia_derivative += 2.0 * l.mass * s.vel.dot(&s.acc);
+    }
+    /// Add the power of gravity on a link that slides on the ground, m g·v (its cg moves
+    /// as its anchor), to M*.
+    #[inline(always)]
+    pub fn gravity_translating(&mut self, l: &LinkGeom, s: &LinkState, g: V2) {
+        self.moment += l.mass * g.dot(&s.vel);
     }
     /// Add the power of gravity on a link, m g·g_G, to M*.
     #[inline(always)]

@@ -24,13 +24,17 @@ pub fn mechanism(input: TokenStream) -> TokenStream {
     };
     let issues = mech_core::validate::check(&model);
     if !issues.is_empty() {
-        let diags: Vec<Diagnostic<Span>> = issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
+        let diags: Vec<Diagnostic<Span>> =
+            issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
         return emit::outline(&desc, Some(&model), &diags).into();
     }
     match mech_core::assur::plan(&model) {
         Ok(plan) => emit::mechanism(&desc, &model, &plan).into(),
         Err(links) => {
-            let names: Vec<String> = links.iter().map(|&l| format!("`{}`", model.links[l].name)).collect();
+            let names: Vec<String> = links
+                .iter()
+                .map(|&l| format!("`{}`", model.links[l].name))
+                .collect();
             let diag = Diagnostic {
                 spans: links.iter().map(|&l| desc.locate(&model, mech_core::resolve::Culprit::Link(l))).collect(),
                 message: format!(
@@ -71,7 +75,8 @@ mod snapshots {
             .into_iter()
             .map(|(name, tokens)| {
                 all.extend(tokens.clone());
-                let file = syn::parse2(tokens).unwrap_or_else(|e| panic!("the {name} part parses as items: {e}"));
+                let file = syn::parse2(tokens)
+                    .unwrap_or_else(|e| panic!("the {name} part parses as items: {e}"));
                 (name, prettyplease::unparse(&file))
             })
             .collect();
@@ -136,7 +141,11 @@ mod snapshots {
 
     /// The whole expansion with no whitespace, to look for calls whatever the line breaks.
     fn flat(parts: &[(&'static str, String)]) -> String {
-        parts.iter().flat_map(|(_, c)| c.chars()).filter(|c| !c.is_whitespace()).collect()
+        parts
+            .iter()
+            .flat_map(|(_, c)| c.chars())
+            .filter(|c| !c.is_whitespace())
+            .collect()
     }
 
     #[test]
@@ -146,20 +155,25 @@ mod snapshots {
         for term in [
             "add_gravity(&mutf[3usize]",
             "add_inertia(&mutf[3usize]",
-            "z.inertia(&self.links[3usize]",
-            "z.gravity(&self.links[3usize]",
+            // The piston slides on the ground: its cg moves as its anchor.
+            "z.inertia_translating(&self.links[3usize]",
+            "z.gravity_translating(&self.links[3usize]",
             "energy::kinetic(&self.links[3usize]",
             "energy::potential(&self.links[3usize]",
         ] {
             assert!(code.contains(term), "{term}");
         }
-        assert!(!code.contains("LinkTerms::"), "every link declared with mass: nothing to check in from_params");
+        assert!(
+            !code.contains("LinkTerms::"),
+            "every link declared with mass: nothing to check in from_params"
+        );
         let code = flat(&pretty_parts(FOUR_BAR));
         // The coupler (link 2) has no term; the rocker (link 3) its inertia only.
         for absent in [
             "add_inertia(&mutf[2usize]",
             "add_gravity(&mutf[2usize]",
             "z.inertia(&self.links[2usize]",
+            "z.inertia_about_anchor(&self.links[2usize]",
             "z.gravity(&self.links[2usize]",
             "energy::kinetic(&self.links[2usize]",
             "energy::potential(&self.links[2usize]",
@@ -173,7 +187,8 @@ mod snapshots {
             "LinkTerms::Massless.check(\"coupler\",&p.links.coupler)?",
             "LinkTerms::InertiaOnly.check(\"rocker\",&p.links.rocker)?",
             "add_inertia(&mutf[3usize]",
-            "z.inertia(&self.links[3usize]",
+            // The rocker turns about its anchor O4, a ground pin: its inertia about O4.
+            "z.inertia_about_anchor(&self.links[3usize]",
             "energy::kinetic(&self.links[3usize]",
         ] {
             assert!(code.contains(present), "{present}");
@@ -197,13 +212,27 @@ mod snapshots {
         );
         let code = flat(&parts);
         for absent in ["add_inertia", "z.inertia", "energy::kinetic"] {
-            assert!(!code.contains(absent), "massless links must not get inertia terms: {absent}");
+            assert!(
+                !code.contains(absent),
+                "massless links must not get inertia terms: {absent}"
+            );
         }
-        for absent in ["add_gravity", "z.gravity", "energy::potential", "pubgravity"] {
-            assert!(!code.contains(absent), "no gravity declared: no gravity terms: {absent}");
+        for absent in [
+            "add_gravity",
+            "z.gravity",
+            "energy::potential",
+            "pubgravity",
+        ] {
+            assert!(
+                !code.contains(absent),
+                "no gravity declared: no gravity terms: {absent}"
+            );
         }
         assert!(code.contains("add_torque"));
-        for (part, code) in parts.into_iter().filter(|(part, _)| matches!(*part, "forces" | "traits")) {
+        for (part, code) in parts
+            .into_iter()
+            .filter(|(part, _)| matches!(*part, "forces" | "traits"))
+        {
             insta::assert_snapshot!(format!("bare_four_bar_{part}"), code);
         }
     }

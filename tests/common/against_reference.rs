@@ -45,19 +45,42 @@ pub fn motion_agrees<L, P>(
     P: std::ops::Deref<Target = PointMotion>,
 {
     for (lname, lt) in c["links"].as_object().unwrap() {
-        let lm = gm.link(lname).unwrap_or_else(|| panic!("{ctx}: no link {lname}"));
+        let lm = gm
+            .link(lname)
+            .unwrap_or_else(|| panic!("{ctx}: no link {lname}"));
         let gl = gen_link(lname).unwrap();
         let ctx = format!("{ctx} link {lname}");
-        k.angle(&ctx, "generic vs truth", lm.angle, lt["theta"].as_f64().unwrap());
+        k.angle(
+            &ctx,
+            "generic vs truth",
+            lm.angle,
+            lt["theta"].as_f64().unwrap(),
+        );
         k.angle(&ctx, "generic vs generated", lm.angle, gl.angle);
-        k.close(&ctx, "omega", lm.omega, lt["omega"].as_f64().unwrap(), k.omega);
+        k.close(
+            &ctx,
+            "omega",
+            lm.omega,
+            lt["omega"].as_f64().unwrap(),
+            k.omega,
+        );
         k.close(&ctx, "omega vs generated", lm.omega, gl.omega, k.omega);
-        k.close(&ctx, "alpha", lm.alpha, lt["alpha"].as_f64().unwrap(), k.alpha);
+        k.close(
+            &ctx,
+            "alpha",
+            lm.alpha,
+            lt["alpha"].as_f64().unwrap(),
+            k.alpha,
+        );
         k.close(&ctx, "alpha vs generated", lm.alpha, gl.alpha, k.alpha);
         k.vec(&ctx, "cg", lm.cg, &lt["cg"]["pos"], k.pos);
         k.vec(&ctx, "cg_vel", lm.cg_vel, &lt["cg"]["vel"], k.vel);
         k.vec(&ctx, "cg_acc", lm.cg_acc, &lt["cg"]["acc"], k.acc);
-        for (what, a, b, s) in [("cg", lm.cg, gl.cg, k.pos), ("cg_vel", lm.cg_vel, gl.cg_vel, k.vel), ("cg_acc", lm.cg_acc, gl.cg_acc, k.acc)] {
+        for (what, a, b, s) in [
+            ("cg", lm.cg, gl.cg, k.pos),
+            ("cg_vel", lm.cg_vel, gl.cg_vel, k.vel),
+            ("cg_acc", lm.cg_acc, gl.cg_acc, k.acc),
+        ] {
             k.close(&ctx, &format!("{what}.x vs generated"), a.x, b.x, s);
             k.close(&ctx, &format!("{what}.y vs generated"), a.y, b.y, s);
         }
@@ -67,7 +90,11 @@ pub fn motion_agrees<L, P>(
             k.vec(&ctx, pname, pm.pos, &pt["pos"], k.pos);
             k.vec(&ctx, pname, pm.vel, &pt["vel"], k.vel);
             k.vec(&ctx, pname, pm.acc, &pt["acc"], k.acc);
-            for (what, a, b, s) in [("pos", pm.pos, gp.pos, k.pos), ("vel", pm.vel, gp.vel, k.vel), ("acc", pm.acc, gp.acc, k.acc)] {
+            for (what, a, b, s) in [
+                ("pos", pm.pos, gp.pos, k.pos),
+                ("vel", pm.vel, gp.vel, k.vel),
+                ("acc", pm.acc, gp.acc, k.acc),
+            ] {
                 k.close(&ctx, &format!("{pname}.{what}.x vs generated"), a.x, b.x, s);
                 k.close(&ctx, &format!("{pname}.{what}.y vs generated"), a.y, b.y, s);
             }

@@ -141,7 +141,9 @@ pub fn pressure(q: f64, x_b: f64) -> f64 {
     if xb == 0.0 {
         return compression;
     }
-    let fired = PRESSURE_RISE * P_INTAKE * (v_max / CLEARANCE_VOLUME).powf(N_COMPRESSION)
+    let fired = PRESSURE_RISE
+        * P_INTAKE
+        * (v_max / CLEARANCE_VOLUME).powf(N_COMPRESSION)
         * (CLEARANCE_VOLUME / v).powf(N_EXPANSION);
     (1.0 - xb) * compression + xb * fired
 }
@@ -150,7 +152,9 @@ pub fn pressure(q: f64, x_b: f64) -> f64 {
 /// (−(p − P_CRANKCASE) A, 0) N.
 pub fn gas_loads(engine: &Engine, q: f64) -> Result<EngineLoads, MechError> {
     let x_b = engine.pose(q)?.points.B.pos.x;
-    Ok(EngineLoads { gas: Vector2::new(-(pressure(q, x_b) - P_CRANKCASE) * PISTON_AREA, 0.0) })
+    Ok(EngineLoads {
+        gas: Vector2::new(-(pressure(q, x_b) - P_CRANKCASE) * PISTON_AREA, 0.0),
+    })
 }
 
 /// Crank angles (rad) inside the cycle [Q_TDC, Q_TDC + 4π] where the gas force is not

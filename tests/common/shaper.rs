@@ -99,5 +99,7 @@ pub fn cut_loads(m: &Shaper, q: f64) -> Result<ShaperLoads, MechError> {
     mech::error::check_finite("q", &[q])?;
     let phi = (q - working_start(m)).rem_euclid(PERIOD);
     let cutting = phi > OVERRUN && phi < working_arc(m) - OVERRUN;
-    Ok(ShaperLoads { cut: Vector2::new(if cutting { CUT_FORCE } else { 0.0 }, 0.0) })
+    Ok(ShaperLoads {
+        cut: Vector2::new(if cutting { CUT_FORCE } else { 0.0 }, 0.0),
+    })
 }

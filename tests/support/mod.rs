@@ -10,8 +10,12 @@ pub const REL: f64 = 1e-12;
 
 /// A truth or mechanism file of `tests/data/`.
 pub fn truth(name: &str) -> Value {
-    let path = format!("{}/tests/data/{name}.truth.json", env!("CARGO_MANIFEST_DIR"));
-    serde_json::from_str(&std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))).unwrap()
+    let path = format!(
+        "{}/tests/data/{name}.truth.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    serde_json::from_str(&std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}")))
+        .unwrap()
 }
 
 /// A number or a list of numbers as a Vec.
@@ -57,7 +61,15 @@ fn max_abs(v: &Value) -> f64 {
 
 impl Kinds {
     pub fn of(c: &Value) -> Kinds {
-        let mut k = Kinds { pos: 0.0, vel: 0.0, acc: 0.0, omega: 0.0, alpha: 0.0, force: 0.0, length: 0.0 };
+        let mut k = Kinds {
+            pos: 0.0,
+            vel: 0.0,
+            acc: 0.0,
+            omega: 0.0,
+            alpha: 0.0,
+            force: 0.0,
+            length: 0.0,
+        };
         for (_, l) in c["links"].as_object().unwrap() {
             k.omega = k.omega.max(l["omega"].as_f64().unwrap().abs());
             k.alpha = k.alpha.max(l["alpha"].as_f64().unwrap().abs());
@@ -97,6 +109,9 @@ impl Kinds {
     pub fn angle(&self, ctx: &str, what: &str, got: f64, want: f64) {
         let d = (got - want).rem_euclid(std::f64::consts::TAU);
         let d = d.min(std::f64::consts::TAU - d);
-        assert!(d <= 1e-12, "{ctx}: angle of {what}: got {got}, want {want}, error {d:.3e}");
+        assert!(
+            d <= 1e-12,
+            "{ctx}: angle of {what}: got {got}, want {want}, error {d:.3e}"
+        );
     }
 }

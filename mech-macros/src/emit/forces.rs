@@ -13,7 +13,11 @@ use quote::{format_ident, quote};
 pub(crate) fn emit(cx: &Ctx) -> TokenStream {
     let main = &cx.names.main;
     let (loads, forces, wrenches) = (loads_type(cx), forces_type(cx), wrenches_fn(cx));
-    let kinetostatics = if cx.redundant() { no_kinetostatics(cx) } else { kinetostatics_fns(cx) };
+    let kinetostatics = if cx.redundant() {
+        no_kinetostatics(cx)
+    } else {
+        kinetostatics_fns(cx)
+    };
     let driver_action = driver_action_fn(cx);
     quote! {
         #loads
@@ -34,11 +38,17 @@ fn loads_type(cx: &Ctx) -> TokenStream {
         let lid = id(l.name());
         match l {
             Load::Force { link, point, .. } => {
-                let doc = format!("Force (N, global vector) on `{}` at `{}`.", model.links[*link].name, model.points[*point].name);
+                let doc = format!(
+                    "Force (N, global vector) on `{}` at `{}`.",
+                    model.links[*link].name, model.points[*point].name
+                );
                 quote!(#[doc = #doc] pub #lid: #v2,)
             }
             Load::Torque { link, .. } => {
-                let doc = format!("Torque (N·m, CCW positive) on `{}`.", model.links[*link].name);
+                let doc = format!(
+                    "Torque (N·m, CCW positive) on `{}`.",
+                    model.links[*link].name
+                );
                 quote!(#[doc = #doc] pub #lid: f64,)
             }
         }
@@ -80,7 +90,14 @@ pub(crate) fn load_values(cx: &Ctx) -> TokenStream {
 /// `Forces` with one reaction per joint and `reaction(name)`; an empty `Forces` for a
 /// redundant mechanism (its reactions are indeterminate).
 fn forces_type(cx: &Ctx) -> TokenStream {
-    let Ctx { p, v2, q_ty, model, joint_ids, .. } = cx;
+    let Ctx {
+        p,
+        v2,
+        q_ty,
+        model,
+        joint_ids,
+        ..
+    } = cx;
     let (forces, forces_joints) = (&cx.names.forces, &cx.names.forces_joints);
     if cx.redundant() {
         return quote! {
@@ -93,22 +110,37 @@ fn forces_type(cx: &Ctx) -> TokenStream {
     let fields = model.joints.iter().zip(joint_ids).map(|(jt, jid)| {
         let (ty, what) = match jt.kind {
             JointKind::Revolute => (quote!(#p::kinetostatics::RevoluteReaction), "force by"),
-            JointKind::Prismatic => (quote!(#p::kinetostatics::PrismaticReaction), "force (normal to the axis) and moment by"),
-            JointKind::PinInSlot => (quote!(#p::kinetostatics::SlotReaction), "force (normal to the slot) by"),
+            JointKind::Prismatic => (
+                quote!(#p::kinetostatics::PrismaticReaction),
+                "force (normal to the axis) and moment by",
+            ),
+            JointKind::PinInSlot => (
+                quote!(#p::kinetostatics::SlotReaction),
+                "force (normal to the slot) by",
+            ),
         };
-        let doc = format!("Joint `{}`: {} `{}` on `{}`.", jt.name, what, model.links[jt.a].name, model.links[jt.b].name);
+        let doc = format!(
+            "Joint `{}`: {} `{}` on `{}`.",
+            jt.name, what, model.links[jt.a].name, model.links[jt.b].name
+        );
         quote!(#[doc = #doc] pub #jid: #ty,)
     });
     let by_name = model.joints.iter().zip(joint_ids).map(|(jt, jid)| {
         let n = &jt.name;
         match jt.kind {
-            JointKind::Prismatic => quote!(#n => Some((self.joints.#jid.force, Some(self.joints.#jid.moment))),),
+            JointKind::Prismatic => {
+                quote!(#n => Some((self.joints.#jid.force, Some(self.joints.#jid.moment))),)
+            }
             _ => quote!(#n => Some((self.joints.#jid.force, None)),),
         }
     });
     let inputs = &cx.inputs_doc;
     let dof = cx.dof;
-    let zero = if cx.one_dof() { quote!(0.0) } else { quote!([0.0; #dof]) };
+    let zero = if cx.one_dof() {
+        quote!(0.0)
+    } else {
+        quote!([0.0; #dof])
+    };
     quote! {
         /// Reactions at every joint (`docs/conventions.md#reactions`).
         #[allow(non_snake_case)]
@@ -186,15 +218,16 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
     match g.kernel {
         Kernel::Driven(_) => {
             let kn = format_ident!("__G{}_DRIVEN", gi);
-            quote!(#p::screw::driven_reactions(&Self::#kn, &self.joints, s, &mut f, &mut r, &mut d);)
+            quote!(#p::screw::driven_reactions(&Self::#kn, &joints, s, &mut f, &mut r, &mut d);)
         }
         Kernel::Chain(_) => {
             let kn = format_ident!("__G{}_CHAIN", gi);
-            quote!(#p::screw::chain_reactions(&Self::#kn, &self.joints, s, &mut f, self.scale, &mut r)?;)
+            let solver = plan::solver_const(gi);
+            quote!(#p::kinematics::chain_reactions(Self::#solver, &Self::#kn, &joints, s, &mut f, self.scale, &mut r)?;)
         }
         Kernel::System => quote! {
-            let lam = #p::kinetostatics::group_reactions::<#n>(m.systems #path.as_ref(), &Self::#bn, &Self::#cn, &self.joints, s, &mut f, self.scale)?;
-            #p::kinetostatics::lambda_reactions(&Self::#cn, &self.joints, s, lam.as_slice(), &mut r, &mut d);
+            let lam = #p::kinetostatics::group_reactions::<#n>(m.systems #path.as_ref(), &Self::#bn, &Self::#cn, &joints, s, &mut f, self.scale)?;
+            #p::kinetostatics::lambda_reactions(&Self::#cn, &joints, s, lam.as_slice(), &mut r, &mut d);
         },
     }
 }
@@ -217,7 +250,12 @@ fn no_kinetostatics(cx: &Ctx) -> TokenStream {
 
 /// `kinetostatics`, `kinetostatics_with_friction` and their helpers.
 fn kinetostatics_fns(cx: &Ctx) -> TokenStream {
-    let Ctx { p, n_joints, n_links, .. } = cx;
+    let Ctx {
+        p,
+        n_joints,
+        n_links,
+        ..
+    } = cx;
     let n = &cx.names;
     let (motion, loads, forces) = (&n.motion, &n.loads, &n.forces);
     let (inner, flat) = (inner_kinetostatics_fn(cx), flat_fn(cx));
@@ -245,7 +283,7 @@ fn kinetostatics_fns(cx: &Ctx) -> TokenStream {
             let mut last = None;
             #p::friction::iterate(first, |prev| {
                 let mut extra = [#p::kinetostatics::Wrench::zeros(); #n_links];
-                #p::friction::add_joint_friction(&mut extra, &self.joints, &Self::__JOINT_KINDS, s, friction, Self::DOF, prev);
+                #p::friction::add_joint_friction(&mut extra, &self.__joints(), &Self::__JOINT_KINDS, s, friction, Self::DOF, prev);
                 let f = self.__kinetostatics(m, loads, Some(&extra))?;
                 let flat = Self::__flat(&f);
                 last = Some(f);
@@ -265,10 +303,23 @@ fn kinetostatics_fns(cx: &Ctx) -> TokenStream {
 /// `__kinetostatics`: the wrenches (plus the friction's `extra`), then every group's
 /// reaction call from the outermost group inward.
 fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
-    let Ctx { p, n_joints, n_links, dof, joint_ids, model, .. } = cx;
+    let Ctx {
+        p,
+        n_joints,
+        n_links,
+        dof,
+        joint_ids,
+        model,
+        ..
+    } = cx;
     let n = &cx.names;
     let (motion, loads, forces, forces_joints) = (&n.motion, &n.loads, &n.forces, &n.forces_joints);
-    let calls = cx.plan.iter().enumerate().rev().map(|(gi, g)| reaction_call(cx, gi, g));
+    let calls = cx
+        .plan
+        .iter()
+        .enumerate()
+        .rev()
+        .map(|(gi, g)| reaction_call(cx, gi, g));
     let values = model.joints.iter().enumerate().map(|(j, jt)| {
         let jid = &joint_ids[j];
         match jt.kind {
@@ -277,7 +328,11 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
             JointKind::PinInSlot => quote!(#jid: #p::kinetostatics::SlotReaction { force: r[#j].force },),
         }
     });
-    let driver = if cx.one_dof() { quote!(d[0]) } else { quote!(d) };
+    let driver = if cx.one_dof() {
+        quote!(d[0])
+    } else {
+        quote!(d)
+    };
     quote! {
         fn __kinetostatics(
             &self,
@@ -286,6 +341,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
             extra: Option<&[#p::kinetostatics::Wrench; #n_links]>,
         ) -> Result<#forces, #p::MechError> {
             let s = &m.states;
+            let joints = self.__joints();
             let mut f = self.__wrenches(s, loads, true)?;
             if let Some(extra) = extra {
                 for (fi, ei) in f.iter_mut().zip(extra) {
@@ -304,14 +360,24 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
 /// The joints' kinds and `__flat`: the forces in the flattened layout the friction's
 /// fixed point iterates on (`mech::friction::Flattener`).
 fn flat_fn(cx: &Ctx) -> TokenStream {
-    let Ctx { p, n_joints, joint_ids, model, .. } = cx;
+    let Ctx {
+        p,
+        n_joints,
+        joint_ids,
+        model,
+        ..
+    } = cx;
     let forces = &cx.names.forces;
     let kinds = model.joints.iter().map(|jt| match jt.kind {
         JointKind::Revolute => quote!(#p::model::JointKind::Revolute),
         JointKind::Prismatic => quote!(#p::model::JointKind::Prismatic),
         JointKind::PinInSlot => quote!(#p::model::JointKind::PinInSlot),
     });
-    let drivers = if cx.one_dof() { quote!(&[f.driver]) } else { quote!(&f.driver) };
+    let drivers = if cx.one_dof() {
+        quote!(&[f.driver])
+    } else {
+        quote!(&f.driver)
+    };
     quote! {
         /// The kind of every joint, in declaration order.
         const __JOINT_KINDS: [#p::model::JointKind; #n_joints] = [#(#kinds),*];
@@ -332,7 +398,11 @@ fn flat_fn(cx: &Ctx) -> TokenStream {
 fn driver_action_fn(cx: &Ctx) -> TokenStream {
     let Ctx { p, q_ty, .. } = cx;
     let (motion, loads) = (&cx.names.motion, &cx.names.loads);
-    let out = if cx.one_dof() { quote!(out[0]) } else { quote!(out) };
+    let out = if cx.one_dof() {
+        quote!(out[0])
+    } else {
+        quote!(out)
+    };
     let inputs = &cx.inputs_doc;
     quote! {
         /// The motor actions by the principle of virtual power, computing no reaction:

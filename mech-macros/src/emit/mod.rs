@@ -101,7 +101,11 @@ impl<'a> Ctx<'a> {
             n_loads: model.loads.len(),
             dof,
             n_groups: plan.len(),
-            q_ty: if dof == 1 { quote!(f64) } else { quote!([f64; #dof]) },
+            q_ty: if dof == 1 {
+                quote!(f64)
+            } else {
+                quote!([f64; #dof])
+            },
             terms: model.links.iter().map(LinkTerms::of).collect(),
             inputs_doc: inputs_doc(model),
         }
@@ -124,12 +128,16 @@ impl<'a> Ctx<'a> {
 
     /// The prismatic and slot joints (those with an axis).
     pub fn sliding(&self) -> Vec<usize> {
-        (0..self.n_joints).filter(|&j| self.model.joints[j].kind != JointKind::Revolute).collect()
+        (0..self.n_joints)
+            .filter(|&j| self.model.joints[j].kind != JointKind::Revolute)
+            .collect()
     }
 
     /// The links with inertia terms (−m·a_G, −I_G·α, T, their share of I*).
     pub fn inertial(&self) -> Vec<usize> {
-        (1..self.n_links).filter(|&l| self.terms[l].inertia()).collect()
+        (1..self.n_links)
+            .filter(|&l| self.terms[l].inertia())
+            .collect()
     }
 
     /// The links with gravity terms (m·g, V, their share of M*): none without gravity.
@@ -137,13 +145,19 @@ impl<'a> Ctx<'a> {
         if self.model.gravity.is_none() {
             return vec![];
         }
-        (1..self.n_links).filter(|&l| self.terms[l].gravity()).collect()
+        (1..self.n_links)
+            .filter(|&l| self.terms[l].gravity())
+            .collect()
     }
 }
 
 /// The generated code of a valid mechanism, part by part, each with its name (the
 /// snapshot tests show them one by one).
-pub(crate) fn parts(desc: &Description<Span>, model: &Model, plan: &[Group]) -> Vec<(&'static str, TokenStream)> {
+pub(crate) fn parts(
+    desc: &Description<Span>,
+    model: &Model,
+    plan: &[Group],
+) -> Vec<(&'static str, TokenStream)> {
     let cx = Ctx::new(desc, model, plan);
     vec![
         ("params", params::emit(&cx)),
@@ -156,7 +170,10 @@ pub(crate) fn parts(desc: &Description<Span>, model: &Model, plan: &[Group]) -> 
 
 /// The whole generated code of a valid mechanism.
 pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> TokenStream {
-    parts(desc, model, plan).into_iter().map(|(_, part)| part).collect()
+    parts(desc, model, plan)
+        .into_iter()
+        .map(|(_, part)| part)
+        .collect()
 }
 
 /// A number without trailing zeros (for doc comments).
@@ -173,11 +190,23 @@ fn inputs_doc(model: &Model) -> Vec<String> {
     for (k, (&j, &zero)) in model.inputs.iter().zip(&model.input_zero).enumerate() {
         let jt = &model.joints[j];
         let (a, b) = (&model.links[jt.a].name, &model.links[jt.b].name);
-        let q = if model.inputs.len() == 1 { "q".to_string() } else { format!("q[{k}]") };
+        let q = if model.inputs.len() == 1 {
+            "q".to_string()
+        } else {
+            format!("q[{k}]")
+        };
         let line = match jt.kind {
             JointKind::Revolute => {
-                let zero = if zero == 0.0 { String::new() } else { format!(" − {}°", short(zero.to_degrees())) };
-                let relative = if jt.a == 0 { String::new() } else { format!(" − θ_{a}") };
+                let zero = if zero == 0.0 {
+                    String::new()
+                } else {
+                    format!(" − {}°", short(zero.to_degrees()))
+                };
+                let relative = if jt.a == 0 {
+                    String::new()
+                } else {
+                    format!(" − θ_{a}")
+                };
                 format!(
                     " - {q}, joint `{}` (revolute, `{a}` → `{b}`): q = θ_{b}{relative}{zero} (rad, counter-clockwise); \
                      its motor action is the torque applied by `{a}` on `{b}` (N·m, counter-clockwise positive): \
@@ -187,7 +216,11 @@ fn inputs_doc(model: &Model) -> Vec<String> {
                 )
             }
             _ => {
-                let zero = if zero == 0.0 { String::new() } else { format!(" − {} m", short(zero)) };
+                let zero = if zero == 0.0 {
+                    String::new()
+                } else {
+                    format!(" − {} m", short(zero))
+                };
                 format!(
                     " - {q}, joint `{}` (prismatic, `{b}` on `{a}`): q = the slide of `{}` along the axis from the drawing{zero} (m); \
                      its motor action is the force applied by `{a}` on `{b}` along the axis (N).",
@@ -199,4 +232,3 @@ fn inputs_doc(model: &Model) -> Vec<String> {
     }
     lines
 }
-

@@ -14,7 +14,11 @@ pub fn errors(diags: &[Diagnostic<Span>]) -> TokenStream {
     for d in diags {
         let first = d.message.split(':').next().unwrap_or("");
         for (i, span) in d.spans.iter().enumerate() {
-            let msg = if i == 0 { d.message.clone() } else { format!("involved here: {first} (see the first error)") };
+            let msg = if i == 0 {
+                d.message.clone()
+            } else {
+                format!("involved here: {first} (see the first error)")
+            };
             out.extend(syn::Error::new(*span, msg).to_compile_error());
         }
     }
@@ -23,9 +27,21 @@ pub fn errors(diags: &[Diagnostic<Span>]) -> TokenStream {
 
 /// On error: the errors, and the struct's outline (empty types with the public names) so
 /// that code using the mechanism does not add a cascade of unrelated errors.
-pub fn outline(desc: &Description<Span>, _model: Option<&Model>, diags: &[Diagnostic<Span>]) -> TokenStream {
+pub fn outline(
+    desc: &Description<Span>,
+    _model: Option<&Model>,
+    diags: &[Diagnostic<Span>],
+) -> TokenStream {
     let errs = errors(diags);
-    let Names { main, params, loads, pose, motion, forces, .. } = Names::new(desc);
+    let Names {
+        main,
+        params,
+        loads,
+        pose,
+        motion,
+        forces,
+        ..
+    } = Names::new(desc);
     quote! {
         #errs
         /// (not generated: the mechanism has errors)

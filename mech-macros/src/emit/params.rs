@@ -10,7 +10,12 @@ use quote::quote;
 
 /// The struct, its constants, the `Params` types and the constructors.
 pub(crate) fn emit(cx: &Ctx) -> TokenStream {
-    let (main_struct, constants, params_types, constructors) = (main_struct(cx), constants(cx), params_types(cx), constructors(cx));
+    let (main_struct, constants, params_types, constructors) = (
+        main_struct(cx),
+        constants(cx),
+        params_types(cx),
+        constructors(cx),
+    );
     quote! {
         #main_struct
         #params_types
@@ -21,7 +26,17 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
 
 /// The generated struct: the numbers the kernels read, copied out of the instance.
 fn main_struct(cx: &Ctx) -> TokenStream {
-    let Ctx { p, v2, n_links, n_joints, n_points, n_loads, n_groups, dof, .. } = cx;
+    let Ctx {
+        p,
+        v2,
+        n_links,
+        n_joints,
+        n_points,
+        n_loads,
+        n_groups,
+        dof,
+        ..
+    } = cx;
     let (main, params) = (&cx.names.main, &cx.names.params);
     let docs = cx.docs.iter().map(|d| quote!(#[doc = #d]));
     let doc_struct = format!(
@@ -57,7 +72,13 @@ fn main_struct(cx: &Ctx) -> TokenStream {
 
 /// The public constants: the counts of SPEC section 5 and the names.
 fn constants(cx: &Ctx) -> TokenStream {
-    let Ctx { n_links, n_joints, n_points, dof, .. } = *cx;
+    let Ctx {
+        n_links,
+        n_joints,
+        n_points,
+        dof,
+        ..
+    } = *cx;
     let main = &cx.names.main;
     let (lower, higher) = (cx.model.lower_pairs(), cx.model.higher_pairs());
     let equations = 3 * (n_links - 1);
@@ -107,7 +128,8 @@ fn link_doc(name: &str, terms: LinkTerms) -> String {
 fn params_types(cx: &Ctx) -> TokenStream {
     let Ctx { p, v2, model, .. } = cx;
     let n = &cx.names;
-    let (params, points, links, axes) = (&n.params, &n.params_points, &n.params_links, &n.params_axes);
+    let (params, points, links, axes) =
+        (&n.params, &n.params_points, &n.params_links, &n.params_axes);
     let (point_ids, moving_ids) = (&cx.point_ids, cx.moving_ids());
     let sliding = cx.sliding();
     let sliding_ids: Vec<_> = sliding.iter().map(|&j| &cx.joint_ids[j]).collect();
@@ -185,16 +207,24 @@ fn params_types(cx: &Ctx) -> TokenStream {
 /// `new`, `from_params` (the declared terms checked, then the drawing), `params`, `__model`.
 fn constructors(cx: &Ctx) -> TokenStream {
     let p = &cx.p;
-    let (n_links, n_joints, n_points, n_loads, n_groups) = (cx.n_links, cx.n_joints, cx.n_points, cx.n_loads, cx.n_groups);
+    let (n_links, n_joints, n_points, n_loads, n_groups) = (
+        cx.n_links,
+        cx.n_joints,
+        cx.n_points,
+        cx.n_loads,
+        cx.n_groups,
+    );
     let (main, params) = (&cx.names.main, &cx.names.params);
-    let term_checks = (1..n_links).filter(|&l| cx.terms[l] != LinkTerms::Massive).map(|l| {
-        let (name, lid) = (&cx.model.links[l].name, &cx.link_ids[l]);
-        let terms = match cx.terms[l] {
-            LinkTerms::InertiaOnly => quote!(InertiaOnly),
-            _ => quote!(Massless),
-        };
-        quote!(#p::params::LinkTerms::#terms.check(#name, &p.links.#lid)?;)
-    });
+    let term_checks = (1..n_links)
+        .filter(|&l| cx.terms[l] != LinkTerms::Massive)
+        .map(|l| {
+            let (name, lid) = (&cx.model.links[l].name, &cx.link_ids[l]);
+            let terms = match cx.terms[l] {
+                LinkTerms::InertiaOnly => quote!(InertiaOnly),
+                _ => quote!(Massless),
+            };
+            quote!(#p::params::LinkTerms::#terms.check(#name, &p.links.#lid)?;)
+        });
     let solvers = plan::solvers(cx);
     let joints = (0..n_joints).map(|j| quote!(inst.joints[#j]));
     let links = (0..n_links).map(|l| quote!(inst.links[#l]));
@@ -274,11 +304,19 @@ fn model_expr(cx: &Ctx) -> TokenStream {
         quote!(#p::model::Joint { name: #n.into(), kind: #p::model::JointKind::#kind, a: #a, b: #b, point: #pt, axis: #axis })
     });
     let loads = model.loads.iter().map(|l| match l {
-        Load::Force { name, link, point } => quote!(#p::model::Load::Force { name: #name.into(), link: #link, point: #point }),
-        Load::Torque { name, link } => quote!(#p::model::Load::Torque { name: #name.into(), link: #link }),
+        Load::Force { name, link, point } => {
+            quote!(#p::model::Load::Force { name: #name.into(), link: #link, point: #point })
+        }
+        Load::Torque { name, link } => {
+            quote!(#p::model::Load::Torque { name: #name.into(), link: #link })
+        }
     });
     let (name, inputs, redundant) = (&model.name, &model.inputs, model.allow_redundant);
-    let gravity = if model.gravity.is_some() { quote!(Some([p.gravity.x, p.gravity.y])) } else { quote!(None) };
+    let gravity = if model.gravity.is_some() {
+        quote!(Some([p.gravity.x, p.gravity.y]))
+    } else {
+        quote!(None)
+    };
     let zero = model.input_zero.iter().map(|&z| crate::emit::f64s(z));
     quote! {
         #p::model::Model {

@@ -18,7 +18,11 @@ use syn::Ident;
 /// The group constants and the solvers.
 pub(crate) fn emit(cx: &Ctx) -> TokenStream {
     let main = &cx.names.main;
-    let consts = cx.plan.iter().enumerate().map(|(gi, g)| group_consts(cx, gi, g));
+    let consts = cx
+        .plan
+        .iter()
+        .enumerate()
+        .map(|(gi, g)| group_consts(cx, gi, g));
     let (solve, solve_on, velocity_field) = (solve(cx), solve_on(cx), velocity_field(cx));
     quote! {
         impl #main {
@@ -36,7 +40,11 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
     let p = &cx.p;
     let doc = format!(
         "Assur group {gi}: links {} ({:?}).",
-        g.bodies.iter().map(|&b| cx.model.links[b].name.as_str()).collect::<Vec<_>>().join(", "),
+        g.bodies
+            .iter()
+            .map(|&b| cx.model.links[b].name.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
         g.solver
     );
     let kernel = match &g.kernel {
@@ -67,22 +75,27 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
 }
 
 /// The name of group `gi`'s position solver constant.
-fn solver_const(gi: usize) -> Ident {
+pub(crate) fn solver_const(gi: usize) -> Ident {
     format_ident!("__G{}_SOLVER", gi)
 }
 
 /// The names of a Newton group's bodies and constraints constants.
 pub(crate) fn system_consts(gi: usize) -> (Ident, Ident) {
-    (format_ident!("__G{}_BODIES", gi), format_ident!("__G{}_CONS", gi))
+    (
+        format_ident!("__G{}_BODIES", gi),
+        format_ident!("__G{}_CONS", gi),
+    )
 }
 
 /// The position solver constant of every group, in plan order (`from_params` reads the
 /// drawing's branch of each).
 pub(crate) fn solvers(cx: &Ctx) -> Vec<TokenStream> {
-    (0..cx.n_groups).map(|gi| {
-        let sn = solver_const(gi);
-        quote!(Self::#sn)
-    }).collect()
+    (0..cx.n_groups)
+        .map(|gi| {
+            let sn = solver_const(gi);
+            quote!(Self::#sn)
+        })
+        .collect()
 }
 
 /// The solve call of group `gi`, which binds `sys{gi}` to the group's kept system (`()`
@@ -96,18 +109,30 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
     match g.kernel {
         Kernel::Driven(_) => {
             let kn = format_ident!("__G{}_DRIVEN", gi);
-            quote!(#p::kinematics::solve_driven(Self::#solver, &Self::#kn, &self.joints, &mut s, drive, upto)?; let #sys = ();)
+            quote!(#p::kinematics::solve_driven(Self::#solver, &Self::#kn, &joints, &mut s, drive, upto)?; let #sys = ();)
         }
         Kernel::Chain(_) => {
             let kn = format_ident!("__G{}_CHAIN", gi);
-            quote!(#p::kinematics::solve_chain(Self::#solver, &Self::#kn, &self.joints, &mut s, drive, branches[#gi], self.scale, upto)?; let #sys = ();)
+            quote!(#p::kinematics::solve_chain(Self::#solver, &Self::#kn, &joints, &mut s, drive, branches[#gi], self.scale, upto)?; let #sys = ();)
         }
         Kernel::System if g.redundant() => {
             let m = g.rows();
-            quote!(let #sys = #p::group::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, upto)?;)
+            quote!(let #sys = #p::group::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto)?;)
         }
-        Kernel::System => quote!(let #sys = #p::group::group_solve::<#n>(&Self::#bn, &Self::#cn, &self.joints, &mut s, drive, self.scale, upto)?;),
+        Kernel::System => {
+            quote!(let #sys = #p::group::group_solve::<#n>(&Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto)?;)
+        }
     }
+}
+
+/// `[self.joints[k].with_links(a, b), ..]`: the joints with their links as literal
+/// constants, so that the kernels' tests on the topology fold.
+pub(crate) fn joints_with_topology(cx: &Ctx) -> TokenStream {
+    let items = cx.model.joints.iter().enumerate().map(|(k, j)| {
+        let (a, b) = (j.a, j.b);
+        quote!(self.joints[#k].with_links(#a, #b))
+    });
+    quote!([#(#items),*])
 }
 
 /// The velocity-field call of group `gi` (positions known, velocities of the inputs'
@@ -121,17 +146,19 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
     match g.kernel {
         Kernel::Driven(_) => {
             let kn = format_ident!("__G{}_DRIVEN", gi);
-            quote!(#p::screw::driven_rates(&Self::#kn, &self.joints, &mut v, drive, #level)?;)
+            quote!(#p::screw::driven_rates(&Self::#kn, &joints, &mut v, drive, #level)?;)
         }
         Kernel::Chain(_) => {
             let kn = format_ident!("__G{}_CHAIN", gi);
-            quote!(#p::screw::chain_rates(&Self::#kn, &self.joints, &mut v, self.scale, #level)?;)
+            quote!(#p::screw::chain_rates(&Self::#kn, &joints, &mut v, self.scale, #level)?;)
         }
         Kernel::System if g.redundant() => {
             let m = g.rows();
-            quote!(#p::group::group_velocity_field::<#n, #p::group::LsSystem<#n, #m>>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;)
+            quote!(#p::group::group_velocity_field::<#n, #p::group::LsSystem<#n, #m>>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &joints, &mut v, drive, self.scale)?;)
         }
-        Kernel::System => quote!(#p::group::group_velocity_field::<#n, #p::group::GroupSystem<#n>>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &self.joints, &mut v, drive, self.scale)?;),
+        Kernel::System => {
+            quote!(#p::group::group_velocity_field::<#n, #p::group::GroupSystem<#n>>(m.systems.#idx.as_ref(), &Self::#bn, &Self::#cn, &joints, &mut v, drive, self.scale)?;)
+        }
     }
 }
 
@@ -182,17 +209,21 @@ pub(crate) fn system_path(cx: &Ctx, g: usize) -> TokenStream {
 /// `__solve`: the states (and kept systems) at the inputs, on the drawing's branches;
 /// with redundant constraints, other branches past a change point.
 fn solve(cx: &Ctx) -> TokenStream {
-    let Ctx { p, n_links, dof, .. } = cx;
+    let Ctx {
+        p, n_links, dof, ..
+    } = cx;
     let systems = systems_type(cx);
     // With redundant constraints the closed forms' drawing branches may be the wrong ones
     // past a change point (a parallelogram folding): the redundant group then finds its
     // equations inconsistent, and the other branches are tried.
     let body = if cx.plan.iter().any(|g| g.redundant()) {
-        quote!(#p::branches::search(&self.branches, |b| self.__solve_on(b, q, qd, qdd, upto)))
+        quote!(#p::branches::search(&self.branches, |b| self.__solve_on(b, q, qd, qdd, upto, check)))
     } else {
-        quote!(self.__solve_on(&self.branches, q, qd, qdd, upto))
+        quote!(self.__solve_on(&self.branches, q, qd, qdd, upto, check))
     };
     quote! {
+        /// Every group solved up to `upto`; with `check`, the states checked finite
+        /// (`magnitudes::finite_states`). Zhukovski's route checks its sums instead.
         #[inline(always)]
         fn __solve(
             &self,
@@ -200,6 +231,7 @@ fn solve(cx: &Ctx) -> TokenStream {
             qd: &[f64; #dof],
             qdd: &[f64; #dof],
             upto: #p::kinematics::Level,
+            check: bool,
         ) -> Result<([#p::kinematics::LinkState; #n_links], #systems), #p::MechError> {
             #body
         }
@@ -208,13 +240,29 @@ fn solve(cx: &Ctx) -> TokenStream {
 
 /// `__solve_on`: every group's solve call in plan order, on the given branch signs.
 fn solve_on(cx: &Ctx) -> TokenStream {
-    let Ctx { p, n_links, n_groups, dof, .. } = cx;
+    let Ctx {
+        p,
+        n_links,
+        n_groups,
+        dof,
+        ..
+    } = cx;
     let systems = systems_type(cx);
-    let calls = cx.plan.iter().enumerate().map(|(gi, g)| solve_call(cx, gi, g));
-    let systems_value = nest((0..cx.n_groups).map(|g| {
-        let id = format_ident!("sys{}", g);
-        quote!(#id)
-    }).collect());
+    let calls = cx
+        .plan
+        .iter()
+        .enumerate()
+        .map(|(gi, g)| solve_call(cx, gi, g));
+    let joints = joints_with_topology(cx);
+    let n_joints = cx.n_joints;
+    let systems_value = nest(
+        (0..cx.n_groups)
+            .map(|g| {
+                let id = format_ident!("sys{}", g);
+                quote!(#id)
+            })
+            .collect(),
+    );
     // Newton starts from the drawing; closed forms overwrite every state they use.
     let initial = if cx.plan.iter().any(|g| g.kernel == Kernel::System) {
         quote!(self.drawing)
@@ -222,6 +270,12 @@ fn solve_on(cx: &Ctx) -> TokenStream {
         quote!([#p::kinematics::LinkState::default(); #n_links])
     };
     quote! {
+        /// The joints with their links as literal constants (`JointGeom::with_links`).
+        #[inline(always)]
+        fn __joints(&self) -> [#p::kinematics::JointGeom; #n_joints] {
+            #joints
+        }
+        /// [`Self::__solve`] on the given branch signs.
         #[inline(always)]
         fn __solve_on(
             &self,
@@ -230,11 +284,15 @@ fn solve_on(cx: &Ctx) -> TokenStream {
             qd: &[f64; #dof],
             qdd: &[f64; #dof],
             upto: #p::kinematics::Level,
+            check: bool,
         ) -> Result<([#p::kinematics::LinkState; #n_links], #systems), #p::MechError> {
             let mut s = #initial;
+            let joints = self.__joints();
             let drive = (&q[..], &qd[..], &qdd[..]);
             #(#calls)*
-            #p::magnitudes::finite_states(&s)?;
+            if check {
+                #p::magnitudes::finite_states(&s, upto)?;
+            }
             Ok((s, #systems_value))
         }
     }
@@ -242,9 +300,15 @@ fn solve_on(cx: &Ctx) -> TokenStream {
 
 /// `__velocity_field`: the velocities of input rates `qd` at the motion's positions.
 fn velocity_field(cx: &Ctx) -> TokenStream {
-    let Ctx { p, n_links, dof, .. } = cx;
+    let Ctx {
+        p, n_links, dof, ..
+    } = cx;
     let motion = &cx.names.motion;
-    let calls = cx.plan.iter().enumerate().map(|(gi, g)| velocity_call(cx, gi, g));
+    let calls = cx
+        .plan
+        .iter()
+        .enumerate()
+        .map(|(gi, g)| velocity_call(cx, gi, g));
     quote! {
         #[inline(always)]
         fn __velocity_field(
@@ -259,6 +323,7 @@ fn velocity_field(cx: &Ctx) -> TokenStream {
             }
             let zero = [0.0; #dof];
             let drive = (&zero[..], &qd[..], &zero[..]);
+            let joints = self.__joints();
             #(#calls)*
             Ok(v)
         }
@@ -280,15 +345,37 @@ fn con_tokens(c: &Con) -> TokenStream {
 fn solver_tokens(s: &Solver) -> TokenStream {
     let p = quote!(::mech::__private::dyad::Solver);
     match *s {
-        Solver::DrivenRevolute { body, joint, input } => quote!(#p::DrivenRevolute { body: #body, joint: #joint, input: #input }),
-        Solver::DrivenPrismatic { body, joint, input } => quote!(#p::DrivenPrismatic { body: #body, joint: #joint, input: #input }),
-        Solver::Rrr { b1, b2, ja, jc, jb } => quote!(#p::Rrr { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jb: #jb }),
-        Solver::Rrp { b1, b2, ja, jc, jp } => quote!(#p::Rrp { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jp: #jp }),
-        Solver::Rpr { b1, b2, ja, jp, jb } => quote!(#p::Rpr { b1: #b1, b2: #b2, ja: #ja, jp: #jp, jb: #jb }),
-        Solver::Prp { b1, b2, jp1, jc, jp2 } => quote!(#p::Prp { b1: #b1, b2: #b2, jp1: #jp1, jc: #jc, jp2: #jp2 }),
-        Solver::Rpp { b1, b2, ja, jp, jq } => quote!(#p::Rpp { b1: #b1, b2: #b2, ja: #ja, jp: #jp, jq: #jq }),
-        Solver::PinInFixedSlot { body, ja, js } => quote!(#p::PinInFixedSlot { body: #body, ja: #ja, js: #js }),
-        Solver::SlottedLever { body, ja, js } => quote!(#p::SlottedLever { body: #body, ja: #ja, js: #js }),
+        Solver::DrivenRevolute { body, joint, input } => {
+            quote!(#p::DrivenRevolute { body: #body, joint: #joint, input: #input })
+        }
+        Solver::DrivenPrismatic { body, joint, input } => {
+            quote!(#p::DrivenPrismatic { body: #body, joint: #joint, input: #input })
+        }
+        Solver::Rrr { b1, b2, ja, jc, jb } => {
+            quote!(#p::Rrr { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jb: #jb })
+        }
+        Solver::Rrp { b1, b2, ja, jc, jp } => {
+            quote!(#p::Rrp { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jp: #jp })
+        }
+        Solver::Rpr { b1, b2, ja, jp, jb } => {
+            quote!(#p::Rpr { b1: #b1, b2: #b2, ja: #ja, jp: #jp, jb: #jb })
+        }
+        Solver::Prp {
+            b1,
+            b2,
+            jp1,
+            jc,
+            jp2,
+        } => quote!(#p::Prp { b1: #b1, b2: #b2, jp1: #jp1, jc: #jc, jp2: #jp2 }),
+        Solver::Rpp { b1, b2, ja, jp, jq } => {
+            quote!(#p::Rpp { b1: #b1, b2: #b2, ja: #ja, jp: #jp, jq: #jq })
+        }
+        Solver::PinInFixedSlot { body, ja, js } => {
+            quote!(#p::PinInFixedSlot { body: #body, ja: #ja, js: #js })
+        }
+        Solver::SlottedLever { body, ja, js } => {
+            quote!(#p::SlottedLever { body: #body, ja: #ja, js: #js })
+        }
         Solver::Newton => quote!(#p::Newton),
     }
 }

@@ -1,8 +1,8 @@
 //! The results of the kinematics: `<Name>Pose` and `<Name>Motion` with their by-name
 //! accessors, and the methods that make them, `pose` and `kinematics`.
 
-use mech_core::assur::Kernel;
 use super::{plan, Ctx};
+use mech_core::assur::Kernel;
 use proc_macro2::TokenStream;
 use quote::quote;
 use syn::Ident;
@@ -10,7 +10,11 @@ use syn::Ident;
 /// The result types and `pose`, `kinematics`.
 pub(crate) fn emit(cx: &Ctx) -> TokenStream {
     let n = &cx.names;
-    let (types, pose_by_name, motion_by_name) = (types(cx), by_name(cx, &n.pose, "pose"), by_name(cx, &n.motion, "motion"));
+    let (types, pose_by_name, motion_by_name) = (
+        types(cx),
+        by_name(cx, &n.pose, "pose"),
+        by_name(cx, &n.motion, "motion"),
+    );
     let (pose_fn, kinematics_fn) = (pose_fn(cx), kinematics_fn(cx));
     let main = &n.main;
     quote! {
@@ -26,7 +30,13 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
 
 /// `Pose`, `Motion` and their per-link and per-point structs.
 fn types(cx: &Ctx) -> TokenStream {
-    let Ctx { p, n_links, dof, point_ids, .. } = cx;
+    let Ctx {
+        p,
+        n_links,
+        dof,
+        point_ids,
+        ..
+    } = cx;
     let n = &cx.names;
     let (pose, pose_links, pose_points) = (&n.pose, &n.pose_links, &n.pose_points);
     let (motion, motion_links, motion_points) = (&n.motion, &n.motion_links, &n.motion_points);
@@ -76,8 +86,14 @@ fn types(cx: &Ctx) -> TokenStream {
 fn by_name(cx: &Ctx, ty: &Ident, what: &str) -> TokenStream {
     let p = &cx.p;
     let (link_ty, point_ty) = match what {
-        "pose" => (quote!(#p::kinematics::LinkPose), quote!(#p::kinematics::PointPose)),
-        _ => (quote!(#p::kinematics::LinkMotion), quote!(#p::kinematics::PointMotion)),
+        "pose" => (
+            quote!(#p::kinematics::LinkPose),
+            quote!(#p::kinematics::PointPose),
+        ),
+        _ => (
+            quote!(#p::kinematics::LinkMotion),
+            quote!(#p::kinematics::PointMotion),
+        ),
     };
     let link_names = cx.model.links[1..].iter().map(|l| l.name.as_str());
     let point_names = cx.model.points.iter().map(|pt| pt.name.as_str());
@@ -100,7 +116,13 @@ fn by_name(cx: &Ctx, ty: &Ident, what: &str) -> TokenStream {
 
 /// The link that carries each point (its first link), whose state places it.
 fn owners(cx: &Ctx) -> Vec<usize> {
-    (0..cx.n_points).map(|pt| (0..cx.n_links).find(|&l| cx.model.links[l].points.contains(&pt)).unwrap_or(0)).collect()
+    (0..cx.n_points)
+        .map(|pt| {
+            (0..cx.n_links)
+                .find(|&l| cx.model.links[l].points.contains(&pt))
+                .unwrap_or(0)
+        })
+        .collect()
 }
 
 /// `let q = [q];` for one DOF (the solvers take arrays), nothing else.
@@ -120,7 +142,14 @@ fn crank_angle(cx: &Ctx, l: usize) -> Option<TokenStream> {
     let p = &cx.p;
     cx.plan.iter().find_map(|g| match g.kernel {
         Kernel::Driven(d) if d.body == l && d.from == 0 && !d.screw.slide => {
-            let (k, sign) = (d.input, if cx.model.joints[d.screw.joint].b == l { 1.0f64 } else { -1.0 });
+            let (k, sign) = (
+                d.input,
+                if cx.model.joints[d.screw.joint].b == l {
+                    1.0f64
+                } else {
+                    -1.0
+                },
+            );
             let sign = crate::emit::f64s(sign);
             match cx.model.input_zero[k] {
                 0.0 => Some(quote!(#p::kinematics::crank_angle(q[#k], #sign))),
@@ -136,7 +165,13 @@ fn crank_angle(cx: &Ctx, l: usize) -> Option<TokenStream> {
 
 /// `pose`: positions only.
 fn pose_fn(cx: &Ctx) -> TokenStream {
-    let Ctx { p, q_ty, dof, point_ids, .. } = cx;
+    let Ctx {
+        p,
+        q_ty,
+        dof,
+        point_ids,
+        ..
+    } = cx;
     let n = &cx.names;
     let (pose, pose_links, pose_points) = (&n.pose, &n.pose_links, &n.pose_points);
     let owners = owners(cx);
@@ -149,7 +184,7 @@ fn pose_fn(cx: &Ctx) -> TokenStream {
     });
     let points = (0..cx.n_points).map(|pt| {
         let (pid, o) = (&point_ids[pt], owners[pt]);
-        quote!(#pid: #p::kinematics::point_pose(&s[#o], self.points[#pt]),)
+        quote!(#pid: #p::kinematics::point_pose(&s, #o, self.points[#pt]),)
     });
     let q_arr = to_array(cx, "q");
     let inputs = &cx.inputs_doc;
@@ -162,7 +197,7 @@ fn pose_fn(cx: &Ctx) -> TokenStream {
             #q_arr
             #p::error::check_finite("q", &q)?;
             let zero = [0.0; #dof];
-            let (s, _) = self.__solve(&q, &zero, &zero, #p::kinematics::Level::Position)?;
+            let (s, _) = self.__solve(&q, &zero, &zero, #p::kinematics::Level::Position, true)?;
             Ok(#pose {
                 links: #pose_links { #(#links)* },
                 points: #pose_points { #(#points)* },
@@ -173,7 +208,9 @@ fn pose_fn(cx: &Ctx) -> TokenStream {
 
 /// `kinematics`: positions, velocities and accelerations.
 fn kinematics_fn(cx: &Ctx) -> TokenStream {
-    let Ctx { p, q_ty, point_ids, .. } = cx;
+    let Ctx {
+        p, q_ty, point_ids, ..
+    } = cx;
     let n = &cx.names;
     let (motion, motion_links, motion_points) = (&n.motion, &n.motion_links, &n.motion_points);
     let owners = owners(cx);
@@ -186,7 +223,7 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
     });
     let points = (0..cx.n_points).map(|pt| {
         let (pid, o) = (&point_ids[pt], owners[pt]);
-        quote!(#pid: #p::kinematics::point_motion(&s[#o], self.points[#pt]),)
+        quote!(#pid: #p::kinematics::point_motion(&s, #o, self.points[#pt]),)
     });
     let (q_arr, qd_arr, qdd_arr) = (to_array(cx, "q"), to_array(cx, "qd"), to_array(cx, "qdd"));
     let inputs = &cx.inputs_doc;
@@ -199,7 +236,7 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
             #p::error::check_finite("q, qd, qdd", &q)?;
             #p::error::check_finite("q, qd, qdd", &qd)?;
             #p::error::check_finite("q, qd, qdd", &qdd)?;
-            let (s, systems) = self.__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration)?;
+            let (s, systems) = self.__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration, true)?;
             Ok(#motion {
                 links: #motion_links { #(#links)* },
                 points: #motion_points { #(#points)* },

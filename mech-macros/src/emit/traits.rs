@@ -27,7 +27,9 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
 /// `Machine`: slices in, the kinematics and virtual power out, and the energies of the
 /// links that have the terms (`mech::energy`).
 fn machine_impl(cx: &Ctx) -> TokenStream {
-    let Ctx { p, n_links, dof, .. } = cx;
+    let Ctx {
+        p, n_links, dof, ..
+    } = cx;
     let n = &cx.names;
     let (main, loads, motion) = (&n.main, &n.loads, &n.motion);
     let slice_to_q = |v: &str| {
@@ -40,7 +42,11 @@ fn machine_impl(cx: &Ctx) -> TokenStream {
         }
     };
     let (q, qd, qdd) = (slice_to_q("q"), slice_to_q("qd"), slice_to_q("qdd"));
-    let store = if cx.one_dof() { quote!(out[0] = d;) } else { quote!(out.copy_from_slice(&d);) };
+    let store = if cx.one_dof() {
+        quote!(out[0] = d;)
+    } else {
+        quote!(out.copy_from_slice(&d);)
+    };
     let kinetic = cx.inertial().into_iter().map(|l| {
         let lid = &cx.link_ids[l];
         quote!(out[#l] = #p::energy::kinetic(&self.links[#l], &m.links.#lid);)
@@ -108,7 +114,16 @@ fn one_dof_impl(cx: &Ctx) -> TokenStream {
 fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
     let inertial = cx.inertial();
     let weighed = cx.weighed();
-    let inertia = quote!(#( z.inertia(&self.links[#inertial], &s[#inertial]); )*);
+    let inertia = inertial.iter().map(|&l| {
+        if cx.model.pinned_at_anchor(l) {
+            quote!(z.inertia_about_anchor(&self.links[#l], &s[#l]);)
+        } else if cx.model.translates(l) {
+            quote!(z.inertia_translating(&self.links[#l], &s[#l]);)
+        } else {
+            quote!(z.inertia(&self.links[#l], &s[#l]);)
+        }
+    });
+    let inertia = quote!(#(#inertia)*);
     let loads = cx.model.loads.iter().enumerate().map(|(k, l)| {
         let (lid, link) = (id(l.name()), l.link());
         match l {
@@ -116,8 +131,15 @@ fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
             Load::Torque { .. } => quote!(z.torque(&s[#link], loads.#lid);),
         }
     });
+    let gravity = weighed.iter().map(|&l| {
+        if cx.model.translates(l) {
+            quote!(z.gravity_translating(&self.links[#l], &s[#l], self.gravity);)
+        } else {
+            quote!(z.gravity(&self.links[#l], &s[#l], self.gravity);)
+        }
+    });
     let moment = quote! {
-        #( z.gravity(&self.links[#weighed], &s[#weighed], self.gravity); )*
+        #(#gravity)*
         #(#loads)*
     };
     (inertia, moment)
@@ -135,7 +157,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         /// form from the velocity coefficients and their derivatives.
         pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
             #p::error::check_finite("q", &[q])?;
-            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
+            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
             let mut z = #p::zhukovski::Reduction::default();
             #inertia
             #p::magnitudes::finite_result("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
@@ -146,7 +168,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
             #p::error::check_finite("q", &[q])?;
             #p::error::check_finite("loads", &[#values])?;
-            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity)?;
+            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity, false)?;
             let mut z = #p::zhukovski::Reduction::default();
             #moment
             #p::magnitudes::finite_result("reduced moment", &[z.moment])?;
@@ -159,7 +181,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
             #p::error::check_finite("q, qd, driver", &[q, qd, driver])?;
             #p::error::check_finite("loads", &[#values])?;
-            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration)?;
+            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
             let mut z = #p::zhukovski::Reduction::default();
             #inertia
             #moment

@@ -1,0 +1,277 @@
+//! Velocities and accelerations of the two commonest dyads in their natural coordinates
+//! (`docs/theory.md` §3.5): the two link angles of an RRR dyad, the link angle and the
+//! slide of an RRP dyad. Both are one 2×2 system written out, its matrix the same for
+//! velocities and accelerations; the other closed-form groups go through the joint screws
+//! of [`crate::screw`].
+//!
+//! **RRR.** Link b₁ is pinned to a solved link at A, b₂ at C, and b₁ to b₂ at B. With
+//! e₁ = B − A, e₂ = B − C, the velocity of B seen from both sides,
+//! v_A + ω₁ perp(e₁) = v_C + ω₂ perp(e₂), gives
+//!
+//! [perp(e₁)  −perp(e₂)] (ω₁, ω₂)ᵀ = v_C − v_A,
+//!
+//! and its derivative, with the centripetal terms moved right,
+//!
+//! [perp(e₁)  −perp(e₂)] (α₁, α₂)ᵀ = a_C − a_A + ω₁² e₁ − ω₂² e₂.
+//!
+//! **RRP.** Link b₁ is pinned to a solved link at A and to the slider b₂ at C; b₂ slides
+//! along the unit axis u of the guide (a solved link G, turning with it: ω₂ = ω_G). With
+//! e₁ = C − A, v_G and a_G the velocity and acceleration of G's material point at C and
+//! s the slide,
+//!
+//! [perp(e₁)  −u] (ω₁, ṡ)ᵀ = v_G − v_A,
+//! [perp(e₁)  −u] (α₁, s̈)ᵀ = a_G + 2 ω_G ṡ perp(u) − a_A + ω₁² e₁
+//!
+//! (the last but one term is Coriolis'). The condition estimate
+//! ([`crate::linalg::Inverse2::scaled`]) is taken with the second column times the
+//! length scale L, so that both columns are lengths (κ does not change when the whole
+//! matrix is scaled): `Singular` near a change point, where e₁ ⊥ u.
+//!
+//! Each link's anchor then moves as the material point it is: v = v_P + ω perp(r),
+//! a = a_P + α perp(r) − ω² r, with P the dyad's point on that link and r = anchor − P.
+
+use crate::constraints::{JointGeom, Level};
+use crate::kinetostatics::{Reaction, Wrench};
+use crate::linalg::Inverse2;
+use crate::link_state::{cross, dir_of, perp, LinkState, V2};
+use crate::MechError;
+
+/// The velocity and acceleration (m/s, m/s²) of the material point of link `l` now at
+/// `p`; zero on the ground (link 0), whose state is not read.
+#[inline(always)]
+pub fn point_rates(s: &[LinkState], l: usize, p: V2) -> (V2, V2) {
+    if l == 0 {
+        (V2::zeros(), V2::zeros())
+    } else {
+        let r = p - s[l].pos;
+        (s[l].vel_at(r), s[l].acc_at(r))
+    }
+}
+
+/// The solved link on the other side of joint `g` from `body`.
+#[inline(always)]
+fn solved_link(g: &JointGeom, body: usize) -> usize {
+    if g.b == body {
+        g.a
+    } else {
+        g.b
+    }
+}
+
+/// Store ω and the anchor's velocity of a link through its point now at `p`, moving with `v_p`.
+#[inline(always)]
+fn set_velocity(s: &mut LinkState, p: V2, v_p: V2, omega: f64) {
+    s.omega = omega;
+    s.vel = v_p + perp(s.pos - p) * omega;
+}
+
+/// Store α and the anchor's acceleration of a link through its point now at `p`, accelerating with `a_p`.
+#[inline(always)]
+fn set_acceleration(s: &mut LinkState, p: V2, a_p: V2, alpha: f64) {
+    let r = s.pos - p;
+    s.alpha = alpha;
+    s.acc = a_p + perp(r) * alpha - r * (s.omega * s.omega);
+}
+
+/// Rates of an RRR dyad (module docs) whose links `b1`, `b2` are placed with A, B, C at
+/// `points` = [A, B, C]; `ja`, `jb` are the pins at A (of b1) and at C (of b2).
+/// `Singular` near a change point (e₁ ∥ e₂).
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+#[allow(clippy::too_many_arguments)]
+pub fn rrr_rates(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    b1: usize,
+    b2: usize,
+    ja: usize,
+    jb: usize,
+    points: [V2; 3],
+    upto: Level,
+) -> Result<(), MechError> {
+    if !matches!(upto, Level::Velocity | Level::Acceleration) {
+        return Ok(());
+    }
+    let [a, b, c] = points;
+    let (la, lc) = (solved_link(&joints[ja], b1), solved_link(&joints[jb], b2));
+    let (e1, e2) = (b - a, b - c);
+    let (p1, p2) = (perp(e1), perp(e2));
+    let m = Inverse2::new([[p1.x, -p2.x], [p1.y, -p2.y]])?;
+    let ((va, aa), (vc, ac)) = (point_rates(s, la, a), point_rates(s, lc, c));
+    let dv = vc - va;
+    let [w1, w2] = m.solve([dv.x, dv.y]);
+    set_velocity(&mut s[b1], a, va, w1);
+    set_velocity(&mut s[b2], c, vc, w2);
+    if upto == Level::Acceleration {
+        let da = ac - aa + e1 * (w1 * w1) - e2 * (w2 * w2);
+        let [al1, al2] = m.solve([da.x, da.y]);
+        set_acceleration(&mut s[b1], a, aa, al1);
+        set_acceleration(&mut s[b2], c, ac, al2);
+    }
+    Ok(())
+}
+
+/// Rates of an RRP dyad (module docs) whose links `b1` (pinned at A by `ja`) and `b2`
+/// (the slider, on the guide by the prismatic `jp`) are placed with A and C at
+/// `points` = [A, C, _]. `scale` is the length scale L. `Singular` near a change point
+/// (e₁ ⊥ u).
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+#[allow(clippy::too_many_arguments)]
+pub fn rrp_rates(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    b1: usize,
+    b2: usize,
+    ja: usize,
+    jp: usize,
+    points: [V2; 3],
+    scale: f64,
+    upto: Level,
+) -> Result<(), MechError> {
+    if !matches!(upto, Level::Velocity | Level::Acceleration) {
+        return Ok(());
+    }
+    let [a, c, _] = points;
+    let gp = &joints[jp];
+    let (la, lg) = (solved_link(&joints[ja], b1), solved_link(gp, b2));
+    let u = dir_of(s, lg, gp.axis);
+    let e1 = c - a;
+    let p1 = perp(e1);
+    let m = Inverse2::scaled([[p1.x, -u.x], [p1.y, -u.y]], [1.0, scale])?;
+    let ((va, aa), (vg, ag)) = (point_rates(s, la, a), point_rates(s, lg, c));
+    let (wg, alg) = if lg == 0 {
+        (0.0, 0.0)
+    } else {
+        (s[lg].omega, s[lg].alpha)
+    };
+    let dv = vg - va;
+    let [w1, sd] = m.solve([dv.x, dv.y]);
+    set_velocity(&mut s[b1], a, va, w1);
+    let vc = vg + u * sd;
+    set_velocity(&mut s[b2], c, vc, wg);
+    if upto == Level::Acceleration {
+        let coriolis = perp(u) * (2.0 * wg * sd);
+        let da = ag + coriolis - aa + e1 * (w1 * w1);
+        let [al1, sdd] = m.solve([da.x, da.y]);
+        set_acceleration(&mut s[b1], a, aa, al1);
+        set_acceleration(&mut s[b2], c, ag + coriolis + u * sdd, alg);
+    }
+    Ok(())
+}
+
+/// A link's wrench (force, moment about its anchor `pos`) as its force and its moment
+/// about the point `p`: M_P = M + (pos − P) × F.
+#[inline(always)]
+fn about(w: &Wrench, pos: V2, p: V2) -> (V2, f64) {
+    let f = V2::new(w.x, w.y);
+    (f, w.z + cross(pos - p, f))
+}
+
+/// Add the force `force` at the point now at `p`, and the couple `couple`, to link `l`'s
+/// wrench (about its anchor).
+#[inline(always)]
+fn push(f: &mut [Wrench], s: &[LinkState], l: usize, p: V2, force: V2, couple: f64) {
+    let pos = if l == 0 { V2::zeros() } else { s[l].pos };
+    f[l] += Wrench::new(force.x, force.y, couple + cross(p - pos, force));
+}
+
+/// The reaction at joint `g` reported by the convention (by `g.a` on `g.b`) from the
+/// force and moment that link `on` receives through it.
+#[inline(always)]
+fn reported(g: &JointGeom, on: usize, force: V2, moment: f64) -> Reaction {
+    if g.b == on {
+        Reaction { force, moment }
+    } else {
+        Reaction {
+            force: -force,
+            moment: -moment,
+        }
+    }
+}
+
+/// d'Alembert for an RRR dyad placed in the states `s` (module docs' notation), `f`
+/// holding every link's applied and inertia wrench about its anchor. With X the force of
+/// b₁ on b₂ at B, the moments of b₁ about A and of b₂ about C,
+/// e₁ × X = M₁(A), −e₂ × X = M₂(C), are the transpose of the velocity system:
+/// [perp(e₁) −perp(e₂)]ᵀ X = (M₁(A), M₂(C)). Then the forces on b₁ at A and on b₂ at C,
+/// R_A = X − F₁ and R_C = −X − F₂; the solved links get −R_A and −R_C.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+#[allow(clippy::too_many_arguments)]
+pub fn rrr_reactions(
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    b1: usize,
+    b2: usize,
+    ja: usize,
+    jc: usize,
+    jb: usize,
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    let (ga, gc, gb) = (&joints[ja], &joints[jc], &joints[jb]);
+    let (la, lc) = (solved_link(ga, b1), solved_link(gb, b2));
+    let a = crate::link_state::point_of(s, la, if ga.a == la { ga.da } else { ga.db });
+    let c = crate::link_state::point_of(s, lc, if gb.a == lc { gb.da } else { gb.db });
+    let b = s[b1].point(if gc.a == b1 { gc.da } else { gc.db });
+    let (e1, e2) = (b - a, b - c);
+    let (p1, p2) = (perp(e1), perp(e2));
+    let m = Inverse2::new([[p1.x, -p2.x], [p1.y, -p2.y]])?;
+    let (f1, m1) = about(&f[b1], s[b1].pos, a);
+    let (f2, m2) = about(&f[b2], s[b2].pos, c);
+    let [x, y] = m.solve_transpose([m1, m2]);
+    let x = V2::new(x, y);
+    let (ra, rc) = (x - f1, -x - f2);
+    out[ja] = reported(ga, b1, ra, 0.0);
+    out[jc] = reported(gc, b2, x, 0.0);
+    out[jb] = reported(gb, b2, rc, 0.0);
+    push(f, s, la, a, -ra, 0.0);
+    push(f, s, lc, c, -rc, 0.0);
+    Ok(())
+}
+
+/// d'Alembert for an RRP dyad placed in the states `s` (module docs' notation). With X
+/// the force of b₁ on the slider b₂ at C, the moments of b₁ about A and the slider's
+/// forces along the axis, e₁ × X = M₁(A), −u·X = F₂·u, are the transpose of the velocity
+/// system: [perp(e₁) −u]ᵀ X = (M₁(A), F₂·u). Then R_A = X − F₁ at A, and the guide's
+/// force on the slider R_P = −X − F₂ (normal to u) with the couple that balances the
+/// slider's moments about the joint point P, M_P = −(M₂(P) + (C − P) × X). `scale` is
+/// the length scale L of the condition estimate, as in [`rrp_rates`].
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+#[allow(clippy::too_many_arguments)]
+pub fn rrp_reactions(
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    b1: usize,
+    b2: usize,
+    ja: usize,
+    jc: usize,
+    jp: usize,
+    scale: f64,
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    let (ga, gc, gp) = (&joints[ja], &joints[jc], &joints[jp]);
+    let (la, lg) = (solved_link(ga, b1), solved_link(gp, b2));
+    let a = crate::link_state::point_of(s, la, if ga.a == la { ga.da } else { ga.db });
+    let c = s[b2].point(if gc.a == b2 { gc.da } else { gc.db });
+    let p = crate::link_state::point_of(s, gp.b, gp.db);
+    let u = dir_of(s, lg, gp.axis);
+    let e1 = c - a;
+    let p1 = perp(e1);
+    let m = Inverse2::scaled([[p1.x, -u.x], [p1.y, -u.y]], [1.0, scale])?;
+    let (f1, m1) = about(&f[b1], s[b1].pos, a);
+    let (f2, m2) = about(&f[b2], s[b2].pos, p);
+    let [x, y] = m.solve_transpose([m1, f2.dot(&u)]);
+    let x = V2::new(x, y);
+    let ra = x - f1;
+    let (rp, mp) = (-x - f2, -(m2 + cross(c - p, x)));
+    out[ja] = reported(ga, b1, ra, 0.0);
+    out[jc] = reported(gc, b2, x, 0.0);
+    out[jp] = reported(gp, b2, rp, mp);
+    push(f, s, la, a, -ra, 0.0);
+    push(f, s, lg, p, -rp, -mp);
+    Ok(())
+}
