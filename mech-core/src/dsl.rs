@@ -512,12 +512,14 @@ fn loads(input: ParseStream) -> syn::Result<Vec<LoadDecl<Span>>> {
                 let link: Ident = content.parse()?;
                 LoadDeclKind::Torque { link: name(&link)? }
             }
-            other => return Err(syn::Error::new(
-                kw.span(),
-                format!(
+            other => {
+                return Err(syn::Error::new(
+                    kw.span(),
+                    format!(
                     "unknown load `{other}`: expected `force on LINK at POINT` or `torque on LINK`"
                 ),
-            )),
+                ))
+            }
         };
         out.push(LoadDecl {
             name: name(&id)?,

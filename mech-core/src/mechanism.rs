@@ -711,6 +711,9 @@ impl Mechanism {
     /// gravity and inertia in the velocity field moving input k alone at unit rate.
     pub fn driver_action(&self, m: &Motion, loads: &Loads) -> Result<Vec<f64>, MechError> {
         let s = &m.states;
+        if self.dof() == 1 && m.qd()[0] != 0.0 {
+            return Ok(vec![self.power(m, loads)?.driver(m.qd()[0])?]);
+        }
         let mut f = Scratch::new();
         self.wrenches(s, loads, true, &mut f)?;
         let g = self.dof();
@@ -758,10 +761,54 @@ impl Mechanism {
         }
         let mut s: Scratch<LinkState> = SmallVec::from_slice(&self.inst.drawing);
         self.solve_slice(&[q], &[1.0], &[0.0], upto, &mut s)?;
+        self.sums(&s, loads, upto == Level::Acceleration)
+    }
+
+    /// The power balance over the motion `m` (its link and point motions).
+    fn power(&self, m: &Motion, loads: &Loads) -> Result<crate::virtual_power::Power, MechError> {
+        let mut w = crate::virtual_power::Power::default();
+        for (l, t) in self.terms.iter().enumerate().skip(1) {
+            let (geom, lm) = (&self.inst.links[l], &m.links[l]);
+            if t.inertia() {
+                w.inertia(geom, lm);
+            }
+            if t.gravity() {
+                w.gravity(geom, lm, self.inst.gravity);
+            }
+        }
+        for (load, value) in self.model.loads.iter().zip(&loads.values) {
+            match (load, *value) {
+                (Load::Force { point, .. }, LoadValue::Force(v)) => {
+                    crate::error::check_finite("loads", &[v.x, v.y])?;
+                    w.force(&m.points[*point], v)
+                }
+                (_, LoadValue::Torque(t)) => {
+                    crate::error::check_finite("loads", &[t])?;
+                    w.torque(&m.links[load.link()], t)
+                }
+                (Load::Torque { .. }, LoadValue::Force(_)) => {
+                    return Err(MechError::InvalidInput(format!(
+                        "load `{}` is a torque, given a force",
+                        load.name()
+                    )))
+                }
+            }
+        }
+        Ok(w)
+    }
+
+    /// Zhukovski's sums over the states `s`: the inertia terms when `inertia`, the power
+    /// of gravity and of `loads` when given.
+    fn sums(
+        &self,
+        s: &[LinkState],
+        loads: Option<&Loads>,
+        inertia: bool,
+    ) -> Result<Reduction, MechError> {
         let mut z = Reduction::default();
         for (l, t) in self.terms.iter().enumerate().skip(1) {
             let geom = &self.inst.links[l];
-            if upto == Level::Acceleration && t.inertia() {
+            if inertia && t.inertia() {
                 if self.pinned[l] {
                     z.inertia_about_anchor(geom, &s[l]);
                 } else if self.translates[l] {

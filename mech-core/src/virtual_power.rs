@@ -4,7 +4,7 @@
 //! revolute input, N for a prismatic one).
 
 use crate::kinetostatics::{virtual_power, Wrench};
-use crate::link_state::LinkState;
+use crate::link_state::{LinkGeom, LinkMotion, LinkState, PointMotion, V2};
 use crate::MechError;
 
 /// The G motor actions Q_k = −Σ (F·v_k + M·ω_k) (N·m or N) of the wrenches `f` (N, N·m
@@ -35,6 +35,49 @@ pub fn driver_actions<const G: usize, V: AsRef<[LinkState]>>(
     }
     crate::magnitudes::finite_result("motor actions", &out)?;
     Ok(out)
+}
+
+/// The power balance of a one-input machine over its own motion, for its motor action by
+/// virtual power when q̇ ≠ 0 (the motion's velocities are then a virtual velocity field):
+/// Q q̇ + P − dT/dt = 0, Q = (dT/dt − P)/q̇, with dT/dt = Σ (m v_G·a_G + I ω α)
+/// ([`crate::energy::kinetic_rate`]) and P the power of the loads and gravity, W. Summed
+/// from the link and point motions the kinematics already gives: no wrench is formed.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Power {
+    /// dT/dt so far, W.
+    pub kinetic_rate: f64,
+    /// P so far, W.
+    pub applied: f64,
+}
+
+impl Power {
+    /// Add a link's dT/dt.
+    #[inline(always)]
+    pub fn inertia(&mut self, l: &LinkGeom, m: &LinkMotion) {
+        self.kinetic_rate += crate::energy::kinetic_rate(l, m);
+    }
+    /// Add the power of gravity on a link, m g·v_G.
+    #[inline(always)]
+    pub fn gravity(&mut self, l: &LinkGeom, m: &LinkMotion, g: V2) {
+        self.applied += l.mass * g.dot(&m.cg_vel);
+    }
+    /// Add the power of a force `f` (N) at a point moving with `p`, f·v_P.
+    #[inline(always)]
+    pub fn force(&mut self, p: &PointMotion, f: V2) {
+        self.applied += f.dot(&p.vel);
+    }
+    /// Add the power of a torque `t` (N·m) on a link, t ω.
+    #[inline(always)]
+    pub fn torque(&mut self, m: &LinkMotion, t: f64) {
+        self.applied += t * m.omega;
+    }
+    /// The motor action Q = (dT/dt − P)/q̇ (N·m, or N for a prismatic input); q̇ ≠ 0.
+    #[inline(always)]
+    pub fn driver(&self, qd: f64) -> Result<f64, MechError> {
+        let q = (self.kinetic_rate - self.applied) / qd;
+        crate::magnitudes::finite_result("motor actions", &[q])?;
+        Ok(q)
+    }
 }
 
 #[cfg(test)]

@@ -404,14 +404,55 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         quote!(out)
     };
     let inputs = &cx.inputs_doc;
+    // One input moving: the power balance over the motion itself (no wrench is formed).
+    let by_power = if cx.one_dof() {
+        let link = |l: usize| &cx.link_ids[l];
+        let inertia = cx.inertial().into_iter().map(|l| {
+            let lid = link(l);
+            quote!(w.inertia(&self.links[#l], &m.links.#lid);)
+        });
+        let gravity = cx.weighed().into_iter().map(|l| {
+            let lid = link(l);
+            quote!(w.gravity(&self.links[#l], &m.links.#lid, self.gravity);)
+        });
+        let applied = cx.model.loads.iter().map(|ld| {
+            let name = id(ld.name());
+            match *ld {
+                Load::Force { point, .. } => {
+                    let pid = &cx.point_ids[point];
+                    quote!(w.force(&m.points.#pid, loads.#name);)
+                }
+                Load::Torque { link: l, .. } => {
+                    let lid = link(l);
+                    quote!(w.torque(&m.links.#lid, loads.#name);)
+                }
+            }
+        });
+        let values = load_values(cx);
+        quote! {
+            if m.qd[0] != 0.0 {
+                #p::error::check_finite("loads", &[#values])?;
+                let mut w = #p::virtual_power::Power::default();
+                #(#inertia)*
+                #(#gravity)*
+                #(#applied)*
+                return w.driver(m.qd[0]);
+            }
+        }
+    } else {
+        quote!()
+    };
     quote! {
         /// The motor actions by the principle of virtual power, computing no reaction:
         /// for each input, the velocity field that moves it alone at unit rate, and
         /// Q = −Σ (F·v + M·ω) over loads, gravity and inertia forces. With one input
-        /// moving (q̇ ≠ 0) that field is the motion's own velocities divided by q̇.
+        /// moving (q̇ ≠ 0) that field is the motion's own velocities divided by q̇, and
+        /// Q = (dT/dt − P)/q̇ (the kinetic energy's rate less the power of the loads and
+        /// gravity, `mech::virtual_power::Power`).
         ///
         #(#[doc = #inputs])*
         pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
+            #by_power
             let f = self.__wrenches(&m.states, loads, true)?;
             let out = #p::virtual_power::driver_actions(&f, &m.states, &m.qd, |qd| self.__velocity_field(m, qd))?;
             Ok(#out)
