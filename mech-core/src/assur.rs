@@ -88,12 +88,15 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             body,
             screw: rot(joint),
             input,
+            pinned: other(joint, body) == 0
+                && model.links[body].points.first() == Some(&model.joints[joint].point),
         }),
         Solver::DrivenPrismatic { body, joint, input } => Kernel::Driven(Driven {
             from: other(joint, body),
             body,
             screw: slide(joint),
             input,
+            pinned: false,
         }),
         Solver::Rrr { b1, b2, ja, jc, jb } => dyad(b1, b2, ja, jc, jb),
         Solver::Rrp { b1, b2, ja, jc, jp } => dyad(b1, b2, ja, jc, jp),

@@ -149,13 +149,30 @@ pub fn rrp_rates(
     let [w1, sd] = m.solve([dv.x, dv.y]);
     set_velocity(&mut s[b1], a, va, w1);
     let vc = vg + u * sd;
-    set_velocity(&mut s[b2], c, vc, wg);
+    // On the ground guide the slider does not turn: its anchor moves as C (the zero
+    // terms written out would not fold, IEEE arithmetic keeping 0·x).
+    if lg == 0 {
+        s[b2].omega = 0.0;
+        s[b2].vel = vc;
+    } else {
+        set_velocity(&mut s[b2], c, vc, wg);
+    }
     if upto == Level::Acceleration {
-        let coriolis = perp(u) * (2.0 * wg * sd);
+        let coriolis = if lg == 0 {
+            V2::zeros()
+        } else {
+            perp(u) * (2.0 * wg * sd)
+        };
         let da = ag + coriolis - aa + e1 * (w1 * w1);
         let [al1, sdd] = m.solve([da.x, da.y]);
         set_acceleration(&mut s[b1], a, aa, al1);
-        set_acceleration(&mut s[b2], c, ag + coriolis + u * sdd, alg);
+        let ac = ag + coriolis + u * sdd;
+        if lg == 0 {
+            s[b2].alpha = 0.0;
+            s[b2].acc = ac;
+        } else {
+            set_acceleration(&mut s[b2], c, ac, alg);
+        }
     }
     Ok(())
 }

@@ -214,6 +214,9 @@ pub struct Driven {
     pub screw: JointScrew,
     /// The input index.
     pub input: usize,
+    /// A crank on the ground turning about its anchor (the driver's pin is the link's
+    /// first point): its anchor never moves.
+    pub pinned: bool,
 }
 
 /// The chain matrix S at the current positions, reduced by its pivot p: with O at the
@@ -406,8 +409,18 @@ pub fn driven_rates(
         // a = α perp(r) − ω² r with r from P to the anchor.
         let p = if g.a == 0 { g.da } else { g.db };
         let b = &mut s[d.body];
-        let r = b.pos - p;
         b.omega = qd;
+        if d.pinned {
+            // The anchor is the pin: at rest. −0 (not +0) so that adding it folds away.
+            b.pos = p;
+            b.vel = V2::new(-0.0, -0.0);
+            if upto == Level::Acceleration {
+                b.alpha = qdd;
+                b.acc = V2::new(-0.0, -0.0);
+            }
+            return Ok(());
+        }
+        let r = b.pos - p;
         b.vel = perp(r) * qd;
         if upto == Level::Acceleration {
             b.alpha = qdd;

@@ -51,10 +51,7 @@ pub fn acceleration(
         return Err(crate::MechError::NonPositiveInertia(r.inertia));
     }
     let qdd = (driver + moment - 0.5 * r.inertia_derivative * qd * qd) / r.inertia;
-    crate::magnitudes::finite_result(
-        "acceleration q̈ (with I*, M* and the driver)",
-        &[qdd, r.inertia_derivative, moment],
-    )?;
+    crate::magnitudes::finite_result("acceleration q̈ (with I*, M* and the driver)", &[qdd])?;
     Ok(qdd)
 }
 

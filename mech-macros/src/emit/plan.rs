@@ -401,7 +401,7 @@ fn chain_tokens(c: &Chain) -> TokenStream {
 }
 
 fn driven_tokens(d: &Driven) -> TokenStream {
-    let (from, body, input) = (d.from, d.body, d.input);
+    let (from, body, input, pinned) = (d.from, d.body, d.input, d.pinned);
     let screw = screw_tokens(&d.screw);
-    quote!(::mech::__private::screw::Driven { from: #from, body: #body, screw: #screw, input: #input })
+    quote!(::mech::__private::screw::Driven { from: #from, body: #body, screw: #screw, input: #input, pinned: #pinned })
 }
