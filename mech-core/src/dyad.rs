@@ -185,7 +185,12 @@ pub fn line_line(p1: V2, u1: V2, p2: V2, u2: V2) -> Result<V2, MechError> {
 #[inline]
 pub fn place_by_point(s: &mut LinkState, rot: V2, d: V2, p: V2) {
     s.rot = rot;
-    s.pos = p - rotate(rot, d);
+    // The point is often the link's anchor (its first point): then d = 0, no rotation.
+    s.pos = if d.x == 0.0 && d.y == 0.0 {
+        p
+    } else {
+        p - rotate(rot, d)
+    };
 }
 
 /// Place a link from two of its points (local vectors d1, d2) at global positions p1, p2

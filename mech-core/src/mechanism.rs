@@ -417,7 +417,13 @@ impl Mechanism {
         upto: Level,
         s: &mut [LinkState],
     ) -> Result<(), MechError> {
-        s.copy_from_slice(&self.inst.drawing);
+        // Newton starts from the drawing; closed forms overwrite every state they use
+        // (the ground's is the drawing's always).
+        if self.plan.iter().any(|g| g.kernel == Kernel::System) {
+            s.copy_from_slice(&self.inst.drawing);
+        } else {
+            s[0] = self.inst.drawing[0];
+        }
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
         for (g, &sign) in self.plan.iter().zip(branches) {
             match &g.kernel {
@@ -446,7 +452,7 @@ impl Mechanism {
         for (k, (l, st)) in self.inst.links.iter().zip(s.iter()).enumerate().skip(1) {
             out[2 * np + k - 1] = l.pose(st).angle;
         }
-        Ok(())
+        crate::magnitudes::finite_result("link angles", &out[2 * np..])
     }
 
     /// The points alone, into `out` (x and y of each point, m, in the order of
@@ -465,13 +471,14 @@ impl Mechanism {
             SmallVec::from_elem(0.0, q.len())
         };
         self.solve_into(q, &zero, &zero, Level::Position, s)?;
-        crate::magnitudes::finite_states(s, Level::Position)?;
+        let np = self.inst.points.len();
         for (k, &(o, d)) in self.inst.points.iter().enumerate() {
-            let p = point_pose(&s, o, d).pos;
+            let p = point_pose(s, o, d).pos;
             out[2 * k] = p.x;
             out[2 * k + 1] = p.y;
         }
-        Ok(())
+        // What is returned is checked, not the states behind it.
+        crate::magnitudes::finite_result("point positions", &out[..2 * np])
     }
 
     /// Positions only: every link's angle and cg, every point.
