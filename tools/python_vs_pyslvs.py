@@ -10,16 +10,25 @@ call), (b) by `mech`, one batched `Mechanism.pose(q)` over the N angles, and (c)
 throughput of `mech.sweep` (positions and the virtual-power driver torque over variants
 of a pin position). Checks that both give the same positions first. Prints the times per
 configuration and the ratio.
+
+numpy's OpenBLAS starts one worker thread per core at import, and those spin-wait on the
+cores mech's own thread pool works on (on this 2-core machine they took a third of the
+batched call's time). The script runs as a program that does its own threading should:
+with OPENBLAS_NUM_THREADS=1 (set here before numpy is imported; docs/python.md). pyslvs
+is single-threaded and does not use BLAS.
 """
 
-import json
-import math
 import os
-import time
 
-import numpy as np
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import mech
+import json  # noqa: E402
+import math  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+import mech  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 N = 20_000
@@ -39,7 +48,7 @@ def main():
     ex = next(e for e in data["examples"] if e["name"] == "Jansen's linkage (Single)")
     m = mech.Mechanism.load(os.path.join(ROOT, "examples", "mech", "jansen.mech"))
     q = np.linspace(0.0, 2 * math.pi, N, endpoint=False) + 0.123
-    print("mech threads:", mech.num_threads())
+    print("mech threads:", mech.num_threads(), "| OPENBLAS_NUM_THREADS =", os.environ.get("OPENBLAS_NUM_THREADS"))
 
     from pyslvs import expr_solving, parse_vpoints, t_config
     vpoints = parse_vpoints(ex["expression"])
@@ -54,8 +63,8 @@ def main():
     print("largest position difference over 200 angles: %.2e (units of the drawing)" % err)
 
     t_py = best(with_pyslvs, 1) / N
-    t_mech = best(lambda: m.pose(q)) / N
-    t_points = best(lambda: m.pose(q, angles=False)) / N
+    t_mech = best(lambda: m.pose(q), 7) / N
+    t_points = best(lambda: m.pose(q, angles=False), 7) / N
     print("pyslvs expr_solving, one call per configuration:     %.2f us per configuration" % (t_py * 1e6))
     print("mech Mechanism.pose, one batched call:                %.3f us per configuration (%.0fx)" % (t_mech * 1e6, t_py / t_mech))
     print("mech Mechanism.pose(angles=False), the same as pyslvs: %.3f us per configuration (%.0fx)" % (t_points * 1e6, t_py / t_points))

@@ -68,6 +68,8 @@ pub struct Columns {
     pub names: Vec<String>,
     /// Their SI units.
     pub units: Vec<&'static str>,
+    /// `parts` as bits (1 << part), for [`Columns::has`] at every row.
+    mask: u16,
 }
 
 impl Columns {
@@ -93,10 +95,12 @@ impl Columns {
                 || (g != 1 && p == Part::Zhukovski)
         };
         parts.retain(|&p| !dropped(p));
+        let mask = parts.iter().fold(0u16, |m, &p| m | 1 << p as u16);
         let mut c = Columns {
             parts,
             names: Vec::new(),
             units: Vec::new(),
+            mask,
         };
         let has = |p: Part| c.parts.contains(&p);
         let (inputs, positions, rates, reactions, driver, vp, zhukovski) = (
@@ -190,7 +194,7 @@ impl Columns {
 
     /// True when the columns include `p`.
     pub fn has(&self, p: Part) -> bool {
-        self.parts.contains(&p)
+        self.mask & (1 << p as u16) != 0
     }
 
     /// The row at inputs (q, q̇, q̈) with `loads`, in the order of [`Columns::names`]:

@@ -130,9 +130,11 @@ const TANGENT_TOL: f64 = 1e-12;
 
 /// Intersection of the circle (c1, r1) with the circle (c2, r2), given the squared radii
 /// r1², r2² (m²), on the side `sign` of the line c1 → c2 (sign of (c2 − c1) × (X − c1)).
-/// With d = c2 − c1, k = (|d|² + r1² − r2²) / (2|d|²) and h² = r1²/|d|² − k²:
-/// X = c1 + k d + sign·h·perp(d). `NoAssembly` when they do not meet (h² < 0 beyond a
-/// relative tolerance, a tangency within it).
+/// With d = c2 − c1, k = ½(|d|² + r1² − r2²) and H = r1² |d|² − k² (= h² |d|⁴, h the
+/// distance of X from the line over |d|): X = c1 + (k d + sign·√H·perp(d)) / |d|².
+/// `NoAssembly` when they do not meet (H < 0 beyond a relative tolerance, a tangency
+/// within it). The square root is taken before the division, so that the two run side by
+/// side rather than one after the other.
 #[inline]
 pub fn circle_circle(c1: V2, r1sq: f64, c2: V2, r2sq: f64, sign: f64) -> Result<V2, MechError> {
     let d = c2 - c1;
@@ -141,15 +143,15 @@ pub fn circle_circle(c1: V2, r1sq: f64, c2: V2, r2sq: f64, sign: f64) -> Result<
         return Err(MechError::NoAssembly);
     }
     let inv = 1.0 / l2;
-    let k = 0.5 * (1.0 + (r1sq - r2sq) * inv);
-    let mut h2 = r1sq * inv - k * k;
+    let k = 0.5 * (l2 + r1sq - r2sq);
+    let mut h2 = r1sq * l2 - k * k;
     if h2 < 0.0 {
-        if h2 < -TANGENT_TOL * r1sq.max(r2sq) * inv {
+        if h2 < -TANGENT_TOL * r1sq.max(r2sq) * l2 {
             return Err(MechError::NoAssembly);
         }
         h2 = 0.0;
     }
-    Ok(c1 + d * k + perp(d) * (sign * h2.sqrt()))
+    Ok(c1 + (d * k + perp(d) * (sign * h2.sqrt())) * inv)
 }
 
 /// Intersection of the circle (c, r), given r² (m²), with the line through `p` along unit
@@ -196,7 +198,8 @@ pub fn place_by_point(s: &mut LinkState, rot: V2, d: V2, p: V2) {
 /// Place a link from two of its points (local vectors d1, d2) at global positions p1, p2
 /// the same distance apart (|p2 − p1| = |d2 − d1|, as a closed form places them): the
 /// rotation from a = d2 − d1 to b = p2 − p1 is (a·b, a × b)/(|a| |b|) = (a·b, a × b)/|a|²,
-/// unit to roundoff, with no square root.
+/// unit to roundoff, with no square root (the division depends on the drawing alone, so
+/// it runs beside the solve, not in its chain).
 #[inline]
 pub fn place_by_two_points(s: &mut LinkState, d1: V2, d2: V2, p1: V2, p2: V2) {
     let a = d2 - d1;

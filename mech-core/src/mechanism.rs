@@ -68,6 +68,8 @@ pub struct Mechanism {
     pinned: Vec<bool>,
     /// Per link: it slides on the ground ([`Model::translates`]).
     translates: Vec<bool>,
+    /// Some group has no closed form (Newton, started from the drawing).
+    newton: bool,
 }
 
 /// The values of a run-time mechanism's loads, in declaration order. [`Mechanism::loads`]
@@ -244,6 +246,7 @@ impl Mechanism {
         let translates = (0..model.links.len())
             .map(|l| model.translates(l))
             .collect();
+        let newton = plan.iter().any(|g| g.kernel == Kernel::System);
         Ok(Mechanism {
             model: Arc::new(model),
             inst,
@@ -252,6 +255,7 @@ impl Mechanism {
             terms,
             pinned,
             translates,
+            newton,
         })
     }
 
@@ -419,7 +423,7 @@ impl Mechanism {
     ) -> Result<(), MechError> {
         // Newton starts from the drawing; closed forms overwrite every state they use
         // (the ground's is the drawing's always).
-        if self.plan.iter().any(|g| g.kernel == Kernel::System) {
+        if self.newton {
             s.copy_from_slice(&self.inst.drawing);
         } else {
             s[0] = self.inst.drawing[0];
@@ -472,10 +476,10 @@ impl Mechanism {
         };
         self.solve_into(q, &zero, &zero, Level::Position, s)?;
         let np = self.inst.points.len();
-        for (k, &(o, d)) in self.inst.points.iter().enumerate() {
+        for (xy, &(o, d)) in out[..2 * np].chunks_exact_mut(2).zip(&self.inst.points) {
             let p = point_pose(s, o, d).pos;
-            out[2 * k] = p.x;
-            out[2 * k + 1] = p.y;
+            xy[0] = p.x;
+            xy[1] = p.y;
         }
         // What is returned is checked, not the states behind it.
         crate::magnitudes::finite_result("point positions", &out[..2 * np])

@@ -15,13 +15,39 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use rayon::prelude::*;
+use std::mem::MaybeUninit;
 use std::sync::OnceLock;
 
-create_exception!(_mech, MechError, PyException, "An error of mech: the message says what is wrong, the numbers and the fix.");
-create_exception!(_mech, InvalidMechanism, MechError, "The description fails a check; `line` and `column` (1-based) locate the culprit.");
-create_exception!(_mech, NoAssembly, MechError, "The mechanism cannot be assembled at this input value.");
-create_exception!(_mech, Singular, MechError, "A dead point: the system is not solvable to the requested accuracy.");
-create_exception!(_mech, InvalidInput, MechError, "A bad number: NaN, infinite, out of range, or the wrong shape.");
+create_exception!(
+    _mech,
+    MechError,
+    PyException,
+    "An error of mech: the message says what is wrong, the numbers and the fix."
+);
+create_exception!(
+    _mech,
+    InvalidMechanism,
+    MechError,
+    "The description fails a check; `line` and `column` (1-based) locate the culprit."
+);
+create_exception!(
+    _mech,
+    NoAssembly,
+    MechError,
+    "The mechanism cannot be assembled at this input value."
+);
+create_exception!(
+    _mech,
+    Singular,
+    MechError,
+    "A dead point: the system is not solvable to the requested accuracy."
+);
+create_exception!(
+    _mech,
+    InvalidInput,
+    MechError,
+    "A bad number: NaN, infinite, out of range, or the wrong shape."
+);
 
 /// The Python exception of a mech error. A check's message starts `[FILE:]LINE:COLUMN:`:
 /// the exception carries `line`, `column` and `message`.
@@ -31,7 +57,10 @@ fn py_err(py: Python<'_>, e: CoreError) -> PyErr {
             let err = InvalidMechanism::new_err(text.clone());
             let head = text.lines().next().unwrap_or("");
             let mut parts = head.split_once(": ").map_or("", |(at, _)| at).rsplit(':');
-            let (col, line) = (parts.next().and_then(|c| c.parse::<usize>().ok()), parts.next().and_then(|l| l.parse::<usize>().ok()));
+            let (col, line) = (
+                parts.next().and_then(|c| c.parse::<usize>().ok()),
+                parts.next().and_then(|l| l.parse::<usize>().ok()),
+            );
             let v = err.value(py);
             let _ = v.setattr("line", line);
             let _ = v.setattr("column", col);
@@ -50,8 +79,14 @@ fn py_err(py: Python<'_>, e: CoreError) -> PyErr {
 fn pool() -> &'static rayon::ThreadPool {
     static POOL: OnceLock<rayon::ThreadPool> = OnceLock::new();
     POOL.get_or_init(|| {
-        let n = std::env::var("MECH_NUM_THREADS").ok().and_then(|s| s.parse::<usize>().ok()).unwrap_or(0);
-        rayon::ThreadPoolBuilder::new().num_threads(n).build().expect("a thread pool")
+        let n = std::env::var("MECH_NUM_THREADS")
+            .ok()
+            .and_then(|s| s.parse::<usize>().ok())
+            .unwrap_or(0);
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .expect("a thread pool")
     })
 }
 
@@ -89,11 +124,24 @@ fn loads_of(m: &Mechanism, flat: &[f64]) -> Loads {
 fn set_loads(m: &Mechanism, loads: &mut Loads, flat: &[f64]) {
     let mut at = 0;
     for l in m.model().loads.iter() {
-        let w = if matches!(l, Load::Force { .. }) { 2 } else { 1 };
+        let w = if matches!(l, Load::Force { .. }) {
+            2
+        } else {
+            1
+        };
         if at + w <= flat.len() {
             loads.set_by_name(l.name(), &flat[at..at + w]);
         }
         at += w;
+    }
+}
+
+/// The elements of a 2-D array in row-major order: borrowed when it is laid out so,
+/// else copied.
+fn row_major<'a>(a: &'a numpy::ndarray::ArrayView2<'a, f64>) -> std::borrow::Cow<'a, [f64]> {
+    match a.as_slice() {
+        Some(s) => std::borrow::Cow::Borrowed(s),
+        None => std::borrow::Cow::Owned(a.iter().copied().collect()),
     }
 }
 
@@ -110,7 +158,12 @@ struct PyMechanism {
 }
 
 /// Results of a table: (names, data (n, C), ok (n,), first error message or None).
-type Table<'py> = (Vec<String>, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<bool>>, Option<String>);
+type Table<'py> = (
+    Vec<String>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<bool>>,
+    Option<String>,
+);
 
 #[pymethods]
 impl PyMechanism {
@@ -122,12 +175,15 @@ impl PyMechanism {
             Some(o) => Mechanism::from_dsl_named(text, o),
             None => Mechanism::from_dsl(text),
         };
-        m.map(|inner| PyMechanism { inner }).map_err(|e| py_err(py, e))
+        m.map(|inner| PyMechanism { inner })
+            .map_err(|e| py_err(py, e))
     }
 
     /// Change one number of the drawing (`points.A`, `links.rod.mass`, `gravity`, ...).
     fn set_param(&mut self, py: Python<'_>, path: &str, value: Vec<f64>) -> PyResult<()> {
-        self.inner.set_param(path, &value).map_err(|e| py_err(py, e))
+        self.inner
+            .set_param(path, &value)
+            .map_err(|e| py_err(py, e))
     }
 
     /// The number of inputs G.
@@ -140,13 +196,36 @@ impl PyMechanism {
     #[getter]
     fn inputs(&self) -> Vec<(String, String)> {
         let model = self.inner.model();
-        model.inputs.iter().map(|&j| (model.joints[j].name.clone(), model.joints[j].kind.keyword().to_string())).collect()
+        model
+            .inputs
+            .iter()
+            .map(|&j| {
+                (
+                    model.joints[j].name.clone(),
+                    model.joints[j].kind.keyword().to_string(),
+                )
+            })
+            .collect()
     }
 
     /// The loads: (name, number of components: 2 for a force, 1 for a torque).
     #[getter]
     fn loads(&self) -> Vec<(String, usize)> {
-        self.inner.model().loads.iter().map(|l| (l.name().to_string(), if matches!(l, Load::Force { .. }) { 2 } else { 1 })).collect()
+        self.inner
+            .model()
+            .loads
+            .iter()
+            .map(|l| {
+                (
+                    l.name().to_string(),
+                    if matches!(l, Load::Force { .. }) {
+                        2
+                    } else {
+                        1
+                    },
+                )
+            })
+            .collect()
     }
 
     /// The mechanism's name.
@@ -172,29 +251,80 @@ impl PyMechanism {
         loads: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Table<'py>> {
         let cols = Columns::new(&self.inner, &parts_of(&parts)?);
-        let (q, qd, qdd, loads) = (q.as_array(), qd.as_array(), qdd.as_array(), loads.as_array());
+        let (q, qd, qdd, loads) = (
+            q.as_array(),
+            qd.as_array(),
+            qdd.as_array(),
+            loads.as_array(),
+        );
         let n = q.nrows();
+        // Rows as plain slices of the (n, G) and (n, L) arrays in row-major order (copied
+        // once if numpy gave another layout).
+        let (g, nl) = (q.ncols(), loads.ncols());
+        let (q, qd, qdd, loads) = (
+            row_major(&q),
+            row_major(&qd),
+            row_major(&qdd),
+            row_major(&loads),
+        );
+        let (q, qd, qdd, loads) = (&q[..], &qd[..], &qdd[..], &loads[..]);
         let width = cols.names.len();
         let m = &self.inner;
-        let mut data = vec![f64::NAN; n * width];
-        let mut errors: Vec<Option<String>> = vec![None; n];
+        // The output is written once, row by row, from a per-thread buffer: no zeroing
+        // pass over it first (a failed row is NaN).
+        let mut data: Vec<MaybeUninit<f64>> = Vec::with_capacity(n * width);
+        // SAFETY: `MaybeUninit` needs no initialisation; every element is written below.
+        unsafe { data.set_len(n * width) };
+        let mut ok = vec![true; n];
+        // The first failed row's error (lowest row index), not one string per row.
+        let first_error: std::sync::Mutex<Option<(usize, String)>> = std::sync::Mutex::new(None);
+        let has_loads = !m.model().loads.is_empty();
         py.allow_threads(|| {
             pool().install(|| {
-                let init = || (RowScratch::default(), m.loads());
-                data.par_chunks_mut(width.max(1)).zip(errors.par_iter_mut()).enumerate().for_each_init(init, |(scratch, l), (k, (out, err))| {
-                    set_loads(m, l, loads.row(k).as_slice().expect("contiguous"));
-                    let (a, b, c) = (q.row(k), qd.row(k), qdd.row(k));
-                    let (a, b, c) = (a.as_slice().expect("contiguous"), b.as_slice().expect("contiguous"), c.as_slice().expect("contiguous"));
-                    if let Err(e) = cols.row_into(m, a, b, c, l, scratch, out) {
-                        out.fill(f64::NAN);
-                        *err = Some(e.to_string());
-                    }
-                })
+                let init = || (RowScratch::default(), m.loads(), vec![0.0; width]);
+                data.par_chunks_mut(width.max(1))
+                    .zip(ok.par_iter_mut())
+                    .enumerate()
+                    .for_each_init(init, |(scratch, l, buf), (k, (out, row_ok))| {
+                        if has_loads {
+                            set_loads(m, l, &loads[k * nl..(k + 1) * nl]);
+                        }
+                        let row = k * g..(k + 1) * g;
+                        if let Err(e) = cols.row_into(
+                            m,
+                            &q[row.clone()],
+                            &qd[row.clone()],
+                            &qdd[row],
+                            l,
+                            scratch,
+                            buf,
+                        ) {
+                            buf.fill(f64::NAN);
+                            *row_ok = false;
+                            let mut first = first_error.lock().unwrap_or_else(|p| p.into_inner());
+                            if first.as_ref().is_none_or(|(j, _)| k < *j) {
+                                *first = Some((k, e.to_string()));
+                            }
+                        }
+                        for (d, v) in out.iter_mut().zip(buf.iter()) {
+                            d.write(*v);
+                        }
+                    })
             })
         });
-        let ok: Vec<bool> = errors.iter().map(Option::is_none).collect();
-        let first = errors.into_iter().flatten().next();
-        let data = numpy::ndarray::Array2::from_shape_vec((n, width), data).expect("shape").into_pyarray(py);
+        // SAFETY: every row (n × width elements) was written above; MaybeUninit<f64> and
+        // f64 have the same layout.
+        let data: Vec<f64> = unsafe {
+            let mut d = std::mem::ManuallyDrop::new(data);
+            Vec::from_raw_parts(d.as_mut_ptr().cast::<f64>(), d.len(), d.capacity())
+        };
+        let first = first_error
+            .into_inner()
+            .unwrap_or_else(|p| p.into_inner())
+            .map(|(_, e)| e);
+        let data = numpy::ndarray::Array2::from_shape_vec((n, width), data)
+            .expect("shape")
+            .into_pyarray(py);
         Ok((cols.names, data, ok.into_pyarray(py), first))
     }
 
@@ -207,16 +337,38 @@ impl PyMechanism {
         qd: Vec<f64>,
         driver: Vec<f64>,
         loads: PyReadonlyArray2<'py, f64>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<bool>>, Option<String>)> {
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<bool>>,
+        Option<String>,
+    )> {
         if self.inner.dof() != 1 {
-            return Err(InvalidInput::new_err(format!("the direct problem by Zhukovski needs one input; this mechanism has {}", self.inner.dof())));
+            return Err(InvalidInput::new_err(format!(
+                "the direct problem by Zhukovski needs one input; this mechanism has {}",
+                self.inner.dof()
+            )));
         }
         let loads = loads.as_array();
         let m = &self.inner;
         let out: Vec<Result<f64, CoreError>> = py.allow_threads(|| {
-            pool().install(|| (0..q.len()).into_par_iter().map(|k| OneDof::acceleration(m, q[k], qd[k], driver[k], &loads_of(m, &row(&loads, k)))).collect())
+            pool().install(|| {
+                (0..q.len())
+                    .into_par_iter()
+                    .map(|k| {
+                        OneDof::acceleration(
+                            m,
+                            q[k],
+                            qd[k],
+                            driver[k],
+                            &loads_of(m, &row(&loads, k)),
+                        )
+                    })
+                    .collect()
+            })
         });
-        let first = out.iter().find_map(|r| r.as_ref().err().map(|e| e.to_string()));
+        let first = out
+            .iter()
+            .find_map(|r| r.as_ref().err().map(|e| e.to_string()));
         let ok: Vec<bool> = out.iter().map(Result::is_ok).collect();
         let v: Vec<f64> = out.into_iter().map(|r| r.unwrap_or(f64::NAN)).collect();
         Ok((v.into_pyarray(py), ok.into_pyarray(py), first))
@@ -234,10 +386,19 @@ impl PyMechanism {
         qd: PyReadonlyArray2<'py, f64>,
         qdd: PyReadonlyArray2<'py, f64>,
         loads: PyReadonlyArray2<'py, f64>,
-    ) -> PyResult<(Vec<String>, Bound<'py, PyArray3<f64>>, Bound<'py, numpy::PyArray2<bool>>)> {
+    ) -> PyResult<(
+        Vec<String>,
+        Bound<'py, PyArray3<f64>>,
+        Bound<'py, numpy::PyArray2<bool>>,
+    )> {
         let parts = parts_of(&parts)?;
         let cols = Columns::new(&self.inner, &parts);
-        let (q, qd, qdd, loads) = (q.as_array(), qd.as_array(), qdd.as_array(), loads.as_array());
+        let (q, qd, qdd, loads) = (
+            q.as_array(),
+            qd.as_array(),
+            qdd.as_array(),
+            loads.as_array(),
+        );
         let (n, width, nv) = (q.nrows(), cols.names.len(), variants.len());
         let base = &self.inner;
         let results: Vec<(Vec<f64>, Vec<bool>)> = py.allow_threads(|| {
@@ -246,14 +407,27 @@ impl PyMechanism {
                     .par_iter()
                     .map(|v| {
                         let mut m = base.clone();
-                        let built = v.iter().try_for_each(|(path, value)| m.set_param(path, value));
+                        let built = v
+                            .iter()
+                            .try_for_each(|(path, value)| m.set_param(path, value));
                         let mut data = vec![f64::NAN; n * width];
                         let mut ok = vec![false; n];
                         if built.is_ok() {
                             let mut scratch = RowScratch::default();
                             for k in 0..n {
                                 let out = &mut data[k * width..(k + 1) * width];
-                                if cols.row_into(&m, &row(&q, k), &row(&qd, k), &row(&qdd, k), &loads_of(&m, &row(&loads, k)), &mut scratch, out).is_ok() {
+                                if cols
+                                    .row_into(
+                                        &m,
+                                        &row(&q, k),
+                                        &row(&qd, k),
+                                        &row(&qdd, k),
+                                        &loads_of(&m, &row(&loads, k)),
+                                        &mut scratch,
+                                        out,
+                                    )
+                                    .is_ok()
+                                {
                                     ok[k] = true;
                                 } else {
                                     out.fill(f64::NAN);
@@ -271,8 +445,12 @@ impl PyMechanism {
             data.extend(d);
             ok.extend(o);
         }
-        let data = numpy::ndarray::Array3::from_shape_vec((nv, n, width), data).expect("shape").into_pyarray(py);
-        let ok = numpy::ndarray::Array2::from_shape_vec((nv, n), ok).expect("shape").into_pyarray(py);
+        let data = numpy::ndarray::Array3::from_shape_vec((nv, n, width), data)
+            .expect("shape")
+            .into_pyarray(py);
+        let ok = numpy::ndarray::Array2::from_shape_vec((nv, n), ok)
+            .expect("shape")
+            .into_pyarray(py);
         Ok((cols.names, data, ok))
     }
 
@@ -294,18 +472,36 @@ impl PyMechanism {
     ) -> PyResult<Vec<(String, f64)>> {
         let m = &self.inner;
         if m.dof() != 1 || m.model().joints[m.model().inputs[0]].kind != JointKind::Revolute {
-            return Err(InvalidInput::new_err("flywheel sizing needs one revolute input"));
+            return Err(InvalidInput::new_err(
+                "flywheel sizing needs one revolute input",
+            ));
         }
         let call_loads = |q: f64| -> Result<Loads, CoreError> {
-            let flat: Vec<f64> = loads.call1(py, (q,)).and_then(|v| v.extract(py)).map_err(|e| CoreError::InvalidInput(format!("the loads callable at q = {q}: {e}")))?;
+            let flat: Vec<f64> =
+                loads
+                    .call1(py, (q,))
+                    .and_then(|v| v.extract(py))
+                    .map_err(|e| {
+                        CoreError::InvalidInput(format!("the loads callable at q = {q}: {e}"))
+                    })?;
             Ok(loads_of(m, &flat))
         };
         let balance = driver.is_none();
-        let call_driver = |q: f64| -> f64 { driver.as_ref().map_or(0.0, |d| d.call1(py, (q,)).and_then(|v| v.extract::<f64>(py)).unwrap_or(f64::NAN)) };
+        let call_driver = |q: f64| -> f64 {
+            driver.as_ref().map_or(0.0, |d| {
+                d.call1(py, (q,))
+                    .and_then(|v| v.extract::<f64>(py))
+                    .unwrap_or(f64::NAN)
+            })
+        };
         let run = || -> Result<Vec<(String, f64)>, CoreError> {
             let cycle = Cycle::new(m, start, period, &breakpoints, call_loads, call_driver)?;
             let net = cycle.net_work();
-            let (cycle, torque) = if balance { cycle.balanced() } else { (cycle, 0.0) };
+            let (cycle, torque) = if balance {
+                cycle.balanced()
+            } else {
+                (cycle, 0.0)
+            };
             cycle.check_periodic()?;
             let fw = cycle.flywheel(omega_mean, irregularity)?;
             let sim = cycle.simulate(&fw.exact.state, rtol)?;
@@ -334,7 +530,9 @@ impl PyMechanism {
     /// Reduce for pickling: the DSL text cannot be recovered from the model, so the
     /// Python wrapper pickles its text and parameters; this native object refuses.
     fn __reduce__(&self) -> PyResult<()> {
-        Err(InvalidInput::new_err("pickle mech.Mechanism (the wrapper keeps the text), not its native core"))
+        Err(InvalidInput::new_err(
+            "pickle mech.Mechanism (the wrapper keeps the text), not its native core",
+        ))
     }
 }
 
