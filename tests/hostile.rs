@@ -23,7 +23,7 @@ fn invalid(r: Result<impl std::fmt::Debug, MechError>, part: &str) {
 }
 
 /// 1. The generic solver's continuation is bounded: an input it cannot reach ends in an
-/// error after at most its step budget, not after 100 000 SVDs.
+///    error after at most its step budget, not after 100 000 SVDs.
 #[test]
 fn an_unreachable_input_ends_in_an_error() {
     let text = mech::generic::GenericMechanism::parse(
@@ -77,7 +77,7 @@ fn raw_identifiers_are_refused() {
 }
 
 /// 4. Every `Ok` is finite: overflowing inputs and loads are errors naming the quantity;
-/// absurd parameters are refused with the accepted range.
+///    absurd parameters are refused with the accepted range.
 #[test]
 fn overflow_is_an_error_naming_the_quantity() {
     let m = FourBar::new();
@@ -211,7 +211,7 @@ fn a_drawing_scaled_out_of_range_says_so() {
 }
 
 /// 5. Loading many mechanisms in one thread keeps resident memory flat: the parser's
-/// span table lives on a thread of its own per load.
+///    span table lives on a thread of its own per load.
 #[test]
 fn loading_many_mechanisms_keeps_memory_flat() {
     fn resident_kb() -> usize {

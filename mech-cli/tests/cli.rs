@@ -537,7 +537,6 @@ fn the_example_files_pass_check() {
 }
 
 #[path = "../../tests/common/engine.rs"]
-#[allow(dead_code)]
 mod engine;
 
 /// The engine example's flywheel from files: `examples/mech/engine.mech` and the gas

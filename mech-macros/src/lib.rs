@@ -149,6 +149,31 @@ mod snapshots {
     }
 
     #[test]
+    fn every_impl_allows_the_drawings_numbers() {
+        // A 90° input zero is π/2 written out: clippy's deny-by-default `approx_constant`
+        // must not fail the user's build on it.
+        let text = SLIDER_CRANK.replacen("input: O2", "input: O2 from 90 deg", 1);
+        assert_ne!(text, SLIDER_CRANK, "the slider-crank declares `input: O2`");
+        let parts = super::expand_parts(&text).unwrap_or_else(|e| panic!("{e:?}"));
+        let mut impls = 0;
+        for (_, part) in parts {
+            let file: syn::File =
+                syn::parse2(super::emit::allow_drawing_numbers(part)).expect("items");
+            for item in &file.items {
+                if let syn::Item::Impl(i) = item {
+                    impls += 1;
+                    let allowed = i
+                        .attrs
+                        .iter()
+                        .any(|a| quote::quote!(#a).to_string().contains("approx_constant"));
+                    assert!(allowed, "an impl without the allow");
+                }
+            }
+        }
+        assert!(impls >= 5, "{impls} impl blocks");
+    }
+
+    #[test]
     fn declared_terms_on_every_route() {
         let code = flat(&pretty_parts(SLIDER_CRANK));
         // `mass: 0.0` on the piston (link 3): gravity, inertia, energies and Zhukovski.

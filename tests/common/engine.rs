@@ -83,7 +83,8 @@ pub const N_EXPANSION: f64 = 1.27;
 pub const PRESSURE_RISE: f64 = 3.2;
 /// Cycle angle of the start of combustion, 2 pi - advance, rad.
 pub const SPARK: f64 = 6.021385919380437;
-/// Wiebe burn duration, rad.
+/// Wiebe burn duration, rad: 60° as the reference tables wrote it (1 ulp above π/3).
+#[allow(clippy::approx_constant)]
 pub const BURN_DURATION: f64 = 1.0471975511965979;
 /// Wiebe efficiency parameter a.
 pub const WIEBE_A: f64 = 5.0;

@@ -172,8 +172,27 @@ pub(crate) fn parts(
 pub fn mechanism(desc: &Description<Span>, model: &Model, plan: &[Group]) -> TokenStream {
     parts(desc, model, plan)
         .into_iter()
-        .map(|(_, part)| part)
+        .map(|(_, part)| allow_drawing_numbers(part))
         .collect()
+}
+
+/// The drawing's numbers are written as literals, and one may be close to π/2 or another
+/// constant by design (an input's zero of 90°): clippy's `approx_constant` (deny by default)
+/// would fail the user's build on the generated code. Every `impl` block of `part` gets
+/// `#[allow(clippy::approx_constant)]`.
+pub(crate) fn allow_drawing_numbers(part: TokenStream) -> TokenStream {
+    match syn::parse2::<syn::File>(part.clone()) {
+        Ok(mut file) => {
+            for item in &mut file.items {
+                if let syn::Item::Impl(i) = item {
+                    i.attrs
+                        .push(syn::parse_quote!(#[allow(clippy::approx_constant)]));
+                }
+            }
+            quote!(#file)
+        }
+        Err(_) => part,
+    }
 }
 
 /// A number without trailing zeros (for doc comments).
