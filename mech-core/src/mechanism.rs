@@ -377,7 +377,9 @@ impl Mechanism {
     }
 
     /// Solve the plan up to `upto` at (q, q̇, q̈) into `s` (one state per link), reusing its
-    /// allocation: the run-time counterpart of the generated `__solve`.
+    /// allocation: the run-time counterpart of the generated `__solve`. The fields beyond
+    /// `upto` (velocities and accelerations at [`Level::Position`]) are not written: they
+    /// keep what `s` held (the drawing's rest when some group is solved by Newton).
     pub fn solve_into(
         &self,
         q: &[f64],
