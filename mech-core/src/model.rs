@@ -388,3 +388,35 @@ impl Model {
         s.max(1e-300)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::resolve::model_of;
+
+    /// Which links turn about a ground pin at their anchor, and which slide on the ground:
+    /// what the solvers' shortcuts rest on.
+    #[test]
+    fn pinned_and_translating_links() {
+        let m = model_of(
+            "pub struct S { ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
+              link crank { points { O2, A: (0.0, 0.1) } },
+              link rod { points { A, B: (0.25, 0.0) } },
+              link piston { points { B } },
+              link lever { points { C: (0.3, 0.2), O4 } },
+              link arm { points { O4, D: (0.3, -0.2) } },
+              joints { O2: revolute(ground, crank), A: revolute(crank, rod), B: revolute(rod, piston),
+                       guide: prismatic(ground, piston) at B along (1.0, 0.0),
+                       O4: revolute(lever, ground), O4b: revolute(ground, arm) at O4 },
+              input: O2 }",
+        );
+        let l = |name: &str| m.link_index(name).unwrap();
+        assert!(m.pinned_at_anchor(l("crank")));
+        // The arm's first point is the ground pin O4, declared (ground, arm).
+        assert!(m.pinned_at_anchor(l("arm")));
+        // The lever turns about O4 too, but its anchor is C, its first point.
+        assert!(!m.pinned_at_anchor(l("lever")));
+        assert!(!m.pinned_at_anchor(l("rod")) && !m.pinned_at_anchor(l("piston")) && !m.pinned_at_anchor(0));
+        assert!(m.translates(l("piston")));
+        assert!(!m.translates(l("rod")) && !m.translates(l("crank")) && !m.translates(0));
+    }
+}
