@@ -70,7 +70,7 @@ function pause() { clearInterval(timer); timer = null; button.textContent = 'pla
 button.onclick = () => timer ? pause() : play();
 slider.oninput = () => { pause(); show(+slider.value); };
 const m = /frame=(\d+)/.exec(location.hash);
-if (m) { show(Math.min(+m[1], D.q.length - 1)); } else { show(0); play(); }
+if (m) { show(Math.min(+m[1], D.q.length - 1)); button.textContent = 'play'; } else { show(0); play(); }
 "#;
 
 /// Run `mech report`.
@@ -245,11 +245,18 @@ pub fn run(args: ReportArgs) -> Result<(), Failure> {
     let mut page = String::new();
     let _ = write!(
         page,
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{name}</title>\n<style>body{{font-family:sans-serif;margin:16px;color:#222}}.row{{display:flex;flex-wrap:wrap;gap:12px}}#controls{{margin:8px 0}}#slider{{width:420px}}</style></head><body>\n<h1>{name}</h1>\n<p>{doc}</p>\n<p>Input from {a:.4} to {b:.4} {unit} in {n} frames; input speed {qd:?} (constant), loads as given. Motor action: the torque or force the motor applies (the engine textbooks' turning moment on the crankshaft is its negative). SI units.</p>\n<div id=\"controls\"><button id=\"play\">pause</button> <input id=\"slider\" type=\"range\" min=\"0\" max=\"{last}\" value=\"0\"> q = <span id=\"q\"></span> {unit}</div>\n",
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{name}</title>\n<style>body{{font-family:sans-serif;margin:16px;color:#222}}.row{{display:flex;flex-wrap:wrap;gap:12px}}#controls{{margin:8px 0}}#slider{{width:420px}}</style></head><body>\n<h1>{name}</h1>\n<p>{doc}</p>\n<p>Input from {a:.4} to {b:.4} {unit} in {n} frames; input speed {speeds} (constant), loads as given. Motor action: the torque or force the motor applies (the engine textbooks' turning moment on the crankshaft is its negative). SI units.</p>\n<div id=\"controls\"><button id=\"play\">pause</button> <input id=\"slider\" type=\"range\" min=\"0\" max=\"{last}\" value=\"0\"> q = <span id=\"q\"></span> {unit}</div>\n",
         name = html(&model.name),
         doc = html(&m_doc(&args.file)),
         n = args.frames,
         last = args.frames - 1,
+        speeds = (0..g)
+            .map(|k| {
+                let u = if quantity::input_dims(model, k).0 == mech_core::units::Dim::ANGLE { "rad/s" } else { "m/s" };
+                format!("{} {u}", qd[k])
+            })
+            .collect::<Vec<_>>()
+            .join(", "),
     );
     page.push_str("<div id=\"linkage\">");
     page.push_str(&svg::open_picture(&view));
