@@ -195,9 +195,13 @@ fn report_is_one_self_contained_page() {
         "cursor-speed",
         "|v B|",
         "frame=",
+        // 3000 rpm stated with its unit, not as a Rust vector.
+        "input speed 314.159",
+        " rad/s (constant)",
     ] {
         assert!(html.contains(needed), "{needed}");
     }
+    assert!(!html.contains("input speed ["), "the speed printed as a vector");
     let without_ns = html.replace("http://www.w3.org/2000/svg", "");
     assert!(
         !without_ns.contains("http://") && !without_ns.contains("https://"),
