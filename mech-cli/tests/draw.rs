@@ -201,7 +201,10 @@ fn report_is_one_self_contained_page() {
     ] {
         assert!(html.contains(needed), "{needed}");
     }
-    assert!(!html.contains("input speed ["), "the speed printed as a vector");
+    assert!(
+        !html.contains("input speed ["),
+        "the speed printed as a vector"
+    );
     let without_ns = html.replace("http://www.w3.org/2000/svg", "");
     assert!(
         !without_ns.contains("http://") && !without_ns.contains("https://"),

@@ -110,6 +110,21 @@ impl LinkState {
     pub fn acc_at(&self, r: V2) -> V2 {
         self.acc + perp(r) * self.alpha - r * (self.omega * self.omega)
     }
+    /// Set ω and the anchor's velocity from the velocity `v_p` of the material point now
+    /// at `p` (the same rigid field seen from p): v = v_p + ω perp(pos − p).
+    #[inline(always)]
+    pub fn set_velocity_through(&mut self, p: V2, v_p: V2, omega: f64) {
+        self.omega = omega;
+        self.vel = v_p + perp(self.pos - p) * omega;
+    }
+    /// Set α and the anchor's acceleration from the acceleration `a_p` of the material
+    /// point now at `p`, ω already set: a = a_p + α perp(r) − ω² r, r = pos − p.
+    #[inline(always)]
+    pub fn set_acceleration_through(&mut self, p: V2, a_p: V2, alpha: f64) {
+        let r = self.pos - p;
+        self.alpha = alpha;
+        self.acc = a_p + perp(r) * alpha - r * (self.omega * self.omega);
+    }
 }
 
 /// The reference data of one link the solvers need: anchor, reference direction,

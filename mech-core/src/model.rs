@@ -415,7 +415,11 @@ mod tests {
         assert!(m.pinned_at_anchor(l("arm")));
         // The lever turns about O4 too, but its anchor is C, its first point.
         assert!(!m.pinned_at_anchor(l("lever")));
-        assert!(!m.pinned_at_anchor(l("rod")) && !m.pinned_at_anchor(l("piston")) && !m.pinned_at_anchor(0));
+        assert!(
+            !m.pinned_at_anchor(l("rod"))
+                && !m.pinned_at_anchor(l("piston"))
+                && !m.pinned_at_anchor(0)
+        );
         assert!(m.translates(l("piston")));
         assert!(!m.translates(l("rod")) && !m.translates(l("crank")) && !m.translates(0));
     }

@@ -27,7 +27,8 @@
 //! length scale L, so that both columns are lengths (κ does not change when the whole
 //! matrix is scaled): `Singular` near a change point, where e₁ ⊥ u.
 //!
-//! Each link's anchor then moves as the material point it is: v = v_P + ω perp(r),
+//! Each link's anchor then moves as the material point it is (`LinkState::set_velocity_through`,
+//! `set_acceleration_through`): v = v_P + ω perp(r),
 //! a = a_P + α perp(r) − ω² r, with P the dyad's point on that link and r = anchor − P.
 
 use crate::constraints::{JointGeom, Level};
@@ -58,21 +59,6 @@ fn solved_link(g: &JointGeom, body: usize) -> usize {
     }
 }
 
-/// Store ω and the anchor's velocity of a link through its point now at `p`, moving with `v_p`.
-#[inline(always)]
-fn set_velocity(s: &mut LinkState, p: V2, v_p: V2, omega: f64) {
-    s.omega = omega;
-    s.vel = v_p + perp(s.pos - p) * omega;
-}
-
-/// Store α and the anchor's acceleration of a link through its point now at `p`, accelerating with `a_p`.
-#[inline(always)]
-fn set_acceleration(s: &mut LinkState, p: V2, a_p: V2, alpha: f64) {
-    let r = s.pos - p;
-    s.alpha = alpha;
-    s.acc = a_p + perp(r) * alpha - r * (s.omega * s.omega);
-}
-
 /// Rates of an RRR dyad (module docs) whose links `b1`, `b2` are placed with A, B, C at
 /// `points` = [A, B, C]; `ja`, `jb` are the pins at A (of b1) and at C (of b2).
 /// `Singular` near a change point (e₁ ∥ e₂).
@@ -100,13 +86,13 @@ pub fn rrr_rates(
     let ((va, aa), (vc, ac)) = (point_rates(s, la, a), point_rates(s, lc, c));
     let dv = vc - va;
     let [w1, w2] = m.solve([dv.x, dv.y]);
-    set_velocity(&mut s[b1], a, va, w1);
-    set_velocity(&mut s[b2], c, vc, w2);
+    s[b1].set_velocity_through(a, va, w1);
+    s[b2].set_velocity_through(c, vc, w2);
     if upto == Level::Acceleration {
         let da = ac - aa + e1 * (w1 * w1) - e2 * (w2 * w2);
         let [al1, al2] = m.solve([da.x, da.y]);
-        set_acceleration(&mut s[b1], a, aa, al1);
-        set_acceleration(&mut s[b2], c, ac, al2);
+        s[b1].set_acceleration_through(a, aa, al1);
+        s[b2].set_acceleration_through(c, ac, al2);
     }
     Ok(())
 }
@@ -147,7 +133,7 @@ pub fn rrp_rates(
     };
     let dv = vg - va;
     let [w1, sd] = m.solve([dv.x, dv.y]);
-    set_velocity(&mut s[b1], a, va, w1);
+    s[b1].set_velocity_through(a, va, w1);
     let vc = vg + u * sd;
     // On the ground guide the slider does not turn: its anchor moves as C (the zero
     // terms written out would not fold, IEEE arithmetic keeping 0·x).
@@ -155,7 +141,7 @@ pub fn rrp_rates(
         s[b2].omega = 0.0;
         s[b2].vel = vc;
     } else {
-        set_velocity(&mut s[b2], c, vc, wg);
+        s[b2].set_velocity_through(c, vc, wg);
     }
     if upto == Level::Acceleration {
         let coriolis = if lg == 0 {
@@ -165,13 +151,13 @@ pub fn rrp_rates(
         };
         let da = ag + coriolis - aa + e1 * (w1 * w1);
         let [al1, sdd] = m.solve([da.x, da.y]);
-        set_acceleration(&mut s[b1], a, aa, al1);
+        s[b1].set_acceleration_through(a, aa, al1);
         let ac = ag + coriolis + u * sdd;
         if lg == 0 {
             s[b2].alpha = 0.0;
             s[b2].acc = ac;
         } else {
-            set_acceleration(&mut s[b2], c, ac, alg);
+            s[b2].set_acceleration_through(c, ac, alg);
         }
     }
     Ok(())

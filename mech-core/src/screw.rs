@@ -106,8 +106,7 @@ impl Twist {
 /// Store a twist `t` (at `o`) as a link's velocity: v = v_O + ω perp(pos − o).
 #[inline(always)]
 fn set_velocity(s: &mut LinkState, t: Twist, o: V2) {
-    s.omega = t.w;
-    s.vel = t.v + perp(s.pos - o) * t.w;
+    s.set_velocity_through(o, t.v, t.w);
 }
 
 /// Store a spatial acceleration `a` (at `o`) as a link's acceleration:
