@@ -88,8 +88,7 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             body,
             screw: rot(joint),
             input,
-            pinned: other(joint, body) == 0
-                && model.links[body].points.first() == Some(&model.joints[joint].point),
+            pinned: other(joint, body) == 0 && model.pinned_at_anchor(body),
         }),
         Solver::DrivenPrismatic { body, joint, input } => Kernel::Driven(Driven {
             from: other(joint, body),

@@ -789,21 +789,16 @@ impl Mechanism {
                 w.gravity(geom, lm, self.inst.gravity);
             }
         }
-        for (load, value) in self.model.loads.iter().zip(&loads.values) {
-            match (load, *value) {
-                (Load::Force { point, .. }, LoadValue::Force(v)) => {
+        for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
+            let link = load.link();
+            match *value {
+                LoadValue::Force(v) => {
                     crate::error::check_finite("loads", &[v.x, v.y])?;
-                    w.force(&m.points[*point], v)
+                    w.force(&point_motion(&m.states, link, self.inst.loads[k]), v)
                 }
-                (_, LoadValue::Torque(t)) => {
+                LoadValue::Torque(t) => {
                     crate::error::check_finite("loads", &[t])?;
-                    w.torque(&m.links[load.link()], t)
-                }
-                (Load::Torque { .. }, LoadValue::Force(_)) => {
-                    return Err(MechError::InvalidInput(format!(
-                        "load `{}` is a torque, given a force",
-                        load.name()
-                    )))
+                    w.torque(&m.links[link], t)
                 }
             }
         }

@@ -40,7 +40,7 @@ use crate::MechError;
 /// The velocity and acceleration (m/s, m/s²) of the material point of link `l` now at
 /// `p`; zero on the ground (link 0), whose state is not read.
 #[inline(always)]
-pub fn point_rates(s: &[LinkState], l: usize, p: V2) -> (V2, V2) {
+fn point_rates(s: &[LinkState], l: usize, p: V2) -> (V2, V2) {
     if l == 0 {
         (V2::zeros(), V2::zeros())
     } else {
