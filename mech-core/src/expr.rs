@@ -65,6 +65,10 @@ impl Quantity {
     }
 }
 
+/// The words that name the next property of a force element
+/// (`stiffness 2 kN_per_m free_length 80 mm`): an expression ends before them.
+pub const PROPERTY_WORDS: [&str; 5] = ["stiffness", "damping", "free_length", "free_angle", "preload"];
+
 fn si_unit(d: Dim) -> String {
     d.describe()
         .rsplit_once('(')
@@ -274,15 +278,20 @@ impl Constants {
         format!("unknown constant `{name}`: declare it in `consts {{ {name}: ... }}` before the section that uses it ({listed})")
     }
 
-    /// An optional unit word after a literal or a parenthesised expression.
+    /// An optional unit word after a literal or a parenthesised expression (not one of
+    /// [`PROPERTY_WORDS`], which start the next property of a force element).
     fn unit(&self, input: ParseStream, q: Quantity) -> syn::Result<Quantity> {
         if !input.peek(Ident) {
             return Ok(q);
         }
         let id: Ident = input.fork().parse()?;
         let word = id.to_string();
-        if units::lookup(&word).is_none() && (input.peek2(Token![:]) || self.get(&word).is_some()) {
-            return Ok(q); // the next item, or a constant after a missing operator: reported by the caller
+        if units::lookup(&word).is_none()
+            && (input.peek2(Token![:])
+                || self.get(&word).is_some()
+                || PROPERTY_WORDS.contains(&word.as_str()))
+        {
+            return Ok(q); // the next item or property, or a constant after a missing operator: reported by the caller
         }
         input.parse::<Ident>()?;
         with_unit(q, &word, id.span())

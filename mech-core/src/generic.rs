@@ -1101,6 +1101,7 @@ impl GenericMechanism {
                 }
             }
         }
+        crate::elements::add_wrenches(&self.inst.elements, s, &mut f);
         if inertia {
             for (l, geom) in self.inst.links.iter().enumerate().skip(1) {
                 if geom.mass != 0.0 || geom.inertia != 0.0 {

@@ -5,6 +5,7 @@ use crate::constraints::JointGeom;
 use crate::dyad::{branch, branch_quantity, Solver};
 use crate::geometry::{anchor, drawing_states, joint_geoms, local};
 use crate::link_state::{LinkGeom, LinkState, V2};
+use crate::elements::ElementGeom;
 use crate::model::{Load, Model};
 use crate::MechError;
 
@@ -21,6 +22,8 @@ pub struct Instance {
     pub points: Vec<(usize, V2)>,
     /// Per load: local vector of its point in its link (zero for torques).
     pub loads: Vec<V2>,
+    /// The force elements with their points in their links' frames.
+    pub elements: Vec<ElementGeom>,
     /// The drawing's length scale, m.
     pub scale: f64,
     /// Gravity, m/s² (zero when not declared).
@@ -68,7 +71,32 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
             Load::Torque { .. } => V2::zeros(),
         })
         .collect();
+    let elements = model
+        .elements
+        .iter()
+        .map(|e| {
+            let (da, db) = match e.points {
+                Some([p, q]) => (
+                    local(model, e.a, model.points[p].pos),
+                    local(model, e.b, model.points[q].pos),
+                ),
+                None => (V2::zeros(), V2::zeros()),
+            };
+            ElementGeom {
+                a: e.a,
+                b: e.b,
+                rotary: !e.kind.linear(),
+                da,
+                db,
+                stiffness: e.stiffness,
+                damping: e.damping,
+                free: e.free,
+                reference: model.reference_angle(e.b) - model.reference_angle(e.a),
+            }
+        })
+        .collect();
     Ok(Instance {
+        elements,
         joints: joint_geoms(model),
         links,
         drawing: drawing_states(model),
@@ -105,4 +133,36 @@ pub struct LinkParams {
     pub flywheel: f64,
     /// Centre of gravity in the drawing, m.
     pub cg: V2,
+}
+
+/// A linear spring's run-time parameters (`spring(a at P, b at Q)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpringParams {
+    /// k, N/m, ≥ 0.
+    pub stiffness: f64,
+    /// L₀, the unloaded length, m, ≥ 0 (a declared `preload` F₀ is L_drawing − F₀/k).
+    pub free_length: f64,
+}
+
+/// A linear damper's run-time parameter (`damper(a at P, b at Q)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DamperParams {
+    /// c, N·s/m, ≥ 0.
+    pub damping: f64,
+}
+
+/// A torsion spring's run-time parameters (`torsion_spring(a, b)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TorsionSpringParams {
+    /// k, N·m/rad, ≥ 0.
+    pub stiffness: f64,
+    /// φ₀, the relative angle θ_b − θ_a at which it is unloaded, rad.
+    pub free_angle: f64,
+}
+
+/// A rotary damper's run-time parameter (`rotary_damper(a, b)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RotaryDamperParams {
+    /// c, N·m·s/rad, ≥ 0.
+    pub damping: f64,
 }

@@ -31,6 +31,7 @@ pub mod construction;
 pub mod dsl;
 pub mod dyad;
 pub mod dynamics;
+pub mod elements;
 pub mod energy;
 pub mod equivalent_mass;
 pub mod error;

@@ -266,6 +266,8 @@ impl Mechanism {
     ///   `links.<l>.inertia` = `[I_G]` (kg·m²), `links.<l>.flywheel` = `[I]` (kg·m², a rotor
     ///   keyed to the link, added to its rotational inertia),
     /// - `axes.<joint>` = `[ux, uy]` (a prismatic or slot joint's axis),
+    /// - `elements.<e>.stiffness`, `.free_length` (a spring, N/m and m),
+    ///   `.free_angle` (a torsion spring, rad), `.damping` (a damper, N·s/m or N·m·s/rad),
     /// - `gravity` = `[gx, gy]` (m/s²; `[]` removes it).
     ///
     /// The run-time counterpart of a generated struct's `from_params`.
@@ -318,6 +320,26 @@ impl Mechanism {
                 }
                 model.joints[i].axis = pair(value)?;
             }
+            ["elements", e, what] => {
+                let el = model
+                    .elements
+                    .iter_mut()
+                    .find(|el| el.name == *e)
+                    .ok_or_else(|| bad("unknown force element"))?;
+                match (*what, el.kind.spring()) {
+                    ("stiffness", true) => el.stiffness = one(value)?,
+                    ("free_length", true) if el.kind.linear() => el.free = one(value)?,
+                    ("free_angle", true) if !el.kind.linear() => el.free = one(value)?,
+                    ("damping", false) => el.damping = one(value)?,
+                    _ => {
+                        return Err(bad(if el.kind.spring() {
+                            "a spring has `stiffness` and `free_length` (`free_angle` for a torsion spring)"
+                        } else {
+                            "a damper has `damping`"
+                        }))
+                    }
+                }
+            }
             ["gravity"] => {
                 model.gravity = if value.is_empty() {
                     None
@@ -327,7 +349,7 @@ impl Mechanism {
             }
             _ => {
                 return Err(bad(
-                    "use points.<P>, links.<l>.{cg, mass, inertia}, axes.<joint> or gravity",
+                    "use points.<P>, links.<l>.{cg, mass, inertia, flywheel}, axes.<joint>, elements.<e>.{stiffness, free_length, free_angle, damping} or gravity",
                 ))
             }
         }
@@ -586,6 +608,7 @@ impl Mechanism {
                 }
             }
         }
+        crate::elements::add_wrenches(&self.inst.elements, s, f);
         Ok(())
     }
 
@@ -759,10 +782,12 @@ impl Mechanism {
         Ok(out)
     }
 
-    /// Zhukovski's sums over the motion with q̇ = 1, q̈ = 0 (one input).
+    /// Zhukovski's sums over the motion with q̇ = 1, q̈ = 0 (one input); `qd` is the
+    /// input rate the dampers' part of M* is taken at.
     fn reduction(
         &self,
         q: f64,
+        qd: f64,
         loads: Option<&Loads>,
         upto: Level,
     ) -> Result<Reduction, MechError> {
@@ -774,7 +799,7 @@ impl Mechanism {
         }
         let mut s: Scratch<LinkState> = SmallVec::from_slice(&self.inst.drawing);
         self.solve_slice(&[q], &[1.0], &[0.0], upto, &mut s)?;
-        self.sums(&s, loads, upto == Level::Acceleration)
+        self.sums(&s, loads, qd, upto == Level::Acceleration)
     }
 
     /// The power balance over the motion `m` (its link and point motions).
@@ -802,15 +827,18 @@ impl Mechanism {
                 }
             }
         }
+        w.elements(&self.inst.elements, &m.states);
         Ok(w)
     }
 
     /// Zhukovski's sums over the states `s`: the inertia terms when `inertia`, the power
-    /// of gravity and of `loads` when given.
+    /// of gravity, of `loads` and of the force elements (at the input rate `qd`) when
+    /// `loads` are given.
     fn sums(
         &self,
         s: &[LinkState],
         loads: Option<&Loads>,
+        qd: f64,
         inertia: bool,
     ) -> Result<Reduction, MechError> {
         let mut z = Reduction::default();
@@ -847,6 +875,7 @@ impl Mechanism {
                     }
                 }
             }
+            z.elements(&self.inst.elements, s, qd);
         }
         crate::magnitudes::finite_result(
             "reduced inertia and moment",
@@ -1075,20 +1104,21 @@ impl Machine for Mechanism {
             .map(|(l, _)| {
                 crate::energy::potential(&self.inst.links[l], &m.links[l], self.inst.gravity)
             })
-            .sum()
+            .sum::<f64>()
+            + crate::elements::potential(&self.inst.elements, &m.states)
     }
 }
 
 impl OneDof for Mechanism {
     fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
-        Ok(self.reduction(q, None, Level::Acceleration)?.reduced)
+        Ok(self.reduction(q, 0.0, None, Level::Acceleration)?.reduced)
     }
     fn reduced_moment(&self, q: f64, loads: &Loads) -> Result<f64, MechError> {
-        Ok(self.reduction(q, Some(loads), Level::Velocity)?.moment)
+        Ok(self.reduction(q, 0.0, Some(loads), Level::Velocity)?.moment)
     }
     fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &Loads) -> Result<f64, MechError> {
         crate::error::check_finite("q, qd, driver", &[q, qd, driver])?;
-        let z = self.reduction(q, Some(loads), Level::Acceleration)?;
+        let z = self.reduction(q, qd, Some(loads), Level::Acceleration)?;
         crate::zhukovski::acceleration(z.reduced, z.moment, qd, driver)
     }
 }

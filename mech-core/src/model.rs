@@ -156,6 +156,73 @@ pub struct LoadDecl<S> {
     pub kind: LoadDeclKind<S>,
 }
 
+/// What a force element is (`elements { }`, `docs/conventions.md#elements`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ElementKind {
+    /// `spring(a at P, b at Q) stiffness k free_length L0` (or `preload F0`): a linear
+    /// spring between two points, tension T = k (L − L₀).
+    Spring,
+    /// `damper(a at P, b at Q) damping c`: a linear viscous damper, tension T = c L̇.
+    Damper,
+    /// `torsion_spring(a, b) stiffness k free_angle φ₀`: moment −k (θ_b − θ_a − φ₀) on b.
+    TorsionSpring,
+    /// `rotary_damper(a, b) damping c`: moment −c (ω_b − ω_a) on b.
+    RotaryDamper,
+}
+
+impl ElementKind {
+    /// The DSL keyword.
+    pub fn keyword(self) -> &'static str {
+        match self {
+            ElementKind::Spring => "spring",
+            ElementKind::Damper => "damper",
+            ElementKind::TorsionSpring => "torsion_spring",
+            ElementKind::RotaryDamper => "rotary_damper",
+        }
+    }
+    /// True for the elements between two points (spring, damper); false for the rotary ones.
+    pub fn linear(self) -> bool {
+        matches!(self, ElementKind::Spring | ElementKind::Damper)
+    }
+    /// True for the springs (a stiffness and a free length or angle).
+    pub fn spring(self) -> bool {
+        matches!(self, ElementKind::Spring | ElementKind::TorsionSpring)
+    }
+}
+
+/// How the unloaded state of a spring is given.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RestDecl<S> {
+    /// `free_length L0` (m) or `free_angle φ0` (rad).
+    Free(Num<S>),
+    /// `preload F0`: the tension (N, or N·m for a torsion spring) in the drawing,
+    /// negative for a compressed spring.
+    Preload(Num<S>),
+}
+
+/// A force element as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ElementDecl<S> {
+    /// The element's name.
+    pub name: Name<S>,
+    /// What it is.
+    pub kind: ElementKind,
+    /// Where its keyword was written.
+    pub kind_span: S,
+    /// First link and, for a spring or damper, its point P.
+    pub a: Name<S>,
+    /// `a at P`.
+    pub pa: Option<Name<S>>,
+    /// Second link and its point Q.
+    pub b: Name<S>,
+    /// `b at Q`.
+    pub pb: Option<Name<S>>,
+    /// Stiffness (N/m, N·m/rad) or damping (N·s/m, N·m·s/rad).
+    pub coefficient: Num<S>,
+    /// The spring's free length, free angle or preload; `None` for a damper.
+    pub rest: Option<RestDecl<S>>,
+}
+
 /// A whole `mechanism! { ... }` body as written, names unresolved.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Description<S> {
@@ -179,6 +246,8 @@ pub struct Description<S> {
     pub inputs_span: S,
     /// The loads, in order.
     pub loads: Vec<LoadDecl<S>>,
+    /// The force elements, in order.
+    pub elements: Vec<ElementDecl<S>>,
 }
 
 // ---------------------------------------------------------------------------------------
@@ -277,6 +346,30 @@ impl Load {
     }
 }
 
+/// A resolved force element (`docs/conventions.md#elements`): a spring–damper, its
+/// tension T = k (x − x₀) + c ẋ along its extension x (the distance |Q − P| of a linear
+/// element, the relative angle θ_b − θ_a of a rotary one). A spring has c = 0, a damper
+/// k = 0 and x₀ = 0.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Element {
+    /// Name.
+    pub name: String,
+    /// What it was declared as.
+    pub kind: ElementKind,
+    /// First link.
+    pub a: usize,
+    /// Second link.
+    pub b: usize,
+    /// The points P (of a) and Q (of b) of a linear element; `None` for a rotary one.
+    pub points: Option<[usize; 2]>,
+    /// k: N/m (linear) or N·m/rad (rotary); 0 for a damper.
+    pub stiffness: f64,
+    /// c: N·s/m (linear) or N·m·s/rad (rotary); 0 for a spring.
+    pub damping: f64,
+    /// x₀: the free length (m) or free angle (rad); 0 for a damper.
+    pub free: f64,
+}
+
 /// A resolved mechanism: plain data, indices only.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Model {
@@ -300,6 +393,8 @@ pub struct Model {
     pub input_zero: Vec<f64>,
     /// Loads.
     pub loads: Vec<Load>,
+    /// Force elements (springs, dampers).
+    pub elements: Vec<Element>,
 }
 
 impl Model {

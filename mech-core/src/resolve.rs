@@ -47,6 +47,8 @@ pub enum Culprit {
     Inputs,
     /// The gravity vector.
     Gravity,
+    /// Force element `i` (its coefficient).
+    Element(usize),
 }
 
 /// A problem found by a check on a resolved [`Model`].
@@ -110,6 +112,7 @@ impl<S: Clone> Description<S> {
                     .unwrap_or_else(|| self.name.span.clone())
             }
             Culprit::Inputs => self.inputs_span.clone(),
+            Culprit::Element(i) => self.elements[i].coefficient.span.clone(),
             Culprit::Gravity => self
                 .gravity
                 .as_ref()
@@ -175,6 +178,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
     dup_check("joint", d.joints.iter().map(|j| &j.name), &mut errs);
     dup_check("load", d.loads.iter().map(|l| &l.name), &mut errs);
     dup_check("input", d.inputs.iter().map(|i| &i.name), &mut errs);
+    dup_check("element", d.elements.iter().map(|e| &e.name), &mut errs);
 
     // Points: defined once, reused by name.
     let mut points: Vec<Point> = Vec::new();
@@ -499,10 +503,51 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         }
     }
 
+    // Force elements: their links and points (the rest state after the model is built).
+    let mut element_ends = Vec::new();
+    for e in &d.elements {
+        let end = |link: &Name<S>, at: &Option<Name<S>>, errs: &mut Vec<Diagnostic<S>>| {
+            let li = find_link(link, errs)?;
+            let Some(pt) = at else { return Some((li, None)) };
+            match point_ix.get(&pt.text).copied() {
+                Some(pi) if links[li].points.contains(&pi) => Some((li, Some(pi))),
+                _ => {
+                    let names: Vec<&str> = links[li]
+                        .points
+                        .iter()
+                        .map(|&p| points[p].name.as_str())
+                        .collect();
+                    errs.push(Diagnostic::at(
+                        pt.span.clone(),
+                        format!(
+                            "{} `{}` is attached at point `{}`, which link `{}` does not have; its points are {}",
+                            e.kind.keyword(), e.name.text, pt.text, links[li].name, list(&names)
+                        ),
+                    ));
+                    None
+                }
+            }
+        };
+        let (ea, eb) = (end(&e.a, &e.pa, &mut errs), end(&e.b, &e.pb, &mut errs));
+        if let (Some(ea), Some(eb)) = (ea, eb) {
+            if ea.0 == eb.0 {
+                errs.push(Diagnostic::at(
+                    e.b.span.clone(),
+                    format!(
+                        "{} `{}` joins link `{}` to itself: a force element acts between two different links (one of them may be `ground`)",
+                        e.kind.keyword(), e.name.text, links[ea.0].name
+                    ),
+                ));
+            } else {
+                element_ends.push((e, ea, eb));
+            }
+        }
+    }
+
     if !errs.is_empty() {
         return Err(errs);
     }
-    Ok(Model {
+    let mut model = Model {
         name: d.name.text.clone(),
         gravity: d.gravity.as_ref().map(|g| g.value),
         allow_redundant: d.allow_redundant,
@@ -512,6 +557,63 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         inputs,
         input_zero,
         loads,
+        elements: Vec::new(),
+    };
+    for (e, (a, pa), (b, pb)) in element_ends {
+        match element_of(&model, e, a, b, pa.zip(pb).map(|(p, q)| [p, q])) {
+            Ok(el) => model.elements.push(el),
+            Err(diag) => errs.push(diag),
+        }
+    }
+    if !errs.is_empty() {
+        return Err(errs);
+    }
+    Ok(model)
+}
+
+/// A resolved force element; a preload becomes the free length (angle) that gives it in
+/// the drawing: x₀ = x_drawing − F₀/k.
+fn element_of<S: Clone>(
+    model: &Model,
+    e: &ElementDecl<S>,
+    a: usize,
+    b: usize,
+    points: Option<[usize; 2]>,
+) -> Result<Element, Diagnostic<S>> {
+    let k = e.coefficient.value;
+    let drawn = match points {
+        Some([p, q]) => {
+            let (p, q) = (model.points[p].pos, model.points[q].pos);
+            (q[0] - p[0]).hypot(q[1] - p[1])
+        }
+        None => model.reference_angle(b) - model.reference_angle(a),
+    };
+    let free = match &e.rest {
+        None => 0.0,
+        Some(RestDecl::Free(x)) => x.value,
+        Some(RestDecl::Preload(f)) => {
+            if !(k > 0.0) {
+                return Err(Diagnostic::at(
+                    f.span.clone(),
+                    format!(
+                        "{} `{}` has a preload but stiffness {k}: a preload needs a positive stiffness (free length = drawn length − preload / stiffness)",
+                        e.kind.keyword(), e.name.text
+                    ),
+                ));
+            }
+            drawn - f.value / k
+        }
+    };
+    let spring = e.kind.spring();
+    Ok(Element {
+        name: e.name.text.clone(),
+        kind: e.kind,
+        a,
+        b,
+        points,
+        stiffness: if spring { k } else { 0.0 },
+        damping: if spring { 0.0 } else { k },
+        free,
     })
 }
 

@@ -6,7 +6,7 @@
 
 use crate::constraints::ConKind;
 use crate::geometry::{all_cons, drawing_states, joint_geoms};
-use crate::model::{JointKind, Model};
+use crate::model::{ElementKind, JointKind, Model};
 use crate::resolve::{Culprit, Issue};
 use nalgebra::{DMatrix, DVector};
 
@@ -36,6 +36,41 @@ fn names(items: impl Iterator<Item = String>) -> String {
 
 fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// Part of check 5: every force element's numbers are finite, its stiffness and damping
+/// ≥ 0, a linear spring's free length ≥ 0 (`docs/conventions.md#elements`).
+fn element_numbers(model: &Model) -> Vec<Issue> {
+    let mut out = Vec::new();
+    for (i, e) in model.elements.iter().enumerate() {
+        let kind = e.kind.keyword();
+        let (coef, unit) = match e.kind {
+            ElementKind::Spring => (e.stiffness, "N/m"),
+            ElementKind::TorsionSpring => (e.stiffness, "N·m/rad"),
+            ElementKind::Damper => (e.damping, "N·s/m"),
+            ElementKind::RotaryDamper => (e.damping, "N·m·s/rad"),
+        };
+        let what = if e.kind.spring() { "stiffness" } else { "damping" };
+        if !(coef.is_finite() && coef >= 0.0) || !(e.stiffness.is_finite() && e.damping.is_finite()) {
+            out.push(Issue {
+                culprits: vec![Culprit::Element(i)],
+                message: format!("{kind} `{}` has {what} {coef} {unit}: it must be finite and ≥ 0 (a negative {what} would feed energy into the machine)", e.name),
+            });
+        }
+        if !e.free.is_finite() || (e.kind == ElementKind::Spring && e.free < 0.0) {
+            out.push(Issue {
+                culprits: vec![Culprit::Element(i)],
+                message: format!(
+                    "{kind} `{}` has free {} {}: it must be finite{}",
+                    e.name,
+                    if e.kind.linear() { "length" } else { "angle" },
+                    e.free,
+                    if e.kind.linear() { " and ≥ 0 m (a preload larger than stiffness × drawn length gives a negative one)" } else { " (rad)" }
+                ),
+            });
+        }
+    }
+    out
 }
 
 /// Check 5 of `docs/conventions.md#checks`: the drawing is consistent.
@@ -99,6 +134,7 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
             });
         }
     }
+    out.extend(element_numbers(model));
     if let Some(g) = model.gravity {
         if !g.iter().all(|v| v.is_finite()) {
             out.push(Issue {

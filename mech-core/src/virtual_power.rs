@@ -71,6 +71,12 @@ impl Power {
     pub fn torque(&mut self, m: &LinkMotion, t: f64) {
         self.applied += t * m.omega;
     }
+    /// Add the power of the force elements in the motion `s`, −Σ T ẋ
+    /// ([`crate::elements::power`]).
+    #[inline(always)]
+    pub fn elements(&mut self, e: &[crate::elements::ElementGeom], s: &[LinkState]) {
+        self.applied += crate::elements::power(e, s);
+    }
     /// The motor action Q = (dT/dt − P)/q̇ (N·m, or N for a prismatic input); q̇ ≠ 0.
     #[inline(always)]
     pub fn driver(&self, qd: f64) -> Result<f64, MechError> {

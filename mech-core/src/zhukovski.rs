@@ -5,7 +5,9 @@
 //! that same motion):
 //! - I*(q) = Σ (m_j |g_Gj|² + I_Gj g_j²)                       (kg·m² for a rotary input)
 //! - dI*/dq = 2 Σ (m_j g_Gj·g'_Gj + I_Gj g_j g'_j)
-//! - M*(q) = Σ F_k·g_k + Σ M_j g_j                               (N·m), gravity included
+//! - M*(q) = Σ F_k·g_k + Σ M_j g_j                               (N·m), gravity included,
+//!   and the force elements' −Σ T x' (a damper's part −c x'² q̇ depends on q̇: it enters
+//!   the direct problem, `reduced_moment` takes it at q̇ = 0)
 //! - equation of motion: I* q̈ + ½ dI*/dq q̇² = driver + M*.
 
 use crate::link_state::{LinkGeom, LinkState, V2};
@@ -116,5 +118,11 @@ impl Reduction {
     #[inline(always)]
     pub fn torque(&mut self, s: &LinkState, t: f64) {
         self.moment += t * s.omega;
+    }
+    /// Add the force elements' part of M* at the input rate `qd`
+    /// ([`crate::elements::reduced_moment`]: −Σ T x', a damper's −c x'² q̇ included).
+    #[inline(always)]
+    pub fn elements(&mut self, e: &[crate::elements::ElementGeom], s: &[LinkState], qd: f64) {
+        self.moment += crate::elements::reduced_moment(e, s, qd);
     }
 }

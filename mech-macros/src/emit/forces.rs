@@ -172,14 +172,19 @@ fn forces_type(cx: &Ctx) -> TokenStream {
     }
 }
 
-/// `__wrenches`: gravity on the links declared with `mass`, the loads, and with `inertia`
-/// d'Alembert's inertia wrench of the links with inertia terms.
+/// `__wrenches`: gravity on the links declared with `mass`, the loads, the force elements,
+/// and with `inertia` d'Alembert's inertia wrench of the links with inertia terms.
 fn wrenches_fn(cx: &Ctx) -> TokenStream {
     let Ctx { p, n_links, .. } = cx;
     let loads = &cx.names.loads;
     let values = load_values(cx);
     let weighed = cx.weighed();
     let inertial = cx.inertial();
+    let elements = if cx.has_elements() {
+        quote!(#p::elements::add_wrenches(&self.elements, s, &mut f);)
+    } else {
+        quote!()
+    };
     let load_terms = cx.model.loads.iter().enumerate().map(|(k, l)| {
         let (lid, link) = (id(l.name()), l.link());
         match l {
@@ -200,6 +205,7 @@ fn wrenches_fn(cx: &Ctx) -> TokenStream {
             let mut f = [#p::kinetostatics::Wrench::zeros(); #n_links];
             #( #p::kinetostatics::add_gravity(&mut f[#weighed], &s[#weighed], &self.links[#weighed], self.gravity); )*
             #(#load_terms)*
+            #elements
             if inertia {
                 #( #p::kinetostatics::add_inertia(&mut f[#inertial], &s[#inertial], &self.links[#inertial]); )*
             }
@@ -429,6 +435,11 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
             }
         });
         let values = load_values(cx);
+        let elements = if cx.has_elements() {
+            quote!(w.elements(&self.elements, &m.states);)
+        } else {
+            quote!()
+        };
         quote! {
             if m.qd[0] != 0.0 {
                 #p::error::check_finite("loads", &[#values])?;
@@ -436,6 +447,7 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
                 #(#inertia)*
                 #(#gravity)*
                 #(#applied)*
+                #elements
                 return w.driver(m.qd[0]);
             }
         }

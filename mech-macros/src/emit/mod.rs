@@ -121,6 +121,12 @@ impl<'a> Ctx<'a> {
         self.model.allow_redundant
     }
 
+    /// The mechanism has force elements (`elements { }`): the struct keeps their geometry
+    /// and every route adds their forces.
+    pub fn has_elements(&self) -> bool {
+        !self.model.elements.is_empty()
+    }
+
     /// The moving links' identifiers.
     pub fn moving_ids(&self) -> &[Ident] {
         &self.link_ids[1..]

@@ -1,5 +1,6 @@
 //! The names of the generated types: `<Name>`, `<Name>Params`, `<Name>Loads`,
-//! `<Name>Pose`, `<Name>Motion`, `<Name>Forces` (public API) and their field structs.
+//! `<Name>Pose`, `<Name>Motion`, `<Name>Forces` (public API) and their field structs
+//! (`<Name>ParamsElements` only for a mechanism with force elements).
 
 use mech_core::model::Description;
 use proc_macro2::Span;
@@ -13,6 +14,7 @@ pub(crate) struct Names {
     pub params_points: Ident,
     pub params_links: Ident,
     pub params_axes: Ident,
+    pub params_elements: Ident,
     pub loads: Ident,
     pub pose: Ident,
     pub pose_links: Ident,
@@ -34,6 +36,7 @@ impl Names {
             params_points: format_ident!("{}ParamsPoints", n),
             params_links: format_ident!("{}ParamsLinks", n),
             params_axes: format_ident!("{}ParamsAxes", n),
+            params_elements: format_ident!("{}ParamsElements", n),
             loads: format_ident!("{}Loads", n),
             pose: format_ident!("{}Pose", n),
             pose_links: format_ident!("{}PoseLinks", n),

@@ -55,6 +55,11 @@ fn machine_impl(cx: &Ctx) -> TokenStream {
         let lid = &cx.link_ids[l];
         quote!(+ #p::energy::potential(&self.links[#l], &m.links.#lid, self.gravity))
     });
+    let springs = if cx.has_elements() {
+        quote!(+ #p::elements::potential(&self.elements, &m.states))
+    } else {
+        quote!()
+    };
     quote! {
         impl #p::traits::Machine for #main {
             type Loads = #loads;
@@ -84,7 +89,7 @@ fn machine_impl(cx: &Ctx) -> TokenStream {
             }
             fn potential_energy(&self, m: &#motion) -> f64 {
                 let _ = m;
-                0.0 #(#potential)*
+                0.0 #(#potential)* #springs
             }
         }
     }
@@ -152,6 +157,15 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
     let values = forces::load_values(cx);
     let (inertia, moment) = zhukovski_terms(cx);
     let inputs = &cx.inputs_doc;
+    // The force elements at q̇ = 0 (M*(q): no damper force) and at the given q̇.
+    let (elements_at_rest, elements_moving) = if cx.has_elements() {
+        (
+            quote!(z.elements(&self.elements, &s, 0.0);),
+            quote!(z.elements(&self.elements, &s, qd);),
+        )
+    } else {
+        (quote!(), quote!())
+    };
     quote! {
         /// Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad), in closed
         /// form from the velocity coefficients and their derivatives.
@@ -163,14 +177,16 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             #p::magnitudes::finite_result("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
             Ok(z.reduced)
         }
-        /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads and gravity
-        /// per unit input rate, M* = Σ F·g + Σ M·g.
+        /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads, gravity and
+        /// springs per unit input rate, M* = Σ F·g + Σ M·g − Σ T x' (a damper's part,
+        /// −c x'² q̇, depends on q̇: `acceleration` adds it, M*(q) is at q̇ = 0).
         pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
             #p::error::check_finite("q", &[q])?;
             #p::error::check_finite("loads", &[#values])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity, false)?;
             let mut z = #p::zhukovski::Reduction::default();
             #moment
+            #elements_at_rest
             #p::magnitudes::finite_result("reduced moment", &[z.moment])?;
             Ok(z.moment)
         }
@@ -185,6 +201,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             let mut z = #p::zhukovski::Reduction::default();
             #inertia
             #moment
+            #elements_moving
             #p::zhukovski::acceleration(z.reduced, z.moment, qd, driver)
         }
     }
