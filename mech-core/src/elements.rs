@@ -1,4 +1,4 @@
-//! Force elements (`docs/theory.md` §7, `docs/conventions.md#elements`): linear springs and
+//! Force elements (`docs/theory.md` §10, `docs/conventions.md#elements`): linear springs and
 //! dampers between two points, torsion springs and rotary dampers between two links. Each
 //! is a spring–damper along its *extension* x:
 //!

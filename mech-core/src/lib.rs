@@ -11,8 +11,8 @@
 //! [`linalg`] → [`dyad`] (closed-form positions), [`screw`] (closed-form rates and
 //! reactions by joint screws), [`group`] (Newton and LU for the rest) → [`kinematics`]
 //! (one entry point per group). The generated code is a sequence of calls into those and
-//! into [`kinetostatics`], [`virtual_power`], [`zhukovski`], [`energy`], [`branches`] and
-//! [`friction`], with the numbers of [`instance`] checked against the declaration by
+//! into [`kinetostatics`], [`virtual_power`], [`zhukovski`], [`energy`], [`elements`]
+//! (springs and dampers), [`branches`] and [`friction`], with the numbers of [`instance`] checked against the declaration by
 //! [`params`]. Every generated struct and every run-time [`Mechanism`] implements the
 //! [`traits`] that the algorithms written once here take: [`dynamics`] and [`ode`] (the
 //! direct problem), [`flywheel`] (Wittenbauer), [`friction`], [`equivalent_mass`]. The
