@@ -11,6 +11,7 @@ use crate::constraints::{Con, ConKind};
 use crate::dyad::Solver;
 use crate::geometry::joint_cons;
 use crate::model::{JointKind, Model};
+use crate::gears::MeshGroup;
 use crate::screw::{Chain, Driven, JointScrew, VIRTUAL};
 
 /// One group of the plan.
@@ -33,6 +34,8 @@ pub enum Kernel {
     Driven(Driven),
     /// A closed-form dyad or slot group: a chain of three joint screws.
     Chain(Chain),
+    /// One link meshing with a solved gear or rack: Willis' relation ([`crate::gears`]).
+    Mesh(MeshGroup),
     /// No closed form: the group's scaled Jacobian, LU-factored.
     System,
 }
@@ -124,7 +127,80 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             links: [body, VIRTUAL],
             pivot: 0,
         }),
+        Solver::Mesh { body } => mesh_kernel(model, body),
         Solver::Newton => Kernel::System,
+    }
+}
+
+/// The kernel of a link meshing with a solved one: its mesh joint, the joint that holds
+/// it (a revolute at its centre, or a rack's slide), the partner and the carrier. The
+/// mesh index counts the mesh joints in declaration order; `*_tracked` are set by [`plan`].
+fn mesh_kernel(model: &Model, body: usize) -> Kernel {
+    let meshes: Vec<usize> = (0..model.joints.len())
+        .filter(|&j| model.joints[j].kind.mesh())
+        .collect();
+    let touches = |j: usize| model.joints[j].a == body || model.joints[j].b == body;
+    let Some((mesh, &joint)) = meshes.iter().enumerate().find(|(_, &j)| touches(j)) else {
+        return Kernel::System;
+    };
+    let jt = &model.joints[joint];
+    let Some(m) = jt.mesh.as_ref() else {
+        return Kernel::System;
+    };
+    let partner = if jt.a == body { jt.b } else { jt.a };
+    let rack_link = (jt.kind == JointKind::Rack).then_some(jt.b);
+    let slide = rack_link.and_then(|r| {
+        (0..model.joints.len()).find(|&j| {
+            let o = &model.joints[j];
+            o.kind == JointKind::Prismatic
+                && ((o.a == r && o.b == m.carrier) || (o.b == r && o.a == m.carrier))
+        })
+    });
+    let body_slides = rack_link == Some(body);
+    let pin = if body_slides {
+        slide
+    } else {
+        let centre = if jt.a == body { m.centres[0] } else { m.centres[1] };
+        (0..model.joints.len()).find(|&j| {
+            let o = &model.joints[j];
+            o.kind == JointKind::Revolute && touches(j) && o.point == centre
+        })
+    };
+    let Some(pin) = pin else {
+        return Kernel::System;
+    };
+    Kernel::Mesh(MeshGroup {
+        body,
+        pin,
+        joint,
+        mesh,
+        partner,
+        carrier: m.carrier,
+        slide: slide.unwrap_or(pin),
+        body_slides,
+        partner_slides: rack_link == Some(partner),
+        partner_tracked: false,
+        carrier_tracked: false,
+    })
+}
+
+/// Which links' [`crate::link_state::LinkState::angle`] the plan keeps over turns: the
+/// ground, a driven link whose base has it, a link sliding on one that has it, and a
+/// meshing link (Willis from its partner and carrier); then each mesh group told whether
+/// its partner's and carrier's are kept.
+fn track_angles(n: usize, groups: &mut [Group]) {
+    let mut tracked = vec![false; n];
+    tracked[0] = true;
+    for g in groups.iter_mut() {
+        match &mut g.kernel {
+            Kernel::Driven(d) => tracked[d.body] = tracked[d.from],
+            Kernel::Mesh(m) => {
+                m.partner_tracked = tracked[m.partner];
+                m.carrier_tracked = tracked[m.carrier];
+                tracked[m.body] = true;
+            }
+            _ => {}
+        }
     }
 }
 
@@ -191,6 +267,7 @@ pub fn plan(model: &Model) -> Result<Vec<Group>, Vec<usize>> {
             kernel,
         });
     }
+    track_angles(n, &mut groups);
     Ok(groups)
 }
 
@@ -234,6 +311,13 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
                     },
                     _ => unreachable!(),
                 };
+            }
+            let mesh = cons.iter().any(|c| c.kind == ConKind::Mesh);
+            let held = cons
+                .iter()
+                .any(|c| matches!(c.kind, ConKind::Revolute | ConKind::Prismatic));
+            if mesh && held && cons.len() == 2 {
+                return Solver::Mesh { body };
             }
             let rev = cons.iter().find(|c| c.kind == ConKind::Revolute);
             let slot = cons.iter().find(|c| c.kind == ConKind::Slot);

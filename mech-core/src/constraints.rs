@@ -4,7 +4,9 @@
 //! - sliding normal (prismatic and slot) along u fixed in a: `n·(P_b − Q_a) = 0` with
 //!   n = R(φ_a)·perp(u), Q_a the material point of a at P in the drawing (1 row),
 //! - prismatic rotation lock: `φ_b − φ_a = 0` (1 row),
-//! - revolute driver: `φ_b − φ_a − (q − q_ref) = 0`; prismatic driver: `u·(P_b − Q_a) − (q − q_ref) = 0`.
+//! - revolute driver: `φ_b − φ_a − (q − q_ref) = 0`; prismatic driver: `u·(P_b − Q_a) − (q − q_ref) = 0`;
+//! - gear pair or rack: no slip along the tangent t at the pitch point P,
+//!   `t·(v_b(P) − v_a(P)) = 0` (a velocity constraint: Jacobian and rates only).
 //!
 //! The reaction convention follows from these signs: the multiplier λ of a joint's rows
 //! is the force (and moment) exerted BY a ON b (`docs/conventions.md`, Reactions).
@@ -61,6 +63,11 @@ pub enum ConKind {
     DriveRevolute(usize),
     /// Prismatic driver (input `k`): 1 row (the guide itself is a separate `Prismatic`).
     DrivePrismatic(usize),
+    /// Gear pair or rack (`crate::gears`): no slip at the pitch point along the common
+    /// tangent t, `t·(v_b(P) − v_a(P)) = 0` (1 row; the joint's `da`, `db` are P in a and
+    /// b, its `axis` is t in the drawing). Its rows serve the rank test at the drawing;
+    /// meshing links are solved by [`crate::gears`], not by a group system.
+    Mesh,
 }
 
 impl ConKind {
@@ -198,6 +205,17 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
                     Level::Acceleration => sb.alpha - sa.alpha,
                 };
             }
+        }
+        ConKind::Mesh => {
+            let t = sa.r(g.axis);
+            out.rows[0] = Row {
+                a: Vector3::new(-t.x, -t.y, -cross(ra, t)),
+                b: Vector3::new(t.x, t.y, cross(rb, t)),
+            };
+            out.val[0] = match level {
+                Level::Velocity => t.dot(&(sb.vel_at(rb) - sa.vel_at(ra))),
+                _ => 0.0,
+            };
         }
         ConKind::DriveRevolute(k) => {
             out.rows[0] = Row {

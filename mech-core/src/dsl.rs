@@ -7,7 +7,7 @@ use crate::expr::{Constants, Quantity};
 use crate::link_state::V2;
 use crate::model::{
     Description, ElementDecl, ElementKind, InputDecl, JointDecl, JointKind, LinkDecl, LoadDecl,
-    LoadDeclKind, Measure, Name, Num, Pair, PointRef, RestDecl,
+    LoadDeclKind, Measure, MeshDecl, Name, Num, Pair, PointRef, RestDecl,
 };
 use crate::units::Dim;
 use proc_macro2::Span;
@@ -440,10 +440,12 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
             "revolute" => JointKind::Revolute,
             "prismatic" => JointKind::Prismatic,
             "pin_in_slot" => JointKind::PinInSlot,
+            "gear" => JointKind::Gear,
+            "rack" => JointKind::Rack,
             other => {
                 return Err(syn::Error::new(
                     kw.span(),
-                    format!("unknown joint kind `{other}`: expected `revolute`, `prismatic` or `pin_in_slot`"),
+                    format!("unknown joint kind `{other}`: expected `revolute`, `prismatic`, `pin_in_slot`, `gear` or `rack`"),
                 ))
             }
         };
@@ -455,9 +457,50 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
         let _: Option<Token![,]> = args.parse()?;
         let mut at = None;
         let mut along = None;
+        let mut mesh: Option<MeshDecl<Span>> = None;
         while content.peek(Ident) {
             let k: Ident = content.parse()?;
             match k.to_string().as_str() {
+                "radii" if kind == JointKind::Gear && mesh.is_none() => {
+                    mesh = Some(MeshDecl {
+                        radii: scope.pair(&content, Dim::LENGTH, "a pitch radius")?,
+                        internal: false,
+                        pressure_angle: None,
+                    });
+                }
+                "radius" if kind == JointKind::Rack && mesh.is_none() => {
+                    let r = scope.scalar(&content, Dim::LENGTH, "the pinion's pitch radius")?;
+                    mesh = Some(MeshDecl {
+                        radii: Pair {
+                            value: [r.value, 0.0],
+                            span: r.span,
+                        },
+                        internal: false,
+                        pressure_angle: None,
+                    });
+                }
+                "internal" if kind == JointKind::Gear && mesh.is_some() => {
+                    if let Some(m) = mesh.as_mut() {
+                        m.internal = true;
+                    }
+                }
+                "pressure_angle" if kind.mesh() && mesh.is_some() => {
+                    let a = scope.scalar(&content, Dim::ANGLE, "a pressure angle")?;
+                    if let Some(m) = mesh.as_mut() {
+                        m.pressure_angle = Some(a);
+                    }
+                }
+                _ if kind.mesh() => {
+                    let form = if kind == JointKind::Gear {
+                        "`gear(a, b) radii (r_a, r_b)`, then optionally `internal` and `pressure_angle α` (20° when omitted)"
+                    } else {
+                        "`rack(pinion, bar) radius r`, then optionally `pressure_angle α` (20° when omitted)"
+                    };
+                    return Err(syn::Error::new(
+                        k.span(),
+                        format!("unexpected `{k}` in a {}: write {form}", kind.keyword()),
+                    ));
+                }
                 "at" => at = Some(name(&content.parse::<Ident>()?)?),
                 "along" => {
                     let (u, span) = scope.vector(&content)?;
@@ -474,6 +517,16 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                 }
             }
         }
+        if kind.mesh() && mesh.is_none() {
+            return Err(syn::Error::new(
+                kw.span(),
+                if kind == JointKind::Gear {
+                    format!("gear pair `{id}` has no pitch radii: write `gear({a}, {b}) radii (r_a, r_b)`, e.g. `radii (40 mm, 120 mm)`")
+                } else {
+                    format!("rack `{id}` has no pinion radius: write `rack({a}, {b}) radius r`, e.g. `radius 30 mm`")
+                },
+            ));
+        }
         out.push(JointDecl {
             name: name(&id)?,
             kind,
@@ -482,6 +535,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
             b: name(&b)?,
             at,
             along,
+            mesh,
         });
         comma(&content)?;
     }

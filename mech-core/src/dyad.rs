@@ -121,6 +121,12 @@ pub enum Solver {
         /// The slot joint (slot in `body`, pin of a solved link).
         js: usize,
     },
+    /// One link meshing with a solved gear or rack (`crate::gears`): placed by Willis'
+    /// relation, not here.
+    Mesh {
+        /// The link.
+        body: usize,
+    },
     /// No closed form: Newton–Raphson on the group's equations from the drawing.
     Newton,
 }
@@ -386,12 +392,15 @@ pub fn position(
             } else {
                 rotate(s[other].rot, rel)
             };
+            let turn = drive.0[input] - g.q_ref;
+            s[body].angle = s[other].angle + if g.b == body { turn } else { -turn };
             let (p, d) = pin(g, s, body);
             place_by_point(&mut s[body], rot, d, p);
         }
         Solver::DrivenPrismatic { body, joint, input } => {
             let g = &joints[joint];
             let q = drive.0[input] - g.q_ref;
+            s[body].angle = s[if g.b == body { g.a } else { g.b }].angle;
             if g.b == body {
                 let rot = s[g.a].rot;
                 let p = point_of(s, g.a, g.da) + rotate(rot, g.axis) * q;
@@ -508,7 +517,7 @@ pub fn position(
             let rot = tangent_rotation(n0, dvec, w, sign)?;
             place_by_point(&mut s[body], rot, pa.1, pa.0);
         }
-        Solver::Newton => return Err(MechError::NoAssembly),
+        Solver::Newton | Solver::Mesh { .. } => return Err(MechError::NoAssembly),
     }
     Ok(points)
 }

@@ -510,6 +510,13 @@ impl GenericMechanism {
     }
 
     fn build(model: Model) -> Result<Self, MechError> {
+        if let Some(j) = model.joints.iter().find(|j| j.kind.mesh()) {
+            return Err(MechError::Invalid(format!(
+                "{} `{}`: the generic solver has no gear pairs or racks (their angles are carried over turns by `mech::gears`); use the generated struct or `Mechanism`",
+                j.kind.keyword(),
+                j.name
+            )));
+        }
         let inst = instance(&model)?;
         let cons = all_cons(&model);
         let mut first_row = Vec::with_capacity(cons.len());
@@ -1175,6 +1182,7 @@ impl GenericMechanism {
                     }
                 }
                 ConKind::Slot => joints[c.joint].force = slide_force(g, s, lam[r]),
+                ConKind::Mesh => {}
                 // One row of a revolute (never produced by `all_cons`; kept total).
             }
         }

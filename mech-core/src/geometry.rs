@@ -24,9 +24,47 @@ pub fn local(model: &Model, l: usize, p: [f64; 2]) -> V2 {
     V2::new(p[0], p[1]) - anchor(model, l)
 }
 
+/// The pitch point P and the common tangent t (unit) of mesh joint `j` in the drawing
+/// (`crate::gears`): for a gear pair from its centres and radii, for a rack on the
+/// perpendicular from the pinion's centre to the rack's axis, on the rack's side.
+pub fn pitch_point(model: &Model, j: usize) -> Option<(V2, V2)> {
+    let jt = &model.joints[j];
+    let m = jt.mesh.as_ref()?;
+    let pos = |p: usize| V2::new(model.points[p].pos[0], model.points[p].pos[1]);
+    let (oa, ob) = (pos(m.centres[0]), pos(m.centres[1]));
+    if jt.kind == JointKind::Rack {
+        let slide = model.joints.iter().find(|o| {
+            o.kind == JointKind::Prismatic
+                && ((o.a == jt.b && o.b == m.carrier) || (o.b == jt.b && o.a == m.carrier))
+        })?;
+        let u = V2::new(slide.axis[0], slide.axis[1]).normalize();
+        let side = if crate::link_state::cross(u, ob - oa) >= 0.0 { 1.0 } else { -1.0 };
+        return Some((oa + crate::link_state::perp(u) * (side * m.ra), u));
+    }
+    let w = (ob - oa).normalize();
+    let p = if !m.internal {
+        oa + w * m.ra
+    } else if m.ra < m.rb {
+        oa - w * m.ra
+    } else {
+        ob + w * m.rb
+    };
+    Some((p, crate::link_state::perp(w)))
+}
+
 /// The local geometry of joint `j`.
 pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
     let jt = &model.joints[j];
+    if let Some((p, t)) = pitch_point(model, j) {
+        return JointGeom {
+            a: jt.a,
+            b: jt.b,
+            da: local(model, jt.a, [p.x, p.y]),
+            db: local(model, jt.b, [p.x, p.y]),
+            axis: t,
+            q_ref: 0.0,
+        };
+    }
     let p = model.points[jt.point].pos;
     let ax = V2::new(jt.axis[0], jt.axis[1]);
     let n = ax.norm();
@@ -62,6 +100,7 @@ pub fn joint_cons(model: &Model, j: usize) -> Vec<Con> {
             JointKind::Revolute => ConKind::Revolute,
             JointKind::Prismatic => ConKind::Prismatic,
             JointKind::PinInSlot => ConKind::Slot,
+            JointKind::Gear | JointKind::Rack => ConKind::Mesh,
         },
     }];
     if let Some(k) = model.inputs.iter().position(|&i| i == j) {

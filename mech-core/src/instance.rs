@@ -24,6 +24,8 @@ pub struct Instance {
     pub loads: Vec<V2>,
     /// The force elements with their points in their links' frames.
     pub elements: Vec<ElementGeom>,
+    /// The gear pairs and racks, in joint order.
+    pub meshes: Vec<crate::gears::MeshGeom>,
     /// The drawing's length scale, m.
     pub scale: f64,
     /// Gravity, m/s² (zero when not declared).
@@ -95,8 +97,42 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
             }
         })
         .collect();
+    let meshes = model
+        .joints
+        .iter()
+        .enumerate()
+        .filter_map(|(j, jt)| {
+            let m = jt.mesh.as_ref()?;
+            let pos = |p: usize| model.points[p].pos;
+            let (oa, ob) = (pos(m.centres[0]), pos(m.centres[1]));
+            let sign = if jt.kind == crate::model::JointKind::Rack {
+                let (p, t) = crate::geometry::pitch_point(model, j)?;
+                let n = crate::link_state::perp(t);
+                if n.dot(&(p - V2::new(oa[0], oa[1]))) >= 0.0 {
+                    1.0
+                } else {
+                    -1.0
+                }
+            } else if m.internal {
+                -1.0
+            } else {
+                1.0
+            };
+            Some(crate::gears::MeshGeom {
+                rack: jt.kind == crate::model::JointKind::Rack,
+                ra: m.ra,
+                rb: m.rb,
+                sign,
+                tan_pressure: m.pressure_angle.tan(),
+                ca: local(model, jt.a, oa),
+                cb: local(model, jt.b, ob),
+                carrier: m.carrier,
+            })
+        })
+        .collect();
     Ok(Instance {
         elements,
+        meshes,
         joints: joint_geoms(model),
         links,
         drawing: drawing_states(model),

@@ -147,6 +147,13 @@ pub fn lambda_reactions(
                 }
             }
             ConKind::DriveRevolute(k) | ConKind::DrivePrismatic(k) => drivers[k] = lam[row],
+            // A mesh's tangential force (meshing links are solved by `crate::gears`).
+            ConKind::Mesh => {
+                out[c.joint] = Reaction {
+                    force: g.axis * lam[row],
+                    moment: 0.0,
+                }
+            }
         }
         row += c.kind.rows();
     }
@@ -157,6 +164,21 @@ pub fn lambda_reactions(
 pub struct RevoluteReaction {
     /// Force by a on b, N.
     pub force: V2,
+}
+
+/// Reaction at a gear pair or rack (`crate::gears`): the tooth force BY a ON b at the
+/// pitch point, along the line of action (N, global).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MeshReaction {
+    /// The tooth force by a on b, N.
+    pub force: V2,
+    /// Its magnitude, N (≥ 0).
+    pub tooth_load: f64,
+    /// The flank in contact: +1 when the force on b pushes along the common tangent t
+    /// (gear pair: t = perp of the line of centres from a's centre to b's, the
+    /// counter-clockwise tangent of a at the pitch point; rack: the rack's axis), −1 when
+    /// against it.
+    pub flank: f64,
 }
 
 /// Reaction at a prismatic joint: the force BY a ON b normal to the axis (N, global) and

@@ -38,6 +38,7 @@ pub mod error;
 pub mod expr;
 pub mod flywheel;
 pub mod friction;
+pub mod gears;
 pub mod generic;
 pub mod geometry;
 pub mod group;

@@ -69,6 +69,11 @@ pub struct LinkState {
     pub acc: V2,
     /// Angular acceleration α, rad/s².
     pub alpha: f64,
+    /// φ itself, rad, counted over any number of turns: kept exactly by the kernels that
+    /// know it (a driven crank from its input, a gear from its partner by Willis, a link
+    /// sliding with its guide), which a gear train needs; the other kernels leave it, and
+    /// readers ([`crate::gears`]) know from the plan which links have it.
+    pub angle: f64,
 }
 
 impl Default for LinkState {
@@ -88,6 +93,7 @@ impl LinkState {
             omega: 0.0,
             acc: V2::new(0.0, 0.0),
             alpha: 0.0,
+            angle: 0.0,
         }
     }
     /// The current vector from the anchor to the material point of local vector `d`.

@@ -459,6 +459,7 @@ impl Mechanism {
                 Kernel::Chain(c) => {
                     kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)?
                 }
+                Kernel::Mesh(m) => crate::gears::solve_mesh(m, &self.inst.meshes, joints, s, upto)?,
                 Kernel::System => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
             }
         }
@@ -664,6 +665,9 @@ impl Mechanism {
                 Kernel::Chain(c) => {
                     kinematics::chain_reactions(g.solver, c, joints, s, &mut f, scale, &mut r)?
                 }
+                Kernel::Mesh(m) => {
+                    crate::gears::mesh_reactions(m, &self.inst.meshes, joints, s, &mut f, &mut r)?
+                }
                 Kernel::System => system(g, |n| {
                     n.reactions(g, joints, s, &mut f, scale, &mut r, &mut out.driver)
                 })?,
@@ -773,6 +777,13 @@ impl Mechanism {
                     Kernel::Chain(c) => {
                         screw::chain_rates(c, joints, &mut v, scale, Level::Velocity)?
                     }
+                    Kernel::Mesh(m) => crate::gears::solve_mesh(
+                        m,
+                        &self.inst.meshes,
+                        joints,
+                        &mut v,
+                        Level::Velocity,
+                    )?,
                     Kernel::System => system(grp, |n| n.field(grp, joints, &mut v, drive, scale))?,
                 }
             }

@@ -91,6 +91,12 @@ pub enum JointKind {
     Prismatic,
     /// Pin in a straight slot of `a`: removes 1 DOF (higher pair).
     PinInSlot,
+    /// Gear pair `gear(a, b) radii (r_a, r_b)`: the pitch circles roll on each other,
+    /// removes 1 DOF (higher pair).
+    Gear,
+    /// Rack and pinion `rack(pinion, bar) radius r`: the pinion's pitch circle rolls on
+    /// the rack's pitch line, removes 1 DOF (higher pair).
+    Rack,
 }
 
 impl JointKind {
@@ -98,7 +104,7 @@ impl JointKind {
     pub const fn removed(self) -> usize {
         match self {
             JointKind::Revolute | JointKind::Prismatic => 2,
-            JointKind::PinInSlot => 1,
+            JointKind::PinInSlot | JointKind::Gear | JointKind::Rack => 1,
         }
     }
     /// The keyword of the DSL.
@@ -107,8 +113,47 @@ impl JointKind {
             JointKind::Revolute => "revolute",
             JointKind::Prismatic => "prismatic",
             JointKind::PinInSlot => "pin_in_slot",
+            JointKind::Gear => "gear",
+            JointKind::Rack => "rack",
         }
     }
+    /// A gear pair or a rack and pinion: a mesh of toothed pitch curves.
+    pub const fn mesh(self) -> bool {
+        matches!(self, JointKind::Gear | JointKind::Rack)
+    }
+    /// A higher pair of Grübler's count (P_II): a pin in a slot, a gear pair, a rack.
+    pub const fn higher(self) -> bool {
+        matches!(self, JointKind::PinInSlot | JointKind::Gear | JointKind::Rack)
+    }
+}
+
+/// The teeth of a gear pair or rack as written: `radii (r_a, r_b) [internal]
+/// [pressure_angle α]` or `radius r [pressure_angle α]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshDecl<S> {
+    /// Pitch radii (m): (r_a, r_b) of a gear pair, (r, 0) of a rack's pinion.
+    pub radii: Pair<S>,
+    /// `internal`: one gear is a ring around the other.
+    pub internal: bool,
+    /// The pressure angle (rad), 20° when not written.
+    pub pressure_angle: Option<Num<S>>,
+}
+
+/// A resolved gear pair or rack (`docs/conventions.md#gears`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    /// Pitch radius of link a (the gear, or the rack's pinion), m.
+    pub ra: f64,
+    /// Pitch radius of link b (0 for a rack), m.
+    pub rb: f64,
+    /// An internal pair (the larger gear is a ring).
+    pub internal: bool,
+    /// The pressure angle α, rad.
+    pub pressure_angle: f64,
+    /// The carrier: the link that holds both centres (for a rack, the link it slides on).
+    pub carrier: usize,
+    /// The points at the centres of a and b (for a rack, b's: its sliding joint's point).
+    pub centres: [usize; 2],
 }
 
 /// A joint as written: `NAME: kind(a, b) [at P] [along (ux, uy)]`.
@@ -128,6 +173,8 @@ pub struct JointDecl<S> {
     pub at: Option<Name<S>>,
     /// `along (ux, uy)`: the sliding axis (sliding joints only).
     pub along: Option<Pair<S>>,
+    /// The teeth of a gear pair or rack.
+    pub mesh: Option<MeshDecl<S>>,
 }
 
 /// What a load is.
@@ -308,6 +355,8 @@ pub struct Joint {
     pub point: usize,
     /// Sliding axis in reference global coordinates (not normalised); `[0, 0]` for a revolute.
     pub axis: [f64; 2],
+    /// The teeth of a gear pair or rack (`None` for the other joints).
+    pub mesh: Option<Mesh>,
 }
 
 /// A resolved load.
@@ -426,17 +475,11 @@ impl Model {
     }
     /// P_I: lower pairs (revolute and prismatic joints).
     pub fn lower_pairs(&self) -> usize {
-        self.joints
-            .iter()
-            .filter(|j| j.kind != JointKind::PinInSlot)
-            .count()
+        self.joints.iter().filter(|j| !j.kind.higher()).count()
     }
-    /// P_II: higher pairs (pins in slots).
+    /// P_II: higher pairs (pins in slots, gear pairs, racks).
     pub fn higher_pairs(&self) -> usize {
-        self.joints
-            .iter()
-            .filter(|j| j.kind == JointKind::PinInSlot)
-            .count()
+        self.joints.iter().filter(|j| j.kind.higher()).count()
     }
     /// The index of the link named `name`.
     pub fn link_index(&self, name: &str) -> Option<usize> {

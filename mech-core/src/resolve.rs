@@ -273,7 +273,18 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         let a = find_link(&j.a, &mut errs);
         let b = find_link(&j.b, &mut errs);
         let pname = j.at.as_ref().unwrap_or(&j.name);
-        let point = point_ix.get(&pname.text).copied();
+        let point = if j.kind.mesh() {
+            // A mesh is placed by its gears' centres, found once every joint is known.
+            if let Some(at) = &j.at {
+                errs.push(Diagnostic::at(
+                    at.span.clone(),
+                    format!("{} `{}` takes no `at`: its pitch point follows from the centres of its gears and their radii", j.kind.keyword(), j.name.text),
+                ));
+            }
+            Some(0)
+        } else {
+            point_ix.get(&pname.text).copied()
+        };
         if point.is_none() {
             let how = if j.at.is_none() {
                 format!("joint `{}` has no `at POINT`, so it is placed at the point of the same name, and there is no point `{}`; add `at P`", j.name.text, pname.text)
@@ -305,6 +316,14 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                 [0.0, 0.0]
             }
             (JointKind::Revolute, None) => [0.0, 0.0],
+            (k, Some(al)) if k.mesh() => {
+                errs.push(Diagnostic::at(
+                    al.span.clone(),
+                    format!("{} `{}` takes no `along` axis (a rack slides along its prismatic joint's axis)", k.keyword(), j.name.text),
+                ));
+                [0.0, 0.0]
+            }
+            (k, None) if k.mesh() => [0.0, 0.0],
             (_, Some(al)) => al.value,
             (k, None) => {
                 errs.push(Diagnostic::at(
@@ -334,6 +353,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                         }
                     }
                 }
+                JointKind::Gear | JointKind::Rack => {}
                 JointKind::Prismatic | JointKind::PinInSlot => {
                     if !links[b].points.contains(&p) {
                         errs.push(Diagnostic::at(
@@ -363,7 +383,23 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
             b: b.unwrap_or(0),
             point: point.unwrap_or(0),
             axis,
+            mesh: None,
         });
+    }
+    // Gear pairs and racks: their carrier and centres, now that every joint is known.
+    for (k, j) in d.joints.iter().enumerate() {
+        if let Some(decl) = &j.mesh {
+            if joints[k].a == joints[k].b {
+                continue;
+            }
+            match mesh_of(&joints, &links, &points, k, decl) {
+                Ok(m) => {
+                    joints[k].point = m.centres[0];
+                    joints[k].mesh = Some(m);
+                }
+                Err(msg) => errs.push(Diagnostic::at(j.kind_span.clone(), msg)),
+            }
+        }
     }
     for (i, l) in decls.iter().enumerate() {
         let first_of_its_name = decls[..i].iter().all(|d| d.name.text != l.name.text);
@@ -569,6 +605,97 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         return Err(errs);
     }
     Ok(model)
+}
+
+/// The carrier and centres of the gear pair or rack `k` (`docs/conventions.md#gears`): a
+/// gear's centre is the point of one of its revolute joints; a gear pair's carrier is a
+/// link (not one of the gears) that has both centres among its points, so that their
+/// distance is fixed; a rack's carrier is the link its prismatic joint slides on, which
+/// must have the pinion's centre. Among several candidates, the centres whose distance is
+/// nearest the pitch radii's sum (difference when internal) are taken.
+fn mesh_of<S>(
+    joints: &[Joint],
+    links: &[Link],
+    points: &[Point],
+    k: usize,
+    decl: &MeshDecl<S>,
+) -> Result<Mesh, String> {
+    let jt = &joints[k];
+    let (a, b) = (jt.a, jt.b);
+    let [ra, rb] = decl.radii.value;
+    let pressure_angle = decl
+        .pressure_angle
+        .as_ref()
+        .map(|p| p.value)
+        .unwrap_or(20f64.to_radians());
+    let centres_of = |l: usize| -> Vec<usize> {
+        joints
+            .iter()
+            .filter(|o| o.kind == JointKind::Revolute && (o.a == l || o.b == l))
+            .map(|o| o.point)
+            .collect()
+    };
+    let dist = |p: usize, q: usize| {
+        let (p, q) = (points[p].pos, points[q].pos);
+        (q[0] - p[0]).hypot(q[1] - p[1])
+    };
+    let name = |l: usize| links[l].name.as_str();
+    if jt.kind == JointKind::Rack {
+        let slide = joints.iter().find(|o| {
+            o.kind == JointKind::Prismatic && (o.b == b || o.a == b) && (o.a != a && o.b != a)
+        });
+        let Some(slide) = slide else {
+            return Err(format!("rack `{}`: the rack `{}` must slide (a prismatic joint) on the link that carries the pinion `{}`; it has no prismatic joint", jt.name, name(b), name(a)));
+        };
+        let carrier = if slide.a == b { slide.b } else { slide.a };
+        let Some(&centre) = centres_of(a).iter().find(|&&p| links[carrier].points.contains(&p)) else {
+            return Err(format!("rack `{}`: the pinion `{}` must be pinned (a revolute joint) at its centre to `{}`, the link the rack slides on", jt.name, name(a), name(carrier)));
+        };
+        return Ok(Mesh {
+            ra,
+            rb: 0.0,
+            internal: false,
+            pressure_angle,
+            carrier,
+            centres: [centre, slide.point],
+        });
+    }
+    let want = if decl.internal { (rb - ra).abs() } else { ra + rb };
+    let mut best: Option<(f64, Mesh)> = None;
+    for &pa in &centres_of(a) {
+        for &pb in &centres_of(b) {
+            if pa == pb {
+                continue;
+            }
+            for (c, l) in links.iter().enumerate() {
+                if c == a || c == b || !l.points.contains(&pa) || !l.points.contains(&pb) {
+                    continue;
+                }
+                let miss = (dist(pa, pb) - want).abs();
+                if best.as_ref().is_none_or(|(m, _)| miss < *m) {
+                    best = Some((
+                        miss,
+                        Mesh {
+                            ra,
+                            rb,
+                            internal: decl.internal,
+                            pressure_angle,
+                            carrier: c,
+                            centres: [pa, pb],
+                        },
+                    ));
+                }
+            }
+        }
+    }
+    best.map(|(_, m)| m).ok_or_else(|| {
+        format!(
+            "gear pair `{}`: `{}` and `{}` must each be pinned (a revolute joint) at its centre, and one carrier link (the ground or an arm) must hold both centres among its points; no link holds a centre of each",
+            jt.name,
+            name(a),
+            name(b)
+        )
+    })
 }
 
 /// A resolved force element; a preload becomes the free length (angle) that gives it in

@@ -38,6 +38,10 @@ fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
+/// How closely a gear pair's centre distance must match its pitch radii, relative to the
+/// drawing's scale.
+pub const MESH_TOL: f64 = 1e-9;
+
 /// Part of check 5: every force element's numbers are finite, its stiffness and damping
 /// ≥ 0, a linear spring's free length ≥ 0 (`docs/conventions.md#elements`).
 fn element_numbers(model: &Model) -> Vec<Issue> {
@@ -66,6 +70,67 @@ fn element_numbers(model: &Model) -> Vec<Issue> {
                     if e.kind.linear() { "length" } else { "angle" },
                     e.free,
                     if e.kind.linear() { " and ≥ 0 m (a preload larger than stiffness × drawn length gives a negative one)" } else { " (rad)" }
+                ),
+            });
+        }
+    }
+    out
+}
+
+/// Part of check 5: a gear pair's or rack's pitch radii are finite and > 0, its pressure
+/// angle in [0°, 45°), and the drawing meshes: the centre distance equals r_a + r_b
+/// (|r_a − r_b| for an internal pair) to [`MESH_TOL`] × [`Model::scale`]
+/// (`docs/conventions.md#gears`).
+fn mesh_numbers(model: &Model) -> Vec<Issue> {
+    let mut out = Vec::new();
+    for (j, jt) in model.joints.iter().enumerate() {
+        let Some(m) = &jt.mesh else { continue };
+        let kind = jt.kind.keyword();
+        let radii_ok = m.ra.is_finite()
+            && m.ra > 0.0
+            && (jt.kind == JointKind::Rack || (m.rb.is_finite() && m.rb > 0.0));
+        if !radii_ok {
+            out.push(Issue {
+                culprits: vec![Culprit::Joint(j)],
+                message: if jt.kind == JointKind::Rack {
+                    format!("{kind} `{}` has pinion radius {} m: a pitch radius must be finite and > 0", jt.name, m.ra)
+                } else {
+                    format!("{kind} `{}` has pitch radii ({}, {}) m: each must be finite and > 0", jt.name, m.ra, m.rb)
+                },
+            });
+            continue;
+        }
+        if m.internal && m.ra == m.rb {
+            out.push(Issue {
+                culprits: vec![Culprit::Joint(j)],
+                message: format!("internal {kind} `{}` has equal pitch radii ({} m): the ring must be larger than the gear inside it", jt.name, m.ra),
+            });
+            continue;
+        }
+        if !(m.pressure_angle >= 0.0 && m.pressure_angle < 45f64.to_radians()) {
+            out.push(Issue {
+                culprits: vec![Culprit::Joint(j)],
+                message: format!("{kind} `{}` has pressure angle {:.3}°: it must be in [0°, 45°) (20° is standard)", jt.name, m.pressure_angle.to_degrees()),
+            });
+        }
+        let (pa, pb) = (model.points[m.centres[0]].pos, model.points[m.centres[1]].pos);
+        if !(pa.iter().chain(pb.iter()).all(|v| v.is_finite())) {
+            continue;
+        }
+        let (name_a, name_b) = (&model.points[m.centres[0]].name, &model.points[m.centres[1]].name);
+        let tol = MESH_TOL * model.scale();
+        if jt.kind == JointKind::Rack {
+            continue;
+        }
+        let d = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        let want = if m.internal { (m.rb - m.ra).abs() } else { m.ra + m.rb };
+        if !((d - want).abs() <= tol) {
+            let rule = if m.internal { "|r_a − r_b|" } else { "r_a + r_b" };
+            out.push(Issue {
+                culprits: vec![Culprit::Joint(j), Culprit::Point(m.centres[1])],
+                message: format!(
+                    "{kind} `{}` does not mesh in the drawing: its centres `{name_a}` and `{name_b}` are {d} m apart, but {rule} = {want} m for pitch radii ({}, {}) m; move a centre, or change the radii",
+                    jt.name, m.ra, m.rb
                 ),
             });
         }
@@ -143,8 +208,9 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
             });
         }
     }
+    out.extend(mesh_numbers(model));
     for (j, jt) in model.joints.iter().enumerate() {
-        if jt.kind == JointKind::Revolute {
+        if jt.kind == JointKind::Revolute || jt.kind.mesh() {
             continue;
         }
         let [ux, uy] = jt.axis;
@@ -478,6 +544,37 @@ pub fn check(model: &Model) -> Vec<Issue> {
     out.extend(pebble);
     if drawing_ok && counts_ok {
         out.extend(geometric(model));
+        if out.is_empty() {
+            out.extend(meshes_solvable(model));
+        }
+    }
+    out
+}
+
+/// A gear pair or rack must be solved by Willis' relation: the meshing link alone, held by
+/// its pin (or slide) and the mesh, after its partner and carrier (`crate::gears`). A
+/// mesh inside a larger group (a gear that closes a loop of a linkage) is refused.
+pub fn meshes_solvable(model: &Model) -> Vec<Issue> {
+    let Ok(plan) = crate::assur::plan(model) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for g in &plan {
+        if matches!(g.kernel, crate::assur::Kernel::Mesh(_)) {
+            continue;
+        }
+        for c in g.cons.iter().filter(|c| c.kind == ConKind::Mesh) {
+            let jt = &model.joints[c.joint];
+            out.push(Issue {
+                culprits: vec![Culprit::Joint(c.joint)],
+                message: format!(
+                    "{} `{}` is not solvable gear by gear: its links {} form one group with other joints; a meshing link must be held by one pin at its centre (or, for a rack, one slide) and be driven by the mesh alone, after its partner and its carrier; closing a linkage's loop through a mesh is not supported",
+                    jt.kind.keyword(),
+                    jt.name,
+                    names(g.bodies.iter().map(|&b| model.links[b].name.clone()))
+                ),
+            });
+        }
     }
     out
 }

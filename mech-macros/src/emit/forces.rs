@@ -118,6 +118,10 @@ fn forces_type(cx: &Ctx) -> TokenStream {
                 quote!(#p::kinetostatics::SlotReaction),
                 "force (normal to the slot) by",
             ),
+            JointKind::Gear | JointKind::Rack => (
+                quote!(#p::kinetostatics::MeshReaction),
+                "tooth force (along the line of action, at the pitch point), its magnitude and the flank in contact, by",
+            ),
         };
         let doc = format!(
             "Joint `{}`: {} `{}` on `{}`.",
@@ -231,6 +235,10 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let solver = plan::solver_const(gi);
             quote!(#p::kinematics::chain_reactions(Self::#solver, &Self::#kn, &joints, s, &mut f, self.scale, &mut r)?;)
         }
+        Kernel::Mesh(_) => {
+            let kn = plan::mesh_const(gi);
+            quote!(#p::gears::mesh_reactions(&Self::#kn, &self.meshes, &joints, s, &mut f, &mut r)?;)
+        }
         Kernel::System => quote! {
             let lam = #p::kinetostatics::group_reactions::<#n>(m.systems #path.as_ref(), &Self::#bn, &Self::#cn, &joints, s, &mut f, self.scale)?;
             #p::kinetostatics::lambda_reactions(&Self::#cn, &joints, s, lam.as_slice(), &mut r, &mut d);
@@ -332,6 +340,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
             JointKind::Revolute => quote!(#jid: #p::kinetostatics::RevoluteReaction { force: r[#j].force },),
             JointKind::Prismatic => quote!(#jid: #p::kinetostatics::PrismaticReaction { force: r[#j].force, moment: r[#j].moment },),
             JointKind::PinInSlot => quote!(#jid: #p::kinetostatics::SlotReaction { force: r[#j].force },),
+            JointKind::Gear | JointKind::Rack => quote!(#jid: #p::kinetostatics::MeshReaction { force: r[#j].force, tooth_load: r[#j].force.norm(), flank: r[#j].moment },),
         }
     });
     let driver = if cx.one_dof() {
@@ -378,6 +387,8 @@ fn flat_fn(cx: &Ctx) -> TokenStream {
         JointKind::Revolute => quote!(#p::model::JointKind::Revolute),
         JointKind::Prismatic => quote!(#p::model::JointKind::Prismatic),
         JointKind::PinInSlot => quote!(#p::model::JointKind::PinInSlot),
+        JointKind::Gear => quote!(#p::model::JointKind::Gear),
+        JointKind::Rack => quote!(#p::model::JointKind::Rack),
     });
     let drivers = if cx.one_dof() {
         quote!(&[f.driver])

@@ -127,6 +127,11 @@ impl<'a> Ctx<'a> {
         !self.model.elements.is_empty()
     }
 
+    /// The number of gear pairs and racks (the struct keeps their tooth data).
+    pub fn n_meshes(&self) -> usize {
+        self.model.joints.iter().filter(|j| j.kind.mesh()).count()
+    }
+
     /// The moving links' identifiers.
     pub fn moving_ids(&self) -> &[Ident] {
         &self.link_ids[1..]
@@ -135,7 +140,7 @@ impl<'a> Ctx<'a> {
     /// The prismatic and slot joints (those with an axis).
     pub fn sliding(&self) -> Vec<usize> {
         (0..self.n_joints)
-            .filter(|&j| self.model.joints[j].kind != JointKind::Revolute)
+            .filter(|&j| !matches!(self.model.joints[j].kind, JointKind::Revolute | JointKind::Gear | JointKind::Rack))
             .collect()
     }
 

@@ -56,6 +56,10 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let (kn, t) = (format_ident!("__G{}_CHAIN", gi), chain_tokens(c));
             quote!(const #kn: #p::screw::Chain = #t;)
         }
+        Kernel::Mesh(m) => {
+            let (kn, t) = (mesh_const(gi), mesh_tokens(m));
+            quote!(const #kn: #p::gears::MeshGroup = #t;)
+        }
         Kernel::System => {
             let (bn, cn) = system_consts(gi);
             let (nb, nc, bodies) = (g.bodies.len(), g.cons.len(), &g.bodies);
@@ -72,6 +76,28 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         const #sn: #p::dyad::Solver = #solver;
         #kernel
     }
+}
+
+/// The name of a meshing group's kernel constant.
+pub(crate) fn mesh_const(gi: usize) -> Ident {
+    format_ident!("__G{}_MESH", gi)
+}
+
+fn mesh_tokens(m: &mech_core::gears::MeshGroup) -> TokenStream {
+    let mech_core::gears::MeshGroup {
+        body,
+        pin,
+        joint,
+        mesh,
+        partner,
+        carrier,
+        slide,
+        body_slides,
+        partner_slides,
+        partner_tracked,
+        carrier_tracked,
+    } = *m;
+    quote!(::mech::__private::gears::MeshGroup { body: #body, pin: #pin, joint: #joint, mesh: #mesh, partner: #partner, carrier: #carrier, slide: #slide, body_slides: #body_slides, partner_slides: #partner_slides, partner_tracked: #partner_tracked, carrier_tracked: #carrier_tracked })
 }
 
 /// The name of group `gi`'s position solver constant.
@@ -115,6 +141,10 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let kn = format_ident!("__G{}_CHAIN", gi);
             quote!(#p::kinematics::solve_chain(Self::#solver, &Self::#kn, &joints, &mut s, drive, branches[#gi], self.scale, upto)?; let #sys = ();)
         }
+        Kernel::Mesh(_) => {
+            let kn = mesh_const(gi);
+            quote!(#p::gears::solve_mesh(&Self::#kn, &self.meshes, &joints, &mut s, upto)?; let #sys = ();)
+        }
         Kernel::System if g.redundant() => {
             let m = g.rows();
             quote!(let #sys = #p::group::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto)?;)
@@ -151,6 +181,10 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         Kernel::Chain(_) => {
             let kn = format_ident!("__G{}_CHAIN", gi);
             quote!(#p::screw::chain_rates(&Self::#kn, &joints, &mut v, self.scale, #level)?;)
+        }
+        Kernel::Mesh(_) => {
+            let kn = mesh_const(gi);
+            quote!(#p::gears::solve_mesh(&Self::#kn, &self.meshes, &joints, &mut v, #level)?;)
         }
         Kernel::System if g.redundant() => {
             let m = g.rows();
@@ -338,6 +372,7 @@ fn con_tokens(c: &Con) -> TokenStream {
         ConKind::Slot => quote!(Slot),
         ConKind::DriveRevolute(k) => quote!(DriveRevolute(#k)),
         ConKind::DrivePrismatic(k) => quote!(DrivePrismatic(#k)),
+        ConKind::Mesh => quote!(Mesh),
     };
     quote!(::mech::__private::kinematics::Con { joint: #j, kind: ::mech::__private::kinematics::ConKind::#kind })
 }
@@ -376,6 +411,7 @@ fn solver_tokens(s: &Solver) -> TokenStream {
         Solver::SlottedLever { body, ja, js } => {
             quote!(#p::SlottedLever { body: #body, ja: #ja, js: #js })
         }
+        Solver::Mesh { body } => quote!(#p::Mesh { body: #body }),
         Solver::Newton => quote!(#p::Newton),
     }
 }
