@@ -127,7 +127,7 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             links: [body, VIRTUAL],
             pivot: 0,
         }),
-        Solver::Mesh { body } => mesh_kernel(model, body),
+        Solver::Mesh { body, joint } => mesh_kernel(model, body, joint),
         Solver::Newton => Kernel::System,
     }
 }
@@ -135,14 +135,9 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
 /// The kernel of a link meshing with a solved one: its mesh joint, the joint that holds
 /// it (a revolute at its centre, or a rack's slide), the partner and the carrier. The
 /// mesh index counts the mesh joints in declaration order; `*_tracked` are set by [`plan`].
-fn mesh_kernel(model: &Model, body: usize) -> Kernel {
-    let meshes: Vec<usize> = (0..model.joints.len())
-        .filter(|&j| model.joints[j].kind.mesh())
-        .collect();
+fn mesh_kernel(model: &Model, body: usize, joint: usize) -> Kernel {
     let touches = |j: usize| model.joints[j].a == body || model.joints[j].b == body;
-    let Some((mesh, &joint)) = meshes.iter().enumerate().find(|(_, &j)| touches(j)) else {
-        return Kernel::System;
-    };
+    let mesh = (0..joint).filter(|&j| model.joints[j].kind.mesh()).count();
     let jt = &model.joints[joint];
     let Some(m) = jt.mesh.as_ref() else {
         return Kernel::System;
@@ -312,12 +307,15 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
                     _ => unreachable!(),
                 };
             }
-            let mesh = cons.iter().any(|c| c.kind == ConKind::Mesh);
+            let mesh = cons.iter().find(|c| c.kind == ConKind::Mesh);
             let held = cons
                 .iter()
                 .any(|c| matches!(c.kind, ConKind::Revolute | ConKind::Prismatic));
-            if mesh && held && cons.len() == 2 {
-                return Solver::Mesh { body };
+            if let (Some(m), true, 2) = (mesh, held, cons.len()) {
+                return Solver::Mesh {
+                    body,
+                    joint: m.joint,
+                };
             }
             let rev = cons.iter().find(|c| c.kind == ConKind::Revolute);
             let slot = cons.iter().find(|c| c.kind == ConKind::Slot);

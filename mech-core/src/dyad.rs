@@ -126,6 +126,8 @@ pub enum Solver {
     Mesh {
         /// The link.
         body: usize,
+        /// The mesh joint that drives it.
+        joint: usize,
     },
     /// No closed form: Newton–Raphson on the group's equations from the drawing.
     Newton,

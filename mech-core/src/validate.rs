@@ -129,8 +129,8 @@ fn mesh_numbers(model: &Model) -> Vec<Issue> {
             out.push(Issue {
                 culprits: vec![Culprit::Joint(j), Culprit::Point(m.centres[1])],
                 message: format!(
-                    "{kind} `{}` does not mesh in the drawing: its centres `{name_a}` and `{name_b}` are {d} m apart, but {rule} = {want} m for pitch radii ({}, {}) m; move a centre, or change the radii",
-                    jt.name, m.ra, m.rb
+                    "{kind} `{}` does not mesh in the drawing: its centres `{name_a}` and `{name_b}` are {:.4} mm apart, but {rule} = {:.4} mm for pitch radii ({:.4} mm, {:.4} mm); move a centre, or change the radii",
+                    jt.name, d * 1e3, want * 1e3, m.ra * 1e3, m.rb * 1e3
                 ),
             });
         }

@@ -411,7 +411,7 @@ fn solver_tokens(s: &Solver) -> TokenStream {
         Solver::SlottedLever { body, ja, js } => {
             quote!(#p::SlottedLever { body: #body, ja: #ja, js: #js })
         }
-        Solver::Mesh { body } => quote!(#p::Mesh { body: #body }),
+        Solver::Mesh { body, joint } => quote!(#p::Mesh { body: #body, joint: #joint }),
         Solver::Newton => quote!(#p::Newton),
     }
 }

@@ -1,0 +1,419 @@
+//! Gear pairs and racks against independent references, `tests/data/gears.json` from
+//! `tools/gears_reference.py` (mpmath, 50 digits): the trains' kinetostatics as one
+//! Newton–Euler linear system of all their bodies (mech goes gear by gear), their speed
+//! ratios by Willis written out by hand; the geared linkages by the energy method. Every
+//! number compared to 1e-12 of its scale, on the generated struct and on the run-time
+//! mechanism read from this file; the three routes to the driver torque; energy over many
+//! turns; no allocation.
+
+use mech::dynamics::{equation_of_motion, total_energy};
+use mech::ode::{solve, Dop853};
+use mech::prelude::*;
+use serde_json::Value;
+
+mechanism! {
+    /// A compound gear train: pinion g1 (input) drives the cluster (two pitch circles on
+    /// one shaft), which drives the output gear g4 carrying an unbalanced mass.
+    pub struct GearTrain {
+        gravity: (0.0, -9.81),
+        ground { O1: (0.0, 0.0), O2: (80 mm, 0.0), O4: (80 mm, 100 mm) },
+        link g1 { points { O1 }, mass: 0.2, inertia: 4.0e-5, cg: (0.0, 0.0) },
+        link cluster { points { O2 }, mass: 1.1, inertia: 2.2e-3, cg: (80 mm, 0.0) },
+        link g4 { points { O4 }, mass: 2.0, inertia: 6.0e-3, cg: (90 mm, 100 mm) },
+        joints {
+            O1: revolute(ground, g1),
+            O2: revolute(ground, cluster),
+            O4: revolute(ground, g4),
+            m12: gear(g1, cluster) radii (20 mm, 60 mm),
+            m34: gear(cluster, g4) radii (25 mm, 75 mm) pressure_angle 25 deg,
+        },
+        input: O1,
+        loads { load: torque on g4 },
+    }
+}
+
+mechanism! {
+    /// An epicyclic train with a fixed ring (the ground), driven by its arm: the planet
+    /// rolls inside the ring and drives the sun four times as fast as the arm.
+    pub struct Epicyclic {
+        ground { O: (0.0, 0.0) },
+        link arm { points { O, P: (60 mm, 0.0) }, mass: 0.6, inertia: 4.0e-4, cg: (30 mm, 0.0) },
+        link planet { points { P }, mass: 0.3, inertia: 1.4e-4, cg: (60 mm, 0.0) },
+        link sun { points { O }, mass: 0.5, inertia: 2.3e-4, cg: (0.0, 0.0) },
+        joints {
+            O: revolute(ground, arm),
+            P: revolute(arm, planet),
+            S: revolute(ground, sun) at O,
+            sp: gear(sun, planet) radii (30 mm, 30 mm),
+            pr: gear(planet, ground) radii (30 mm, 90 mm) internal,
+        },
+        input: O,
+        loads { load: torque on sun },
+    }
+}
+
+mechanism! {
+    /// A slider-crank driven through a gear pair: the pinion (input, 25 mm) turns the
+    /// crank gear (75 mm), whose crank pin A drives the rod and the piston.
+    pub struct GearedSliderCrank {
+        gravity: (0.0, -9.81),
+        ground { O1: (0.0, 0.0), O2: (100 mm, 0.0) },
+        link pinion { points { O1 }, mass: 0.3, inertia: 1.0e-4, cg: (0.0, 0.0) },
+        link crank { points { O2, A: (140 mm, 0.0) }, mass: 1.5, inertia: 3.0e-3, cg: (105 mm, 5 mm) },
+        link rod { points { A, B: (300 mm, 20 mm) }, mass: 0.9, inertia: 2.5e-3, cg: (220 mm, 12 mm) },
+        link piston { points { B }, mass: 0.8, cg: (300 mm, 20 mm) },
+        joints {
+            O1: revolute(ground, pinion),
+            O2: revolute(ground, crank),
+            A: revolute(crank, rod),
+            B: revolute(rod, piston),
+            guide: prismatic(ground, piston) at B along (1.0, 0.0),
+            mesh: gear(pinion, crank) radii (25 mm, 75 mm),
+        },
+        input: O1,
+        loads { gas: force on piston at B },
+    }
+}
+
+mechanism! {
+    /// A rack-and-pinion steering: the pinion (input) moves the rack, whose ends pull the
+    /// tie rods and turn the two knuckles about their kingpins.
+    pub struct RackSteering {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0), K1o: (-300 mm, -150 mm), K2o: (300 mm, -150 mm) },
+        link pinion { points { O }, mass: 0.2, inertia: 5.0e-5, cg: (0.0, 0.0) },
+        link rack {
+            points { R: (0.0, -20 mm), E1: (-150 mm, -100 mm), E2: (150 mm, -100 mm) },
+            mass: 1.2, cg: (0.0, -20 mm),
+        },
+        link tie1 { points { E1, T1: (-280 mm, -100 mm) }, mass: 0.3, inertia: 4.0e-4, cg: (-215 mm, -100 mm) },
+        link tie2 { points { E2, T2: (280 mm, -100 mm) }, mass: 0.3, inertia: 4.0e-4, cg: (215 mm, -100 mm) },
+        link knuckle1 { points { K1o, T1 }, mass: 0.8, inertia: 2.0e-3, cg: (-290 mm, -125 mm) },
+        link knuckle2 { points { K2o, T2 }, mass: 0.8, inertia: 2.0e-3, cg: (290 mm, -125 mm) },
+        joints {
+            O: revolute(ground, pinion),
+            slide: prismatic(ground, rack) at R along (1.0, 0.0),
+            E1: revolute(rack, tie1),
+            E2: revolute(rack, tie2),
+            T1: revolute(tie1, knuckle1),
+            T2: revolute(tie2, knuckle2),
+            K1o: revolute(ground, knuckle1),
+            K2o: revolute(ground, knuckle2),
+            drive: rack(pinion, rack) radius 20 mm,
+        },
+        input: O,
+        loads { align1: torque on knuckle1, align2: torque on knuckle2 },
+    }
+}
+
+fn reference() -> Value {
+    let path = format!("{}/tests/data/gears.json", env!("CARGO_MANIFEST_DIR"));
+    serde_json::from_str(&std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}")))
+        .unwrap()
+}
+
+fn num(v: &Value) -> f64 {
+    match v {
+        Value::String(s) => s.parse().unwrap(),
+        _ => v.as_f64().unwrap(),
+    }
+}
+
+fn close(what: &str, got: f64, want: f64, tol: f64) {
+    assert!(
+        (got - want).abs() <= tol,
+        "{what}: {got:.17e} vs reference {want:.17e} (|diff| {:.2e} > {tol:.2e})",
+        (got - want).abs()
+    );
+}
+
+fn runtime(name: &str) -> Mechanism {
+    Mechanism::from_rust_source(include_str!("gears.rs"), name).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// The largest reaction of a configuration: the scale the 1e-12 is taken of.
+fn reaction_scale(c: &Value) -> f64 {
+    c["reactions"]
+        .as_object()
+        .unwrap()
+        .values()
+        .flat_map(|v| v.as_array().unwrap().iter().map(num))
+        .fold(1.0f64, |a, x| a.max(x.abs()))
+}
+
+/// Compare one train configuration: angles and speeds (Willis, over many turns), I*, the
+/// driver by d'Alembert, virtual power and Zhukovski, every bearing reaction and tooth
+/// force with its flank; then the run-time mechanism's driver and reactions.
+fn check_train<M: OneDof>(
+    name: &str,
+    c: &Value,
+    m: &M,
+    kin: impl Fn(f64, f64, f64) -> (Vec<(String, f64, f64)>, f64, Vec<(String, V, Option<f64>)>, f64),
+    loads: &M::Loads,
+) where
+    M::Loads: Clone,
+{
+    let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
+    let at = format!("{name} at q = {q}, q̇ = {qd}, q̈ = {qdd}");
+    let (links, driver_va, joints, driver_ks) = kin(q, qd, qdd);
+    for (link, angle, omega) in &links {
+        // The link angle is reported in (−π, π]: compared modulo 2π, to 1e-12 of the
+        // turned angle (a gear's angle counted wrong over the turns is off by a
+        // non-multiple of 2π, the ratios not being integers).
+        let want = num(&c["angles"][link]);
+        let diff = (angle - want).rem_euclid(std::f64::consts::TAU);
+        let diff = diff.min(std::f64::consts::TAU - diff);
+        assert!(diff <= 1e-12 * want.abs().max(1.0), "{at}: angle of {link} {angle} vs {want} (mod 2π)");
+        close(&format!("{at}: ω of {link}"), *omega, num(&c["omegas"][link]), 1e-12 * qd.abs().max(1.0) * 4.0);
+    }
+    let i_star = num(&c["I_star"]);
+    close(&format!("{at}: I*"), m.reduced(q).unwrap().inertia, i_star, 1e-13 * i_star);
+    let driver = num(&c["driver"]);
+    let scale = reaction_scale(c) * 0.1; // N × 0.1 m: the torques' scale
+    close(&format!("{at}: d'Alembert"), driver_ks, driver, 1e-12 * scale);
+    close(&format!("{at}: virtual power"), driver_va, driver, 1e-12 * scale);
+    close(
+        &format!("{at}: Zhukovski q̈"),
+        m.acceleration(q, qd, driver, loads).unwrap(),
+        qdd,
+        1e-12 * scale / i_star,
+    );
+    let rs = reaction_scale(c);
+    for (joint, f, flank) in &joints {
+        let want = c["reactions"][joint].as_array().unwrap();
+        close(&format!("{at}: {joint}.x"), f.x, num(&want[0]), 1e-12 * rs);
+        close(&format!("{at}: {joint}.y"), f.y, num(&want[1]), 1e-12 * rs);
+        if let Some(fl) = flank {
+            assert_eq!(*fl, num(&c["flanks"][joint]), "{at}: flank of {joint}");
+        }
+    }
+}
+
+type V = mech::Vector2<f64>;
+
+#[test]
+fn compound_gear_train_matches_newton_euler() {
+    let m = GearTrain::new();
+    let rt = runtime("GearTrain");
+    for c in reference()["gear_train"].as_array().unwrap() {
+        let loads = GearTrainLoads { load: num(&c["load"]) };
+        check_train("gear train", c, &m, |q, qd, qdd| {
+            let mo = m.kinematics(q, qd, qdd).unwrap();
+            let f = m.kinetostatics(&mo, &loads).unwrap();
+            let j = &f.joints;
+            let links = vec![
+                ("g1".into(), mo.links.g1.angle, mo.links.g1.omega),
+                ("cluster".into(), mo.links.cluster.angle, mo.links.cluster.omega),
+                ("g4".into(), mo.links.g4.angle, mo.links.g4.omega),
+            ];
+            let joints = vec![
+                ("O1".into(), j.O1.force, None),
+                ("O2".into(), j.O2.force, None),
+                ("O4".into(), j.O4.force, None),
+                ("m12".into(), j.m12.force, Some(j.m12.flank)),
+                ("m34".into(), j.m34.force, Some(j.m34.flank)),
+            ];
+            assert!((j.m12.tooth_load - j.m12.force.norm()).abs() <= 1e-15 * j.m12.tooth_load);
+            (links, m.driver_action(&mo, &loads).unwrap(), joints, f.driver)
+        }, &loads);
+        // The run-time mechanism: the same driver and reactions.
+        let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
+        let mut rl = rt.loads();
+        assert!(rl.set_by_name("load", &[num(&c["load"])]));
+        let f = rt.kinetostatics(&rt.kinematics(&[q], &[qd], &[qdd]).unwrap(), &rl).unwrap();
+        let rs = reaction_scale(c);
+        close("run-time driver", f.driver[0], num(&c["driver"]), 1e-12 * rs * 0.1);
+        for joint in ["O1", "O2", "O4", "m12", "m34"] {
+            let want = c["reactions"][joint].as_array().unwrap();
+            let (got, _) = f.reaction(joint).unwrap();
+            close(&format!("run-time {joint}.x"), got.x, num(&want[0]), 1e-12 * rs);
+            close(&format!("run-time {joint}.y"), got.y, num(&want[1]), 1e-12 * rs);
+        }
+    }
+}
+
+#[test]
+fn epicyclic_train_matches_willis_and_newton_euler() {
+    let m = Epicyclic::new();
+    let rt = runtime("Epicyclic");
+    for c in reference()["epicyclic"].as_array().unwrap() {
+        let loads = EpicyclicLoads { load: num(&c["load"]) };
+        check_train("epicyclic", c, &m, |q, qd, qdd| {
+            let mo = m.kinematics(q, qd, qdd).unwrap();
+            let f = m.kinetostatics(&mo, &loads).unwrap();
+            let j = &f.joints;
+            let links = vec![
+                ("arm".into(), mo.links.arm.angle, mo.links.arm.omega),
+                ("planet".into(), mo.links.planet.angle, mo.links.planet.omega),
+                ("sun".into(), mo.links.sun.angle, mo.links.sun.omega),
+            ];
+            let joints = vec![
+                ("O".into(), j.O.force, None),
+                ("P".into(), j.P.force, None),
+                ("S".into(), j.S.force, None),
+                ("sp".into(), j.sp.force, Some(j.sp.flank)),
+                ("pr".into(), j.pr.force, Some(j.pr.flank)),
+            ];
+            (links, m.driver_action(&mo, &loads).unwrap(), joints, f.driver)
+        }, &loads);
+        let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
+        let mut rl = rt.loads();
+        assert!(rl.set_by_name("load", &[num(&c["load"])]));
+        let mo = rt.kinematics(&[q], &[qd], &[qdd]).unwrap();
+        let rs = reaction_scale(c);
+        close("run-time driver", rt.driver_action(&mo, &rl).unwrap()[0], num(&c["driver"]), 1e-12 * rs * 0.1);
+        let f = rt.kinetostatics(&mo, &rl).unwrap();
+        for joint in ["O", "P", "S", "sp", "pr"] {
+            let want = c["reactions"][joint].as_array().unwrap();
+            let (got, _) = f.reaction(joint).unwrap();
+            close(&format!("run-time {joint}.x"), got.x, num(&want[0]), 1e-12 * rs);
+            close(&format!("run-time {joint}.y"), got.y, num(&want[1]), 1e-12 * rs);
+        }
+    }
+}
+
+/// The geared slider-crank and the rack-and-pinion steering against the energy method:
+/// I*, dI*/dq, M*, and the driver by the three routes (generated) and by d'Alembert (run
+/// time).
+#[test]
+fn geared_linkages_match_the_energy_method() {
+    let r = reference();
+    let g = GearedSliderCrank::new();
+    let grt = runtime("GearedSliderCrank");
+    for c in r["geared_slider_crank"].as_array().unwrap() {
+        let loads = GearedSliderCrankLoads { gas: V::new(num(&c["gas"]), 0.0) };
+        let mut rl = grt.loads();
+        assert!(rl.set_by_name("gas", &[num(&c["gas"]), 0.0]));
+        linkage_case("geared slider-crank", c, &g, &loads, 100.0, |q, qd, qdd| {
+            let mo = g.kinematics(q, qd, qdd).unwrap();
+            let rmo = grt.kinematics(&[q], &[qd], &[qdd]).unwrap();
+            [
+                g.kinetostatics(&mo, &loads).unwrap().driver,
+                g.driver_action(&mo, &loads).unwrap(),
+                grt.kinetostatics(&rmo, &rl).unwrap().driver[0],
+            ]
+        });
+    }
+    let s = RackSteering::new();
+    let srt = runtime("RackSteering");
+    for c in r["rack_steering"].as_array().unwrap() {
+        let a = num(&c["align"]);
+        let loads = RackSteeringLoads { align1: a, align2: a };
+        let mut rl = srt.loads();
+        assert!(rl.set_by_name("align1", &[a]) && rl.set_by_name("align2", &[a]));
+        // The rack slides r q along x (the pinion turning counter-clockwise above it).
+        let q = num(&c["q"]);
+        let mo = s.kinematics(q, 0.0, 0.0).unwrap();
+        close("rack slide", mo.points.R.pos.x, num(&c["rack_slide"]), 1e-15);
+        linkage_case("rack steering", c, &s, &loads, 10.0, |q, qd, qdd| {
+            let mo = s.kinematics(q, qd, qdd).unwrap();
+            let rmo = srt.kinematics(&[q], &[qd], &[qdd]).unwrap();
+            [
+                s.kinetostatics(&mo, &loads).unwrap().driver,
+                s.driver_action(&mo, &loads).unwrap(),
+                srt.kinetostatics(&rmo, &rl).unwrap().driver[0],
+            ]
+        });
+    }
+}
+
+fn linkage_case<M: OneDof>(
+    name: &str,
+    c: &Value,
+    m: &M,
+    loads: &M::Loads,
+    scale: f64,
+    drivers: impl Fn(f64, f64, f64) -> [f64; 3],
+) {
+    let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
+    let at = format!("{name} at q = {q}, q̇ = {qd}, q̈ = {qdd}");
+    let red = m.reduced(q).unwrap();
+    let i_star = num(&c["I_star"]);
+    close(&format!("{at}: I*"), red.inertia, i_star, 1e-12 * i_star);
+    close(&format!("{at}: dI*/dq"), red.inertia_derivative, num(&c["dI_star_dq"]), 1e-12 * i_star);
+    close(&format!("{at}: M*"), m.reduced_moment(q, loads).unwrap(), num(&c["M_star"]), 1e-12 * scale);
+    let driver = num(&c["driver"]);
+    for (route, d) in ["d'Alembert", "virtual power", "run-time d'Alembert"].iter().zip(drivers(q, qd, qdd)) {
+        close(&format!("{at}: {route}"), d, driver, 1e-12 * scale);
+    }
+    close(&format!("{at}: Zhukovski q̈"), m.acceleration(q, qd, driver, loads).unwrap(), qdd, 1e-12 * scale / i_star);
+}
+
+/// Spun up and left alone (no driver, no load, gravity on the unbalanced output gear),
+/// the compound train runs through more than 10³ turns of its pinion: DOP853 (rtol =
+/// atol = 1e-11) keeps T + V within 1e-9 of T, the gears' angles carried over the turns.
+#[test]
+fn gear_train_energy_is_conserved_over_many_turns() {
+    let m = GearTrain::new();
+    let y0 = [0.0, 300.0];
+    let e0 = total_energy(&m, &[y0[0]], &[y0[1]]).unwrap();
+    let mut worst = 0.0f64;
+    let mut obs = |d: &mech::ode::Dop853Dense<2>| {
+        use mech::ode::Dense;
+        let y = d.y_end();
+        worst = worst.max((total_energy(&m, &[y[0]], &[y[1]]).unwrap() - e0).abs());
+    };
+    let out = solve(
+        &mut Dop853::new(1e-11, 1e-11),
+        equation_of_motion(&m, |_, _, _| (0.0, GearTrainLoads::default())),
+        0.0,
+        y0,
+        25.0,
+        None,
+        Some(&mut obs),
+    )
+    .unwrap();
+    let turns = out.y[0] / std::f64::consts::TAU;
+    assert!(turns > 1000.0, "{turns} turns");
+    assert!(worst <= 1e-9 * e0, "energy drift {worst:e} J of {e0} J over {turns:.0} turns");
+}
+
+mod counting {
+    use std::alloc::{GlobalAlloc, Layout, System};
+    use std::cell::Cell;
+
+    thread_local! {
+        static COUNT: Cell<usize> = const { Cell::new(0) };
+    }
+    pub struct Counting;
+    unsafe impl GlobalAlloc for Counting {
+        unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+            let _ = COUNT.try_with(|c| c.set(c.get() + 1));
+            System.alloc(l)
+        }
+        unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+            System.dealloc(p, l)
+        }
+        unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+            let _ = COUNT.try_with(|c| c.set(c.get() + 1));
+            System.realloc(p, l, n)
+        }
+    }
+    pub fn count() -> usize {
+        COUNT.with(|c| c.get())
+    }
+}
+
+#[global_allocator]
+static ALLOC: counting::Counting = counting::Counting;
+
+/// The generated solvers of a geared machine allocate nothing.
+#[test]
+fn geared_solvers_are_allocation_free() {
+    let m = GearedSliderCrank::new();
+    let e = Epicyclic::new();
+    let loads = GearedSliderCrankLoads { gas: V::new(-300.0, 0.0) };
+    let before = counting::count();
+    let mut sink = 0.0;
+    for k in 0..100 {
+        let q = 0.37 * k as f64;
+        let mo = m.kinematics(q, 20.0, 3.0).unwrap();
+        sink += m.kinetostatics(&mo, &loads).unwrap().joints.mesh.tooth_load;
+        sink += m.driver_action(&mo, &loads).unwrap();
+        sink += m.acceleration(q, 20.0, 1.0, &loads).unwrap();
+        let mo = e.kinematics(q, 5.0, 1.0).unwrap();
+        sink += e.kinetostatics(&mo, &EpicyclicLoads { load: 1.0 }).unwrap().joints.pr.tooth_load;
+    }
+    assert_eq!(counting::count() - before, 0, "allocations");
+    assert!(sink.is_finite());
+}
