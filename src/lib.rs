@@ -48,7 +48,7 @@ pub mod __private {
 pub mod prelude {
     pub use crate::mechanism;
     pub use mech_core::instance::{DamperParams, RotaryDamperParams, SpringParams, TorsionSpringParams};
-    pub use mech_core::kinetostatics::{PrismaticReaction, RevoluteReaction, SlotReaction};
+    pub use mech_core::kinetostatics::{MeshReaction, PrismaticReaction, RevoluteReaction, SlotReaction};
     pub use mech_core::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
     pub use mech_core::traits::{Machine, OneDof};
     pub use mech_core::zhukovski::Reduced;

@@ -53,6 +53,26 @@ mechanism! {
 }
 
 mechanism! {
+    /// A planetary reducer: the sun (input) drives the planet inside the fixed ring, and
+    /// the arm (output) turns a quarter as fast; arm and planet form one gear-train group.
+    pub struct Planetary {
+        ground { O: (0.0, 0.0) },
+        link arm { points { O, P: (60 mm, 0.0) }, mass: 0.6, inertia: 4.0e-4, cg: (30 mm, 0.0) },
+        link planet { points { P }, mass: 0.3, inertia: 1.4e-4, cg: (60 mm, 0.0) },
+        link sun { points { O }, mass: 0.5, inertia: 2.3e-4, cg: (0.0, 0.0) },
+        joints {
+            O: revolute(ground, arm),
+            P: revolute(arm, planet),
+            S: revolute(ground, sun) at O,
+            sp: gear(sun, planet) radii (30 mm, 30 mm),
+            pr: gear(planet, ground) radii (30 mm, 90 mm) internal,
+        },
+        input: S,
+        loads { load: torque on arm },
+    }
+}
+
+mechanism! {
     /// A slider-crank driven through a gear pair: the pinion (input, 25 mm) turns the
     /// crank gear (75 mm), whose crank pin A drives the rod and the piston.
     pub struct GearedSliderCrank {
@@ -263,6 +283,50 @@ fn epicyclic_train_matches_willis_and_newton_euler() {
         let rs = reaction_scale(c);
         close("run-time driver", rt.driver_action(&mo, &rl).unwrap()[0], num(&c["driver"]), 1e-12 * rs * 0.1);
         let f = rt.kinetostatics(&mo, &rl).unwrap();
+        for joint in ["O", "P", "S", "sp", "pr"] {
+            let want = c["reactions"][joint].as_array().unwrap();
+            let (got, _) = f.reaction(joint).unwrap();
+            close(&format!("run-time {joint}.x"), got.x, num(&want[0]), 1e-12 * rs);
+            close(&format!("run-time {joint}.y"), got.y, num(&want[1]), 1e-12 * rs);
+        }
+    }
+}
+
+/// The sun-driven planetary: arm and planet solved together (one gear-train group, a 2 × 2
+/// Willis system for the angles, a 6 × 6 Newton–Euler system for the pins and teeth).
+#[test]
+fn planetary_driven_by_its_sun_matches_newton_euler() {
+    let m = Planetary::new();
+    let rt = runtime("Planetary");
+    let plan = mech::assur::plan(rt.model()).unwrap();
+    assert!(plan.iter().any(|g| matches!(g.kernel, mech::assur::Kernel::Train(_))));
+    for c in reference()["planetary"].as_array().unwrap() {
+        let loads = PlanetaryLoads { load: num(&c["load"]) };
+        check_train("planetary", c, &m, |q, qd, qdd| {
+            let mo = m.kinematics(q, qd, qdd).unwrap();
+            let f = m.kinetostatics(&mo, &loads).unwrap();
+            let j = &f.joints;
+            let links = vec![
+                ("arm".into(), mo.links.arm.angle, mo.links.arm.omega),
+                ("planet".into(), mo.links.planet.angle, mo.links.planet.omega),
+                ("sun".into(), mo.links.sun.angle, mo.links.sun.omega),
+            ];
+            let joints = vec![
+                ("O".into(), j.O.force, None),
+                ("P".into(), j.P.force, None),
+                ("S".into(), j.S.force, None),
+                ("sp".into(), j.sp.force, Some(j.sp.flank)),
+                ("pr".into(), j.pr.force, Some(j.pr.flank)),
+            ];
+            (links, m.driver_action(&mo, &loads).unwrap(), joints, f.driver)
+        }, &loads);
+        let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
+        let mut rl = rt.loads();
+        assert!(rl.set_by_name("load", &[num(&c["load"])]));
+        let mo = rt.kinematics(&[q], &[qd], &[qdd]).unwrap();
+        let rs = reaction_scale(c);
+        let f = rt.kinetostatics(&mo, &rl).unwrap();
+        close("run-time driver", f.driver[0], num(&c["driver"]), 1e-12 * rs * 0.1);
         for joint in ["O", "P", "S", "sp", "pr"] {
             let want = c["reactions"][joint].as_array().unwrap();
             let (got, _) = f.reaction(joint).unwrap();

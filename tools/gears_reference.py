@@ -185,7 +185,7 @@ def gear_train(q, qd, qdd, load):
 # Epicyclic: arm driven, ring fixed (the ground)
 
 
-def epicyclic(q, qd, qdd, load):
+def epicyclic(q, qd, qdd, load, sun_driven=False):
     rs, rp, rr = 30 * MM, 30 * MM, 90 * MM
     o = (mpf(0), mpf(0))
     p0 = (60 * MM, mpf(0))
@@ -196,6 +196,9 @@ def epicyclic(q, qd, qdd, load):
     # Willis (carrier = arm): planet in the fixed ring, sun on the planet.
     kp = 1 - rr / rp
     ks = 1 + rr / rs
+    if sun_driven:
+        # The sun is the input: the arm turns q / ks.
+        q, qd, qdd = q / ks, qd / ks, qdd / ks
     arm, planet, sun = (q, qd, qdd), (kp * q, kp * qd, kp * qdd), (ks * q, ks * qd, ks * qdd)
     p = rot(p0, q)
     a_p = add(mul(perp(p), qdd), mul(p, -(qd**2)))
@@ -215,23 +218,28 @@ def epicyclic(q, qd, qdd, load):
         s = System(names)
         fsp = tooth("fsp", t_sp, n_sp, tan_a, fl["fsp"])
         fpr = tooth("fpr", t_pr, n_pr, tan_a, fl["fpr"])
+        arm_t, sun_t = ({}, {"T": 1}) if sun_driven else ({"T": 1}, {})
+        arm_l, sun_l = (load, 0) if sun_driven else (0, load)
         s.body(ma, ia, ga, a_ga, arm[2],
                [(o, {"ROx": ex, "ROy": ey}), (p, {"RPx": mul(ex, -1), "RPy": mul(ey, -1)}),
-                ("torque", {"T": 1})], [], 0)
+                ("torque", arm_t)], [], arm_l)
         s.body(mp_, ip, p, a_p, planet[2],
                [(p, {"RPx": ex, "RPy": ey}), (p_sp, fsp), (p_pr, neg(fpr))], [], 0)
         s.body(ms, is_, o, (0, 0), sun[2],
-               [(o, {"RSx": ex, "RSy": ey}), (p_sp, neg(fsp))], [], load)
+               [(o, {"RSx": ex, "RSy": ey}), (p_sp, neg(fsp)), ("torque", sun_t)], [], sun_l)
         return s.solve()
 
     x, fl = solve_flanks(build, ["fsp", "fpr"])
     fsp = add(mul(t_sp, x["fsp"]), mul(n_sp, abs(x["fsp"]) * tan_a))
     fpr = add(mul(t_pr, x["fpr"]), mul(n_pr, abs(x["fpr"]) * tan_a))
     i_star = ia + ma * norm(ga0) ** 2 + (ip * kp**2 + mp_ * norm(p0) ** 2) + is_ * ks**2
+    if sun_driven:
+        i_star = i_star / ks**2
+        q, qd, qdd = q * ks, qd * ks, qdd * ks
     return {
         "q": float(q), "qd": float(qd), "qdd": float(qdd), "load": float(load),
-        "angles": {"arm": s_(q), "planet": s_(planet[0]), "sun": s_(sun[0])},
-        "omegas": {"arm": s_(qd), "planet": s_(planet[1]), "sun": s_(sun[1])},
+        "angles": {"arm": s_(arm[0]), "planet": s_(planet[0]), "sun": s_(sun[0])},
+        "omegas": {"arm": s_(arm[1]), "planet": s_(planet[1]), "sun": s_(sun[1])},
         "I_star": s_(i_star),
         "driver": s_(x["T"]),
         "reactions": {
@@ -371,6 +379,9 @@ def main():
         "epicyclic": [epicyclic(mpf(q), mpf(qd), mpf(qdd), mpf(t)) for (q, qd, qdd, t) in [
             ("7.0", "2.0", "1.0", "1.0"), ("0.4", "-25.0", "300.0", "-2.0"),
             ("-13.0", "60.0", "-40.0", "0.5")]],
+        "planetary": [epicyclic(mpf(q), mpf(qd), mpf(qdd), mpf(t), sun_driven=True) for (q, qd, qdd, t) in [
+            ("7.0", "2.0", "1.0", "-1.0"), ("0.4", "-25.0", "300.0", "2.0"),
+            ("-53.0", "160.0", "-40.0", "-0.5")]],
         "geared_slider_crank": [geared_slider_crank(mpf(q), mpf(qd), mpf(qdd), mpf(f)) for (q, qd, qdd, f) in [
             ("0.5", "30.0", "10.0", "-200.0"), ("4.0", "-60.0", "500.0", "150.0"),
             ("11.0", "90.0", "0.0", "-800.0")]],

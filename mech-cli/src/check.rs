@@ -21,6 +21,7 @@ pub fn group_kind(g: &Group) -> (&'static str, bool) {
         Solver::Newton => ("group without a closed form (Newton)", false),
         Solver::SlottedLever { .. } => ("slotted lever on a pin", true),
         Solver::Mesh { .. } => ("meshing gear or rack (Willis)", true),
+        Solver::Train => ("gear train (Willis, one linear system)", true),
     }
 }
 

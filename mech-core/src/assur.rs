@@ -11,7 +11,7 @@ use crate::constraints::{Con, ConKind};
 use crate::dyad::Solver;
 use crate::geometry::joint_cons;
 use crate::model::{JointKind, Model};
-use crate::gears::MeshGroup;
+use crate::gears::{MeshGroup, TrainGroup, TRAIN_MAX};
 use crate::screw::{Chain, Driven, JointScrew, VIRTUAL};
 
 /// One group of the plan.
@@ -36,6 +36,8 @@ pub enum Kernel {
     Chain(Chain),
     /// One link meshing with a solved gear or rack: Willis' relation ([`crate::gears`]).
     Mesh(MeshGroup),
+    /// Links meshing with one another: Willis' relations as one small linear system.
+    Train(TrainGroup),
     /// No closed form: the group's scaled Jacobian, LU-factored.
     System,
 }
@@ -128,6 +130,8 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             pivot: 0,
         }),
         Solver::Mesh { body, joint } => mesh_kernel(model, body, joint),
+        // Built from the group's constraints by `plan` (`train_kernel`).
+        Solver::Train => Kernel::System,
         Solver::Newton => Kernel::System,
     }
 }
@@ -179,6 +183,82 @@ fn mesh_kernel(model: &Model, body: usize, joint: usize) -> Kernel {
     })
 }
 
+/// The kernel of a gear-train group ([`TrainGroup`]): each link's pin at its centre, the
+/// meshes, and an order in which each link's pin partner is solved or placed before it.
+fn train_kernel(model: &Model, bodies: &[usize], cons: &[Con]) -> Kernel {
+    let n = bodies.len();
+    let mut grp = TrainGroup {
+        n,
+        bodies: [0; TRAIN_MAX],
+        pins: [0; TRAIN_MAX],
+        meshes: [(0, 0); TRAIN_MAX],
+        order: [0; TRAIN_MAX],
+        tracked: 0,
+    };
+    grp.bodies[..n].copy_from_slice(bodies);
+    let mut k_mesh = 0;
+    let mut has_pin = [false; TRAIN_MAX];
+    let inside = |l: usize| bodies.iter().position(|&b| b == l);
+    // Pins to solved links first, then pins between two links of the group (each given
+    // to the end that has none yet).
+    for pass in 0..2 {
+        for c in cons.iter().filter(|c| c.kind == ConKind::Revolute) {
+            let jt = &model.joints[c.joint];
+            let ends = [inside(jt.a), inside(jt.b)];
+            let k = match (pass, ends) {
+                (0, [Some(k), None]) | (0, [None, Some(k)]) => k,
+                (1, [Some(x), Some(y)]) => {
+                    if !has_pin[y] {
+                        y
+                    } else {
+                        x
+                    }
+                }
+                _ => continue,
+            };
+            if has_pin[k] {
+                return Kernel::System;
+            }
+            has_pin[k] = true;
+            grp.pins[k] = c.joint;
+        }
+    }
+    for c in cons.iter().filter(|c| c.kind == ConKind::Mesh) {
+        let index = (0..c.joint).filter(|&j| model.joints[j].kind.mesh()).count();
+        grp.meshes[k_mesh] = (c.joint, index);
+        k_mesh += 1;
+        // Each meshing link of the group turns about its pin: the pin is at its centre.
+        let jt = &model.joints[c.joint];
+        let Some(m) = jt.mesh.as_ref() else {
+            return Kernel::System;
+        };
+        for (l, centre) in [(jt.a, m.centres[0]), (jt.b, m.centres[1])] {
+            if let Some(k) = inside(l) {
+                if model.joints[grp.pins[k]].point != centre {
+                    return Kernel::System;
+                }
+            }
+        }
+    }
+    if has_pin[..n].iter().any(|h| !h) {
+        return Kernel::System;
+    }
+    let mut placed = vec![false; n];
+    for slot in 0..n {
+        let next = (0..n).find(|&k| {
+            let jt = &model.joints[grp.pins[k]];
+            let other = if jt.b == bodies[k] { jt.a } else { jt.b };
+            !placed[k] && bodies.iter().position(|&b| b == other).is_none_or(|o| placed[o])
+        });
+        let Some(k) = next else {
+            return Kernel::System;
+        };
+        placed[k] = true;
+        grp.order[slot] = k;
+    }
+    Kernel::Train(grp)
+}
+
 /// Which links' [`crate::link_state::LinkState::angle`] the plan keeps over turns: the
 /// ground, a driven link whose base has it, a link sliding on one that has it, and a
 /// meshing link (Willis from its partner and carrier); then each mesh group told whether
@@ -193,6 +273,12 @@ fn track_angles(n: usize, groups: &mut [Group]) {
                 m.partner_tracked = tracked[m.partner];
                 m.carrier_tracked = tracked[m.carrier];
                 tracked[m.body] = true;
+            }
+            Kernel::Train(t) => {
+                t.tracked = (0..n.min(64)).filter(|&l| tracked[l]).fold(0, |m, l| m | 1 << l);
+                for &b in &t.bodies[..t.n] {
+                    tracked[b] = true;
+                }
             }
             _ => {}
         }
@@ -254,7 +340,10 @@ pub fn plan(model: &Model) -> Result<Vec<Group>, Vec<usize>> {
         } else {
             Solver::Newton
         };
-        let kernel = kernel(model, solver);
+        let kernel = match solver {
+            Solver::Train => train_kernel(model, &bodies, &cons),
+            _ => kernel(model, solver),
+        };
         groups.push(Group {
             bodies,
             cons,
@@ -398,6 +487,23 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
             }
             Solver::Newton
         }
+        _ if is_train(model, bodies, cons) => Solver::Train,
         _ => Solver::Newton,
     }
+}
+
+/// A gear-train group ([`TrainGroup`]): up to [`TRAIN_MAX`] links, no driver, only
+/// revolute joints and gear pairs, one revolute per link at its centre, as many gear pairs
+/// as links.
+fn is_train(model: &Model, bodies: &[usize], cons: &[Con]) -> bool {
+    let n = bodies.len();
+    if !(2..=TRAIN_MAX).contains(&n) {
+        return false;
+    }
+    let meshes = cons.iter().filter(|c| c.kind == ConKind::Mesh).count();
+    let revolutes = cons.iter().filter(|c| c.kind == ConKind::Revolute).count();
+    let gears_only = cons
+        .iter()
+        .all(|c| c.kind != ConKind::Mesh || model.joints[c.joint].kind == JointKind::Gear);
+    meshes == n && revolutes == n && meshes + revolutes == cons.len() && gears_only
 }

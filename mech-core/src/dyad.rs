@@ -129,6 +129,9 @@ pub enum Solver {
         /// The mesh joint that drives it.
         joint: usize,
     },
+    /// Links turning about their centres, meshing with one another (`crate::gears`,
+    /// a gear-train group): placed by Willis' relations, not here.
+    Train,
     /// No closed form: Newton–Raphson on the group's equations from the drawing.
     Newton,
 }
@@ -519,7 +522,7 @@ pub fn position(
             let rot = tangent_rotation(n0, dvec, w, sign)?;
             place_by_point(&mut s[body], rot, pa.1, pa.0);
         }
-        Solver::Newton | Solver::Mesh { .. } => return Err(MechError::NoAssembly),
+        Solver::Newton | Solver::Mesh { .. } | Solver::Train => return Err(MechError::NoAssembly),
     }
     Ok(points)
 }

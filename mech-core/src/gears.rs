@@ -11,7 +11,9 @@
 //! ρ = σ r_a/r_b (gear b from gear a), σ r_b/r_a (a from b), κ r (the rack from the
 //! pinion), κ/r (the pinion from the rack). So a gear train is solved in closed form, one
 //! gear after the other, exactly over any number of turns (the angles φ are carried
-//! unwrapped, [`LinkState::angle`]).
+//! unwrapped, [`LinkState::angle`]); links that mesh with one another (the arm and planet
+//! of an epicyclic train driven by its sun) are a [`TrainGroup`], their relations one
+//! small linear system.
 //!
 //! **Kinetostatics.** The tooth force acts at the pitch point P along the line of action,
 //! at the pressure angle α from the common tangent t: F = f_t t + |f_t| tan α s, s the
@@ -359,5 +361,247 @@ pub fn mesh_reactions(
     };
     push(f, grp.partner, pitch.p, -force, 0.0);
     push(f, other, joint_point, -r, -moment);
+    Ok(())
+}
+
+/// The most links a gear-train group may have ([`TrainGroup`]).
+pub const TRAIN_MAX: usize = 3;
+
+/// A group of up to [`TRAIN_MAX`] links turning about their centres and meshing with one
+/// another and with solved links, as many meshes as links (for instance the arm and the
+/// planet of an epicyclic train driven by its sun against a fixed ring): Willis' relation
+/// of every mesh is linear in the links' rotations, one n × n system for the angles, the
+/// same matrix for their rates and accelerations. Each link is held by one revolute at
+/// its centre (`pins[k]`), to a solved link or to a link of the group placed before it
+/// (`order`). Only gear pairs (no rack) form such a group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TrainGroup {
+    /// The number of links n.
+    pub n: usize,
+    /// Its links.
+    pub bodies: [usize; TRAIN_MAX],
+    /// The revolute joint at each link's centre.
+    pub pins: [usize; TRAIN_MAX],
+    /// The mesh joints and their indices into the mechanism's meshes.
+    pub meshes: [(usize, usize); TRAIN_MAX],
+    /// The order the links are placed in (indices into `bodies`): each pinned to a solved
+    /// link or to one placed before it.
+    pub order: [usize; TRAIN_MAX],
+    /// Per link of the mechanism up to the 64th: its [`LinkState::angle`] is tracked
+    /// (bit l), for the solved links the meshes reach.
+    pub tracked: u64,
+}
+
+impl TrainGroup {
+    /// The column of link `l` in the group's unknowns, if it is one of them.
+    #[inline(always)]
+    fn col(&self, l: usize) -> Option<usize> {
+        self.bodies[..self.n].iter().position(|&b| b == l)
+    }
+
+    /// Willis' relations as A x = rhs for the links' angle (`level` 0), rate (1) or
+    /// acceleration (2), with the solved links' values from `s`.
+    #[inline(always)]
+    fn willis(
+        &self,
+        meshes: &[MeshGeom],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        level: usize,
+    ) -> (nalgebra::SMatrix<f64, TRAIN_MAX, TRAIN_MAX>, nalgebra::SVector<f64, TRAIN_MAX>) {
+        let mut a = nalgebra::SMatrix::<f64, TRAIN_MAX, TRAIN_MAX>::identity();
+        let mut rhs = nalgebra::SVector::<f64, TRAIN_MAX>::zeros();
+        let value = |l: usize| -> f64 {
+            if l == 0 {
+                return 0.0;
+            }
+            match level {
+                0 => turned(s, l, self.tracked >> l.min(63) & 1 == 1),
+                1 => s[l].omega,
+                _ => s[l].alpha,
+            }
+        };
+        for (r, &(j, mi)) in self.meshes[..self.n].iter().enumerate() {
+            let (g, m) = (&joints[j], &meshes[mi]);
+            a[(r, r)] = 0.0;
+            // r_a x_a + σ r_b x_b − (r_a + σ r_b) x_c = 0.
+            for (l, k) in [(g.a, m.ra), (g.b, m.sign * m.rb), (m.carrier, -(m.ra + m.sign * m.rb))] {
+                match self.col(l) {
+                    Some(c) => a[(r, c)] += k,
+                    None => rhs[r] -= k * value(l),
+                }
+            }
+        }
+        (a, rhs)
+    }
+}
+
+/// Solve a gear-train group up to `upto` ([`TrainGroup`]): the angles from Willis'
+/// relations, the links placed about their centres in `order`, then the rates and
+/// accelerations from the same matrix. `Singular` when the relations do not fix the angles.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub fn solve_train(
+    grp: &TrainGroup,
+    meshes: &[MeshGeom],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    upto: Level,
+) -> Result<(), MechError> {
+    let (a, rhs) = grp.willis(meshes, joints, s, 0);
+    let lu = crate::linalg::Lu::new(a);
+    let cond = lu.condition();
+    if !(cond < crate::linalg::SINGULAR_CONDITION) {
+        return Err(MechError::Singular { condition: cond });
+    }
+    let phi = lu.solve(&rhs);
+    let centre = |s: &[LinkState], k: usize| {
+        let g = &joints[grp.pins[k]];
+        let body = grp.bodies[k];
+        let (other, d_other, d_body) = if g.b == body {
+            (g.a, g.da, g.db)
+        } else {
+            (g.b, g.db, g.da)
+        };
+        (other, point_of(s, other, d_other), d_body)
+    };
+    for &k in &grp.order[..grp.n] {
+        let (_, o, d_body) = centre(s, k);
+        let (sn, cs) = phi[k].sin_cos();
+        let st = &mut s[grp.bodies[k]];
+        st.rot = V2::new(cs, sn);
+        st.angle = phi[k];
+        st.pos = o - rotate(st.rot, d_body);
+    }
+    if upto == Level::Position {
+        return Ok(());
+    }
+    let w = lu.solve(&grp.willis(meshes, joints, s, 1).1);
+    for &k in &grp.order[..grp.n] {
+        let (other, o, _) = centre(s, k);
+        let vo = if other == 0 { V2::zeros() } else { s[other].vel_at(o - s[other].pos) };
+        s[grp.bodies[k]].set_velocity_through(o, vo, w[k]);
+    }
+    if upto == Level::Acceleration {
+        let al = lu.solve(&grp.willis(meshes, joints, s, 2).1);
+        for &k in &grp.order[..grp.n] {
+            let (other, o, _) = centre(s, k);
+            let ao = if other == 0 { V2::zeros() } else { s[other].acc_at(o - s[other].pos) };
+            s[grp.bodies[k]].set_acceleration_through(o, ao, al[k]);
+        }
+    }
+    Ok(())
+}
+
+/// d'Alembert for a gear-train group: every link's three equations in the unknowns — the
+/// force of each pin on its link (2 each) and each mesh's tangential tooth force (1
+/// each) — one 3n × 3n system; the tooth forces' radial parts follow the flanks, which are
+/// settled by solving again until every flank agrees with the sign of its tangential force.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub fn train_reactions(
+    grp: &TrainGroup,
+    meshes: &[MeshGeom],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    const M: usize = 3 * TRAIN_MAX;
+    let n = grp.n;
+    let pitch: [Pitch; TRAIN_MAX] = core::array::from_fn(|r| {
+        if r < n {
+            let (j, mi) = grp.meshes[r];
+            let g = &joints[j];
+            meshes[mi].pitch(s, g.a, g.b, V2::zeros())
+        } else {
+            Pitch { p: V2::zeros(), t: V2::zeros(), sep_b: V2::zeros() }
+        }
+    });
+    let pin_point: [V2; TRAIN_MAX] = core::array::from_fn(|k| {
+        if k < n {
+            let g = &joints[grp.pins[k]];
+            if g.b == grp.bodies[k] { point_of(s, g.a, g.da) } else { point_of(s, g.b, g.db) }
+        } else {
+            V2::zeros()
+        }
+    });
+    // The tooth force on b of mesh r per unit tangential force, for the flanks `fl`.
+    let unit = |r: usize, fl: f64| pitch[r].t + pitch[r].sep_b * (fl * meshes[grp.meshes[r].1].tan_pressure);
+    let mut flanks = [1.0; TRAIN_MAX];
+    let mut x = nalgebra::SVector::<f64, M>::zeros();
+    for _ in 0..=(1 << TRAIN_MAX) {
+        let mut a = nalgebra::SMatrix::<f64, M, M>::identity();
+        let mut b = nalgebra::SVector::<f64, M>::zeros();
+        for k in 0..n {
+            for c in 0..3 {
+                a[(3 * k + c, 3 * k + c)] = 0.0;
+            }
+        }
+        // Add the force `dir` × unknown `col` at point `p` to link `l`'s rows.
+        let put = |a: &mut nalgebra::SMatrix<f64, M, M>, l: usize, p: V2, dir: V2, col: usize| {
+            if let Some(k) = grp.col(l) {
+                let r = p - s[l].pos;
+                a[(3 * k, col)] += dir.x;
+                a[(3 * k + 1, col)] += dir.y;
+                a[(3 * k + 2, col)] += cross(r, dir);
+            }
+        };
+        for k in 0..n {
+            let body = grp.bodies[k];
+            let g = &joints[grp.pins[k]];
+            let other = if g.b == body { g.a } else { g.b };
+            for (c, dir) in [(0, V2::new(1.0, 0.0)), (1, V2::new(0.0, 1.0))] {
+                put(&mut a, body, pin_point[k], dir, 2 * k + c);
+                put(&mut a, other, pin_point[k], -dir, 2 * k + c);
+            }
+            let w = f[body];
+            b[3 * k] = -w.x;
+            b[3 * k + 1] = -w.y;
+            b[3 * k + 2] = -w.z;
+        }
+        for r in 0..n {
+            let g = &joints[grp.meshes[r].0];
+            let d = unit(r, flanks[r]);
+            put(&mut a, g.b, pitch[r].p, d, 2 * n + r);
+            put(&mut a, g.a, pitch[r].p, -d, 2 * n + r);
+        }
+        x = crate::linalg::Lu::new(a).solve(&b);
+        let settled: [f64; TRAIN_MAX] =
+            core::array::from_fn(|r| if r < n && x[2 * n + r] < 0.0 { -1.0 } else { 1.0 });
+        if settled == flanks {
+            break;
+        }
+        flanks = settled;
+    }
+    for k in 0..n {
+        let body = grp.bodies[k];
+        let g = &joints[grp.pins[k]];
+        let r = V2::new(x[2 * k], x[2 * k + 1]);
+        let other = if g.b == body { g.a } else { g.b };
+        out[grp.pins[k]] = Reaction {
+            force: if g.b == body { r } else { -r },
+            moment: 0.0,
+        };
+        if grp.col(other).is_none() {
+            let pos = if other == 0 { V2::zeros() } else { s[other].pos };
+            f[other] += Wrench::new(-r.x, -r.y, cross(pin_point[k] - pos, -r));
+        }
+    }
+    for r in 0..n {
+        let (j, _) = grp.meshes[r];
+        let g = &joints[j];
+        let force = unit(r, flanks[r]) * x[2 * n + r];
+        out[j] = Reaction {
+            force,
+            moment: if force.dot(&pitch[r].t) >= 0.0 { 1.0 } else { -1.0 },
+        };
+        for (l, fl) in [(g.a, -force), (g.b, force)] {
+            if grp.col(l).is_none() {
+                let pos = if l == 0 { V2::zeros() } else { s[l].pos };
+                f[l] += Wrench::new(fl.x, fl.y, cross(pitch[r].p - pos, fl));
+            }
+        }
+    }
     Ok(())
 }

@@ -460,6 +460,7 @@ impl Mechanism {
                     kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)?
                 }
                 Kernel::Mesh(m) => crate::gears::solve_mesh(m, &self.inst.meshes, joints, s, upto)?,
+                Kernel::Train(t) => crate::gears::solve_train(t, &self.inst.meshes, joints, s, upto)?,
                 Kernel::System => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
             }
         }
@@ -668,6 +669,9 @@ impl Mechanism {
                 Kernel::Mesh(m) => {
                     crate::gears::mesh_reactions(m, &self.inst.meshes, joints, s, &mut f, &mut r)?
                 }
+                Kernel::Train(t) => {
+                    crate::gears::train_reactions(t, &self.inst.meshes, joints, s, &mut f, &mut r)?
+                }
                 Kernel::System => system(g, |n| {
                     n.reactions(g, joints, s, &mut f, scale, &mut r, &mut out.driver)
                 })?,
@@ -779,6 +783,13 @@ impl Mechanism {
                     }
                     Kernel::Mesh(m) => crate::gears::solve_mesh(
                         m,
+                        &self.inst.meshes,
+                        joints,
+                        &mut v,
+                        Level::Velocity,
+                    )?,
+                    Kernel::Train(t) => crate::gears::solve_train(
+                        t,
                         &self.inst.meshes,
                         joints,
                         &mut v,

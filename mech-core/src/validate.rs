@@ -551,16 +551,20 @@ pub fn check(model: &Model) -> Vec<Issue> {
     out
 }
 
-/// A gear pair or rack must be solved by Willis' relation: the meshing link alone, held by
-/// its pin (or slide) and the mesh, after its partner and carrier (`crate::gears`). A
-/// mesh inside a larger group (a gear that closes a loop of a linkage) is refused.
+/// A gear pair or rack must be solved by Willis' relation (`crate::gears`): the meshing
+/// link alone, held by its pin (or slide) and the mesh, after its partner and carrier, or
+/// a gear-train group of up to three links pinned at their centres. A mesh inside another
+/// group (a gear that closes a loop of a linkage) is refused.
 pub fn meshes_solvable(model: &Model) -> Vec<Issue> {
     let Ok(plan) = crate::assur::plan(model) else {
         return Vec::new();
     };
     let mut out = Vec::new();
     for g in &plan {
-        if matches!(g.kernel, crate::assur::Kernel::Mesh(_)) {
+        if matches!(
+            g.kernel,
+            crate::assur::Kernel::Mesh(_) | crate::assur::Kernel::Train(_)
+        ) {
             continue;
         }
         for c in g.cons.iter().filter(|c| c.kind == ConKind::Mesh) {
@@ -568,7 +572,7 @@ pub fn meshes_solvable(model: &Model) -> Vec<Issue> {
             out.push(Issue {
                 culprits: vec![Culprit::Joint(c.joint)],
                 message: format!(
-                    "{} `{}` is not solvable gear by gear: its links {} form one group with other joints; a meshing link must be held by one pin at its centre (or, for a rack, one slide) and be driven by the mesh alone, after its partner and its carrier; closing a linkage's loop through a mesh is not supported",
+                    "{} `{}` is not solvable gear by gear: its links {} form one group with other joints; a meshing link must be held by one pin at its centre (or, for a rack, one slide) and be driven by the mesh alone after its partner and its carrier, or be one of at most three gears pinned at their centres that mesh with one another; closing a linkage's loop through a mesh is not supported",
                     jt.kind.keyword(),
                     jt.name,
                     names(g.bodies.iter().map(|&b| model.links[b].name.clone()))

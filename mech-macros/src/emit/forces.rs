@@ -239,6 +239,10 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let kn = plan::mesh_const(gi);
             quote!(#p::gears::mesh_reactions(&Self::#kn, &self.meshes, &joints, s, &mut f, &mut r)?;)
         }
+        Kernel::Train(_) => {
+            let kn = plan::mesh_const(gi);
+            quote!(#p::gears::train_reactions(&Self::#kn, &self.meshes, &joints, s, &mut f, &mut r)?;)
+        }
         Kernel::System => quote! {
             let lam = #p::kinetostatics::group_reactions::<#n>(m.systems #path.as_ref(), &Self::#bn, &Self::#cn, &joints, s, &mut f, self.scale)?;
             #p::kinetostatics::lambda_reactions(&Self::#cn, &joints, s, lam.as_slice(), &mut r, &mut d);

@@ -60,6 +60,10 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let (kn, t) = (mesh_const(gi), mesh_tokens(m));
             quote!(const #kn: #p::gears::MeshGroup = #t;)
         }
+        Kernel::Train(t) => {
+            let (kn, t) = (mesh_const(gi), train_tokens(t));
+            quote!(const #kn: #p::gears::TrainGroup = #t;)
+        }
         Kernel::System => {
             let (bn, cn) = system_consts(gi);
             let (nb, nc, bodies) = (g.bodies.len(), g.cons.len(), &g.bodies);
@@ -81,6 +85,12 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
 /// The name of a meshing group's kernel constant.
 pub(crate) fn mesh_const(gi: usize) -> Ident {
     format_ident!("__G{}_MESH", gi)
+}
+
+fn train_tokens(t: &mech_core::gears::TrainGroup) -> TokenStream {
+    let (n, bodies, pins, order, tracked) = (t.n, t.bodies, t.pins, t.order, t.tracked);
+    let meshes = t.meshes.iter().map(|&(j, m)| quote!((#j, #m)));
+    quote!(::mech::__private::gears::TrainGroup { n: #n, bodies: [#(#bodies),*], pins: [#(#pins),*], meshes: [#(#meshes),*], order: [#(#order),*], tracked: #tracked })
 }
 
 fn mesh_tokens(m: &mech_core::gears::MeshGroup) -> TokenStream {
@@ -145,6 +155,10 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let kn = mesh_const(gi);
             quote!(#p::gears::solve_mesh(&Self::#kn, &self.meshes, &joints, &mut s, upto)?; let #sys = ();)
         }
+        Kernel::Train(_) => {
+            let kn = mesh_const(gi);
+            quote!(#p::gears::solve_train(&Self::#kn, &self.meshes, &joints, &mut s, upto)?; let #sys = ();)
+        }
         Kernel::System if g.redundant() => {
             let m = g.rows();
             quote!(let #sys = #p::group::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto)?;)
@@ -185,6 +199,10 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         Kernel::Mesh(_) => {
             let kn = mesh_const(gi);
             quote!(#p::gears::solve_mesh(&Self::#kn, &self.meshes, &joints, &mut v, #level)?;)
+        }
+        Kernel::Train(_) => {
+            let kn = mesh_const(gi);
+            quote!(#p::gears::solve_train(&Self::#kn, &self.meshes, &joints, &mut v, #level)?;)
         }
         Kernel::System if g.redundant() => {
             let m = g.rows();
@@ -412,6 +430,7 @@ fn solver_tokens(s: &Solver) -> TokenStream {
             quote!(#p::SlottedLever { body: #body, ja: #ja, js: #js })
         }
         Solver::Mesh { body, joint } => quote!(#p::Mesh { body: #body, joint: #joint }),
+        Solver::Train => quote!(#p::Train),
         Solver::Newton => quote!(#p::Newton),
     }
 }
