@@ -8,6 +8,9 @@
 //!   triangle under the pin, hatched by [`crate::svg`]);
 //! - a prismatic joint: the guide line through its point along the axis (turning with the
 //!   guide's link); a pin in a slot: the slot, two lines along the axis;
+//! - a gear pair or rack: each gear's pitch circle (a polygon) with a spoke that turns
+//!   with it;
+//! - a spring: a zigzag between its points; a damper: a line between them;
 //! - every point: its name.
 
 use crate::Failure;
@@ -36,6 +39,12 @@ pub enum Role {
     Path,
     /// A reaction arrow.
     Arrow,
+    /// A gear's pitch circle.
+    Gear,
+    /// A spring (a zigzag).
+    Spring,
+    /// A damper or a gear's spoke (a line).
+    Damper,
 }
 
 /// One shape: its role, its index among the link (or joint, point) it draws, a name
@@ -85,7 +94,7 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
     let mut shapes = Vec::new();
     // Guides and slots first (under the links).
     for j in &model.joints {
-        if j.kind == JointKind::Revolute {
+        if j.kind == JointKind::Revolute || j.kind.mesh() {
             continue;
         }
         let n = V2::new(j.axis[0], j.axis[1]).normalize();
@@ -110,6 +119,61 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
                 role: Role::Guide,
                 name: j.name.clone(),
                 points: vec![a - w, b - w],
+            });
+        }
+    }
+    // Pitch circles with a spoke, under the links.
+    for j in &model.joints {
+        let Some(mesh) = &j.mesh else { continue };
+        let gears = [(j.a, mesh.centres[0], mesh.ra), (j.b, mesh.centres[1], mesh.rb)];
+        for &(l, centre, r) in gears.iter().filter(|g| g.2 > 0.0 && g.0 != 0) {
+            let c = at(centre);
+            let rot = turn(model, l, pose.links[l].angle);
+            let circle = (0..48)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as f64 / 48.0;
+                    c + rotate(rot, V2::new(t.cos(), t.sin())) * r
+                })
+                .collect();
+            shapes.push(Shape {
+                role: Role::Gear,
+                name: j.name.clone(),
+                points: circle,
+            });
+            shapes.push(Shape {
+                role: Role::Damper,
+                name: j.name.clone(),
+                points: vec![c, c + rotate(rot, V2::new(r, 0.0))],
+            });
+        }
+    }
+    // Springs and dampers, between their points.
+    for e in &model.elements {
+        let Some([p, q]) = e.points else { continue };
+        let (a, b) = (at(p), at(q));
+        if e.kind == mech_core::model::ElementKind::Spring {
+            let d = b - a;
+            let w = perp(d.normalize()) * (0.015 * s);
+            let zig = (0..=12)
+                .map(|k| {
+                    let side = match k {
+                        0 | 12 => 0.0,
+                        k if k % 2 == 1 => 1.0,
+                        _ => -1.0,
+                    };
+                    a + d * (k as f64 / 12.0) + w * side
+                })
+                .collect();
+            shapes.push(Shape {
+                role: Role::Spring,
+                name: e.name.clone(),
+                points: zig,
+            });
+        } else {
+            shapes.push(Shape {
+                role: Role::Damper,
+                name: e.name.clone(),
+                points: vec![a, b],
             });
         }
     }

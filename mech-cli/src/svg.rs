@@ -74,7 +74,7 @@ impl View {
 
 /// The style sheet and the definitions (hatching, arrow head) of every picture.
 const STYLE: &str = r##"<defs><pattern id="hatch" width="6" height="6" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="6" height="6" fill="#eee"/><line x1="0" y1="0" x2="0" y2="6" stroke="#555" stroke-width="1.5"/></pattern><marker id="head" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="7" markerHeight="7" orient="auto-start-reverse"><path d="M0,0L10,5L0,10z" fill="#d2691e"/></marker></defs>
-<style>.bar{stroke:#3b6ea8;stroke-width:10;stroke-linecap:round;stroke-opacity:.8}.plate{fill:#3b6ea8;fill-opacity:.35;stroke:#3b6ea8;stroke-width:3;stroke-linejoin:round}.block{fill:#c0504d;fill-opacity:.7;stroke:#7a2a28;stroke-width:2}.guide{stroke:#555;stroke-width:2;stroke-dasharray:8 4}.pin{fill:#fff;stroke:#000;stroke-width:2}.pivot{fill:url(#hatch);stroke:#333;stroke-width:1.5}.label{font:13px sans-serif;fill:#222}.path{fill:none;stroke:#2a9d3a;stroke-width:1.5}.arrow{stroke:#d2691e;stroke-width:2.5;marker-end:url(#head)}</style>
+<style>.bar{stroke:#3b6ea8;stroke-width:10;stroke-linecap:round;stroke-opacity:.8}.plate{fill:#3b6ea8;fill-opacity:.35;stroke:#3b6ea8;stroke-width:3;stroke-linejoin:round}.block{fill:#c0504d;fill-opacity:.7;stroke:#7a2a28;stroke-width:2}.guide{stroke:#555;stroke-width:2;stroke-dasharray:8 4}.pin{fill:#fff;stroke:#000;stroke-width:2}.pivot{fill:url(#hatch);stroke:#333;stroke-width:1.5}.label{font:13px sans-serif;fill:#222}.path{fill:none;stroke:#2a9d3a;stroke-width:1.5}.arrow{stroke:#d2691e;stroke-width:2.5;marker-end:url(#head)}.gear{fill:#e8d9b5;fill-opacity:.5;stroke:#8a6d3b;stroke-width:2}.spring{fill:none;stroke:#2e7d32;stroke-width:2}.damper{stroke:#6d4c41;stroke-width:4}</style>
 "##;
 
 /// The radius of a pin, px.
@@ -91,6 +91,9 @@ fn class(r: Role) -> &'static str {
         Role::Label => "label",
         Role::Path => "path",
         Role::Arrow => "arrow",
+        Role::Gear => "gear",
+        Role::Spring => "spring",
+        Role::Damper => "damper",
     }
 }
 
@@ -111,7 +114,7 @@ fn points_attr(view: &View, pts: &[V2]) -> String {
 /// The attributes (name, value) that place a shape.
 pub fn attributes(view: &View, s: &Shape) -> Vec<(&'static str, String)> {
     match s.role {
-        Role::Bar | Role::Guide | Role::Arrow => {
+        Role::Bar | Role::Guide | Role::Arrow | Role::Damper => {
             let ((x1, y1), (x2, y2)) = (view.px(s.points[0]), view.px(s.points[1]));
             vec![
                 ("x1", num(x1)),
@@ -128,7 +131,7 @@ pub fn attributes(view: &View, s: &Shape) -> Vec<(&'static str, String)> {
             let (x, y) = view.px(s.points[0]);
             vec![("x", num(x)), ("y", num(y))]
         }
-        Role::Plate | Role::Block | Role::Pivot | Role::Path => {
+        Role::Plate | Role::Block | Role::Pivot | Role::Path | Role::Gear | Role::Spring => {
             vec![("points", points_attr(view, &s.points))]
         }
     }
@@ -136,11 +139,11 @@ pub fn attributes(view: &View, s: &Shape) -> Vec<(&'static str, String)> {
 
 fn tag(r: Role) -> &'static str {
     match r {
-        Role::Bar | Role::Guide | Role::Arrow => "line",
+        Role::Bar | Role::Guide | Role::Arrow | Role::Damper => "line",
         Role::Pin => "circle",
         Role::Label => "text",
-        Role::Path => "polyline",
-        Role::Plate | Role::Block | Role::Pivot => "polygon",
+        Role::Path | Role::Spring => "polyline",
+        Role::Plate | Role::Block | Role::Pivot | Role::Gear => "polygon",
     }
 }
 

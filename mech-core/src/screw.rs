@@ -676,7 +676,9 @@ mod tests {
                             drive,
                             Level::Acceleration,
                         ),
-                        Kernel::System => panic!("{text}: no closed form"),
+                        Kernel::System | Kernel::Mesh(_) | Kernel::Train(_) => {
+                            panic!("{text}: no screw kernel")
+                        }
                     }
                     .expect("screw route");
                     crate::dyad::position(g.solver, &inst.joints, &mut sb, drive, sign)
@@ -775,7 +777,7 @@ mod tests {
                         Kernel::Driven(d) => {
                             driven_reactions(d, &inst.joints, &sa, &mut fa, &mut ra, &mut da)
                         }
-                        Kernel::System => unreachable!(),
+                        Kernel::System | Kernel::Mesh(_) | Kernel::Train(_) => unreachable!(),
                     }
                     if g.bodies.len() == 1 {
                         let lam = group_reactions::<3>(
