@@ -94,6 +94,7 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             screw: rot(joint),
             input,
             pinned: other(joint, body) == 0 && model.pinned_at_anchor(body),
+            track: false,
         }),
         Solver::DrivenPrismatic { body, joint, input } => Kernel::Driven(Driven {
             from: other(joint, body),
@@ -101,6 +102,7 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             screw: slide(joint),
             input,
             pinned: false,
+            track: false,
         }),
         Solver::Rrr { b1, b2, ja, jc, jb } => dyad(b1, b2, ja, jc, jb),
         Solver::Rrp { b1, b2, ja, jc, jp } => dyad(b1, b2, ja, jc, jp),
@@ -264,11 +266,17 @@ fn train_kernel(model: &Model, bodies: &[usize], cons: &[Con]) -> Kernel {
 /// meshing link (Willis from its partner and carrier); then each mesh group told whether
 /// its partner's and carrier's are kept.
 fn track_angles(n: usize, groups: &mut [Group]) {
+    let meshes = groups
+        .iter()
+        .any(|g| matches!(g.kernel, Kernel::Mesh(_) | Kernel::Train(_)));
     let mut tracked = vec![false; n];
     tracked[0] = true;
     for g in groups.iter_mut() {
         match &mut g.kernel {
-            Kernel::Driven(d) => tracked[d.body] = tracked[d.from],
+            Kernel::Driven(d) => {
+                d.track = meshes;
+                tracked[d.body] = meshes && tracked[d.from];
+            }
             Kernel::Mesh(m) => {
                 m.partner_tracked = tracked[m.partner];
                 m.carrier_tracked = tracked[m.carrier];

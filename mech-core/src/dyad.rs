@@ -397,15 +397,12 @@ pub fn position(
             } else {
                 rotate(s[other].rot, rel)
             };
-            let turn = drive.0[input] - g.q_ref;
-            s[body].angle = s[other].angle + if g.b == body { turn } else { -turn };
             let (p, d) = pin(g, s, body);
             place_by_point(&mut s[body], rot, d, p);
         }
         Solver::DrivenPrismatic { body, joint, input } => {
             let g = &joints[joint];
             let q = drive.0[input] - g.q_ref;
-            s[body].angle = s[if g.b == body { g.a } else { g.b }].angle;
             if g.b == body {
                 let rot = s[g.a].rot;
                 let p = point_of(s, g.a, g.da) + rotate(rot, g.axis) * q;

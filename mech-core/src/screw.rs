@@ -216,6 +216,9 @@ pub struct Driven {
     /// A crank on the ground turning about its anchor (the driver's pin is the link's
     /// first point): its anchor never moves.
     pub pinned: bool,
+    /// Keep its [`crate::link_state::LinkState::angle`] over turns (a gear train reads it;
+    /// set by the plan only when the mechanism meshes).
+    pub track: bool,
 }
 
 /// The chain matrix S at the current positions, reduced by its pivot p: with O at the

@@ -456,7 +456,7 @@ fn chain_tokens(c: &Chain) -> TokenStream {
 }
 
 fn driven_tokens(d: &Driven) -> TokenStream {
-    let (from, body, input, pinned) = (d.from, d.body, d.input, d.pinned);
+    let (from, body, input, pinned, track) = (d.from, d.body, d.input, d.pinned, d.track);
     let screw = screw_tokens(&d.screw);
-    quote!(::mech::__private::screw::Driven { from: #from, body: #body, screw: #screw, input: #input, pinned: #pinned })
+    quote!(::mech::__private::screw::Driven { from: #from, body: #body, screw: #screw, input: #input, pinned: #pinned, track: #track })
 }
