@@ -129,6 +129,34 @@ mod snapshots {
         }
     "#;
 
+    /// A pinion driving a gear whose crank pin pulls a spring and a damper: the meshing
+    /// group, the tooth reaction, the elements in every route.
+    const GEARED_SPRUNG: &str = r#"
+        /// A geared crank held by a spring.
+        pub struct GearedSprung {
+            gravity: (0.0, -9.81),
+            ground { O1: (0.0, 0.0), O2: (100 mm, 0.0), C: (100 mm, 200 mm) },
+            link pinion { points { O1 }, mass: 0.3, inertia: 1.0e-4, cg: (0.0, 0.0) },
+            link wheel { points { O2, A: (140 mm, 0.0) }, mass: 1.5, inertia: 3.0e-3, cg: (105 mm, 5 mm) },
+            joints {
+                O1: revolute(ground, pinion),
+                O2: revolute(ground, wheel),
+                mesh: gear(pinion, wheel) radii (25 mm, 75 mm),
+            },
+            input: O1,
+            loads { load: torque on wheel },
+            elements {
+                k: spring(ground at C, wheel at A) stiffness 2 kN_per_m free_length 150 mm,
+                c: damper(ground at C, wheel at A) damping 20 N_s_per_m,
+            },
+        }
+    "#;
+
+    #[test]
+    fn geared_sprung_parts() {
+        snapshot_parts("geared_sprung", GEARED_SPRUNG);
+    }
+
     #[test]
     fn four_bar_parts() {
         snapshot_parts("four_bar", FOUR_BAR);
