@@ -481,3 +481,29 @@ fn geared_solvers_are_allocation_free() {
     assert_eq!(counting::count() - before, 0, "allocations");
     assert!(sink.is_finite());
 }
+
+#[path = "../examples/gearbox.rs"]
+#[allow(dead_code)]
+mod gearbox;
+
+/// The gearbox example runs and writes its chart; over a turn of its arm at a steady speed
+/// the motor torque by d'Alembert and by virtual power agree to 1e-12, the tooth loads of
+/// the sun–planet and planet–ring meshes are equal (a light planet at constant speed
+/// carries the same tangential force on both sides), and the mean motor torque is the
+/// brake's 20 N·m divided by the 4:1 ratio (gravity and the spring are conservative: the
+/// trapezoidal mean of a smooth periodic function is exact to roundoff).
+#[test]
+fn gearbox_example() {
+    let dir = std::env::temp_dir().join(format!("mech-gearbox-{}", std::process::id()));
+    let files = gearbox::run(&dir).unwrap();
+    assert!(files.iter().all(|f| std::fs::metadata(f).map(|m| m.len() > 1000).unwrap_or(false)));
+    let rows = gearbox::table(2.0).unwrap();
+    let mut mean = 0.0;
+    for r in &rows {
+        close("routes", r.driver.1, r.driver.0, 1e-12 * 10.0);
+        assert!(r.sp.0 > 0.0 && (r.sp.0 - r.pr.0).abs() <= 1e-9 * r.sp.0, "{} vs {}", r.sp.0, r.pr.0);
+        mean += r.driver.0 / rows.len() as f64;
+    }
+    close("mean motor torque", mean, 20.0 / 4.0, 1e-9);
+    let _ = std::fs::remove_dir_all(&dir);
+}
