@@ -22,6 +22,8 @@ pub fn group_kind(g: &Group) -> (&'static str, bool) {
         Solver::SlottedLever { .. } => ("slotted lever on a pin", true),
         Solver::Mesh { .. } => ("meshing gear or rack (Willis)", true),
         Solver::Train => ("gear train (Willis, one linear system)", true),
+        Solver::DrivenRolling { .. } => ("wheel driven along its track", true),
+        Solver::Rrl { .. } => ("rod and rolling wheel", true),
     }
 }
 

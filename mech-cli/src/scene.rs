@@ -11,6 +11,7 @@
 //! - a gear pair or rack: each gear's pitch circle (a polygon) with a spoke that turns
 //!   with it;
 //! - a spring: a zigzag between its points; a damper: a line between them;
+//! - a rolling wheel: its circle with a spoke, and the track under it;
 //! - every point: its name.
 
 use crate::Failure;
@@ -101,6 +102,33 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
         let u = rotate(turn(model, j.a, pose.links[j.a].angle), n);
         let p = at(j.point);
         let half = GUIDE * s;
+        if j.kind == JointKind::Rolling {
+            // The track under the wheel, and the wheel with a spoke that turns with it.
+            let k = p - perp(u) * j.radius;
+            shapes.push(Shape {
+                role: Role::Guide,
+                name: j.name.clone(),
+                points: vec![k - u * half, k + u * half],
+            });
+            let rot = turn(model, j.b, pose.links[j.b].angle);
+            let circle = (0..48)
+                .map(|i| {
+                    let t = std::f64::consts::TAU * i as f64 / 48.0;
+                    p + rotate(rot, V2::new(t.cos(), t.sin())) * j.radius
+                })
+                .collect();
+            shapes.push(Shape {
+                role: Role::Gear,
+                name: j.name.clone(),
+                points: circle,
+            });
+            shapes.push(Shape {
+                role: Role::Damper,
+                name: j.name.clone(),
+                points: vec![p, p + rotate(rot, V2::new(j.radius, 0.0))],
+            });
+            continue;
+        }
         let (a, b) = (p - u * half, p + u * half);
         if j.kind == JointKind::Prismatic {
             shapes.push(Shape {

@@ -38,6 +38,8 @@ pub enum Kernel {
     Mesh(MeshGroup),
     /// Links meshing with one another: Willis' relations as one small linear system.
     Train(TrainGroup),
+    /// A rolling wheel, driven or at the end of a rod ([`crate::rolling`]).
+    Rolling(crate::rolling::RollingGroup),
     /// No closed form: the group's scaled Jacobian, LU-factored.
     System,
 }
@@ -134,6 +136,12 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
         Solver::Mesh { body, joint } => mesh_kernel(model, body, joint),
         // Built from the group's constraints by `plan` (`train_kernel`).
         Solver::Train => Kernel::System,
+        Solver::DrivenRolling { body, joint, input } => {
+            Kernel::Rolling(crate::rolling::RollingGroup::Driven { body, joint, input })
+        }
+        Solver::Rrl { b1, b2, ja, jc, jr } => {
+            Kernel::Rolling(crate::rolling::RollingGroup::Dyad { b1, b2, ja, jc, jr })
+        }
         Solver::Newton => Kernel::System,
     }
 }
@@ -390,6 +398,15 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
                 )
             });
             if let Some(d) = drive {
+                if let (ConKind::DrivePrismatic(k), JointKind::Rolling) =
+                    (d.kind, model.joints[d.joint].kind)
+                {
+                    return Solver::DrivenRolling {
+                        body,
+                        joint: d.joint,
+                        input: k,
+                    };
+                }
                 return match d.kind {
                     ConKind::DriveRevolute(k) => Solver::DrivenRevolute {
                         body,
@@ -452,6 +469,18 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
                             ja: o1.joint,
                             jc: mid.joint,
                             jb: o2.joint,
+                        }
+                    }
+                    (JointKind::Revolute, JointKind::Revolute, JointKind::Rolling)
+                        if model.joints[o2.joint].b == b2
+                            && model.joints[mid.joint].point == model.joints[o2.joint].point =>
+                    {
+                        return Solver::Rrl {
+                            b1,
+                            b2,
+                            ja: o1.joint,
+                            jc: mid.joint,
+                            jr: o2.joint,
                         }
                     }
                     (JointKind::Revolute, JointKind::Revolute, JointKind::Prismatic) => {

@@ -37,6 +37,9 @@ pub struct JointGeom {
     /// θ_b − θ_a there less the input's zero (rad), so that φ_b − φ_a = q − q_ref; for a
     /// prismatic driver minus its zero (m), so that the slide from the drawing is q − q_ref.
     pub q_ref: f64,
+    /// A rolling wheel's radius r (m; 0 for the other joints): the contact point is
+    /// r·perp(u) behind the wheel's centre, K = C − r perp(u).
+    pub radius: f64,
 }
 
 impl JointGeom {
@@ -68,13 +71,17 @@ pub enum ConKind {
     /// b, its `axis` is t in the drawing). Its rows serve the rank test at the drawing;
     /// meshing links are solved by [`crate::gears`], not by a group system.
     Mesh,
+    /// Rolling (`crate::rolling`): the wheel's and the track's material points at the
+    /// contact K = C − r perp(u) have the same velocity (2 rows, a revolute's at K). For
+    /// the rank test; rolling links are solved by [`crate::rolling`].
+    Rolling,
 }
 
 impl ConKind {
     /// Number of scalar equations.
     pub const fn rows(self) -> usize {
         match self {
-            ConKind::Revolute | ConKind::Prismatic => 2,
+            ConKind::Revolute | ConKind::Prismatic | ConKind::Rolling => 2,
             _ => 1,
         }
     }
@@ -204,6 +211,23 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
                     Level::Velocity => sb.omega - sa.omega,
                     Level::Acceleration => sb.alpha - sa.alpha,
                 };
+            }
+        }
+        ConKind::Rolling => {
+            let u = sa.r(g.axis);
+            let k = sb.pos + rb - perp(u) * g.radius;
+            let (ka, kb) = (k - sa.pos, k - sb.pos);
+            out.rows[0] = Row {
+                a: Vector3::new(-1.0, 0.0, ka.y),
+                b: Vector3::new(1.0, 0.0, -kb.y),
+            };
+            out.rows[1] = Row {
+                a: Vector3::new(0.0, -1.0, -ka.x),
+                b: Vector3::new(0.0, 1.0, kb.x),
+            };
+            if level == Level::Velocity {
+                let v = sb.vel_at(kb) - sa.vel_at(ka);
+                out.val = [v.x, v.y];
             }
         }
         ConKind::Mesh => {

@@ -442,10 +442,11 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
             "pin_in_slot" => JointKind::PinInSlot,
             "gear" => JointKind::Gear,
             "rack" => JointKind::Rack,
+            "rolling" => JointKind::Rolling,
             other => {
                 return Err(syn::Error::new(
                     kw.span(),
-                    format!("unknown joint kind `{other}`: expected `revolute`, `prismatic`, `pin_in_slot`, `gear` or `rack`"),
+                    format!("unknown joint kind `{other}`: expected `revolute`, `prismatic`, `pin_in_slot`, `gear`, `rack` or `rolling`"),
                 ))
             }
         };
@@ -468,8 +469,9 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                         pressure_angle: None,
                     });
                 }
-                "radius" if kind == JointKind::Rack && mesh.is_none() => {
-                    let r = scope.scalar(&content, Dim::LENGTH, "the pinion's pitch radius")?;
+                "radius" if matches!(kind, JointKind::Rack | JointKind::Rolling) && mesh.is_none() => {
+                    let what = if kind == JointKind::Rack { "the pinion's pitch radius" } else { "the wheel's radius" };
+                    let r = scope.scalar(&content, Dim::LENGTH, what)?;
                     mesh = Some(MeshDecl {
                         radii: Pair {
                             value: [r.value, 0.0],
@@ -516,6 +518,12 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                     ))
                 }
             }
+        }
+        if kind == JointKind::Rolling && mesh.is_none() {
+            return Err(syn::Error::new(
+                kw.span(),
+                format!("rolling joint `{id}` has no wheel radius: write `rolling({a}, {b}) at C radius r along (ux, uy)`, C the wheel's centre, e.g. `radius 50 mm`"),
+            ));
         }
         if kind.mesh() && mesh.is_none() {
             return Err(syn::Error::new(

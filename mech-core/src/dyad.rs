@@ -132,6 +132,29 @@ pub enum Solver {
     /// Links turning about their centres, meshing with one another (`crate::gears`,
     /// a gear-train group): placed by Willis' relations, not here.
     Train,
+    /// A wheel driven by its travel on a track (`crate::rolling`), placed there.
+    DrivenRolling {
+        /// The wheel.
+        body: usize,
+        /// The rolling joint.
+        joint: usize,
+        /// The input index.
+        input: usize,
+    },
+    /// A rod and a rolling wheel (`crate::rolling`): the wheel's centre as an RRP
+    /// dyad's slider (`Rrp` with the rolling joint as the guide), then its turn.
+    Rrl {
+        /// The rod.
+        b1: usize,
+        /// The wheel.
+        b2: usize,
+        /// The rod's pin to a solved link.
+        ja: usize,
+        /// The pin between rod and wheel (at the wheel's centre).
+        jc: usize,
+        /// The rolling joint.
+        jr: usize,
+    },
     /// No closed form: Newton–Raphson on the group's equations from the drawing.
     Newton,
 }
@@ -337,7 +360,7 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
             let c = s[gc.b].point(gc.db);
             cross(b - a, c - a)
         }
-        Solver::Rrp { b1, b2, ja, jc, jp } => {
+        Solver::Rrp { b1, b2, ja, jc, jp } | Solver::Rrl { b1, b2, ja, jc, jr: jp } => {
             // Side along the line of C relative to the foot of the perpendicular from A.
             let (a, _) = pin(&joints[ja], s, b1);
             let gc = &joints[jc];
@@ -519,7 +542,11 @@ pub fn position(
             let rot = tangent_rotation(n0, dvec, w, sign)?;
             place_by_point(&mut s[body], rot, pa.1, pa.0);
         }
-        Solver::Newton | Solver::Mesh { .. } | Solver::Train => return Err(MechError::NoAssembly),
+        Solver::Newton
+        | Solver::Mesh { .. }
+        | Solver::Train
+        | Solver::DrivenRolling { .. }
+        | Solver::Rrl { .. } => return Err(MechError::NoAssembly),
     }
     Ok(points)
 }

@@ -94,8 +94,8 @@ pub fn add_joint_friction(
             JointKind::Prismatic | JointKind::PinInSlot => {
                 sliding(extra, &joints[j], s, &friction[j], force)
             }
-            // Tooth friction is not modelled: a mesh's efficiency is 1.
-            JointKind::Gear | JointKind::Rack => {}
+            // Tooth friction and rolling resistance are not modelled.
+            JointKind::Gear | JointKind::Rack | JointKind::Rolling => {}
         }
         at += flat_width(kind);
     }
@@ -106,7 +106,11 @@ pub fn add_joint_friction(
 pub const fn flat_width(kind: JointKind) -> usize {
     match kind {
         JointKind::Prismatic => 3,
-        JointKind::Revolute | JointKind::PinInSlot | JointKind::Gear | JointKind::Rack => 2,
+        JointKind::Revolute
+        | JointKind::PinInSlot
+        | JointKind::Gear
+        | JointKind::Rack
+        | JointKind::Rolling => 2,
     }
 }
 
@@ -161,6 +165,15 @@ impl FlatReaction for SlotReaction {
 
 impl FlatReaction for crate::kinetostatics::MeshReaction {
     const WIDTH: usize = flat_width(JointKind::Gear);
+    #[inline]
+    fn write(&self, out: &mut [f64]) {
+        out[0] = self.force.x;
+        out[1] = self.force.y;
+    }
+}
+
+impl FlatReaction for crate::kinetostatics::RollingReaction {
+    const WIDTH: usize = flat_width(JointKind::Rolling);
     #[inline]
     fn write(&self, out: &mut [f64]) {
         out[0] = self.force.x;

@@ -510,9 +510,13 @@ impl GenericMechanism {
     }
 
     fn build(model: Model) -> Result<Self, MechError> {
-        if let Some(j) = model.joints.iter().find(|j| j.kind.mesh()) {
+        if let Some(j) = model
+            .joints
+            .iter()
+            .find(|j| j.kind.mesh() || j.kind == crate::model::JointKind::Rolling)
+        {
             return Err(MechError::Invalid(format!(
-                "{} `{}`: the generic solver has no gear pairs or racks (their angles are carried over turns by `mech::gears`); use the generated struct or `Mechanism`",
+                "{} `{}`: the generic solver has no gear pairs, racks or rolling wheels (solved in closed form by `mech::gears` and `mech::rolling`); use the generated struct or `Mechanism`",
                 j.kind.keyword(),
                 j.name
             )));
@@ -1182,7 +1186,7 @@ impl GenericMechanism {
                     }
                 }
                 ConKind::Slot => joints[c.joint].force = slide_force(g, s, lam[r]),
-                ConKind::Mesh => {}
+                ConKind::Mesh | ConKind::Rolling => {}
                 // One row of a revolute (never produced by `all_cons`; kept total).
             }
         }

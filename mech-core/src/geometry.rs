@@ -63,6 +63,7 @@ pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
             db: local(model, jt.b, [p.x, p.y]),
             axis: t,
             q_ref: 0.0,
+            radius: 0.0,
         };
     }
     let p = model.points[jt.point].pos;
@@ -81,6 +82,7 @@ pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
             }
             None => 0.0,
         },
+        radius: jt.radius,
     }
 }
 
@@ -101,6 +103,7 @@ pub fn joint_cons(model: &Model, j: usize) -> Vec<Con> {
             JointKind::Prismatic => ConKind::Prismatic,
             JointKind::PinInSlot => ConKind::Slot,
             JointKind::Gear | JointKind::Rack => ConKind::Mesh,
+            JointKind::Rolling => ConKind::Rolling,
         },
     }];
     if let Some(k) = model.inputs.iter().position(|&i| i == j) {

@@ -147,6 +147,12 @@ pub fn lambda_reactions(
                 }
             }
             ConKind::DriveRevolute(k) | ConKind::DrivePrismatic(k) => drivers[k] = lam[row],
+            ConKind::Rolling => {
+                out[c.joint] = Reaction {
+                    force: V2::new(lam[row], lam[row + 1]),
+                    moment: 0.0,
+                }
+            }
             // A mesh's tangential force (meshing links are solved by `crate::gears`).
             ConKind::Mesh => {
                 out[c.joint] = Reaction {
@@ -179,6 +185,19 @@ pub struct MeshReaction {
     /// counter-clockwise tangent of a at the pitch point; rack: the rack's axis), −1 when
     /// against it.
     pub flank: f64,
+}
+
+/// Reaction at a rolling joint (`crate::rolling`): the contact force BY the track ON the
+/// wheel at the contact point (N, global), and its parts: `normal` along perp(u) (> 0 while
+/// the track pushes the wheel; < 0 would mean the wheel lifts off), `friction` along u.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RollingReaction {
+    /// The contact force by the track on the wheel, N.
+    pub force: V2,
+    /// Its normal part, N.
+    pub normal: f64,
+    /// Its part along the track's direction u (the friction the contact needs), N.
+    pub friction: f64,
 }
 
 /// Reaction at a prismatic joint: the force BY a ON b normal to the axis (N, global) and

@@ -57,6 +57,7 @@ pub mod params;
 pub mod pebble;
 pub mod report;
 pub mod resolve;
+pub mod rolling;
 pub mod screw;
 pub mod traits;
 pub mod units;

@@ -461,6 +461,9 @@ impl Mechanism {
                 }
                 Kernel::Mesh(m) => crate::gears::solve_mesh(m, &self.inst.meshes, joints, s, upto)?,
                 Kernel::Train(t) => crate::gears::solve_train(t, &self.inst.meshes, joints, s, upto)?,
+                Kernel::Rolling(r) => {
+                    crate::rolling::solve_rolling(r, joints, s, drive, sign, scale, upto, true)?
+                }
                 Kernel::System => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
             }
         }
@@ -672,6 +675,15 @@ impl Mechanism {
                 Kernel::Train(t) => {
                     crate::gears::train_reactions(t, &self.inst.meshes, joints, s, &mut f, &mut r)?
                 }
+                Kernel::Rolling(k) => crate::rolling::rolling_reactions(
+                    k,
+                    joints,
+                    s,
+                    &mut f,
+                    scale,
+                    &mut r,
+                    &mut out.driver,
+                )?,
                 Kernel::System => system(g, |n| {
                     n.reactions(g, joints, s, &mut f, scale, &mut r, &mut out.driver)
                 })?,
@@ -794,6 +806,16 @@ impl Mechanism {
                         joints,
                         &mut v,
                         Level::Velocity,
+                    )?,
+                    Kernel::Rolling(r) => crate::rolling::solve_rolling(
+                        r,
+                        joints,
+                        &mut v,
+                        drive,
+                        1.0,
+                        scale,
+                        Level::Velocity,
+                        false,
                     )?,
                     Kernel::System => system(grp, |n| n.field(grp, joints, &mut v, drive, scale))?,
                 }

@@ -97,13 +97,17 @@ pub enum JointKind {
     /// Rack and pinion `rack(pinion, bar) radius r`: the pinion's pitch circle rolls on
     /// the rack's pitch line, removes 1 DOF (higher pair).
     Rack,
+    /// A wheel rolling without slipping on a straight line of a track,
+    /// `rolling(track, wheel) at C radius r along (ux, uy)`: no penetration and no slip at
+    /// the contact point, removes 2 DOF (a lower pair).
+    Rolling,
 }
 
 impl JointKind {
     /// DOF removed by the joint in the plane (its number of reaction components).
     pub const fn removed(self) -> usize {
         match self {
-            JointKind::Revolute | JointKind::Prismatic => 2,
+            JointKind::Revolute | JointKind::Prismatic | JointKind::Rolling => 2,
             JointKind::PinInSlot | JointKind::Gear | JointKind::Rack => 1,
         }
     }
@@ -115,6 +119,7 @@ impl JointKind {
             JointKind::PinInSlot => "pin_in_slot",
             JointKind::Gear => "gear",
             JointKind::Rack => "rack",
+            JointKind::Rolling => "rolling",
         }
     }
     /// A gear pair or a rack and pinion: a mesh of toothed pitch curves.
@@ -357,6 +362,8 @@ pub struct Joint {
     pub axis: [f64; 2],
     /// The teeth of a gear pair or rack (`None` for the other joints).
     pub mesh: Option<Mesh>,
+    /// A rolling wheel's radius, m (0 for the other joints).
+    pub radius: f64,
 }
 
 /// A resolved load.

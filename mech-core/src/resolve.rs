@@ -354,13 +354,15 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                     }
                 }
                 JointKind::Gear | JointKind::Rack => {}
-                JointKind::Prismatic | JointKind::PinInSlot => {
+                JointKind::Prismatic | JointKind::PinInSlot | JointKind::Rolling => {
                     if !links[b].points.contains(&p) {
                         errs.push(Diagnostic::at(
                             j.b.span.clone(),
                             format!(
-                                "{} joint `{}` is at point `{pn}`, which must be a point of `{}` (the slider or pin); list it among `{}`'s points",
-                                j.kind.keyword(), j.name.text, links[b].name, links[b].name
+                                "{} joint `{}` is at point `{pn}`, which must be a point of `{}` ({}); list it among `{}`'s points",
+                                j.kind.keyword(), j.name.text, links[b].name,
+                                if j.kind == JointKind::Rolling { "the wheel's centre" } else { "the slider or pin" },
+                                links[b].name
                             ),
                         ));
                     }
@@ -384,11 +386,16 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
             point: point.unwrap_or(0),
             axis,
             mesh: None,
+            radius: if j.kind == JointKind::Rolling {
+                j.mesh.as_ref().map(|m| m.radii.value[0]).unwrap_or(0.0)
+            } else {
+                0.0
+            },
         });
     }
     // Gear pairs and racks: their carrier and centres, now that every joint is known.
     for (k, j) in d.joints.iter().enumerate() {
-        if let Some(decl) = &j.mesh {
+        if let (Some(decl), true) = (&j.mesh, j.kind.mesh()) {
             if joints[k].a == joints[k].b {
                 continue;
             }

@@ -210,6 +210,14 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
     }
     out.extend(mesh_numbers(model));
     for (j, jt) in model.joints.iter().enumerate() {
+        if jt.kind == JointKind::Rolling && !(jt.radius.is_finite() && jt.radius > 0.0) {
+            out.push(Issue {
+                culprits: vec![Culprit::Joint(j)],
+                message: format!("rolling joint `{}` has wheel radius {} m: it must be finite and > 0", jt.name, jt.radius),
+            });
+        }
+    }
+    for (j, jt) in model.joints.iter().enumerate() {
         if jt.kind == JointKind::Revolute || jt.kind.mesh() {
             continue;
         }
@@ -563,9 +571,22 @@ pub fn meshes_solvable(model: &Model) -> Vec<Issue> {
     for g in &plan {
         if matches!(
             g.kernel,
-            crate::assur::Kernel::Mesh(_) | crate::assur::Kernel::Train(_)
+            crate::assur::Kernel::Mesh(_)
+                | crate::assur::Kernel::Train(_)
+                | crate::assur::Kernel::Rolling(_)
         ) {
             continue;
+        }
+        for c in g.cons.iter().filter(|c| c.kind == ConKind::Rolling) {
+            let jt = &model.joints[c.joint];
+            out.push(Issue {
+                culprits: vec![Culprit::Joint(c.joint)],
+                message: format!(
+                    "rolling joint `{}` is not solvable in closed form: its links {} form one group with other joints; a rolling wheel must be driven by its travel (the joint as an input) or be pinned at its centre to a rod pinned to a solved link (a crank–rod–wheel)",
+                    jt.name,
+                    names(g.bodies.iter().map(|&b| model.links[b].name.clone()))
+                ),
+            });
         }
         for c in g.cons.iter().filter(|c| c.kind == ConKind::Mesh) {
             let jt = &model.joints[c.joint];

@@ -118,6 +118,10 @@ fn forces_type(cx: &Ctx) -> TokenStream {
                 quote!(#p::kinetostatics::SlotReaction),
                 "force (normal to the slot) by",
             ),
+            JointKind::Rolling => (
+                quote!(#p::kinetostatics::RollingReaction),
+                "contact force (at the contact point: normal and friction) by",
+            ),
             JointKind::Gear | JointKind::Rack => (
                 quote!(#p::kinetostatics::MeshReaction),
                 "tooth force (along the line of action, at the pitch point), its magnitude and the flank in contact, by",
@@ -243,6 +247,10 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let kn = plan::mesh_const(gi);
             quote!(#p::gears::train_reactions(&Self::#kn, &self.meshes, &joints, s, &mut f, &mut r)?;)
         }
+        Kernel::Rolling(_) => {
+            let kn = plan::mesh_const(gi);
+            quote!(#p::rolling::rolling_reactions(&Self::#kn, &joints, s, &mut f, self.scale, &mut r, &mut d)?;)
+        }
         Kernel::System => quote! {
             let lam = #p::kinetostatics::group_reactions::<#n>(m.systems #path.as_ref(), &Self::#bn, &Self::#cn, &joints, s, &mut f, self.scale)?;
             #p::kinetostatics::lambda_reactions(&Self::#cn, &joints, s, lam.as_slice(), &mut r, &mut d);
@@ -345,6 +353,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
             JointKind::Prismatic => quote!(#jid: #p::kinetostatics::PrismaticReaction { force: r[#j].force, moment: r[#j].moment },),
             JointKind::PinInSlot => quote!(#jid: #p::kinetostatics::SlotReaction { force: r[#j].force },),
             JointKind::Gear | JointKind::Rack => quote!(#jid: #p::kinetostatics::MeshReaction { force: r[#j].force, tooth_load: r[#j].force.norm(), flank: r[#j].moment },),
+            JointKind::Rolling => quote!(#jid: #p::rolling::report(&joints[#j], s, r[#j].force),),
         }
     });
     let driver = if cx.one_dof() {
@@ -393,6 +402,7 @@ fn flat_fn(cx: &Ctx) -> TokenStream {
         JointKind::PinInSlot => quote!(#p::model::JointKind::PinInSlot),
         JointKind::Gear => quote!(#p::model::JointKind::Gear),
         JointKind::Rack => quote!(#p::model::JointKind::Rack),
+        JointKind::Rolling => quote!(#p::model::JointKind::Rolling),
     });
     let drivers = if cx.one_dof() {
         quote!(&[f.driver])

@@ -332,6 +332,7 @@ fn model_expr(cx: &Ctx) -> TokenStream {
             JointKind::PinInSlot => quote!(PinInSlot),
             JointKind::Gear => quote!(Gear),
             JointKind::Rack => quote!(Rack),
+            JointKind::Rolling => quote!(Rolling),
         };
         let jid = &cx.joint_ids[j];
         let axis = if jt.kind == JointKind::Revolute || jt.kind.mesh() { quote!([0.0, 0.0]) } else { quote!([p.axes.#jid.x, p.axes.#jid.y]) };
@@ -342,7 +343,8 @@ fn model_expr(cx: &Ctx) -> TokenStream {
             }
             None => quote!(None),
         };
-        quote!(#p::model::Joint { name: #n.into(), kind: #p::model::JointKind::#kind, a: #a, b: #b, point: #pt, axis: #axis, mesh: #mesh })
+        let radius = f64s(jt.radius);
+        quote!(#p::model::Joint { name: #n.into(), kind: #p::model::JointKind::#kind, a: #a, b: #b, point: #pt, axis: #axis, mesh: #mesh, radius: #radius })
     });
     let loads = model.loads.iter().map(|l| match l {
         Load::Force { name, link, point } => {

@@ -64,6 +64,10 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let (kn, t) = (mesh_const(gi), train_tokens(t));
             quote!(const #kn: #p::gears::TrainGroup = #t;)
         }
+        Kernel::Rolling(r) => {
+            let (kn, t) = (mesh_const(gi), rolling_tokens(r));
+            quote!(const #kn: #p::rolling::RollingGroup = #t;)
+        }
         Kernel::System => {
             let (bn, cn) = system_consts(gi);
             let (nb, nc, bodies) = (g.bodies.len(), g.cons.len(), &g.bodies);
@@ -85,6 +89,19 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
 /// The name of a meshing group's kernel constant.
 pub(crate) fn mesh_const(gi: usize) -> Ident {
     format_ident!("__G{}_MESH", gi)
+}
+
+fn rolling_tokens(r: &mech_core::rolling::RollingGroup) -> TokenStream {
+    use mech_core::rolling::RollingGroup;
+    let p = quote!(::mech::__private::rolling::RollingGroup);
+    match *r {
+        RollingGroup::Driven { body, joint, input } => {
+            quote!(#p::Driven { body: #body, joint: #joint, input: #input })
+        }
+        RollingGroup::Dyad { b1, b2, ja, jc, jr } => {
+            quote!(#p::Dyad { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jr: #jr })
+        }
+    }
 }
 
 fn train_tokens(t: &mech_core::gears::TrainGroup) -> TokenStream {
@@ -159,6 +176,10 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let kn = mesh_const(gi);
             quote!(#p::gears::solve_train(&Self::#kn, &self.meshes, &joints, &mut s, upto)?; let #sys = ();)
         }
+        Kernel::Rolling(_) => {
+            let kn = mesh_const(gi);
+            quote!(#p::rolling::solve_rolling(&Self::#kn, &joints, &mut s, drive, branches[#gi], self.scale, upto, true)?; let #sys = ();)
+        }
         Kernel::System if g.redundant() => {
             let m = g.rows();
             quote!(let #sys = #p::group::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto)?;)
@@ -203,6 +224,10 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         Kernel::Train(_) => {
             let kn = mesh_const(gi);
             quote!(#p::gears::solve_train(&Self::#kn, &self.meshes, &joints, &mut v, #level)?;)
+        }
+        Kernel::Rolling(_) => {
+            let kn = mesh_const(gi);
+            quote!(#p::rolling::solve_rolling(&Self::#kn, &joints, &mut v, drive, 1.0, self.scale, #level, false)?;)
         }
         Kernel::System if g.redundant() => {
             let m = g.rows();
@@ -391,6 +416,7 @@ fn con_tokens(c: &Con) -> TokenStream {
         ConKind::DriveRevolute(k) => quote!(DriveRevolute(#k)),
         ConKind::DrivePrismatic(k) => quote!(DrivePrismatic(#k)),
         ConKind::Mesh => quote!(Mesh),
+        ConKind::Rolling => quote!(Rolling),
     };
     quote!(::mech::__private::kinematics::Con { joint: #j, kind: ::mech::__private::kinematics::ConKind::#kind })
 }
@@ -431,6 +457,12 @@ fn solver_tokens(s: &Solver) -> TokenStream {
         }
         Solver::Mesh { body, joint } => quote!(#p::Mesh { body: #body, joint: #joint }),
         Solver::Train => quote!(#p::Train),
+        Solver::DrivenRolling { body, joint, input } => {
+            quote!(#p::DrivenRolling { body: #body, joint: #joint, input: #input })
+        }
+        Solver::Rrl { b1, b2, ja, jc, jr } => {
+            quote!(#p::Rrl { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jr: #jr })
+        }
         Solver::Newton => quote!(#p::Newton),
     }
 }
