@@ -201,7 +201,8 @@ fn from_params_refuses_negative_coefficients() {
 /// The equilibrium (no driver, no load, at rest) where M*(q) = 0, found by Newton on the
 /// generated M*, is the energy method's q* to 1e-12; the natural frequency of small
 /// oscillations about it, ω_n = √(K*/I*) with K* = −dM*/dq (an 8th-order central
-/// difference of the generated M*), is the reference's to 1e-9.
+/// difference of the generated M*: its truncation ~1e-16, its roundoff ~1e-13), is the
+/// reference's to 1e-11.
 #[test]
 fn equilibrium_and_natural_frequency() {
     let m = undamped();
@@ -223,9 +224,9 @@ fn equilibrium_and_natural_frequency() {
     }
     close("q*", q, num(&r["q"]), 1e-12);
     let k = stiffness(q);
-    close("K*", k, num(&r["stiffness_star"]), 1e-9 * k);
+    close("K*", k, num(&r["stiffness_star"]), 1e-11 * k);
     let wn = (k / m.reduced(q).unwrap().inertia).sqrt();
-    close("ω_n", wn, num(&r["natural_frequency"]), 1e-9 * wn);
+    close("ω_n", wn, num(&r["natural_frequency"]), 1e-11 * wn);
 }
 
 /// Released at rest 0.3 rad from its equilibrium, the undamped machine oscillates; DOP853
@@ -346,4 +347,34 @@ fn generated_solvers_with_elements_are_allocation_free() {
     }
     assert_eq!(counting::count() - before, 0, "allocations");
     assert!(sink.is_finite());
+}
+
+/// The flywheel cycle sees the springs: over a full turn of the crank (torsion spring off,
+/// so that every spring's force is smooth), with no driver and no load, Wittenbauer's
+/// work S(q) = ∫ M* dq (`mech::flywheel::Cycle`, by quadrature) is minus the change of the
+/// potential energy (gravity and springs, `potential_energy`) to 1e-11 of its range: the
+/// springs' M* is exactly −dV/dq.
+#[test]
+fn flywheel_cycle_sees_the_springs() {
+    let mut p = SpringFourBarParams::default();
+    p.elements.kt.stiffness = 0.0;
+    p.elements.c1.damping = 0.0;
+    p.elements.ct.damping = 0.0;
+    let m = SpringFourBar::from_params(p).unwrap();
+    let cycle = mech::flywheel::Cycle::builder(&m, std::f64::consts::TAU, |_| {
+        Ok(SpringFourBarLoads::default())
+    })
+    .build()
+    .unwrap();
+    let v = |q: f64| m.potential_energy(&m.kinematics(q, 0.0, 0.0).unwrap());
+    let (v0, mut range) = (v(0.0), 0.0f64);
+    let mut worst = 0.0f64;
+    for k in 0..=36 {
+        let q = std::f64::consts::TAU * k as f64 / 36.0;
+        let dv = v(q) - v0;
+        range = range.max(dv.abs());
+        worst = worst.max((cycle.work(q).unwrap() + dv).abs());
+    }
+    assert!(range > 1.0, "the springs' energy varies: {range} J");
+    assert!(worst <= 1e-11 * range, "S + ΔV off by {worst:e} J (range {range} J)");
 }

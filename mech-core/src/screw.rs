@@ -679,7 +679,7 @@ mod tests {
                             drive,
                             Level::Acceleration,
                         ),
-                        Kernel::System | Kernel::Mesh(_) | Kernel::Train(_) => {
+                        Kernel::System | Kernel::Mesh(_) | Kernel::Train(_) | Kernel::Rolling(_) => {
                             panic!("{text}: no screw kernel")
                         }
                     }
@@ -780,7 +780,10 @@ mod tests {
                         Kernel::Driven(d) => {
                             driven_reactions(d, &inst.joints, &sa, &mut fa, &mut ra, &mut da)
                         }
-                        Kernel::System | Kernel::Mesh(_) | Kernel::Train(_) => unreachable!(),
+                        Kernel::System
+                        | Kernel::Mesh(_)
+                        | Kernel::Train(_)
+                        | Kernel::Rolling(_) => unreachable!(),
                     }
                     if g.bodies.len() == 1 {
                         let lam = group_reactions::<3>(
