@@ -42,6 +42,46 @@ mechanism! {
     }
 }
 
+mechanism! {
+    /// The same crank and rod, the wheel rolling outside a circle of the ground centred
+    /// 130 mm below it (track radius 80 mm).
+    pub struct WheelAround {
+        gravity: (0.0, -9.81),
+        ground { O2: (0.0, 0.0), D: (250 mm, -150 mm) },
+        link crank { points { O2, A: (40 mm, 30 mm) }, mass: 0.8, inertia: 6.0e-4, cg: (20 mm, 15 mm) },
+        link rod { points { A, C: (250 mm, -20 mm) }, mass: 1.1, inertia: 5.0e-3, cg: (140 mm, 10 mm) },
+        link wheel { points { C }, mass: 1.6, inertia: 2.2e-3, cg: (250 mm, -20 mm) },
+        joints {
+            O2: revolute(ground, crank),
+            A: revolute(crank, rod),
+            C: revolute(rod, wheel),
+            roll: rolling(ground, wheel) at C radius 50 mm around D,
+        },
+        input: O2,
+        loads { brake: torque on wheel },
+    }
+}
+
+mechanism! {
+    /// The same crank and rod, the wheel rolling inside a ring of the ground centred
+    /// 120 mm above it (ring radius 170 mm).
+    pub struct WheelInRing {
+        gravity: (0.0, -9.81),
+        ground { O2: (0.0, 0.0), D: (250 mm, 100 mm) },
+        link crank { points { O2, A: (40 mm, 30 mm) }, mass: 0.8, inertia: 6.0e-4, cg: (20 mm, 15 mm) },
+        link rod { points { A, C: (250 mm, -20 mm) }, mass: 1.1, inertia: 5.0e-3, cg: (140 mm, 10 mm) },
+        link wheel { points { C }, mass: 1.6, inertia: 2.2e-3, cg: (250 mm, -20 mm) },
+        joints {
+            O2: revolute(ground, crank),
+            A: revolute(crank, rod),
+            C: revolute(rod, wheel),
+            roll: rolling(ground, wheel) at C radius 50 mm around D inside,
+        },
+        input: O2,
+        loads { brake: torque on wheel },
+    }
+}
+
 fn close(what: &str, got: f64, want: f64, tol: f64) {
     assert!(
         (got - want).abs() <= tol,
@@ -99,43 +139,52 @@ fn rolling_disc_matches_the_closed_form() {
     close("free roll", free, g * th.sin() / (1.0 + i / (mass * r * r)), 1e-14 * 10.0);
 }
 
-/// The crank–rod–wheel against the energy method: I*, dI*/dq, M*, the wheel's turn −s/r
-/// (modulo 2π), and the driver by d'Alembert, virtual power, Zhukovski and the run-time
-/// mechanism, to 1e-12.
-#[test]
-fn wheel_rod_matches_the_energy_method() {
-    let path = format!("{}/tests/data/rolling.json", env!("CARGO_MANIFEST_DIR"));
-    let r: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let m = WheelRod::new();
-    let rt = Mechanism::from_rust_source(include_str!("rolling.rs"), "WheelRod").unwrap();
-    for c in r["configs"].as_array().unwrap() {
-        let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
-        let loads = WheelRodLoads { brake: num(&c["brake"]) };
-        let at = format!("q = {q}, q̇ = {qd}, q̈ = {qdd}");
-        let red = m.reduced(q).unwrap();
-        let i_star = num(&c["I_star"]);
-        close(&format!("I* at {at}"), red.inertia, i_star, 1e-12 * i_star);
-        close(&format!("dI*/dq at {at}"), red.inertia_derivative, num(&c["dI_star_dq"]), 1e-12 * i_star);
-        close(&format!("M* at {at}"), m.reduced_moment(q, &loads).unwrap(), num(&c["M_star"]), 1e-12 * 10.0);
-        let mo = m.kinematics(q, qd, qdd).unwrap();
-        let turn = num(&c["wheel_turn"]);
-        let d = (mo.links.wheel.angle - turn).rem_euclid(std::f64::consts::TAU);
-        assert!(d.min(std::f64::consts::TAU - d) <= 1e-12, "{at}: wheel turn {} vs {turn}", mo.links.wheel.angle);
-        let driver = num(&c["driver"]);
-        let f = m.kinetostatics(&mo, &loads).unwrap();
-        close(&format!("d'Alembert at {at}"), f.driver, driver, 1e-12 * 10.0);
-        close(&format!("virtual power at {at}"), m.driver_action(&mo, &loads).unwrap(), driver, 1e-12 * 10.0);
-        close(&format!("Zhukovski at {at}"), m.acceleration(q, qd, driver, &loads).unwrap(), qdd, 1e-12 * 10.0 / i_star);
-        // The contact force has no moment about the wheel's centre beyond the friction's
-        // r F: the wheel's own moment balance (its inertia and the brake).
-        let wheel_moment = -2.2e-3 * mo.links.wheel.alpha + loads.brake;
-        close(&format!("friction at {at}"), f.joints.roll.friction * 0.05, -wheel_moment, 1e-12 * 10.0);
-        let mut rl = rt.loads();
-        assert!(rl.set_by_name("brake", &[loads.brake]));
-        let rf = rt.kinetostatics(&rt.kinematics(&[q], &[qd], &[qdd]).unwrap(), &rl).unwrap();
-        close(&format!("run-time driver at {at}"), rf.driver[0], driver, 1e-12 * 10.0);
-    }
+/// A crank–rod–wheel against the energy method: I*, dI*/dq, M*, the wheel's turn (modulo
+/// 2π: −s/r on the straight track, ±ρψ/r around a circle), the driver by d'Alembert,
+/// virtual power, Zhukovski and the run-time mechanism, to 1e-12; the contact's friction
+/// balances the wheel's own moment about its centre.
+macro_rules! wheel_case {
+    ($test:ident, $ty:ident, $loads:ident, $key:literal) => {
+        #[test]
+        fn $test() {
+            let path = format!("{}/tests/data/rolling.json", env!("CARGO_MANIFEST_DIR"));
+            let r: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+            let m = $ty::new();
+            let rt = Mechanism::from_rust_source(include_str!("rolling.rs"), stringify!($ty)).unwrap();
+            for c in r[$key].as_array().unwrap() {
+                let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
+                let loads = $loads { brake: num(&c["brake"]) };
+                let at = format!("{} at q = {q}, q̇ = {qd}, q̈ = {qdd}", $key);
+                let red = m.reduced(q).unwrap();
+                let i_star = num(&c["I_star"]);
+                close(&format!("I* {at}"), red.inertia, i_star, 1e-12 * i_star);
+                close(&format!("dI*/dq {at}"), red.inertia_derivative, num(&c["dI_star_dq"]), 1e-12 * i_star);
+                close(&format!("M* {at}"), m.reduced_moment(q, &loads).unwrap(), num(&c["M_star"]), 1e-12 * 10.0);
+                let mo = m.kinematics(q, qd, qdd).unwrap();
+                let turn = num(&c["wheel_turn"]);
+                let d = (mo.links.wheel.angle - turn).rem_euclid(std::f64::consts::TAU);
+                assert!(d.min(std::f64::consts::TAU - d) <= 1e-12, "{at}: wheel turn {} vs {turn}", mo.links.wheel.angle);
+                let driver = num(&c["driver"]);
+                let f = m.kinetostatics(&mo, &loads).unwrap();
+                close(&format!("d'Alembert {at}"), f.driver, driver, 1e-12 * 10.0);
+                close(&format!("virtual power {at}"), m.driver_action(&mo, &loads).unwrap(), driver, 1e-12 * 10.0);
+                close(&format!("Zhukovski {at}"), m.acceleration(q, qd, driver, &loads).unwrap(), qdd, 1e-12 * 10.0 / i_star);
+                let wheel_moment = -2.2e-3 * mo.links.wheel.alpha + loads.brake;
+                close(&format!("friction {at}"), f.joints.roll.friction * 0.05, -wheel_moment, 1e-12 * 10.0);
+                let mut rl = rt.loads();
+                assert!(rl.set_by_name("brake", &[loads.brake]));
+                let rf = rt.kinetostatics(&rt.kinematics(&[q], &[qd], &[qdd]).unwrap(), &rl).unwrap();
+                close(&format!("run-time driver {at}"), rf.driver[0], driver, 1e-12 * 10.0);
+                let (rc, _) = rf.reaction("roll").unwrap();
+                close(&format!("run-time contact {at}"), rc.x, f.joints.roll.force.x, 1e-12 * 100.0);
+            }
+        }
+    };
 }
+
+wheel_case!(wheel_rod_matches_the_energy_method, WheelRod, WheelRodLoads, "configs");
+wheel_case!(wheel_around_a_circle_matches_the_energy_method, WheelAround, WheelAroundLoads, "outside");
+wheel_case!(wheel_in_a_ring_matches_the_energy_method, WheelInRing, WheelInRingLoads, "inside");
 
 /// Spun up and left alone, the crank–rod–wheel (gravity, no load) keeps T + V within 1e-9
 /// of T over 200 crank turns (DOP853, rtol = atol = 1e-13; at 1e-11 the integration

@@ -49,8 +49,34 @@ def pose(q):
     return phi2, a, c, th3, -s / R
 
 
+def circle_pose(d, inside):
+    """the crank-rod-wheel with the wheel rolling around the circle centred at d (outside,
+    or inside a ring): C on the circle of radius rho = |C0 - D| about D"""
+    rho = sqrt((C0[0] - d[0]) ** 2 + (C0[1] - d[1]) ** 2)
+    k = (-1 if inside else 1) * rho / R
+    psi0 = atan2(C0[1] - d[1], C0[0] - d[0])
+    side = 1 if ((d[0] - A0[0]) * (C0[1] - A0[1]) - (d[1] - A0[1]) * (C0[0] - A0[0])) > 0 else -1
+
+    def pose_c(q):
+        a = rot(A0, q - TH2)
+        dx, dy = d[0] - a[0], d[1] - a[1]
+        dd = sqrt(dx**2 + dy**2)
+        x = (L**2 - rho**2 + dd**2) / (2 * dd)
+        h = sqrt(L**2 - x**2)
+        ux, uy = dx / dd, dy / dd
+        c = (a[0] + x * ux - side * h * uy, a[1] + x * uy + side * h * ux)
+        th3 = atan2(c[1] - a[1], c[0] - a[0])
+        psi = atan2(c[1] - d[1], c[0] - d[0]) - psi0
+        return q - TH2, a, c, th3, k * psi
+
+    return pose_c
+
+
+POSES = {"line": None}
+
+
 def parts(q):
-    phi2, a, c, th3, phiw = pose(q)
+    phi2, a, c, th3, phiw = POSES["line"](q) if POSES["line"] else pose(q)
     g2 = rot(CRANK[2], phi2)
     g3 = rot((ROD[2][0] - A0[0], ROD[2][1] - A0[1]), th3 - TH3)
     return [
@@ -76,26 +102,37 @@ def gravity_power(t):
 
 
 def config(q, qd, qdd, brake):
+    pose_ = POSES["line"] or pose
     q, qd, qdd, brake = mpf(q), mpf(qd), mpf(qdd), mpf(brake)
     i_star = inertia(q)
     di = diff(inertia, q)
-    m_star = gravity_power(q) + brake * diff(lambda u: pose(u)[4], q)
+    m_star = gravity_power(q) + brake * diff(lambda u: pose_(u)[4], q)
     return {
         "q": float(q), "qd": float(qd), "qdd": float(qdd), "brake": float(brake),
         "I_star": str(i_star), "dI_star_dq": str(di), "M_star": str(m_star),
-        "wheel_turn": str(pose(q)[4]),
+        "wheel_turn": str(pose_(q)[4]),
         "driver": str(i_star * qdd + di * qd**2 / 2 - m_star),
     }
 
 
+CONFIGS = [
+    ("0.0", "10.0", "5.0", "0.5"), ("1.3", "-20.0", "100.0", "-1.0"),
+    ("2.9", "35.0", "0.0", "2.0"), ("-2.0", "7.0", "-50.0", "0.0"),
+    ("14.0", "3.0", "1.0", "0.3")]
+
+
 def main():
     doc = {
-        "about": "tools/rolling_reference.py: the crank-rod-wheel of tests/rolling.rs by the energy method, mpmath 50 digits",
-        "configs": [config(*c) for c in [
-            ("0.0", "10.0", "5.0", "0.5"), ("1.3", "-20.0", "100.0", "-1.0"),
-            ("2.9", "35.0", "0.0", "2.0"), ("-2.0", "7.0", "-50.0", "0.0"),
-            ("14.0", "3.0", "1.0", "0.3")]],
+        "about": "tools/rolling_reference.py: the crank-rod-wheels of tests/rolling.rs by the energy method, mpmath 50 digits",
+        "configs": [config(*c) for c in CONFIGS],
     }
+    # The wheel around a circle: outside one centred 130 mm below C, inside a ring
+    # centred 120 mm above it.
+    for key, d, inside in [("outside", (250 * MM, -150 * MM), False),
+                           ("inside", (250 * MM, 100 * MM), True)]:
+        POSES["line"] = circle_pose(d, inside)
+        doc[key] = [config(*c) for c in CONFIGS]
+    POSES["line"] = None
     with open(OUT, "w") as f:
         json.dump(doc, f, indent=1)
     print("wrote", OUT)

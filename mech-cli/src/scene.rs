@@ -98,18 +98,40 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
         if j.kind == JointKind::Revolute || j.kind.mesh() {
             continue;
         }
-        let n = V2::new(j.axis[0], j.axis[1]).normalize();
+        let n = if j.around.is_some() {
+            V2::new(1.0, 0.0)
+        } else {
+            V2::new(j.axis[0], j.axis[1]).normalize()
+        };
         let u = rotate(turn(model, j.a, pose.links[j.a].angle), n);
         let p = at(j.point);
         let half = GUIDE * s;
         if j.kind == JointKind::Rolling {
-            // The track under the wheel, and the wheel with a spoke that turns with it.
-            let k = p - perp(u) * j.radius;
-            shapes.push(Shape {
-                role: Role::Guide,
-                name: j.name.clone(),
-                points: vec![k - u * half, k + u * half],
-            });
+            // The track (under the wheel, or its circle), and the wheel with a spoke that
+            // turns with it.
+            if let Some((d, inside)) = j.around {
+                let c = at(d);
+                let rho = (model.points[j.point].pos[0] - model.points[d].pos[0])
+                    .hypot(model.points[j.point].pos[1] - model.points[d].pos[1]);
+                let big = if inside { rho + j.radius } else { rho - j.radius };
+                shapes.push(Shape {
+                    role: Role::Path,
+                    name: j.name.clone(),
+                    points: (0..=96)
+                        .map(|i| {
+                            let t = std::f64::consts::TAU * i as f64 / 96.0;
+                            c + V2::new(t.cos(), t.sin()) * big
+                        })
+                        .collect(),
+                });
+            } else {
+                let k = p - perp(u) * j.radius;
+                shapes.push(Shape {
+                    role: Role::Guide,
+                    name: j.name.clone(),
+                    points: vec![k - u * half, k + u * half],
+                });
+            }
             let rot = turn(model, j.b, pose.links[j.b].angle);
             let circle = (0..48)
                 .map(|i| {

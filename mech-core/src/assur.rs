@@ -398,9 +398,11 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
                 )
             });
             if let Some(d) = drive {
-                if let (ConKind::DrivePrismatic(k), JointKind::Rolling) =
-                    (d.kind, model.joints[d.joint].kind)
-                {
+                if let (ConKind::DrivePrismatic(k), JointKind::Rolling, None) = (
+                    d.kind,
+                    model.joints[d.joint].kind,
+                    model.joints[d.joint].around,
+                ) {
                     return Solver::DrivenRolling {
                         body,
                         joint: d.joint,

@@ -40,6 +40,10 @@ pub struct JointGeom {
     /// A rolling wheel's radius r (m; 0 for the other joints): the contact point is
     /// r·perp(u) behind the wheel's centre, K = C − r perp(u).
     pub radius: f64,
+    /// A rolling wheel's circular track (`crate::rolling`): +1 rolling outside the circle
+    /// centred at `da` (then the local vector of its centre D in the track), −1 inside;
+    /// 0 for a straight track and for the other joints.
+    pub around: f64,
 }
 
 impl JointGeom {
@@ -214,8 +218,15 @@ pub fn eval(c: Con, g: &JointGeom, s: &[LinkState], drive: Drive, level: Level) 
             }
         }
         ConKind::Rolling => {
-            let u = sa.r(g.axis);
-            let k = sb.pos + rb - perp(u) * g.radius;
+            let c = sb.pos + rb;
+            let k = if g.around == 0.0 {
+                c - perp(sa.r(g.axis)) * g.radius
+            } else {
+                // The contact is on the line of centres, r from C towards the track.
+                let d = sa.pos + ra;
+                let n = (c - d) * (g.around / (c - d).norm());
+                c - n * g.radius
+            };
             let (ka, kb) = (k - sa.pos, k - sb.pos);
             out.rows[0] = Row {
                 a: Vector3::new(-1.0, 0.0, ka.y),

@@ -459,6 +459,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
         let mut at = None;
         let mut along = None;
         let mut mesh: Option<MeshDecl<Span>> = None;
+        let mut around = None;
         while content.peek(Ident) {
             let k: Ident = content.parse()?;
             match k.to_string().as_str() {
@@ -480,6 +481,14 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                         internal: false,
                         pressure_angle: None,
                     });
+                }
+                "around" if kind == JointKind::Rolling && around.is_none() => {
+                    around = Some((name(&content.parse::<Ident>()?)?, false));
+                }
+                "inside" if kind == JointKind::Rolling && around.is_some() => {
+                    if let Some(a) = around.as_mut() {
+                        a.1 = true;
+                    }
                 }
                 "internal" if kind == JointKind::Gear && mesh.is_some() => {
                     if let Some(m) = mesh.as_mut() {
@@ -522,7 +531,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
         if kind == JointKind::Rolling && mesh.is_none() {
             return Err(syn::Error::new(
                 kw.span(),
-                format!("rolling joint `{id}` has no wheel radius: write `rolling({a}, {b}) at C radius r along (ux, uy)`, C the wheel's centre, e.g. `radius 50 mm`"),
+                format!("rolling joint `{id}` has no wheel radius: write `rolling({a}, {b}) at C radius r along (ux, uy)` (a straight track) or `rolling({a}, {b}) at C radius r around D` (a circle centred at D), C the wheel's centre, e.g. `radius 50 mm`"),
             ));
         }
         if kind.mesh() && mesh.is_none() {
@@ -544,6 +553,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
             at,
             along,
             mesh,
+            around,
         });
         comma(&content)?;
     }

@@ -256,7 +256,7 @@ pub fn branch(x: f64) -> f64 {
 /// For a joint `g` with link `body` on one side and a solved link on the other: the
 /// joint point's current position from the solved side, and its local vector in `body`.
 #[inline(always)]
-fn pin(g: &JointGeom, s: &[LinkState], body: usize) -> (V2, V2) {
+pub fn pin(g: &JointGeom, s: &[LinkState], body: usize) -> (V2, V2) {
     if g.b == body {
         (point_of(s, g.a, g.da), g.db)
     } else {
@@ -359,6 +359,15 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
             let gc = &joints[jc];
             let c = s[gc.b].point(gc.db);
             cross(b - a, c - a)
+        }
+        Solver::Rrl { b1, ja, jc, jr, .. } if joints[jr].around != 0.0 => {
+            // A wheel around a circle: the side of C from the line A → D, as an RRR's.
+            let (a, _) = pin(&joints[ja], s, b1);
+            let gr = &joints[jr];
+            let d = point_of(s, gr.a, gr.da);
+            let gc = &joints[jc];
+            let c = s[gc.b].point(gc.db);
+            cross(d - a, c - a)
         }
         Solver::Rrp { b1, b2, ja, jc, jp } | Solver::Rrl { b1, b2, ja, jc, jr: jp } => {
             // Side along the line of C relative to the foot of the perpendicular from A.

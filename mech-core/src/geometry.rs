@@ -55,6 +55,20 @@ pub fn pitch_point(model: &Model, j: usize) -> Option<(V2, V2)> {
 /// The local geometry of joint `j`.
 pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
     let jt = &model.joints[j];
+    if let Some((d, inside)) = jt.around {
+        let (pd, pc) = (model.points[d].pos, model.points[jt.point].pos);
+        return JointGeom {
+            a: jt.a,
+            b: jt.b,
+            da: local(model, jt.a, pd),
+            db: local(model, jt.b, pc),
+            // C − D in the drawing (the track's reference frame): ρ = its length.
+            axis: V2::new(pc[0] - pd[0], pc[1] - pd[1]),
+            q_ref: 0.0,
+            radius: jt.radius,
+            around: if inside { -1.0 } else { 1.0 },
+        };
+    }
     if let Some((p, t)) = pitch_point(model, j) {
         return JointGeom {
             a: jt.a,
@@ -64,6 +78,7 @@ pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
             axis: t,
             q_ref: 0.0,
             radius: 0.0,
+            around: 0.0,
         };
     }
     let p = model.points[jt.point].pos;
@@ -83,6 +98,7 @@ pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
             None => 0.0,
         },
         radius: jt.radius,
+        around: 0.0,
     }
 }
 

@@ -178,8 +178,10 @@ pub struct JointDecl<S> {
     pub at: Option<Name<S>>,
     /// `along (ux, uy)`: the sliding axis (sliding joints only).
     pub along: Option<Pair<S>>,
-    /// The teeth of a gear pair or rack.
+    /// The teeth of a gear pair or rack (a rolling wheel's radius in `radii[0]`).
     pub mesh: Option<MeshDecl<S>>,
+    /// A rolling wheel's circular track: `around D [inside]`.
+    pub around: Option<(Name<S>, bool)>,
 }
 
 /// What a load is.
@@ -364,6 +366,9 @@ pub struct Joint {
     pub mesh: Option<Mesh>,
     /// A rolling wheel's radius, m (0 for the other joints).
     pub radius: f64,
+    /// A rolling wheel's circular track: the point of the track at its centre D, and
+    /// whether the wheel rolls inside it (`None`: a straight track along `axis`).
+    pub around: Option<(usize, bool)>,
 }
 
 /// A resolved load.

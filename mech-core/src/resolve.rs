@@ -307,6 +307,19 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                 reached[b] = true;
             }
         }
+        let around = match (&j.around, j.kind) {
+            (Some((d, inside)), JointKind::Rolling) => match point_ix.get(&d.text).copied() {
+                Some(di) => Some((di, *inside)),
+                _ => {
+                    errs.push(Diagnostic::at(
+                        d.span.clone(),
+                        format!("unknown point `{}`: the centre of rolling joint `{}`'s circular track", d.text, j.name.text),
+                    ));
+                    None
+                }
+            },
+            _ => None,
+        };
         let axis = match (j.kind, &j.along) {
             (JointKind::Revolute, Some(al)) => {
                 errs.push(Diagnostic::at(
@@ -324,6 +337,14 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                 [0.0, 0.0]
             }
             (k, None) if k.mesh() => [0.0, 0.0],
+            (JointKind::Rolling, None) if around.is_some() => [0.0, 0.0],
+            (JointKind::Rolling, Some(al)) if around.is_some() => {
+                errs.push(Diagnostic::at(
+                    al.span.clone(),
+                    format!("rolling joint `{}` rolls around a circle: it takes `around D` or `along (ux, uy)`, not both", j.name.text),
+                ));
+                [0.0, 0.0]
+            }
             (_, Some(al)) => al.value,
             (k, None) => {
                 errs.push(Diagnostic::at(
@@ -355,6 +376,14 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                 }
                 JointKind::Gear | JointKind::Rack => {}
                 JointKind::Prismatic | JointKind::PinInSlot | JointKind::Rolling => {
+                    if let (Some((di, _)), Some((dn, _))) = (around, &j.around) {
+                        if !links[a].points.contains(&di) {
+                            errs.push(Diagnostic::at(
+                                dn.span.clone(),
+                                format!("rolling joint `{}` rolls around `{}`, which must be a point of the track `{}`; list it among `{}`'s points", j.name.text, dn.text, links[a].name, links[a].name),
+                            ));
+                        }
+                    }
                     if !links[b].points.contains(&p) {
                         errs.push(Diagnostic::at(
                             j.b.span.clone(),
@@ -391,6 +420,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
             } else {
                 0.0
             },
+            around,
         });
     }
     // Gear pairs and racks: their carrier and centres, now that every joint is known.

@@ -215,10 +215,22 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
                 culprits: vec![Culprit::Joint(j)],
                 message: format!("rolling joint `{}` has wheel radius {} m: it must be finite and > 0", jt.name, jt.radius),
             });
+        } else if let Some((d, false)) = jt.around {
+            let (pd, pc) = (model.points[d].pos, model.points[jt.point].pos);
+            let rho = (pc[0] - pd[0]).hypot(pc[1] - pd[1]);
+            if !(rho > jt.radius) {
+                out.push(Issue {
+                    culprits: vec![Culprit::Joint(j)],
+                    message: format!(
+                        "rolling joint `{}` rolls outside a circle about `{}` of radius |C D| − r = {:.4} mm − {:.4} mm ≤ 0: move the wheel's centre farther from the circle's centre, or roll `inside`",
+                        jt.name, model.points[d].name, rho * 1e3, jt.radius * 1e3
+                    ),
+                });
+            }
         }
     }
     for (j, jt) in model.joints.iter().enumerate() {
-        if jt.kind == JointKind::Revolute || jt.kind.mesh() {
+        if jt.kind == JointKind::Revolute || jt.kind.mesh() || jt.around.is_some() {
             continue;
         }
         let [ux, uy] = jt.axis;

@@ -140,7 +140,11 @@ impl<'a> Ctx<'a> {
     /// The prismatic and slot joints (those with an axis).
     pub fn sliding(&self) -> Vec<usize> {
         (0..self.n_joints)
-            .filter(|&j| !matches!(self.model.joints[j].kind, JointKind::Revolute | JointKind::Gear | JointKind::Rack))
+            .filter(|&j| {
+                let jt = &self.model.joints[j];
+                !matches!(jt.kind, JointKind::Revolute | JointKind::Gear | JointKind::Rack)
+                    && jt.around.is_none()
+            })
             .collect()
     }
 

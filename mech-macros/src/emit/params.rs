@@ -344,7 +344,12 @@ fn model_expr(cx: &Ctx) -> TokenStream {
             None => quote!(None),
         };
         let radius = f64s(jt.radius);
-        quote!(#p::model::Joint { name: #n.into(), kind: #p::model::JointKind::#kind, a: #a, b: #b, point: #pt, axis: #axis, mesh: #mesh, radius: #radius })
+        let around = match jt.around {
+            Some((d, inside)) => quote!(Some((#d, #inside))),
+            None => quote!(None),
+        };
+        let axis = if jt.around.is_some() { quote!([0.0, 0.0]) } else { axis };
+        quote!(#p::model::Joint { name: #n.into(), kind: #p::model::JointKind::#kind, a: #a, b: #b, point: #pt, axis: #axis, mesh: #mesh, radius: #radius, around: #around })
     });
     let loads = model.loads.iter().map(|l| match l {
         Load::Force { name, link, point } => {
