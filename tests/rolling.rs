@@ -214,3 +214,54 @@ fn wheel_rod_energy_is_conserved() {
     assert!(turns > 200.0, "{turns} turns");
     assert!(worst <= 1e-9 * e0, "energy drift {worst:e} J of {e0} J over {turns:.0} turns");
 }
+
+mod counting {
+    use std::alloc::{GlobalAlloc, Layout, System};
+    use std::cell::Cell;
+
+    thread_local! {
+        static COUNT: Cell<usize> = const { Cell::new(0) };
+    }
+    pub struct Counting;
+    unsafe impl GlobalAlloc for Counting {
+        unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+            let _ = COUNT.try_with(|c| c.set(c.get() + 1));
+            System.alloc(l)
+        }
+        unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+            System.dealloc(p, l)
+        }
+        unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+            let _ = COUNT.try_with(|c| c.set(c.get() + 1));
+            System.realloc(p, l, n)
+        }
+    }
+    pub fn count() -> usize {
+        COUNT.with(|c| c.get())
+    }
+}
+
+#[global_allocator]
+static ALLOC: counting::Counting = counting::Counting;
+
+/// The generated solvers of rolling wheels allocate nothing.
+#[test]
+fn rolling_solvers_are_allocation_free() {
+    let (m, a, d) = (WheelRod::new(), WheelAround::new(), RollingDisc::new());
+    let before = counting::count();
+    let mut sink = 0.0;
+    for k in 0..100 {
+        let q = 0.1 * k as f64;
+        let l = WheelRodLoads { brake: 1.0 };
+        let mo = m.kinematics(q, 5.0, 1.0).unwrap();
+        sink += m.kinetostatics(&mo, &l).unwrap().joints.roll.normal + m.driver_action(&mo, &l).unwrap();
+        sink += m.acceleration(q, 5.0, 1.0, &l).unwrap();
+        let l = WheelAroundLoads { brake: 1.0 };
+        let mo = a.kinematics(q, 5.0, 1.0).unwrap();
+        sink += a.kinetostatics(&mo, &l).unwrap().joints.roll.friction;
+        let mo = d.kinematics(0.01 * k as f64, 1.0, 2.0).unwrap();
+        sink += d.kinetostatics(&mo, &RollingDiscLoads::default()).unwrap().driver;
+    }
+    assert_eq!(counting::count() - before, 0, "allocations");
+    assert!(sink.is_finite());
+}
