@@ -25,6 +25,7 @@
 
 pub mod assur;
 pub mod branches;
+pub mod cam;
 pub mod columns;
 pub mod constraints;
 pub mod construction;
