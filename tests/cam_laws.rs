@@ -131,3 +131,68 @@ fn periodic_spline_table() {
     assert!(Spline::periodic(&[0.0, 1.0], &[0.0, 1.0]).is_err());
     assert!(Spline::periodic(&[0.0, 2.0, 1.0], &[0.0, 1.0, 0.5]).is_err());
 }
+
+use mech::cam::{Face, Profile};
+
+fn cam(face: Face, offset: f64) -> Profile {
+    Profile {
+        law: law(Law::Cycloidal, Law::Poly345),
+        base_radius: 0.04,
+        offset,
+        face,
+    }
+}
+
+/// On the base circle (a dwell) the profile is that circle: ρ = R_b, φ = 0 (no offset).
+/// Through the rise and fall, a roller follower with no offset has the textbook pressure
+/// angle tan φ = s′/(R_p + s) and the polar-curve radius of the pitch curve
+/// ρ = ((R_p + s)² + s′²)^{3/2} / ((R_p + s)² + 2 s′² − (R_p + s) s″), less the roller;
+/// with an offset e, tan φ = (s′ − e)/(√(R_p² − e²) + s). A flat face: ρ = R_b + s + s″.
+#[test]
+fn profile_against_textbook_closed_forms() {
+    let rf = 0.01;
+    let (roller, offset, flat) = (cam(Face::Roller(rf), 0.0), cam(Face::Roller(rf), 0.008), cam(Face::Flat, 0.0));
+    let p = roller.at(0.5);
+    assert!((p.curvature_radius - 0.04).abs() < 1e-15 && p.pressure_angle == 0.0);
+    let rp: f64 = 0.04 + rf;
+    for k in 0..72 {
+        let th = TAU * k as f64 / 72.0;
+        let [s, s1, s2, _] = roller.law.eval(th);
+        let q = rp + s;
+        let rho = (q * q + s1 * s1).powf(1.5) / (q * q + 2.0 * s1 * s1 - q * s2);
+        let p = roller.at(th);
+        assert!((p.curvature_radius - (rho - rf)).abs() <= 1e-13 * rho.abs(), "{th}: {} vs {}", p.curvature_radius, rho - rf);
+        assert!((p.pressure_angle - (s1 / q).atan()).abs() <= 1e-14, "{th}");
+        let e = 0.008;
+        let phi = ((s1 - e) / ((rp * rp - e * e).sqrt() + s)).atan();
+        assert!((offset.at(th).pressure_angle - phi).abs() <= 1e-14, "{th}");
+        let f = flat.at(th);
+        assert!((f.curvature_radius - (0.04 + s + s2)).abs() <= 1e-15, "{th}");
+    }
+}
+
+/// The profile by its geometry, numerically: the contact points of successive cam angles
+/// trace the cam surface, whose curvature radius (the circle through three neighbouring
+/// contacts) is `curvature_radius` to 1e-6; a roller's contact is r from its centre; a flat
+/// face's contacts stay on the face as the cam turns (the envelope).
+#[test]
+fn profile_by_its_geometry() {
+    for (face, e) in [(Face::Knife, 0.005), (Face::Roller(0.01), 0.008), (Face::Flat, 0.0)] {
+        let c = cam(face, e);
+        for k in 1..36 {
+            let th = TAU * k as f64 / 36.0 + 0.013;
+            let h = 1e-4;
+            let [a, b, m] = [c.at(th - h).contact, c.at(th).contact, c.at(th + h).contact];
+            // The circle through three points: R = |ab| |bc| |ca| / (2 |ab × ac|).
+            let d = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+            let cross = (b[0] - a[0]) * (m[1] - a[1]) - (b[1] - a[1]) * (m[0] - a[0]);
+            let r3 = d(a, b) * d(b, m) * d(m, a) / (2.0 * cross);
+            let want = c.at(th).curvature_radius;
+            assert!((r3.abs() - want.abs()).abs() <= 1e-6 * want.abs().max(0.01), "{face:?} at {th}: {r3} vs {want}");
+            if let Face::Roller(r) = face {
+                let p = c.at(th);
+                assert!((d(p.pitch, p.contact) - r).abs() < 1e-15);
+            }
+        }
+    }
+}

@@ -330,3 +330,99 @@ impl MotionLaw {
         out
     }
 }
+
+/// The follower's contact face ([`Profile`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Face {
+    /// A knife edge: the profile is the pitch curve.
+    Knife,
+    /// A roller of this radius (m): the profile is the pitch curve offset inward by it.
+    Roller(f64),
+    /// A flat face perpendicular to the follower's axis.
+    Flat,
+}
+
+/// One point of a cam's profile (`docs/theory.md` §13), in the cam's own frame (the cam
+/// turning counter-clockwise by θ; at θ = 0 the follower's axis is the cam frame's +y
+/// axis, offset by e along +x).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProfilePoint {
+    /// The cam angle θ, rad.
+    pub theta: f64,
+    /// The pitch point (the roller's centre, the knife's edge; for a flat face the
+    /// face's foot on the axis), cam frame, m.
+    pub pitch: [f64; 2],
+    /// The cam surface's contact point, cam frame, m.
+    pub contact: [f64; 2],
+    /// The pressure angle φ (rad): between the follower's axis and the common normal
+    /// at the contact; zero for a flat face.
+    pub pressure_angle: f64,
+    /// The radius of curvature of the cam surface at the contact (m, > 0 convex,
+    /// < 0 concave); for a roller the pitch curve's less the roller's radius.
+    pub curvature_radius: f64,
+}
+
+/// A translating follower's cam (`docs/theory.md` §13): base circle R_b (to the cam
+/// surface), offset e of the follower's axis, face, and motion law s(θ).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Profile {
+    /// The motion law.
+    pub law: MotionLaw,
+    /// R_b, the base circle's radius (m).
+    pub base_radius: f64,
+    /// e, the offset of the follower's axis from the cam's centre (m; 0 for a flat face).
+    pub offset: f64,
+    /// The follower's face.
+    pub face: Face,
+}
+
+impl Profile {
+    /// The profile at cam angle θ. The follower's pitch point is F = (e, y), y = d + s, in
+    /// the fixed frame, d = √(R_p² − e²), R_p = R_b + r (the prime circle); in the cam
+    /// frame, turned back by θ, P(θ) = R(−θ) F, whose derivatives are R(−θ) applied to
+    /// P′ = (y, s′ − e) and P″ = (2s′ − e, s″ − y). The pitch curve, traversed clockwise,
+    /// has the radius of curvature ρ = −|P′|³ / (P′ × P″) (> 0 where convex); its outward
+    /// normal n = perp(P′)/|P′| is the common normal, so the contact is F − r n and the
+    /// pressure angle, between n and the follower's axis, is tan φ = (s′ − e)/y. A flat
+    /// face (e = 0) touches the cam where the face's points move along it: at (s′, R_b + s)
+    /// in the fixed frame, with ρ = R_b + s + s″.
+    pub fn at(&self, theta: f64) -> ProfilePoint {
+        let [s, s1, s2, _] = self.law.eval(theta);
+        let rot = |v: [f64; 2]| {
+            let (sn, cs) = (-theta).sin_cos();
+            [cs * v[0] - sn * v[1], sn * v[0] + cs * v[1]]
+        };
+        if self.face == Face::Flat {
+            let y = self.base_radius + s;
+            return ProfilePoint {
+                theta,
+                pitch: rot([0.0, y]),
+                contact: rot([s1, y]),
+                pressure_angle: 0.0,
+                curvature_radius: y + s2,
+            };
+        }
+        let r = match self.face {
+            Face::Roller(r) => r,
+            _ => 0.0,
+        };
+        let e = self.offset;
+        let rp = self.base_radius + r;
+        let d = (rp * rp - e * e).sqrt();
+        let y = d + s;
+        let v = [y, s1 - e];
+        let acc = [2.0 * s1 - e, s2 - y];
+        let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
+        let turn = v[0] * acc[1] - v[1] * acc[0];
+        let rho_pitch = -speed * speed * speed / turn;
+        let normal = [-v[1] / speed, v[0] / speed];
+        let contact = [e - r * normal[0], y - r * normal[1]];
+        ProfilePoint {
+            theta,
+            pitch: rot([e, y]),
+            contact: rot(contact),
+            pressure_angle: (s1 - e).atan2(y),
+            curvature_radius: rho_pitch - r,
+        }
+    }
+}
