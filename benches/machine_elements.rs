@@ -95,7 +95,12 @@ macro_rules! bench {
         g.bench_function("acceleration", |b| {
             b.iter(|| {
                 black_box(&m)
-                    .acceleration(black_box(q), black_box(qd), black_box(5.0), black_box(&loads))
+                    .acceleration(
+                        black_box(q),
+                        black_box(qd),
+                        black_box(5.0),
+                        black_box(&loads),
+                    )
                     .unwrap()
             })
         });

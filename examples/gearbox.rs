@@ -105,7 +105,15 @@ pub fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
     );
     println!(
         "{:>6} {:>11} {:>11} {:>11} {:>10} {:>4} {:>10} {:>4} {:>10}",
-        "arm°", "T d'Al N·m", "T v.p. N·m", "I* kg·m²", "sun–pl N", "fl", "pl–ring N", "fl", "arm brg N"
+        "arm°",
+        "T d'Al N·m",
+        "T v.p. N·m",
+        "I* kg·m²",
+        "sun–pl N",
+        "fl",
+        "pl–ring N",
+        "fl",
+        "arm brg N"
     );
     let rows = table(30.0)?;
     for r in &rows {

@@ -47,8 +47,12 @@ pub mod __private {
 /// Everything a user of a generated struct needs.
 pub mod prelude {
     pub use crate::mechanism;
-    pub use mech_core::instance::{DamperParams, RotaryDamperParams, SpringParams, TorsionSpringParams};
-    pub use mech_core::kinetostatics::{MeshReaction, PrismaticReaction, RevoluteReaction, SlotReaction};
+    pub use mech_core::instance::{
+        DamperParams, RotaryDamperParams, SpringParams, TorsionSpringParams,
+    };
+    pub use mech_core::kinetostatics::{
+        MeshReaction, PrismaticReaction, RevoluteReaction, SlotReaction,
+    };
     pub use mech_core::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
     pub use mech_core::traits::{Machine, OneDof};
     pub use mech_core::zhukovski::Reduced;

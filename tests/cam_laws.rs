@@ -86,10 +86,25 @@ fn continuity_and_coverage() {
         to: 0.01,
     }])
     .unwrap_err();
-    assert!(e.contains("cover 180.0000°") && e.contains("one turn"), "{e}");
+    assert!(
+        e.contains("cover 180.0000°") && e.contains("one turn"),
+        "{e}"
+    );
     let e = MotionLaw::from_segments(vec![
-        Segment { law: Law::Poly345, start: 0.0, end: PI, from: 0.0, to: 0.01 },
-        Segment { law: Law::Poly345, start: 3.2, end: TAU, from: 0.01, to: 0.0 },
+        Segment {
+            law: Law::Poly345,
+            start: 0.0,
+            end: PI,
+            from: 0.0,
+            to: 0.01,
+        },
+        Segment {
+            law: Law::Poly345,
+            start: 3.2,
+            end: TAU,
+            from: 0.01,
+            to: 0.0,
+        },
     ])
     .unwrap_err();
     assert!(e.contains("segment 2 starts at"), "{e}");
@@ -114,7 +129,12 @@ fn periodic_spline_table() {
         let (l, r) = (sp.eval(t - eps), sp.eval(t + eps));
         for o in 0..3 {
             let scale = [1e-2, 1e-2, 1e-2][o];
-            assert!((l[o] - r[o]).abs() <= 1e-7 * scale, "knot {k}: derivative {o} jumps {} → {}", l[o], r[o]);
+            assert!(
+                (l[o] - r[o]).abs() <= 1e-7 * scale,
+                "knot {k}: derivative {o} jumps {} → {}",
+                l[o],
+                r[o]
+            );
         }
     }
     let err = |n: usize| {
@@ -151,7 +171,11 @@ fn cam(face: Face, offset: f64) -> Profile {
 #[test]
 fn profile_against_textbook_closed_forms() {
     let rf = 0.01;
-    let (roller, offset, flat) = (cam(Face::Roller(rf), 0.0), cam(Face::Roller(rf), 0.008), cam(Face::Flat, 0.0));
+    let (roller, offset, flat) = (
+        cam(Face::Roller(rf), 0.0),
+        cam(Face::Roller(rf), 0.008),
+        cam(Face::Flat, 0.0),
+    );
     let p = roller.at(0.5);
     assert!((p.curvature_radius - 0.04).abs() < 1e-15 && p.pressure_angle == 0.0);
     let rp: f64 = 0.04 + rf;
@@ -161,13 +185,21 @@ fn profile_against_textbook_closed_forms() {
         let q = rp + s;
         let rho = (q * q + s1 * s1).powf(1.5) / (q * q + 2.0 * s1 * s1 - q * s2);
         let p = roller.at(th);
-        assert!((p.curvature_radius - (rho - rf)).abs() <= 1e-13 * rho.abs(), "{th}: {} vs {}", p.curvature_radius, rho - rf);
+        assert!(
+            (p.curvature_radius - (rho - rf)).abs() <= 1e-13 * rho.abs(),
+            "{th}: {} vs {}",
+            p.curvature_radius,
+            rho - rf
+        );
         assert!((p.pressure_angle - (s1 / q).atan()).abs() <= 1e-14, "{th}");
         let e = 0.008;
         let phi = ((s1 - e) / ((rp * rp - e * e).sqrt() + s)).atan();
         assert!((offset.at(th).pressure_angle - phi).abs() <= 1e-14, "{th}");
         let f = flat.at(th);
-        assert!((f.curvature_radius - (0.04 + s + s2)).abs() <= 1e-15, "{th}");
+        assert!(
+            (f.curvature_radius - (0.04 + s + s2)).abs() <= 1e-15,
+            "{th}"
+        );
     }
 }
 
@@ -177,7 +209,11 @@ fn profile_against_textbook_closed_forms() {
 /// face's contacts stay on the face as the cam turns (the envelope).
 #[test]
 fn profile_by_its_geometry() {
-    for (face, e) in [(Face::Knife, 0.005), (Face::Roller(0.01), 0.008), (Face::Flat, 0.0)] {
+    for (face, e) in [
+        (Face::Knife, 0.005),
+        (Face::Roller(0.01), 0.008),
+        (Face::Flat, 0.0),
+    ] {
         let c = cam(face, e);
         for k in 1..36 {
             let th = TAU * k as f64 / 36.0 + 0.013;
@@ -188,7 +224,10 @@ fn profile_by_its_geometry() {
             let cross = (b[0] - a[0]) * (m[1] - a[1]) - (b[1] - a[1]) * (m[0] - a[0]);
             let r3 = d(a, b) * d(b, m) * d(m, a) / (2.0 * cross);
             let want = c.at(th).curvature_radius;
-            assert!((r3.abs() - want.abs()).abs() <= 1e-6 * want.abs().max(0.01), "{face:?} at {th}: {r3} vs {want}");
+            assert!(
+                (r3.abs() - want.abs()).abs() <= 1e-6 * want.abs().max(0.01),
+                "{face:?} at {th}: {r3} vs {want}"
+            );
             if let Face::Roller(r) = face {
                 let p = c.at(th);
                 assert!((d(p.pitch, p.contact) - r).abs() < 1e-15);

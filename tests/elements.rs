@@ -55,7 +55,10 @@ mechanism! {
 }
 
 fn reference() -> Value {
-    let path = format!("{}/tests/data/spring_four_bar.json", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/data/spring_four_bar.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
     serde_json::from_str(&std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}")))
         .unwrap()
 }
@@ -121,7 +124,12 @@ fn three_routes_match_the_energy_method() {
         let i_star = num(&c["I_star"]);
         close(&format!("I* at {at}"), red.inertia, i_star, 1e-13 * i_star);
         let di = num(&c["dI_star_dq"]);
-        close(&format!("dI*/dq at {at}"), red.inertia_derivative, di, 1e-13 * i_star);
+        close(
+            &format!("dI*/dq at {at}"),
+            red.inertia_derivative,
+            di,
+            1e-13 * i_star,
+        );
         let m_star = num(&c["M_star"]);
         // The scale of the torques: springs' and gravity's terms are O(10) N·m here.
         let scale = 10.0f64.max(m_star.abs());
@@ -133,12 +141,27 @@ fn three_routes_match_the_energy_method() {
         );
         let motion = m.kinematics(q, qd, qdd).unwrap();
         let v = m.potential_energy(&motion);
-        close(&format!("V at {at}"), v, num(&c["potential"]), 1e-13 * scale);
+        close(
+            &format!("V at {at}"),
+            v,
+            num(&c["potential"]),
+            1e-13 * scale,
+        );
         let driver = num(&c["driver"]);
         let d_alembert = m.kinetostatics(&motion, &loads).unwrap().driver;
         let virtual_power = m.driver_action(&motion, &loads).unwrap();
-        close(&format!("d'Alembert at {at}"), d_alembert, driver, 1e-12 * scale);
-        close(&format!("virtual power at {at}"), virtual_power, driver, 1e-12 * scale);
+        close(
+            &format!("d'Alembert at {at}"),
+            d_alembert,
+            driver,
+            1e-12 * scale,
+        );
+        close(
+            &format!("virtual power at {at}"),
+            virtual_power,
+            driver,
+            1e-12 * scale,
+        );
         let qdd_z = m.acceleration(q, qd, driver, &loads).unwrap();
         close(
             &format!("Zhukovski's q̈ at {at}"),
@@ -160,8 +183,14 @@ fn runtime_mechanism_is_a_peer() {
     assert!(rl.set_by_name("resist", &[2.5]));
     let gl = SpringFourBarLoads { resist: 2.5 };
     for &(q, qd, qdd) in &[(0.4, 3.0, -10.0), (2.2, -6.0, 40.0), (4.0, 1.0, 0.0)] {
-        let (gm, rm) = (g.kinematics(q, qd, qdd).unwrap(), rt.kinematics(&[q], &[qd], &[qdd]).unwrap());
-        let (gf, rf) = (g.kinetostatics(&gm, &gl).unwrap(), rt.kinetostatics(&rm, &rl).unwrap());
+        let (gm, rm) = (
+            g.kinematics(q, qd, qdd).unwrap(),
+            rt.kinematics(&[q], &[qd], &[qdd]).unwrap(),
+        );
+        let (gf, rf) = (
+            g.kinetostatics(&gm, &gl).unwrap(),
+            rt.kinetostatics(&rm, &rl).unwrap(),
+        );
         let tol = 1e-12 * 10.0;
         close("driver", rf.driver[0], gf.driver, tol);
         for name in SpringFourBar::JOINT_NAMES {
@@ -169,19 +198,45 @@ fn runtime_mechanism_is_a_peer() {
             close(name, b.x, a.x, 1e-12 * 100.0);
             close(name, b.y, a.y, 1e-12 * 100.0);
         }
-        close("driver_action", rt.driver_action(&rm, &rl).unwrap()[0], g.driver_action(&gm, &gl).unwrap(), tol);
-        close("M*", rt.reduced_moment(q, &rl).unwrap(), g.reduced_moment(q, &gl).unwrap(), tol);
-        close("q̈", rt.acceleration(q, qd, 1.0, &rl).unwrap(), g.acceleration(q, qd, 1.0, &gl).unwrap(), 1e-9);
+        close(
+            "driver_action",
+            rt.driver_action(&rm, &rl).unwrap()[0],
+            g.driver_action(&gm, &gl).unwrap(),
+            tol,
+        );
+        close(
+            "M*",
+            rt.reduced_moment(q, &rl).unwrap(),
+            g.reduced_moment(q, &gl).unwrap(),
+            tol,
+        );
+        close(
+            "q̈",
+            rt.acceleration(q, qd, 1.0, &rl).unwrap(),
+            g.acceleration(q, qd, 1.0, &gl).unwrap(),
+            1e-9,
+        );
         close("V", rt.potential_energy(&rm), g.potential_energy(&gm), tol);
     }
     // The torsion spring's stiffness doubled at run time moves M* by its own term.
     let before = rt.reduced_moment(0.4, &rl).unwrap();
     rt.set_param("elements.kt.stiffness", &[3.0]).unwrap();
     let after = rt.reduced_moment(0.4, &rl).unwrap();
-    close("doubled torsion spring", after - before, -1.5 * (0.4 - 60f64.to_radians()), 1e-12);
-    let e = rt.set_param("elements.kt.damping", &[1.0]).unwrap_err().to_string();
+    close(
+        "doubled torsion spring",
+        after - before,
+        -1.5 * (0.4 - 60f64.to_radians()),
+        1e-12,
+    );
+    let e = rt
+        .set_param("elements.kt.damping", &[1.0])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("a spring has `stiffness`"), "{e}");
-    let e = rt.set_param("elements.c1.stiffness", &[-1.0]).unwrap_err().to_string();
+    let e = rt
+        .set_param("elements.c1.stiffness", &[-1.0])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("a damper has `damping`"), "{e}");
 }
 
@@ -191,7 +246,10 @@ fn from_params_refuses_negative_coefficients() {
     let mut p = SpringFourBarParams::default();
     p.elements.k1.stiffness = -5.0;
     let e = SpringFourBar::from_params(p).unwrap_err().to_string();
-    assert!(e.contains("spring `k1` has stiffness -5 N/m") && e.contains("≥ 0"), "{e}");
+    assert!(
+        e.contains("spring `k1` has stiffness -5 N/m") && e.contains("≥ 0"),
+        "{e}"
+    );
     let mut p = SpringFourBarParams::default();
     p.elements.ct.damping = f64::NAN;
     let e = SpringFourBar::from_params(p).unwrap_err().to_string();
@@ -293,10 +351,25 @@ fn damped_energy_loss_is_the_dissipated_work() {
         let e = total_energy(&m, &[y[0]], &[y[1]]).unwrap();
         worst = worst.max((e + y[2] - e0).abs());
     };
-    let out = solve(&mut Dop853::new(1e-12, 1e-12), rhs, 0.0, y0, 5.0, None, Some(&mut obs)).unwrap();
+    let out = solve(
+        &mut Dop853::new(1e-12, 1e-12),
+        rhs,
+        0.0,
+        y0,
+        5.0,
+        None,
+        Some(&mut obs),
+    )
+    .unwrap();
     let lost = out.y[2];
-    assert!(lost > 0.5 * (e0 - total_energy(&m, &[num(&reference()["equilibrium"]["q"])], &[0.0]).unwrap()));
-    assert!(worst <= 1e-9 * e0.abs(), "E + W drifted by {worst:e} J (E0 = {e0}, dissipated {lost})");
+    assert!(
+        lost > 0.5
+            * (e0 - total_energy(&m, &[num(&reference()["equilibrium"]["q"])], &[0.0]).unwrap())
+    );
+    assert!(
+        worst <= 1e-9 * e0.abs(),
+        "E + W drifted by {worst:e} J (E0 = {e0}, dissipated {lost})"
+    );
 }
 
 mod counting {
@@ -376,5 +449,8 @@ fn flywheel_cycle_sees_the_springs() {
         worst = worst.max((cycle.work(q).unwrap() + dv).abs());
     }
     assert!(range > 1.0, "the springs' energy varies: {range} J");
-    assert!(worst <= 1e-11 * range, "S + ΔV off by {worst:e} J (range {range} J)");
+    assert!(
+        worst <= 1e-11 * range,
+        "S + ΔV off by {worst:e} J (range {range} J)"
+    );
 }

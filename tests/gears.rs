@@ -148,7 +148,8 @@ fn close(what: &str, got: f64, want: f64, tol: f64) {
 }
 
 fn runtime(name: &str) -> Mechanism {
-    Mechanism::from_rust_source(include_str!("gears.rs"), name).unwrap_or_else(|e| panic!("{name}: {e}"))
+    Mechanism::from_rust_source(include_str!("gears.rs"), name)
+        .unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 /// The largest reaction of a configuration: the scale the 1e-12 is taken of.
@@ -168,7 +169,16 @@ fn check_train<M: OneDof>(
     name: &str,
     c: &Value,
     m: &M,
-    kin: impl Fn(f64, f64, f64) -> (Vec<(String, f64, f64)>, f64, Vec<(String, V, Option<f64>)>, f64),
+    kin: impl Fn(
+        f64,
+        f64,
+        f64,
+    ) -> (
+        Vec<(String, f64, f64)>,
+        f64,
+        Vec<(String, V, Option<f64>)>,
+        f64,
+    ),
     loads: &M::Loads,
 ) where
     M::Loads: Clone,
@@ -183,15 +193,38 @@ fn check_train<M: OneDof>(
         let want = num(&c["angles"][link]);
         let diff = (angle - want).rem_euclid(std::f64::consts::TAU);
         let diff = diff.min(std::f64::consts::TAU - diff);
-        assert!(diff <= 1e-12 * want.abs().max(1.0), "{at}: angle of {link} {angle} vs {want} (mod 2π)");
-        close(&format!("{at}: ω of {link}"), *omega, num(&c["omegas"][link]), 1e-12 * qd.abs().max(1.0) * 4.0);
+        assert!(
+            diff <= 1e-12 * want.abs().max(1.0),
+            "{at}: angle of {link} {angle} vs {want} (mod 2π)"
+        );
+        close(
+            &format!("{at}: ω of {link}"),
+            *omega,
+            num(&c["omegas"][link]),
+            1e-12 * qd.abs().max(1.0) * 4.0,
+        );
     }
     let i_star = num(&c["I_star"]);
-    close(&format!("{at}: I*"), m.reduced(q).unwrap().inertia, i_star, 1e-13 * i_star);
+    close(
+        &format!("{at}: I*"),
+        m.reduced(q).unwrap().inertia,
+        i_star,
+        1e-13 * i_star,
+    );
     let driver = num(&c["driver"]);
     let scale = reaction_scale(c) * 0.1; // N × 0.1 m: the torques' scale
-    close(&format!("{at}: d'Alembert"), driver_ks, driver, 1e-12 * scale);
-    close(&format!("{at}: virtual power"), driver_va, driver, 1e-12 * scale);
+    close(
+        &format!("{at}: d'Alembert"),
+        driver_ks,
+        driver,
+        1e-12 * scale,
+    );
+    close(
+        &format!("{at}: virtual power"),
+        driver_va,
+        driver,
+        1e-12 * scale,
+    );
     close(
         &format!("{at}: Zhukovski q̈"),
         m.acceleration(q, qd, driver, loads).unwrap(),
@@ -216,38 +249,72 @@ fn compound_gear_train_matches_newton_euler() {
     let m = GearTrain::new();
     let rt = runtime("GearTrain");
     for c in reference()["gear_train"].as_array().unwrap() {
-        let loads = GearTrainLoads { load: num(&c["load"]) };
-        check_train("gear train", c, &m, |q, qd, qdd| {
-            let mo = m.kinematics(q, qd, qdd).unwrap();
-            let f = m.kinetostatics(&mo, &loads).unwrap();
-            let j = &f.joints;
-            let links = vec![
-                ("g1".into(), mo.links.g1.angle, mo.links.g1.omega),
-                ("cluster".into(), mo.links.cluster.angle, mo.links.cluster.omega),
-                ("g4".into(), mo.links.g4.angle, mo.links.g4.omega),
-            ];
-            let joints = vec![
-                ("O1".into(), j.O1.force, None),
-                ("O2".into(), j.O2.force, None),
-                ("O4".into(), j.O4.force, None),
-                ("m12".into(), j.m12.force, Some(j.m12.flank)),
-                ("m34".into(), j.m34.force, Some(j.m34.flank)),
-            ];
-            assert!((j.m12.tooth_load - j.m12.force.norm()).abs() <= 1e-15 * j.m12.tooth_load);
-            (links, m.driver_action(&mo, &loads).unwrap(), joints, f.driver)
-        }, &loads);
+        let loads = GearTrainLoads {
+            load: num(&c["load"]),
+        };
+        check_train(
+            "gear train",
+            c,
+            &m,
+            |q, qd, qdd| {
+                let mo = m.kinematics(q, qd, qdd).unwrap();
+                let f = m.kinetostatics(&mo, &loads).unwrap();
+                let j = &f.joints;
+                let links = vec![
+                    ("g1".into(), mo.links.g1.angle, mo.links.g1.omega),
+                    (
+                        "cluster".into(),
+                        mo.links.cluster.angle,
+                        mo.links.cluster.omega,
+                    ),
+                    ("g4".into(), mo.links.g4.angle, mo.links.g4.omega),
+                ];
+                let joints = vec![
+                    ("O1".into(), j.O1.force, None),
+                    ("O2".into(), j.O2.force, None),
+                    ("O4".into(), j.O4.force, None),
+                    ("m12".into(), j.m12.force, Some(j.m12.flank)),
+                    ("m34".into(), j.m34.force, Some(j.m34.flank)),
+                ];
+                assert!((j.m12.tooth_load - j.m12.force.norm()).abs() <= 1e-15 * j.m12.tooth_load);
+                (
+                    links,
+                    m.driver_action(&mo, &loads).unwrap(),
+                    joints,
+                    f.driver,
+                )
+            },
+            &loads,
+        );
         // The run-time mechanism: the same driver and reactions.
         let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
         let mut rl = rt.loads();
         assert!(rl.set_by_name("load", &[num(&c["load"])]));
-        let f = rt.kinetostatics(&rt.kinematics(&[q], &[qd], &[qdd]).unwrap(), &rl).unwrap();
+        let f = rt
+            .kinetostatics(&rt.kinematics(&[q], &[qd], &[qdd]).unwrap(), &rl)
+            .unwrap();
         let rs = reaction_scale(c);
-        close("run-time driver", f.driver[0], num(&c["driver"]), 1e-12 * rs * 0.1);
+        close(
+            "run-time driver",
+            f.driver[0],
+            num(&c["driver"]),
+            1e-12 * rs * 0.1,
+        );
         for joint in ["O1", "O2", "O4", "m12", "m34"] {
             let want = c["reactions"][joint].as_array().unwrap();
             let (got, _) = f.reaction(joint).unwrap();
-            close(&format!("run-time {joint}.x"), got.x, num(&want[0]), 1e-12 * rs);
-            close(&format!("run-time {joint}.y"), got.y, num(&want[1]), 1e-12 * rs);
+            close(
+                &format!("run-time {joint}.x"),
+                got.x,
+                num(&want[0]),
+                1e-12 * rs,
+            );
+            close(
+                &format!("run-time {joint}.y"),
+                got.y,
+                num(&want[1]),
+                1e-12 * rs,
+            );
         }
     }
 }
@@ -257,37 +324,69 @@ fn epicyclic_train_matches_willis_and_newton_euler() {
     let m = Epicyclic::new();
     let rt = runtime("Epicyclic");
     for c in reference()["epicyclic"].as_array().unwrap() {
-        let loads = EpicyclicLoads { load: num(&c["load"]) };
-        check_train("epicyclic", c, &m, |q, qd, qdd| {
-            let mo = m.kinematics(q, qd, qdd).unwrap();
-            let f = m.kinetostatics(&mo, &loads).unwrap();
-            let j = &f.joints;
-            let links = vec![
-                ("arm".into(), mo.links.arm.angle, mo.links.arm.omega),
-                ("planet".into(), mo.links.planet.angle, mo.links.planet.omega),
-                ("sun".into(), mo.links.sun.angle, mo.links.sun.omega),
-            ];
-            let joints = vec![
-                ("O".into(), j.O.force, None),
-                ("P".into(), j.P.force, None),
-                ("S".into(), j.S.force, None),
-                ("sp".into(), j.sp.force, Some(j.sp.flank)),
-                ("pr".into(), j.pr.force, Some(j.pr.flank)),
-            ];
-            (links, m.driver_action(&mo, &loads).unwrap(), joints, f.driver)
-        }, &loads);
+        let loads = EpicyclicLoads {
+            load: num(&c["load"]),
+        };
+        check_train(
+            "epicyclic",
+            c,
+            &m,
+            |q, qd, qdd| {
+                let mo = m.kinematics(q, qd, qdd).unwrap();
+                let f = m.kinetostatics(&mo, &loads).unwrap();
+                let j = &f.joints;
+                let links = vec![
+                    ("arm".into(), mo.links.arm.angle, mo.links.arm.omega),
+                    (
+                        "planet".into(),
+                        mo.links.planet.angle,
+                        mo.links.planet.omega,
+                    ),
+                    ("sun".into(), mo.links.sun.angle, mo.links.sun.omega),
+                ];
+                let joints = vec![
+                    ("O".into(), j.O.force, None),
+                    ("P".into(), j.P.force, None),
+                    ("S".into(), j.S.force, None),
+                    ("sp".into(), j.sp.force, Some(j.sp.flank)),
+                    ("pr".into(), j.pr.force, Some(j.pr.flank)),
+                ];
+                (
+                    links,
+                    m.driver_action(&mo, &loads).unwrap(),
+                    joints,
+                    f.driver,
+                )
+            },
+            &loads,
+        );
         let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
         let mut rl = rt.loads();
         assert!(rl.set_by_name("load", &[num(&c["load"])]));
         let mo = rt.kinematics(&[q], &[qd], &[qdd]).unwrap();
         let rs = reaction_scale(c);
-        close("run-time driver", rt.driver_action(&mo, &rl).unwrap()[0], num(&c["driver"]), 1e-12 * rs * 0.1);
+        close(
+            "run-time driver",
+            rt.driver_action(&mo, &rl).unwrap()[0],
+            num(&c["driver"]),
+            1e-12 * rs * 0.1,
+        );
         let f = rt.kinetostatics(&mo, &rl).unwrap();
         for joint in ["O", "P", "S", "sp", "pr"] {
             let want = c["reactions"][joint].as_array().unwrap();
             let (got, _) = f.reaction(joint).unwrap();
-            close(&format!("run-time {joint}.x"), got.x, num(&want[0]), 1e-12 * rs);
-            close(&format!("run-time {joint}.y"), got.y, num(&want[1]), 1e-12 * rs);
+            close(
+                &format!("run-time {joint}.x"),
+                got.x,
+                num(&want[0]),
+                1e-12 * rs,
+            );
+            close(
+                &format!("run-time {joint}.y"),
+                got.y,
+                num(&want[1]),
+                1e-12 * rs,
+            );
         }
     }
 }
@@ -299,39 +398,73 @@ fn planetary_driven_by_its_sun_matches_newton_euler() {
     let m = Planetary::new();
     let rt = runtime("Planetary");
     let plan = mech::assur::plan(rt.model()).unwrap();
-    assert!(plan.iter().any(|g| matches!(g.kernel, mech::assur::Kernel::Train(_))));
+    assert!(plan
+        .iter()
+        .any(|g| matches!(g.kernel, mech::assur::Kernel::Train(_))));
     for c in reference()["planetary"].as_array().unwrap() {
-        let loads = PlanetaryLoads { load: num(&c["load"]) };
-        check_train("planetary", c, &m, |q, qd, qdd| {
-            let mo = m.kinematics(q, qd, qdd).unwrap();
-            let f = m.kinetostatics(&mo, &loads).unwrap();
-            let j = &f.joints;
-            let links = vec![
-                ("arm".into(), mo.links.arm.angle, mo.links.arm.omega),
-                ("planet".into(), mo.links.planet.angle, mo.links.planet.omega),
-                ("sun".into(), mo.links.sun.angle, mo.links.sun.omega),
-            ];
-            let joints = vec![
-                ("O".into(), j.O.force, None),
-                ("P".into(), j.P.force, None),
-                ("S".into(), j.S.force, None),
-                ("sp".into(), j.sp.force, Some(j.sp.flank)),
-                ("pr".into(), j.pr.force, Some(j.pr.flank)),
-            ];
-            (links, m.driver_action(&mo, &loads).unwrap(), joints, f.driver)
-        }, &loads);
+        let loads = PlanetaryLoads {
+            load: num(&c["load"]),
+        };
+        check_train(
+            "planetary",
+            c,
+            &m,
+            |q, qd, qdd| {
+                let mo = m.kinematics(q, qd, qdd).unwrap();
+                let f = m.kinetostatics(&mo, &loads).unwrap();
+                let j = &f.joints;
+                let links = vec![
+                    ("arm".into(), mo.links.arm.angle, mo.links.arm.omega),
+                    (
+                        "planet".into(),
+                        mo.links.planet.angle,
+                        mo.links.planet.omega,
+                    ),
+                    ("sun".into(), mo.links.sun.angle, mo.links.sun.omega),
+                ];
+                let joints = vec![
+                    ("O".into(), j.O.force, None),
+                    ("P".into(), j.P.force, None),
+                    ("S".into(), j.S.force, None),
+                    ("sp".into(), j.sp.force, Some(j.sp.flank)),
+                    ("pr".into(), j.pr.force, Some(j.pr.flank)),
+                ];
+                (
+                    links,
+                    m.driver_action(&mo, &loads).unwrap(),
+                    joints,
+                    f.driver,
+                )
+            },
+            &loads,
+        );
         let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
         let mut rl = rt.loads();
         assert!(rl.set_by_name("load", &[num(&c["load"])]));
         let mo = rt.kinematics(&[q], &[qd], &[qdd]).unwrap();
         let rs = reaction_scale(c);
         let f = rt.kinetostatics(&mo, &rl).unwrap();
-        close("run-time driver", f.driver[0], num(&c["driver"]), 1e-12 * rs * 0.1);
+        close(
+            "run-time driver",
+            f.driver[0],
+            num(&c["driver"]),
+            1e-12 * rs * 0.1,
+        );
         for joint in ["O", "P", "S", "sp", "pr"] {
             let want = c["reactions"][joint].as_array().unwrap();
             let (got, _) = f.reaction(joint).unwrap();
-            close(&format!("run-time {joint}.x"), got.x, num(&want[0]), 1e-12 * rs);
-            close(&format!("run-time {joint}.y"), got.y, num(&want[1]), 1e-12 * rs);
+            close(
+                &format!("run-time {joint}.x"),
+                got.x,
+                num(&want[0]),
+                1e-12 * rs,
+            );
+            close(
+                &format!("run-time {joint}.y"),
+                got.y,
+                num(&want[1]),
+                1e-12 * rs,
+            );
         }
     }
 }
@@ -345,7 +478,9 @@ fn geared_linkages_match_the_energy_method() {
     let g = GearedSliderCrank::new();
     let grt = runtime("GearedSliderCrank");
     for c in r["geared_slider_crank"].as_array().unwrap() {
-        let loads = GearedSliderCrankLoads { gas: V::new(num(&c["gas"]), 0.0) };
+        let loads = GearedSliderCrankLoads {
+            gas: V::new(num(&c["gas"]), 0.0),
+        };
         let mut rl = grt.loads();
         assert!(rl.set_by_name("gas", &[num(&c["gas"]), 0.0]));
         linkage_case("geared slider-crank", c, &g, &loads, 100.0, |q, qd, qdd| {
@@ -362,13 +497,21 @@ fn geared_linkages_match_the_energy_method() {
     let srt = runtime("RackSteering");
     for c in r["rack_steering"].as_array().unwrap() {
         let a = num(&c["align"]);
-        let loads = RackSteeringLoads { align1: a, align2: a };
+        let loads = RackSteeringLoads {
+            align1: a,
+            align2: a,
+        };
         let mut rl = srt.loads();
         assert!(rl.set_by_name("align1", &[a]) && rl.set_by_name("align2", &[a]));
         // The rack slides r q along x (the pinion turning counter-clockwise above it).
         let q = num(&c["q"]);
         let mo = s.kinematics(q, 0.0, 0.0).unwrap();
-        close("rack slide", mo.points.R.pos.x, num(&c["rack_slide"]), 1e-15);
+        close(
+            "rack slide",
+            mo.points.R.pos.x,
+            num(&c["rack_slide"]),
+            1e-15,
+        );
         linkage_case("rack steering", c, &s, &loads, 10.0, |q, qd, qdd| {
             let mo = s.kinematics(q, qd, qdd).unwrap();
             let rmo = srt.kinematics(&[q], &[qd], &[qdd]).unwrap();
@@ -394,13 +537,31 @@ fn linkage_case<M: OneDof>(
     let red = m.reduced(q).unwrap();
     let i_star = num(&c["I_star"]);
     close(&format!("{at}: I*"), red.inertia, i_star, 1e-12 * i_star);
-    close(&format!("{at}: dI*/dq"), red.inertia_derivative, num(&c["dI_star_dq"]), 1e-12 * i_star);
-    close(&format!("{at}: M*"), m.reduced_moment(q, loads).unwrap(), num(&c["M_star"]), 1e-12 * scale);
+    close(
+        &format!("{at}: dI*/dq"),
+        red.inertia_derivative,
+        num(&c["dI_star_dq"]),
+        1e-12 * i_star,
+    );
+    close(
+        &format!("{at}: M*"),
+        m.reduced_moment(q, loads).unwrap(),
+        num(&c["M_star"]),
+        1e-12 * scale,
+    );
     let driver = num(&c["driver"]);
-    for (route, d) in ["d'Alembert", "virtual power", "run-time d'Alembert"].iter().zip(drivers(q, qd, qdd)) {
+    for (route, d) in ["d'Alembert", "virtual power", "run-time d'Alembert"]
+        .iter()
+        .zip(drivers(q, qd, qdd))
+    {
         close(&format!("{at}: {route}"), d, driver, 1e-12 * scale);
     }
-    close(&format!("{at}: Zhukovski q̈"), m.acceleration(q, qd, driver, loads).unwrap(), qdd, 1e-12 * scale / i_star);
+    close(
+        &format!("{at}: Zhukovski q̈"),
+        m.acceleration(q, qd, driver, loads).unwrap(),
+        qdd,
+        1e-12 * scale / i_star,
+    );
 }
 
 /// Spun up and left alone (no driver, no load, gravity on the unbalanced output gear),
@@ -429,7 +590,10 @@ fn gear_train_energy_is_conserved_over_many_turns() {
     .unwrap();
     let turns = out.y[0] / std::f64::consts::TAU;
     assert!(turns > 1000.0, "{turns} turns");
-    assert!(worst <= 1e-9 * e0, "energy drift {worst:e} J of {e0} J over {turns:.0} turns");
+    assert!(
+        worst <= 1e-9 * e0,
+        "energy drift {worst:e} J of {e0} J over {turns:.0} turns"
+    );
 }
 
 mod counting {
@@ -466,7 +630,9 @@ static ALLOC: counting::Counting = counting::Counting;
 fn geared_solvers_are_allocation_free() {
     let m = GearedSliderCrank::new();
     let e = Epicyclic::new();
-    let loads = GearedSliderCrankLoads { gas: V::new(-300.0, 0.0) };
+    let loads = GearedSliderCrankLoads {
+        gas: V::new(-300.0, 0.0),
+    };
     let before = counting::count();
     let mut sink = 0.0;
     for k in 0..100 {
@@ -476,7 +642,12 @@ fn geared_solvers_are_allocation_free() {
         sink += m.driver_action(&mo, &loads).unwrap();
         sink += m.acceleration(q, 20.0, 1.0, &loads).unwrap();
         let mo = e.kinematics(q, 5.0, 1.0).unwrap();
-        sink += e.kinetostatics(&mo, &EpicyclicLoads { load: 1.0 }).unwrap().joints.pr.tooth_load;
+        sink += e
+            .kinetostatics(&mo, &EpicyclicLoads { load: 1.0 })
+            .unwrap()
+            .joints
+            .pr
+            .tooth_load;
     }
     assert_eq!(counting::count() - before, 0, "allocations");
     assert!(sink.is_finite());
@@ -496,12 +667,19 @@ mod gearbox;
 fn gearbox_example() {
     let dir = std::env::temp_dir().join(format!("mech-gearbox-{}", std::process::id()));
     let files = gearbox::run(&dir).unwrap();
-    assert!(files.iter().all(|f| std::fs::metadata(f).map(|m| m.len() > 1000).unwrap_or(false)));
+    assert!(files.iter().all(|f| std::fs::metadata(f)
+        .map(|m| m.len() > 1000)
+        .unwrap_or(false)));
     let rows = gearbox::table(2.0).unwrap();
     let mut mean = 0.0;
     for r in &rows {
         close("routes", r.driver.1, r.driver.0, 1e-12 * 10.0);
-        assert!(r.sp.0 > 0.0 && (r.sp.0 - r.pr.0).abs() <= 1e-9 * r.sp.0, "{} vs {}", r.sp.0, r.pr.0);
+        assert!(
+            r.sp.0 > 0.0 && (r.sp.0 - r.pr.0).abs() <= 1e-9 * r.sp.0,
+            "{} vs {}",
+            r.sp.0,
+            r.pr.0
+        );
         mean += r.driver.0 / rows.len() as f64;
     }
     close("mean motor torque", mean, 20.0 / 4.0, 1e-9);

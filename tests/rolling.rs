@@ -110,33 +110,106 @@ fn rolling_disc_matches_the_closed_form() {
     let u = mech::Vector2::new(th.cos(), -th.sin());
     let n = mech::Vector2::new(th.sin(), th.cos());
     let i_star = mass + i / (r * r);
-    for &(s, sd, sdd, push) in &[(0.0, 0.0, 1.0, 0.0), (0.35, 2.0, -4.0, 3.0), (-1.2, -6.0, 9.0, -2.5)] {
+    for &(s, sd, sdd, push) in &[
+        (0.0, 0.0, 1.0, 0.0),
+        (0.35, 2.0, -4.0, 3.0),
+        (-1.2, -6.0, 9.0, -2.5),
+    ] {
         let loads = RollingDiscLoads { push: u * push };
         let at = format!("s = {s}, ṡ = {sd}, s̈ = {sdd}");
-        close(&format!("I* at {at}"), m.reduced(s).unwrap().inertia, i_star, 1e-14 * i_star);
-        close(&format!("M* at {at}"), m.reduced_moment(s, &loads).unwrap(), mass * g * th.sin() + push, 1e-13 * 20.0);
+        close(
+            &format!("I* at {at}"),
+            m.reduced(s).unwrap().inertia,
+            i_star,
+            1e-14 * i_star,
+        );
+        close(
+            &format!("M* at {at}"),
+            m.reduced_moment(s, &loads).unwrap(),
+            mass * g * th.sin() + push,
+            1e-13 * 20.0,
+        );
         let mo = m.kinematics(s, sd, sdd).unwrap();
         // The disc turns −s/r; its centre moves along the slope.
-        close(&format!("ω at {at}"), mo.links.disc.omega, -sd / r, 1e-14 * 100.0);
-        close(&format!("centre at {at}"), mo.points.C.pos.x, s * th.cos(), 1e-15);
+        close(
+            &format!("ω at {at}"),
+            mo.links.disc.omega,
+            -sd / r,
+            1e-14 * 100.0,
+        );
+        close(
+            &format!("centre at {at}"),
+            mo.points.C.pos.x,
+            s * th.cos(),
+            1e-15,
+        );
         let q_want = i_star * sdd - mass * g * th.sin() - push;
         let f = m.kinetostatics(&mo, &loads).unwrap();
-        close(&format!("d'Alembert at {at}"), f.driver, q_want, 1e-13 * 30.0);
-        close(&format!("virtual power at {at}"), m.driver_action(&mo, &loads).unwrap(), q_want, 1e-13 * 30.0);
-        close(&format!("Zhukovski at {at}"), m.acceleration(s, sd, q_want, &loads).unwrap(), sdd, 1e-13 * 30.0);
+        close(
+            &format!("d'Alembert at {at}"),
+            f.driver,
+            q_want,
+            1e-13 * 30.0,
+        );
+        close(
+            &format!("virtual power at {at}"),
+            m.driver_action(&mo, &loads).unwrap(),
+            q_want,
+            1e-13 * 30.0,
+        );
+        close(
+            &format!("Zhukovski at {at}"),
+            m.acceleration(s, sd, q_want, &loads).unwrap(),
+            sdd,
+            1e-13 * 30.0,
+        );
         let c = f.joints.roll;
-        close(&format!("normal at {at}"), c.normal, mass * g * th.cos(), 1e-13 * 30.0);
-        close(&format!("friction at {at}"), c.friction, -i * sdd / (r * r), 1e-13 * 30.0);
-        close(&format!("contact force at {at}"), c.force.x, (n * c.normal + u * c.friction).x, 1e-13 * 30.0);
+        close(
+            &format!("normal at {at}"),
+            c.normal,
+            mass * g * th.cos(),
+            1e-13 * 30.0,
+        );
+        close(
+            &format!("friction at {at}"),
+            c.friction,
+            -i * sdd / (r * r),
+            1e-13 * 30.0,
+        );
+        close(
+            &format!("contact force at {at}"),
+            c.force.x,
+            (n * c.normal + u * c.friction).x,
+            1e-13 * 30.0,
+        );
         let mut rl = rt.loads();
         assert!(rl.set_by_name("push", &[u.x * push, u.y * push]));
-        let rf = rt.kinetostatics(&rt.kinematics(&[s], &[sd], &[sdd]).unwrap(), &rl).unwrap();
-        close(&format!("run-time driver at {at}"), rf.driver[0], q_want, 1e-13 * 30.0);
+        let rf = rt
+            .kinetostatics(&rt.kinematics(&[s], &[sd], &[sdd]).unwrap(), &rl)
+            .unwrap();
+        close(
+            &format!("run-time driver at {at}"),
+            rf.driver[0],
+            q_want,
+            1e-13 * 30.0,
+        );
         let (rc, _) = rf.reaction("roll").unwrap();
-        close(&format!("run-time contact at {at}"), rc.y, c.force.y, 1e-13 * 30.0);
+        close(
+            &format!("run-time contact at {at}"),
+            rc.y,
+            c.force.y,
+            1e-13 * 30.0,
+        );
     }
-    let free = m.acceleration(0.2, 1.0, 0.0, &RollingDiscLoads::default()).unwrap();
-    close("free roll", free, g * th.sin() / (1.0 + i / (mass * r * r)), 1e-14 * 10.0);
+    let free = m
+        .acceleration(0.2, 1.0, 0.0, &RollingDiscLoads::default())
+        .unwrap();
+    close(
+        "free roll",
+        free,
+        g * th.sin() / (1.0 + i / (mass * r * r)),
+        1e-14 * 10.0,
+    );
 }
 
 /// A crank–rod–wheel against the energy method: I*, dI*/dq, M*, the wheel's turn (modulo
@@ -150,41 +223,100 @@ macro_rules! wheel_case {
             let path = format!("{}/tests/data/rolling.json", env!("CARGO_MANIFEST_DIR"));
             let r: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
             let m = $ty::new();
-            let rt = Mechanism::from_rust_source(include_str!("rolling.rs"), stringify!($ty)).unwrap();
+            let rt =
+                Mechanism::from_rust_source(include_str!("rolling.rs"), stringify!($ty)).unwrap();
             for c in r[$key].as_array().unwrap() {
                 let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
-                let loads = $loads { brake: num(&c["brake"]) };
+                let loads = $loads {
+                    brake: num(&c["brake"]),
+                };
                 let at = format!("{} at q = {q}, q̇ = {qd}, q̈ = {qdd}", $key);
                 let red = m.reduced(q).unwrap();
                 let i_star = num(&c["I_star"]);
                 close(&format!("I* {at}"), red.inertia, i_star, 1e-12 * i_star);
-                close(&format!("dI*/dq {at}"), red.inertia_derivative, num(&c["dI_star_dq"]), 1e-12 * i_star);
-                close(&format!("M* {at}"), m.reduced_moment(q, &loads).unwrap(), num(&c["M_star"]), 1e-12 * 10.0);
+                close(
+                    &format!("dI*/dq {at}"),
+                    red.inertia_derivative,
+                    num(&c["dI_star_dq"]),
+                    1e-12 * i_star,
+                );
+                close(
+                    &format!("M* {at}"),
+                    m.reduced_moment(q, &loads).unwrap(),
+                    num(&c["M_star"]),
+                    1e-12 * 10.0,
+                );
                 let mo = m.kinematics(q, qd, qdd).unwrap();
                 let turn = num(&c["wheel_turn"]);
                 let d = (mo.links.wheel.angle - turn).rem_euclid(std::f64::consts::TAU);
-                assert!(d.min(std::f64::consts::TAU - d) <= 1e-12, "{at}: wheel turn {} vs {turn}", mo.links.wheel.angle);
+                assert!(
+                    d.min(std::f64::consts::TAU - d) <= 1e-12,
+                    "{at}: wheel turn {} vs {turn}",
+                    mo.links.wheel.angle
+                );
                 let driver = num(&c["driver"]);
                 let f = m.kinetostatics(&mo, &loads).unwrap();
                 close(&format!("d'Alembert {at}"), f.driver, driver, 1e-12 * 10.0);
-                close(&format!("virtual power {at}"), m.driver_action(&mo, &loads).unwrap(), driver, 1e-12 * 10.0);
-                close(&format!("Zhukovski {at}"), m.acceleration(q, qd, driver, &loads).unwrap(), qdd, 1e-12 * 10.0 / i_star);
+                close(
+                    &format!("virtual power {at}"),
+                    m.driver_action(&mo, &loads).unwrap(),
+                    driver,
+                    1e-12 * 10.0,
+                );
+                close(
+                    &format!("Zhukovski {at}"),
+                    m.acceleration(q, qd, driver, &loads).unwrap(),
+                    qdd,
+                    1e-12 * 10.0 / i_star,
+                );
                 let wheel_moment = -2.2e-3 * mo.links.wheel.alpha + loads.brake;
-                close(&format!("friction {at}"), f.joints.roll.friction * 0.05, -wheel_moment, 1e-12 * 10.0);
+                close(
+                    &format!("friction {at}"),
+                    f.joints.roll.friction * 0.05,
+                    -wheel_moment,
+                    1e-12 * 10.0,
+                );
                 let mut rl = rt.loads();
                 assert!(rl.set_by_name("brake", &[loads.brake]));
-                let rf = rt.kinetostatics(&rt.kinematics(&[q], &[qd], &[qdd]).unwrap(), &rl).unwrap();
-                close(&format!("run-time driver {at}"), rf.driver[0], driver, 1e-12 * 10.0);
+                let rf = rt
+                    .kinetostatics(&rt.kinematics(&[q], &[qd], &[qdd]).unwrap(), &rl)
+                    .unwrap();
+                close(
+                    &format!("run-time driver {at}"),
+                    rf.driver[0],
+                    driver,
+                    1e-12 * 10.0,
+                );
                 let (rc, _) = rf.reaction("roll").unwrap();
-                close(&format!("run-time contact {at}"), rc.x, f.joints.roll.force.x, 1e-12 * 100.0);
+                close(
+                    &format!("run-time contact {at}"),
+                    rc.x,
+                    f.joints.roll.force.x,
+                    1e-12 * 100.0,
+                );
             }
         }
     };
 }
 
-wheel_case!(wheel_rod_matches_the_energy_method, WheelRod, WheelRodLoads, "configs");
-wheel_case!(wheel_around_a_circle_matches_the_energy_method, WheelAround, WheelAroundLoads, "outside");
-wheel_case!(wheel_in_a_ring_matches_the_energy_method, WheelInRing, WheelInRingLoads, "inside");
+wheel_case!(
+    wheel_rod_matches_the_energy_method,
+    WheelRod,
+    WheelRodLoads,
+    "configs"
+);
+wheel_case!(
+    wheel_around_a_circle_matches_the_energy_method,
+    WheelAround,
+    WheelAroundLoads,
+    "outside"
+);
+wheel_case!(
+    wheel_in_a_ring_matches_the_energy_method,
+    WheelInRing,
+    WheelInRingLoads,
+    "inside"
+);
 
 /// Spun up and left alone, the crank–rod–wheel (gravity, no load) keeps T + V within 1e-9
 /// of T over 200 crank turns (DOP853, rtol = atol = 1e-13; at 1e-11 the integration
@@ -212,7 +344,10 @@ fn wheel_rod_energy_is_conserved() {
     .unwrap();
     let turns = out.y[0] / std::f64::consts::TAU;
     assert!(turns > 200.0, "{turns} turns");
-    assert!(worst <= 1e-9 * e0, "energy drift {worst:e} J of {e0} J over {turns:.0} turns");
+    assert!(
+        worst <= 1e-9 * e0,
+        "energy drift {worst:e} J of {e0} J over {turns:.0} turns"
+    );
 }
 
 mod counting {
@@ -254,13 +389,17 @@ fn rolling_solvers_are_allocation_free() {
         let q = 0.1 * k as f64;
         let l = WheelRodLoads { brake: 1.0 };
         let mo = m.kinematics(q, 5.0, 1.0).unwrap();
-        sink += m.kinetostatics(&mo, &l).unwrap().joints.roll.normal + m.driver_action(&mo, &l).unwrap();
+        sink += m.kinetostatics(&mo, &l).unwrap().joints.roll.normal
+            + m.driver_action(&mo, &l).unwrap();
         sink += m.acceleration(q, 5.0, 1.0, &l).unwrap();
         let l = WheelAroundLoads { brake: 1.0 };
         let mo = a.kinematics(q, 5.0, 1.0).unwrap();
         sink += a.kinetostatics(&mo, &l).unwrap().joints.roll.friction;
         let mo = d.kinematics(0.01 * k as f64, 1.0, 2.0).unwrap();
-        sink += d.kinetostatics(&mo, &RollingDiscLoads::default()).unwrap().driver;
+        sink += d
+            .kinetostatics(&mo, &RollingDiscLoads::default())
+            .unwrap()
+            .driver;
     }
     assert_eq!(counting::count() - before, 0, "allocations");
     assert!(sink.is_finite());

@@ -113,7 +113,11 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
                 let c = at(d);
                 let rho = (model.points[j.point].pos[0] - model.points[d].pos[0])
                     .hypot(model.points[j.point].pos[1] - model.points[d].pos[1]);
-                let big = if inside { rho + j.radius } else { rho - j.radius };
+                let big = if inside {
+                    rho + j.radius
+                } else {
+                    rho - j.radius
+                };
                 shapes.push(Shape {
                     role: Role::Path,
                     name: j.name.clone(),
@@ -175,7 +179,10 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
     // Pitch circles with a spoke, under the links.
     for j in &model.joints {
         let Some(mesh) = &j.mesh else { continue };
-        let gears = [(j.a, mesh.centres[0], mesh.ra), (j.b, mesh.centres[1], mesh.rb)];
+        let gears = [
+            (j.a, mesh.centres[0], mesh.ra),
+            (j.b, mesh.centres[1], mesh.rb),
+        ];
         for &(l, centre, r) in gears.iter().filter(|g| g.2 > 0.0 && g.0 != 0) {
             let c = at(centre);
             let rot = turn(model, l, pose.links[l].angle);

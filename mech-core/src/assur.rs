@@ -9,9 +9,9 @@
 
 use crate::constraints::{Con, ConKind};
 use crate::dyad::Solver;
+use crate::gears::{MeshGroup, TrainGroup, TRAIN_MAX};
 use crate::geometry::joint_cons;
 use crate::model::{JointKind, Model};
-use crate::gears::{MeshGroup, TrainGroup, TRAIN_MAX};
 use crate::screw::{Chain, Driven, JointScrew, VIRTUAL};
 
 /// One group of the plan.
@@ -169,7 +169,11 @@ fn mesh_kernel(model: &Model, body: usize, joint: usize) -> Kernel {
     let pin = if body_slides {
         slide
     } else {
-        let centre = if jt.a == body { m.centres[0] } else { m.centres[1] };
+        let centre = if jt.a == body {
+            m.centres[0]
+        } else {
+            m.centres[1]
+        };
         (0..model.joints.len()).find(|&j| {
             let o = &model.joints[j];
             o.kind == JointKind::Revolute && touches(j) && o.point == centre
@@ -234,7 +238,9 @@ fn train_kernel(model: &Model, bodies: &[usize], cons: &[Con]) -> Kernel {
         }
     }
     for c in cons.iter().filter(|c| c.kind == ConKind::Mesh) {
-        let index = (0..c.joint).filter(|&j| model.joints[j].kind.mesh()).count();
+        let index = (0..c.joint)
+            .filter(|&j| model.joints[j].kind.mesh())
+            .count();
         grp.meshes[k_mesh] = (c.joint, index);
         k_mesh += 1;
         // Each meshing link of the group turns about its pin: the pin is at its centre.
@@ -258,7 +264,11 @@ fn train_kernel(model: &Model, bodies: &[usize], cons: &[Con]) -> Kernel {
         let next = (0..n).find(|&k| {
             let jt = &model.joints[grp.pins[k]];
             let other = if jt.b == bodies[k] { jt.a } else { jt.b };
-            !placed[k] && bodies.iter().position(|&b| b == other).is_none_or(|o| placed[o])
+            !placed[k]
+                && bodies
+                    .iter()
+                    .position(|&b| b == other)
+                    .is_none_or(|o| placed[o])
         });
         let Some(k) = next else {
             return Kernel::System;
@@ -291,7 +301,9 @@ fn track_angles(n: usize, groups: &mut [Group]) {
                 tracked[m.body] = true;
             }
             Kernel::Train(t) => {
-                t.tracked = (0..n.min(64)).filter(|&l| tracked[l]).fold(0, |m, l| m | 1 << l);
+                t.tracked = (0..n.min(64))
+                    .filter(|&l| tracked[l])
+                    .fold(0, |m, l| m | 1 << l);
                 for &b in &t.bodies[..t.n] {
                     tracked[b] = true;
                 }

@@ -125,7 +125,9 @@ impl Spline {
     pub fn periodic(theta: &[f64], s: &[f64]) -> Result<Self, String> {
         let n = theta.len();
         if n < 3 || s.len() != n {
-            return Err(format!("a cam table needs at least 3 points (θ, s), got {n}"));
+            return Err(format!(
+                "a cam table needs at least 3 points (θ, s), got {n}"
+            ));
         }
         for k in 1..n {
             if !(theta[k] > theta[k - 1]) {
@@ -175,7 +177,14 @@ impl Spline {
         let t0 = self.theta[0];
         let t = t0 + (theta - t0).rem_euclid(TAU);
         let k = self.theta.partition_point(|&x| x <= t).max(1) - 1;
-        let (ta, tb) = (self.theta[k], if k + 1 < n { self.theta[k + 1] } else { t0 + TAU });
+        let (ta, tb) = (
+            self.theta[k],
+            if k + 1 < n {
+                self.theta[k + 1]
+            } else {
+                t0 + TAU
+            },
+        );
         let (sa, sb) = (self.s[k], self.s[(k + 1) % n]);
         let (ma, mb) = (self.m[k], self.m[(k + 1) % n]);
         let h = tb - ta;
@@ -237,7 +246,12 @@ impl MotionLaw {
                 ));
             }
             if g.law == Law::Dwell && g.to != g.from {
-                return Err(format!("segment {} is a dwell but goes from {} to {}: a dwell keeps its lift", k + 1, g.from, g.to));
+                return Err(format!(
+                    "segment {} is a dwell but goes from {} to {}: a dwell keeps its lift",
+                    k + 1,
+                    g.from,
+                    g.to
+                ));
             }
             if k > 0 && (g.start - segments[k - 1].end).abs() > ANGLE_TOL {
                 return Err(format!(
@@ -271,11 +285,7 @@ impl MotionLaw {
             MotionLaw::Segments(segs) => {
                 let t0 = segs[0].start;
                 let t = t0 + (theta - t0).rem_euclid(TAU);
-                let g = segs
-                    .iter()
-                    .rev()
-                    .find(|g| g.start <= t)
-                    .unwrap_or(&segs[0]);
+                let g = segs.iter().rev().find(|g| g.start <= t).unwrap_or(&segs[0]);
                 Self::segment(g, t)
             }
         }

@@ -470,8 +470,14 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                         pressure_angle: None,
                     });
                 }
-                "radius" if matches!(kind, JointKind::Rack | JointKind::Rolling) && mesh.is_none() => {
-                    let what = if kind == JointKind::Rack { "the pinion's pitch radius" } else { "the wheel's radius" };
+                "radius"
+                    if matches!(kind, JointKind::Rack | JointKind::Rolling) && mesh.is_none() =>
+                {
+                    let what = if kind == JointKind::Rack {
+                        "the pinion's pitch radius"
+                    } else {
+                        "the wheel's radius"
+                    };
                     let r = scope.scalar(&content, Dim::LENGTH, what)?;
                     mesh = Some(MeshDecl {
                         radii: Pair {
@@ -656,7 +662,11 @@ fn elements(input: ParseStream, scope: &Scope) -> syn::Result<Vec<ElementDecl<Sp
             ),
             ElementKind::RotaryDamper => ("damping", Dim::TORSIONAL_DAMPING, "", Dim::NONE),
         };
-        let preload_dim = if kind.linear() { Dim::FORCE } else { Dim::TORQUE };
+        let preload_dim = if kind.linear() {
+            Dim::FORCE
+        } else {
+            Dim::TORQUE
+        };
         let mut coefficient = None;
         let mut rest = None;
         while content.peek(Ident) {
@@ -666,10 +676,18 @@ fn elements(input: ParseStream, scope: &Scope) -> syn::Result<Vec<ElementDecl<Sp
                 let what = format!("a {}'s {coef_word}", kind.keyword().replace('_', " "));
                 coefficient = Some(scope.scalar(&content, coef_dim, &what)?);
             } else if kind.spring() && word == free_word && rest.is_none() {
-                let what = format!("a {}'s {}", kind.keyword().replace('_', " "), free_word.replace('_', " "));
+                let what = format!(
+                    "a {}'s {}",
+                    kind.keyword().replace('_', " "),
+                    free_word.replace('_', " ")
+                );
                 rest = Some(RestDecl::Free(scope.scalar(&content, free_dim, &what)?));
             } else if kind.spring() && word == "preload" && rest.is_none() {
-                rest = Some(RestDecl::Preload(scope.scalar(&content, preload_dim, "a preload")?));
+                rest = Some(RestDecl::Preload(scope.scalar(
+                    &content,
+                    preload_dim,
+                    "a preload",
+                )?));
             } else {
                 let expected = if kind.spring() {
                     format!("`{coef_word}` and one of `{free_word}` or `preload`")
@@ -678,19 +696,30 @@ fn elements(input: ParseStream, scope: &Scope) -> syn::Result<Vec<ElementDecl<Sp
                 };
                 return Err(syn::Error::new(
                     k.span(),
-                    format!("unexpected `{word}` in {} `{id}`: a {} takes {expected}, each once", kind.keyword(), kind.keyword()),
+                    format!(
+                        "unexpected `{word}` in {} `{id}`: a {} takes {expected}, each once",
+                        kind.keyword(),
+                        kind.keyword()
+                    ),
                 ));
             }
         }
         let Some(coefficient) = coefficient else {
             return Err(syn::Error::new(
                 kw.span(),
-                format!("{} `{id}` has no `{coef_word}`: write e.g. `{}`", kind.keyword(), match kind {
-                    ElementKind::Spring => "spring(a at P, b at Q) stiffness 2 kN_per_m free_length 80 mm",
-                    ElementKind::Damper => "damper(a at P, b at Q) damping 50 N_s_per_m",
-                    ElementKind::TorsionSpring => "torsion_spring(a, b) stiffness 5 N_m_per_rad free_angle 0 deg",
-                    ElementKind::RotaryDamper => "rotary_damper(a, b) damping 0.1 N_m_s_per_rad",
-                }),
+                format!(
+                    "{} `{id}` has no `{coef_word}`: write e.g. `{}`",
+                    kind.keyword(),
+                    match kind {
+                        ElementKind::Spring =>
+                            "spring(a at P, b at Q) stiffness 2 kN_per_m free_length 80 mm",
+                        ElementKind::Damper => "damper(a at P, b at Q) damping 50 N_s_per_m",
+                        ElementKind::TorsionSpring =>
+                            "torsion_spring(a, b) stiffness 5 N_m_per_rad free_angle 0 deg",
+                        ElementKind::RotaryDamper =>
+                            "rotary_damper(a, b) damping 0.1 N_m_s_per_rad",
+                    }
+                ),
             ));
         };
         if kind.spring() && rest.is_none() {

@@ -369,7 +369,14 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
             let c = s[gc.b].point(gc.db);
             cross(d - a, c - a)
         }
-        Solver::Rrp { b1, b2, ja, jc, jp } | Solver::Rrl { b1, b2, ja, jc, jr: jp } => {
+        Solver::Rrp { b1, b2, ja, jc, jp }
+        | Solver::Rrl {
+            b1,
+            b2,
+            ja,
+            jc,
+            jr: jp,
+        } => {
             // Side along the line of C relative to the foot of the perpendicular from A.
             let (a, _) = pin(&joints[ja], s, b1);
             let gc = &joints[jc];

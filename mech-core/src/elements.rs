@@ -199,7 +199,8 @@ mod tests {
         let (k, c, l0) = (2000.0, 15.0, 0.4);
         let el = linear(k, c, l0);
         let t = k * (l - l0) + c * ldot;
-        let close = |x: f64, y: f64| assert!((x - y).abs() <= 1e-13 * y.abs().max(1.0), "{x} vs {y}");
+        let close =
+            |x: f64, y: f64| assert!((x - y).abs() <= 1e-13 * y.abs().max(1.0), "{x} vs {y}");
         let mut f = [Wrench::zeros(); 2];
         add_wrenches(&[el], &s, &mut f);
         close(f[1].x, -t * e.x);

@@ -67,7 +67,13 @@ impl Quantity {
 
 /// The words that name the next property of a force element
 /// (`stiffness 2 kN_per_m free_length 80 mm`): an expression ends before them.
-pub const PROPERTY_WORDS: [&str; 5] = ["stiffness", "damping", "free_length", "free_angle", "preload"];
+pub const PROPERTY_WORDS: [&str; 5] = [
+    "stiffness",
+    "damping",
+    "free_length",
+    "free_angle",
+    "preload",
+];
 
 fn si_unit(d: Dim) -> String {
     d.describe()

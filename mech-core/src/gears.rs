@@ -167,7 +167,11 @@ impl MeshGroup {
             (g.b, g.db, g.da)
         };
         let u0 = if g.a == guide { g.axis } else { -g.axis };
-        let u = if guide == 0 { u0 } else { rotate(s[guide].rot, u0) };
+        let u = if guide == 0 {
+            u0
+        } else {
+            rotate(s[guide].rot, u0)
+        };
         let q = point_of(s, guide, dg);
         let b = point_of(s, rack, dr);
         (u, q, b, u.dot(&(b - q)))
@@ -193,10 +197,18 @@ impl MeshGroup {
             let (u, _, b, x) = self.slide_frame(&joints[self.slide], s, p);
             let (mut xd, mut xdd) = (0.0, 0.0);
             if upto != Level::Position {
-                let vc = if c == 0 { V2::zeros() } else { s[c].vel_at(b - s[c].pos) };
+                let vc = if c == 0 {
+                    V2::zeros()
+                } else {
+                    s[c].vel_at(b - s[c].pos)
+                };
                 xd = u.dot(&(s[p].vel_at(b - s[p].pos) - vc));
                 if upto == Level::Acceleration {
-                    let ac = if c == 0 { V2::zeros() } else { s[c].acc_at(b - s[c].pos) };
+                    let ac = if c == 0 {
+                        V2::zeros()
+                    } else {
+                        s[c].acc_at(b - s[c].pos)
+                    };
                     xdd = u.dot(&(s[p].acc_at(b - s[p].pos) - ac));
                 }
             }
@@ -320,7 +332,11 @@ pub fn mesh_reactions(
     let sep = if body_is_b { pitch.sep_b } else { -pitch.sep_b };
     let wb = f[body];
     let (fb, anchor) = (V2::new(wb.x, wb.y), s[body].pos);
-    let (other, d_other) = if g.b == body { (g.a, g.da) } else { (g.b, g.db) };
+    let (other, d_other) = if g.b == body {
+        (g.a, g.da)
+    } else {
+        (g.b, g.db)
+    };
     let joint_point = point_of(s, other, d_other);
     let ft = if grp.body_slides {
         -fb.dot(&pitch.t)
@@ -408,7 +424,10 @@ impl TrainGroup {
         joints: &[JointGeom],
         s: &[LinkState],
         level: usize,
-    ) -> (nalgebra::SMatrix<f64, TRAIN_MAX, TRAIN_MAX>, nalgebra::SVector<f64, TRAIN_MAX>) {
+    ) -> (
+        nalgebra::SMatrix<f64, TRAIN_MAX, TRAIN_MAX>,
+        nalgebra::SVector<f64, TRAIN_MAX>,
+    ) {
         let mut a = nalgebra::SMatrix::<f64, TRAIN_MAX, TRAIN_MAX>::identity();
         let mut rhs = nalgebra::SVector::<f64, TRAIN_MAX>::zeros();
         let value = |l: usize| -> f64 {
@@ -425,7 +444,11 @@ impl TrainGroup {
             let (g, m) = (&joints[j], &meshes[mi]);
             a[(r, r)] = 0.0;
             // r_a x_a + σ r_b x_b − (r_a + σ r_b) x_c = 0.
-            for (l, k) in [(g.a, m.ra), (g.b, m.sign * m.rb), (m.carrier, -(m.ra + m.sign * m.rb))] {
+            for (l, k) in [
+                (g.a, m.ra),
+                (g.b, m.sign * m.rb),
+                (m.carrier, -(m.ra + m.sign * m.rb)),
+            ] {
                 match self.col(l) {
                     Some(c) => a[(r, c)] += k,
                     None => rhs[r] -= k * value(l),
@@ -479,14 +502,22 @@ pub fn solve_train(
     let w = lu.solve(&grp.willis(meshes, joints, s, 1).1);
     for &k in &grp.order[..grp.n] {
         let (other, o, _) = centre(s, k);
-        let vo = if other == 0 { V2::zeros() } else { s[other].vel_at(o - s[other].pos) };
+        let vo = if other == 0 {
+            V2::zeros()
+        } else {
+            s[other].vel_at(o - s[other].pos)
+        };
         s[grp.bodies[k]].set_velocity_through(o, vo, w[k]);
     }
     if upto == Level::Acceleration {
         let al = lu.solve(&grp.willis(meshes, joints, s, 2).1);
         for &k in &grp.order[..grp.n] {
             let (other, o, _) = centre(s, k);
-            let ao = if other == 0 { V2::zeros() } else { s[other].acc_at(o - s[other].pos) };
+            let ao = if other == 0 {
+                V2::zeros()
+            } else {
+                s[other].acc_at(o - s[other].pos)
+            };
             s[grp.bodies[k]].set_acceleration_through(o, ao, al[k]);
         }
     }
@@ -515,19 +546,29 @@ pub fn train_reactions(
             let g = &joints[j];
             meshes[mi].pitch(s, g.a, g.b, V2::zeros())
         } else {
-            Pitch { p: V2::zeros(), t: V2::zeros(), sep_b: V2::zeros() }
+            Pitch {
+                p: V2::zeros(),
+                t: V2::zeros(),
+                sep_b: V2::zeros(),
+            }
         }
     });
     let pin_point: [V2; TRAIN_MAX] = core::array::from_fn(|k| {
         if k < n {
             let g = &joints[grp.pins[k]];
-            if g.b == grp.bodies[k] { point_of(s, g.a, g.da) } else { point_of(s, g.b, g.db) }
+            if g.b == grp.bodies[k] {
+                point_of(s, g.a, g.da)
+            } else {
+                point_of(s, g.b, g.db)
+            }
         } else {
             V2::zeros()
         }
     });
     // The tooth force on b of mesh r per unit tangential force, for the flanks `fl`.
-    let unit = |r: usize, fl: f64| pitch[r].t + pitch[r].sep_b * (fl * meshes[grp.meshes[r].1].tan_pressure);
+    let unit = |r: usize, fl: f64| {
+        pitch[r].t + pitch[r].sep_b * (fl * meshes[grp.meshes[r].1].tan_pressure)
+    };
     let mut flanks = [1.0; TRAIN_MAX];
     let mut x = nalgebra::SVector::<f64, M>::zeros();
     for _ in 0..=(1 << TRAIN_MAX) {
@@ -567,8 +608,13 @@ pub fn train_reactions(
             put(&mut a, g.a, pitch[r].p, -d, 2 * n + r);
         }
         x = crate::linalg::Lu::new(a).solve(&b);
-        let settled: [f64; TRAIN_MAX] =
-            core::array::from_fn(|r| if r < n && x[2 * n + r] < 0.0 { -1.0 } else { 1.0 });
+        let settled: [f64; TRAIN_MAX] = core::array::from_fn(|r| {
+            if r < n && x[2 * n + r] < 0.0 {
+                -1.0
+            } else {
+                1.0
+            }
+        });
         if settled == flanks {
             break;
         }
@@ -584,7 +630,11 @@ pub fn train_reactions(
             moment: 0.0,
         };
         if grp.col(other).is_none() {
-            let pos = if other == 0 { V2::zeros() } else { s[other].pos };
+            let pos = if other == 0 {
+                V2::zeros()
+            } else {
+                s[other].pos
+            };
             f[other] += Wrench::new(-r.x, -r.y, cross(pin_point[k] - pos, -r));
         }
     }
@@ -594,7 +644,11 @@ pub fn train_reactions(
         let force = unit(r, flanks[r]) * x[2 * n + r];
         out[j] = Reaction {
             force,
-            moment: if force.dot(&pitch[r].t) >= 0.0 { 1.0 } else { -1.0 },
+            moment: if force.dot(&pitch[r].t) >= 0.0 {
+                1.0
+            } else {
+                -1.0
+            },
         };
         for (l, fl) in [(g.a, -force), (g.b, force)] {
             if grp.col(l).is_none() {

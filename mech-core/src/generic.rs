@@ -1186,8 +1186,7 @@ impl GenericMechanism {
                     }
                 }
                 ConKind::Slot => joints[c.joint].force = slide_force(g, s, lam[r]),
-                ConKind::Mesh | ConKind::Rolling => {}
-                // One row of a revolute (never produced by `all_cons`; kept total).
+                ConKind::Mesh | ConKind::Rolling => {} // One row of a revolute (never produced by `all_cons`; kept total).
             }
         }
         Ok(GenericForces {

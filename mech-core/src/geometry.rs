@@ -38,7 +38,11 @@ pub fn pitch_point(model: &Model, j: usize) -> Option<(V2, V2)> {
                 && ((o.a == jt.b && o.b == m.carrier) || (o.b == jt.b && o.a == m.carrier))
         })?;
         let u = V2::new(slide.axis[0], slide.axis[1]).normalize();
-        let side = if crate::link_state::cross(u, ob - oa) >= 0.0 { 1.0 } else { -1.0 };
+        let side = if crate::link_state::cross(u, ob - oa) >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
         return Some((oa + crate::link_state::perp(u) * (side * m.ra), u));
     }
     let w = (ob - oa).normalize();

@@ -3,9 +3,9 @@
 
 use crate::constraints::JointGeom;
 use crate::dyad::{branch, branch_quantity, Solver};
+use crate::elements::ElementGeom;
 use crate::geometry::{anchor, drawing_states, joint_geoms, local};
 use crate::link_state::{LinkGeom, LinkState, V2};
-use crate::elements::ElementGeom;
 use crate::model::{Load, Model};
 use crate::MechError;
 

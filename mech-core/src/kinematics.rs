@@ -99,8 +99,16 @@ pub fn solve_driven(
         // The driven link's rotation over turns: its base's plus the input's (a revolute
         // driver), or its base's (a slider).
         let g = &joints[driven.screw.joint];
-        let turn = if driven.screw.slide { 0.0 } else { drive.0[driven.input] - g.q_ref };
-        let base = if driven.from == 0 { 0.0 } else { s[driven.from].angle };
+        let turn = if driven.screw.slide {
+            0.0
+        } else {
+            drive.0[driven.input] - g.q_ref
+        };
+        let base = if driven.from == 0 {
+            0.0
+        } else {
+            s[driven.from].angle
+        };
         s[driven.body].angle = base + if g.b == driven.body { turn } else { -turn };
     }
     driven_rates(driven, joints, s, drive, upto)

@@ -460,7 +460,9 @@ impl Mechanism {
                     kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)?
                 }
                 Kernel::Mesh(m) => crate::gears::solve_mesh(m, &self.inst.meshes, joints, s, upto)?,
-                Kernel::Train(t) => crate::gears::solve_train(t, &self.inst.meshes, joints, s, upto)?,
+                Kernel::Train(t) => {
+                    crate::gears::solve_train(t, &self.inst.meshes, joints, s, upto)?
+                }
                 Kernel::Rolling(r) => {
                     crate::rolling::solve_rolling(r, joints, s, drive, sign, scale, upto, true)?
                 }

@@ -128,7 +128,10 @@ impl JointKind {
     }
     /// A higher pair of Grübler's count (P_II): a pin in a slot, a gear pair, a rack.
     pub const fn higher(self) -> bool {
-        matches!(self, JointKind::PinInSlot | JointKind::Gear | JointKind::Rack)
+        matches!(
+            self,
+            JointKind::PinInSlot | JointKind::Gear | JointKind::Rack
+        )
     }
 }
 

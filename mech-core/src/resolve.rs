@@ -308,16 +308,18 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
             }
         }
         let around = match (&j.around, j.kind) {
-            (Some((d, inside)), JointKind::Rolling) => match point_ix.get(&d.text).copied() {
-                Some(di) => Some((di, *inside)),
-                _ => {
-                    errs.push(Diagnostic::at(
+            (Some((d, inside)), JointKind::Rolling) => {
+                match point_ix.get(&d.text).copied() {
+                    Some(di) => Some((di, *inside)),
+                    _ => {
+                        errs.push(Diagnostic::at(
                         d.span.clone(),
                         format!("unknown point `{}`: the centre of rolling joint `{}`'s circular track", d.text, j.name.text),
                     ));
-                    None
+                        None
+                    }
                 }
-            },
+            }
             _ => None,
         };
         let axis = match (j.kind, &j.along) {
@@ -581,7 +583,9 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
     for e in &d.elements {
         let end = |link: &Name<S>, at: &Option<Name<S>>, errs: &mut Vec<Diagnostic<S>>| {
             let li = find_link(link, errs)?;
-            let Some(pt) = at else { return Some((li, None)) };
+            let Some(pt) = at else {
+                return Some((li, None));
+            };
             match point_ix.get(&pt.text).copied() {
                 Some(pi) if links[li].points.contains(&pi) => Some((li, Some(pi))),
                 _ => {
@@ -685,7 +689,10 @@ fn mesh_of<S>(
             return Err(format!("rack `{}`: the rack `{}` must slide (a prismatic joint) on the link that carries the pinion `{}`; it has no prismatic joint", jt.name, name(b), name(a)));
         };
         let carrier = if slide.a == b { slide.b } else { slide.a };
-        let Some(&centre) = centres_of(a).iter().find(|&&p| links[carrier].points.contains(&p)) else {
+        let Some(&centre) = centres_of(a)
+            .iter()
+            .find(|&&p| links[carrier].points.contains(&p))
+        else {
             return Err(format!("rack `{}`: the pinion `{}` must be pinned (a revolute joint) at its centre to `{}`, the link the rack slides on", jt.name, name(a), name(carrier)));
         };
         return Ok(Mesh {
@@ -697,7 +704,11 @@ fn mesh_of<S>(
             centres: [centre, slide.point],
         });
     }
-    let want = if decl.internal { (rb - ra).abs() } else { ra + rb };
+    let want = if decl.internal {
+        (rb - ra).abs()
+    } else {
+        ra + rb
+    };
     let mut best: Option<(f64, Mesh)> = None;
     for &pa in &centres_of(a) {
         for &pb in &centres_of(b) {

@@ -73,7 +73,11 @@ fn travel(g: &JointGeom, s: &[LinkState], c: V2) -> (V2, V2, f64) {
 #[inline(always)]
 fn turn_wheel(g: &JointGeom, s: &mut [LinkState], w: usize, c: V2, dc: V2, travel: f64) {
     let (sn, cs) = (-travel / g.radius).sin_cos();
-    let base = if g.a == 0 { V2::new(1.0, 0.0) } else { s[g.a].rot };
+    let base = if g.a == 0 {
+        V2::new(1.0, 0.0)
+    } else {
+        s[g.a].rot
+    };
     let rot = rotate(base, V2::new(cs, sn));
     s[w].rot = rot;
     s[w].pos = c - rotate(rot, dc);
@@ -118,7 +122,11 @@ fn contact_frame(g: &JointGeom, s: &[LinkState], c: V2) -> (V2, V2) {
 fn rod_points(joints: &[JointGeom], b1: usize, ja: usize, jc: usize) -> (V2, V2, V2) {
     let (gj, gc) = (&joints[ja], &joints[jc]);
     let da = if gj.a == b1 { gj.da } else { gj.db };
-    let (dc1, dc2) = if gc.a == b1 { (gc.da, gc.db) } else { (gc.db, gc.da) };
+    let (dc1, dc2) = if gc.a == b1 {
+        (gc.da, gc.db)
+    } else {
+        (gc.db, gc.da)
+    };
     (da, dc1, dc2)
 }
 
@@ -348,14 +356,26 @@ pub fn rolling_reactions(
             let (ga, gc) = (&joints[ja], &joints[jc]);
             let la = if ga.a == b1 { ga.b } else { ga.a };
             out[ja] = if ga.b == b1 {
-                Reaction { force: ra, moment: 0.0 }
+                Reaction {
+                    force: ra,
+                    moment: 0.0,
+                }
             } else {
-                Reaction { force: -ra, moment: 0.0 }
+                Reaction {
+                    force: -ra,
+                    moment: 0.0,
+                }
             };
             out[jc] = if gc.b == b2 {
-                Reaction { force: x, moment: 0.0 }
+                Reaction {
+                    force: x,
+                    moment: 0.0,
+                }
             } else {
-                Reaction { force: -x, moment: 0.0 }
+                Reaction {
+                    force: -x,
+                    moment: 0.0,
+                }
             };
             out[jr] = Reaction {
                 force: contact,

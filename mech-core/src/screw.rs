@@ -679,7 +679,10 @@ mod tests {
                             drive,
                             Level::Acceleration,
                         ),
-                        Kernel::System | Kernel::Mesh(_) | Kernel::Train(_) | Kernel::Rolling(_) => {
+                        Kernel::System
+                        | Kernel::Mesh(_)
+                        | Kernel::Train(_)
+                        | Kernel::Rolling(_) => {
                             panic!("{text}: no screw kernel")
                         }
                     }

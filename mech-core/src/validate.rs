@@ -54,8 +54,13 @@ fn element_numbers(model: &Model) -> Vec<Issue> {
             ElementKind::Damper => (e.damping, "N·s/m"),
             ElementKind::RotaryDamper => (e.damping, "N·m·s/rad"),
         };
-        let what = if e.kind.spring() { "stiffness" } else { "damping" };
-        if !(coef.is_finite() && coef >= 0.0) || !(e.stiffness.is_finite() && e.damping.is_finite()) {
+        let what = if e.kind.spring() {
+            "stiffness"
+        } else {
+            "damping"
+        };
+        let finite = coef.is_finite() && e.stiffness.is_finite() && e.damping.is_finite();
+        if !finite || coef < 0.0 {
             out.push(Issue {
                 culprits: vec![Culprit::Element(i)],
                 message: format!("{kind} `{}` has {what} {coef} {unit}: it must be finite and ≥ 0 (a negative {what} would feed energy into the machine)", e.name),
@@ -93,9 +98,15 @@ fn mesh_numbers(model: &Model) -> Vec<Issue> {
             out.push(Issue {
                 culprits: vec![Culprit::Joint(j)],
                 message: if jt.kind == JointKind::Rack {
-                    format!("{kind} `{}` has pinion radius {} m: a pitch radius must be finite and > 0", jt.name, m.ra)
+                    format!(
+                        "{kind} `{}` has pinion radius {} m: a pitch radius must be finite and > 0",
+                        jt.name, m.ra
+                    )
                 } else {
-                    format!("{kind} `{}` has pitch radii ({}, {}) m: each must be finite and > 0", jt.name, m.ra, m.rb)
+                    format!(
+                        "{kind} `{}` has pitch radii ({}, {}) m: each must be finite and > 0",
+                        jt.name, m.ra, m.rb
+                    )
                 },
             });
             continue;
@@ -113,19 +124,33 @@ fn mesh_numbers(model: &Model) -> Vec<Issue> {
                 message: format!("{kind} `{}` has pressure angle {:.3}°: it must be in [0°, 45°) (20° is standard)", jt.name, m.pressure_angle.to_degrees()),
             });
         }
-        let (pa, pb) = (model.points[m.centres[0]].pos, model.points[m.centres[1]].pos);
+        let (pa, pb) = (
+            model.points[m.centres[0]].pos,
+            model.points[m.centres[1]].pos,
+        );
         if !(pa.iter().chain(pb.iter()).all(|v| v.is_finite())) {
             continue;
         }
-        let (name_a, name_b) = (&model.points[m.centres[0]].name, &model.points[m.centres[1]].name);
+        let (name_a, name_b) = (
+            &model.points[m.centres[0]].name,
+            &model.points[m.centres[1]].name,
+        );
         let tol = MESH_TOL * model.scale();
         if jt.kind == JointKind::Rack {
             continue;
         }
         let d = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-        let want = if m.internal { (m.rb - m.ra).abs() } else { m.ra + m.rb };
+        let want = if m.internal {
+            (m.rb - m.ra).abs()
+        } else {
+            m.ra + m.rb
+        };
         if !((d - want).abs() <= tol) {
-            let rule = if m.internal { "|r_a − r_b|" } else { "r_a + r_b" };
+            let rule = if m.internal {
+                "|r_a − r_b|"
+            } else {
+                "r_a + r_b"
+            };
             out.push(Issue {
                 culprits: vec![Culprit::Joint(j), Culprit::Point(m.centres[1])],
                 message: format!(
@@ -213,7 +238,10 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
         if jt.kind == JointKind::Rolling && !(jt.radius.is_finite() && jt.radius > 0.0) {
             out.push(Issue {
                 culprits: vec![Culprit::Joint(j)],
-                message: format!("rolling joint `{}` has wheel radius {} m: it must be finite and > 0", jt.name, jt.radius),
+                message: format!(
+                    "rolling joint `{}` has wheel radius {} m: it must be finite and > 0",
+                    jt.name, jt.radius
+                ),
             });
         } else if let Some((d, false)) = jt.around {
             let (pd, pc) = (model.points[d].pos, model.points[jt.point].pos);

@@ -142,8 +142,10 @@ impl<'a> Ctx<'a> {
         (0..self.n_joints)
             .filter(|&j| {
                 let jt = &self.model.joints[j];
-                !matches!(jt.kind, JointKind::Revolute | JointKind::Gear | JointKind::Rack)
-                    && jt.around.is_none()
+                !matches!(
+                    jt.kind,
+                    JointKind::Revolute | JointKind::Gear | JointKind::Rack
+                ) && jt.around.is_none()
             })
             .collect()
     }

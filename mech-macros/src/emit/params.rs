@@ -412,14 +412,24 @@ fn element_params(cx: &Ctx) -> (TokenStream, TokenStream, TokenStream) {
     let p = &cx.p;
     let ty = &cx.names.params_elements;
     let model = cx.model;
-    let ids: Vec<_> = model.elements.iter().map(|e| crate::emit::id(&e.name)).collect();
+    let ids: Vec<_> = model
+        .elements
+        .iter()
+        .map(|e| crate::emit::id(&e.name))
+        .collect();
     let docs = model.elements.iter().map(|e| {
         let ends = match e.points {
             Some([pp, qq]) => format!(
                 "`{}` at `{}` and `{}` at `{}`",
-                model.links[e.a].name, model.points[pp].name, model.links[e.b].name, model.points[qq].name
+                model.links[e.a].name,
+                model.points[pp].name,
+                model.links[e.b].name,
+                model.points[qq].name
             ),
-            None => format!("`{}` and `{}`", model.links[e.a].name, model.links[e.b].name),
+            None => format!(
+                "`{}` and `{}`",
+                model.links[e.a].name, model.links[e.b].name
+            ),
         };
         format!("{} `{}` between {ends}.", e.kind.keyword(), e.name)
     });
@@ -432,9 +442,13 @@ fn element_params(cx: &Ctx) -> (TokenStream, TokenStream, TokenStream) {
     let defaults = model.elements.iter().map(|e| {
         let (k, c, x0) = (f64s(e.stiffness), f64s(e.damping), f64s(e.free));
         match e.kind {
-            ElementKind::Spring => quote!(#p::instance::SpringParams { stiffness: #k, free_length: #x0 }),
+            ElementKind::Spring => {
+                quote!(#p::instance::SpringParams { stiffness: #k, free_length: #x0 })
+            }
             ElementKind::Damper => quote!(#p::instance::DamperParams { damping: #c }),
-            ElementKind::TorsionSpring => quote!(#p::instance::TorsionSpringParams { stiffness: #k, free_angle: #x0 }),
+            ElementKind::TorsionSpring => {
+                quote!(#p::instance::TorsionSpringParams { stiffness: #k, free_angle: #x0 })
+            }
             ElementKind::RotaryDamper => quote!(#p::instance::RotaryDamperParams { damping: #c }),
         }
     });
