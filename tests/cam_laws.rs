@@ -235,3 +235,41 @@ fn profile_by_its_geometry() {
         }
     }
 }
+
+/// Design checks: the largest pressure angle is the textbook one's largest over a fine
+/// sweep; a roller larger than the pitch curve's smallest convex radius undercuts, a
+/// smaller one does not; a flat face with too small a base circle for its law has a cusp;
+/// the CSV and the SVG path carry the contact points.
+#[test]
+fn design_checks_and_export() {
+    let c = cam(Face::Roller(0.01), 0.0);
+    let chk = c.check(3600);
+    let rp = 0.05;
+    let want = (0..3600)
+        .map(|k| {
+            let [s, s1, _, _] = c.law.eval(TAU * k as f64 / 3600.0);
+            (s1 / (rp + s)).atan().abs()
+        })
+        .fold(0.0f64, f64::max);
+    assert!((chk.max_pressure_angle.0 - want).abs() < 1e-15 && want > 0.1);
+    assert!(!chk.undercut && chk.min_convex_radius.0 > 0.0);
+    // The pitch curve's smallest convex radius, from a roller of zero radius on the same
+    // prime circle: a roller just above it undercuts.
+    let knife = Profile { base_radius: rp, face: Face::Knife, ..cam(Face::Knife, 0.0) };
+    let rho_min = knife.check(3600).min_convex_radius.0;
+    let big = rho_min * 1.05;
+    let undercut = Profile { base_radius: rp - big, face: Face::Roller(big), ..cam(Face::Knife, 0.0) };
+    assert!(undercut.check(3600).undercut, "a roller of {big} m > ρ_min {rho_min} m");
+    let small = Profile { base_radius: rp - 0.5 * rho_min, face: Face::Roller(0.5 * rho_min), ..cam(Face::Knife, 0.0) };
+    assert!(!small.check(3600).undercut);
+    let cusp = Profile { base_radius: 0.002, face: Face::Flat, ..cam(Face::Flat, 0.0) };
+    assert!(cusp.check(3600).undercut);
+    let csv = c.to_csv(8);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 9);
+    let row: Vec<f64> = lines[3].split(',').map(|x| x.parse().unwrap()).collect();
+    let p = c.at(TAU * 2.0 / 8.0);
+    assert!((row[0] - 90.0).abs() < 1e-9 && (row[1] - p.contact[0]).abs() < 1e-9 && (row[2] - p.contact[1]).abs() < 1e-9);
+    let path = c.svg_path(8);
+    assert!(path.starts_with('M') && path.ends_with('Z') && path.matches('L').count() == 7);
+}

@@ -454,3 +454,31 @@ fn flywheel_cycle_sees_the_springs() {
         "S + ΔV off by {worst:e} J (range {range} J)"
     );
 }
+
+mechanism! {
+    /// A spring whose two ends coincide in the drawing (a zero-length spring on a pin):
+    /// its direction is undefined there.
+    pub struct DegenerateSpring {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0) },
+        link arm { points { O, A: (0.1, 0.0) }, mass: 1.0, inertia: 1.0e-3, cg: (0.05, 0.0) },
+        joints { O: revolute(ground, arm) },
+        input: O,
+        elements { k: spring(ground at O, arm at O) stiffness 100 N_per_m free_length 10 mm },
+    }
+}
+
+/// A spring of zero length has no direction: every solver that needs its force returns a
+/// `MechError` (never a NaN inside `Ok`); the potential energy, which does not need the
+/// direction, stays finite.
+#[test]
+fn a_spring_of_zero_length_is_an_error_not_a_nan() {
+    let m = DegenerateSpring::new();
+    let loads = DegenerateSpringLoads::default();
+    let mo = m.kinematics(0.3, 2.0, 1.0).unwrap();
+    assert!(m.kinetostatics(&mo, &loads).is_err());
+    assert!(m.driver_action(&mo, &loads).is_err());
+    assert!(m.reduced_moment(0.3, &loads).is_err());
+    assert!(m.acceleration(0.3, 2.0, 0.0, &loads).is_err());
+    assert!(m.potential_energy(&mo).is_finite());
+}

@@ -436,3 +436,88 @@ impl Profile {
         }
     }
 }
+
+/// The design figures of a cam over a revolution ([`Profile::check`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProfileCheck {
+    /// The largest |pressure angle| (rad) and the cam angle where it occurs (rad).
+    pub max_pressure_angle: (f64, f64),
+    /// The smallest radius of curvature of the cam surface where it is convex (m), and
+    /// where; a concave cam has no limit there (∞ when the surface is nowhere convex).
+    pub min_convex_radius: (f64, f64),
+    /// True when the profile is undercut: the pitch curve's convex radius is smaller than
+    /// the roller's (the cam surface's radius ≤ 0 somewhere it should be convex), or a flat
+    /// face's R_b + s + s″ ≤ 0 (a cusp).
+    pub undercut: bool,
+}
+
+impl Profile {
+    /// The profile at `n` cam angles evenly over the revolution, from θ = 0.
+    pub fn points(&self, n: usize) -> Vec<ProfilePoint> {
+        (0..n)
+            .map(|k| self.at(TAU * k as f64 / n as f64))
+            .collect()
+    }
+
+    /// The maximum pressure angle, the minimum convex radius of curvature and whether the
+    /// profile is undercut, sampled at `n` cam angles (ProfileCheck).
+    pub fn check(&self, n: usize) -> ProfileCheck {
+        let r = match self.face {
+            Face::Roller(r) => r,
+            _ => 0.0,
+        };
+        let mut out = ProfileCheck {
+            max_pressure_angle: (0.0, 0.0),
+            min_convex_radius: (f64::INFINITY, 0.0),
+            undercut: false,
+        };
+        for p in self.points(n) {
+            if p.pressure_angle.abs() > out.max_pressure_angle.0 {
+                out.max_pressure_angle = (p.pressure_angle.abs(), p.theta);
+            }
+            // The pitch curve's radius: convex where > 0.
+            let pitch = p.curvature_radius + r;
+            if pitch > 0.0 && p.curvature_radius < out.min_convex_radius.0 {
+                out.min_convex_radius = (p.curvature_radius, p.theta);
+            }
+            let cusp = match self.face {
+                Face::Flat => p.curvature_radius <= 0.0,
+                Face::Roller(_) => pitch > 0.0 && p.curvature_radius <= 0.0,
+                Face::Knife => false,
+            };
+            out.undercut |= cusp;
+        }
+        out
+    }
+
+    /// The cam surface as CSV, one contact point per row: `theta_deg,x_m,y_m`
+    /// (the cam's frame), `n` points over the revolution.
+    pub fn to_csv(&self, n: usize) -> String {
+        let mut out = String::from("theta_deg,x_m,y_m\n");
+        for p in self.points(n) {
+            out.push_str(&format!(
+                "{:.6},{:.9},{:.9}\n",
+                p.theta.to_degrees(),
+                p.contact[0],
+                p.contact[1]
+            ));
+        }
+        out
+    }
+
+    /// The cam surface as the `d` attribute of an SVG path (a closed polygon through `n`
+    /// contact points), in mm with y up turned to SVG's y down.
+    pub fn svg_path(&self, n: usize) -> String {
+        let mut d = String::new();
+        for (k, p) in self.points(n).iter().enumerate() {
+            d.push_str(&format!(
+                "{}{:.4},{:.4} ",
+                if k == 0 { "M" } else { "L" },
+                p.contact[0] * 1e3,
+                -p.contact[1] * 1e3
+            ));
+        }
+        d.push('Z');
+        d
+    }
+}
