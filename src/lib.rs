@@ -51,7 +51,8 @@ pub mod prelude {
         DamperParams, RotaryDamperParams, SpringParams, TorsionSpringParams,
     };
     pub use mech_core::kinetostatics::{
-        MeshReaction, PrismaticReaction, RevoluteReaction, SlotReaction,
+        CamReaction, MeshReaction, PrismaticReaction, RevoluteReaction, RollingReaction,
+        SlotReaction,
     };
     pub use mech_core::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
     pub use mech_core::traits::{Machine, OneDof};

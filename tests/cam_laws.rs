@@ -255,21 +255,44 @@ fn design_checks_and_export() {
     assert!(!chk.undercut && chk.min_convex_radius.0 > 0.0);
     // The pitch curve's smallest convex radius, from a roller of zero radius on the same
     // prime circle: a roller just above it undercuts.
-    let knife = Profile { base_radius: rp, face: Face::Knife, ..cam(Face::Knife, 0.0) };
+    let knife = Profile {
+        base_radius: rp,
+        face: Face::Knife,
+        ..cam(Face::Knife, 0.0)
+    };
     let rho_min = knife.check(3600).min_convex_radius.0;
     let big = rho_min * 1.05;
-    let undercut = Profile { base_radius: rp - big, face: Face::Roller(big), ..cam(Face::Knife, 0.0) };
-    assert!(undercut.check(3600).undercut, "a roller of {big} m > ρ_min {rho_min} m");
-    let small = Profile { base_radius: rp - 0.5 * rho_min, face: Face::Roller(0.5 * rho_min), ..cam(Face::Knife, 0.0) };
+    let undercut = Profile {
+        base_radius: rp - big,
+        face: Face::Roller(big),
+        ..cam(Face::Knife, 0.0)
+    };
+    assert!(
+        undercut.check(3600).undercut,
+        "a roller of {big} m > ρ_min {rho_min} m"
+    );
+    let small = Profile {
+        base_radius: rp - 0.5 * rho_min,
+        face: Face::Roller(0.5 * rho_min),
+        ..cam(Face::Knife, 0.0)
+    };
     assert!(!small.check(3600).undercut);
-    let cusp = Profile { base_radius: 0.002, face: Face::Flat, ..cam(Face::Flat, 0.0) };
+    let cusp = Profile {
+        base_radius: 0.002,
+        face: Face::Flat,
+        ..cam(Face::Flat, 0.0)
+    };
     assert!(cusp.check(3600).undercut);
     let csv = c.to_csv(8);
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 9);
     let row: Vec<f64> = lines[3].split(',').map(|x| x.parse().unwrap()).collect();
     let p = c.at(TAU * 2.0 / 8.0);
-    assert!((row[0] - 90.0).abs() < 1e-9 && (row[1] - p.contact[0]).abs() < 1e-9 && (row[2] - p.contact[1]).abs() < 1e-9);
+    assert!(
+        (row[0] - 90.0).abs() < 1e-9
+            && (row[1] - p.contact[0]).abs() < 1e-9
+            && (row[2] - p.contact[1]).abs() < 1e-9
+    );
     let path = c.svg_path(8);
     assert!(path.starts_with('M') && path.ends_with('Z') && path.matches('L').count() == 7);
 }

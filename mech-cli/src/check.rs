@@ -24,6 +24,7 @@ pub fn group_kind(g: &Group) -> (&'static str, bool) {
         Solver::Train => ("gear train (Willis, one linear system)", true),
         Solver::DrivenRolling { .. } => ("wheel driven along its track", true),
         Solver::Rrl { .. } => ("rod and rolling wheel", true),
+        Solver::Cam { .. } => ("cam-driven follower", true),
     }
 }
 

@@ -38,6 +38,8 @@ pub enum Kernel {
     Mesh(MeshGroup),
     /// Links meshing with one another: Willis' relations as one small linear system.
     Train(TrainGroup),
+    /// A follower driven by a cam ([`crate::cam`]).
+    Cam(crate::cam::CamGroup),
     /// A rolling wheel, driven or at the end of a rod ([`crate::rolling`]).
     Rolling(crate::rolling::RollingGroup),
     /// No closed form: the group's scaled Jacobian, LU-factored.
@@ -136,6 +138,7 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
         Solver::Mesh { body, joint } => mesh_kernel(model, body, joint),
         // Built from the group's constraints by `plan` (`train_kernel`).
         Solver::Train => Kernel::System,
+        Solver::Cam { body, joint } => cam_kernel(model, body, joint),
         Solver::DrivenRolling { body, joint, input } => {
             Kernel::Rolling(crate::rolling::RollingGroup::Driven { body, joint, input })
         }
@@ -194,6 +197,25 @@ fn mesh_kernel(model: &Model, body: usize, joint: usize) -> Kernel {
         partner_slides: rack_link == Some(partner),
         partner_tracked: false,
         carrier_tracked: false,
+    })
+}
+
+/// The kernel of a follower driven by a cam: its slide, the cam, the carrier, and the cam's
+/// index among the mechanism's cams.
+fn cam_kernel(model: &Model, body: usize, joint: usize) -> Kernel {
+    let jt = &model.joints[joint];
+    let Some(c) = jt.cam.as_ref() else {
+        return Kernel::System;
+    };
+    Kernel::Cam(crate::cam::CamGroup {
+        follower: body,
+        slide: c.slide,
+        joint,
+        cam: jt.a,
+        carrier: c.carrier,
+        index: (0..joint)
+            .filter(|&j| model.joints[j].kind == JointKind::Cam)
+            .count(),
     })
 }
 
@@ -440,6 +462,16 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
                 .iter()
                 .any(|c| matches!(c.kind, ConKind::Revolute | ConKind::Prismatic));
             if let (Some(m), true, 2) = (mesh, held, cons.len()) {
+                if model.joints[m.joint].kind == JointKind::Cam {
+                    return if model.joints[m.joint].b == body {
+                        Solver::Cam {
+                            body,
+                            joint: m.joint,
+                        }
+                    } else {
+                        Solver::Newton
+                    };
+                }
                 return Solver::Mesh {
                     body,
                     joint: m.joint,

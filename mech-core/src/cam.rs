@@ -454,9 +454,7 @@ pub struct ProfileCheck {
 impl Profile {
     /// The profile at `n` cam angles evenly over the revolution, from θ = 0.
     pub fn points(&self, n: usize) -> Vec<ProfilePoint> {
-        (0..n)
-            .map(|k| self.at(TAU * k as f64 / n as f64))
-            .collect()
+        (0..n).map(|k| self.at(TAU * k as f64 / n as f64)).collect()
     }
 
     /// The maximum pressure angle, the minimum convex radius of curvature and whether the
@@ -520,4 +518,200 @@ impl Profile {
         d.push('Z');
         d
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// The cam pair: a cam pinned to a carrier drives a follower sliding on it.
+
+use crate::constraints::{JointGeom, Level};
+use crate::kinetostatics::{Reaction, Wrench};
+use crate::link_state::{cross, perp, point_of, rotate, LinkState, V2};
+use crate::MechError;
+
+impl Profile {
+    /// The law's (s, s′, s″) at θ, and the contact point K and the common normal n (unit,
+    /// from the cam towards the follower) in the follower's axis frame (x̂, û) with the
+    /// cam's centre at the origin (module docs of [`Profile::at`]).
+    pub fn contact_axis(&self, theta: f64) -> ([f64; 3], [f64; 2], [f64; 2]) {
+        let [s, s1, s2, _] = self.law.eval(theta);
+        if self.face == Face::Flat {
+            return ([s, s1, s2], [s1, self.base_radius + s], [0.0, 1.0]);
+        }
+        let r = match self.face {
+            Face::Roller(r) => r,
+            _ => 0.0,
+        };
+        let e = self.offset;
+        let rp = self.base_radius + r;
+        let y = (rp * rp - e * e).sqrt() + s;
+        let v = [y, s1 - e];
+        let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
+        let n = [-v[1] / speed, v[0] / speed];
+        ([s, s1, s2], [e - r * n[0], y - r * n[1]], n)
+    }
+}
+
+/// A cam pair's geometry in its links' frames (`docs/conventions.md#cams`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CamGeom {
+    /// The profile: law, base circle, offset e of the follower's axis, face.
+    pub profile: Profile,
+    /// The follower's axis û relative to its prismatic joint's axis: ±1 (û points from
+    /// the cam's centre towards the follower).
+    pub sign: f64,
+    /// The cam's centre: its local vector in the cam.
+    pub centre: V2,
+}
+
+/// The group of a follower driven by a cam ([`solve_cam`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CamGroup {
+    /// The follower.
+    pub follower: usize,
+    /// Its prismatic joint on the carrier.
+    pub slide: usize,
+    /// The cam joint.
+    pub joint: usize,
+    /// The cam.
+    pub cam: usize,
+    /// The carrier.
+    pub carrier: usize,
+    /// Index into the mechanism's cams.
+    pub index: usize,
+}
+
+impl CamGroup {
+    /// The cam's turn θ relative to the carrier since the drawing, its rate and
+    /// acceleration; the carrier's rotation, ω, α.
+    #[inline(always)]
+    fn turn(&self, s: &[LinkState]) -> ([f64; 3], V2, f64, f64) {
+        let (rc, wc, ac) = if self.carrier == 0 {
+            (V2::new(1.0, 0.0), 0.0, 0.0)
+        } else {
+            let c = &s[self.carrier];
+            (c.rot, c.omega, c.alpha)
+        };
+        let k = &s[self.cam];
+        let rel = V2::new(rc.dot(&k.rot), cross(rc, k.rot));
+        ([rel.y.atan2(rel.x), k.omega - wc, k.alpha - ac], rc, wc, ac)
+    }
+
+    /// The follower's slide frame: û (world), the carrier's point the slide starts from,
+    /// the follower's local vector of its slide point.
+    #[inline(always)]
+    fn frame(&self, g: &JointGeom, geom: &CamGeom, s: &[LinkState], rc: V2) -> (V2, V2, V2) {
+        let u = rotate(rc, g.axis * geom.sign);
+        let (q, df) = if g.a == self.carrier {
+            (point_of(s, g.a, g.da), g.db)
+        } else {
+            (point_of(s, g.b, g.db), g.da)
+        };
+        (u, q, df)
+    }
+}
+
+/// Solve a cam-driven follower up to `upto`: its slide is s(θ) of the cam's turn θ
+/// relative to the carrier, ṡ = s′ θ̇, s̈ = s″ θ̇² + s′ θ̈ (the law is periodic: θ is taken
+/// in (−π, π]).
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub fn solve_cam(
+    grp: &CamGroup,
+    cams: &[CamGeom],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    upto: Level,
+) -> Result<(), MechError> {
+    let geom = &cams[grp.index];
+    let g = &joints[grp.slide];
+    let (th, rc, wc, ac) = grp.turn(s);
+    let [x, x1, x2, _] = geom.profile.law.eval(th[0]);
+    let (u, q, df) = grp.frame(g, geom, s, rc);
+    let p = q + u * x;
+    let fl = grp.follower;
+    s[fl].rot = rc;
+    s[fl].angle = if grp.carrier == 0 {
+        0.0
+    } else {
+        s[grp.carrier].angle
+    };
+    s[fl].pos = p - rotate(rc, df);
+    if upto == Level::Position {
+        return Ok(());
+    }
+    let (vq, aq) = if grp.carrier == 0 {
+        (V2::zeros(), V2::zeros())
+    } else {
+        let c = &s[grp.carrier];
+        (c.vel_at(p - c.pos), c.acc_at(p - c.pos))
+    };
+    let xd = x1 * th[1];
+    s[fl].set_velocity_through(p, vq + u * xd, wc);
+    if upto == Level::Acceleration {
+        let xdd = x2 * th[1] * th[1] + x1 * th[2];
+        s[fl].set_acceleration_through(p, aq + perp(u) * (2.0 * wc * xd) + u * xdd, ac);
+    }
+    Ok(())
+}
+
+/// d'Alembert for a cam-driven follower: the contact force F_n n at the contact point
+/// from the follower's balance along its axis, F_n = −(F·û)/(n·û); the slide takes the
+/// rest (a force normal to û and a moment). `out[joint]` holds the force by the cam on the
+/// follower and, as its `moment`, F_n (N, > 0 while the cam pushes: a negative value is
+/// the follower leaving the cam, a jump).
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub fn cam_reactions(
+    grp: &CamGroup,
+    cams: &[CamGeom],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    let geom = &cams[grp.index];
+    let g = &joints[grp.slide];
+    let (th, rc, _, _) = grp.turn(s);
+    let (u, _, df) = grp.frame(g, geom, s, rc);
+    let xh = V2::new(u.y, -u.x);
+    let o = point_of(s, grp.cam, geom.centre);
+    let (_, k, n) = geom.profile.contact_axis(th[0]);
+    let kw = o + xh * k[0] + u * k[1];
+    let nw = xh * n[0] + u * n[1];
+    let fl = grp.follower;
+    let wf = f[fl];
+    let ff = V2::new(wf.x, wf.y);
+    let nu = nw.dot(&u);
+    if nu.abs() < 1e-12 {
+        return Err(MechError::Singular {
+            condition: f64::INFINITY,
+        });
+    }
+    let fnorm = -ff.dot(&u) / nu;
+    let force = nw * fnorm;
+    let p = s[fl].point(df);
+    let r = -(ff + force);
+    let mp = -(wf.z + cross(s[fl].pos - p, ff) + cross(kw - p, force));
+    out[grp.joint] = Reaction {
+        force,
+        moment: fnorm,
+    };
+    out[grp.slide] = if g.b == fl {
+        Reaction {
+            force: r,
+            moment: mp,
+        }
+    } else {
+        Reaction {
+            force: -r,
+            moment: -mp,
+        }
+    };
+    let push = |f: &mut [Wrench], l: usize, at: V2, force: V2, couple: f64| {
+        let pos = if l == 0 { V2::zeros() } else { s[l].pos };
+        f[l] += Wrench::new(force.x, force.y, couple + cross(at - pos, force));
+    };
+    push(f, grp.cam, kw, -force, 0.0);
+    push(f, grp.carrier, p, -r, -mp);
+    Ok(())
 }

@@ -6,8 +6,8 @@ use crate::construction::{self, Branch, CIRCLE_CIRCLE_WORDS, CIRCLE_LINE_WORDS};
 use crate::expr::{Constants, Quantity};
 use crate::link_state::V2;
 use crate::model::{
-    Description, ElementDecl, ElementKind, InputDecl, JointDecl, JointKind, LinkDecl, LoadDecl,
-    LoadDeclKind, Measure, MeshDecl, Name, Num, Pair, PointRef, RestDecl,
+    CamDecl, Description, ElementDecl, ElementKind, InputDecl, JointDecl, JointKind, LinkDecl,
+    LoadDecl, LoadDeclKind, Measure, MeshDecl, Name, Num, Pair, PointRef, RestDecl,
 };
 use crate::units::Dim;
 use proc_macro2::Span;
@@ -443,10 +443,11 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
             "gear" => JointKind::Gear,
             "rack" => JointKind::Rack,
             "rolling" => JointKind::Rolling,
+            "cam" => JointKind::Cam,
             other => {
                 return Err(syn::Error::new(
                     kw.span(),
-                    format!("unknown joint kind `{other}`: expected `revolute`, `prismatic`, `pin_in_slot`, `gear`, `rack` or `rolling`"),
+                    format!("unknown joint kind `{other}`: expected `revolute`, `prismatic`, `pin_in_slot`, `gear`, `rack`, `rolling` or `cam`"),
                 ))
             }
         };
@@ -460,6 +461,9 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
         let mut along = None;
         let mut mesh: Option<MeshDecl<Span>> = None;
         let mut around = None;
+        let mut cam_base: Option<Num<Span>> = None;
+        let mut cam_face = crate::cam::Face::Knife;
+        let mut cam_law: Option<(Vec<(crate::cam::Segment, Span)>, Span)> = None;
         while content.peek(Ident) {
             let k: Ident = content.parse()?;
             match k.to_string().as_str() {
@@ -487,6 +491,18 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                         internal: false,
                         pressure_angle: None,
                     });
+                }
+                "base_radius" if kind == JointKind::Cam && cam_base.is_none() => {
+                    cam_base = Some(scope.scalar(&content, Dim::LENGTH, "a cam's base radius")?);
+                }
+                "roller" if kind == JointKind::Cam => {
+                    let r = scope.scalar(&content, Dim::LENGTH, "the roller's radius")?;
+                    cam_face = crate::cam::Face::Roller(r.value);
+                }
+                "flat" if kind == JointKind::Cam => cam_face = crate::cam::Face::Flat,
+                "knife" if kind == JointKind::Cam => cam_face = crate::cam::Face::Knife,
+                "law" if kind == JointKind::Cam && cam_law.is_none() => {
+                    cam_law = Some((cam_segments(&content, scope)?, k.span()));
                 }
                 "around" if kind == JointKind::Rolling && around.is_none() => {
                     around = Some((name(&content.parse::<Ident>()?)?, false));
@@ -534,6 +550,22 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                 }
             }
         }
+        let cam = if kind == JointKind::Cam {
+            let (Some(base_radius), Some((segments, law_span))) = (cam_base, cam_law) else {
+                return Err(syn::Error::new(
+                    kw.span(),
+                    format!("cam `{id}` needs `base_radius R_b` and `law [..]`: write e.g. `cam({a}, {b}) base_radius 40 mm roller 10 mm law [dwell 90 deg, cycloidal 90 deg rise 10 mm, dwell 60 deg, poly345 120 deg fall 10 mm]`"),
+                ));
+            };
+            Some(CamDecl {
+                base_radius,
+                face: cam_face,
+                segments,
+                law_span,
+            })
+        } else {
+            None
+        };
         if kind == JointKind::Rolling && mesh.is_none() {
             return Err(syn::Error::new(
                 kw.span(),
@@ -560,6 +592,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
             along,
             mesh,
             around,
+            cam,
         });
         comma(&content)?;
     }
@@ -604,6 +637,68 @@ fn loads(input: ParseStream) -> syn::Result<Vec<LoadDecl<Span>>> {
             kind,
         });
         comma(&content)?;
+    }
+    Ok(out)
+}
+
+/// A cam's law: `[LAW SPAN (rise | fall) LIFT, ..]`, LAW one of `dwell` (no lift),
+/// `uniform`, `harmonic`, `cycloidal`, `poly345`, `poly4567`; SPAN an angle, LIFT a
+/// length; the segments follow each other from the cam's angle 0.
+fn cam_segments(
+    input: ParseStream,
+    scope: &Scope,
+) -> syn::Result<Vec<(crate::cam::Segment, Span)>> {
+    use crate::cam::{Law, Segment};
+    let list;
+    bracketed!(list in input);
+    let (mut at, mut lift) = (0.0, 0.0);
+    let mut out = Vec::new();
+    while !list.is_empty() {
+        let w: Ident = list.parse()?;
+        let law = match w.to_string().as_str() {
+            "dwell" => Law::Dwell,
+            "uniform" => Law::Uniform,
+            "harmonic" => Law::Harmonic,
+            "cycloidal" => Law::Cycloidal,
+            "poly345" => Law::Poly345,
+            "poly4567" => Law::Poly4567,
+            other => {
+                return Err(syn::Error::new(
+                    w.span(),
+                    format!("unknown motion law `{other}`: expected `dwell`, `uniform`, `harmonic`, `cycloidal`, `poly345` or `poly4567`"),
+                ))
+            }
+        };
+        let span = scope.scalar(&list, Dim::ANGLE, "a segment's span")?;
+        let rise = if law == Law::Dwell {
+            0.0
+        } else {
+            let dir: Ident = list.parse()?;
+            let sign = match dir.to_string().as_str() {
+                "rise" => 1.0,
+                "fall" => -1.0,
+                other => {
+                    return Err(syn::Error::new(
+                        dir.span(),
+                        format!("expected `rise` or `fall` and a lift after the segment's span, found `{other}`: e.g. `cycloidal 90 deg rise 10 mm`"),
+                    ))
+                }
+            };
+            sign * scope.scalar(&list, Dim::LENGTH, "a segment's lift")?.value
+        };
+        out.push((
+            Segment {
+                law,
+                start: at,
+                end: at + span.value,
+                from: lift,
+                to: lift + rise,
+            },
+            w.span(),
+        ));
+        at += span.value;
+        lift += rise;
+        comma(&list)?;
     }
     Ok(out)
 }

@@ -132,6 +132,13 @@ pub enum Solver {
     /// Links turning about their centres, meshing with one another (`crate::gears`,
     /// a gear-train group): placed by Willis' relations, not here.
     Train,
+    /// A follower driven by a cam (`crate::cam`), placed there.
+    Cam {
+        /// The follower.
+        body: usize,
+        /// The cam joint.
+        joint: usize,
+    },
     /// A wheel driven by its travel on a track (`crate::rolling`), placed there.
     DrivenRolling {
         /// The wheel.
@@ -562,6 +569,7 @@ pub fn position(
         | Solver::Mesh { .. }
         | Solver::Train
         | Solver::DrivenRolling { .. }
+        | Solver::Cam { .. }
         | Solver::Rrl { .. } => return Err(MechError::NoAssembly),
     }
     Ok(points)

@@ -66,13 +66,16 @@ impl Quantity {
 }
 
 /// The words that name the next property of a force element
-/// (`stiffness 2 kN_per_m free_length 80 mm`): an expression ends before them.
-pub const PROPERTY_WORDS: [&str; 5] = [
+/// (`stiffness 2 kN_per_m free_length 80 mm`) or a cam segment's lift (`90 deg rise
+/// 10 mm`): an expression ends before them.
+pub const PROPERTY_WORDS: [&str; 7] = [
     "stiffness",
     "damping",
     "free_length",
     "free_angle",
     "preload",
+    "rise",
+    "fall",
 ];
 
 fn si_unit(d: Dim) -> String {

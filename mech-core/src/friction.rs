@@ -95,7 +95,7 @@ pub fn add_joint_friction(
                 sliding(extra, &joints[j], s, &friction[j], force)
             }
             // Tooth friction and rolling resistance are not modelled.
-            JointKind::Gear | JointKind::Rack | JointKind::Rolling => {}
+            JointKind::Gear | JointKind::Rack | JointKind::Rolling | JointKind::Cam => {}
         }
         at += flat_width(kind);
     }
@@ -110,7 +110,8 @@ pub const fn flat_width(kind: JointKind) -> usize {
         | JointKind::PinInSlot
         | JointKind::Gear
         | JointKind::Rack
-        | JointKind::Rolling => 2,
+        | JointKind::Rolling
+        | JointKind::Cam => 2,
     }
 }
 
@@ -174,6 +175,15 @@ impl FlatReaction for crate::kinetostatics::MeshReaction {
 
 impl FlatReaction for crate::kinetostatics::RollingReaction {
     const WIDTH: usize = flat_width(JointKind::Rolling);
+    #[inline]
+    fn write(&self, out: &mut [f64]) {
+        out[0] = self.force.x;
+        out[1] = self.force.y;
+    }
+}
+
+impl FlatReaction for crate::kinetostatics::CamReaction {
+    const WIDTH: usize = flat_width(JointKind::Cam);
     #[inline]
     fn write(&self, out: &mut [f64]) {
         out[0] = self.force.x;

@@ -59,6 +59,25 @@ pub fn pitch_point(model: &Model, j: usize) -> Option<(V2, V2)> {
 /// The local geometry of joint `j`.
 pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
     let jt = &model.joints[j];
+    if let (Some(g), Some(c)) = (crate::instance::cam_geom(model, jt), jt.cam.as_ref()) {
+        // The contact K and the common normal n in the drawing: the rank test's row.
+        let o = model.points[c.centre].pos;
+        let axis = model.joints[c.slide].axis;
+        let u = V2::new(axis[0], axis[1]).normalize() * g.sign;
+        let xh = V2::new(u.y, -u.x);
+        let (_, k, n) = g.profile.contact_axis(0.0);
+        let kw = V2::new(o[0], o[1]) + xh * k[0] + u * k[1];
+        return JointGeom {
+            a: jt.a,
+            b: jt.b,
+            da: local(model, jt.a, [kw.x, kw.y]),
+            db: local(model, jt.b, [kw.x, kw.y]),
+            axis: xh * n[0] + u * n[1],
+            q_ref: 0.0,
+            radius: 0.0,
+            around: 0.0,
+        };
+    }
     if let Some((d, inside)) = jt.around {
         let (pd, pc) = (model.points[d].pos, model.points[jt.point].pos);
         return JointGeom {
@@ -122,7 +141,7 @@ pub fn joint_cons(model: &Model, j: usize) -> Vec<Con> {
             JointKind::Revolute => ConKind::Revolute,
             JointKind::Prismatic => ConKind::Prismatic,
             JointKind::PinInSlot => ConKind::Slot,
-            JointKind::Gear | JointKind::Rack => ConKind::Mesh,
+            JointKind::Gear | JointKind::Rack | JointKind::Cam => ConKind::Mesh,
             JointKind::Rolling => ConKind::Rolling,
         },
     }];

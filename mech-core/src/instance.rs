@@ -26,6 +26,8 @@ pub struct Instance {
     pub elements: Vec<ElementGeom>,
     /// The gear pairs and racks, in joint order.
     pub meshes: Vec<crate::gears::MeshGeom>,
+    /// The cams, in joint order.
+    pub cams: Vec<crate::cam::CamGeom>,
     /// The drawing's length scale, m.
     pub scale: f64,
     /// Gravity, m/s² (zero when not declared).
@@ -130,9 +132,15 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
             })
         })
         .collect();
+    let cams = model
+        .joints
+        .iter()
+        .filter_map(|jt| cam_geom(model, jt))
+        .collect();
     Ok(Instance {
         elements,
         meshes,
+        cams,
         joints: joint_geoms(model),
         links,
         drawing: drawing_states(model),
@@ -143,6 +151,31 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
             .gravity
             .map(|g| V2::new(g[0], g[1]))
             .unwrap_or_else(V2::zeros),
+    })
+}
+
+/// A cam's geometry (`crate::cam::CamGeom`) from the drawing: û along the follower's
+/// slide from the cam's centre O towards the follower's point P, the offset
+/// e = (P − O)·x̂ with x̂ = (û_y, −û_x), the motion law from its segments.
+pub fn cam_geom(model: &Model, jt: &crate::model::Joint) -> Option<crate::cam::CamGeom> {
+    let c = jt.cam.as_ref()?;
+    let axis = model.joints[c.slide].axis;
+    let a = V2::new(axis[0], axis[1]).normalize();
+    let (o, p) = (model.points[c.centre].pos, model.points[jt.point].pos);
+    let op = V2::new(p[0] - o[0], p[1] - o[1]);
+    let sign = if op.dot(&a) >= 0.0 { 1.0 } else { -1.0 };
+    let u = a * sign;
+    let xh = V2::new(u.y, -u.x);
+    let law = crate::cam::MotionLaw::from_segments(c.segments.clone()).ok()?;
+    Some(crate::cam::CamGeom {
+        profile: crate::cam::Profile {
+            law,
+            base_radius: c.base_radius,
+            offset: op.dot(&xh),
+            face: c.face,
+        },
+        sign,
+        centre: local(model, jt.a, o),
     })
 }
 

@@ -200,6 +200,18 @@ pub struct RollingReaction {
     pub friction: f64,
 }
 
+/// Reaction at a cam (`crate::cam`): the contact force BY the cam ON the follower (N,
+/// global, along the common normal at the contact point) and its signed magnitude
+/// `normal_force` (> 0 while the cam pushes; < 0 means the follower would leave the cam:
+/// a jump).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CamReaction {
+    /// The contact force by the cam on the follower, N.
+    pub force: V2,
+    /// F_n, N.
+    pub normal_force: f64,
+}
+
 /// Reaction at a prismatic joint: the force BY a ON b normal to the axis (N, global) and
 /// the moment on b about the joint point's current position (N·m, CCW).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

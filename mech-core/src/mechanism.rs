@@ -466,6 +466,7 @@ impl Mechanism {
                 Kernel::Rolling(r) => {
                     crate::rolling::solve_rolling(r, joints, s, drive, sign, scale, upto, true)?
                 }
+                Kernel::Cam(c) => crate::cam::solve_cam(c, &self.inst.cams, joints, s, upto)?,
                 Kernel::System => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
             }
         }
@@ -677,6 +678,9 @@ impl Mechanism {
                 Kernel::Train(t) => {
                     crate::gears::train_reactions(t, &self.inst.meshes, joints, s, &mut f, &mut r)?
                 }
+                Kernel::Cam(c) => {
+                    crate::cam::cam_reactions(c, &self.inst.cams, joints, s, &mut f, &mut r)?
+                }
                 Kernel::Rolling(k) => crate::rolling::rolling_reactions(
                     k,
                     joints,
@@ -809,6 +813,9 @@ impl Mechanism {
                         &mut v,
                         Level::Velocity,
                     )?,
+                    Kernel::Cam(c) => {
+                        crate::cam::solve_cam(c, &self.inst.cams, joints, &mut v, Level::Velocity)?
+                    }
                     Kernel::Rolling(r) => crate::rolling::solve_rolling(
                         r,
                         joints,

@@ -101,6 +101,10 @@ pub enum JointKind {
     /// `rolling(track, wheel) at C radius r along (ux, uy)`: no penetration and no slip at
     /// the contact point, removes 2 DOF (a lower pair).
     Rolling,
+    /// A cam and its translating follower, `cam(cam, follower) base_radius R_b [roller r |
+    /// flat] law [..]`: the follower's slide is the motion law of the cam's turn, removes
+    /// 1 DOF (a higher pair).
+    Cam,
 }
 
 impl JointKind {
@@ -108,7 +112,7 @@ impl JointKind {
     pub const fn removed(self) -> usize {
         match self {
             JointKind::Revolute | JointKind::Prismatic | JointKind::Rolling => 2,
-            JointKind::PinInSlot | JointKind::Gear | JointKind::Rack => 1,
+            JointKind::PinInSlot | JointKind::Gear | JointKind::Rack | JointKind::Cam => 1,
         }
     }
     /// The keyword of the DSL.
@@ -120,6 +124,7 @@ impl JointKind {
             JointKind::Gear => "gear",
             JointKind::Rack => "rack",
             JointKind::Rolling => "rolling",
+            JointKind::Cam => "cam",
         }
     }
     /// A gear pair or a rack and pinion: a mesh of toothed pitch curves.
@@ -130,7 +135,7 @@ impl JointKind {
     pub const fn higher(self) -> bool {
         matches!(
             self,
-            JointKind::PinInSlot | JointKind::Gear | JointKind::Rack
+            JointKind::PinInSlot | JointKind::Gear | JointKind::Rack | JointKind::Cam
         )
     }
 }
@@ -185,6 +190,21 @@ pub struct JointDecl<S> {
     pub mesh: Option<MeshDecl<S>>,
     /// A rolling wheel's circular track: `around D [inside]`.
     pub around: Option<(Name<S>, bool)>,
+    /// A cam's base radius, face and motion law.
+    pub cam: Option<CamDecl<S>>,
+}
+
+/// A cam as written: `base_radius R_b [roller r | flat] law [segment, ..]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CamDecl<S> {
+    /// R_b, m.
+    pub base_radius: Num<S>,
+    /// The follower's face.
+    pub face: crate::cam::Face,
+    /// The segments from the cam's angle 0 (the drawing), with where each was written.
+    pub segments: Vec<(crate::cam::Segment, S)>,
+    /// Where `law` was written.
+    pub law_span: S,
 }
 
 /// What a load is.
@@ -372,6 +392,26 @@ pub struct Joint {
     /// A rolling wheel's circular track: the point of the track at its centre D, and
     /// whether the wheel rolls inside it (`None`: a straight track along `axis`).
     pub around: Option<(usize, bool)>,
+    /// A cam's data (`None` for the other joints).
+    pub cam: Option<Box<CamSpec>>,
+}
+
+/// A resolved cam (`docs/conventions.md#cams`): a translating follower sliding on the
+/// carrier the cam is pinned to.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CamSpec {
+    /// R_b, the base circle's radius, m.
+    pub base_radius: f64,
+    /// The follower's face.
+    pub face: crate::cam::Face,
+    /// The motion law's segments, from the cam's angle 0 (the drawing).
+    pub segments: Vec<crate::cam::Segment>,
+    /// The carrier: the link the cam is pinned to and the follower slides on.
+    pub carrier: usize,
+    /// The cam's centre (the point of its pin to the carrier).
+    pub centre: usize,
+    /// The follower's prismatic joint on the carrier.
+    pub slide: usize,
 }
 
 /// A resolved load.

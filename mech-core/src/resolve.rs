@@ -273,7 +273,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         let a = find_link(&j.a, &mut errs);
         let b = find_link(&j.b, &mut errs);
         let pname = j.at.as_ref().unwrap_or(&j.name);
-        let point = if j.kind.mesh() {
+        let point = if j.kind.mesh() || j.kind == JointKind::Cam {
             // A mesh is placed by its gears' centres, found once every joint is known.
             if let Some(at) = &j.at {
                 errs.push(Diagnostic::at(
@@ -338,7 +338,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                 ));
                 [0.0, 0.0]
             }
-            (k, None) if k.mesh() => [0.0, 0.0],
+            (k, None) if k.mesh() || k == JointKind::Cam => [0.0, 0.0],
             (JointKind::Rolling, None) if around.is_some() => [0.0, 0.0],
             (JointKind::Rolling, Some(al)) if around.is_some() => {
                 errs.push(Diagnostic::at(
@@ -376,7 +376,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                         }
                     }
                 }
-                JointKind::Gear | JointKind::Rack => {}
+                JointKind::Gear | JointKind::Rack | JointKind::Cam => {}
                 JointKind::Prismatic | JointKind::PinInSlot | JointKind::Rolling => {
                     if let (Some((di, _)), Some((dn, _))) = (around, &j.around) {
                         if !links[a].points.contains(&di) {
@@ -423,7 +423,46 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                 0.0
             },
             around,
+            cam: None,
         });
+    }
+    // Cams: the carrier the cam is pinned to and the follower slides on.
+    for (k, j) in d.joints.iter().enumerate() {
+        let Some(decl) = &j.cam else { continue };
+        let (a, b) = (joints[k].a, joints[k].b);
+        if a == b {
+            continue;
+        }
+        let found = joints.iter().enumerate().find_map(|(i, sl)| {
+            if sl.kind != JointKind::Prismatic || !(sl.a == b || sl.b == b) {
+                return None;
+            }
+            let c = if sl.a == b { sl.b } else { sl.a };
+            let pin = joints.iter().find(|r| {
+                r.kind == JointKind::Revolute && ((r.a == c && r.b == a) || (r.b == c && r.a == a))
+            })?;
+            Some((c, pin.point, i))
+        });
+        match found {
+            Some((carrier, centre, slide)) => {
+                joints[k].point = joints[slide].point;
+                joints[k].cam = Some(Box::new(CamSpec {
+                    base_radius: decl.base_radius.value,
+                    face: decl.face,
+                    segments: decl.segments.iter().map(|(g, _)| *g).collect(),
+                    carrier,
+                    centre,
+                    slide,
+                }));
+            }
+            None => errs.push(Diagnostic::at(
+                j.kind_span.clone(),
+                format!(
+                    "cam `{}`: the follower `{}` must slide (a prismatic joint) on the link the cam `{}` is pinned to (a revolute joint at the cam's centre); no link carries both",
+                    j.name.text, links[b].name, links[a].name
+                ),
+            )),
+        }
     }
     // Gear pairs and racks: their carrier and centres, now that every joint is known.
     for (k, j) in d.joints.iter().enumerate() {

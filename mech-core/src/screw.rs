@@ -682,7 +682,8 @@ mod tests {
                         Kernel::System
                         | Kernel::Mesh(_)
                         | Kernel::Train(_)
-                        | Kernel::Rolling(_) => {
+                        | Kernel::Rolling(_)
+                        | Kernel::Cam(_) => {
                             panic!("{text}: no screw kernel")
                         }
                     }
@@ -786,7 +787,8 @@ mod tests {
                         Kernel::System
                         | Kernel::Mesh(_)
                         | Kernel::Train(_)
-                        | Kernel::Rolling(_) => unreachable!(),
+                        | Kernel::Rolling(_)
+                        | Kernel::Cam(_) => unreachable!(),
                     }
                     if g.bodies.len() == 1 {
                         let lam = group_reactions::<3>(

@@ -38,6 +38,71 @@ fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
+/// Part of check 5: a cam's law covers one turn and returns to its start, its base
+/// radius and roller are > 0, and the drawing sits the follower on the base circle: its
+/// point P at √(R_p² − e²) from the foot of the cam's centre on its axis (R_p = R_b + r, e
+/// the offset), to [`MESH_TOL`] × the drawing's scale (`docs/conventions.md#cams`).
+fn cam_numbers(model: &Model) -> Vec<Issue> {
+    let mut out = Vec::new();
+    for (j, jt) in model.joints.iter().enumerate() {
+        let Some(c) = &jt.cam else { continue };
+        let mut bad = |message: String| {
+            out.push(Issue {
+                culprits: vec![Culprit::Joint(j)],
+                message,
+            })
+        };
+        if let Err(e) = crate::cam::MotionLaw::from_segments(c.segments.clone()) {
+            bad(format!("cam `{}`: its law: {e}", jt.name));
+            continue;
+        }
+        let net = c.segments.last().map(|g| g.to).unwrap_or(0.0);
+        if net.abs() > 1e-12 {
+            bad(format!("cam `{}`: its law ends {:.4} mm from where it starts: the rises and falls over a turn must add to zero", jt.name, net * 1e3));
+            continue;
+        }
+        let r = match c.face {
+            crate::cam::Face::Roller(r) => r,
+            _ => 0.0,
+        };
+        if !(c.base_radius.is_finite() && c.base_radius > 0.0 && r.is_finite() && r >= 0.0) {
+            bad(format!("cam `{}` has base radius {} m and roller {} m: both must be finite, the base radius > 0", jt.name, c.base_radius, r));
+            continue;
+        }
+        let Some(g) = crate::instance::cam_geom(model, jt) else {
+            continue;
+        };
+        let chk = g.profile.check(720);
+        if chk.undercut {
+            let smallest = chk.min_convex_radius;
+            bad(match c.face {
+                crate::cam::Face::Flat => format!("cam `{}`: its flat-faced follower would need a cusp in the profile (R_b + s + s″ ≤ 0 near {:.1}°): enlarge the base radius", jt.name, smallest.1.to_degrees()),
+                _ => format!("cam `{}` is undercut: its roller ({:.4} mm) is larger than the pitch curve's radius of curvature near {:.1}° (the cam surface's radius {:.4} mm ≤ 0): use a smaller roller or a larger base circle", jt.name, r * 1e3, smallest.1.to_degrees(), smallest.0 * 1e3),
+            });
+            continue;
+        }
+        let rp = c.base_radius + r;
+        let e = g.profile.offset;
+        if !(e.abs() < rp) {
+            bad(format!("cam `{}`: the follower's axis passes {:.4} mm from the cam's centre, outside the prime circle (R_b + r = {:.4} mm)", jt.name, e.abs() * 1e3, rp * 1e3));
+            continue;
+        }
+        let (o, p) = (model.points[c.centre].pos, model.points[jt.point].pos);
+        let axis = model.joints[c.slide].axis;
+        let u = [axis[0] * g.sign, axis[1] * g.sign];
+        let n = (axis[0] * axis[0] + axis[1] * axis[1]).sqrt();
+        let along = ((p[0] - o[0]) * u[0] + (p[1] - o[1]) * u[1]) / n;
+        let want = (rp * rp - e * e).sqrt();
+        if !((along - want).abs() <= MESH_TOL * model.scale()) {
+            bad(format!(
+                "cam `{}`: the follower's point `{}` is {:.4} mm along its axis from the cam's centre, but on the base circle it sits at √(R_p² − e²) = {:.4} mm (R_p = {:.4} mm, e = {:.4} mm): move it, or change the base radius",
+                jt.name, model.points[jt.point].name, along * 1e3, want * 1e3, rp * 1e3, e * 1e3
+            ));
+        }
+    }
+    out
+}
+
 /// How closely a gear pair's centre distance must match its pitch radii, relative to the
 /// drawing's scale.
 pub const MESH_TOL: f64 = 1e-9;
@@ -234,6 +299,7 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
         }
     }
     out.extend(mesh_numbers(model));
+    out.extend(cam_numbers(model));
     for (j, jt) in model.joints.iter().enumerate() {
         if jt.kind == JointKind::Rolling && !(jt.radius.is_finite() && jt.radius > 0.0) {
             out.push(Issue {
@@ -258,7 +324,11 @@ pub fn drawing(model: &Model) -> Vec<Issue> {
         }
     }
     for (j, jt) in model.joints.iter().enumerate() {
-        if jt.kind == JointKind::Revolute || jt.kind.mesh() || jt.around.is_some() {
+        if jt.kind == JointKind::Revolute
+            || jt.kind.mesh()
+            || jt.kind == JointKind::Cam
+            || jt.around.is_some()
+        {
             continue;
         }
         let [ux, uy] = jt.axis;
@@ -614,6 +684,7 @@ pub fn meshes_solvable(model: &Model) -> Vec<Issue> {
             crate::assur::Kernel::Mesh(_)
                 | crate::assur::Kernel::Train(_)
                 | crate::assur::Kernel::Rolling(_)
+                | crate::assur::Kernel::Cam(_)
         ) {
             continue;
         }

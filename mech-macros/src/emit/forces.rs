@@ -118,6 +118,10 @@ fn forces_type(cx: &Ctx) -> TokenStream {
                 quote!(#p::kinetostatics::SlotReaction),
                 "force (normal to the slot) by",
             ),
+            JointKind::Cam => (
+                quote!(#p::kinetostatics::CamReaction),
+                "contact force (along the common normal, at the contact point) and its signed magnitude by",
+            ),
             JointKind::Rolling => (
                 quote!(#p::kinetostatics::RollingReaction),
                 "contact force (at the contact point: normal and friction) by",
@@ -247,6 +251,10 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let kn = plan::mesh_const(gi);
             quote!(#p::gears::train_reactions(&Self::#kn, &self.meshes, &joints, s, &mut f, &mut r)?;)
         }
+        Kernel::Cam(_) => {
+            let kn = plan::mesh_const(gi);
+            quote!(#p::cam::cam_reactions(&Self::#kn, &self.cams, &joints, s, &mut f, &mut r)?;)
+        }
         Kernel::Rolling(_) => {
             let kn = plan::mesh_const(gi);
             quote!(#p::rolling::rolling_reactions(&Self::#kn, &joints, s, &mut f, self.scale, &mut r, &mut d)?;)
@@ -354,6 +362,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
             JointKind::PinInSlot => quote!(#jid: #p::kinetostatics::SlotReaction { force: r[#j].force },),
             JointKind::Gear | JointKind::Rack => quote!(#jid: #p::kinetostatics::MeshReaction { force: r[#j].force, tooth_load: r[#j].force.norm(), flank: r[#j].moment },),
             JointKind::Rolling => quote!(#jid: #p::rolling::report(&joints[#j], s, r[#j].force),),
+            JointKind::Cam => quote!(#jid: #p::kinetostatics::CamReaction { force: r[#j].force, normal_force: r[#j].moment },),
         }
     });
     let driver = if cx.one_dof() {
@@ -403,6 +412,7 @@ fn flat_fn(cx: &Ctx) -> TokenStream {
         JointKind::Gear => quote!(#p::model::JointKind::Gear),
         JointKind::Rack => quote!(#p::model::JointKind::Rack),
         JointKind::Rolling => quote!(#p::model::JointKind::Rolling),
+        JointKind::Cam => quote!(#p::model::JointKind::Cam),
     });
     let drivers = if cx.one_dof() {
         quote!(&[f.driver])

@@ -127,6 +127,15 @@ impl<'a> Ctx<'a> {
         !self.model.elements.is_empty()
     }
 
+    /// The number of cams (the struct keeps their laws and profiles).
+    pub fn n_cams(&self) -> usize {
+        self.model
+            .joints
+            .iter()
+            .filter(|j| j.kind == JointKind::Cam)
+            .count()
+    }
+
     /// The number of gear pairs and racks (the struct keeps their tooth data).
     pub fn n_meshes(&self) -> usize {
         self.model.joints.iter().filter(|j| j.kind.mesh()).count()

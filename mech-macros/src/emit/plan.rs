@@ -68,6 +68,18 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let (kn, t) = (mesh_const(gi), rolling_tokens(r));
             quote!(const #kn: #p::rolling::RollingGroup = #t;)
         }
+        Kernel::Cam(c) => {
+            let kn = mesh_const(gi);
+            let mech_core::cam::CamGroup {
+                follower,
+                slide,
+                joint,
+                cam,
+                carrier,
+                index,
+            } = *c;
+            quote!(const #kn: #p::cam::CamGroup = #p::cam::CamGroup { follower: #follower, slide: #slide, joint: #joint, cam: #cam, carrier: #carrier, index: #index };)
+        }
         Kernel::System => {
             let (bn, cn) = system_consts(gi);
             let (nb, nc, bodies) = (g.bodies.len(), g.cons.len(), &g.bodies);
@@ -180,6 +192,10 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let kn = mesh_const(gi);
             quote!(#p::rolling::solve_rolling(&Self::#kn, &joints, &mut s, drive, branches[#gi], self.scale, upto, true)?; let #sys = ();)
         }
+        Kernel::Cam(_) => {
+            let kn = mesh_const(gi);
+            quote!(#p::cam::solve_cam(&Self::#kn, &self.cams, &joints, &mut s, upto)?; let #sys = ();)
+        }
         Kernel::System if g.redundant() => {
             let m = g.rows();
             quote!(let #sys = #p::group::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto)?;)
@@ -228,6 +244,10 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         Kernel::Rolling(_) => {
             let kn = mesh_const(gi);
             quote!(#p::rolling::solve_rolling(&Self::#kn, &joints, &mut v, drive, 1.0, self.scale, #level, false)?;)
+        }
+        Kernel::Cam(_) => {
+            let kn = mesh_const(gi);
+            quote!(#p::cam::solve_cam(&Self::#kn, &self.cams, &joints, &mut v, #level)?;)
         }
         Kernel::System if g.redundant() => {
             let m = g.rows();
@@ -460,6 +480,7 @@ fn solver_tokens(s: &Solver) -> TokenStream {
         Solver::DrivenRolling { body, joint, input } => {
             quote!(#p::DrivenRolling { body: #body, joint: #joint, input: #input })
         }
+        Solver::Cam { body, joint } => quote!(#p::Cam { body: #body, joint: #joint }),
         Solver::Rrl { b1, b2, ja, jc, jr } => {
             quote!(#p::Rrl { b1: #b1, b2: #b2, ja: #ja, jc: #jc, jr: #jr })
         }

@@ -1,0 +1,170 @@
+//! A spring-loaded cam follower (a valve train) against `tests/data/cam_follower.json`
+//! (`tools/cam_follower_reference.py`: the follower's own equation along its axis,
+//! mpmath): the contact force over a revolution at constant speed, the pressure angle, the
+//! motor torque by three routes and at run time; the jump speed and the smallest preload
+//! that prevents a jump; the cam mistakes refused at compile time (tests/ui).
+
+use mech::prelude::*;
+use serde_json::Value;
+use std::f64::consts::TAU;
+
+mechanism! {
+    /// A cam on the ground lifts a roller follower against a compression spring.
+    pub struct ValveTrain {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0), S: (0.0, 150 mm) },
+        link cam { points { O }, mass: 0.5, inertia: 2.0e-4, cg: (0.0, 0.0) },
+        link follower { points { P: (0.0, 50 mm) }, mass: 0.08, cg: (0.0, 50 mm) },
+        joints {
+            O: revolute(ground, cam),
+            slide: prismatic(ground, follower) at P along (0.0, 1.0),
+            lobe: cam(cam, follower) base_radius 40 mm roller 10 mm
+                law [dwell 90 deg, cycloidal 90 deg rise 10 mm, dwell 60 deg, poly345 120 deg fall 10 mm],
+        },
+        input: O,
+        elements {
+            spring: spring(ground at S, follower at P) stiffness 5 kN_per_m preload -50 N,
+        },
+    }
+}
+
+fn reference() -> Value {
+    let path = format!(
+        "{}/tests/data/cam_follower.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn num(v: &Value) -> f64 {
+    match v {
+        Value::String(s) => s.parse().unwrap(),
+        _ => v.as_f64().unwrap(),
+    }
+}
+
+fn close(what: &str, got: f64, want: f64, tol: f64) {
+    assert!(
+        (got - want).abs() <= tol,
+        "{what}: {got:.15e} vs reference {want:.15e} (|diff| {:.2e})",
+        (got - want).abs()
+    );
+}
+
+/// At 150 rad/s over a revolution: the follower's lift, the contact force (and the
+/// pressure angle it leans at) and the motor torque by d'Alembert, virtual power and
+/// Zhukovski, and the run-time mechanism, to 1e-12 of their scale.
+#[test]
+fn contact_force_over_a_revolution() {
+    let r = reference();
+    let w = num(&r["speed"]);
+    let m = ValveTrain::new();
+    let rt = Mechanism::from_rust_source(include_str!("cams.rs"), "ValveTrain").unwrap();
+    let loads = ValveTrainLoads::default();
+    for p in r["points"].as_array().unwrap() {
+        let th = num(&p["theta"]);
+        let at = format!("θ = {:.2}°", th.to_degrees());
+        let mo = m.kinematics(th, w, 0.0).unwrap();
+        close(
+            &format!("lift at {at}"),
+            mo.points.P.pos.y - 0.05,
+            num(&p["s"]),
+            1e-15,
+        );
+        let f = m.kinetostatics(&mo, &loads).unwrap();
+        let c = f.joints.lobe;
+        let fnorm = num(&p["normal_force"]);
+        close(
+            &format!("contact force at {at}"),
+            c.normal_force,
+            fnorm,
+            1e-12 * 300.0,
+        );
+        let phi = num(&p["pressure_angle"]);
+        close(
+            &format!("pressure angle at {at}"),
+            (-c.force.x).atan2(c.force.y),
+            phi,
+            1e-12,
+        );
+        let t = num(&p["driver"]);
+        close(&format!("d'Alembert at {at}"), f.driver, t, 1e-12 * 10.0);
+        close(
+            &format!("virtual power at {at}"),
+            m.driver_action(&mo, &loads).unwrap(),
+            t,
+            1e-12 * 10.0,
+        );
+        close(
+            &format!("Zhukovski at {at}"),
+            m.acceleration(th, w, t, &loads).unwrap(),
+            0.0,
+            1e-12 * 10.0 / m.reduced(th).unwrap().inertia,
+        );
+        let rf = rt
+            .kinetostatics(&rt.kinematics(&[th], &[w], &[0.0]).unwrap(), &rt.loads())
+            .unwrap();
+        close(
+            &format!("run-time driver at {at}"),
+            rf.driver[0],
+            t,
+            1e-12 * 10.0,
+        );
+        close(
+            &format!("run-time contact at {at}"),
+            rf.reaction("lobe").unwrap().0.y,
+            c.force.y,
+            1e-12 * 300.0,
+        );
+    }
+}
+
+/// Follower jump: the contact force is a + b ω² at each cam angle (constant speed), so
+/// the speed where it first reaches zero over the 7 200 angles of the reference's grid is
+/// min √(−a/b) over b < 0 — the reference's jump speed; and at 400 rad/s the smallest
+/// preload that keeps contact (the force linear in the preload) is the reference's.
+#[test]
+fn jump_speed_and_minimum_preload() {
+    let r = reference();
+    let m = ValveTrain::new();
+    let loads = ValveTrainLoads::default();
+    let fnorm = |m: &ValveTrain, th: f64, w: f64| {
+        let mo = m.kinematics(th, w, 0.0).unwrap();
+        m.kinetostatics(&mo, &loads)
+            .unwrap()
+            .joints
+            .lobe
+            .normal_force
+    };
+    let grid: Vec<f64> = (0..7200).map(|k| TAU * k as f64 / 7200.0).collect();
+    let mut jump = f64::INFINITY;
+    for &th in &grid {
+        let (a, b) = (fnorm(&m, th, 0.0), fnorm(&m, th, 1.0) - fnorm(&m, th, 0.0));
+        if b < 0.0 {
+            jump = jump.min((-a / b).sqrt());
+        }
+    }
+    close("jump speed", jump, num(&r["jump_speed"]), 1e-10 * jump);
+    // Below it the follower stays on the cam, above it leaves it somewhere.
+    assert!(grid.iter().all(|&th| fnorm(&m, th, 0.99 * jump) > 0.0));
+    assert!(grid.iter().any(|&th| fnorm(&m, th, 1.01 * jump) < 0.0));
+    let w = num(&r["preload_at"]);
+    let with = |f0: f64| {
+        let mut p = ValveTrainParams::default();
+        // Compression F0 in the drawing: L0 = L_drawing + F0/k.
+        p.elements.spring.free_length = 0.1 + f0 / 5000.0;
+        ValveTrain::from_params(p).unwrap()
+    };
+    let (m0, m1) = (with(0.0), with(1.0));
+    let mut need = f64::NEG_INFINITY;
+    for &th in &grid {
+        let (a, b) = (fnorm(&m0, th, w), fnorm(&m1, th, w) - fnorm(&m0, th, w));
+        need = need.max(-a / b);
+    }
+    close(
+        "minimum preload",
+        need,
+        num(&r["min_preload"]),
+        1e-10 * need,
+    );
+}
