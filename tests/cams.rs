@@ -168,3 +168,41 @@ fn jump_speed_and_minimum_preload() {
         1e-10 * need,
     );
 }
+
+#[path = "../examples/valve_train.rs"]
+#[allow(dead_code)]
+mod valve_train;
+
+/// The valve-train example runs, writes its two SVGs, and its jump speed is the
+/// reference's (the same machine); its `.mech` file loads into the same machine.
+#[test]
+fn valve_train_example() {
+    let dir = std::env::temp_dir().join(format!("mech-valve-{}", std::process::id()));
+    let files = valve_train::run(&dir).unwrap();
+    assert!(files
+        .iter()
+        .all(|f| std::fs::metadata(f).map(|m| m.len() > 500).unwrap_or(false)));
+    let m = valve_train::ValveTrain::new();
+    let jump = valve_train::jump_speed(&m, 7200).unwrap();
+    close(
+        "example's jump speed",
+        jump,
+        num(&reference()["jump_speed"]),
+        1e-10 * jump,
+    );
+    let file = Mechanism::load(format!(
+        "{}/examples/mech/valve_train.mech",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let mo = file.kinematics(&[2.8], &[150.0], &[0.0]).unwrap();
+    let f = file.kinetostatics(&mo, &file.loads()).unwrap();
+    close(
+        "the .mech file's contact",
+        f.reaction("lobe").unwrap().0.y,
+        valve_train::contact(&m, 2.8, 150.0).unwrap()
+            * (f.reaction("lobe").unwrap().0.y / f.reaction("lobe").unwrap().0.norm()),
+        1e-9,
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -12,6 +12,7 @@
 //!   with it;
 //! - a spring: a zigzag between its points; a damper: a line between them;
 //! - a rolling wheel: its circle with a spoke, and the track under it;
+//! - a cam: its profile, turning with it;
 //! - every point: its name.
 
 use crate::Failure;
@@ -95,6 +96,30 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
     let mut shapes = Vec::new();
     // Guides and slots first (under the links).
     for j in &model.joints {
+        if j.kind == JointKind::Cam {
+            // The cam's surface, turning with the cam about its centre.
+            if let (Some(g), Some(c)) = (mech_core::instance::cam_geom(model, j), &j.cam) {
+                let o = at(c.centre);
+                let turn = pose.links[j.a].angle - model.reference_angle(j.a);
+                let (sn, cs) = turn.sin_cos();
+                let rot = V2::new(cs, sn);
+                let axis = model.joints[c.slide].axis;
+                let u = V2::new(axis[0], axis[1]).normalize() * g.sign;
+                let xh = V2::new(u.y, -u.x);
+                let points = g
+                    .profile
+                    .points(180)
+                    .iter()
+                    .map(|p| o + rotate(rot, xh * p.contact[0] + u * p.contact[1]))
+                    .collect();
+                shapes.push(Shape {
+                    role: Role::Gear,
+                    name: j.name.clone(),
+                    points,
+                });
+            }
+            continue;
+        }
         if j.kind == JointKind::Revolute || j.kind.mesh() {
             continue;
         }

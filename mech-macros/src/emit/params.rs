@@ -274,6 +274,18 @@ fn constructors(cx: &Ctx) -> TokenStream {
     } else {
         quote!()
     };
+    let cams_accessor = if cx.n_cams() > 0 {
+        quote! {
+            /// The cams' geometry, in joint order: each one's profile (law, base circle,
+            /// offset, face: `mech::cam::Profile` for the pressure angle, the radius of
+            /// curvature, the design checks and the profile's export).
+            pub fn cams(&self) -> &[#p::cam::CamGeom] {
+                &self.cams
+            }
+        }
+    } else {
+        quote!()
+    };
     let branches = (0..n_groups).map(|g| quote!(branches[#g]));
     let model = model_expr(cx);
     quote! {
@@ -314,6 +326,8 @@ fn constructors(cx: &Ctx) -> TokenStream {
             pub fn params(&self) -> &#params {
                 &self.params
             }
+
+            #cams_accessor
 
             fn __model(p: &#params) -> #p::model::Model {
                 #model
