@@ -98,7 +98,7 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
     for j in &model.joints {
         if j.kind == JointKind::Cam {
             // The cam's surface, turning with the cam about its centre.
-            if let (Some(g), Some(c)) = (mech_core::instance::cam_geom(model, j), &j.cam) {
+            if let (Some(g), Some(c)) = (mech_core::geometry::cam_geom(model, j), &j.cam) {
                 let o = at(c.centre);
                 let turn = pose.links[j.a].angle - model.reference_angle(j.a);
                 let (sn, cs) = turn.sin_cos();

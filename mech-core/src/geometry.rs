@@ -59,7 +59,7 @@ pub fn pitch_point(model: &Model, j: usize) -> Option<(V2, V2)> {
 /// The local geometry of joint `j`.
 pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
     let jt = &model.joints[j];
-    if let (Some(g), Some(c)) = (crate::instance::cam_geom(model, jt), jt.cam.as_ref()) {
+    if let (Some(g), Some(c)) = (cam_geom(model, jt), jt.cam.as_ref()) {
         // The contact K and the common normal n in the drawing: the rank test's row.
         let o = model.points[c.centre].pos;
         let axis = model.joints[c.slide].axis;
@@ -170,4 +170,29 @@ pub fn drawing_states(model: &Model) -> Vec<LinkState> {
     (0..model.links.len())
         .map(|l| LinkState::at(anchor(model, l)))
         .collect()
+}
+
+/// A cam's geometry (`crate::cam::CamGeom`) from the drawing: û along the follower's
+/// slide from the cam's centre O towards the follower's point P, the offset
+/// e = (P − O)·x̂ with x̂ = (û_y, −û_x), the motion law from its segments.
+pub fn cam_geom(model: &Model, jt: &crate::model::Joint) -> Option<crate::cam::CamGeom> {
+    let c = jt.cam.as_ref()?;
+    let axis = model.joints[c.slide].axis;
+    let a = V2::new(axis[0], axis[1]).normalize();
+    let (o, p) = (model.points[c.centre].pos, model.points[jt.point].pos);
+    let op = V2::new(p[0] - o[0], p[1] - o[1]);
+    let sign = if op.dot(&a) >= 0.0 { 1.0 } else { -1.0 };
+    let u = a * sign;
+    let xh = V2::new(u.y, -u.x);
+    let law = crate::cam::MotionLaw::from_segments(c.segments.clone()).ok()?;
+    Some(crate::cam::CamGeom {
+        profile: crate::cam::Profile {
+            law,
+            base_radius: c.base_radius,
+            offset: op.dot(&xh),
+            face: c.face,
+        },
+        sign,
+        centre: local(model, jt.a, o),
+    })
 }

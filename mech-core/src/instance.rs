@@ -135,7 +135,7 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
     let cams = model
         .joints
         .iter()
-        .filter_map(|jt| cam_geom(model, jt))
+        .filter_map(|jt| crate::geometry::cam_geom(model, jt))
         .collect();
     Ok(Instance {
         elements,
@@ -151,31 +151,6 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
             .gravity
             .map(|g| V2::new(g[0], g[1]))
             .unwrap_or_else(V2::zeros),
-    })
-}
-
-/// A cam's geometry (`crate::cam::CamGeom`) from the drawing: û along the follower's
-/// slide from the cam's centre O towards the follower's point P, the offset
-/// e = (P − O)·x̂ with x̂ = (û_y, −û_x), the motion law from its segments.
-pub fn cam_geom(model: &Model, jt: &crate::model::Joint) -> Option<crate::cam::CamGeom> {
-    let c = jt.cam.as_ref()?;
-    let axis = model.joints[c.slide].axis;
-    let a = V2::new(axis[0], axis[1]).normalize();
-    let (o, p) = (model.points[c.centre].pos, model.points[jt.point].pos);
-    let op = V2::new(p[0] - o[0], p[1] - o[1]);
-    let sign = if op.dot(&a) >= 0.0 { 1.0 } else { -1.0 };
-    let u = a * sign;
-    let xh = V2::new(u.y, -u.x);
-    let law = crate::cam::MotionLaw::from_segments(c.segments.clone()).ok()?;
-    Some(crate::cam::CamGeom {
-        profile: crate::cam::Profile {
-            law,
-            base_radius: c.base_radius,
-            offset: op.dot(&xh),
-            face: c.face,
-        },
-        sign,
-        centre: local(model, jt.a, o),
     })
 }
 

@@ -69,7 +69,7 @@ fn cam_numbers(model: &Model) -> Vec<Issue> {
             bad(format!("cam `{}` has base radius {} m and roller {} m: both must be finite, the base radius > 0", jt.name, c.base_radius, r));
             continue;
         }
-        let Some(g) = crate::instance::cam_geom(model, jt) else {
+        let Some(g) = crate::geometry::cam_geom(model, jt) else {
             continue;
         };
         let chk = g.profile.check(720);
