@@ -700,6 +700,26 @@ fn cam_segments(
         lift += rise;
         comma(&list)?;
     }
+    // A velocity jump where two segments meet is an infinite acceleration: refused at the
+    // segment after it (an acceleration jump, an infinite jerk, is a designer's choice).
+    let segs: Vec<Segment> = out.iter().map(|(g, _)| *g).collect();
+    if let Ok(law) = crate::cam::MotionLaw::from_segments(segs) {
+        if let Some(j) = law.jumps(1e-9).into_iter().find(|j| j.order == 1) {
+            let k = out
+                .iter()
+                .position(|(g, _)| (g.start - j.at).abs() < 1e-9)
+                .unwrap_or(0);
+            return Err(syn::Error::new(
+                out[k].1,
+                format!(
+                    "the follower's velocity jumps from {:.4} to {:.4} mm/rad at {:.2}°, where this segment starts: an infinite acceleration (the cam would hammer the follower); use laws that start and end at rest next to a dwell (harmonic, cycloidal, poly345, poly4567)",
+                    j.before * 1e3,
+                    j.after * 1e3,
+                    j.at.to_degrees()
+                ),
+            ));
+        }
+    }
     Ok(out)
 }
 
