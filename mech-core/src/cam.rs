@@ -341,6 +341,32 @@ impl MotionLaw {
     }
 }
 
+/// A cam's law from its declaration: the periodic spline through `table` when it is not
+/// empty (its first point at 0° and lift 0, the follower's place in the drawing), else the
+/// segments, which must cover a turn and return to their start.
+pub fn law_of(segments: &[Segment], table: &[[f64; 2]]) -> Result<MotionLaw, String> {
+    if let Some(first) = table.first() {
+        if first[0] != 0.0 || first[1] != 0.0 {
+            return Err(format!(
+                "the table's first point is ({:.4}°, {:.4} mm): it must be (0 deg, 0 mm), the follower's place in the drawing",
+                first[0].to_degrees(),
+                first[1] * 1e3
+            ));
+        }
+        let (th, s): (Vec<f64>, Vec<f64>) = table.iter().map(|p| (p[0], p[1])).unzip();
+        return Spline::periodic(&th, &s).map(MotionLaw::Table);
+    }
+    let law = MotionLaw::from_segments(segments.to_vec())?;
+    let net = segments.last().map(|g| g.to).unwrap_or(0.0);
+    if net.abs() > 1e-12 {
+        return Err(format!(
+            "it ends {:.4} mm from where it starts: the rises and falls over a turn must add to zero",
+            net * 1e3
+        ));
+    }
+    Ok(law)
+}
+
 /// The follower's contact face ([`Profile`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Face {

@@ -464,6 +464,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
         let mut cam_base: Option<Num<Span>> = None;
         let mut cam_face = crate::cam::Face::Knife;
         let mut cam_law: Option<(Vec<(crate::cam::Segment, Span)>, Span)> = None;
+        let mut cam_table: Vec<[f64; 2]> = Vec::new();
         while content.peek(Ident) {
             let k: Ident = content.parse()?;
             match k.to_string().as_str() {
@@ -503,6 +504,10 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                 "knife" if kind == JointKind::Cam => cam_face = crate::cam::Face::Knife,
                 "law" if kind == JointKind::Cam && cam_law.is_none() => {
                     cam_law = Some((cam_segments(&content, scope)?, k.span()));
+                }
+                "table" if kind == JointKind::Cam && cam_law.is_none() => {
+                    cam_table = cam_points(&content, scope)?;
+                    cam_law = Some((Vec::new(), k.span()));
                 }
                 "around" if kind == JointKind::Rolling && around.is_none() => {
                     around = Some((name(&content.parse::<Ident>()?)?, false));
@@ -554,13 +559,14 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
             let (Some(base_radius), Some((segments, law_span))) = (cam_base, cam_law) else {
                 return Err(syn::Error::new(
                     kw.span(),
-                    format!("cam `{id}` needs `base_radius R_b` and `law [..]`: write e.g. `cam({a}, {b}) base_radius 40 mm roller 10 mm law [dwell 90 deg, cycloidal 90 deg rise 10 mm, dwell 60 deg, poly345 120 deg fall 10 mm]`"),
+                    format!("cam `{id}` needs `base_radius R_b` and `law [..]` (or `table [(θ, s), ..]`): write e.g. `cam({a}, {b}) base_radius 40 mm roller 10 mm law [dwell 90 deg, cycloidal 90 deg rise 10 mm, dwell 60 deg, poly345 120 deg fall 10 mm]`"),
                 ));
             };
             Some(CamDecl {
                 base_radius,
                 face: cam_face,
                 segments,
+                table: cam_table,
                 law_span,
             })
         } else {
@@ -637,6 +643,23 @@ fn loads(input: ParseStream) -> syn::Result<Vec<LoadDecl<Span>>> {
             kind,
         });
         comma(&content)?;
+    }
+    Ok(out)
+}
+
+/// A cam's table: `[(θ, s), ..]`, angles and lifts.
+fn cam_points(input: ParseStream, scope: &Scope) -> syn::Result<Vec<[f64; 2]>> {
+    let list;
+    bracketed!(list in input);
+    let mut out = Vec::new();
+    while !list.is_empty() {
+        let pt;
+        parenthesized!(pt in list);
+        let th = scope.scalar(&pt, Dim::ANGLE, "a table's cam angle")?;
+        pt.parse::<Token![,]>()?;
+        let s = scope.scalar(&pt, Dim::LENGTH, "a table's lift")?;
+        out.push([th.value, s.value]);
+        comma(&list)?;
     }
     Ok(out)
 }

@@ -184,7 +184,7 @@ pub fn cam_geom(model: &Model, jt: &crate::model::Joint) -> Option<crate::cam::C
     let sign = if op.dot(&a) >= 0.0 { 1.0 } else { -1.0 };
     let u = a * sign;
     let xh = V2::new(u.y, -u.x);
-    let law = crate::cam::MotionLaw::from_segments(c.segments.clone()).ok()?;
+    let law = crate::cam::law_of(&c.segments, &c.table).ok()?;
     Some(crate::cam::CamGeom {
         profile: crate::cam::Profile {
             law,

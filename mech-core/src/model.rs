@@ -203,6 +203,8 @@ pub struct CamDecl<S> {
     pub face: crate::cam::Face,
     /// The segments from the cam's angle 0 (the drawing), with where each was written.
     pub segments: Vec<(crate::cam::Segment, S)>,
+    /// A table of (θ, s) instead of segments (`table [(θ, s), ..]`), rad and m.
+    pub table: Vec<[f64; 2]>,
     /// Where `law` was written.
     pub law_span: S,
 }
@@ -406,6 +408,8 @@ pub struct CamSpec {
     pub face: crate::cam::Face,
     /// The motion law's segments, from the cam's angle 0 (the drawing).
     pub segments: Vec<crate::cam::Segment>,
+    /// Or a table of (θ, s), rad and m, through a periodic spline (empty: the segments).
+    pub table: Vec<[f64; 2]>,
     /// The carrier: the link the cam is pinned to and the follower slides on.
     pub carrier: usize,
     /// The cam's centre (the point of its pin to the carrier).

@@ -450,6 +450,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
                     base_radius: decl.base_radius.value,
                     face: decl.face,
                     segments: decl.segments.iter().map(|(g, _)| *g).collect(),
+                    table: decl.table.clone(),
                     carrier,
                     centre,
                     slide,

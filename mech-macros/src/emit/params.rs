@@ -401,7 +401,11 @@ fn model_expr(cx: &Ctx) -> TokenStream {
                     }
                 };
                 let (rb, carrier, centre, slide) = (f64s(c.base_radius), c.carrier, c.centre, c.slide);
-                quote!(Some(::std::boxed::Box::new(#p::model::CamSpec { base_radius: #rb, face: #face, segments: ::std::vec::Vec::from([#(#segs),*]), carrier: #carrier, centre: #centre, slide: #slide })))
+                let table = c.table.iter().map(|t| {
+                    let (a, b) = (f64s(t[0]), f64s(t[1]));
+                    quote!([#a, #b])
+                });
+                quote!(Some(::std::boxed::Box::new(#p::model::CamSpec { base_radius: #rb, face: #face, segments: ::std::vec::Vec::from([#(#segs),*]), table: ::std::vec::Vec::from([#(#table),*]), carrier: #carrier, centre: #centre, slide: #slide })))
             }
             None => quote!(None),
         };
