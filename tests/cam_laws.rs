@@ -160,6 +160,7 @@ fn cam(face: Face, offset: f64) -> Profile {
         base_radius: 0.04,
         offset,
         face,
+        rocker: None,
     }
 }
 

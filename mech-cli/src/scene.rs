@@ -103,8 +103,7 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
                 let turn = pose.links[j.a].angle - model.reference_angle(j.a);
                 let (sn, cs) = turn.sin_cos();
                 let rot = V2::new(cs, sn);
-                let axis = model.joints[c.slide].axis;
-                let u = V2::new(axis[0], axis[1]).normalize() * g.sign;
+                let u = g.axis;
                 let xh = V2::new(u.y, -u.x);
                 let points = g
                     .profile

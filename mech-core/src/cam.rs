@@ -20,6 +20,11 @@
 
 use std::f64::consts::{PI, TAU};
 
+use crate::constraints::{JointGeom, Level};
+use crate::kinetostatics::{Reaction, Wrench};
+use crate::link_state::{cross, perp, point_of, rotate, LinkState, V2};
+use crate::MechError;
+
 /// The shape of one segment of a motion law (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Law {
@@ -341,16 +346,28 @@ impl MotionLaw {
     }
 }
 
+/// A lift written with its unit for a message: mm for a translating follower, degrees for
+/// an oscillating one (`angular`).
+pub fn lift_text(v: f64, angular: bool) -> String {
+    if angular {
+        format!("{:.4}°", v.to_degrees())
+    } else {
+        format!("{:.4} mm", v * 1e3)
+    }
+}
+
 /// A cam's law from its declaration: the periodic spline through `table` when it is not
 /// empty (its first point at 0° and lift 0, the follower's place in the drawing), else the
-/// segments, which must cover a turn and return to their start.
-pub fn law_of(segments: &[Segment], table: &[[f64; 2]]) -> Result<MotionLaw, String> {
+/// segments, which must cover a turn and return to their start. `angular`: the lifts are
+/// angles (an oscillating follower), for the messages.
+pub fn law_of(segments: &[Segment], table: &[[f64; 2]], angular: bool) -> Result<MotionLaw, String> {
     if let Some(first) = table.first() {
         if first[0] != 0.0 || first[1] != 0.0 {
             return Err(format!(
-                "the table's first point is ({:.4}°, {:.4} mm): it must be (0 deg, 0 mm), the follower's place in the drawing",
+                "the table's first point is ({:.4}°, {}): it must be (0 deg, 0 {}), the follower's place in the drawing",
                 first[0].to_degrees(),
-                first[1] * 1e3
+                lift_text(first[1], angular),
+                if angular { "deg" } else { "mm" }
             ));
         }
         let (th, s): (Vec<f64>, Vec<f64>) = table.iter().map(|p| (p[0], p[1])).unzip();
@@ -360,8 +377,8 @@ pub fn law_of(segments: &[Segment], table: &[[f64; 2]]) -> Result<MotionLaw, Str
     let net = segments.last().map(|g| g.to).unwrap_or(0.0);
     if net.abs() > 1e-12 {
         return Err(format!(
-            "it ends {:.4} mm from where it starts: the rises and falls over a turn must add to zero",
-            net * 1e3
+            "it ends {} from where it starts: the rises and falls over a turn must add to zero",
+            lift_text(net, angular)
         ));
     }
     Ok(law)
@@ -379,86 +396,204 @@ pub enum Face {
 }
 
 /// One point of a cam's profile (`docs/theory.md` §13), in the cam's own frame (the cam
-/// turning counter-clockwise by θ; at θ = 0 the follower's axis is the cam frame's +y
-/// axis, offset by e along +x).
+/// turning counter-clockwise by θ; at θ = 0 the frame is the profile's axis frame: the
+/// follower's axis (translating) or the cam's centre to the pitch point (oscillating) along
+/// +y, a translating follower's axis offset by e along +x).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProfilePoint {
     /// The cam angle θ, rad.
     pub theta: f64,
     /// The pitch point (the roller's centre, the knife's edge; for a flat face the
-    /// face's foot on the axis), cam frame, m.
+    /// face's foot on the axis, or for a rocker the face's point that touched the base
+    /// circle in the drawing), cam frame, m.
     pub pitch: [f64; 2],
     /// The cam surface's contact point, cam frame, m.
     pub contact: [f64; 2],
-    /// The pressure angle φ (rad): between the follower's axis and the common normal
-    /// at the contact; zero for a flat face.
+    /// The pressure angle φ (rad): between the direction the follower's pitch point
+    /// moves (along the axis; a rocker's: perpendicular to its arm) and the common normal
+    /// at the contact; zero for a translating flat face.
     pub pressure_angle: f64,
     /// The radius of curvature of the cam surface at the contact (m, > 0 convex,
     /// < 0 concave); for a roller the pitch curve's less the roller's radius.
     pub curvature_radius: f64,
 }
 
-/// A translating follower's cam (`docs/theory.md` §13): base circle R_b (to the cam
-/// surface), offset e of the follower's axis, face, and motion law s(θ).
+/// An oscillating follower (a rocker) of a [`Profile`]: pinned to the cam's carrier at its
+/// pivot A and turned by the law's lift ψ(θ), an angle, from the drawing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rocker {
+    /// The pivot A in the profile's axis frame (the cam's centre O at the origin, +y
+    /// towards the pitch point P of the drawing), m.
+    pub pivot: [f64; 2],
+    /// σ = ±1: the rocker turns by σψ (counter-clockwise positive), the sense that moves
+    /// its pitch point away from the cam's centre: σ = −sign(A_x).
+    pub sign: f64,
+}
+
+/// A cam's profile (`docs/theory.md` §13): base circle R_b (to the cam surface), the
+/// follower (translating with offset e, or a [`Rocker`]), its face, and the motion law
+/// s(θ) (a length; a rocker's an angle ψ(θ)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Profile {
     /// The motion law.
     pub law: MotionLaw,
     /// R_b, the base circle's radius (m).
     pub base_radius: f64,
-    /// e, the offset of the follower's axis from the cam's centre (m; 0 for a flat face).
+    /// e, the offset of a translating follower's axis from the cam's centre (m; 0 for a
+    /// flat face and for a rocker).
     pub offset: f64,
     /// The follower's face.
     pub face: Face,
+    /// An oscillating follower's pivot; `None` for a translating one.
+    pub rocker: Option<Rocker>,
+}
+
+/// The follower against the cam at one cam angle ([`Profile::contact`]), in the profile's
+/// axis frame (fixed to the carrier: not turned with the cam).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// The law's (s, s′, s″, s‴) at θ (m or rad, per radian of cam angle).
+    pub law: [f64; 4],
+    /// The pitch point, m.
+    pub pitch: V2,
+    /// The contact point K, m.
+    pub contact: V2,
+    /// The common normal n at K (unit, from the cam towards the follower).
+    pub normal: V2,
+    /// The pressure angle φ, rad ([`ProfilePoint::pressure_angle`]).
+    pub pressure_angle: f64,
+    /// The cam surface's radius of curvature at K, m ([`ProfilePoint::curvature_radius`]).
+    pub curvature_radius: f64,
 }
 
 impl Profile {
-    /// The profile at cam angle θ. The follower's pitch point is F = (e, y), y = d + s, in
-    /// the fixed frame, d = √(R_p² − e²), R_p = R_b + r (the prime circle); in the cam
-    /// frame, turned back by θ, P(θ) = R(−θ) F, whose derivatives are R(−θ) applied to
-    /// P′ = (y, s′ − e) and P″ = (2s′ − e, s″ − y). The pitch curve, traversed clockwise,
-    /// has the radius of curvature ρ = −|P′|³ / (P′ × P″) (> 0 where convex); its outward
-    /// normal n = perp(P′)/|P′| is the common normal, so the contact is F − r n and the
-    /// pressure angle, between n and the follower's axis, is tan φ = (s′ − e)/y. A flat
-    /// face (e = 0) touches the cam where the face's points move along it: at (s′, R_b + s)
-    /// in the fixed frame, with ρ = R_b + s + s″.
-    pub fn at(&self, theta: f64) -> ProfilePoint {
-        let [s, s1, s2, _] = self.law.eval(theta);
-        let rot = |v: [f64; 2]| {
-            let (sn, cs) = (-theta).sin_cos();
-            [cs * v[0] - sn * v[1], sn * v[0] + cs * v[1]]
-        };
-        if self.face == Face::Flat {
-            let y = self.base_radius + s;
-            return ProfilePoint {
-                theta,
-                pitch: rot([0.0, y]),
-                contact: rot([s1, y]),
-                pressure_angle: 0.0,
-                curvature_radius: y + s2,
-            };
-        }
-        let r = match self.face {
+    /// The roller's radius (0 for a knife or a flat face), m.
+    pub fn roller(&self) -> f64 {
+        match self.face {
             Face::Roller(r) => r,
             _ => 0.0,
+        }
+    }
+
+    /// The pitch point F(θ) of a knife or roller follower in the axis frame, its
+    /// derivatives F′, F″ per unit cam angle, and the unit direction d̂ a lift moves it in.
+    /// Translating: F = (e, d + s), d = √(R_p² − e²), R_p = R_b + r, F′ = (0, s′),
+    /// F″ = (0, s″), d̂ = (0, 1). A rocker with pivot A: w = R(σψ)(P₀ − A), P₀ = (0, R_p),
+    /// F = A + w, F′ = σψ′ perp(w), F″ = σψ″ perp(w) − ψ′² w, d̂ = σ perp(w)/|w|.
+    #[inline]
+    fn pitch_motion(&self, law: [f64; 4]) -> [V2; 4] {
+        let [s, s1, s2, _] = law;
+        let rp = self.base_radius + self.roller();
+        match self.rocker {
+            None => {
+                let e = self.offset;
+                [
+                    V2::new(e, (rp * rp - e * e).sqrt() + s),
+                    V2::new(0.0, s1),
+                    V2::new(0.0, s2),
+                    V2::new(0.0, 1.0),
+                ]
+            }
+            Some(k) => {
+                let a = V2::new(k.pivot[0], k.pivot[1]);
+                let (sn, cs) = (k.sign * s).sin_cos();
+                let w = rotate(V2::new(cs, sn), V2::new(0.0, rp) - a);
+                let jw = perp(w) * k.sign;
+                [a + w, jw * s1, jw * s2 - w * (s1 * s1), jw / w.norm()]
+            }
+        }
+    }
+
+    /// The follower against the cam at cam angle θ ([`Contact`]).
+    ///
+    /// Knife and roller: seen from the cam (turned back by θ) the pitch point is
+    /// P(θ) = R(−θ) F(θ), so P′ = R(−θ) v and P″ = R(−θ) a with v = F′ − perp(F),
+    /// a = F″ − 2 perp(F′) − F ([`Profile::pitch_motion`] gives F, F′, F″). The pitch curve,
+    /// traversed clockwise, has the radius of curvature ρ = −|v|³ / (v × a) (> 0 where
+    /// convex); its outward normal n = perp(v)/|v| is the common normal, the contact is
+    /// K = F − r n and the pressure angle is the angle from d̂ to n. A translating flat face
+    /// (e = 0) touches the cam where the face's points move along it: K = (s′, R_b + s),
+    /// ρ = R_b + s + s″. A rocker's flat face (tangent to the base circle at P₀ = (0, R_b)
+    /// in the drawing) is the line m·x = p with m = R(σψ)(0, 1), p = m·A + R_b − A_y;
+    /// seen from the cam its normal turns by β′ = σψ′ − 1 per unit cam angle, so the
+    /// envelope (the cam surface) touches it at K = p m + p_β perp(m) with
+    /// p_β = g w, g = σψ′/(σψ′ − 1), w = perp(m)·A, and ρ = p + p_ββ,
+    /// p_ββ = (g′ w + g w′)/β′, g′ = −σψ″/β′², w′ = −σψ′ (m·A) (K is the foot of the
+    /// perpendicular from the relative instant centre g A: Aronhold–Kennedy).
+    pub fn contact(&self, theta: f64) -> Contact {
+        let law = self.law.eval(theta);
+        let [s, s1, s2, _] = law;
+        match (self.face, self.rocker) {
+            (Face::Flat, None) => {
+                let y = self.base_radius + s;
+                Contact {
+                    law,
+                    pitch: V2::new(0.0, y),
+                    contact: V2::new(s1, y),
+                    normal: V2::new(0.0, 1.0),
+                    pressure_angle: 0.0,
+                    curvature_radius: y + s2,
+                }
+            }
+            (Face::Flat, Some(k)) => {
+                let sg = k.sign;
+                let a = V2::new(k.pivot[0], k.pivot[1]);
+                let (sn, cs) = (sg * s).sin_cos();
+                let rot = V2::new(cs, sn);
+                let m = V2::new(-sn, cs);
+                let jm = perp(m);
+                let p = m.dot(&a) + self.base_radius - a.y;
+                let w = jm.dot(&a);
+                let beta1 = sg * s1 - 1.0;
+                let g = sg * s1 / beta1;
+                let g1 = -sg * s2 / (beta1 * beta1);
+                let w1 = -sg * s1 * m.dot(&a);
+                let contact = m * p + jm * (g * w);
+                let arm = contact - a;
+                let dir = perp(arm) * (sg / arm.norm());
+                Contact {
+                    law,
+                    pitch: a + rotate(rot, V2::new(0.0, self.base_radius) - a),
+                    contact,
+                    normal: m,
+                    pressure_angle: cross(dir, m).atan2(dir.dot(&m)),
+                    curvature_radius: p + (g1 * w + g * w1) / beta1,
+                }
+            }
+            _ => {
+                let r = self.roller();
+                let [f, f1, f2, dir] = self.pitch_motion(law);
+                let v = f1 - perp(f);
+                let acc = f2 - perp(f1) * 2.0 - f;
+                let speed = v.norm();
+                let n = perp(v) / speed;
+                Contact {
+                    law,
+                    pitch: f,
+                    contact: f - n * r,
+                    normal: n,
+                    pressure_angle: cross(dir, n).atan2(dir.dot(&n)),
+                    curvature_radius: -speed * speed * speed / cross(v, acc) - r,
+                }
+            }
+        }
+    }
+
+    /// The profile at cam angle θ, in the cam's frame: [`Profile::contact`] turned back
+    /// by θ.
+    pub fn at(&self, theta: f64) -> ProfilePoint {
+        let c = self.contact(theta);
+        let (sn, cs) = (-theta).sin_cos();
+        let back = |v: V2| {
+            let r = rotate(V2::new(cs, sn), v);
+            [r.x, r.y]
         };
-        let e = self.offset;
-        let rp = self.base_radius + r;
-        let d = (rp * rp - e * e).sqrt();
-        let y = d + s;
-        let v = [y, s1 - e];
-        let acc = [2.0 * s1 - e, s2 - y];
-        let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
-        let turn = v[0] * acc[1] - v[1] * acc[0];
-        let rho_pitch = -speed * speed * speed / turn;
-        let normal = [-v[1] / speed, v[0] / speed];
-        let contact = [e - r * normal[0], y - r * normal[1]];
         ProfilePoint {
             theta,
-            pitch: rot([e, y]),
-            contact: rot(contact),
-            pressure_angle: (s1 - e).atan2(y),
-            curvature_radius: rho_pitch - r,
+            pitch: back(c.pitch),
+            contact: back(c.contact),
+            pressure_angle: c.pressure_angle,
+            curvature_radius: c.curvature_radius,
         }
     }
 }
@@ -549,42 +684,16 @@ impl Profile {
 // ---------------------------------------------------------------------------------------
 // The cam pair: a cam pinned to a carrier drives a follower sliding on it.
 
-use crate::constraints::{JointGeom, Level};
-use crate::kinetostatics::{Reaction, Wrench};
-use crate::link_state::{cross, perp, point_of, rotate, LinkState, V2};
-use crate::MechError;
-
-impl Profile {
-    /// The law's (s, s′, s″) at θ, and the contact point K and the common normal n (unit,
-    /// from the cam towards the follower) in the follower's axis frame (x̂, û) with the
-    /// cam's centre at the origin (module docs of [`Profile::at`]).
-    pub fn contact_axis(&self, theta: f64) -> ([f64; 3], [f64; 2], [f64; 2]) {
-        let [s, s1, s2, _] = self.law.eval(theta);
-        if self.face == Face::Flat {
-            return ([s, s1, s2], [s1, self.base_radius + s], [0.0, 1.0]);
-        }
-        let r = match self.face {
-            Face::Roller(r) => r,
-            _ => 0.0,
-        };
-        let e = self.offset;
-        let rp = self.base_radius + r;
-        let y = (rp * rp - e * e).sqrt() + s;
-        let v = [y, s1 - e];
-        let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
-        let n = [-v[1] / speed, v[0] / speed];
-        ([s, s1, s2], [e - r * n[0], y - r * n[1]], n)
-    }
-}
 
 /// A cam pair's geometry in its links' frames (`docs/conventions.md#cams`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct CamGeom {
-    /// The profile: law, base circle, offset e of the follower's axis, face.
+    /// The profile: law, base circle, the follower (offset e, or a rocker's pivot), face.
     pub profile: Profile,
-    /// The follower's axis û relative to its prismatic joint's axis: ±1 (û points from
-    /// the cam's centre towards the follower).
-    pub sign: f64,
+    /// The profile's axis frame: its unit +y (û) in the carrier's frame — a translating
+    /// follower's axis, from the cam's centre towards the follower; for a rocker, from
+    /// the cam's centre towards the pitch point of the drawing. x̂ = (û_y, −û_x).
+    pub axis: V2,
     /// The cam's centre: its local vector in the cam.
     pub centre: V2,
 }
@@ -594,7 +703,7 @@ pub struct CamGeom {
 pub struct CamGroup {
     /// The follower.
     pub follower: usize,
-    /// Its prismatic joint on the carrier.
+    /// Its joint on the carrier: a prismatic joint (translating) or its pin (a rocker).
     pub slide: usize,
     /// The cam joint.
     pub joint: usize,
@@ -622,11 +731,11 @@ impl CamGroup {
         ([rel.y.atan2(rel.x), k.omega - wc, k.alpha - ac], rc, wc, ac)
     }
 
-    /// The follower's slide frame: û (world), the carrier's point the slide starts from,
-    /// the follower's local vector of its slide point.
+    /// The follower's frame: û (world), the carrier's point of the follower's joint (the
+    /// slide's start, or the rocker's pivot), the follower's local vector of that point.
     #[inline(always)]
     fn frame(&self, g: &JointGeom, geom: &CamGeom, s: &[LinkState], rc: V2) -> (V2, V2, V2) {
-        let u = rotate(rc, g.axis * geom.sign);
+        let u = rotate(rc, geom.axis);
         let (q, df) = if g.a == self.carrier {
             (point_of(s, g.a, g.da), g.db)
         } else {
@@ -636,9 +745,10 @@ impl CamGroup {
     }
 }
 
-/// Solve a cam-driven follower up to `upto`: its slide is s(θ) of the cam's turn θ
-/// relative to the carrier, ṡ = s′ θ̇, s̈ = s″ θ̇² + s′ θ̈ (the law is periodic: θ is taken
-/// in (−π, π]).
+/// Solve a cam-driven follower up to `upto` from the cam's turn θ relative to the carrier
+/// (the law is periodic: θ is taken in (−π, π]). Translating: its slide along û is s(θ),
+/// ṡ = s′ θ̇, s̈ = s″ θ̇² + s′ θ̈. A rocker turns about its pivot by σψ(θ) relative to the
+/// carrier: ω = ω_c + σψ′ θ̇, α = α_c + σ(ψ″ θ̇² + ψ′ θ̈).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn solve_cam(
@@ -653,15 +763,31 @@ pub fn solve_cam(
     let (th, rc, wc, ac) = grp.turn(s);
     let [x, x1, x2, _] = geom.profile.law.eval(th[0]);
     let (u, q, df) = grp.frame(g, geom, s, rc);
-    let p = q + u * x;
     let fl = grp.follower;
-    s[fl].rot = rc;
-    s[fl].angle = if grp.carrier == 0 {
+    let carrier_angle = if grp.carrier == 0 {
         0.0
     } else {
         s[grp.carrier].angle
     };
-    s[fl].pos = p - rotate(rc, df);
+    // The follower's point p (on its axis, or its pivot) and the rotation it turns by.
+    let (p, turn, rate, accel) = match geom.profile.rocker {
+        None => (q + u * x, 0.0, 0.0, 0.0),
+        Some(k) => (
+            q,
+            k.sign * x,
+            k.sign * x1 * th[1],
+            k.sign * (x2 * th[1] * th[1] + x1 * th[2]),
+        ),
+    };
+    let rot = if turn == 0.0 {
+        rc
+    } else {
+        let (sn, cs) = turn.sin_cos();
+        rotate(rc, V2::new(cs, sn))
+    };
+    s[fl].rot = rot;
+    s[fl].angle = carrier_angle + turn;
+    s[fl].pos = p - rotate(rot, df);
     if upto == Level::Position {
         return Ok(());
     }
@@ -671,6 +797,13 @@ pub fn solve_cam(
         let c = &s[grp.carrier];
         (c.vel_at(p - c.pos), c.acc_at(p - c.pos))
     };
+    if geom.profile.rocker.is_some() {
+        s[fl].set_velocity_through(p, vq, wc + rate);
+        if upto == Level::Acceleration {
+            s[fl].set_acceleration_through(p, aq, ac + accel);
+        }
+        return Ok(());
+    }
     let xd = x1 * th[1];
     s[fl].set_velocity_through(p, vq + u * xd, wc);
     if upto == Level::Acceleration {
@@ -680,11 +813,12 @@ pub fn solve_cam(
     Ok(())
 }
 
-/// d'Alembert for a cam-driven follower: the contact force F_n n at the contact point
-/// from the follower's balance along its axis, F_n = −(F·û)/(n·û); the slide takes the
-/// rest (a force normal to û and a moment). `out[joint]` holds the force by the cam on the
-/// follower and, as its `moment`, F_n (N, > 0 while the cam pushes: a negative value is
-/// the follower leaving the cam, a jump).
+/// d'Alembert for a cam-driven follower: the contact force F_n n at the contact point K
+/// from the follower's balance — along its axis for a translating follower,
+/// F_n = −(F·û)/(n·û) (the slide takes the rest: a force normal to û and a moment); about
+/// its pivot A for a rocker, F_n = −M_A/((K − A) × n) (the pin takes the rest). `out[joint]`
+/// holds the force by the cam on the follower and, as its `moment`, F_n (N, > 0 while the
+/// cam pushes: a negative value is the follower leaving the cam, a jump).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn cam_reactions(
@@ -701,23 +835,35 @@ pub fn cam_reactions(
     let (u, _, df) = grp.frame(g, geom, s, rc);
     let xh = V2::new(u.y, -u.x);
     let o = point_of(s, grp.cam, geom.centre);
-    let (_, k, n) = geom.profile.contact_axis(th[0]);
-    let kw = o + xh * k[0] + u * k[1];
-    let nw = xh * n[0] + u * n[1];
+    let c = geom.profile.contact(th[0]);
+    let kw = o + xh * c.contact.x + u * c.contact.y;
+    let nw = xh * c.normal.x + u * c.normal.y;
     let fl = grp.follower;
     let wf = f[fl];
     let ff = V2::new(wf.x, wf.y);
-    let nu = nw.dot(&u);
-    if nu.abs() < 1e-12 {
+    let p = s[fl].point(df);
+    // The follower's moment about p of everything but the cam and its joint.
+    let mf = wf.z + cross(s[fl].pos - p, ff);
+    let (fnorm, lever) = if geom.profile.rocker.is_some() {
+        let arm = kw - p;
+        let lever = cross(arm, nw);
+        (-mf / lever, lever / arm.norm())
+    } else {
+        let nu = nw.dot(&u);
+        (-ff.dot(&u) / nu, nu)
+    };
+    if !(lever.abs() >= 1e-12) {
         return Err(MechError::Singular {
             condition: f64::INFINITY,
         });
     }
-    let fnorm = -ff.dot(&u) / nu;
     let force = nw * fnorm;
-    let p = s[fl].point(df);
     let r = -(ff + force);
-    let mp = -(wf.z + cross(s[fl].pos - p, ff) + cross(kw - p, force));
+    let mp = if geom.profile.rocker.is_some() {
+        0.0
+    } else {
+        -(mf + cross(kw - p, force))
+    };
     out[grp.joint] = Reaction {
         force,
         moment: fnorm,

@@ -80,6 +80,38 @@ impl Scope {
         })
     }
 
+    /// A cam's lift: a length (a translating follower) or an angle (an oscillating one), or
+    /// a plain number (SI: m or rad). `kind` keeps the first lift written with a unit (true
+    /// for an angle) and where: every lift of a cam must be of the same kind.
+    fn lift(&self, input: ParseStream, kind: &mut Option<(bool, Span)>) -> syn::Result<f64> {
+        let q = self.consts.expr(input)?;
+        let angular = match q.dim.filter(|d| *d != Dim::NONE) {
+            None => return Ok(q.value),
+            Some(Dim::ANGLE) => true,
+            Some(Dim::LENGTH) => false,
+            Some(d) => {
+                return Err(syn::Error::new(
+                    q.span,
+                    format!("a cam's lift is a length (a translating follower: `rise 10 mm`) or an angle (an oscillating one: `rise 15 deg`), but this value is {}", d.describe()),
+                ))
+            }
+        };
+        match kind {
+            Some((first, _)) if *first != angular => {
+                let word = |a: bool| if a { "an angle" } else { "a length" };
+                Err(syn::Error::new(
+                    q.span,
+                    format!("this lift is {}, but the cam's first lift is {}: a cam's lifts are all lengths (a translating follower) or all angles (an oscillating one)", word(angular), word(*first)),
+                ))
+            }
+            Some(_) => Ok(q.value),
+            None => {
+                *kind = Some((angular, q.span));
+                Ok(q.value)
+            }
+        }
+    }
+
     /// `(x, y)`, each an expression of dimension `dim`.
     fn pair(&self, input: ParseStream, dim: Dim, what: &str) -> syn::Result<Pair<Span>> {
         let content;
@@ -465,6 +497,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
         let mut cam_face = crate::cam::Face::Knife;
         let mut cam_law: Option<(Vec<(crate::cam::Segment, Span)>, Span)> = None;
         let mut cam_table: Vec<[f64; 2]> = Vec::new();
+        let mut cam_lift: Option<(bool, Span)> = None;
         while content.peek(Ident) {
             let k: Ident = content.parse()?;
             match k.to_string().as_str() {
@@ -503,10 +536,10 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                 "flat" if kind == JointKind::Cam => cam_face = crate::cam::Face::Flat,
                 "knife" if kind == JointKind::Cam => cam_face = crate::cam::Face::Knife,
                 "law" if kind == JointKind::Cam && cam_law.is_none() => {
-                    cam_law = Some((cam_segments(&content, scope)?, k.span()));
+                    cam_law = Some((cam_segments(&content, scope, &mut cam_lift)?, k.span()));
                 }
                 "table" if kind == JointKind::Cam && cam_law.is_none() => {
-                    cam_table = cam_points(&content, scope)?;
+                    cam_table = cam_points(&content, scope, &mut cam_lift)?;
                     cam_law = Some((Vec::new(), k.span()));
                 }
                 "around" if kind == JointKind::Rolling && around.is_none() => {
@@ -568,6 +601,7 @@ fn joints(input: ParseStream, scope: &Scope) -> syn::Result<Vec<JointDecl<Span>>
                 segments,
                 table: cam_table,
                 law_span,
+                angular: cam_lift.map(|k| k.0),
             })
         } else {
             None
@@ -647,8 +681,12 @@ fn loads(input: ParseStream) -> syn::Result<Vec<LoadDecl<Span>>> {
     Ok(out)
 }
 
-/// A cam's table: `[(θ, s), ..]`, angles and lifts.
-fn cam_points(input: ParseStream, scope: &Scope) -> syn::Result<Vec<[f64; 2]>> {
+/// A cam's table: `[(θ, s), ..]`, angles and lifts (lengths, or a rocker's angles).
+fn cam_points(
+    input: ParseStream,
+    scope: &Scope,
+    kind: &mut Option<(bool, Span)>,
+) -> syn::Result<Vec<[f64; 2]>> {
     let list;
     bracketed!(list in input);
     let mut out = Vec::new();
@@ -657,8 +695,8 @@ fn cam_points(input: ParseStream, scope: &Scope) -> syn::Result<Vec<[f64; 2]>> {
         parenthesized!(pt in list);
         let th = scope.scalar(&pt, Dim::ANGLE, "a table's cam angle")?;
         pt.parse::<Token![,]>()?;
-        let s = scope.scalar(&pt, Dim::LENGTH, "a table's lift")?;
-        out.push([th.value, s.value]);
+        let s = scope.lift(&pt, kind)?;
+        out.push([th.value, s]);
         comma(&list)?;
     }
     Ok(out)
@@ -666,10 +704,12 @@ fn cam_points(input: ParseStream, scope: &Scope) -> syn::Result<Vec<[f64; 2]>> {
 
 /// A cam's law: `[LAW SPAN (rise | fall) LIFT, ..]`, LAW one of `dwell` (no lift),
 /// `uniform`, `harmonic`, `cycloidal`, `poly345`, `poly4567`; SPAN an angle, LIFT a
-/// length; the segments follow each other from the cam's angle 0.
+/// length (or an angle, for an oscillating follower); the segments follow each other from
+/// the cam's angle 0.
 fn cam_segments(
     input: ParseStream,
     scope: &Scope,
+    kind: &mut Option<(bool, Span)>,
 ) -> syn::Result<Vec<(crate::cam::Segment, Span)>> {
     use crate::cam::{Law, Segment};
     let list;
@@ -707,7 +747,7 @@ fn cam_segments(
                     ))
                 }
             };
-            sign * scope.scalar(&list, Dim::LENGTH, "a segment's lift")?.value
+            sign * scope.lift(&list, kind)?
         };
         out.push((
             Segment {
@@ -732,12 +772,17 @@ fn cam_segments(
                 .iter()
                 .position(|(g, _)| (g.start - j.at).abs() < 1e-9)
                 .unwrap_or(0);
+            let (scale, unit) = if kind.map_or(false, |k| k.0) {
+                (180.0 / std::f64::consts::PI, "°/rad")
+            } else {
+                (1e3, " mm/rad")
+            };
             return Err(syn::Error::new(
                 out[k].1,
                 format!(
-                    "the follower's velocity jumps from {:.4} to {:.4} mm/rad at {:.2}°, where this segment starts: an infinite acceleration (the cam would hammer the follower); use laws that start and end at rest next to a dwell (harmonic, cycloidal, poly345, poly4567)",
-                    j.before * 1e3,
-                    j.after * 1e3,
+                    "the follower's velocity jumps from {:.4} to {:.4}{unit} at {:.2}°, where this segment starts: an infinite acceleration (the cam would hammer the follower); use laws that start and end at rest next to a dwell (harmonic, cycloidal, poly345, poly4567)",
+                    j.before * scale,
+                    j.after * scale,
                     j.at.to_degrees()
                 ),
             ));

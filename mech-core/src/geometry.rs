@@ -62,17 +62,15 @@ pub fn joint_geom(model: &Model, j: usize) -> JointGeom {
     if let (Some(g), Some(c)) = (cam_geom(model, jt), jt.cam.as_ref()) {
         // The contact K and the common normal n in the drawing: the rank test's row.
         let o = model.points[c.centre].pos;
-        let axis = model.joints[c.slide].axis;
-        let u = V2::new(axis[0], axis[1]).normalize() * g.sign;
-        let xh = V2::new(u.y, -u.x);
-        let (_, k, n) = g.profile.contact_axis(0.0);
-        let kw = V2::new(o[0], o[1]) + xh * k[0] + u * k[1];
+        let (u, xh) = (g.axis, V2::new(g.axis.y, -g.axis.x));
+        let k = g.profile.contact(0.0);
+        let kw = V2::new(o[0], o[1]) + xh * k.contact.x + u * k.contact.y;
         return JointGeom {
             a: jt.a,
             b: jt.b,
             da: local(model, jt.a, [kw.x, kw.y]),
             db: local(model, jt.b, [kw.x, kw.y]),
-            axis: xh * n[0] + u * n[1],
+            axis: xh * k.normal.x + u * k.normal.y,
             q_ref: 0.0,
             radius: 0.0,
             around: 0.0,
@@ -172,27 +170,39 @@ pub fn drawing_states(model: &Model) -> Vec<LinkState> {
         .collect()
 }
 
-/// A cam's geometry (`crate::cam::CamGeom`) from the drawing: û along the follower's
-/// slide from the cam's centre O towards the follower's point P, the offset
-/// e = (P − O)·x̂ with x̂ = (û_y, −û_x), the motion law from its segments.
+/// A cam's geometry (`crate::cam::CamGeom`) from the drawing. A translating follower: û
+/// along its slide from the cam's centre O towards its point P, the offset
+/// e = (P − O)·x̂ with x̂ = (û_y, −û_x). A rocker (pinned to the carrier at A): û from O
+/// towards its pitch point P, the pivot (A − O) in (x̂, û), σ = −sign(A_x). The motion law
+/// from its segments or table.
 pub fn cam_geom(model: &Model, jt: &crate::model::Joint) -> Option<crate::cam::CamGeom> {
     let c = jt.cam.as_ref()?;
-    let axis = model.joints[c.slide].axis;
-    let a = V2::new(axis[0], axis[1]).normalize();
+    let slide = &model.joints[c.slide];
     let (o, p) = (model.points[c.centre].pos, model.points[jt.point].pos);
     let op = V2::new(p[0] - o[0], p[1] - o[1]);
-    let sign = if op.dot(&a) >= 0.0 { 1.0 } else { -1.0 };
-    let u = a * sign;
-    let xh = V2::new(u.y, -u.x);
-    let law = crate::cam::law_of(&c.segments, &c.table).ok()?;
+    let law = crate::cam::law_of(&c.segments, &c.table, c.angular).ok()?;
+    let (u, offset, rocker) = if slide.kind == JointKind::Revolute {
+        let u = op.try_normalize(0.0)?;
+        let xh = V2::new(u.y, -u.x);
+        let a = model.points[slide.point].pos;
+        let oa = V2::new(a[0] - o[0], a[1] - o[1]);
+        let pivot = [oa.dot(&xh), oa.dot(&u)];
+        let sign = if pivot[0] > 0.0 { -1.0 } else { 1.0 };
+        (u, 0.0, Some(crate::cam::Rocker { pivot, sign }))
+    } else {
+        let a = V2::new(slide.axis[0], slide.axis[1]).normalize();
+        let u = if op.dot(&a) >= 0.0 { a } else { -a };
+        (u, op.dot(&V2::new(u.y, -u.x)), None)
+    };
     Some(crate::cam::CamGeom {
         profile: crate::cam::Profile {
             law,
             base_radius: c.base_radius,
-            offset: op.dot(&xh),
+            offset,
             face: c.face,
+            rocker,
         },
-        sign,
+        axis: u,
         centre: local(model, jt.a, o),
     })
 }

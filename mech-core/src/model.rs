@@ -101,9 +101,9 @@ pub enum JointKind {
     /// `rolling(track, wheel) at C radius r along (ux, uy)`: no penetration and no slip at
     /// the contact point, removes 2 DOF (a lower pair).
     Rolling,
-    /// A cam and its translating follower, `cam(cam, follower) base_radius R_b [roller r |
-    /// flat] law [..]`: the follower's slide is the motion law of the cam's turn, removes
-    /// 1 DOF (a higher pair).
+    /// A cam and its follower, `cam(cam, follower) base_radius R_b [roller r | flat]
+    /// law [..]`: the follower's slide (or a rocker's turn) is the motion law of the cam's
+    /// turn, removes 1 DOF (a higher pair).
     Cam,
 }
 
@@ -207,6 +207,9 @@ pub struct CamDecl<S> {
     pub table: Vec<[f64; 2]>,
     /// Where `law` was written.
     pub law_span: S,
+    /// What the lifts were written in: `Some(true)` angles (an oscillating follower),
+    /// `Some(false)` lengths (a translating one), `None` plain numbers (SI, either).
+    pub angular: Option<bool>,
 }
 
 /// What a load is.
@@ -399,7 +402,7 @@ pub struct Joint {
 }
 
 /// A resolved cam (`docs/conventions.md#cams`): a translating follower sliding on the
-/// carrier the cam is pinned to.
+/// carrier the cam is pinned to, or an oscillating one pinned to it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CamSpec {
     /// R_b, the base circle's radius, m.
@@ -414,8 +417,11 @@ pub struct CamSpec {
     pub carrier: usize,
     /// The cam's centre (the point of its pin to the carrier).
     pub centre: usize,
-    /// The follower's prismatic joint on the carrier.
+    /// The follower's joint on the carrier: its prismatic joint (translating) or its pin
+    /// (oscillating: a rocker).
     pub slide: usize,
+    /// The lifts are angles (a rocker's law ψ(θ)), not lengths.
+    pub angular: bool,
 }
 
 /// A resolved load.

@@ -273,7 +273,14 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
         let a = find_link(&j.a, &mut errs);
         let b = find_link(&j.b, &mut errs);
         let pname = j.at.as_ref().unwrap_or(&j.name);
-        let point = if j.kind.mesh() || j.kind == JointKind::Cam {
+        let point = if j.kind == JointKind::Cam {
+            // A rocker's pitch point is written (`at P`); a translating follower's is its
+            // slide's point, found with the carrier below.
+            match &j.at {
+                Some(at) => point_ix.get(&at.text).copied(),
+                None => Some(0),
+            }
+        } else if j.kind.mesh() {
             // A mesh is placed by its gears' centres, found once every joint is known.
             if let Some(at) = &j.at {
                 errs.push(Diagnostic::at(
@@ -426,44 +433,88 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
             cam: None,
         });
     }
-    // Cams: the carrier the cam is pinned to and the follower slides on.
+    // Cams: the carrier the cam is pinned to and the follower slides on (or is pinned to).
     for (k, j) in d.joints.iter().enumerate() {
         let Some(decl) = &j.cam else { continue };
         let (a, b) = (joints[k].a, joints[k].b);
         if a == b {
             continue;
         }
-        let found = joints.iter().enumerate().find_map(|(i, sl)| {
-            if sl.kind != JointKind::Prismatic || !(sl.a == b || sl.b == b) {
-                return None;
-            }
-            let c = if sl.a == b { sl.b } else { sl.a };
-            let pin = joints.iter().find(|r| {
-                r.kind == JointKind::Revolute && ((r.a == c && r.b == a) || (r.b == c && r.a == a))
-            })?;
-            Some((c, pin.point, i))
-        });
-        match found {
-            Some((carrier, centre, slide)) => {
-                joints[k].point = joints[slide].point;
-                joints[k].cam = Some(Box::new(CamSpec {
-                    base_radius: decl.base_radius.value,
-                    face: decl.face,
-                    segments: decl.segments.iter().map(|(g, _)| *g).collect(),
-                    table: decl.table.clone(),
-                    carrier,
-                    centre,
-                    slide,
-                }));
-            }
-            None => errs.push(Diagnostic::at(
+        let found = [JointKind::Prismatic, JointKind::Revolute]
+            .iter()
+            .find_map(|&kind| {
+                joints.iter().enumerate().find_map(|(i, sl)| {
+                    if sl.kind != kind || !(sl.a == b || sl.b == b) {
+                        return None;
+                    }
+                    let c = if sl.a == b { sl.b } else { sl.a };
+                    let pin = joints.iter().find(|r| {
+                        c != a
+                            && r.kind == JointKind::Revolute
+                            && ((r.a == c && r.b == a) || (r.b == c && r.a == a))
+                    })?;
+                    Some((c, pin.point, i))
+                })
+            });
+        let Some((carrier, centre, slide)) = found else {
+            errs.push(Diagnostic::at(
                 j.kind_span.clone(),
                 format!(
-                    "cam `{}`: the follower `{}` must slide (a prismatic joint) on the link the cam `{}` is pinned to (a revolute joint at the cam's centre); no link carries both",
+                    "cam `{}`: the follower `{}` must slide (a prismatic joint) on the link the cam `{}` is pinned to (a revolute joint at the cam's centre), or be pinned to it (an oscillating follower); no link carries both",
                     j.name.text, links[b].name, links[a].name
                 ),
-            )),
+            ));
+            continue;
+        };
+        let rocker = joints[slide].kind == JointKind::Revolute;
+        let lifts = decl.angular.unwrap_or(rocker);
+        if lifts != rocker {
+            let (how, why) = if rocker {
+                ("angles (`rise 15 deg`)", "turns about its pin")
+            } else {
+                ("lengths (`rise 10 mm`)", "slides on its prismatic joint")
+            };
+            errs.push(Diagnostic::at(
+                decl.law_span.clone(),
+                format!(
+                    "cam `{}`: its follower `{}` {why} `{}` on `{}`, so its lifts are {how}, but they are written as {}",
+                    j.name.text,
+                    links[b].name,
+                    d.joints[slide].name.text,
+                    links[carrier].name,
+                    if lifts { "angles" } else { "lengths" }
+                ),
+            ));
+            continue;
         }
+        match (&j.at, rocker) {
+            (Some(at), false) => {
+                errs.push(Diagnostic::at(
+                    at.span.clone(),
+                    format!("cam `{}` takes no `at`: its follower `{}` slides, and its pitch point is its prismatic joint's point", j.name.text, links[b].name),
+                ));
+                continue;
+            }
+            (None, true) => {
+                errs.push(Diagnostic::at(
+                    j.kind_span.clone(),
+                    format!("cam `{}`: its follower `{}` is pinned to `{}` (an oscillating follower), so the cam needs its pitch point: write `cam({}, {}) at P ..`, P the roller's centre (the knife's edge, the flat face's point on the base circle) in the drawing", j.name.text, links[b].name, links[carrier].name, links[a].name, links[b].name),
+                ));
+                continue;
+            }
+            (None, false) => joints[k].point = joints[slide].point,
+            (Some(_), true) => {}
+        }
+        joints[k].cam = Some(Box::new(CamSpec {
+            base_radius: decl.base_radius.value,
+            face: decl.face,
+            segments: decl.segments.iter().map(|(g, _)| *g).collect(),
+            table: decl.table.clone(),
+            carrier,
+            centre,
+            slide,
+            angular: rocker,
+        }));
     }
     // Gear pairs and racks: their carrier and centres, now that every joint is known.
     for (k, j) in d.joints.iter().enumerate() {

@@ -39,9 +39,11 @@ fn plural(n: usize, one: &str, many: &str) -> String {
 }
 
 /// Part of check 5: a cam's law covers one turn and returns to its start, its base
-/// radius and roller are > 0, and the drawing sits the follower on the base circle: its
-/// point P at √(R_p² − e²) from the foot of the cam's centre on its axis (R_p = R_b + r, e
-/// the offset), to [`MESH_TOL`] × the drawing's scale (`docs/conventions.md#cams`).
+/// radius and roller are > 0, the profile is not undercut, and the drawing sits the
+/// follower on the base circle — a translating follower's point P at √(R_p² − e²) from
+/// the foot of the cam's centre on its axis (R_p = R_b + r, e the offset), a rocker's pitch
+/// point P at R_p from the centre, its pivot off the line through them — to [`MESH_TOL`] ×
+/// the drawing's scale (`docs/conventions.md#cams`).
 fn cam_numbers(model: &Model) -> Vec<Issue> {
     let mut out = Vec::new();
     for (j, jt) in model.joints.iter().enumerate() {
@@ -52,7 +54,7 @@ fn cam_numbers(model: &Model) -> Vec<Issue> {
                 message,
             })
         };
-        if let Err(e) = crate::cam::law_of(&c.segments, &c.table) {
+        if let Err(e) = crate::cam::law_of(&c.segments, &c.table, c.angular) {
             bad(format!("cam `{}`: its law: {e}", jt.name));
             continue;
         }
@@ -64,31 +66,52 @@ fn cam_numbers(model: &Model) -> Vec<Issue> {
             bad(format!("cam `{}` has base radius {} m and roller {} m: both must be finite, the base radius > 0", jt.name, c.base_radius, r));
             continue;
         }
+        let (o, p) = (model.points[c.centre].pos, model.points[jt.point].pos);
+        let rp = c.base_radius + r;
+        let tol = MESH_TOL * model.scale();
+        if c.angular {
+            let dist = (p[0] - o[0]).hypot(p[1] - o[1]);
+            if !((dist - rp).abs() <= tol) {
+                bad(format!(
+                    "cam `{}`: the rocker's pitch point `{}` is {:.4} mm from the cam's centre, but in the drawing it sits on the prime circle, R_b + r = {:.4} mm: move it, or change the base radius",
+                    jt.name, model.points[jt.point].name, dist * 1e3, rp * 1e3
+                ));
+                continue;
+            }
+        }
         let Some(g) = crate::geometry::cam_geom(model, jt) else {
             continue;
         };
+        if let Some(k) = g.profile.rocker {
+            if !(k.pivot[0].abs() > tol) {
+                bad(format!(
+                    "cam `{}`: the rocker's pivot `{}` lies on the line from the cam's centre through its pitch point `{}` ({:.4} mm off it): a lift could not turn the rocker (the cam would push along its arm); move the pivot sideways",
+                    jt.name, model.points[model.joints[c.slide].point].name, model.points[jt.point].name, k.pivot[0].abs() * 1e3
+                ));
+                continue;
+            }
+        }
         let chk = g.profile.check(720);
         if chk.undercut {
             let smallest = chk.min_convex_radius;
             bad(match c.face {
-                crate::cam::Face::Flat => format!("cam `{}`: its flat-faced follower would need a cusp in the profile (R_b + s + s″ ≤ 0 near {:.1}°): enlarge the base radius", jt.name, smallest.1.to_degrees()),
+                crate::cam::Face::Flat => format!("cam `{}`: its flat-faced follower would need a cusp in the profile (radius of curvature ≤ 0 near {:.1}°): enlarge the base radius", jt.name, smallest.1.to_degrees()),
                 _ => format!("cam `{}` is undercut: its roller ({:.4} mm) is larger than the pitch curve's radius of curvature near {:.1}° (the cam surface's radius {:.4} mm ≤ 0): use a smaller roller or a larger base circle", jt.name, r * 1e3, smallest.1.to_degrees(), smallest.0 * 1e3),
             });
             continue;
         }
-        let rp = c.base_radius + r;
+        if g.profile.rocker.is_some() {
+            continue;
+        }
         let e = g.profile.offset;
         if !(e.abs() < rp) {
             bad(format!("cam `{}`: the follower's axis passes {:.4} mm from the cam's centre, outside the prime circle (R_b + r = {:.4} mm)", jt.name, e.abs() * 1e3, rp * 1e3));
             continue;
         }
-        let (o, p) = (model.points[c.centre].pos, model.points[jt.point].pos);
-        let axis = model.joints[c.slide].axis;
-        let u = [axis[0] * g.sign, axis[1] * g.sign];
-        let n = (axis[0] * axis[0] + axis[1] * axis[1]).sqrt();
-        let along = ((p[0] - o[0]) * u[0] + (p[1] - o[1]) * u[1]) / n;
+        let u = g.axis;
+        let along = (p[0] - o[0]) * u.x + (p[1] - o[1]) * u.y;
         let want = (rp * rp - e * e).sqrt();
-        if !((along - want).abs() <= MESH_TOL * model.scale()) {
+        if !((along - want).abs() <= tol) {
             bad(format!(
                 "cam `{}`: the follower's point `{}` is {:.4} mm along its axis from the cam's centre, but on the base circle it sits at √(R_p² − e²) = {:.4} mm (R_p = {:.4} mm, e = {:.4} mm): move it, or change the base radius",
                 jt.name, model.points[jt.point].name, along * 1e3, want * 1e3, rp * 1e3, e * 1e3

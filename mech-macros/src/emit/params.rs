@@ -400,12 +400,12 @@ fn model_expr(cx: &Ctx) -> TokenStream {
                         quote!(#p::cam::Face::Roller(#r))
                     }
                 };
-                let (rb, carrier, centre, slide) = (f64s(c.base_radius), c.carrier, c.centre, c.slide);
+                let (rb, carrier, centre, slide, angular) = (f64s(c.base_radius), c.carrier, c.centre, c.slide, c.angular);
                 let table = c.table.iter().map(|t| {
                     let (a, b) = (f64s(t[0]), f64s(t[1]));
                     quote!([#a, #b])
                 });
-                quote!(Some(::std::boxed::Box::new(#p::model::CamSpec { base_radius: #rb, face: #face, segments: ::std::vec::Vec::from([#(#segs),*]), table: ::std::vec::Vec::from([#(#table),*]), carrier: #carrier, centre: #centre, slide: #slide })))
+                quote!(Some(::std::boxed::Box::new(#p::model::CamSpec { base_radius: #rb, face: #face, segments: ::std::vec::Vec::from([#(#segs),*]), table: ::std::vec::Vec::from([#(#table),*]), carrier: #carrier, centre: #centre, slide: #slide, angular: #angular })))
             }
             None => quote!(None),
         };
