@@ -1,0 +1,341 @@
+//! Oscillating cam followers (rockers) against `tests/data/cam_rocker.json`
+//! (`tools/cam_rocker_reference.py`, by routes mech does not take):
+//! - the profiles of a roller rocker and a flat-faced rocker — contact points, pressure
+//!   angles and radii of curvature from sympy's symbolic derivatives of the pitch curve and
+//!   of the face lines' envelope seen from the cam, the common normal by Aronhold–Kennedy;
+//! - the spring-loaded roller rocker at constant cam speed by its own moment equation about
+//!   the pivot (mpmath): the contact force, the pressure angle, the motor torque by three
+//!   routes and at run time, and the jump speed;
+//! - a flat-faced rocker's three routes to the driver torque, and the direct problem
+//!   through a rocker (the energy of a coasting machine kept over many turns);
+//! - the rocker's mistakes refused at compile time (tests/ui).
+
+use mech::cam::{Face, Law, MotionLaw, Profile, Rocker, Segment};
+use mech::dynamics::{equation_of_motion, total_energy};
+use mech::ode::{solve, Dop853};
+use mech::prelude::*;
+use serde_json::Value;
+use std::f64::consts::TAU;
+
+mechanism! {
+    /// A cam on the ground swings a roller rocker pinned to the ground at A through 15°,
+    /// against a torsion spring (3 N·m in the drawing).
+    pub struct RockerCam {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0), A: (60 mm, 50 mm) },
+        link cam { points { O }, mass: 0.5, inertia: 2.0e-4, cg: (0.0, 0.0) },
+        link rocker {
+            points { A, P: (0.0, 38 mm) },
+            mass: 0.15, inertia: 6.0e-5, cg: (40 mm, 46 mm),
+        },
+        joints {
+            O: revolute(ground, cam),
+            A: revolute(ground, rocker),
+            lobe: cam(cam, rocker) at P base_radius 30 mm roller 8 mm
+                law [dwell 90 deg, cycloidal 90 deg rise 15 deg, dwell 60 deg, poly345 120 deg fall 15 deg],
+        },
+        input: O,
+        elements {
+            spring: torsion_spring(ground, rocker) stiffness 20 N_m_per_rad preload -3 N_m,
+        },
+    }
+}
+
+mechanism! {
+    /// A flat-faced rocker pinned at (70 mm, 45 mm), its face tangent to a 30 mm base
+    /// circle at P in the drawing, swung 10° against gravity and a torsion spring.
+    pub struct FlatRocker {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0), A: (70 mm, 45 mm) },
+        link cam { points { O }, mass: 0.5, inertia: 2.0e-4, cg: (5 mm, 0.0) },
+        link rocker {
+            points { A, P: (0.0, 30 mm) },
+            mass: 0.2, inertia: 8.0e-5, cg: (35 mm, 40 mm),
+        },
+        joints {
+            O: revolute(ground, cam),
+            A: revolute(ground, rocker),
+            lobe: cam(cam, rocker) at P base_radius 30 mm flat
+                law [dwell 90 deg, cycloidal 90 deg rise 10 deg, dwell 60 deg, poly345 120 deg fall 10 deg],
+        },
+        input: O,
+        elements {
+            spring: torsion_spring(ground, rocker) stiffness 15 N_m_per_rad preload -2 N_m,
+        },
+    }
+}
+
+fn reference() -> Value {
+    let path = format!("{}/tests/data/cam_rocker.json", env!("CARGO_MANIFEST_DIR"));
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn num(v: &Value) -> f64 {
+    match v {
+        Value::String(s) => s.parse().unwrap(),
+        _ => v.as_f64().unwrap(),
+    }
+}
+
+fn close(what: &str, got: f64, want: f64, tol: f64) {
+    assert!(
+        (got - want).abs() <= tol,
+        "{what}: {got:.15e} vs reference {want:.15e} (|diff| {:.2e})",
+        (got - want).abs()
+    );
+}
+
+/// The law of both rockers: dwell 90°, cycloidal rise 90°, dwell 60°, 3-4-5 fall 120°.
+fn law(lift: f64) -> MotionLaw {
+    let d = std::f64::consts::PI / 180.0;
+    let seg = |law, a: f64, b: f64, h0, h1| Segment {
+        law,
+        start: a * d,
+        end: b * d,
+        from: h0,
+        to: h1,
+    };
+    MotionLaw::from_segments(vec![
+        seg(Law::Dwell, 0.0, 90.0, 0.0, 0.0),
+        seg(Law::Cycloidal, 90.0, 180.0, 0.0, lift),
+        seg(Law::Dwell, 180.0, 240.0, lift, lift),
+        seg(Law::Poly345, 240.0, 360.0, lift, 0.0),
+    ])
+    .unwrap()
+}
+
+fn compare_profile(what: &str, p: &Profile, rows: &Value) {
+    for row in rows.as_array().unwrap() {
+        let th = num(&row["theta"]);
+        let at = p.at(th);
+        let c = &row["contact"];
+        let w = format!("{what} at {:.0}°", th.to_degrees());
+        close(&format!("{w}: contact x"), at.contact[0], num(&c[0]), 1e-15);
+        close(&format!("{w}: contact y"), at.contact[1], num(&c[1]), 1e-15);
+        close(
+            &format!("{w}: pressure angle"),
+            at.pressure_angle,
+            num(&row["pressure_angle"]),
+            1e-13,
+        );
+        close(
+            &format!("{w}: radius of curvature"),
+            at.curvature_radius,
+            num(&row["curvature_radius"]),
+            1e-13,
+        );
+    }
+}
+
+/// The roller rocker's profile (from the generated struct's `cams()`) and a flat-faced
+/// rocker's (a `Profile` built by hand) against sympy: contact points to 1e-15 m, pressure
+/// angles and radii of curvature to 1e-13.
+#[test]
+fn profiles_against_symbolic_geometry() {
+    let r = reference();
+    let m = RockerCam::new();
+    let p = &m.cams()[0].profile;
+    assert_eq!(
+        p.rocker,
+        Some(Rocker {
+            pivot: [0.06, 0.05],
+            sign: -1.0
+        })
+    );
+    compare_profile("roller rocker", p, &r["roller_profile"]);
+    let flat = Profile {
+        law: law(10f64.to_radians()),
+        base_radius: 0.03,
+        offset: 0.0,
+        face: Face::Flat,
+        rocker: Some(Rocker {
+            pivot: [0.07, 0.045],
+            sign: -1.0,
+        }),
+    };
+    compare_profile("flat rocker", &flat, &r["flat_profile"]);
+    // The generated flat rocker's profile is that one.
+    let fm = FlatRocker::new();
+    let g = &fm.cams()[0].profile;
+    for k in 0..72 {
+        let th = TAU * k as f64 / 72.0;
+        assert_eq!(g.at(th), flat.at(th));
+    }
+    // Both are convex and clear of undercut; the roller rocker's largest pressure angle is
+    // where the reference's largest is, within the sampling.
+    assert!(!p.check(720).undercut && !flat.check(720).undercut);
+}
+
+/// The rocker turns by σψ(θ) about its pivot (σ = −1: clockwise lifts it), its roller's
+/// centre stays on its arm's circle; the contact force over a revolution at 60 rad/s, the
+/// pressure angle it leans at, and the motor torque by d'Alembert, virtual power,
+/// Zhukovski and the run-time mechanism, against the rocker's moment equation (mpmath), to
+/// 1e-12 of their scale.
+#[test]
+fn contact_force_over_a_revolution() {
+    let r = reference();
+    let w = num(&r["speed"]);
+    let m = RockerCam::new();
+    let rt = Mechanism::from_rust_source(include_str!("cam_rockers.rs"), "RockerCam").unwrap();
+    let loads = RockerCamLoads::default();
+    let lw = law(15f64.to_radians());
+    let arm0 = (-0.012f64).atan2(-0.06);
+    for p in r["points"].as_array().unwrap() {
+        let th = num(&p["theta"]);
+        let at = format!("θ = {:.2}°", th.to_degrees());
+        let mo = m.kinematics(th, w, 0.0).unwrap();
+        let (pp, a) = (mo.points.P.pos, mo.points.A.pos);
+        close(
+            &format!("arm length at {at}"),
+            (pp - a).norm(),
+            0.06f64.hypot(0.012),
+            1e-15,
+        );
+        let [psi, psi1, ..] = lw.eval(th);
+        let turn = ((pp.y - a.y).atan2(pp.x - a.x) - arm0 + 3.0 * std::f64::consts::PI)
+            .rem_euclid(TAU)
+            - std::f64::consts::PI;
+        close(&format!("rocker's turn at {at}"), turn, -psi, 1e-14);
+        close(
+            &format!("rocker's rate at {at}"),
+            mo.links.rocker.omega,
+            -psi1 * w,
+            1e-12,
+        );
+        let f = m.kinetostatics(&mo, &loads).unwrap();
+        let c = f.joints.lobe;
+        close(
+            &format!("contact force at {at}"),
+            c.normal_force,
+            num(&p["normal_force"]),
+            1e-12 * 100.0,
+        );
+        assert!((c.force.norm() - c.normal_force.abs()).abs() < 1e-12 * 100.0);
+        // The pressure angle: from the roller centre's motion σ perp(P − A) to the force.
+        let arm = pp - a;
+        let d = Vector2::new(arm.y, -arm.x) / arm.norm();
+        let n = c.force / c.normal_force;
+        close(
+            &format!("pressure angle at {at}"),
+            (d.x * n.y - d.y * n.x).atan2(d.dot(&n)),
+            num(&p["pressure_angle"]),
+            1e-12,
+        );
+        let t = num(&p["driver"]);
+        close(&format!("d'Alembert at {at}"), f.driver, t, 1e-12 * 5.0);
+        close(
+            &format!("virtual power at {at}"),
+            m.driver_action(&mo, &loads).unwrap(),
+            t,
+            1e-12 * 5.0,
+        );
+        close(
+            &format!("Zhukovski at {at}"),
+            m.acceleration(th, w, t, &loads).unwrap(),
+            0.0,
+            1e-12 * 5.0 / m.reduced(th).unwrap().inertia,
+        );
+        let rm = rt.kinematics(&[th], &[w], &[0.0]).unwrap();
+        let rf = rt.kinetostatics(&rm, &rt.loads()).unwrap();
+        close(&format!("run-time driver at {at}"), rf.driver[0], t, 1e-12 * 5.0);
+        let (force, _) = rf.reaction("lobe").unwrap();
+        close(
+            &format!("run-time contact at {at}"),
+            force.x,
+            c.force.x,
+            1e-12 * 100.0,
+        );
+        close(
+            &format!("run-time pivot at {at}"),
+            rf.reaction("A").unwrap().0.y,
+            f.joints.A.force.y,
+            1e-12 * 100.0,
+        );
+    }
+}
+
+/// The contact force is (a + b ω²)/lever at each cam angle, so the speed where it first
+/// reaches zero on the reference's grid of 7 200 angles is min √(−a/b) over b < 0: the
+/// reference's jump speed; below it the roller stays on the cam everywhere.
+#[test]
+fn jump_speed() {
+    let r = reference();
+    let m = RockerCam::new();
+    let loads = RockerCamLoads::default();
+    let fnorm = |th: f64, w: f64| {
+        let mo = m.kinematics(th, w, 0.0).unwrap();
+        m.kinetostatics(&mo, &loads).unwrap().joints.lobe.normal_force
+    };
+    let grid: Vec<f64> = (0..7200).map(|k| TAU * k as f64 / 7200.0).collect();
+    let mut jump = f64::INFINITY;
+    for &th in &grid {
+        let (a, b) = (fnorm(th, 0.0), fnorm(th, 1.0) - fnorm(th, 0.0));
+        if b < 0.0 {
+            jump = jump.min((-a / b).sqrt());
+        }
+    }
+    close("jump speed", jump, num(&r["jump_speed"]), 1e-10 * jump);
+    assert!(grid.iter().all(|&th| fnorm(th, 0.99 * jump) > 0.0));
+    assert!(grid.iter().any(|&th| fnorm(th, 1.01 * jump) < 0.0));
+}
+
+/// A flat-faced rocker: the driver torque by d'Alembert (through the contact point and
+/// normal of the face's envelope) equals virtual power's and Zhukovski's (which never see
+/// the contact), at 72 angles, accelerating.
+#[test]
+fn flat_rocker_three_routes() {
+    let m = FlatRocker::new();
+    let loads = FlatRockerLoads::default();
+    for k in 0..72 {
+        let th = TAU * k as f64 / 72.0 + 0.02;
+        let mo = m.kinematics(th, 80.0, 300.0).unwrap();
+        let f = m.kinetostatics(&mo, &loads).unwrap();
+        assert!(f.joints.lobe.normal_force > 0.0, "contact lost at {th}");
+        let scale = 1e-12 * 5.0;
+        close(
+            "virtual power",
+            m.driver_action(&mo, &loads).unwrap(),
+            f.driver,
+            scale,
+        );
+        close(
+            "Zhukovski",
+            m.acceleration(th, 80.0, f.driver, &loads).unwrap(),
+            300.0,
+            scale / m.reduced(th).unwrap().inertia,
+        );
+    }
+}
+
+/// The direct problem through a rocker: the roller rocker coasting with no motor torque
+/// from 150 rad/s (DOP853, rtol = atol = 1e-11) over about 20 cam turns keeps its energy (the cam's and the
+/// rocker's kinetic energy, the torsion spring's and gravity's potential) within 1e-8 of it,
+/// while the cam's speed swings as the spring gives back what the lift took.
+#[test]
+fn coasting_rocker_keeps_its_energy() {
+    let m = RockerCam::new();
+    let (q0, w0) = (0.0, 150.0);
+    let e0 = total_energy(&m, &[q0], &[w0]).unwrap();
+    let (mut worst, mut slowest, mut turns) = (0.0f64, f64::INFINITY, 0.0);
+    let mut obs = |d: &mech::ode::Dop853Dense<2>| {
+        use mech::ode::Dense;
+        let y = d.y_end();
+        worst = worst.max((total_energy(&m, &[y[0]], &[y[1]]).unwrap() - e0).abs());
+        slowest = slowest.min(y[1]);
+        turns = y[0] / TAU;
+    };
+    solve(
+        &mut Dop853::new(1e-11, 1e-11),
+        equation_of_motion(&m, |_, _, _| (0.0, RockerCamLoads::default())),
+        0.0,
+        [q0, w0],
+        20.0 * TAU / w0,
+        None,
+        Some(&mut obs),
+    )
+    .unwrap();
+    eprintln!("coasting rocker: {turns:.2} turns, max |ΔE| = {worst:.2e} J of {e0:.5} J, slowest {slowest:.3} rad/s");
+    assert!(turns > 15.0, "{turns}");
+    assert!(slowest < 0.99 * w0, "the lift should slow the cam: {slowest}");
+    assert!(worst <= 1e-8 * e0, "energy drift {worst:e} J");
+}
