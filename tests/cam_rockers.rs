@@ -339,3 +339,31 @@ fn coasting_rocker_keeps_its_energy() {
     assert!(slowest < 0.99 * w0, "the lift should slow the cam: {slowest}");
     assert!(worst <= 1e-8 * e0, "energy drift {worst:e} J");
 }
+
+#[path = "common/counting.rs"]
+mod counting;
+
+#[global_allocator]
+static ALLOC: counting::Counting = counting::Counting;
+
+/// Every generated solver of the two rockers allocates nothing (a counting allocator).
+#[test]
+fn generated_rocker_solvers_are_allocation_free() {
+    let (m, f) = (RockerCam::new(), FlatRocker::new());
+    let (lm, lf) = (RockerCamLoads::default(), FlatRockerLoads::default());
+    let before = counting::count();
+    let mut sink = 0.0;
+    for k in 0..100 {
+        let q = 0.063 * k as f64;
+        let mo = m.kinematics(q, 50.0, 10.0).unwrap();
+        sink += m.kinetostatics(&mo, &lm).unwrap().joints.lobe.normal_force;
+        sink += m.driver_action(&mo, &lm).unwrap();
+        sink += m.reduced_moment(q, &lm).unwrap();
+        sink += m.acceleration(q, 50.0, 1.0, &lm).unwrap();
+        let mo = f.kinematics(q, 50.0, 10.0).unwrap();
+        sink += f.kinetostatics(&mo, &lf).unwrap().driver;
+        sink += f.acceleration(q, 50.0, 1.0, &lf).unwrap();
+    }
+    assert_eq!(counting::count() - before, 0, "allocations");
+    assert!(sink.is_finite());
+}
