@@ -367,3 +367,25 @@ fn generated_rocker_solvers_are_allocation_free() {
     assert_eq!(counting::count() - before, 0, "allocations");
     assert!(sink.is_finite());
 }
+
+/// `examples/mech/rocker_cam.mech` is the machine of these tests: loaded at run time, its
+/// driver torque and contact force equal the generated struct's.
+#[test]
+fn the_mech_file_is_this_machine() {
+    let file = Mechanism::load(format!(
+        "{}/examples/mech/rocker_cam.mech",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let m = RockerCam::new();
+    for k in 0..24 {
+        let th = TAU * k as f64 / 24.0 + 0.1;
+        let fm = file.kinematics(&[th], &[60.0], &[5.0]).unwrap();
+        let ff = file.kinetostatics(&fm, &file.loads()).unwrap();
+        let gm = m.kinematics(th, 60.0, 5.0).unwrap();
+        let gf = m.kinetostatics(&gm, &RockerCamLoads::default()).unwrap();
+        close("driver", ff.driver[0], gf.driver, 1e-12 * 5.0);
+        let (force, _) = ff.reaction("lobe").unwrap();
+        close("contact", force.y, gf.joints.lobe.force.y, 1e-12 * 100.0);
+    }
+}
