@@ -245,6 +245,14 @@ pub fn point_of(s: &[LinkState], l: usize, d: V2) -> V2 {
     }
 }
 
+/// The zero vector written as (−0, −0): the identity of IEEE addition (−0 + x = x and
+/// −0 − x = −x for every x, where +0 + x is not x when x = −0), so that a term known to be
+/// zero (the ground's velocity, a sum's start) costs nothing once the compiler sees it.
+#[inline(always)]
+pub fn zero() -> V2 {
+    V2::new(-0.0, -0.0)
+}
+
 /// The current direction of the local vector `d` of link `l` (unrotated on the ground).
 #[inline(always)]
 pub fn dir_of(s: &[LinkState], l: usize, d: V2) -> V2 {

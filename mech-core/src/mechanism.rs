@@ -894,7 +894,7 @@ impl Mechanism {
         qd: f64,
         inertia: bool,
     ) -> Result<Reduction, MechError> {
-        let mut z = Reduction::default();
+        let mut z = Reduction::new();
         for (l, t) in self.terms.iter().enumerate().skip(1) {
             let geom = &self.inst.links[l];
             if inertia && t.inertia() {

@@ -34,15 +34,16 @@
 use crate::constraints::{JointGeom, Level};
 use crate::kinetostatics::{Reaction, Wrench};
 use crate::linalg::Inverse2;
-use crate::link_state::{cross, dir_of, perp, LinkState, V2};
+use crate::link_state::{cross, dir_of, perp, zero, LinkState, V2};
 use crate::MechError;
 
 /// The velocity and acceleration (m/s, m/s²) of the material point of link `l` now at
-/// `p`; zero on the ground (link 0), whose state is not read.
+/// `p`; zero on the ground (link 0), whose state is not read (as [`zero`], which the
+/// compiler drops from the sums it enters).
 #[inline(always)]
 fn point_rates(s: &[LinkState], l: usize, p: V2) -> (V2, V2) {
     if l == 0 {
-        (V2::zeros(), V2::zeros())
+        (zero(), zero())
     } else {
         let r = p - s[l].pos;
         (s[l].vel_at(r), s[l].acc_at(r))
@@ -145,7 +146,7 @@ pub fn rrp_rates(
     }
     if upto == Level::Acceleration {
         let coriolis = if lg == 0 {
-            V2::zeros()
+            zero()
         } else {
             perp(u) * (2.0 * wg * sd)
         };

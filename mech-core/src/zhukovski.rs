@@ -71,6 +71,18 @@ pub struct Reduction {
 }
 
 impl Reduction {
+    /// Empty sums, started at −0 (the identity of IEEE addition: the first term is taken
+    /// as it is, and the compiler drops the addition).
+    #[inline(always)]
+    pub fn new() -> Self {
+        Reduction {
+            reduced: Reduced {
+                inertia: -0.0,
+                inertia_derivative: -0.0,
+            },
+            moment: -0.0,
+        }
+    }
     /// Add a link's inertia to I* and dI*/dq (needs the accelerations of the motion).
     #[inline(always)]
     pub fn inertia(&mut self, l: &LinkGeom, s: &LinkState) {

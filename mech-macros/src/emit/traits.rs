@@ -172,7 +172,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
             #p::error::check_finite("q", &[q])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
-            let mut z = #p::zhukovski::Reduction::default();
+            let mut z = #p::zhukovski::Reduction::new();
             #inertia
             #p::magnitudes::finite_result("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
             Ok(z.reduced)
@@ -184,7 +184,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             #p::error::check_finite("q", &[q])?;
             #p::error::check_finite("loads", &[#values])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity, false)?;
-            let mut z = #p::zhukovski::Reduction::default();
+            let mut z = #p::zhukovski::Reduction::new();
             #moment
             #elements_at_rest
             #p::magnitudes::finite_result("reduced moment", &[z.moment])?;
@@ -198,7 +198,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             #p::error::check_finite("q, qd, driver", &[q, qd, driver])?;
             #p::error::check_finite("loads", &[#values])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
-            let mut z = #p::zhukovski::Reduction::default();
+            let mut z = #p::zhukovski::Reduction::new();
             #inertia
             #moment
             #elements_moving
