@@ -6,7 +6,8 @@
 //! - the spring-loaded roller rocker at constant cam speed by its own moment equation about
 //!   the pivot (mpmath): the contact force, the pressure angle, the motor torque by three
 //!   routes and at run time, and the jump speed;
-//! - a flat-faced rocker's three routes to the driver torque, and the direct problem
+//! - a flat-faced rocker's three routes to the driver torque, a rocker whose law is a
+//!   table of angles, and the direct problem
 //!   through a rocker (the energy of a coasting machine kept over many turns);
 //! - the rocker's mistakes refused at compile time (tests/ui).
 
@@ -387,5 +388,66 @@ fn the_mech_file_is_this_machine() {
         close("driver", ff.driver[0], gf.driver, 1e-12 * 5.0);
         let (force, _) = ff.reaction("lobe").unwrap();
         close("contact", force.y, gf.joints.lobe.force.y, 1e-12 * 100.0);
+    }
+}
+
+mechanism! {
+    /// The roller rocker driven by a cam given as a table of swings every 30° (angles).
+    pub struct TableRocker {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0), A: (60 mm, 50 mm) },
+        link cam { points { O }, mass: 0.5, inertia: 2.0e-4, cg: (0.0, 0.0) },
+        link rocker {
+            points { A, P: (0.0, 38 mm) },
+            mass: 0.15, inertia: 6.0e-5, cg: (40 mm, 46 mm),
+        },
+        joints {
+            O: revolute(ground, cam),
+            A: revolute(ground, rocker),
+            lobe: cam(cam, rocker) at P base_radius 30 mm roller 8 mm
+                table [(0 deg, 0 deg), (30 deg, 1 deg), (60 deg, 3.75 deg), (90 deg, 7.5 deg),
+                       (120 deg, 11.25 deg), (150 deg, 14 deg), (180 deg, 15 deg),
+                       (210 deg, 14 deg), (240 deg, 11.25 deg), (270 deg, 7.5 deg),
+                       (300 deg, 3.75 deg), (330 deg, 1 deg)],
+        },
+        input: O,
+        elements {
+            spring: torsion_spring(ground, rocker) stiffness 20 N_m_per_rad preload -3 N_m,
+        },
+    }
+}
+
+/// A rocker's law given as a table of angles: the rocker turns by minus the periodic
+/// spline through the points (built apart with `mech::cam::Spline`) to 1e-14 rad, and the
+/// driver torque agrees by d'Alembert, virtual power and Zhukovski.
+#[test]
+fn table_rocker() {
+    let m = TableRocker::new();
+    let th: Vec<f64> = (0..12).map(|k| (30.0 * k as f64).to_radians()).collect();
+    let psi: Vec<f64> = [
+        0.0, 1.0, 3.75, 7.5, 11.25, 14.0, 15.0, 14.0, 11.25, 7.5, 3.75, 1.0,
+    ]
+    .iter()
+    .map(|x: &f64| x.to_radians())
+    .collect();
+    let spline = mech::cam::Spline::periodic(&th, &psi).unwrap();
+    let arm0 = (-0.012f64).atan2(-0.06);
+    let l = TableRockerLoads::default();
+    for k in 0..36 {
+        let q = TAU * k as f64 / 36.0 + 0.05;
+        let mo = m.kinematics(q, 40.0, 0.0).unwrap();
+        let (pp, a) = (mo.points.P.pos, mo.points.A.pos);
+        let turn = ((pp.y - a.y).atan2(pp.x - a.x) - arm0 + 3.0 * std::f64::consts::PI)
+            .rem_euclid(TAU)
+            - std::f64::consts::PI;
+        close("table rocker's turn", turn, -spline.eval(q)[0], 1e-14);
+        let d = m.kinetostatics(&mo, &l).unwrap().driver;
+        close("virtual power", m.driver_action(&mo, &l).unwrap(), d, 1e-12 * 5.0);
+        close(
+            "Zhukovski",
+            m.acceleration(q, 40.0, d, &l).unwrap(),
+            0.0,
+            1e-12 * 5.0 / m.reduced(q).unwrap().inertia,
+        );
     }
 }
