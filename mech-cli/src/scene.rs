@@ -12,7 +12,7 @@
 //!   with it;
 //! - a spring: a zigzag between its points; a damper: a line between them;
 //! - a rolling wheel: its circle with a spoke, and the track under it;
-//! - a cam: its profile, turning with it;
+//! - a cam: its profile, turning with it, and a roller follower's roller;
 //! - every point: its name.
 
 use crate::Failure;
@@ -116,6 +116,20 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
                     name: j.name.clone(),
                     points,
                 });
+                // A roller: its circle about the pitch point, on the cam's surface.
+                if let mech_core::cam::Face::Roller(r) = g.profile.face {
+                    let p = at(j.point);
+                    shapes.push(Shape {
+                        role: Role::Gear,
+                        name: j.name.clone(),
+                        points: (0..48)
+                            .map(|i| {
+                                let t = std::f64::consts::TAU * i as f64 / 48.0;
+                                p + V2::new(t.cos(), t.sin()) * r
+                            })
+                            .collect(),
+                    });
+                }
             }
             continue;
         }

@@ -277,3 +277,73 @@ fn bad_arguments_are_errors_not_panics() {
         );
     }
 }
+
+/// `mech draw` of a rocker cam: the cam's profile (turned with the cam) and the roller
+/// (its circle about the pitch point P, radius 8 mm) touch — the profile's nearest point is
+/// one roller radius from P, to the profile's sampling (180 points) — and the roller's
+/// centre is where the solver puts P, read through the view the pins O and A fix.
+#[test]
+fn draw_puts_the_roller_on_the_cam() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rocker.svg");
+    let file = root().join("examples/mech/rocker_cam.mech");
+    for at in ["20deg", "135deg", "300deg"] {
+        mech()
+            .arg("draw")
+            .arg(&file)
+            .args(["--at", at, "-o"])
+            .arg(&out)
+            .assert()
+            .success();
+        let text = std::fs::read_to_string(&out).unwrap();
+        let doc = roxmltree::Document::parse(&text).unwrap();
+        let shapes: Vec<Vec<(f64, f64)>> = doc
+            .descendants()
+            .filter(|n| n.attribute("data-name") == Some("lobe") && n.has_attribute("points"))
+            .map(|n| {
+                n.attribute("points")
+                    .unwrap()
+                    .split(' ')
+                    .map(|xy| {
+                        let (x, y) = xy.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect()
+            })
+            .collect();
+        assert_eq!(shapes.len(), 2, "the profile and the roller at {at}");
+        let (profile, roller) = (&shapes[0], &shapes[1]);
+        let n = roller.len() as f64;
+        let c = (
+            roller.iter().map(|p| p.0).sum::<f64>() / n,
+            roller.iter().map(|p| p.1).sum::<f64>() / n,
+        );
+        let r = roller.iter().map(|p| (p.0 - c.0).hypot(p.1 - c.1)).sum::<f64>() / n;
+        let gap = profile
+            .iter()
+            .map(|p| (p.0 - c.0).hypot(p.1 - c.1))
+            .fold(f64::INFINITY, f64::min);
+        // 180 points around a ~40 mm cam are ~1.4 mm apart: the nearest is within
+        // (1.4/2)²/(2·8) mm ≈ 0.03 mm of the circle, 1 % of r here.
+        assert!((gap - r).abs() < 0.01 * r, "at {at}: gap {gap} against roller {r}");
+        // The view from the pins O and A; P where the solver puts it.
+        let p = pins(&doc);
+        let m = Mechanism::from_dsl(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        let deg: f64 = at.trim_end_matches("deg").parse().unwrap();
+        let pose = m.pose(&[deg.to_radians()]).unwrap();
+        let model = m.model();
+        let world = |point: &str| pose.points[model.point_index(point).unwrap()].pos;
+        let pin = |name: &str| p.iter().find(|x| x.0 == name).unwrap();
+        let (o, a) = (pin("O"), pin("A"));
+        let k = (a.1 - o.1).hypot(a.2 - o.2) / (world("A") - world("O")).norm();
+        let wp = world("P") - world("O");
+        let (x, y) = (o.1 + wp.x * k, o.2 - wp.y * k);
+        assert!(
+            (x - c.0).abs() < 0.01 && (y - c.1).abs() < 0.01,
+            "at {at}: roller centre ({}, {}) against P ({x}, {y})",
+            c.0,
+            c.1
+        );
+        assert!((r - 0.008 * k).abs() < 0.01, "roller radius {r} against {}", 0.008 * k);
+    }
+}
