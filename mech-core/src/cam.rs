@@ -852,7 +852,7 @@ pub fn cam_reactions(
         let nu = nw.dot(&u);
         (-ff.dot(&u) / nu, nu)
     };
-    if !(lever.abs() >= 1e-12) {
+    if !(lever.abs() >= 1e-12 && fnorm.is_finite()) {
         return Err(MechError::Singular {
             condition: f64::INFINITY,
         });
