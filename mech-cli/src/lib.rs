@@ -1,6 +1,6 @@
 //! The `mech` command-line tool (`docs/cli.md`): a mechanism file (`*.mech`, the body of a
 //! `mechanism!` invocation) checked, solved, swept, sized for a flywheel, simulated,
-//! drawn, animated, reported and imported, from a terminal.
+//! drawn, animated, reported and imported, and a cam's profile exported, from a terminal.
 //!
 //! Each subcommand is a module; they share the reading of a file ([`source`]), numbers
 //! with unit words ([`quantity`]), loads given as constants or tables ([`loads`]), the
@@ -11,6 +11,7 @@
 // Limits are tested as `!(x > limit)` on purpose: true for a NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod cam;
 pub mod check;
 pub mod columns;
 pub mod draw;

@@ -6,7 +6,9 @@ use clap::{Parser, Subcommand};
 use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
-use mech_cli::{check, draw, flywheel, import, quantity, report, simulate, solve, source, Failure};
+use mech_cli::{
+    cam, check, draw, flywheel, import, quantity, report, simulate, solve, source, Failure,
+};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -101,6 +103,9 @@ enum Command {
     /// One self-contained HTML page: the animated linkage, a slider for the input, and
     /// plots over the cycle.
     Report(report::ReportArgs),
+    /// A cam's profile over a turn: lift, pitch and contact points (the cam's frame),
+    /// pressure angle, radius of curvature; the design figures; the surface as SVG.
+    Cam(cam::CamArgs),
     /// A mechanism from pyslvs's PMKS expression (`M[J[R, P[x, y], L[ground, L1]], ...]`)
     /// written as a `.mech` file.
     Import(import::ImportArgs),
@@ -194,5 +199,6 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Animate(args) => draw::animate(args),
         Command::Report(args) => report::run(args),
         Command::Import(args) => import::run(args),
+        Command::Cam(args) => cam::run(args, stdout),
     }
 }

@@ -603,3 +603,70 @@ fn the_engine_flywheel_from_files() {
         1e-6,
     );
 }
+
+/// `mech cam` on the rocker of `examples/mech/rocker_cam.mech` (base circle 30 mm, roller
+/// 8 mm, 15° cycloidal rise over 90°–180°): every contact point is one roller radius from
+/// its pitch point; in the first dwell the contact is on the base circle and the pitch
+/// point on the prime circle; over the rise the lift is the cycloidal law's closed form
+/// written here; the largest pressure angle reported on standard error is the column's;
+/// `--svg` writes a closed path through `--points` points; a file without a cam and an
+/// unknown name are usage errors.
+#[test]
+fn cam_exports_the_profile() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/mech/rocker_cam.mech");
+    let svg = dir.path().join("cam.svg");
+    let out = mech()
+        .args(["cam", "--points", "72", "--format", "csv", "--svg"])
+        .arg(&svg)
+        .arg(&file)
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    let (head, rows) = csv(&out.stdout);
+    let col = |n: &str| head.iter().position(|h| h == n).unwrap();
+    assert_eq!(rows.len(), 72);
+    let (lift, px, py, cx, cy, phi) = (
+        col("lift"),
+        col("pitch_x"),
+        col("pitch_y"),
+        col("contact_x"),
+        col("contact_y"),
+        col("pressure_angle"),
+    );
+    let mut largest = 0.0f64;
+    for r in &rows {
+        let th = r[col("theta")];
+        close("roller", (r[px] - r[cx]).hypot(r[py] - r[cy]), 0.008, 1e-12);
+        if th < std::f64::consts::FRAC_PI_2 {
+            close("base circle", r[cx].hypot(r[cy]), 0.030, 1e-12);
+            close("prime circle", r[px].hypot(r[py]), 0.038, 1e-12);
+        }
+        if th > std::f64::consts::FRAC_PI_2 && th < std::f64::consts::PI {
+            let x = (th - std::f64::consts::FRAC_PI_2) / std::f64::consts::FRAC_PI_2;
+            let want = 15f64.to_radians() * (x - (std::f64::consts::TAU * x).sin() / std::f64::consts::TAU);
+            close("cycloidal lift", r[lift], want, 1e-14);
+        }
+        largest = largest.max(r[phi].abs());
+    }
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains(&format!("largest pressure angle {:.2}°", largest.to_degrees())),
+        "{err}"
+    );
+    assert!(err.contains("not undercut"), "{err}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let d = text.split("d=\"").nth(1).unwrap().split('"').next().unwrap();
+    assert_eq!(d.matches('L').count() + 1, 72);
+    assert!(d.starts_with('M') && d.ends_with('Z'));
+    let engine = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/mech/engine.mech");
+    let e = mech().arg("cam").arg(&engine).assert().code(2);
+    assert!(String::from_utf8_lossy(&e.get_output().stderr).contains("has no cam"));
+    let e = mech()
+        .args(["cam", "--name", "nope"])
+        .arg(&file)
+        .assert()
+        .code(2);
+    assert!(String::from_utf8_lossy(&e.get_output().stderr).contains("its cams: `lobe`"));
+}

@@ -772,7 +772,7 @@ fn cam_segments(
                 .iter()
                 .position(|(g, _)| (g.start - j.at).abs() < 1e-9)
                 .unwrap_or(0);
-            let (scale, unit) = if kind.map_or(false, |k| k.0) {
+            let (scale, unit) = if kind.is_some_and(|k| k.0) {
                 (180.0 / std::f64::consts::PI, "°/rad")
             } else {
                 (1e3, " mm/rad")

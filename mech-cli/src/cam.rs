@@ -1,0 +1,156 @@
+//! `mech cam FILE [--name lobe] [--points 360] [--svg profile.svg]`: a cam's profile for
+//! drawing and manufacturing (`mech_core::cam::Profile`, `docs/conventions.md#cams`): one
+//! row per cam angle θ over a turn with the law's lift and its derivatives, the pitch and
+//! contact points in the cam's own frame, the pressure angle and the cam surface's radius
+//! of curvature; then, on standard error, the design figures (the largest pressure angle,
+//! the smallest convex radius, undercut). `--svg` writes the cam surface as a closed path.
+
+use crate::output::{Format, Writer};
+use crate::{source, Failure};
+use mech_core::cam::CamGeom;
+use mech_core::model::JointKind;
+use std::io::Write;
+use std::path::PathBuf;
+
+/// `mech cam` arguments.
+#[derive(clap::Args, Debug)]
+pub struct CamArgs {
+    /// The mechanism file (`-` = standard input).
+    pub file: PathBuf,
+    /// The cam joint (omitted: the mechanism's only cam).
+    #[arg(long)]
+    pub name: Option<String>,
+    /// Cam angles over the turn, evenly from θ = 0.
+    #[arg(long, default_value_t = 360)]
+    pub points: usize,
+    /// Write the cam surface (contact points, mm, y up) as an SVG path to this file.
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+}
+
+/// The cam joint `name` of the mechanism (or its only one) and its geometry.
+fn cam_of(m: &mech_core::Mechanism, name: Option<&str>) -> Result<(String, CamGeom), Failure> {
+    let model = m.model();
+    let cams: Vec<_> = model
+        .joints
+        .iter()
+        .filter(|j| j.kind == JointKind::Cam)
+        .collect();
+    let names = || {
+        cams.iter()
+            .map(|j| format!("`{}`", j.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let joint = match name {
+        Some(n) => cams.iter().find(|j| j.name == n).ok_or_else(|| {
+            Failure::usage(if cams.is_empty() {
+                format!("--name {n}: the mechanism has no cam")
+            } else {
+                format!("--name {n}: no cam of that name; its cams: {}", names())
+            })
+        })?,
+        None => match cams.as_slice() {
+            [one] => one,
+            [] => return Err(Failure::usage("the mechanism has no cam (a `cam(..)` joint)")),
+            _ => {
+                return Err(Failure::usage(format!(
+                    "the mechanism has several cams ({}): choose one with --name",
+                    names()
+                )))
+            }
+        },
+    };
+    let g = mech_core::geometry::cam_geom(model, joint)
+        .ok_or_else(|| Failure::mechanism(format!("cam `{}` has no profile", joint.name)))?;
+    Ok((joint.name.clone(), g))
+}
+
+/// The columns: name and unit (the lift's unit depends on the follower).
+fn columns(rocker: bool) -> Vec<(&'static str, &'static str)> {
+    let (s, s1, s2) = if rocker {
+        ("rad", "rad/rad", "rad/rad²")
+    } else {
+        ("m", "m/rad", "m/rad²")
+    };
+    vec![
+        ("theta", "rad"),
+        ("lift", s),
+        ("lift_velocity", s1),
+        ("lift_acceleration", s2),
+        ("pitch_x", "m"),
+        ("pitch_y", "m"),
+        ("contact_x", "m"),
+        ("contact_y", "m"),
+        ("pressure_angle", "rad"),
+        ("curvature_radius", "m"),
+    ]
+}
+
+/// Run `mech cam`.
+pub fn run(args: CamArgs, out: impl Write) -> Result<(), Failure> {
+    if args.points < 3 {
+        return Err(Failure::usage(format!(
+            "--points {}: a profile needs at least 3 points",
+            args.points
+        )));
+    }
+    let m = source::load(&args.file)?;
+    let (name, g) = cam_of(&m, args.name.as_deref())?;
+    let p = &g.profile;
+    let cols = columns(p.rocker.is_some());
+    let names: Vec<String> = cols.iter().map(|c| c.0.to_string()).collect();
+    let units: Vec<&str> = cols.iter().map(|c| c.1).collect();
+    let mut w = Writer::new(out, args.format, &names, &units)?;
+    for pt in p.points(args.points) {
+        let [s, s1, s2, _] = p.law.eval(pt.theta);
+        w.row(&[
+            pt.theta,
+            s,
+            s1,
+            s2,
+            pt.pitch[0],
+            pt.pitch[1],
+            pt.contact[0],
+            pt.contact[1],
+            pt.pressure_angle,
+            pt.curvature_radius,
+        ])?;
+    }
+    w.finish()?;
+    let c = p.check(args.points);
+    eprintln!(
+        "cam `{name}`: largest pressure angle {:.2}° at θ = {:.1}°; smallest convex radius of the surface {:.3} mm at θ = {:.1}°; {}",
+        c.max_pressure_angle.0.to_degrees(),
+        c.max_pressure_angle.1.to_degrees(),
+        c.min_convex_radius.0 * 1e3,
+        c.min_convex_radius.1.to_degrees(),
+        if c.undercut { "UNDERCUT (a cusp)" } else { "not undercut" }
+    );
+    if let Some(path) = &args.svg {
+        let r = p
+            .points(args.points)
+            .iter()
+            .map(|q| q.contact[0].hypot(q.contact[1]))
+            .fold(0.0f64, f64::max)
+            * 1e3
+            * 1.1;
+        let svg = format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{:.3} {:.3} {:.3} {:.3}\" width=\"400\" height=\"400\">\n<!-- cam `{name}`: its surface in its own frame, mm (y up); the centre at the origin -->\n<path d=\"{}\" fill=\"#dde6f0\" stroke=\"#3b6ea8\" stroke-width=\"{:.3}\"/>\n<circle cx=\"0\" cy=\"0\" r=\"{:.3}\" fill=\"#3b6ea8\"/>\n</svg>\n",
+            -r,
+            -r,
+            2.0 * r,
+            2.0 * r,
+            p.svg_path(args.points),
+            r / 200.0,
+            r / 60.0
+        );
+        std::fs::write(path, svg)
+            .map_err(|e| Failure::usage(format!("cannot write {}: {e}", path.display())))?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
