@@ -7,8 +7,7 @@
 
 use crate::output::{Format, Writer};
 use crate::{source, Failure};
-use mech_core::cam::CamGeom;
-use mech_core::model::JointKind;
+use mech_core::cam::{CamGeom, Profile};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -33,20 +32,15 @@ pub struct CamArgs {
 
 /// The cam joint `name` of the mechanism (or its only one) and its geometry.
 fn cam_of(m: &mech_core::Mechanism, name: Option<&str>) -> Result<(String, CamGeom), Failure> {
-    let model = m.model();
-    let cams: Vec<_> = model
-        .joints
-        .iter()
-        .filter(|j| j.kind == JointKind::Cam)
-        .collect();
+    let cams = m.cams();
     let names = || {
         cams.iter()
-            .map(|j| format!("`{}`", j.name))
+            .map(|(n, _)| format!("`{n}`"))
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let joint = match name {
-        Some(n) => cams.iter().find(|j| j.name == n).ok_or_else(|| {
+    let (n, g) = match name {
+        Some(n) => cams.iter().find(|(c, _)| *c == n).ok_or_else(|| {
             Failure::usage(if cams.is_empty() {
                 format!("--name {n}: the mechanism has no cam")
             } else {
@@ -64,30 +58,17 @@ fn cam_of(m: &mech_core::Mechanism, name: Option<&str>) -> Result<(String, CamGe
             }
         },
     };
-    let g = mech_core::geometry::cam_geom(model, joint)
-        .ok_or_else(|| Failure::mechanism(format!("cam `{}` has no profile", joint.name)))?;
-    Ok((joint.name.clone(), g))
+    Ok((n.to_string(), (*g).clone()))
 }
 
-/// The columns: name and unit (the lift's unit depends on the follower).
-fn columns(rocker: bool) -> Vec<(&'static str, &'static str)> {
+/// The units of [`Profile::COLUMNS`] (the lift's depend on the follower).
+fn units(rocker: bool) -> [&'static str; 10] {
     let (s, s1, s2) = if rocker {
         ("rad", "rad/rad", "rad/rad²")
     } else {
         ("m", "m/rad", "m/rad²")
     };
-    vec![
-        ("theta", "rad"),
-        ("lift", s),
-        ("lift_velocity", s1),
-        ("lift_acceleration", s2),
-        ("pitch_x", "m"),
-        ("pitch_y", "m"),
-        ("contact_x", "m"),
-        ("contact_y", "m"),
-        ("pressure_angle", "rad"),
-        ("curvature_radius", "m"),
-    ]
+    ["rad", s, s1, s2, "m", "m", "m", "m", "rad", "m"]
 }
 
 /// Run `mech cam`.
@@ -101,24 +82,10 @@ pub fn run(args: CamArgs, out: impl Write) -> Result<(), Failure> {
     let m = source::load(&args.file)?;
     let (name, g) = cam_of(&m, args.name.as_deref())?;
     let p = &g.profile;
-    let cols = columns(p.rocker.is_some());
-    let names: Vec<String> = cols.iter().map(|c| c.0.to_string()).collect();
-    let units: Vec<&str> = cols.iter().map(|c| c.1).collect();
-    let mut w = Writer::new(out, args.format, &names, &units)?;
-    for pt in p.points(args.points) {
-        let [s, s1, s2, _] = p.law.eval(pt.theta);
-        w.row(&[
-            pt.theta,
-            s,
-            s1,
-            s2,
-            pt.pitch[0],
-            pt.pitch[1],
-            pt.contact[0],
-            pt.contact[1],
-            pt.pressure_angle,
-            pt.curvature_radius,
-        ])?;
+    let names: Vec<String> = Profile::COLUMNS.iter().map(|c| c.to_string()).collect();
+    let mut w = Writer::new(out, args.format, &names, &units(p.rocker.is_some()))?;
+    for k in 0..args.points {
+        w.row(&p.row(std::f64::consts::TAU * k as f64 / args.points as f64))?;
     }
     w.finish()?;
     let c = p.check(args.points);

@@ -649,6 +649,41 @@ impl Profile {
         out
     }
 
+    /// The names of [`Profile::row`]'s columns (SI: rad, m; the lift and its derivatives
+    /// per radian of cam angle, in m or, for a rocker, rad).
+    pub const COLUMNS: [&'static str; 10] = [
+        "theta",
+        "lift",
+        "lift_velocity",
+        "lift_acceleration",
+        "pitch_x",
+        "pitch_y",
+        "contact_x",
+        "contact_y",
+        "pressure_angle",
+        "curvature_radius",
+    ];
+
+    /// One row of the profile's table at cam angle θ ([`Profile::COLUMNS`]): θ, the law's
+    /// s, s′, s″, the pitch and contact points in the cam's frame, the pressure angle and
+    /// the surface's radius of curvature.
+    pub fn row(&self, theta: f64) -> [f64; 10] {
+        let p = self.at(theta);
+        let [s, s1, s2, _] = self.law.eval(theta);
+        [
+            theta,
+            s,
+            s1,
+            s2,
+            p.pitch[0],
+            p.pitch[1],
+            p.contact[0],
+            p.contact[1],
+            p.pressure_angle,
+            p.curvature_radius,
+        ]
+    }
+
     /// The cam surface as CSV, one contact point per row: `theta_deg,x_m,y_m`
     /// (the cam's frame), `n` points over the revolution.
     pub fn to_csv(&self, n: usize) -> String {

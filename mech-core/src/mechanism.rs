@@ -362,6 +362,19 @@ impl Mechanism {
         &self.model
     }
 
+    /// The cams, in joint order: each cam joint's name and geometry (its
+    /// [`crate::cam::Profile`]: law, base circle, follower, face), as the generated
+    /// struct's `cams()`.
+    pub fn cams(&self) -> Vec<(&str, &crate::cam::CamGeom)> {
+        self.model
+            .joints
+            .iter()
+            .filter(|j| j.kind == crate::model::JointKind::Cam)
+            .map(|j| j.name.as_str())
+            .zip(&self.inst.cams)
+            .collect()
+    }
+
     /// G, the number of inputs.
     pub fn dof(&self) -> usize {
         self.model.inputs.len()

@@ -527,6 +527,64 @@ impl PyMechanism {
         run().map_err(|e| py_err(py, e))
     }
 
+    /// A cam's profile at `points` cam angles over a turn (`mech::cam::Profile::row`):
+    /// (the cam's name, the column names, the rows (points, 10), and the design figures:
+    /// the largest pressure angle and where, the smallest convex radius and where, rad and
+    /// m, and undercut). `name` None: the mechanism's only cam.
+    #[allow(clippy::type_complexity)]
+    #[pyo3(signature = (name, points))]
+    fn cam_profile<'py>(
+        &self,
+        py: Python<'py>,
+        name: Option<String>,
+        points: usize,
+    ) -> PyResult<(
+        String,
+        Vec<String>,
+        Bound<'py, PyArray2<f64>>,
+        (f64, f64, f64, f64, bool),
+    )> {
+        let cams = self.inner.cams();
+        let list = || cams.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ");
+        let found = match &name {
+            Some(n) => cams.iter().find(|(c, _)| c == n),
+            None if cams.len() == 1 => cams.first(),
+            None => None,
+        };
+        let Some((cam, g)) = found else {
+            return Err(InvalidInput::new_err(match (&name, cams.len()) {
+                (_, 0) => "the mechanism has no cam".to_string(),
+                (Some(n), _) => format!("no cam `{n}`; its cams: {}", list()),
+                (None, _) => format!("the mechanism has several cams ({}): give a name", list()),
+            }));
+        };
+        if points < 3 {
+            return Err(InvalidInput::new_err(format!(
+                "points = {points}: a profile needs at least 3"
+            )));
+        }
+        let p = &g.profile;
+        let rows: Vec<Vec<f64>> = (0..points)
+            .map(|k| p.row(std::f64::consts::TAU * k as f64 / points as f64).to_vec())
+            .collect();
+        let c = p.check(points);
+        Ok((
+            cam.to_string(),
+            mech_core::cam::Profile::COLUMNS
+                .iter()
+                .map(|c| c.to_string())
+                .collect(),
+            PyArray2::from_vec2(py, &rows)?,
+            (
+                c.max_pressure_angle.0,
+                c.max_pressure_angle.1,
+                c.min_convex_radius.0,
+                c.min_convex_radius.1,
+                c.undercut,
+            ),
+        ))
+    }
+
     /// Reduce for pickling: the DSL text cannot be recovered from the model, so the
     /// Python wrapper pickles its text and parameters; this native object refuses.
     fn __reduce__(&self) -> PyResult<()> {

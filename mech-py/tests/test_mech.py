@@ -221,3 +221,24 @@ def test_rocker_cam_from_its_file():
     assert np.allclose(k["rocker.omega"], want, rtol=0, atol=1e-12)
     f = r.kinetostatics(np.radians(np.linspace(0.0, 350.0, 36)), 60.0, 0.0)
     assert np.all(np.hypot(f["lobe.fx"], f["lobe.fy"]) > 10.0)
+
+
+def test_cam_profile_of_the_rocker():
+    """The rocker's cam profile from Python: every contact point one roller radius (8 mm)
+    from its pitch point, the first dwell on the base circle (30 mm), the rise's lift the
+    cycloidal closed form, the largest pressure angle the column's; no cam is an error."""
+    r = mech.Mechanism.load(str(ROOT / "examples" / "mech" / "rocker_cam.mech"))
+    p = r.cam_profile(points=72)
+    assert p["name"] == "lobe" and p["theta"].shape == (72,)
+    gap = np.hypot(p["pitch_x"] - p["contact_x"], p["pitch_y"] - p["contact_y"])
+    assert np.allclose(gap, 0.008, rtol=0, atol=1e-15)
+    dwell = p["theta"] < math.pi / 2
+    assert np.allclose(np.hypot(p["contact_x"], p["contact_y"])[dwell], 0.030, rtol=0, atol=1e-15)
+    rise = (p["theta"] > math.pi / 2) & (p["theta"] < math.pi)
+    x = (p["theta"][rise] - math.pi / 2) / (math.pi / 2)
+    want = math.radians(15.0) * (x - np.sin(2 * math.pi * x) / (2 * math.pi))
+    assert np.allclose(p["lift"][rise], want, rtol=0, atol=1e-15)
+    assert p["max_pressure_angle"][0] == np.max(np.abs(p["pressure_angle"]))
+    assert not p["undercut"]
+    with pytest.raises(mech.InvalidInput):
+        engine().cam_profile()

@@ -253,6 +253,23 @@ class Mechanism:
             drv = driver if callable(driver) else (lambda q, c=float(driver): c)
         return dict(self._core.flywheel(float(start), float(period), [float(b) for b in breakpoints], float(speed), float(irregularity), flat, drv, float(rtol)))
 
+    def cam_profile(self, name=None, points=360):
+        """A cam's profile at ``points`` cam angles over a turn (``name``: the cam joint;
+        omitted, the mechanism's only cam), for drawing and manufacturing. Returns a dict
+        of arrays: ``theta`` (rad), the law's ``lift``, ``lift_velocity``,
+        ``lift_acceleration`` (per radian of cam angle; m, or rad for an oscillating
+        follower), ``pitch_x``, ``pitch_y``, ``contact_x``, ``contact_y`` (the cam's own
+        frame, m), ``pressure_angle`` (rad) and ``curvature_radius`` (m, > 0 convex); and
+        the design figures ``max_pressure_angle`` and ``at`` (rad), ``min_convex_radius``
+        (m) and ``at`` (rad), ``undercut``."""
+        cam, names, rows, (phi, phi_at, rho, rho_at, undercut) = self._core.cam_profile(name, int(points))
+        out = {n: rows[:, k] for k, n in enumerate(names)}
+        out["name"] = cam
+        out["max_pressure_angle"] = (phi, phi_at)
+        out["min_convex_radius"] = (rho, rho_at)
+        out["undercut"] = undercut
+        return out
+
 
 def sweep(mechanism, params, q, qd=0.0, qdd=0.0, loads=None, parts=None):
     """The columns of ``parts`` (default all) for every variant of the parameters and

@@ -70,6 +70,8 @@ class Mechanism:
         """`qdd`: the direct problem's q̈."""
     def flywheel(self, period: float, speed: float, irregularity: float, loads: Optional[Mapping[str, LoadValue]] = ..., start: float = ..., breakpoints: Sequence[float] = ..., driver: Union[None, float, Callable[[float], float]] = ..., rtol: float = ...) -> Dict[str, float]:
         """ΔE, the approximate and the exact (Wittenbauer) flywheel inertia, the simulated speeds."""
+    def cam_profile(self, name: Optional[str] = ..., points: int = ...) -> Dict[str, Any]:
+        """A cam's profile over a turn: lift, pitch and contact points, pressure angle, curvature; the design figures."""
 
 def sweep(mechanism: Mechanism, params: Union[Mapping[str, ArrayLike], Sequence[Mapping[str, ArrayLike]]], q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., loads: Optional[Mapping[str, LoadValue]] = ..., parts: Optional[Sequence[str]] = ...) -> Dict[str, np.ndarray]:
     """Columns over parameter variants × inputs, shape (V, n), with the mask `ok`."""
