@@ -22,8 +22,13 @@ use serde_json::Value;
 
 const SOURCE: &str = include_str!("../tests/common/mechanisms.rs");
 
+/// Configurations as (q, q̇, q̈) vectors.
+type States = Vec<[Vec<f64>; 3]>;
+/// Loads by name, their components.
+type NamedLoads = Vec<(String, Vec<f64>)>;
+
 /// The reference table's configurations as (q, q̇, q̈) vectors, and its loads.
-fn table(name: &str) -> (Vec<[Vec<f64>; 3]>, Vec<(String, Vec<f64>)>) {
+fn table(name: &str) -> (States, NamedLoads) {
     let path = format!(
         "{}/tests/data/{name}.truth.json",
         env!("CARGO_MANIFEST_DIR")

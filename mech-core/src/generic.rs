@@ -1332,7 +1332,7 @@ mod tests {
         assert!(loads.set_by_name("push", &[3.0, -1.0]));
         assert!(!loads.set_by_name("push", &[3.0]));
         assert!(!loads.set_by_name("nothing", &[3.0]));
-        for &q in &[1.5707963267948966, 0.3, -2.0, 3.0, 7.0, -20.0] {
+        for &q in &[std::f64::consts::FRAC_PI_2, 0.3, -2.0, 3.0, 7.0, -20.0] {
             let mo = m.kinematics(&[q], &[10.0], &[-4.0]).unwrap();
             let (t3, t4) = four_bar_angles(a, b, c, V2::new(0.3, 0.0), q, true);
             let d3 = wrap(mo.link("coupler").unwrap().angle - t3);
