@@ -196,20 +196,38 @@ pub fn circle_circle(c1: V2, r1sq: f64, c2: V2, r2sq: f64, sign: f64) -> Result<
 }
 
 /// Intersection of the circle (c, r), given r² (m²), with the line through `p` along unit
-/// `u`, on the side `sign` along u of the foot of the perpendicular from c.
+/// `u`, on the side `sign` along u of the foot of the perpendicular from c
+/// ([`circle_line_along`]).
 #[inline]
 pub fn circle_line(c: V2, rsq: f64, p: V2, u: V2, sign: f64) -> Result<V2, MechError> {
-    let t0 = (c - p).dot(&u);
-    let foot = p + u * t0;
-    let h = (c - foot).norm_squared();
-    let mut w2 = rsq - h;
+    circle_line_along(c, rsq, p, u, sign).map(|(x, _)| x)
+}
+
+/// [`circle_line`]'s point X and its signed distance x = (X − c)·u along the line from the
+/// foot of the perpendicular from c. With d = c − p, the foot is at t₀ = d·u along the line
+/// and c is h = u × d from it, so x = ±√(r² − h²) and X = p + u (t₀ + x). (h from the cross
+/// product: no cancellation in c − foot, and t₀ and h are computed side by side; x comes
+/// straight from the square root, which an RRP dyad's rates take as their determinant.)
+#[inline]
+pub fn circle_line_along(
+    c: V2,
+    rsq: f64,
+    p: V2,
+    u: V2,
+    sign: f64,
+) -> Result<(V2, f64), MechError> {
+    let d = c - p;
+    let t0 = d.dot(&u);
+    let h = cross(u, d);
+    let mut w2 = rsq - h * h;
     if w2 < 0.0 {
         if w2 < -TANGENT_TOL * rsq {
             return Err(MechError::NoAssembly);
         }
         w2 = 0.0;
     }
-    Ok(foot + u * (sign * w2.sqrt()))
+    let x = sign * w2.sqrt();
+    Ok((p + u * (t0 + x), x))
 }
 
 /// Intersection of the lines (p1, u1) and (p2, u2); `Singular` when parallel.
@@ -418,7 +436,9 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
 ///
 /// Returns the group's joint points found on the way, for the rates that follow
 /// ([`crate::natural`]): an RRR dyad's [A, B, C] (b₁'s pin, the middle pin, b₂'s pin),
-/// an RRP dyad's [A, C, 0] (b₁'s pin, the slider's pin); zeros for the other kinds.
+/// an RRP dyad's [A, C, (x, 0)] (b₁'s pin, the slider's pin, and x = (C − A)·u, the
+/// slide of C from the foot of A on the guide, straight from the square root); zeros for
+/// the other kinds.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn position(
@@ -498,7 +518,7 @@ pub fn position(
             };
             let p = q + dir_of(s, guide, dc2 - dq);
             let u = dir_of(s, guide, gp.axis);
-            let c = circle_line(a, (dc1 - da).norm_squared(), p, u, sign)?;
+            let (c, x) = circle_line_along(a, (dc1 - da).norm_squared(), p, u, sign)?;
             place_by_two_points(&mut s[b1], da, dc1, a, c);
             s[b2].rot = if guide == 0 {
                 V2::new(1.0, 0.0)
@@ -506,7 +526,7 @@ pub fn position(
                 s[guide].rot
             };
             s[b2].pos = c - dir_of(s, guide, dc2);
-            points = [a, c, V2::zeros()];
+            points = [a, c, V2::new(x, 0.0)];
         }
         Solver::Rpr { b1, ja, jp, jb, .. } => {
             let (gp, guide, slider, pa, pb) = rpr_pins(joints, s, b1, ja, jp, jb);

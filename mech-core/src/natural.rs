@@ -100,7 +100,7 @@ pub fn rrr_rates(
 
 /// Rates of an RRP dyad (module docs) whose links `b1` (pinned at A by `ja`) and `b2`
 /// (the slider, on the guide by the prismatic `jp`) are placed with A and C at
-/// `points` = [A, C, _]. `scale` is the length scale L. `Singular` near a change point
+/// `points` = [A, C, (x, 0)], x = (C − A)·u ([`crate::dyad::position`]). `scale` is the length scale L. `Singular` near a change point
 /// (e₁ ⊥ u).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
@@ -119,13 +119,14 @@ pub fn rrp_rates(
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
         return Ok(());
     }
-    let [a, c, _] = points;
+    let [a, c, x] = points;
     let gp = &joints[jp];
     let (la, lg) = (solved_link(&joints[ja], b1), solved_link(gp, b2));
     let u = dir_of(s, lg, gp.axis);
     let e1 = c - a;
     let p1 = perp(e1);
-    let m = Inverse2::scaled([[p1.x, -u.x], [p1.y, -u.y]], [1.0, scale])?;
+    // det [perp(e₁) −u] = e₁·u = x, known from the position's square root.
+    let m = Inverse2::scaled_with_det([[p1.x, -u.x], [p1.y, -u.y]], x.x, [1.0, scale])?;
     let ((va, aa), (vg, ag)) = (point_rates(s, la, a), point_rates(s, lg, c));
     let (wg, alg) = if lg == 0 {
         (0.0, 0.0)

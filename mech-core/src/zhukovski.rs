@@ -52,7 +52,11 @@ pub fn acceleration(
     if !(r.inertia > 0.0) {
         return Err(crate::MechError::NonPositiveInertia(r.inertia));
     }
-    let qdd = (driver + moment - 0.5 * r.inertia_derivative * qd * qd) / r.inertia;
+    // 1/I* needs only the velocities, so it is computed while the accelerations (dI*/dq)
+    // are: a multiplication, not a division, ends the chain (the direct problem's steps
+    // wait for each q̈).
+    let inv = 1.0 / r.inertia;
+    let qdd = (driver + moment - 0.5 * r.inertia_derivative * qd * qd) * inv;
     crate::magnitudes::finite_result("acceleration q̈ (with I*, M* and the driver)", &[qdd])?;
     Ok(qdd)
 }
