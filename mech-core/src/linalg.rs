@@ -113,10 +113,15 @@ impl<const N: usize> Lu<N> {
 /// The inverse of a 2×2 matrix A = [[a, b], [c, d]], refused near singularity by the
 /// condition estimate of A·diag(c₀, c₁) (the columns scaled to be dimensionless):
 /// κ_F = ‖A C‖_F ‖(A C)⁻¹‖_F = ‖A C‖²_F / |det A C| (exact for 2×2: ‖B⁻¹‖_F = ‖B‖_F / |det B|).
+///
+/// Kept as the adjugate and 1/det: a solve multiplies by 1/det last, so the division runs
+/// beside the products adj·b instead of before them (the direct problem waits on it).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inverse2 {
-    /// A⁻¹, row major.
-    pub inv: [[f64; 2]; 2],
+    /// adj A = det A · A⁻¹, row major.
+    pub adj: [[f64; 2]; 2],
+    /// 1/det A.
+    pub inv_det: f64,
 }
 
 impl Inverse2 {
@@ -149,27 +154,27 @@ impl Inverse2 {
         if !(norm2 < SINGULAR_CONDITION * sdet) {
             return Err(singular2(norm2, sdet));
         }
-        let r = 1.0 / det;
         Ok(Inverse2 {
-            inv: [[m[1][1] * r, -m[0][1] * r], [-m[1][0] * r, m[0][0] * r]],
+            adj: [[m[1][1], -m[0][1]], [-m[1][0], m[0][0]]],
+            inv_det: 1.0 / det,
         })
     }
-    /// A⁻¹ b.
+    /// A⁻¹ b = (adj A · b) / det A.
     #[inline(always)]
     pub fn solve(&self, b: [f64; 2]) -> [f64; 2] {
-        let m = &self.inv;
+        let m = &self.adj;
         [
-            m[0][0] * b[0] + m[0][1] * b[1],
-            m[1][0] * b[0] + m[1][1] * b[1],
+            (m[0][0] * b[0] + m[0][1] * b[1]) * self.inv_det,
+            (m[1][0] * b[0] + m[1][1] * b[1]) * self.inv_det,
         ]
     }
-    /// A⁻ᵀ b.
+    /// A⁻ᵀ b = (adj Aᵀ · b) / det A.
     #[inline(always)]
     pub fn solve_transpose(&self, b: [f64; 2]) -> [f64; 2] {
-        let m = &self.inv;
+        let m = &self.adj;
         [
-            m[0][0] * b[0] + m[1][0] * b[1],
-            m[0][1] * b[0] + m[1][1] * b[1],
+            (m[0][0] * b[0] + m[1][0] * b[1]) * self.inv_det,
+            (m[0][1] * b[0] + m[1][1] * b[1]) * self.inv_det,
         ]
     }
 }

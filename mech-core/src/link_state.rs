@@ -117,19 +117,31 @@ impl LinkState {
         self.acc + perp(r) * self.alpha - r * (self.omega * self.omega)
     }
     /// Set ω and the anchor's velocity from the velocity `v_p` of the material point now
-    /// at `p` (the same rigid field seen from p): v = v_p + ω perp(pos − p).
+    /// at `p` (the same rigid field seen from p): v = v_p + ω perp(pos − p). When p is the
+    /// anchor (a link's first point is often its joint's), v = v_p: a branch taken the same
+    /// way at every call, and no arithmetic between ω and v (the direct problem waits on it).
     #[inline(always)]
     pub fn set_velocity_through(&mut self, p: V2, v_p: V2, omega: f64) {
+        let r = self.pos - p;
         self.omega = omega;
-        self.vel = v_p + perp(self.pos - p) * omega;
+        self.vel = if r.x == 0.0 && r.y == 0.0 {
+            v_p
+        } else {
+            v_p + perp(r) * omega
+        };
     }
     /// Set α and the anchor's acceleration from the acceleration `a_p` of the material
-    /// point now at `p`, ω already set: a = a_p + α perp(r) − ω² r, r = pos − p.
+    /// point now at `p`, ω already set: a = a_p + α perp(r) − ω² r, r = pos − p (a = a_p
+    /// when p is the anchor, as [`LinkState::set_velocity_through`]).
     #[inline(always)]
     pub fn set_acceleration_through(&mut self, p: V2, a_p: V2, alpha: f64) {
         let r = self.pos - p;
         self.alpha = alpha;
-        self.acc = a_p + perp(r) * alpha - r * (self.omega * self.omega);
+        self.acc = if r.x == 0.0 && r.y == 0.0 {
+            a_p
+        } else {
+            a_p + perp(r) * alpha - r * (self.omega * self.omega)
+        };
     }
 }
 

@@ -10,7 +10,7 @@
 //!   the direct problem, `reduced_moment` takes it at q̇ = 0)
 //! - equation of motion: I* q̈ + ½ dI*/dq q̇² = driver + M*.
 
-use crate::link_state::{LinkGeom, LinkState, V2};
+use crate::link_state::{perp, LinkGeom, LinkState, V2};
 
 /// Reduced inertia and its derivative at one position.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -54,9 +54,10 @@ pub fn acceleration(
     }
     // 1/I* needs only the velocities, so it is computed while the accelerations (dI*/dq)
     // are: a multiplication, not a division, ends the chain (the direct problem's steps
-    // wait for each q̈).
+    // wait for each q̈); ½q̇² is ready before dI*/dq too. (Each term of dI*/dq is written
+    // (2m) v·a + (2Iω) α for the same reason: the doublings, exact, leave the chain.)
     let inv = 1.0 / r.inertia;
-    let qdd = (driver + moment - 0.5 * r.inertia_derivative * qd * qd) * inv;
+    let qdd = (driver + moment - r.inertia_derivative * (0.5 * qd * qd)) * inv;
     crate::magnitudes::finite_result("acceleration q̈ (with I*, M* and the driver)", &[qdd])?;
     Ok(qdd)
 }
@@ -88,13 +89,18 @@ impl Reduction {
         }
     }
     /// Add a link's inertia to I* and dI*/dq (needs the accelerations of the motion).
+    /// With r = G − anchor, a_G = a + α perp(r) − ω² r, so the term of dI*/dq is
+    /// 2m v_G·(a − ω² r) + (2m v_G·perp(r) + 2Iω) α: α, the last number a group's solve
+    /// gives, enters by one multiplication.
     #[inline(always)]
     pub fn inertia(&mut self, l: &LinkGeom, s: &LinkState) {
         let r = s.r(l.dcg);
-        let (v, a) = (s.vel_at(r), s.acc_at(r));
+        let v = s.vel_at(r);
+        let m2 = 2.0 * l.mass;
         self.reduced.inertia += l.mass * v.norm_squared() + l.inertia * s.omega * s.omega;
-        self.reduced.inertia_derivative +=
-            2.0 * (l.mass * v.dot(&a) + l.inertia * s.omega * s.alpha);
+        let without_alpha = m2 * v.dot(&(s.acc - r * (s.omega * s.omega)));
+        let per_alpha = m2 * v.dot(&perp(r)) + 2.0 * l.inertia * s.omega;
+        self.reduced.inertia_derivative += without_alpha + per_alpha * s.alpha;
     }
     /// Add the inertia of a link turning about its anchor O, a fixed pin
     /// ([`crate::model::Model::pinned_at_anchor`]): there v_G = ω perp(r) and
@@ -104,7 +110,7 @@ impl Reduction {
     pub fn inertia_about_anchor(&mut self, l: &LinkGeom, s: &LinkState) {
         let io = l.inertia + l.mass * l.dcg.norm_squared();
         self.reduced.inertia += io * s.omega * s.omega;
-        self.reduced.inertia_derivative += 2.0 * io * s.omega * s.alpha;
+        self.reduced.inertia_derivative += (2.0 * io * s.omega) * s.alpha;
     }
     /// Add the inertia of a link that slides on the ground
     /// ([`crate::model::Model::translates`]): ω = α = 0, so I* += m |g_G|² and
@@ -112,7 +118,7 @@ impl Reduction {
     #[inline(always)]
     pub fn inertia_translating(&mut self, l: &LinkGeom, s: &LinkState) {
         self.reduced.inertia += l.mass * s.vel.norm_squared();
-        self.reduced.inertia_derivative += 2.0 * l.mass * s.vel.dot(&s.acc);
+        self.reduced.inertia_derivative += (2.0 * l.mass) * s.vel.dot(&s.acc);
     }
     /// Add the power of gravity on a link that slides on the ground, m g·v (its cg moves
     /// as its anchor), to M*.
