@@ -151,8 +151,14 @@ pub fn rrp_rates(
         } else {
             perp(u) * (2.0 * wg * sd)
         };
-        let da = ag + coriolis - aa + e1 * (w1 * w1);
-        let [al1, sdd] = m.solve([da.x, da.y]);
+        // M⁻¹(b + e₁ω₁²) = M⁻¹b + (M⁻¹e₁) ω₁²: both solves wait only for the velocities'
+        // matrix, so ω₁, the last to come, enters by one multiply-add (the direct problem
+        // waits on this chain).
+        let db = ag + coriolis - aa;
+        let [b0, b1_] = m.solve([db.x, db.y]);
+        let [k0, k1] = m.solve([e1.x, e1.y]);
+        let w1sq = w1 * w1;
+        let (al1, sdd) = (b0 + k0 * w1sq, b1_ + k1 * w1sq);
         s[b1].set_acceleration_through(a, aa, al1);
         let ac = ag + coriolis + u * sdd;
         if lg == 0 {
