@@ -18,6 +18,10 @@ use mech::prelude::*;
 use serde_json::Value;
 use std::f64::consts::TAU;
 
+#[path = "common/data.rs"]
+mod data;
+use data::{close, num};
+
 mechanism! {
     /// A cam on the ground swings a roller rocker pinned to the ground at A through 15°,
     /// against a torsion spring (3 N·m in the drawing).
@@ -67,24 +71,10 @@ mechanism! {
 }
 
 fn reference() -> Value {
-    let path = format!("{}/tests/data/cam_rocker.json", env!("CARGO_MANIFEST_DIR"));
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    data::load("cam_rocker.json")
 }
 
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) => s.parse().unwrap(),
-        _ => v.as_f64().unwrap(),
-    }
-}
 
-fn close(what: &str, got: f64, want: f64, tol: f64) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: {got:.15e} vs reference {want:.15e} (|diff| {:.2e})",
-        (got - want).abs()
-    );
-}
 
 /// The law of both rockers: dwell 90°, cycloidal rise 90°, dwell 60°, 3-4-5 fall 120°.
 fn law(lift: f64) -> MotionLaw {

@@ -8,6 +8,10 @@ use mech::prelude::*;
 use serde_json::Value;
 use std::f64::consts::TAU;
 
+#[path = "common/data.rs"]
+mod data;
+use data::{close, num};
+
 mechanism! {
     /// A cam on the ground lifts a roller follower against a compression spring.
     pub struct ValveTrain {
@@ -29,27 +33,10 @@ mechanism! {
 }
 
 fn reference() -> Value {
-    let path = format!(
-        "{}/tests/data/cam_follower.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    data::load("cam_follower.json")
 }
 
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) => s.parse().unwrap(),
-        _ => v.as_f64().unwrap(),
-    }
-}
 
-fn close(what: &str, got: f64, want: f64, tol: f64) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: {got:.15e} vs reference {want:.15e} (|diff| {:.2e})",
-        (got - want).abs()
-    );
-}
 
 /// At 150 rad/s over a revolution: the follower's lift, the contact force (and the
 /// pressure angle it leans at) and the motor torque by d'Alembert, virtual power and

@@ -14,6 +14,10 @@ use mech::ode::{solve, Dop853};
 use mech::prelude::*;
 use serde_json::Value;
 
+#[path = "common/data.rs"]
+mod data;
+use data::{close, num};
+
 mechanism! {
     /// A crank-rocker four-bar held by springs and slowed by dampers: a spring from the
     /// ground to the coupler, a preloaded spring across the crank and rocker, a torsion
@@ -55,28 +59,10 @@ mechanism! {
 }
 
 fn reference() -> Value {
-    let path = format!(
-        "{}/tests/data/spring_four_bar.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    serde_json::from_str(&std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}")))
-        .unwrap()
+    data::load("spring_four_bar.json")
 }
 
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) => s.parse().unwrap(),
-        _ => v.as_f64().unwrap(),
-    }
-}
 
-fn close(what: &str, got: f64, want: f64, tol: f64) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: {got:.17e} vs reference {want:.17e} (|diff| {:.2e} > {tol:.2e})",
-        (got - want).abs()
-    );
-}
 
 /// The same machine without its dampers (c = 0 through `from_params`).
 fn undamped() -> SpringFourBar {

@@ -11,6 +11,10 @@ use mech::ode::{solve, Dop853};
 use mech::prelude::*;
 use serde_json::Value;
 
+#[path = "common/data.rs"]
+mod data;
+use data::{close, num};
+
 mechanism! {
     /// A compound gear train: pinion g1 (input) drives the cluster (two pitch circles on
     /// one shaft), which drives the output gear g4 carrying an unbalanced mass.
@@ -127,25 +131,10 @@ mechanism! {
 }
 
 fn reference() -> Value {
-    let path = format!("{}/tests/data/gears.json", env!("CARGO_MANIFEST_DIR"));
-    serde_json::from_str(&std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}")))
-        .unwrap()
+    data::load("gears.json")
 }
 
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) => s.parse().unwrap(),
-        _ => v.as_f64().unwrap(),
-    }
-}
 
-fn close(what: &str, got: f64, want: f64, tol: f64) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: {got:.17e} vs reference {want:.17e} (|diff| {:.2e} > {tol:.2e})",
-        (got - want).abs()
-    );
-}
 
 fn runtime(name: &str) -> Mechanism {
     Mechanism::from_rust_source(include_str!("gears.rs"), name)

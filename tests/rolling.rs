@@ -7,7 +7,10 @@
 use mech::dynamics::{equation_of_motion, total_energy};
 use mech::ode::{solve, Dop853};
 use mech::prelude::*;
-use serde_json::Value;
+
+#[path = "common/data.rs"]
+mod data;
+use data::{close, num};
 
 mechanism! {
     /// A disc rolling down a 30° incline, its travel along the slope the input.
@@ -82,20 +85,7 @@ mechanism! {
     }
 }
 
-fn close(what: &str, got: f64, want: f64, tol: f64) {
-    assert!(
-        (got - want).abs() <= tol,
-        "{what}: {got:.17e} vs reference {want:.17e} (|diff| {:.2e} > {tol:.2e})",
-        (got - want).abs()
-    );
-}
 
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) => s.parse().unwrap(),
-        _ => v.as_f64().unwrap(),
-    }
-}
 
 /// The disc: I* = m + I/r², M* = m g sin θ (+ the push along the slope); at (s, ṡ, s̈) the
 /// contact force is N = m g cos θ normal to the slope and F = −I s̈/r² along it, the motor
@@ -220,8 +210,7 @@ macro_rules! wheel_case {
     ($test:ident, $ty:ident, $loads:ident, $key:literal) => {
         #[test]
         fn $test() {
-            let path = format!("{}/tests/data/rolling.json", env!("CARGO_MANIFEST_DIR"));
-            let r: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+            let r = data::load("rolling.json");
             let m = $ty::new();
             let rt =
                 Mechanism::from_rust_source(include_str!("rolling.rs"), stringify!($ty)).unwrap();
