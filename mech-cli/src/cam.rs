@@ -7,7 +7,7 @@
 
 use crate::output::{Format, Writer};
 use crate::{source, Failure};
-use mech_core::cam::{CamGeom, Profile};
+use mech_core::cam::Profile;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -30,37 +30,6 @@ pub struct CamArgs {
     pub format: Format,
 }
 
-/// The cam joint `name` of the mechanism (or its only one) and its geometry.
-fn cam_of(m: &mech_core::Mechanism, name: Option<&str>) -> Result<(String, CamGeom), Failure> {
-    let cams = m.cams();
-    let names = || {
-        cams.iter()
-            .map(|(n, _)| format!("`{n}`"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let (n, g) = match name {
-        Some(n) => cams.iter().find(|(c, _)| *c == n).ok_or_else(|| {
-            Failure::usage(if cams.is_empty() {
-                format!("--name {n}: the mechanism has no cam")
-            } else {
-                format!("--name {n}: no cam of that name; its cams: {}", names())
-            })
-        })?,
-        None => match cams.as_slice() {
-            [one] => one,
-            [] => return Err(Failure::usage("the mechanism has no cam (a `cam(..)` joint)")),
-            _ => {
-                return Err(Failure::usage(format!(
-                    "the mechanism has several cams ({}): choose one with --name",
-                    names()
-                )))
-            }
-        },
-    };
-    Ok((n.to_string(), (*g).clone()))
-}
-
 /// The units of [`Profile::COLUMNS`] (the lift's depend on the follower).
 fn units(rocker: bool) -> [&'static str; 10] {
     let (s, s1, s2) = if rocker {
@@ -80,12 +49,14 @@ pub fn run(args: CamArgs, out: impl Write) -> Result<(), Failure> {
         )));
     }
     let m = source::load(&args.file)?;
-    let (name, g) = cam_of(&m, args.name.as_deref())?;
+    let (name, g) = m
+        .cam(args.name.as_deref())
+        .map_err(|e| Failure::usage(format!("mech cam: {e}")))?;
     let p = &g.profile;
     let names: Vec<String> = Profile::COLUMNS.iter().map(|c| c.to_string()).collect();
     let mut w = Writer::new(out, args.format, &names, &units(p.rocker.is_some()))?;
-    for k in 0..args.points {
-        w.row(&p.row(std::f64::consts::TAU * k as f64 / args.points as f64))?;
+    for row in p.table(args.points) {
+        w.row(&row)?;
     }
     w.finish()?;
     let c = p.check(args.points);

@@ -684,6 +684,11 @@ impl Profile {
         ]
     }
 
+    /// [`Profile::row`] at `n` cam angles evenly over the revolution, from θ = 0.
+    pub fn table(&self, n: usize) -> Vec<[f64; 10]> {
+        (0..n).map(|k| self.row(TAU * k as f64 / n as f64)).collect()
+    }
+
     /// The cam surface as CSV, one contact point per row: `theta_deg,x_m,y_m`
     /// (the cam's frame), `n` points over the revolution.
     pub fn to_csv(&self, n: usize) -> String {

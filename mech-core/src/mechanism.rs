@@ -375,6 +375,31 @@ impl Mechanism {
             .collect()
     }
 
+    /// The cam joint `name`, or the mechanism's only cam when `name` is `None`, with its
+    /// geometry; `InvalidInput` naming the cams there are when there is no such cam (or
+    /// several and no name).
+    pub fn cam(&self, name: Option<&str>) -> Result<(&str, &crate::cam::CamGeom), MechError> {
+        let cams = self.cams();
+        let list = || {
+            cams.iter()
+                .map(|(n, _)| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let found = match name {
+            Some(n) => cams.iter().find(|(c, _)| *c == n),
+            None if cams.len() == 1 => cams.first(),
+            None => None,
+        };
+        found.copied().ok_or_else(|| {
+            MechError::InvalidInput(match (name, cams.len()) {
+                (_, 0) => "the mechanism has no cam (a `cam(..)` joint)".to_string(),
+                (Some(n), _) => format!("no cam `{n}`; its cams: {}", list()),
+                (None, _) => format!("the mechanism has several cams ({}): name one", list()),
+            })
+        })
+    }
+
     /// G, the number of inputs.
     pub fn dof(&self) -> usize {
         self.model.inputs.len()

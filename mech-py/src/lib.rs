@@ -544,29 +544,14 @@ impl PyMechanism {
         Bound<'py, PyArray2<f64>>,
         (f64, f64, f64, f64, bool),
     )> {
-        let cams = self.inner.cams();
-        let list = || cams.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ");
-        let found = match &name {
-            Some(n) => cams.iter().find(|(c, _)| c == n),
-            None if cams.len() == 1 => cams.first(),
-            None => None,
-        };
-        let Some((cam, g)) = found else {
-            return Err(InvalidInput::new_err(match (&name, cams.len()) {
-                (_, 0) => "the mechanism has no cam".to_string(),
-                (Some(n), _) => format!("no cam `{n}`; its cams: {}", list()),
-                (None, _) => format!("the mechanism has several cams ({}): give a name", list()),
-            }));
-        };
+        let (cam, g) = self.inner.cam(name.as_deref()).map_err(|e| py_err(py, e))?;
         if points < 3 {
             return Err(InvalidInput::new_err(format!(
                 "points = {points}: a profile needs at least 3"
             )));
         }
         let p = &g.profile;
-        let rows: Vec<Vec<f64>> = (0..points)
-            .map(|k| p.row(std::f64::consts::TAU * k as f64 / points as f64).to_vec())
-            .collect();
+        let rows: Vec<Vec<f64>> = p.table(points).iter().map(|r| r.to_vec()).collect();
         let c = p.check(points);
         Ok((
             cam.to_string(),
