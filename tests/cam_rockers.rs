@@ -446,3 +446,48 @@ fn table_rocker() {
         );
     }
 }
+
+/// A flat-faced rocker turning exactly as fast as the cam (σψ′ = 1: a uniform fall of
+/// 60° over 60° with σ = −1) has no envelope there: `Profile::check` reports where the
+/// profile is missing (the macro's error), and nowhere else; the same rocker with a
+/// 30° fall over those 60° (σψ′ = ½) has its profile everywhere.
+#[test]
+fn a_rocker_as_fast_as_the_cam_has_no_profile() {
+    let d = std::f64::consts::PI / 180.0;
+    let profile = |fall: f64| Profile {
+        law: MotionLaw::from_segments(vec![
+            Segment {
+                law: Law::Uniform,
+                start: 0.0,
+                end: 60.0 * d,
+                from: 0.0,
+                to: fall * d,
+            },
+            Segment {
+                law: Law::Uniform,
+                start: 60.0 * d,
+                end: 120.0 * d,
+                from: fall * d,
+                to: 0.0,
+            },
+            Segment {
+                law: Law::Dwell,
+                start: 120.0 * d,
+                end: 360.0 * d,
+                from: 0.0,
+                to: 0.0,
+            },
+        ])
+        .unwrap(),
+        base_radius: 0.03,
+        offset: 0.0,
+        face: Face::Flat,
+        rocker: Some(Rocker {
+            pivot: [0.07, 0.045],
+            sign: -1.0,
+        }),
+    };
+    let at = profile(60.0).check(720).missing.expect("a missing profile");
+    assert!(at >= 60.0 * d && at < 120.0 * d, "missing at {}°", at / d);
+    assert_eq!(profile(30.0).check(720).missing, None);
+}

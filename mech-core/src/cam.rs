@@ -610,6 +610,10 @@ pub struct ProfileCheck {
     /// the roller's (the cam surface's radius ≤ 0 somewhere it should be convex), or a flat
     /// face's R_b + s + s″ ≤ 0 (a cusp).
     pub undercut: bool,
+    /// The first sampled cam angle (rad) where the profile does not exist (a contact
+    /// point or radius that is not finite: a flat-faced rocker turning as fast as the
+    /// cam, σψ′ = 1, has no envelope there); `None` when it exists at every sample.
+    pub missing: Option<f64>,
 }
 
 impl Profile {
@@ -618,19 +622,21 @@ impl Profile {
         (0..n).map(|k| self.at(TAU * k as f64 / n as f64)).collect()
     }
 
-    /// The maximum pressure angle, the minimum convex radius of curvature and whether the
-    /// profile is undercut, sampled at `n` cam angles (ProfileCheck).
+    /// The maximum pressure angle, the minimum convex radius of curvature, whether the
+    /// profile is undercut and where it is missing, sampled at `n` cam angles
+    /// ([`ProfileCheck`]).
     pub fn check(&self, n: usize) -> ProfileCheck {
-        let r = match self.face {
-            Face::Roller(r) => r,
-            _ => 0.0,
-        };
+        let r = self.roller();
         let mut out = ProfileCheck {
             max_pressure_angle: (0.0, 0.0),
             min_convex_radius: (f64::INFINITY, 0.0),
             undercut: false,
+            missing: None,
         };
         for p in self.points(n) {
+            if !(p.contact.iter().all(|x| x.is_finite()) && p.curvature_radius.is_finite()) {
+                out.missing = out.missing.or(Some(p.theta));
+            }
             if p.pressure_angle.abs() > out.max_pressure_angle.0 {
                 out.max_pressure_angle = (p.pressure_angle.abs(), p.theta);
             }

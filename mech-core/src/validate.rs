@@ -91,21 +91,17 @@ fn cam_numbers(model: &Model) -> Vec<Issue> {
                 continue;
             }
         }
-        // The profile must exist at every angle: a flat-faced rocker turning as fast as the
-        // cam (σψ′ = 1) has no envelope there.
-        if let Some(p) = g.profile.points(720).iter().find(|p| {
-            !(p.contact.iter().all(|x| x.is_finite()) && p.curvature_radius.is_finite())
-        }) {
-            let [_, s1, ..] = g.profile.law.eval(p.theta);
+        let chk = g.profile.check(720);
+        if let Some(theta) = chk.missing {
+            let [_, s1, ..] = g.profile.law.eval(theta);
             bad(format!(
                 "cam `{}` has no profile near {:.1}°: the follower turns there at {:.4} rad per radian of cam angle, as fast as the cam (its face would move with the cam's surface): lower the lift or lengthen the segment",
                 jt.name,
-                p.theta.to_degrees(),
+                theta.to_degrees(),
                 s1.abs()
             ));
             continue;
         }
-        let chk = g.profile.check(720);
         if chk.undercut {
             let smallest = chk.min_convex_radius;
             bad(match c.face {
