@@ -74,8 +74,6 @@ fn reference() -> Value {
     data::load("cam_rocker.json")
 }
 
-
-
 /// The law of both rockers: dwell 90°, cycloidal rise 90°, dwell 60°, 3-4-5 fall 120°.
 fn law(lift: f64) -> MotionLaw {
     let d = std::f64::consts::PI / 180.0;
@@ -228,7 +226,12 @@ fn contact_force_over_a_revolution() {
         );
         let rm = rt.kinematics(&[th], &[w], &[0.0]).unwrap();
         let rf = rt.kinetostatics(&rm, &rt.loads()).unwrap();
-        close(&format!("run-time driver at {at}"), rf.driver[0], t, 1e-12 * 5.0);
+        close(
+            &format!("run-time driver at {at}"),
+            rf.driver[0],
+            t,
+            1e-12 * 5.0,
+        );
         let (force, _) = rf.reaction("lobe").unwrap();
         close(
             &format!("run-time contact at {at}"),
@@ -255,7 +258,11 @@ fn jump_speed() {
     let loads = RockerCamLoads::default();
     let fnorm = |th: f64, w: f64| {
         let mo = m.kinematics(th, w, 0.0).unwrap();
-        m.kinetostatics(&mo, &loads).unwrap().joints.lobe.normal_force
+        m.kinetostatics(&mo, &loads)
+            .unwrap()
+            .joints
+            .lobe
+            .normal_force
     };
     let grid: Vec<f64> = (0..7200).map(|k| TAU * k as f64 / 7200.0).collect();
     let mut jump = f64::INFINITY;
@@ -332,7 +339,10 @@ fn coasting_rocker_keeps_its_energy() {
     .unwrap();
     eprintln!("coasting rocker: {turns:.2} turns, max |ΔE| = {worst:.2e} J of {e0:.5} J, slowest {slowest:.3} rad/s");
     assert!(turns > 15.0, "{turns}");
-    assert!(slowest < 0.99 * w0, "the lift should slow the cam: {slowest}");
+    assert!(
+        slowest < 0.99 * w0,
+        "the lift should slow the cam: {slowest}"
+    );
     assert!(worst <= 1e-7 * e0, "energy drift {worst:e} J");
 }
 
@@ -437,7 +447,12 @@ fn table_rocker() {
             - std::f64::consts::PI;
         close("table rocker's turn", turn, -spline.eval(q)[0], 1e-14);
         let d = m.kinetostatics(&mo, &l).unwrap().driver;
-        close("virtual power", m.driver_action(&mo, &l).unwrap(), d, 1e-12 * 5.0);
+        close(
+            "virtual power",
+            m.driver_action(&mo, &l).unwrap(),
+            d,
+            1e-12 * 5.0,
+        );
         close(
             "Zhukovski",
             m.acceleration(q, 40.0, d, &l).unwrap(),

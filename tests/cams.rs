@@ -36,8 +36,6 @@ fn reference() -> Value {
     data::load("cam_follower.json")
 }
 
-
-
 /// At 150 rad/s over a revolution: the follower's lift, the contact force (and the
 /// pressure angle it leans at) and the motor torque by d'Alembert, virtual power and
 /// Zhukovski, and the run-time mechanism, to 1e-12 of their scale.

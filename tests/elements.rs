@@ -62,8 +62,6 @@ fn reference() -> Value {
     data::load("spring_four_bar.json")
 }
 
-
-
 /// The same machine without its dampers (c = 0 through `from_params`).
 fn undamped() -> SpringFourBar {
     let mut p = SpringFourBarParams::default();

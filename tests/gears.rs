@@ -134,8 +134,6 @@ fn reference() -> Value {
     data::load("gears.json")
 }
 
-
-
 fn runtime(name: &str) -> Mechanism {
     Mechanism::from_rust_source(include_str!("gears.rs"), name)
         .unwrap_or_else(|e| panic!("{name}: {e}"))

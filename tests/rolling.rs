@@ -85,8 +85,6 @@ mechanism! {
     }
 }
 
-
-
 /// The disc: I* = m + I/r², M* = m g sin θ (+ the push along the slope); at (s, ṡ, s̈) the
 /// contact force is N = m g cos θ normal to the slope and F = −I s̈/r² along it, the motor
 /// force at the centre Q = (m + I/r²) s̈ − m g sin θ − P; the three routes, the run-time

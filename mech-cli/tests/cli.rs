@@ -645,19 +645,29 @@ fn cam_exports_the_profile() {
         }
         if th > std::f64::consts::FRAC_PI_2 && th < std::f64::consts::PI {
             let x = (th - std::f64::consts::FRAC_PI_2) / std::f64::consts::FRAC_PI_2;
-            let want = 15f64.to_radians() * (x - (std::f64::consts::TAU * x).sin() / std::f64::consts::TAU);
+            let want = 15f64.to_radians()
+                * (x - (std::f64::consts::TAU * x).sin() / std::f64::consts::TAU);
             close("cycloidal lift", r[lift], want, 1e-14);
         }
         largest = largest.max(r[phi].abs());
     }
     let err = String::from_utf8(out.stderr).unwrap();
     assert!(
-        err.contains(&format!("largest pressure angle {:.2}°", largest.to_degrees())),
+        err.contains(&format!(
+            "largest pressure angle {:.2}°",
+            largest.to_degrees()
+        )),
         "{err}"
     );
     assert!(err.contains("not undercut"), "{err}");
     let text = std::fs::read_to_string(&svg).unwrap();
-    let d = text.split("d=\"").nth(1).unwrap().split('"').next().unwrap();
+    let d = text
+        .split("d=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap();
     assert_eq!(d.matches('L').count() + 1, 72);
     assert!(d.starts_with('M') && d.ends_with('Z'));
     let engine = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/mech/engine.mech");

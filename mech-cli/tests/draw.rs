@@ -318,14 +318,21 @@ fn draw_puts_the_roller_on_the_cam() {
             roller.iter().map(|p| p.0).sum::<f64>() / n,
             roller.iter().map(|p| p.1).sum::<f64>() / n,
         );
-        let r = roller.iter().map(|p| (p.0 - c.0).hypot(p.1 - c.1)).sum::<f64>() / n;
+        let r = roller
+            .iter()
+            .map(|p| (p.0 - c.0).hypot(p.1 - c.1))
+            .sum::<f64>()
+            / n;
         let gap = profile
             .iter()
             .map(|p| (p.0 - c.0).hypot(p.1 - c.1))
             .fold(f64::INFINITY, f64::min);
         // 180 points around a ~40 mm cam are ~1.4 mm apart: the nearest is within
         // (1.4/2)²/(2·8) mm ≈ 0.03 mm of the circle, 1 % of r here.
-        assert!((gap - r).abs() < 0.01 * r, "at {at}: gap {gap} against roller {r}");
+        assert!(
+            (gap - r).abs() < 0.01 * r,
+            "at {at}: gap {gap} against roller {r}"
+        );
         // The view from the pins O and A; P where the solver puts it.
         let p = pins(&doc);
         let m = Mechanism::from_dsl(&std::fs::read_to_string(&file).unwrap()).unwrap();
@@ -344,6 +351,10 @@ fn draw_puts_the_roller_on_the_cam() {
             c.0,
             c.1
         );
-        assert!((r - 0.008 * k).abs() < 0.01, "roller radius {r} against {}", 0.008 * k);
+        assert!(
+            (r - 0.008 * k).abs() < 0.01,
+            "roller radius {r} against {}",
+            0.008 * k
+        );
     }
 }

@@ -360,7 +360,11 @@ pub fn lift_text(v: f64, angular: bool) -> String {
 /// empty (its first point at 0° and lift 0, the follower's place in the drawing), else the
 /// segments, which must cover a turn and return to their start. `angular`: the lifts are
 /// angles (an oscillating follower), for the messages.
-pub fn law_of(segments: &[Segment], table: &[[f64; 2]], angular: bool) -> Result<MotionLaw, String> {
+pub fn law_of(
+    segments: &[Segment],
+    table: &[[f64; 2]],
+    angular: bool,
+) -> Result<MotionLaw, String> {
     if let Some(first) = table.first() {
         if first[0] != 0.0 || first[1] != 0.0 {
             return Err(format!(
@@ -692,7 +696,9 @@ impl Profile {
 
     /// [`Profile::row`] at `n` cam angles evenly over the revolution, from θ = 0.
     pub fn table(&self, n: usize) -> Vec<[f64; 10]> {
-        (0..n).map(|k| self.row(TAU * k as f64 / n as f64)).collect()
+        (0..n)
+            .map(|k| self.row(TAU * k as f64 / n as f64))
+            .collect()
     }
 
     /// The cam surface as CSV, one contact point per row: `theta_deg,x_m,y_m`
@@ -729,7 +735,6 @@ impl Profile {
 
 // ---------------------------------------------------------------------------------------
 // The cam pair: a cam pinned to a carrier drives a follower sliding on it.
-
 
 /// A cam pair's geometry in its links' frames (`docs/conventions.md#cams`).
 #[derive(Clone, Debug, PartialEq)]

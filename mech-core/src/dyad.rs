@@ -209,13 +209,7 @@ pub fn circle_line(c: V2, rsq: f64, p: V2, u: V2, sign: f64) -> Result<V2, MechE
 /// product: no cancellation in c − foot, and t₀ and h are computed side by side; x comes
 /// straight from the square root, which an RRP dyad's rates take as their determinant.)
 #[inline]
-pub fn circle_line_along(
-    c: V2,
-    rsq: f64,
-    p: V2,
-    u: V2,
-    sign: f64,
-) -> Result<(V2, f64), MechError> {
+pub fn circle_line_along(c: V2, rsq: f64, p: V2, u: V2, sign: f64) -> Result<(V2, f64), MechError> {
     let d = c - p;
     let t0 = d.dot(&u);
     let h = cross(u, d);

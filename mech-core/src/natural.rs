@@ -100,8 +100,8 @@ pub fn rrr_rates(
 
 /// Rates of an RRP dyad (module docs) whose links `b1` (pinned at A by `ja`) and `b2`
 /// (the slider, on the guide by the prismatic `jp`) are placed with A and C at
-/// `points` = [A, C, (x, 0)], x = (C − A)·u ([`crate::dyad::position`]). `scale` is the length scale L. `Singular` near a change point
-/// (e₁ ⊥ u).
+/// `points` = [A, C, (x, 0)], x = (C − A)·u ([`crate::dyad::position`]). `scale` is the
+/// length scale L. `Singular` near a change point (e₁ ⊥ u, x = 0).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 #[allow(clippy::too_many_arguments)]
