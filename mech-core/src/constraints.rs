@@ -47,13 +47,22 @@ pub struct JointGeom {
 }
 
 impl JointGeom {
-    /// This joint's geometry with its links given as `a` and `b`. The generated code
-    /// rebuilds its joints with the topology as literal constants (the same values as the
-    /// stored ones), so that every `a`/`b` test of a kernel (which side is solved, is it
-    /// the ground) folds at compile time; only the vectors are read at run time.
+    /// This joint's geometry with its links given as `a` and `b`, and its local vectors
+    /// as literal zeros where `at_anchor` says the point is the link's anchor
+    /// ([`crate::model::Model::at_anchor`]: they are zero there for any drawing). The
+    /// generated code rebuilds its joints with the topology as literal constants (the
+    /// same values as the stored ones), so that every `a`/`b` test of a kernel (which
+    /// side is solved, is it the ground) and every "is this point the anchor" test folds
+    /// at compile time; only the other vectors are read at run time.
     #[inline(always)]
-    pub fn with_links(&self, a: usize, b: usize) -> JointGeom {
-        JointGeom { a, b, ..*self }
+    pub fn with_links(&self, a: usize, b: usize, at_anchor: [bool; 2]) -> JointGeom {
+        JointGeom {
+            a,
+            b,
+            da: if at_anchor[0] { V2::zeros() } else { self.da },
+            db: if at_anchor[1] { V2::zeros() } else { self.db },
+            ..*self
+        }
     }
 }
 

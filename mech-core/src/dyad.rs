@@ -200,16 +200,23 @@ pub fn circle_circle(c1: V2, r1sq: f64, c2: V2, r2sq: f64, sign: f64) -> Result<
 /// ([`circle_line_along`]).
 #[inline]
 pub fn circle_line(c: V2, rsq: f64, p: V2, u: V2, sign: f64) -> Result<V2, MechError> {
-    circle_line_along(c, rsq, p, u, sign).map(|(x, _)| x)
+    circle_line_along(c, rsq, p, u, sign).map(|(x, _, _)| x)
 }
 
-/// [`circle_line`]'s point X and its signed distance x = (X − c)·u along the line from the
-/// foot of the perpendicular from c. With d = c − p, the foot is at t₀ = d·u along the line
-/// and c is h = u × d from it, so x = ±√(r² − h²) and X = p + u (t₀ + x). (h from the cross
-/// product: no cancellation in c − foot, and t₀ and h are computed side by side; x comes
-/// straight from the square root, which an RRP dyad's rates take as their determinant.)
+/// [`circle_line`]'s point X, its signed distance x = (X − c)·u along the line from the
+/// foot of the perpendicular from c, and y = (X − c)·perp(u). With d = c − p, the foot is
+/// at t₀ = d·u along the line and c is h = u × d from it, so x = ±√(r² − h²),
+/// X = p + u (t₀ + x) and y = −h. (h from the cross product: no cancellation in
+/// c − foot, and t₀ and h are computed side by side; x comes straight from the square
+/// root, which an RRP dyad's rates take as their determinant, y before it.)
 #[inline]
-pub fn circle_line_along(c: V2, rsq: f64, p: V2, u: V2, sign: f64) -> Result<(V2, f64), MechError> {
+pub fn circle_line_along(
+    c: V2,
+    rsq: f64,
+    p: V2,
+    u: V2,
+    sign: f64,
+) -> Result<(V2, f64, f64), MechError> {
     let d = c - p;
     let t0 = d.dot(&u);
     let h = cross(u, d);
@@ -221,7 +228,7 @@ pub fn circle_line_along(c: V2, rsq: f64, p: V2, u: V2, sign: f64) -> Result<(V2
         w2 = 0.0;
     }
     let x = sign * w2.sqrt();
-    Ok((p + u * (t0 + x), x))
+    Ok((p + u * (t0 + x), x, -h))
 }
 
 /// Intersection of the lines (p1, u1) and (p2, u2); `Singular` when parallel.
@@ -430,9 +437,8 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
 ///
 /// Returns the group's joint points found on the way, for the rates that follow
 /// ([`crate::natural`]): an RRR dyad's [A, B, C] (b₁'s pin, the middle pin, b₂'s pin),
-/// an RRP dyad's [A, C, (x, 0)] (b₁'s pin, the slider's pin, and x = (C − A)·u, the
-/// slide of C from the foot of A on the guide, straight from the square root); zeros for
-/// the other kinds.
+/// an RRP dyad's [A, C, (x, y)] (b₁'s pin, the slider's pin, and C − A = x u + y perp(u)
+/// in the guide's frame, x straight from the square root); zeros for the other kinds.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn position(
@@ -512,7 +518,7 @@ pub fn position(
             };
             let p = q + dir_of(s, guide, dc2 - dq);
             let u = dir_of(s, guide, gp.axis);
-            let (c, x) = circle_line_along(a, (dc1 - da).norm_squared(), p, u, sign)?;
+            let (c, x, y) = circle_line_along(a, (dc1 - da).norm_squared(), p, u, sign)?;
             place_by_two_points(&mut s[b1], da, dc1, a, c);
             s[b2].rot = if guide == 0 {
                 V2::new(1.0, 0.0)
@@ -520,7 +526,7 @@ pub fn position(
                 s[guide].rot
             };
             s[b2].pos = c - dir_of(s, guide, dc2);
-            points = [a, c, V2::new(x, 0.0)];
+            points = [a, c, V2::new(x, y)];
         }
         Solver::Rpr { b1, ja, jp, jb, .. } => {
             let (gp, guide, slider, pa, pb) = rpr_pins(joints, s, b1, ja, jp, jb);

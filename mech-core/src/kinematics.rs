@@ -47,8 +47,8 @@ pub fn solve_chain(
         Solver::Rrr { b1, b2, ja, jb, .. } => {
             crate::natural::rrr_rates(joints, s, b1, b2, ja, jb, points, upto)
         }
-        Solver::Rrp { b1, b2, ja, jp, .. } => {
-            crate::natural::rrp_rates(joints, s, b1, b2, ja, jp, points, scale, upto)
+        Solver::Rrp { b1, b2, ja, jc, jp } => {
+            crate::natural::rrp_rates(joints, s, b1, b2, ja, jc, jp, points, scale, upto)
         }
         _ => chain_rates(chain, joints, s, scale, upto),
     }

@@ -150,10 +150,7 @@ impl Inverse2 {
     ) -> Result<Self, crate::MechError> {
         let norm2 = c[0] * c[0] * (m[0][0] * m[0][0] + m[1][0] * m[1][0])
             + c[1] * c[1] * (m[0][1] * m[0][1] + m[1][1] * m[1][1]);
-        let sdet = (c[0] * c[1] * det).abs();
-        if !(norm2 < SINGULAR_CONDITION * sdet) {
-            return Err(singular2(norm2, sdet));
-        }
+        check_condition(norm2, (c[0] * c[1] * det).abs())?;
         Ok(Inverse2 {
             adj: [[m[1][1], -m[0][1]], [-m[1][0], m[0][0]]],
             inv_det: 1.0 / det,
@@ -176,6 +173,19 @@ impl Inverse2 {
             (m[0][0] * b[0] + m[1][0] * b[1]) * self.inv_det,
             (m[0][1] * b[0] + m[1][1] * b[1]) * self.inv_det,
         ]
+    }
+}
+
+/// A 2×2 system's condition test, κ_F = ‖A C‖²_F / |det A C| ([`Inverse2`]) from
+/// `norm2` = ‖A C‖²_F and `sdet` = |det A C|: `Singular` when κ_F ≥
+/// [`SINGULAR_CONDITION`] or either is not finite. It multiplies, so that the caller's
+/// one division is 1/det.
+#[inline(always)]
+pub fn check_condition(norm2: f64, sdet: f64) -> Result<(), crate::MechError> {
+    if norm2 < SINGULAR_CONDITION * sdet {
+        Ok(())
+    } else {
+        Err(singular2(norm2, sdet))
     }
 }
 

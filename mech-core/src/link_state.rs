@@ -123,8 +123,19 @@ impl LinkState {
     #[inline(always)]
     pub fn set_velocity_through(&mut self, p: V2, v_p: V2, omega: f64) {
         let r = self.pos - p;
+        self.set_velocity_by(r.x == 0.0 && r.y == 0.0, r, v_p, omega);
+    }
+    /// [`LinkState::set_velocity_through`] for the point of local vector `d`: p is the
+    /// anchor when d = 0, a test that folds at compile time when d is a literal zero (the
+    /// generated code's joints at a link's first point, `JointGeom::with_links`).
+    #[inline(always)]
+    pub fn set_velocity_at(&mut self, d: V2, p: V2, v_p: V2, omega: f64) {
+        self.set_velocity_by(d.x == 0.0 && d.y == 0.0, self.pos - p, v_p, omega);
+    }
+    #[inline(always)]
+    fn set_velocity_by(&mut self, at_anchor: bool, r: V2, v_p: V2, omega: f64) {
         self.omega = omega;
-        self.vel = if r.x == 0.0 && r.y == 0.0 {
+        self.vel = if at_anchor {
             v_p
         } else {
             v_p + perp(r) * omega
@@ -136,8 +147,18 @@ impl LinkState {
     #[inline(always)]
     pub fn set_acceleration_through(&mut self, p: V2, a_p: V2, alpha: f64) {
         let r = self.pos - p;
+        self.set_acceleration_by(r.x == 0.0 && r.y == 0.0, r, a_p, alpha);
+    }
+    /// [`LinkState::set_acceleration_through`] for the point of local vector `d`, as
+    /// [`LinkState::set_velocity_at`].
+    #[inline(always)]
+    pub fn set_acceleration_at(&mut self, d: V2, p: V2, a_p: V2, alpha: f64) {
+        self.set_acceleration_by(d.x == 0.0 && d.y == 0.0, self.pos - p, a_p, alpha);
+    }
+    #[inline(always)]
+    fn set_acceleration_by(&mut self, at_anchor: bool, r: V2, a_p: V2, alpha: f64) {
         self.alpha = alpha;
-        self.acc = if r.x == 0.0 && r.y == 0.0 {
+        self.acc = if at_anchor {
             a_p
         } else {
             a_p + perp(r) * alpha - r * (self.omega * self.omega)

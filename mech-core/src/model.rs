@@ -538,6 +538,19 @@ impl Model {
                     && j.point == first
             })
     }
+    /// For joint `j`, whether its point is the anchor (first point) of link a and of
+    /// link b: there its local vector ([`crate::geometry::joint_geom`]) is exactly zero,
+    /// p − p, for any numbers of the drawing. False on the ground (anchored at the
+    /// origin) and for the joints whose vectors are not their point's (cams, rolling
+    /// around a circle, gear meshes).
+    pub fn at_anchor(&self, j: usize) -> [bool; 2] {
+        let jt = &self.joints[j];
+        let plain = jt.cam.is_none() && jt.around.is_none() && jt.mesh.is_none();
+        let first = |l: usize| {
+            plain && l != 0 && self.links[l].points.first() == Some(&jt.point)
+        };
+        [first(jt.a), first(jt.b)]
+    }
     /// P_I: lower pairs (revolute and prismatic joints).
     pub fn lower_pairs(&self) -> usize {
         self.joints.iter().filter(|j| !j.kind.higher()).count()

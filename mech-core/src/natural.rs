@@ -22,10 +22,16 @@
 //! [perp(e₁)  −u] (ω₁, ṡ)ᵀ = v_G − v_A,
 //! [perp(e₁)  −u] (α₁, s̈)ᵀ = a_G + 2 ω_G ṡ perp(u) − a_A + ω₁² e₁
 //!
-//! (the last but one term is Coriolis'). The condition estimate
-//! ([`crate::linalg::Inverse2::scaled`]) is taken with the second column times the
-//! length scale L, so that both columns are lengths (κ does not change when the whole
-//! matrix is scaled): `Singular` near a change point, where e₁ ⊥ u.
+//! (the last but one term is Coriolis'). The system is solved in the guide's frame
+//! ([`SlideFrame`]): with n = perp(u) and e₁ = x u + y n, perp(e₁) = x n − y u, so its
+//! n-row gives the angular rate alone and its u-row the slide,
+//!
+//! ω₁ = (b·n)/x,  ṡ = −b·u − y ω₁,
+//!
+//! which is the 2×2 inverse written in the frame where it is triangular (det = x).
+//! The condition estimate ([`crate::linalg::Inverse2::scaled`]'s, with the second column
+//! times the length scale L so that both columns are lengths) is then
+//! κ_F = (|e₁|² + L²)/|x L|: `Singular` near a change point, where e₁ ⊥ u.
 //!
 //! Each link's anchor then moves as the material point it is (`LinkState::set_velocity_through`,
 //! `set_acceleration_through`): v = v_P + ω perp(r),
@@ -47,6 +53,16 @@ fn point_rates(s: &[LinkState], l: usize, p: V2) -> (V2, V2) {
     } else {
         let r = p - s[l].pos;
         (s[l].vel_at(r), s[l].acc_at(r))
+    }
+}
+
+/// The local vector in `body` of joint `g`'s point.
+#[inline(always)]
+fn local_in(g: &JointGeom, body: usize) -> V2 {
+    if g.b == body {
+        g.db
+    } else {
+        g.da
     }
 }
 
@@ -87,21 +103,77 @@ pub fn rrr_rates(
     let ((va, aa), (vc, ac)) = (point_rates(s, la, a), point_rates(s, lc, c));
     let dv = vc - va;
     let [w1, w2] = m.solve([dv.x, dv.y]);
-    s[b1].set_velocity_through(a, va, w1);
-    s[b2].set_velocity_through(c, vc, w2);
+    let (da, dc) = (local_in(&joints[ja], b1), local_in(&joints[jb], b2));
+    s[b1].set_velocity_at(da, a, va, w1);
+    s[b2].set_velocity_at(dc, c, vc, w2);
     if upto == Level::Acceleration {
         let da = ac - aa + e1 * (w1 * w1) - e2 * (w2 * w2);
         let [al1, al2] = m.solve([da.x, da.y]);
-        s[b1].set_acceleration_through(a, aa, al1);
-        s[b2].set_acceleration_through(c, ac, al2);
+        s[b1].set_acceleration_at(da, a, aa, al1);
+        s[b2].set_acceleration_at(dc, c, ac, al2);
     }
     Ok(())
 }
 
-/// Rates of an RRP dyad (module docs) whose links `b1` (pinned at A by `ja`) and `b2`
-/// (the slider, on the guide by the prismatic `jp`) are placed with A and C at
-/// `points` = [A, C, (x, 0)], x = (C − A)·u ([`crate::dyad::position`]). `scale` is the
-/// length scale L. `Singular` near a change point (e₁ ⊥ u, x = 0).
+/// An RRP dyad's system [perp(e₁) −u] in the guide's frame (module docs): the unit axis
+/// u, n = perp(u), and e₁ = C − A = x u + y n, with 1/x ready.
+#[derive(Clone, Copy, Debug)]
+pub struct SlideFrame {
+    /// The guide's unit axis u.
+    pub u: V2,
+    /// x = e₁·u (m): the determinant of the system.
+    pub x: f64,
+    /// y = e₁·n (m).
+    pub y: f64,
+    /// 1/x (1/m).
+    pub inv_x: f64,
+}
+
+impl SlideFrame {
+    /// The frame of e₁ = x u + y n, |e₁|² = `rsq` (m²); `Singular` when
+    /// κ_F = (|e₁|² + L²)/|x L| ≥ [`crate::linalg::SINGULAR_CONDITION`] (L = `scale`) or
+    /// it is not finite.
+    #[inline(always)]
+    pub fn new(u: V2, x: f64, y: f64, rsq: f64, scale: f64) -> Result<Self, MechError> {
+        crate::linalg::check_condition(rsq + scale * scale, (x * scale).abs())?;
+        Ok(SlideFrame {
+            u,
+            x,
+            y,
+            inv_x: 1.0 / x,
+        })
+    }
+    /// The frame of the states' e₁ = C − A.
+    #[inline(always)]
+    pub fn of(u: V2, e1: V2, scale: f64) -> Result<Self, MechError> {
+        Self::new(u, e1.dot(&u), cross(u, e1), e1.norm_squared(), scale)
+    }
+    /// (ω₁, ṡ) with [perp(e₁) −u] (ω₁, ṡ)ᵀ = b: ω₁ = (b·n)/x, ṡ = −b·u − y ω₁.
+    #[inline(always)]
+    pub fn solve(&self, b: V2) -> (f64, f64) {
+        let w = cross(self.u, b) * self.inv_x;
+        (w, -(b.dot(&self.u) + self.y * w))
+    }
+    /// The solution for b = e₁ (the centripetal column): (y/x, −x − y²/x).
+    #[inline(always)]
+    pub fn solve_e1(&self) -> (f64, f64) {
+        let k = self.y * self.inv_x;
+        (k, -(self.x + self.y * k))
+    }
+    /// X with [perp(e₁) −u]ᵀ X = (m, f): X·u = −f, X·n = (m − y f)/x; returned in the
+    /// plane.
+    #[inline(always)]
+    pub fn solve_transpose(&self, m: f64, f: f64) -> V2 {
+        let xn = (m - self.y * f) * self.inv_x;
+        perp(self.u) * xn - self.u * f
+    }
+}
+
+/// Rates of an RRP dyad (module docs) whose links `b1` (pinned at A by `ja`, to the
+/// slider at C by `jc`) and `b2` (the slider, on the guide by the prismatic `jp`) are placed with A and C at
+/// `points` = [A, C, (x, y)], e₁ = C − A = x u + y n ([`crate::dyad::position`], which
+/// has x from its square root and y before it). `rsq` is |e₁|², `scale` the length scale
+/// L. `Singular` near a change point (e₁ ⊥ u, x = 0).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 #[allow(clippy::too_many_arguments)]
@@ -111,6 +183,7 @@ pub fn rrp_rates(
     b1: usize,
     b2: usize,
     ja: usize,
+    jc: usize,
     jp: usize,
     points: [V2; 3],
     scale: f64,
@@ -119,23 +192,21 @@ pub fn rrp_rates(
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
         return Ok(());
     }
-    let [a, c, x] = points;
+    let [a, c, xy] = points;
     let gp = &joints[jp];
     let (la, lg) = (solved_link(&joints[ja], b1), solved_link(gp, b2));
     let u = dir_of(s, lg, gp.axis);
-    let e1 = c - a;
-    let p1 = perp(e1);
-    // det [perp(e₁) −u] = e₁·u = x, known from the position's square root.
-    let m = Inverse2::scaled_with_det([[p1.x, -u.x], [p1.y, -u.y]], x.x, [1.0, scale])?;
+    let rsq = xy.x * xy.x + xy.y * xy.y;
+    let m = SlideFrame::new(u, xy.x, xy.y, rsq, scale)?;
+    let (da, dc) = (local_in(&joints[ja], b1), local_in(&joints[jc], b2));
     let ((va, aa), (vg, ag)) = (point_rates(s, la, a), point_rates(s, lg, c));
     let (wg, alg) = if lg == 0 {
         (0.0, 0.0)
     } else {
         (s[lg].omega, s[lg].alpha)
     };
-    let dv = vg - va;
-    let [w1, sd] = m.solve([dv.x, dv.y]);
-    s[b1].set_velocity_through(a, va, w1);
+    let (w1, sd) = m.solve(vg - va);
+    s[b1].set_velocity_at(da, a, va, w1);
     let vc = vg + u * sd;
     // On the ground guide the slider does not turn: its anchor moves as C (the zero
     // terms written out would not fold, IEEE arithmetic keeping 0·x).
@@ -143,7 +214,7 @@ pub fn rrp_rates(
         s[b2].omega = 0.0;
         s[b2].vel = vc;
     } else {
-        s[b2].set_velocity_through(c, vc, wg);
+        s[b2].set_velocity_at(dc, c, vc, wg);
     }
     if upto == Level::Acceleration {
         let coriolis = if lg == 0 {
@@ -151,21 +222,20 @@ pub fn rrp_rates(
         } else {
             perp(u) * (2.0 * wg * sd)
         };
-        // M⁻¹(b + e₁ω₁²) = M⁻¹b + (M⁻¹e₁) ω₁²: both solves wait only for the velocities'
-        // matrix, so ω₁, the last to come, enters by one multiply-add (the direct problem
-        // waits on this chain).
-        let db = ag + coriolis - aa;
-        let [b0, b1_] = m.solve([db.x, db.y]);
-        let [k0, k1] = m.solve([e1.x, e1.y]);
+        // M⁻¹(b + e₁ω₁²) = M⁻¹b + (M⁻¹e₁) ω₁²: both solves wait only for the frame, so
+        // ω₁, the last to come, enters by one multiply-add (the direct problem waits on
+        // this chain).
+        let (b0, b1_) = m.solve(ag + coriolis - aa);
+        let (k0, k1) = m.solve_e1();
         let w1sq = w1 * w1;
         let (al1, sdd) = (b0 + k0 * w1sq, b1_ + k1 * w1sq);
-        s[b1].set_acceleration_through(a, aa, al1);
+        s[b1].set_acceleration_at(da, a, aa, al1);
         let ac = ag + coriolis + u * sdd;
         if lg == 0 {
             s[b2].alpha = 0.0;
             s[b2].acc = ac;
         } else {
-            s[b2].set_acceleration_through(c, ac, alg);
+            s[b2].set_acceleration_at(dc, c, ac, alg);
         }
     }
     Ok(())
@@ -270,13 +340,10 @@ pub fn rrp_reactions(
     let c = s[b2].point(if gc.a == b2 { gc.da } else { gc.db });
     let p = crate::link_state::point_of(s, gp.b, gp.db);
     let u = dir_of(s, lg, gp.axis);
-    let e1 = c - a;
-    let p1 = perp(e1);
-    let m = Inverse2::scaled([[p1.x, -u.x], [p1.y, -u.y]], [1.0, scale])?;
+    let m = SlideFrame::of(u, c - a, scale)?;
     let (f1, m1) = about(&f[b1], s[b1].pos, a);
     let (f2, m2) = about(&f[b2], s[b2].pos, p);
-    let [x, y] = m.solve_transpose([m1, f2.dot(&u)]);
-    let x = V2::new(x, y);
+    let x = m.solve_transpose(m1, f2.dot(&u));
     let ra = x - f1;
     let (rp, mp) = (-x - f2, -(m2 + cross(c - p, x)));
     out[ja] = reported(ga, b1, ra, 0.0);

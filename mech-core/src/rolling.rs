@@ -262,14 +262,14 @@ pub fn solve_rolling(
                 let a = s[b1].point(if gj.a == b1 { gj.da } else { gj.db });
                 let c = s[b1].point(if gc.a == b1 { gc.da } else { gc.db });
                 let u = crate::link_state::dir_of(s, if g.b == b2 { g.a } else { g.b }, g.axis);
-                [a, c, V2::new((c - a).dot(&u), 0.0)]
+                [a, c, V2::new((c - a).dot(&u), crate::link_state::cross(u, c - a))]
             };
             let c = points[1];
             if upto == Level::Position {
                 return Ok(());
             }
             // The rod and the centre as an RRP dyad's, then the wheel's spin.
-            crate::natural::rrp_rates(joints, s, b1, b2, ja, jr, points, scale, upto)?;
+            crate::natural::rrp_rates(joints, s, b1, b2, ja, jc, jr, points, scale, upto)?;
             let r = c - s[b2].pos;
             let (vc, ac) = (s[b2].vel_at(r), s[b2].acc_at(r));
             spin(g, s, b2, c, vc, ac, upto);

@@ -206,12 +206,14 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
     }
 }
 
-/// `[self.joints[k].with_links(a, b), ..]`: the joints with their links as literal
-/// constants, so that the kernels' tests on the topology fold.
+/// `[self.joints[k].with_links(a, b, at_anchor), ..]`: the joints with their links and
+/// their zero local vectors as literal constants, so that the kernels' tests on the
+/// topology fold.
 pub(crate) fn joints_with_topology(cx: &Ctx) -> TokenStream {
     let items = cx.model.joints.iter().enumerate().map(|(k, j)| {
         let (a, b) = (j.a, j.b);
-        quote!(self.joints[#k].with_links(#a, #b))
+        let [za, zb] = cx.model.at_anchor(k);
+        quote!(self.joints[#k].with_links(#a, #b, [#za, #zb]))
     });
     quote!([#(#items),*])
 }
