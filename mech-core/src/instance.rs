@@ -5,7 +5,7 @@ use crate::constraints::JointGeom;
 use crate::dyad::{branch, branch_quantity, Solver};
 use crate::elements::ElementGeom;
 use crate::geometry::{anchor, drawing_states, joint_geoms, local};
-use crate::link_state::{LinkGeom, LinkState, V2};
+use crate::link_state::{cross, LinkGeom, LinkState, V2};
 use crate::model::{Load, Model};
 use crate::MechError;
 
@@ -50,12 +50,30 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
         .map(|l| {
             let link = &model.links[l];
             let th = model.reference_angle(l);
+            let (dcg, mass, inertia) = (
+                local(model, l, link.cg),
+                link.mass.unwrap_or(0.0),
+                link.rotational_inertia(),
+            );
             LinkGeom {
                 anchor: anchor(model, l),
                 dir_ref: V2::new(th.cos(), th.sin()),
-                dcg: local(model, l, link.cg),
-                mass: link.mass.unwrap_or(0.0),
-                inertia: link.rotational_inertia(),
+                dcg,
+                mass,
+                inertia,
+                inertia_anchor: inertia + mass * dcg.norm_squared(),
+                cg_span: match link.points.get(1) {
+                    Some(&p2) => {
+                        let a = local(model, l, model.points[p2].pos);
+                        let a2 = a.norm_squared();
+                        if a2 > 0.0 {
+                            V2::new(a.dot(&dcg), cross(a, dcg)) / a2
+                        } else {
+                            V2::zeros()
+                        }
+                    }
+                    None => V2::zeros(),
+                },
             }
         })
         .collect();

@@ -180,6 +180,15 @@ pub struct LinkGeom {
     pub mass: f64,
     /// Moment of inertia about the cg (kg·m²).
     pub inertia: f64,
+    /// Moment of inertia about the anchor, I_O = I_G + m |d_cg|² (kg·m²): a drawing
+    /// constant, kept so that the solvers do not recompute it per call
+    /// ([`crate::zhukovski::Reduction::inertia_about_anchor`]).
+    pub inertia_anchor: f64,
+    /// The cg in the frame of the link's first two points P₁ (the anchor) and P₂, drawn:
+    /// κ = (a·g, a × g)/|a|² with a = P₂ − P₁ and g = G − P₁, so that in any pose
+    /// G − P₁ = κ₁ e + κ₂ perp(e), e = P₂ − P₁ now ([`LinkGeom::cg_by_span`]); zero for a
+    /// link with fewer than two distinct points.
+    pub cg_span: V2,
 }
 
 /// Position, velocity and acceleration of a point (`docs/conventions.md#generated-api`), m, m/s, m/s².
@@ -227,6 +236,15 @@ pub struct LinkPose {
 }
 
 impl LinkGeom {
+    /// The cg's current offset from the anchor, G − P₁ = κ₁ e + κ₂ perp(e), from the
+    /// current vector e = P₂ − P₁ between the link's first two points
+    /// ([`LinkGeom::cg_span`]): the rotation of the link is not needed, only e, which a
+    /// dyad has as soon as it has placed its pins.
+    #[inline(always)]
+    pub fn cg_by_span(&self, e: V2) -> V2 {
+        e * self.cg_span.x + perp(e) * self.cg_span.y
+    }
+
     /// The link angle θ = θ_ref + φ, wrapped to (−π, π].
     #[inline]
     pub fn angle(&self, s: &LinkState) -> f64 {

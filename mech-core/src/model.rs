@@ -538,6 +538,16 @@ impl Model {
                     && j.point == first
             })
     }
+    /// A moving link whose anchor (first point) is the second point of moving link `l`:
+    /// its state's position minus `l`'s is then `l`'s span P₂ − P₁
+    /// ([`crate::link_state::LinkGeom::cg_by_span`]), known without `l`'s rotation.
+    pub fn span_partner(&self, l: usize) -> Option<usize> {
+        let &p2 = self.links.get(l)?.points.get(1)?;
+        if l == 0 {
+            return None;
+        }
+        (1..self.links.len()).find(|&m| m != l && self.links[m].points.first() == Some(&p2))
+    }
     /// For joint `j`, whether its point is the anchor (first point) of link a and of
     /// link b: there its local vector ([`crate::geometry::joint_geom`]) is exactly zero,
     /// p − p, for any numbers of the drawing. False on the ground (anchored at the
@@ -546,9 +556,7 @@ impl Model {
     pub fn at_anchor(&self, j: usize) -> [bool; 2] {
         let jt = &self.joints[j];
         let plain = jt.cam.is_none() && jt.around.is_none() && jt.mesh.is_none();
-        let first = |l: usize| {
-            plain && l != 0 && self.links[l].points.first() == Some(&jt.point)
-        };
+        let first = |l: usize| plain && l != 0 && self.links[l].points.first() == Some(&jt.point);
         [first(jt.a), first(jt.b)]
     }
     /// P_I: lower pairs (revolute and prismatic joints).
@@ -638,5 +646,45 @@ mod tests {
         );
         assert!(m.translates(l("piston")));
         assert!(!m.translates(l("rod")) && !m.translates(l("crank")) && !m.translates(0));
+        // Spans: the crank's second point A is the rod's anchor, the rod's B the piston's;
+        // the lever's second point O4 anchors the arm; the arm's D anchors nothing.
+        assert_eq!(m.span_partner(l("crank")), Some(l("rod")));
+        assert_eq!(m.span_partner(l("rod")), Some(l("piston")));
+        assert_eq!(m.span_partner(l("lever")), Some(l("arm")));
+        assert_eq!(m.span_partner(l("arm")), None);
+        assert_eq!(m.span_partner(l("piston")), None);
+        assert_eq!(m.span_partner(0), None);
+        // Joints at a moving link's first point: their local vector there is zero.
+        let j = |name: &str| m.joint_index(name).unwrap();
+        assert_eq!(m.at_anchor(j("O2")), [false, true]);
+        assert_eq!(m.at_anchor(j("A")), [false, true]);
+        assert_eq!(m.at_anchor(j("guide")), [false, true]);
+        assert_eq!(m.at_anchor(j("O4")), [false, false]);
+        assert_eq!(m.at_anchor(j("O4b")), [false, true]);
+    }
+
+    /// A link's cg from its span (the vector between its first two points) equals the cg
+    /// rotated with the link, in any pose: G − P₁ = κ₁ e + κ₂ perp(e) with e = R(φ)(P₂ − P₁).
+    #[test]
+    fn cg_from_the_span() {
+        use crate::link_state::{LinkState, V2};
+        let m = model_of(
+            "pub struct S { ground { O: (0.0, 0.0) },
+              link bar { points { O, A: (0.3, 0.1) }, mass: 1.0, inertia: 0.01, cg: (0.12, 0.18) },
+              joints { O: revolute(ground, bar) }, input: O }",
+        );
+        let inst = crate::instance::instance(&m).unwrap();
+        let bar = &inst.links[1];
+        let a = inst.points[m.point_index("A").unwrap()].1;
+        for phi in [0.0f64, 0.7, -2.4, 3.1] {
+            let mut s = LinkState::at(V2::new(0.4, -0.2));
+            s.rot = V2::new(phi.cos(), phi.sin());
+            let e = s.point(a) - s.pos;
+            let (r, expected) = (bar.cg_by_span(e), s.r(bar.dcg));
+            assert!((r - expected).norm() < 1e-15, "{phi}: {r} vs {expected}");
+        }
+        // The joint at the bar's first point has a zero local vector in the bar.
+        assert_eq!(m.at_anchor(0), [false, true]);
+        assert_eq!(inst.joints[0].db, V2::zeros());
     }
 }

@@ -262,7 +262,11 @@ pub fn solve_rolling(
                 let a = s[b1].point(if gj.a == b1 { gj.da } else { gj.db });
                 let c = s[b1].point(if gc.a == b1 { gc.da } else { gc.db });
                 let u = crate::link_state::dir_of(s, if g.b == b2 { g.a } else { g.b }, g.axis);
-                [a, c, V2::new((c - a).dot(&u), crate::link_state::cross(u, c - a))]
+                [
+                    a,
+                    c,
+                    V2::new((c - a).dot(&u), crate::link_state::cross(u, c - a)),
+                ]
             };
             let c = points[1];
             if upto == Level::Position {

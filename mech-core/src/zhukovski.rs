@@ -94,7 +94,20 @@ impl Reduction {
     /// gives, enters by one multiplication.
     #[inline(always)]
     pub fn inertia(&mut self, l: &LinkGeom, s: &LinkState) {
-        let r = s.r(l.dcg);
+        self.inertia_at(l, s, s.r(l.dcg));
+    }
+    /// [`Reduction::inertia`] for a link whose second point is the anchor of the link in
+    /// state `next` ([`crate::model::Model::span_partner`]): the cg's offset from the
+    /// span e = next.pos − pos ([`LinkGeom::cg_by_span`]), so that the sum waits for no
+    /// rotation of the link.
+    #[inline(always)]
+    pub fn inertia_spanned(&mut self, l: &LinkGeom, s: &LinkState, next: &LinkState) {
+        self.inertia_at(l, s, l.cg_by_span(next.pos - s.pos));
+    }
+    /// [`Reduction::inertia`] with the cg's current offset from the anchor r = G − anchor
+    /// given.
+    #[inline(always)]
+    pub fn inertia_at(&mut self, l: &LinkGeom, s: &LinkState, r: V2) {
         let v = s.vel_at(r);
         let m2 = 2.0 * l.mass;
         self.reduced.inertia += l.mass * v.norm_squared() + l.inertia * s.omega * s.omega;
@@ -108,7 +121,7 @@ impl Reduction {
     /// I_O = I_G + m |r|² (kg·m²); no cg is placed.
     #[inline(always)]
     pub fn inertia_about_anchor(&mut self, l: &LinkGeom, s: &LinkState) {
-        let io = l.inertia + l.mass * l.dcg.norm_squared();
+        let io = l.inertia_anchor;
         self.reduced.inertia += io * s.omega * s.omega;
         self.reduced.inertia_derivative += (2.0 * io * s.omega) * s.alpha;
     }
@@ -129,7 +142,18 @@ impl Reduction {
     /// Add the power of gravity on a link, m g·g_G, to M*.
     #[inline(always)]
     pub fn gravity(&mut self, l: &LinkGeom, s: &LinkState, g: V2) {
-        self.moment += l.mass * g.dot(&s.vel_at(s.r(l.dcg)));
+        self.gravity_at(l, s, g, s.r(l.dcg));
+    }
+    /// [`Reduction::gravity`] for a link whose second point is the anchor of the link in
+    /// state `next`, as [`Reduction::inertia_spanned`].
+    #[inline(always)]
+    pub fn gravity_spanned(&mut self, l: &LinkGeom, s: &LinkState, next: &LinkState, g: V2) {
+        self.gravity_at(l, s, g, l.cg_by_span(next.pos - s.pos));
+    }
+    /// [`Reduction::gravity`] with the cg's offset r = G − anchor given.
+    #[inline(always)]
+    pub fn gravity_at(&mut self, l: &LinkGeom, s: &LinkState, g: V2, r: V2) {
+        self.moment += l.mass * g.dot(&s.vel_at(r));
     }
     /// Add the power of a force `f` (N) at the material point of local vector `d`, f·g_P.
     #[inline(always)]

@@ -124,6 +124,8 @@ fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
             quote!(z.inertia_about_anchor(&self.links[#l], &s[#l]);)
         } else if cx.model.translates(l) {
             quote!(z.inertia_translating(&self.links[#l], &s[#l]);)
+        } else if let Some(m) = cx.model.span_partner(l) {
+            quote!(z.inertia_spanned(&self.links[#l], &s[#l], &s[#m]);)
         } else {
             quote!(z.inertia(&self.links[#l], &s[#l]);)
         }
@@ -139,6 +141,8 @@ fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
     let gravity = weighed.iter().map(|&l| {
         if cx.model.translates(l) {
             quote!(z.gravity_translating(&self.links[#l], &s[#l], self.gravity);)
+        } else if let Some(m) = cx.model.span_partner(l) {
+            quote!(z.gravity_spanned(&self.links[#l], &s[#l], &s[#m], self.gravity);)
         } else {
             quote!(z.gravity(&self.links[#l], &s[#l], self.gravity);)
         }
