@@ -47,10 +47,17 @@ pub enum MechError {
     Invalid(String),
 }
 
-/// `InvalidInput` unless every value is finite.
+/// True when every value is finite: one sum of v·0 over the values (0 for a finite v, NaN
+/// for an infinity or a NaN, and never an overflow), no branch per value.
+#[inline(always)]
+pub fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(0.0, |z, v| z + v * 0.0) == 0.0
+}
+
+/// `InvalidInput` unless every value is finite ([`all_finite`]).
 #[inline]
 pub fn check_finite(what: &str, values: &[f64]) -> Result<(), MechError> {
-    if values.iter().all(|v| v.is_finite()) {
+    if all_finite(values) {
         Ok(())
     } else {
         Err(not_finite(what, values))

@@ -114,14 +114,12 @@ pub fn check(model: &Model) -> Vec<Issue> {
     out
 }
 
-/// `Ok(())` when every value of `quantity` is finite; else an error naming it: the inputs
-/// (speeds, loads, the driver) are too large for f64 with this mechanism.
-/// One sum of v·0 over the values (0 for a finite v, NaN for an infinity or a NaN, and
-/// never an overflow), no branch per value.
+/// `Ok(())` when every value of `quantity` is finite ([`crate::error::all_finite`]); else
+/// an error naming it: the inputs (speeds, loads, the driver) are too large for f64 with
+/// this mechanism.
 #[inline]
 pub fn finite_result(quantity: &str, values: &[f64]) -> Result<(), MechError> {
-    let zero = values.iter().fold(0.0, |z, v| z + v * 0.0);
-    if zero == 0.0 {
+    if crate::error::all_finite(values) {
         Ok(())
     } else {
         overflow(quantity, values)

@@ -154,7 +154,7 @@ fn lincomb<const N: usize, const S: usize>(
 
 #[inline]
 fn finite<const N: usize>(y: &[f64; N]) -> bool {
-    y.iter().all(|v| v.is_finite())
+    crate::error::all_finite(y)
 }
 
 fn check_run<const N: usize>(t0: f64, y0: &[f64; N], t_end: f64) -> Result<(), MechError> {
