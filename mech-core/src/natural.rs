@@ -33,8 +33,8 @@
 //! times the length scale L so that both columns are lengths) is then
 //! κ_F = (|e₁|² + L²)/|x L|: `Singular` near a change point, where e₁ ⊥ u.
 //!
-//! Each link's anchor then moves as the material point it is (`LinkState::set_velocity_through`,
-//! `set_acceleration_through`): v = v_P + ω perp(r),
+//! Each link's anchor then moves as the material point it is (`LinkState::set_velocity_at`,
+//! `set_acceleration_at`): v = v_P + ω perp(r),
 //! a = a_P + α perp(r) − ω² r, with P the dyad's point on that link and r = anchor − P.
 
 use crate::constraints::{JointGeom, Level};
@@ -107,8 +107,8 @@ pub fn rrr_rates(
     s[b1].set_velocity_at(da, a, va, w1);
     s[b2].set_velocity_at(dc, c, vc, w2);
     if upto == Level::Acceleration {
-        let da = ac - aa + e1 * (w1 * w1) - e2 * (w2 * w2);
-        let [al1, al2] = m.solve([da.x, da.y]);
+        let rhs = ac - aa + e1 * (w1 * w1) - e2 * (w2 * w2);
+        let [al1, al2] = m.solve([rhs.x, rhs.y]);
         s[b1].set_acceleration_at(da, a, aa, al1);
         s[b2].set_acceleration_at(dc, c, ac, al2);
     }
@@ -170,10 +170,10 @@ impl SlideFrame {
 }
 
 /// Rates of an RRP dyad (module docs) whose links `b1` (pinned at A by `ja`, to the
-/// slider at C by `jc`) and `b2` (the slider, on the guide by the prismatic `jp`) are placed with A and C at
-/// `points` = [A, C, (x, y)], e₁ = C − A = x u + y n ([`crate::dyad::position`], which
-/// has x from its square root and y before it). `rsq` is |e₁|², `scale` the length scale
-/// L. `Singular` near a change point (e₁ ⊥ u, x = 0).
+/// slider at C by `jc`) and `b2` (the slider, on the guide by the prismatic `jp`) are
+/// placed with A and C at `points` = [A, C, (x, y)], e₁ = C − A = x u + y n
+/// ([`crate::dyad::position`], which has x from its square root and y before it).
+/// `scale` is the length scale L. `Singular` near a change point (e₁ ⊥ u, x = 0).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 #[allow(clippy::too_many_arguments)]
