@@ -155,10 +155,16 @@ impl Reduction {
     pub fn gravity_at(&mut self, l: &LinkGeom, s: &LinkState, g: V2, r: V2) {
         self.moment += l.mass * g.dot(&s.vel_at(r));
     }
-    /// Add the power of a force `f` (N) at the material point of local vector `d`, f·g_P.
+    /// Add the power of a force `f` (N) at the material point of local vector `d`, f·g_P
+    /// (g_P the anchor's when d = 0, a test that folds when d is a literal zero).
     #[inline(always)]
     pub fn force(&mut self, s: &LinkState, d: V2, f: V2) {
-        self.moment += f.dot(&s.vel_at(s.r(d)));
+        let v = if d.x == 0.0 && d.y == 0.0 {
+            s.vel
+        } else {
+            s.vel_at(s.r(d))
+        };
+        self.moment += f.dot(&v);
     }
     /// Add the power of a torque `t` (N·m) on a link, t g.
     #[inline(always)]
