@@ -8,8 +8,10 @@
 //! One kinematic core, shared by the generated code, the run-time [`Mechanism`] and the
 //! validation, each formula once, imports one way: [`link_state`] (a link's frame, its
 //! points' motion) → [`constraints`] (the joints' equations, their scaled Jacobian) →
-//! [`linalg`] → [`dyad`] (closed-form positions), [`screw`] (closed-form rates and
-//! reactions by joint screws), [`group`] (Newton and LU for the rest) → [`kinematics`]
+//! [`linalg`] → [`dyad`] (closed-form positions), [`natural`] (the RRR and RRP dyads'
+//! rates and reactions in their natural coordinates), [`screw`] (the other closed-form
+//! groups' rates and reactions by joint screws), [`group`] (Newton and LU for the rest) →
+//! [`kinematics`]
 //! (one entry point per group). The generated code is a sequence of calls into those and
 //! into [`kinetostatics`], [`virtual_power`], [`zhukovski`], [`energy`], [`elements`]
 //! (springs and dampers), [`branches`] and [`friction`], with the numbers of [`instance`] checked against the declaration by
