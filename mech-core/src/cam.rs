@@ -512,7 +512,7 @@ impl Profile {
     ///
     /// Knife and roller: seen from the cam (turned back by θ) the pitch point is
     /// P(θ) = R(−θ) F(θ), so P′ = R(−θ) v and P″ = R(−θ) a with v = F′ − perp(F),
-    /// a = F″ − 2 perp(F′) − F ([`Profile::pitch_motion`] gives F, F′, F″). The pitch curve,
+    /// a = F″ − 2 perp(F′) − F (`Profile::pitch_motion` gives F, F′, F″). The pitch curve,
     /// traversed clockwise, has the radius of curvature ρ = −|v|³ / (v × a) (> 0 where
     /// convex); its outward normal n = perp(v)/|v| is the common normal, the contact is
     /// K = F − r n and the pressure angle is the angle from d̂ to n. A translating flat face

@@ -120,7 +120,7 @@ impl fmt::Display for Dim {
     }
 }
 
-/// One unit word: x [word] = `factor` × x [SI].
+/// One unit word: x (in the word) = `factor` × x (in SI).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Unit {
     /// The word as written after a number.
