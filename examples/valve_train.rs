@@ -87,14 +87,7 @@ pub fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
     let m = ValveTrain::new();
     let profile = &m.cams()[0].profile;
     let chk = profile.check(3600);
-    println!(
-        "largest pressure angle {:.2}° at {:.1}°; smallest convex radius of the cam {:.2} mm at {:.1}°; undercut: {}",
-        chk.max_pressure_angle.0.to_degrees(),
-        chk.max_pressure_angle.1.to_degrees(),
-        chk.min_convex_radius.0 * 1e3,
-        chk.min_convex_radius.1.to_degrees(),
-        chk.undercut
-    );
+    println!("{chk}");
     let jump = jump_speed(&m, 3600)?;
     println!(
         "the follower leaves the cam above {:.1} rad/s ({:.0} rpm of the camshaft)",

@@ -60,14 +60,7 @@ pub fn run(args: CamArgs, out: impl Write) -> Result<(), Failure> {
     }
     w.finish()?;
     let c = p.check(args.points);
-    eprintln!(
-        "cam `{name}`: largest pressure angle {:.2}° at θ = {:.1}°; smallest convex radius of the surface {:.3} mm at θ = {:.1}°; {}",
-        c.max_pressure_angle.0.to_degrees(),
-        c.max_pressure_angle.1.to_degrees(),
-        c.min_convex_radius.0 * 1e3,
-        c.min_convex_radius.1.to_degrees(),
-        if c.undercut { "UNDERCUT (a cusp)" } else { "not undercut" }
-    );
+    eprintln!("cam `{name}`: {c}");
     if let Some(path) = &args.svg {
         let r = p
             .points(args.points)

@@ -620,6 +620,27 @@ pub struct ProfileCheck {
     pub missing: Option<f64>,
 }
 
+/// The design figures in one line: the largest pressure angle and where, the smallest
+/// convex radius of the surface (mm) and where, undercut or not, and where the profile
+/// does not exist if it does not somewhere.
+impl std::fmt::Display for ProfileCheck {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "largest pressure angle {:.2}° at θ = {:.1}°; smallest convex radius of the surface {:.3} mm at θ = {:.1}°; {}",
+            self.max_pressure_angle.0.to_degrees(),
+            self.max_pressure_angle.1.to_degrees(),
+            self.min_convex_radius.0 * 1e3,
+            self.min_convex_radius.1.to_degrees(),
+            if self.undercut { "UNDERCUT (a cusp)" } else { "not undercut" }
+        )?;
+        match self.missing {
+            Some(t) => write!(f, "; no profile at θ = {:.1}°", t.to_degrees()),
+            None => Ok(()),
+        }
+    }
+}
+
 impl Profile {
     /// The profile at `n` cam angles evenly over the revolution, from θ = 0.
     pub fn points(&self, n: usize) -> Vec<ProfilePoint> {

@@ -5,7 +5,7 @@
 //! [`position`] at every input value.
 
 use crate::constraints::{Drive, JointGeom};
-use crate::link_state::{cross, dir_of, perp, point_of, rotate, LinkState, V2};
+use crate::link_state::{cross, dir_of, perp, point_of, quotient, rotate, LinkState, V2};
 use crate::MechError;
 
 /// How a group's positions are solved.
@@ -262,10 +262,7 @@ pub fn place_by_point(s: &mut LinkState, rot: V2, d: V2, p: V2) {
 /// it runs beside the solve, not in its chain).
 #[inline]
 pub fn place_by_two_points(s: &mut LinkState, d1: V2, d2: V2, p1: V2, p2: V2) {
-    let a = d2 - d1;
-    let b = p2 - p1;
-    let rot = V2::new(a.dot(&b), cross(a, b)) * (1.0 / a.norm_squared());
-    place_by_point(s, rot, d1, p1);
+    place_by_point(s, quotient(p2 - p1, d2 - d1), d1, p1);
 }
 
 /// The side of a closed form's solution in the drawing (±1), given the kernel's signed

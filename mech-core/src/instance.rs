@@ -5,7 +5,7 @@ use crate::constraints::JointGeom;
 use crate::dyad::{branch, branch_quantity, Solver};
 use crate::elements::ElementGeom;
 use crate::geometry::{anchor, drawing_states, joint_geoms, local};
-use crate::link_state::{cross, LinkGeom, LinkState, V2};
+use crate::link_state::{quotient, LinkGeom, LinkState, V2};
 use crate::model::{Load, Model};
 use crate::MechError;
 
@@ -65,9 +65,8 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
                 cg_span: match link.points.get(1) {
                     Some(&p2) => {
                         let a = local(model, l, model.points[p2].pos);
-                        let a2 = a.norm_squared();
-                        if a2 > 0.0 {
-                            V2::new(a.dot(&dcg), cross(a, dcg)) / a2
+                        if a.norm_squared() > 0.0 {
+                            quotient(dcg, a)
                         } else {
                             V2::zeros()
                         }

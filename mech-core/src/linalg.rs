@@ -137,17 +137,7 @@ impl Inverse2 {
     /// multiplies, so that the one division is 1/det.
     #[inline(always)]
     pub fn scaled(m: [[f64; 2]; 2], c: [f64; 2]) -> Result<Self, crate::MechError> {
-        Self::scaled_with_det(m, m[0][0] * m[1][1] - m[0][1] * m[1][0], c)
-    }
-    /// [`Inverse2::scaled`] with det A given by the caller, who knows it from the geometry
-    /// earlier than the matrix's entries would give it (an RRP dyad: det = (C − A)·u, the
-    /// square root of its position).
-    #[inline(always)]
-    pub fn scaled_with_det(
-        m: [[f64; 2]; 2],
-        det: f64,
-        c: [f64; 2],
-    ) -> Result<Self, crate::MechError> {
+        let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
         let norm2 = c[0] * c[0] * (m[0][0] * m[0][0] + m[1][0] * m[1][0])
             + c[1] * c[1] * (m[0][1] * m[0][1] + m[1][1] * m[1][1]);
         check_condition(norm2, (c[0] * c[1] * det).abs())?;

@@ -32,6 +32,13 @@ pub fn rotate(rot: V2, d: V2) -> V2 {
     V2::new(rot.x * d.x - rot.y * d.y, rot.y * d.x + rot.x * d.y)
 }
 
+/// The complex quotient b/a = (a·b, a × b)/|a|²: the rotation and scale that take a to
+/// b, so that `rotate(quotient(b, a), a)` = b (a ≠ 0).
+#[inline(always)]
+pub fn quotient(b: V2, a: V2) -> V2 {
+    V2::new(a.dot(&b), cross(a, b)) * (1.0 / a.norm_squared())
+}
+
 /// Angle difference wrapped to (−π, π] (rad). Beyond |a| = 1e9 the reduction goes
 /// through (sin a, cos a), which is exact for any finite a.
 #[inline]
