@@ -22,13 +22,15 @@ pub use crate::link_state::{
     cross, perp, point_motion, point_pose, rotate, wrap, LinkGeom, LinkMotion, LinkPose, LinkState,
     PointMotion, PointPose, V2,
 };
+pub use crate::natural::DyadSystem;
 use crate::screw::{chain_rates, driven_rates, Chain, Driven};
 use crate::MechError;
 
 /// Solve a closed-form group up to `upto`: place its links by `solver` on the drawing's
 /// branch `sign`, then its velocities and accelerations in natural coordinates for an RRR
 /// or RRP dyad ([`crate::natural`]), by the chain's joint screws for the others.
-/// `Singular` near a change point, `NoAssembly` where the group does not close.
+/// `Singular` near a change point, `NoAssembly` where the group does not close. Returns
+/// what the dyad keeps for its reactions ([`DyadSystem`]).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 #[allow(clippy::too_many_arguments)]
@@ -41,7 +43,7 @@ pub fn solve_chain(
     sign: f64,
     scale: f64,
     upto: Level,
-) -> Result<(), MechError> {
+) -> Result<DyadSystem, MechError> {
     let points = crate::dyad::position(solver, joints, s, drive, sign)?;
     match solver {
         Solver::Rrr { b1, b2, ja, jb, .. } => {
@@ -50,7 +52,7 @@ pub fn solve_chain(
         Solver::Rrp { b1, b2, ja, jc, jp } => {
             crate::natural::rrp_rates(joints, s, b1, b2, ja, jc, jp, points, scale, upto)
         }
-        _ => chain_rates(chain, joints, s, scale, upto),
+        _ => chain_rates(chain, joints, s, scale, upto).map(|()| DyadSystem::None),
     }
 }
 
@@ -59,9 +61,10 @@ pub fn solve_chain(
 /// wrenches in `f` (every link's applied and inertia wrench about its anchor, plus the
 /// reactions of the groups solved before). In natural coordinates for an RRR or RRP dyad
 /// ([`crate::natural`]), by the chain's joint screws for the others. Called from the
-/// outermost group inward.
+/// outermost group inward. `kept` is what [`solve_chain`] returned for the motion.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
+#[allow(clippy::too_many_arguments)]
 pub fn chain_reactions(
     solver: Solver,
     chain: &Chain,
@@ -69,14 +72,15 @@ pub fn chain_reactions(
     s: &[LinkState],
     f: &mut [Wrench],
     scale: f64,
+    kept: &DyadSystem,
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
     match solver {
         Solver::Rrr { b1, b2, ja, jc, jb } => {
-            crate::natural::rrr_reactions(joints, s, f, b1, b2, ja, jc, jb, out)
+            crate::natural::rrr_reactions(joints, s, f, b1, b2, ja, jc, jb, kept, out)
         }
         Solver::Rrp { b1, b2, ja, jc, jp } => {
-            crate::natural::rrp_reactions(joints, s, f, b1, b2, ja, jc, jp, scale, out)
+            crate::natural::rrp_reactions(joints, s, f, b1, b2, ja, jc, jp, scale, kept, out)
         }
         _ => crate::screw::chain_reactions(chain, joints, s, f, scale, out),
     }

@@ -10,18 +10,30 @@
 
 use crate::constraints::{eval, Con, ConKind, JointGeom, Level};
 use crate::group::GroupSystem;
-use crate::link_state::{cross, perp, LinkGeom, LinkState, V2};
+use crate::link_state::{cross, perp, LinkGeom, LinkMotion, LinkState, V2};
 use crate::MechError;
 use nalgebra::{SVector, Vector3};
 
 /// A generalised force on a link: (F_x, F_y, M about the anchor), N and N·m.
 pub type Wrench = Vector3<f64>;
 
+/// Add a force `force` (N) at the offset `r` (m) from the link's anchor: (F, r × F).
+#[inline(always)]
+fn add_force_arm(w: &mut Wrench, r: V2, force: V2) {
+    *w += Vector3::new(force.x, force.y, cross(r, force));
+}
+
 /// Add a force `force` (N) applied at the material point of local vector `d`.
 #[inline(always)]
 pub fn add_force(w: &mut Wrench, s: &LinkState, d: V2, force: V2) {
-    let r = s.r(d);
-    *w += Vector3::new(force.x, force.y, cross(r, force));
+    add_force_arm(w, s.r(d), force);
+}
+
+/// Add a force `force` (N) applied at the point now at `p` (m) of the link anchored at
+/// `anchor`: r = p − anchor.
+#[inline(always)]
+pub fn add_force_at(w: &mut Wrench, anchor: V2, p: V2, force: V2) {
+    add_force_arm(w, p - anchor, force);
 }
 
 /// Add a pure torque (N·m, CCW).
@@ -36,12 +48,33 @@ pub fn add_gravity(w: &mut Wrench, s: &LinkState, l: &LinkGeom, g: V2) {
     add_force(w, s, l.dcg, g * l.mass);
 }
 
+/// Add gravity m·g at the cg of the link motion `m` (its anchor at `anchor`).
+#[inline(always)]
+pub fn add_gravity_of(w: &mut Wrench, anchor: V2, m: &LinkMotion, l: &LinkGeom, g: V2) {
+    add_force_at(w, anchor, m.cg, g * l.mass);
+}
+
+/// Add d'Alembert's inertia wrench of a link whose cg is at the offset `r` (m) from its
+/// anchor and accelerates at `acc` (m/s²), the link at α (rad/s²): the force −m·a_G at
+/// the cg and the moment −I_G·α.
+#[inline(always)]
+fn add_inertia_arm(w: &mut Wrench, r: V2, acc: V2, alpha: f64, l: &LinkGeom) {
+    let force = -acc * l.mass;
+    *w += Vector3::new(force.x, force.y, cross(r, force) - l.inertia * alpha);
+}
+
 /// Add d'Alembert's inertia force −m·a_G at the cg and inertia moment −I_G·α.
 #[inline(always)]
 pub fn add_inertia(w: &mut Wrench, s: &LinkState, l: &LinkGeom) {
     let r = s.r(l.dcg);
-    let force = -s.acc_at(r) * l.mass;
-    *w += Vector3::new(force.x, force.y, cross(r, force) - l.inertia * s.alpha);
+    add_inertia_arm(w, r, s.acc_at(r), s.alpha, l);
+}
+
+/// [`add_inertia`] from the link motion `m` (its anchor at `anchor`), whose cg and cg
+/// acceleration are already known: nothing is rotated again.
+#[inline(always)]
+pub fn add_inertia_of(w: &mut Wrench, anchor: V2, m: &LinkMotion, l: &LinkGeom) {
+    add_inertia_arm(w, m.cg - anchor, m.cg_acc, m.alpha, l);
 }
 
 /// The multipliers of one group (row order of its constraints): solve Jᵀ λ = −f for

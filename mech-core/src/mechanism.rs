@@ -495,7 +495,8 @@ impl Mechanism {
             match &g.kernel {
                 Kernel::Driven(d) => kinematics::solve_driven(g.solver, d, joints, s, drive, upto)?,
                 Kernel::Chain(c) => {
-                    kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)?
+                    kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)
+                        .map(|_| ())?
                 }
                 Kernel::Mesh(m) => crate::gears::solve_mesh(m, &self.inst.meshes, joints, s, upto)?,
                 Kernel::Train(t) => {
@@ -707,9 +708,16 @@ impl Mechanism {
                 Kernel::Driven(k) => {
                     screw::driven_reactions(k, joints, s, &mut f, &mut r, &mut out.driver)
                 }
-                Kernel::Chain(c) => {
-                    kinematics::chain_reactions(g.solver, c, joints, s, &mut f, scale, &mut r)?
-                }
+                Kernel::Chain(c) => kinematics::chain_reactions(
+                    g.solver,
+                    c,
+                    joints,
+                    s,
+                    &mut f,
+                    scale,
+                    &kinematics::DyadSystem::None,
+                    &mut r,
+                )?,
                 Kernel::Mesh(m) => {
                     crate::gears::mesh_reactions(m, &self.inst.meshes, joints, s, &mut f, &mut r)?
                 }

@@ -78,7 +78,7 @@ fn solved_link(g: &JointGeom, body: usize) -> usize {
 
 /// Rates of an RRR dyad (module docs) whose links `b1`, `b2` are placed with A, B, C at
 /// `points` = [A, B, C]; `ja`, `jb` are the pins at A (of b1) and at C (of b2).
-/// `Singular` near a change point (e₁ ∥ e₂).
+/// `Singular` near a change point (e₁ ∥ e₂). Returns the system, kept for the reactions.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 #[allow(clippy::too_many_arguments)]
@@ -91,9 +91,9 @@ pub fn rrr_rates(
     jb: usize,
     points: [V2; 3],
     upto: Level,
-) -> Result<(), MechError> {
+) -> Result<DyadSystem, MechError> {
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
-        return Ok(());
+        return Ok(DyadSystem::None);
     }
     let [a, b, c] = points;
     let (la, lc) = (solved_link(&joints[ja], b1), solved_link(&joints[jb], b2));
@@ -112,12 +112,12 @@ pub fn rrr_rates(
         s[b1].set_acceleration_at(da, a, aa, al1);
         s[b2].set_acceleration_at(dc, c, ac, al2);
     }
-    Ok(())
+    Ok(DyadSystem::Rrr(m))
 }
 
 /// An RRP dyad's system [perp(e₁) −u] in the guide's frame (module docs): the unit axis
 /// u, n = perp(u), and e₁ = C − A = x u + y n, with 1/x ready.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlideFrame {
     /// The guide's unit axis u.
     pub u: V2,
@@ -169,11 +169,27 @@ impl SlideFrame {
     }
 }
 
+/// What a dyad's kinematics keeps for its reactions: the 2×2 system of its rates, whose
+/// transpose gives the reactions (module docs), so that d'Alembert neither rebuilds it,
+/// nor estimates its condition, nor divides again. `None` below the velocity level or
+/// for a group solved by its joint screws; the reactions then build the system.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum DyadSystem {
+    /// Nothing kept.
+    #[default]
+    None,
+    /// An RRR dyad's [perp(e₁) −perp(e₂)].
+    Rrr(Inverse2),
+    /// An RRP dyad's [perp(e₁) −u], in the guide's frame.
+    Rrp(SlideFrame),
+}
+
 /// Rates of an RRP dyad (module docs) whose links `b1` (pinned at A by `ja`, to the
 /// slider at C by `jc`) and `b2` (the slider, on the guide by the prismatic `jp`) are
 /// placed with A and C at `points` = [A, C, (x, y)], e₁ = C − A = x u + y n
 /// ([`crate::dyad::position`], which has x from its square root and y before it).
 /// `scale` is the length scale L. `Singular` near a change point (e₁ ⊥ u, x = 0).
+/// Returns the system, kept for the reactions.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 #[allow(clippy::too_many_arguments)]
@@ -188,9 +204,9 @@ pub fn rrp_rates(
     points: [V2; 3],
     scale: f64,
     upto: Level,
-) -> Result<(), MechError> {
+) -> Result<DyadSystem, MechError> {
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
-        return Ok(());
+        return Ok(DyadSystem::None);
     }
     let [a, c, xy] = points;
     let gp = &joints[jp];
@@ -238,7 +254,7 @@ pub fn rrp_rates(
             s[b2].set_acceleration_at(dc, c, ac, alg);
         }
     }
-    Ok(())
+    Ok(DyadSystem::Rrp(m))
 }
 
 /// A link's wrench (force, moment about its anchor `pos`) as its force and its moment
@@ -276,7 +292,8 @@ fn reported(g: &JointGeom, on: usize, force: V2, moment: f64) -> Reaction {
 /// b₁ on b₂ at B, the moments of b₁ about A and of b₂ about C,
 /// e₁ × X = M₁(A), −e₂ × X = M₂(C), are the transpose of the velocity system:
 /// [perp(e₁) −perp(e₂)]ᵀ X = (M₁(A), M₂(C)). Then the forces on b₁ at A and on b₂ at C,
-/// R_A = X − F₁ and R_C = −X − F₂; the solved links get −R_A and −R_C.
+/// R_A = X − F₁ and R_C = −X − F₂; the solved links get −R_A and −R_C. `kept`, the
+/// system [`rrr_rates`] returned, if any.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 #[allow(clippy::too_many_arguments)]
@@ -289,6 +306,7 @@ pub fn rrr_reactions(
     ja: usize,
     jc: usize,
     jb: usize,
+    kept: &DyadSystem,
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
     let (ga, gc, gb) = (&joints[ja], &joints[jc], &joints[jb]);
@@ -297,8 +315,13 @@ pub fn rrr_reactions(
     let c = crate::link_state::point_of(s, lc, if gb.a == lc { gb.da } else { gb.db });
     let b = s[b1].point(if gc.a == b1 { gc.da } else { gc.db });
     let (e1, e2) = (b - a, b - c);
-    let (p1, p2) = (perp(e1), perp(e2));
-    let m = Inverse2::new([[p1.x, -p2.x], [p1.y, -p2.y]])?;
+    let m = match kept {
+        DyadSystem::Rrr(m) => *m,
+        _ => {
+            let (p1, p2) = (perp(e1), perp(e2));
+            Inverse2::new([[p1.x, -p2.x], [p1.y, -p2.y]])?
+        }
+    };
     let (f1, m1) = about(&f[b1], s[b1].pos, a);
     let (f2, m2) = about(&f[b2], s[b2].pos, c);
     let [x, y] = m.solve_transpose([m1, m2]);
@@ -318,7 +341,8 @@ pub fn rrr_reactions(
 /// system: [perp(e₁) −u]ᵀ X = (M₁(A), F₂·u). Then R_A = X − F₁ at A, and the guide's
 /// force on the slider R_P = −X − F₂ (normal to u) with the couple that balances the
 /// slider's moments about the joint point P, M_P = −(M₂(P) + (C − P) × X). `scale` is
-/// the length scale L of the condition estimate, as in [`rrp_rates`].
+/// the length scale L of the condition estimate, as in [`rrp_rates`]; `kept`, the
+/// system [`rrp_rates`] returned, if any.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 #[allow(clippy::too_many_arguments)]
@@ -332,6 +356,7 @@ pub fn rrp_reactions(
     jc: usize,
     jp: usize,
     scale: f64,
+    kept: &DyadSystem,
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
     let (ga, gc, gp) = (&joints[ja], &joints[jc], &joints[jp]);
@@ -340,7 +365,10 @@ pub fn rrp_reactions(
     let c = s[b2].point(if gc.a == b2 { gc.da } else { gc.db });
     let p = crate::link_state::point_of(s, gp.b, gp.db);
     let u = dir_of(s, lg, gp.axis);
-    let m = SlideFrame::of(u, c - a, scale)?;
+    let m = match kept {
+        DyadSystem::Rrp(m) => *m,
+        _ => SlideFrame::of(u, c - a, scale)?,
+    };
     let (f1, m1) = about(&f[b1], s[b1].pos, a);
     let (f2, m2) = about(&f[b2], s[b2].pos, p);
     let x = m.solve_transpose(m1, f2.dot(&u));

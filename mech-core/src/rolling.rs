@@ -392,7 +392,19 @@ pub fn rolling_reactions(
         RollingGroup::Dyad { b1, b2, ja, jc, jr } => {
             let g = &joints[jr];
             let (ft, k, c) = friction(g, s, f, b2);
-            crate::natural::rrp_reactions(joints, s, f, b1, b2, ja, jc, jr, scale, out)?;
+            crate::natural::rrp_reactions(
+                joints,
+                s,
+                f,
+                b1,
+                b2,
+                ja,
+                jc,
+                jr,
+                scale,
+                &crate::natural::DyadSystem::None,
+                out,
+            )?;
             // The slider's guide reaction is the normal force, through C (on the normal
             // through K); the friction acts at K.
             let normal = out[jr].force;

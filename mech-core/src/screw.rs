@@ -670,7 +670,8 @@ mod tests {
                             sign,
                             inst.scale,
                             Level::Acceleration,
-                        ),
+                        )
+                        .map(|_| ()),
                         Kernel::Driven(d) => crate::kinematics::solve_driven(
                             g.solver,
                             d,
@@ -778,6 +779,7 @@ mod tests {
                             &sa,
                             &mut fa,
                             inst.scale,
+                            &crate::natural::DyadSystem::None,
                             &mut ra,
                         )
                         .expect("chain"),

@@ -206,8 +206,8 @@ mod snapshots {
         let code = flat(&pretty_parts(SLIDER_CRANK));
         // `mass: 0.0` on the piston (link 3): gravity, inertia, energies and Zhukovski.
         for term in [
-            "add_gravity(&mutf[3usize]",
-            "add_inertia(&mutf[3usize]",
+            "add_gravity_of(&mutf[3usize]",
+            "add_inertia_of(&mutf[3usize]",
             // The piston slides on the ground: its cg moves as its anchor.
             "z.inertia_translating(&self.links[3usize]",
             "z.gravity_translating(&self.links[3usize]",
@@ -223,14 +223,14 @@ mod snapshots {
         let code = flat(&pretty_parts(FOUR_BAR));
         // The coupler (link 2) has no term; the rocker (link 3) its inertia only.
         for absent in [
-            "add_inertia(&mutf[2usize]",
-            "add_gravity(&mutf[2usize]",
+            "add_inertia_of(&mutf[2usize]",
+            "add_gravity_of(&mutf[2usize]",
             "z.inertia(&self.links[2usize]",
             "z.inertia_about_anchor(&self.links[2usize]",
             "z.gravity(&self.links[2usize]",
             "energy::kinetic(&self.links[2usize]",
             "energy::potential(&self.links[2usize]",
-            "add_gravity(&mutf[3usize]",
+            "add_gravity_of(&mutf[3usize]",
             "z.gravity(&self.links[3usize]",
             "energy::potential(&self.links[3usize]",
         ] {
@@ -239,7 +239,7 @@ mod snapshots {
         for present in [
             "LinkTerms::Massless.check(\"coupler\",&p.links.coupler)?",
             "LinkTerms::InertiaOnly.check(\"rocker\",&p.links.rocker)?",
-            "add_inertia(&mutf[3usize]",
+            "add_inertia_of(&mutf[3usize]",
             // The rocker turns about its anchor O4, a ground pin: its inertia about O4.
             "z.inertia_about_anchor(&self.links[3usize]",
             "energy::kinetic(&self.links[3usize]",

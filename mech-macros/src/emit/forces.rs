@@ -185,22 +185,34 @@ fn forces_type(cx: &Ctx) -> TokenStream {
 }
 
 /// `__wrenches`: gravity on the links declared with `mass`, the loads, the force elements,
-/// and with `inertia` d'Alembert's inertia wrench of the links with inertia terms.
+/// and with `inertia` d'Alembert's inertia wrench of the links with inertia terms; each
+/// about its link's anchor, from the motion's published cg, cg acceleration and load
+/// points (nothing is rotated again).
 fn wrenches_fn(cx: &Ctx) -> TokenStream {
     let Ctx { p, n_links, .. } = cx;
-    let loads = &cx.names.loads;
+    let (motion, loads) = (&cx.names.motion, &cx.names.loads);
     let values = load_values(cx);
-    let weighed = cx.weighed();
-    let inertial = cx.inertial();
+    let link = |l: usize| &cx.link_ids[l];
+    let weighed = cx.weighed().into_iter().map(|l| {
+        let lid = link(l);
+        quote!(#p::kinetostatics::add_gravity_of(&mut f[#l], s[#l].pos, &m.links.#lid, &self.links[#l], self.gravity);)
+    });
+    let inertial = cx.inertial().into_iter().map(|l| {
+        let lid = link(l);
+        quote!(#p::kinetostatics::add_inertia_of(&mut f[#l], s[#l].pos, &m.links.#lid, &self.links[#l]);)
+    });
     let elements = if cx.has_elements() {
         quote!(#p::elements::add_wrenches(&self.elements, s, &mut f);)
     } else {
         quote!()
     };
-    let load_terms = cx.model.loads.iter().enumerate().map(|(k, l)| {
+    let load_terms = cx.model.loads.iter().map(|l| {
         let (lid, link) = (id(l.name()), l.link());
-        match l {
-            Load::Force { .. } => quote!(#p::kinetostatics::add_force(&mut f[#link], &s[#link], self.loads[#k], loads.#lid);),
+        match *l {
+            Load::Force { point, .. } => {
+                let pid = &cx.point_ids[point];
+                quote!(#p::kinetostatics::add_force_at(&mut f[#link], s[#link].pos, m.points.#pid.pos, loads.#lid);)
+            }
             Load::Torque { .. } => quote!(#p::kinetostatics::add_torque(&mut f[#link], loads.#lid);),
         }
     });
@@ -209,17 +221,18 @@ fn wrenches_fn(cx: &Ctx) -> TokenStream {
         #[inline(always)]
         fn __wrenches(
             &self,
-            s: &[#p::kinematics::LinkState; #n_links],
+            m: &#motion,
             loads: &#loads,
             inertia: bool,
         ) -> Result<[#p::kinetostatics::Wrench; #n_links], #p::MechError> {
             #p::error::check_finite("loads", &[#values])?;
+            let s = &m.states;
             let mut f = [#p::kinetostatics::Wrench::zeros(); #n_links];
-            #( #p::kinetostatics::add_gravity(&mut f[#weighed], &s[#weighed], &self.links[#weighed], self.gravity); )*
+            #(#weighed)*
             #(#load_terms)*
             #elements
             if inertia {
-                #( #p::kinetostatics::add_inertia(&mut f[#inertial], &s[#inertial], &self.links[#inertial]); )*
+                #(#inertial)*
             }
             Ok(f)
         }
@@ -241,7 +254,7 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         Kernel::Chain(_) => {
             let kn = format_ident!("__G{}_CHAIN", gi);
             let solver = plan::solver_const(gi);
-            quote!(#p::kinematics::chain_reactions(Self::#solver, &Self::#kn, &joints, s, &mut f, self.scale, &mut r)?;)
+            quote!(#p::kinematics::chain_reactions(Self::#solver, &Self::#kn, &joints, s, &mut f, self.scale, &m.systems #path, &mut r)?;)
         }
         Kernel::Mesh(_) => {
             let kn = plan::mesh_const(gi);
@@ -379,7 +392,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
         ) -> Result<#forces, #p::MechError> {
             let s = &m.states;
             let joints = self.__joints();
-            let mut f = self.__wrenches(s, loads, true)?;
+            let mut f = self.__wrenches(m, loads, true)?;
             if let Some(extra) = extra {
                 for (fi, ei) in f.iter_mut().zip(extra) {
                     *fi += ei;
@@ -500,7 +513,7 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         #(#[doc = #inputs])*
         pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
             #by_power
-            let f = self.__wrenches(&m.states, loads, true)?;
+            let f = self.__wrenches(m, loads, true)?;
             let out = #p::virtual_power::driver_actions(&f, &m.states, &m.qd, |qd| self.__velocity_field(m, qd))?;
             Ok(#out)
         }

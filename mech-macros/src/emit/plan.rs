@@ -178,7 +178,7 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         }
         Kernel::Chain(_) => {
             let kn = format_ident!("__G{}_CHAIN", gi);
-            quote!(#p::kinematics::solve_chain(Self::#solver, &Self::#kn, &joints, &mut s, drive, branches[#gi], self.scale, upto)?; let #sys = ();)
+            quote!(let #sys = #p::kinematics::solve_chain(Self::#solver, &Self::#kn, &joints, &mut s, drive, branches[#gi], self.scale, upto)?;)
         }
         Kernel::Mesh(_) => {
             let kn = mesh_const(gi);
@@ -262,11 +262,14 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
 }
 
 /// The type of what group `g` keeps in the motion for the reactions and velocity fields:
-/// its factored system (Newton groups), nothing for closed forms.
+/// its factored system (Newton groups), a dyad's 2×2 system (closed-form chains),
+/// nothing for the others.
 fn system_type(cx: &Ctx, g: &Group) -> TokenStream {
     let p = &cx.p;
     let n = 3 * g.bodies.len();
-    if g.kernel != Kernel::System {
+    if let Kernel::Chain(_) = g.kernel {
+        quote!(#p::kinematics::DyadSystem)
+    } else if g.kernel != Kernel::System {
         quote!(())
     } else if g.redundant() {
         let m = g.rows();
