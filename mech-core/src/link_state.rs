@@ -53,7 +53,11 @@ pub fn wrap(a: f64) -> f64 {
         };
     }
     let t = std::f64::consts::TAU;
-    let r = a - t * (a / t).round();
+    // The nearest whole number of turns by adding and removing 1.5·2⁵² (exact below 2⁵¹
+    // in magnitude, here < 1.6e8): the target's baseline has no rounding instruction,
+    // and `f64::round` would be a library call.
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let r = a - t * ((a / t + ROUND) - ROUND);
     if r <= -std::f64::consts::PI {
         r + t
     } else {
@@ -346,5 +350,34 @@ pub fn point_motion(s: &[LinkState], l: usize, d: V2) -> PointMotion {
 pub fn point_pose(s: &[LinkState], l: usize, d: V2) -> PointPose {
     PointPose {
         pos: point_of(s, l, d),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wrap;
+    use std::f64::consts::{PI, TAU};
+
+    /// `wrap` against the independent route atan2(sin a, cos a), over the ordinary range
+    /// and at the half turns, where the two ways of rounding to whole turns differ.
+    #[test]
+    fn wrap_matches_atan2_and_keeps_the_half_open_range() {
+        for k in -4000..=4000 {
+            let a = k as f64 * 0.37 + 1e-3;
+            let (s, c) = a.sin_cos();
+            let d = wrap(a) - s.atan2(c);
+            assert!(d.abs() < 1e-12 * a.abs().max(1.0), "wrap({a}) off by {d:e}");
+        }
+        for n in -7..=7 {
+            let a = (n as f64 + 0.5) * TAU;
+            let w = wrap(a);
+            assert!(w > -PI && w <= PI, "wrap({a}) = {w}");
+            assert!(
+                (w.abs() - PI).abs() < 1e-12 * a.abs().max(1.0),
+                "wrap({a}) = {w}"
+            );
+        }
+        assert_eq!(wrap(0.0), 0.0);
+        assert_eq!(wrap(1e8 * TAU + 1.0).round(), 1.0);
     }
 }
