@@ -48,6 +48,15 @@
 //!
 //! Valgrind runs the code ~50× slower, so `--profile-time 1` is a few hundred thousand
 //! iterations, plenty for a stable count.
+//!
+//! The group `ratio` measures the same six operations as ratios generated / hand, the two
+//! sides interleaved in blocks within every sample (`benches/floor/interleaved.rs`): the
+//! estimate that a shared machine's drifting speed does not move. Its "time" is the ratio
+//! (criterion prints `1.234×`); `tools/floor_ratios.py` tabulates it beside the medians.
+//!
+//! ```text
+//! cargo bench --bench floor -- '^ratio/'          # the interleaved ratios alone
+//! ```
 
 #[path = "../tests/common/mechanisms.rs"]
 #[allow(dead_code)]
@@ -56,134 +65,220 @@ mod mechanisms;
 #[path = "floor/hand.rs"]
 mod hand;
 
+#[path = "floor/interleaved.rs"]
+mod interleaved;
+
+use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hand::{FourBarHand, SliderCrankHand};
+use interleaved::Interleaved;
 use mechanisms::*;
 
 const Q: f64 = 0.7;
 const QD: f64 = 12.0;
 const QDD: f64 = -3.0;
 
+/// The four-bar, its hand-written twin and its loads.
+struct FourBarCase {
+    m: FourBar,
+    h: FourBarHand,
+    loads: FourBarLoads,
+}
+
+impl FourBarCase {
+    fn new() -> Self {
+        let m = FourBar::new();
+        let h = FourBarHand::new(m.params());
+        let mut loads = FourBarLoads::default();
+        assert!(loads.set_by_name("tool", &[80.0, -60.0]));
+        assert!(loads.set_by_name("resist", &[2.0]));
+        FourBarCase { m, h, loads }
+    }
+}
+
+/// The slider-crank, its hand-written twin, its loads and the driver torque.
+struct SliderCrankCase {
+    m: SliderCrank,
+    h: SliderCrankHand,
+    loads: SliderCrankLoads,
+    driver: f64,
+}
+
+impl SliderCrankCase {
+    fn new() -> Self {
+        let m = SliderCrank::new();
+        let h = SliderCrankHand::new(m.params());
+        let mut loads = SliderCrankLoads::default();
+        assert!(loads.set_by_name("gas", &[-1500.0, 0.0]));
+        assert!(loads.set_by_name("shaft", &[-4.0]));
+        SliderCrankCase {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+// One function per operation and side; every input through `black_box`.
+
+fn pose_gen(c: &FourBarCase) -> FourBarPose {
+    black_box(&c.m).pose(black_box(Q)).unwrap()
+}
+fn pose_hand(c: &FourBarCase) -> hand::FourBarHandPose {
+    black_box(&c.h).pose(black_box(Q)).unwrap()
+}
+fn kin_gen(c: &FourBarCase) -> FourBarMotion {
+    black_box(&c.m)
+        .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+        .unwrap()
+}
+fn kin_hand(c: &FourBarCase) -> hand::FourBarHandMotion {
+    black_box(&c.h)
+        .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+        .unwrap()
+}
+fn kinetostatics_gen(c: &FourBarCase) -> FourBarForces {
+    let mo = kin_gen(c);
+    black_box(&c.m)
+        .kinetostatics(&mo, black_box(&c.loads))
+        .unwrap()
+}
+fn kinetostatics_hand(c: &FourBarCase) -> hand::FourBarHandForces {
+    let mo = kin_hand(c);
+    black_box(&c.h).kinetostatics(&mo, black_box(&c.loads))
+}
+fn driver_gen(c: &FourBarCase) -> f64 {
+    let mo = kin_gen(c);
+    black_box(&c.m)
+        .driver_action(&mo, black_box(&c.loads))
+        .unwrap()
+}
+fn driver_hand(c: &FourBarCase) -> f64 {
+    let mo = kin_hand(c);
+    black_box(&c.h).driver_action(&mo, black_box(&c.loads))
+}
+fn reduced_gen(c: &SliderCrankCase) -> mech::zhukovski::Reduced {
+    black_box(&c.m).reduced(black_box(Q)).unwrap()
+}
+fn reduced_hand(c: &SliderCrankCase) -> hand::HandReduced {
+    black_box(&c.h).reduced(black_box(Q)).unwrap()
+}
+fn acceleration_gen(c: &SliderCrankCase) -> f64 {
+    black_box(&c.m)
+        .acceleration(
+            black_box(Q),
+            black_box(QD),
+            black_box(c.driver),
+            black_box(&c.loads),
+        )
+        .unwrap()
+}
+fn acceleration_hand(c: &SliderCrankCase) -> f64 {
+    black_box(&c.h)
+        .acceleration(
+            black_box(Q),
+            black_box(QD),
+            black_box(c.driver),
+            black_box(&c.loads),
+        )
+        .unwrap()
+}
+
+/// The group `name` with the functions `generated` and `hand`, timed one after the other.
+/// (Each function is passed as its own zero-sized type, so the calls are direct and inline
+/// as the closures of a hand-written bench would.)
+fn pair<C, A, B>(
+    c: &mut Criterion,
+    name: &str,
+    case: &C,
+    generated: impl Fn(&C) -> A,
+    hand: impl Fn(&C) -> B,
+) {
+    let mut g = c.benchmark_group(name);
+    g.bench_function("generated", |b| b.iter(|| generated(case)));
+    g.bench_function("hand", |b| b.iter(|| hand(case)));
+    g.finish();
+}
+
+/// `ratio/<name>`: generated / hand, interleaved (`interleaved::ratio`).
+fn ratio<C, A, B, M: Measurement<Value = f64>>(
+    c: &mut Criterion<M>,
+    name: &str,
+    case: &C,
+    generated: impl Fn(&C) -> A,
+    hand: impl Fn(&C) -> B,
+) {
+    c.benchmark_group("ratio").bench_function(name, |b| {
+        b.iter_custom(|n| interleaved::ratio(n, || generated(case), || hand(case)))
+    });
+}
+
 fn four_bar(c: &mut Criterion) {
-    let m = FourBar::new();
-    let h = FourBarHand::new(m.params());
-    let mut loads = FourBarLoads::default();
-    assert!(loads.set_by_name("tool", &[80.0, -60.0]));
-    assert!(loads.set_by_name("resist", &[2.0]));
-
-    let mut g = c.benchmark_group("four_bar/pose");
-    g.bench_function("generated", |b| {
-        b.iter(|| black_box(&m).pose(black_box(Q)).unwrap())
-    });
-    g.bench_function("hand", |b| {
-        b.iter(|| black_box(&h).pose(black_box(Q)).unwrap())
-    });
-    g.finish();
-
-    let mut g = c.benchmark_group("four_bar/kinematics");
-    g.bench_function("generated", |b| {
-        b.iter(|| {
-            black_box(&m)
-                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                .unwrap()
-        })
-    });
-    g.bench_function("hand", |b| {
-        b.iter(|| {
-            black_box(&h)
-                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                .unwrap()
-        })
-    });
-    g.finish();
-
-    let mut g = c.benchmark_group("four_bar/kinematics+kinetostatics");
-    g.bench_function("generated", |b| {
-        b.iter(|| {
-            let s = black_box(&m);
-            let mo = s
-                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                .unwrap();
-            s.kinetostatics(&mo, black_box(&loads)).unwrap()
-        })
-    });
-    g.bench_function("hand", |b| {
-        b.iter(|| {
-            let s = black_box(&h);
-            let mo = s
-                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                .unwrap();
-            s.kinetostatics(&mo, black_box(&loads))
-        })
-    });
-    g.finish();
-
-    let mut g = c.benchmark_group("four_bar/kinematics+driver_action");
-    g.bench_function("generated", |b| {
-        b.iter(|| {
-            let s = black_box(&m);
-            let mo = s
-                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                .unwrap();
-            s.driver_action(&mo, black_box(&loads)).unwrap()
-        })
-    });
-    g.bench_function("hand", |b| {
-        b.iter(|| {
-            let s = black_box(&h);
-            let mo = s
-                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                .unwrap();
-            s.driver_action(&mo, black_box(&loads))
-        })
-    });
-    g.finish();
+    let k = FourBarCase::new();
+    pair(c, "four_bar/pose", &k, pose_gen, pose_hand);
+    pair(c, "four_bar/kinematics", &k, kin_gen, kin_hand);
+    pair(
+        c,
+        "four_bar/kinematics+kinetostatics",
+        &k,
+        kinetostatics_gen,
+        kinetostatics_hand,
+    );
+    pair(
+        c,
+        "four_bar/kinematics+driver_action",
+        &k,
+        driver_gen,
+        driver_hand,
+    );
 }
 
 fn slider_crank(c: &mut Criterion) {
-    let m = SliderCrank::new();
-    let h = SliderCrankHand::new(m.params());
-    let mut loads = SliderCrankLoads::default();
-    assert!(loads.set_by_name("gas", &[-1500.0, 0.0]));
-    assert!(loads.set_by_name("shaft", &[-4.0]));
-    let driver = 5.0;
+    let k = SliderCrankCase::new();
+    pair(c, "slider_crank/reduced", &k, reduced_gen, reduced_hand);
+    pair(
+        c,
+        "slider_crank/acceleration",
+        &k,
+        acceleration_gen,
+        acceleration_hand,
+    );
+}
 
-    let mut g = c.benchmark_group("slider_crank/reduced");
-    g.bench_function("generated", |b| {
-        b.iter(|| black_box(&m).reduced(black_box(Q)).unwrap())
-    });
-    g.bench_function("hand", |b| {
-        b.iter(|| black_box(&h).reduced(black_box(Q)).unwrap())
-    });
-    g.finish();
-
-    let mut g = c.benchmark_group("slider_crank/acceleration");
-    g.bench_function("generated", |b| {
-        b.iter(|| {
-            black_box(&m)
-                .acceleration(
-                    black_box(Q),
-                    black_box(QD),
-                    black_box(driver),
-                    black_box(&loads),
-                )
-                .unwrap()
-        })
-    });
-    g.bench_function("hand", |b| {
-        b.iter(|| {
-            black_box(&h)
-                .acceleration(
-                    black_box(Q),
-                    black_box(QD),
-                    black_box(driver),
-                    black_box(&loads),
-                )
-                .unwrap()
-        })
-    });
-    g.finish();
+fn ratios(c: &mut Criterion<Interleaved>) {
+    let k = FourBarCase::new();
+    ratio(c, "four_bar/pose", &k, pose_gen, pose_hand);
+    ratio(c, "four_bar/kinematics", &k, kin_gen, kin_hand);
+    ratio(
+        c,
+        "four_bar/kinematics+kinetostatics",
+        &k,
+        kinetostatics_gen,
+        kinetostatics_hand,
+    );
+    ratio(
+        c,
+        "four_bar/kinematics+driver_action",
+        &k,
+        driver_gen,
+        driver_hand,
+    );
+    let k = SliderCrankCase::new();
+    ratio(c, "slider_crank/reduced", &k, reduced_gen, reduced_hand);
+    ratio(
+        c,
+        "slider_crank/acceleration",
+        &k,
+        acceleration_gen,
+        acceleration_hand,
+    );
 }
 
 criterion_group!(benches, four_bar, slider_crank);
-criterion_main!(benches);
+criterion_group! {
+    name = interleaved_ratios;
+    config = Criterion::default().with_measurement(Interleaved);
+    targets = ratios
+}
+criterion_main!(benches, interleaved_ratios);
