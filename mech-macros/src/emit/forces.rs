@@ -226,7 +226,7 @@ fn wrenches_fn(cx: &Ctx) -> TokenStream {
             inertia: bool,
         ) -> Result<[#p::kinetostatics::Wrench; #n_links], #p::MechError> {
             #p::error::check_finite("loads", &[#values])?;
-            let s = &m.states;
+            let s = &m.__states();
             let mut f = [#p::kinetostatics::Wrench::zeros(); #n_links];
             #(#weighed)*
             #(#load_terms)*
@@ -325,7 +325,7 @@ fn kinetostatics_fns(cx: &Ctx) -> TokenStream {
             loads: &#loads,
             friction: &[#p::friction::JointFriction; #n_joints],
         ) -> Result<#forces, #p::MechError> {
-            let s = &m.states;
+            let s = &m.__states();
             let first = Self::__flat(&self.__kinetostatics(m, loads, None)?);
             let mut last = None;
             #p::friction::iterate(first, |prev| {
@@ -390,7 +390,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
             loads: &#loads,
             extra: Option<&[#p::kinetostatics::Wrench; #n_links]>,
         ) -> Result<#forces, #p::MechError> {
-            let s = &m.states;
+            let s = &m.__states();
             let joints = self.__joints();
             let mut f = self.__wrenches(m, loads, true)?;
             if let Some(extra) = extra {
@@ -484,7 +484,7 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         });
         let values = load_values(cx);
         let elements = if cx.has_elements() {
-            quote!(w.elements(&self.elements, &m.states);)
+            quote!(w.elements(&self.elements, &m.__states());)
         } else {
             quote!()
         };
@@ -514,7 +514,7 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
             #by_power
             let f = self.__wrenches(m, loads, true)?;
-            let out = #p::virtual_power::driver_actions(&f, &m.states, &m.qd, |qd| self.__velocity_field(m, qd))?;
+            let out = #p::virtual_power::driver_actions(&f, &m.__states(), &m.qd, |qd| self.__velocity_field(m, qd))?;
             Ok(#out)
         }
     }

@@ -418,7 +418,7 @@ fn velocity_field(cx: &Ctx) -> TokenStream {
             m: &#motion,
             qd: &[f64; #dof],
         ) -> Result<[#p::kinematics::LinkState; #n_links], #p::MechError> {
-            let mut v = m.states;
+            let mut v = m.__states();
             for st in v.iter_mut() {
                 st.vel = #p::Vector2::zeros();
                 st.omega = 0.0;

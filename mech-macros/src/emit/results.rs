@@ -31,17 +31,15 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
 /// `Pose`, `Motion` and their per-link and per-point structs.
 fn types(cx: &Ctx) -> TokenStream {
     let Ctx {
-        p,
-        n_links,
-        dof,
-        point_ids,
-        ..
+        p, dof, point_ids, ..
     } = cx;
     let n = &cx.names;
     let (pose, pose_links, pose_points) = (&n.pose, &n.pose_links, &n.pose_points);
     let (motion, motion_links, motion_points) = (&n.motion, &n.motion_links, &n.motion_points);
     let moving_ids = cx.moving_ids();
+    let n_moving = moving_ids.len();
     let systems = plan::systems_type(cx);
+    let states = states_fn(cx);
     quote! {
         /// Pose of every moving link.
         #[allow(non_snake_case)]
@@ -75,9 +73,51 @@ fn types(cx: &Ctx) -> TokenStream {
             pub links: #motion_links,
             /// Points: pos, vel, acc.
             pub points: #motion_points,
-            states: [#p::kinematics::LinkState; #n_links],
+            rots: [#p::Vector2<f64>; #n_moving],
+            angles: [f64; #n_moving],
             qd: [f64; #dof],
             systems: #systems,
+        }
+        #states
+    }
+}
+
+/// `Motion::__states`: the link states the motion was computed from, rebuilt from what it
+/// publishes (each link's anchor is its first point: its position, velocity and
+/// acceleration are that point's; ω and α the link's) and the rotations and angles it
+/// keeps. The motion is thus no larger than its results and two small arrays.
+fn states_fn(cx: &Ctx) -> TokenStream {
+    let Ctx {
+        p,
+        n_links,
+        point_ids,
+        ..
+    } = cx;
+    let motion = &cx.names.motion;
+    let states = (1..cx.n_links).map(|l| {
+        let lid = &cx.link_ids[l];
+        let anchor = &point_ids[cx.model.links[l].points[0]];
+        let k = l - 1;
+        quote! {
+            #p::kinematics::LinkState {
+                pos: self.points.#anchor.pos,
+                rot: self.rots[#k],
+                vel: self.points.#anchor.vel,
+                omega: self.links.#lid.omega,
+                acc: self.points.#anchor.acc,
+                alpha: self.links.#lid.alpha,
+                angle: self.angles[#k],
+            },
+        }
+    });
+    quote! {
+        impl #motion {
+            /// The link states of the motion (ground first), rebuilt from its published
+            /// points and links and its kept rotations.
+            #[inline(always)]
+            fn __states(&self) -> [#p::kinematics::LinkState; #n_links] {
+                [#p::kinematics::LinkState::default(), #(#states)*]
+            }
         }
     }
 }
@@ -227,6 +267,7 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
     });
     let (q_arr, qd_arr, qdd_arr) = (to_array(cx, "q"), to_array(cx, "qd"), to_array(cx, "qdd"));
     let inputs = &cx.inputs_doc;
+    let moving: Vec<usize> = (1..cx.n_links).collect();
     quote! {
         /// Position, velocity and acceleration analysis at input (q, q̇, q̈).
         ///
@@ -240,7 +281,8 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
             Ok(#motion {
                 links: #motion_links { #(#links)* },
                 points: #motion_points { #(#points)* },
-                states: s,
+                rots: [#(s[#moving].rot,)*],
+                angles: [#(s[#moving].angle,)*],
                 qd,
                 systems,
             })

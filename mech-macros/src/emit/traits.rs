@@ -56,7 +56,7 @@ fn machine_impl(cx: &Ctx) -> TokenStream {
         quote!(+ #p::energy::potential(&self.links[#l], &m.links.#lid, self.gravity))
     });
     let springs = if cx.has_elements() {
-        quote!(+ #p::elements::potential(&self.elements, &m.states))
+        quote!(+ #p::elements::potential(&self.elements, &m.__states()))
     } else {
         quote!()
     };
