@@ -7,8 +7,11 @@ writes the group `four_bar/pose` into the directory `four_bar_pose`, so the real
 function names are taken from there). `<target>` is $CARGO_TARGET_DIR when set, else the
 `target/` directory of the repository this script lives in; `--target DIR` overrides both.
 
-Prints a markdown table: operation, generated median (ns), hand median (ns),
-ratio generated / hand. Exits non-zero when no floor result is found.
+Prints a markdown table: operation, generated median (ns), hand median (ns), the ratio
+of those medians, and the interleaved ratio of the group `ratio` (`benches/floor.rs`:
+generated and hand alternated in blocks within each sample, so that a shared machine's
+drifting speed cancels; its median is the ratio itself). Exits non-zero when no floor
+result is found.
 
     python3 tools/floor_ratios.py [--target DIR]
 """
@@ -41,7 +44,8 @@ def target_dir(explicit):
 
 
 def read_medians(criterion):
-    """{(group, function): median ns} for every benchmark with a `new` estimate."""
+    """{(group, function): median} for every benchmark with a `new` estimate: ns for the
+    pairs, the ratio itself for the group `ratio` (keyed (operation, "interleaved"))."""
     out = {}
     for bench in criterion.glob("*/*/new/benchmark.json"):
         try:
@@ -52,6 +56,8 @@ def read_medians(criterion):
         group, function = meta.get("group_id"), meta.get("function_id")
         if group in GROUPS and function in FUNCTIONS:
             out[(group, function)] = est["median"]["point_estimate"]
+        elif group == "ratio" and function in GROUPS:
+            out[(function, "interleaved")] = est["median"]["point_estimate"]
     return out
 
 
@@ -67,12 +73,14 @@ def main():
     medians = read_medians(criterion)
     if not medians:
         sys.exit(f"no floor results under {criterion}; run `cargo bench --bench floor` first")
-    print("| operation | generated median (ns) | hand median (ns) | generated / hand |")
-    print("|---|---:|---:|---:|")
+    print("| operation | generated median (ns) | hand median (ns) | generated / hand | interleaved ratio |")
+    print("|---|---:|---:|---:|---:|")
     for group in GROUPS:
         gen, hand = medians.get((group, "generated")), medians.get((group, "hand"))
         ratio = f"{gen / hand:.2f}×" if gen is not None and hand else "—"
-        print(f"| `{group}` | {fmt(gen)} | {fmt(hand)} | {ratio} |")
+        inter = medians.get((group, "interleaved"))
+        inter = f"{inter:.2f}×" if inter is not None else "—"
+        print(f"| `{group}` | {fmt(gen)} | {fmt(hand)} | {ratio} | {inter} |")
 
 
 if __name__ == "__main__":
