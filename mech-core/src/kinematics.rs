@@ -19,8 +19,8 @@ pub use crate::constraints::{eval, Con, ConEval, ConKind, Drive, JointGeom, Leve
 pub use crate::dyad::Solver;
 use crate::kinetostatics::{Reaction, Wrench};
 pub use crate::link_state::{
-    cross, perp, point_motion, point_pose, rotate, wrap, LinkGeom, LinkMotion, LinkPose, LinkState,
-    PointMotion, PointPose, V2,
+    anchor_motion, anchor_pose, cross, perp, point_motion, point_pose, rotate, wrap, LinkGeom,
+    LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2,
 };
 pub use crate::natural::DyadSystem;
 use crate::screw::{chain_rates, driven_rates, Chain, Driven};

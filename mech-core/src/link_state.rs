@@ -345,6 +345,23 @@ pub fn point_motion(s: &[LinkState], l: usize, d: V2) -> PointMotion {
     }
 }
 
+/// The motion of a link's anchor (its first point): the state's own position, velocity
+/// and acceleration, nothing rotated.
+#[inline(always)]
+pub fn anchor_motion(s: &LinkState) -> PointMotion {
+    PointMotion {
+        pos: s.pos,
+        vel: s.vel,
+        acc: s.acc,
+    }
+}
+
+/// The position of a link's anchor (its first point): the state's own.
+#[inline(always)]
+pub fn anchor_pose(s: &LinkState) -> PointPose {
+    PointPose { pos: s.pos }
+}
+
 /// The position of the material point of local vector `d` on link `l` of the states `s`.
 #[inline]
 pub fn point_pose(s: &[LinkState], l: usize, d: V2) -> PointPose {

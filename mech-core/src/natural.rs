@@ -265,6 +265,18 @@ fn about(w: &Wrench, pos: V2, p: V2) -> (V2, f64) {
     (f, w.z + cross(pos - p, f))
 }
 
+/// [`about`] the link's material point `p` of local vector `d`: when `d` is zero, `p` is
+/// the anchor and the moment is the wrench's own, with no transfer (a literal zero in the
+/// generated code, `JointGeom::with_links`, so the test folds).
+#[inline(always)]
+fn about_point(w: &Wrench, pos: V2, p: V2, d: V2) -> (V2, f64) {
+    if d == zero() {
+        (V2::new(w.x, w.y), w.z)
+    } else {
+        about(w, pos, p)
+    }
+}
+
 /// Add the force `force` at the point now at `p`, and the couple `couple`, to link `l`'s
 /// wrench (about its anchor).
 #[inline(always)]
@@ -322,8 +334,8 @@ pub fn rrr_reactions(
             Inverse2::new([[p1.x, -p2.x], [p1.y, -p2.y]])?
         }
     };
-    let (f1, m1) = about(&f[b1], s[b1].pos, a);
-    let (f2, m2) = about(&f[b2], s[b2].pos, c);
+    let (f1, m1) = about_point(&f[b1], s[b1].pos, a, local_in(ga, b1));
+    let (f2, m2) = about_point(&f[b2], s[b2].pos, c, local_in(gb, b2));
     let [x, y] = m.solve_transpose([m1, m2]);
     let x = V2::new(x, y);
     let (ra, rc) = (x - f1, -x - f2);
@@ -369,8 +381,13 @@ pub fn rrp_reactions(
         DyadSystem::Rrp(m) => *m,
         _ => SlideFrame::of(u, c - a, scale)?,
     };
-    let (f1, m1) = about(&f[b1], s[b1].pos, a);
-    let (f2, m2) = about(&f[b2], s[b2].pos, p);
+    let (f1, m1) = about_point(&f[b1], s[b1].pos, a, local_in(ga, b1));
+    // P is the joint's point on its second link: the slider's own when that is b₂.
+    let (f2, m2) = if gp.b == b2 {
+        about_point(&f[b2], s[b2].pos, p, gp.db)
+    } else {
+        about(&f[b2], s[b2].pos, p)
+    };
     let x = m.solve_transpose(m1, f2.dot(&u));
     let ra = x - f1;
     let (rp, mp) = (-x - f2, -(m2 + cross(c - p, x)));

@@ -528,10 +528,21 @@ pub fn driven_reactions(
     let g = &joints[d.screw.joint];
     let o = d.screw.point(joints, s);
     let sc = d.screw.at(joints, s, o);
-    let w1 = Force::at(&f[d.body], s[d.body].pos, o);
+    // O is the joint's point on its second link: the body's anchor when its local vector
+    // there is zero (a literal zero in the generated code, so the test folds), and then
+    // the body's wrench is already about O.
+    let w1 = if g.b == d.body && g.db == crate::link_state::zero() {
+        Force {
+            f: V2::new(f[d.body].x, f[d.body].y),
+            m: f[d.body].z,
+        }
+    } else {
+        Force::at(&f[d.body], s[d.body].pos, o)
+    };
     let w1 = Force { f: -w1.f, m: -w1.m };
     let sigma = orientation(g, d.from);
-    let action = sc.power(&w1);
+    // A rotation about O itself, $ = (1, 0) at O, takes the moment alone.
+    let action = if d.screw.slide { sc.power(&w1) } else { w1.m };
     drivers[d.input] = sigma * action;
     // Take the motor's component out: what is left does no work along the screw.
     let constraint = if d.screw.slide {

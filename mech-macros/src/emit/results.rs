@@ -154,13 +154,32 @@ fn by_name(cx: &Ctx, ty: &Ident, what: &str) -> TokenStream {
     }
 }
 
-/// The link that carries each point (its first link), whose state places it.
-fn owners(cx: &Ctx) -> Vec<usize> {
+/// How each point is placed: by the ground if it is a ground point (at rest); else as the
+/// anchor of the moving link whose first point it is (that link's state itself, nothing
+/// rotated); else by the first link that carries it.
+#[derive(Clone, Copy)]
+enum Owner {
+    /// The material point of this link at the point's local vector.
+    Local(usize),
+    /// This link's anchor.
+    Anchor(usize),
+}
+
+fn owners(cx: &Ctx) -> Vec<Owner> {
+    let links = &cx.model.links;
     (0..cx.n_points)
         .map(|pt| {
-            (0..cx.n_links)
-                .find(|&l| cx.model.links[l].points.contains(&pt))
-                .unwrap_or(0)
+            if links[0].points.contains(&pt) {
+                return Owner::Local(0);
+            }
+            if let Some(l) = (1..cx.n_links).find(|&l| links[l].points.first() == Some(&pt)) {
+                return Owner::Anchor(l);
+            }
+            Owner::Local(
+                (0..cx.n_links)
+                    .find(|&l| links[l].points.contains(&pt))
+                    .unwrap_or(0),
+            )
         })
         .collect()
 }
@@ -223,8 +242,11 @@ fn pose_fn(cx: &Ctx) -> TokenStream {
         }
     });
     let points = (0..cx.n_points).map(|pt| {
-        let (pid, o) = (&point_ids[pt], owners[pt]);
-        quote!(#pid: #p::kinematics::point_pose(&s, #o, self.points[#pt]),)
+        let pid = &point_ids[pt];
+        match owners[pt] {
+            Owner::Anchor(l) => quote!(#pid: #p::kinematics::anchor_pose(&s[#l]),),
+            Owner::Local(o) => quote!(#pid: #p::kinematics::point_pose(&s, #o, self.points[#pt]),),
+        }
     });
     let q_arr = to_array(cx, "q");
     let inputs = &cx.inputs_doc;
@@ -262,21 +284,25 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
         }
     });
     let points = (0..cx.n_points).map(|pt| {
-        let (pid, o) = (&point_ids[pt], owners[pt]);
-        quote!(#pid: #p::kinematics::point_motion(&s, #o, self.points[#pt]),)
+        let pid = &point_ids[pt];
+        match owners[pt] {
+            Owner::Anchor(l) => quote!(#pid: #p::kinematics::anchor_motion(&s[#l]),),
+            Owner::Local(o) => {
+                quote!(#pid: #p::kinematics::point_motion(&s, #o, self.points[#pt]),)
+            }
+        }
     });
     let (q_arr, qd_arr, qdd_arr) = (to_array(cx, "q"), to_array(cx, "qd"), to_array(cx, "qdd"));
     let inputs = &cx.inputs_doc;
     let moving: Vec<usize> = (1..cx.n_links).collect();
+    let ks: Vec<usize> = (0..cx.dof).collect();
     quote! {
         /// Position, velocity and acceleration analysis at input (q, q̇, q̈).
         ///
         #(#[doc = #inputs])*
         pub fn kinematics(&self, q: #q_ty, qd: #q_ty, qdd: #q_ty) -> Result<#motion, #p::MechError> {
             #q_arr #qd_arr #qdd_arr
-            #p::error::check_finite("q, qd, qdd", &q)?;
-            #p::error::check_finite("q, qd, qdd", &qd)?;
-            #p::error::check_finite("q, qd, qdd", &qdd)?;
+            #p::error::check_finite("q, qd, qdd", &[#(q[#ks],)* #(qd[#ks],)* #(qdd[#ks],)*])?;
             let (s, systems) = self.__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration, true)?;
             Ok(#motion {
                 links: #motion_links { #(#links)* },
