@@ -191,8 +191,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         /// springs per unit input rate, M* = Σ F·g + Σ M·g − Σ T x' (a damper's part,
         /// −c x'² q̇, depends on q̇: `acceleration` adds it, M*(q) is at q̇ = 0).
         pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
-            #p::error::check_finite("q", &[q])?;
-            #p::error::check_finite("loads", &[#values])?;
+            #p::error::check_finite("q and the loads", &[q, #values])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity, false)?;
             let mut z = #p::zhukovski::Reduction::new();
             #moment
@@ -205,8 +204,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         ///
         #(#[doc = #inputs])*
         pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
-            #p::error::check_finite("q, qd, driver", &[q, qd, driver])?;
-            #p::error::check_finite("loads", &[#values])?;
+            #p::error::check_finite("q, qd, driver and the loads", &[q, qd, driver, #values])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
             let mut z = #p::zhukovski::Reduction::new();
             #inertia
