@@ -265,6 +265,18 @@ fn about(w: &Wrench, pos: V2, p: V2) -> (V2, f64) {
     (f, w.z + cross(pos - p, f))
 }
 
+/// The point of the pin `g` between the solved link `solved` and the dyad's link `own`:
+/// `own`'s anchor when its local vector there is zero (a literal zero in the generated
+/// code, so the test folds and nothing is rotated), else the solved link's point.
+#[inline(always)]
+fn pin_point(s: &[LinkState], g: &JointGeom, solved: usize, own: usize) -> V2 {
+    if local_in(g, own) == zero() {
+        s[own].pos
+    } else {
+        crate::link_state::point_of(s, solved, if g.a == solved { g.da } else { g.db })
+    }
+}
+
 /// [`about`] the link's material point `p` of local vector `d`: when `d` is zero, `p` is
 /// the anchor and the moment is the wrench's own, with no transfer (a literal zero in the
 /// generated code, `JointGeom::with_links`, so the test folds).
@@ -323,8 +335,8 @@ pub fn rrr_reactions(
 ) -> Result<(), MechError> {
     let (ga, gc, gb) = (&joints[ja], &joints[jc], &joints[jb]);
     let (la, lc) = (solved_link(ga, b1), solved_link(gb, b2));
-    let a = crate::link_state::point_of(s, la, if ga.a == la { ga.da } else { ga.db });
-    let c = crate::link_state::point_of(s, lc, if gb.a == lc { gb.da } else { gb.db });
+    let a = pin_point(s, ga, la, b1);
+    let c = pin_point(s, gb, lc, b2);
     let b = s[b1].point(if gc.a == b1 { gc.da } else { gc.db });
     let (e1, e2) = (b - a, b - c);
     let m = match kept {
@@ -373,7 +385,7 @@ pub fn rrp_reactions(
 ) -> Result<(), MechError> {
     let (ga, gc, gp) = (&joints[ja], &joints[jc], &joints[jp]);
     let (la, lg) = (solved_link(ga, b1), solved_link(gp, b2));
-    let a = crate::link_state::point_of(s, la, if ga.a == la { ga.da } else { ga.db });
+    let a = pin_point(s, ga, la, b1);
     let c = s[b2].point(if gc.a == b2 { gc.da } else { gc.db });
     let p = crate::link_state::point_of(s, gp.b, gp.db);
     let u = dir_of(s, lg, gp.axis);
