@@ -6,50 +6,20 @@
 mod mechanisms;
 
 use mechanisms::*;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+#[path = "common/counting.rs"]
+mod counting;
 
-struct Counting;
-thread_local! {
-    /// Allocations made by this thread: the harness's own threads (its main thread may
-    /// still be spawning or reporting while a test runs) do not count. A `const` cell with
-    /// no destructor, so that reading it never allocates.
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-/// One more allocation on this thread (none while the thread is being torn down).
-fn tally() {
-    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-}
-
-/// This thread's allocations so far.
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        tally();
-        System.alloc(l)
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        System.dealloc(p, l)
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        tally();
-        System.realloc(p, l, n)
-    }
-}
-
+/// This thread's allocations are counted (`tests/common/counting.rs`): the harness's own
+/// threads, which may allocate while a test runs, do not count.
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static GLOBAL: counting::Counting = counting::Counting;
 
 /// Allocations made by `f` (the test harness runs other tests in other threads, so
 /// this file holds a single test).
 fn count<R>(f: impl FnOnce() -> R) -> (usize, R) {
-    let before = allocations();
+    let before = counting::count();
     let r = f();
-    (allocations() - before, r)
+    (counting::count() - before, r)
 }
 
 macro_rules! no_alloc {

@@ -337,12 +337,11 @@ pub fn rrr_reactions(
     let (la, lc) = (solved_link(ga, b1), solved_link(gb, b2));
     let a = pin_point(s, ga, la, b1);
     let c = pin_point(s, gb, lc, b2);
-    let b = s[b1].point(if gc.a == b1 { gc.da } else { gc.db });
-    let (e1, e2) = (b - a, b - c);
     let m = match kept {
         DyadSystem::Rrr(m) => *m,
         _ => {
-            let (p1, p2) = (perp(e1), perp(e2));
+            let b = s[b1].point(if gc.a == b1 { gc.da } else { gc.db });
+            let (p1, p2) = (perp(b - a), perp(b - c));
             Inverse2::new([[p1.x, -p2.x], [p1.y, -p2.y]])?
         }
     };

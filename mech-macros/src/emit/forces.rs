@@ -185,7 +185,7 @@ fn forces_type(cx: &Ctx) -> TokenStream {
 }
 
 /// `__wrenches`: gravity on the links declared with `mass`, the loads, the force elements,
-/// and with `inertia` d'Alembert's inertia wrench of the links with inertia terms; each
+/// and d'Alembert's inertia wrench of the links with inertia terms; each
 /// about its link's anchor, from the motion's published cg, cg acceleration and load
 /// points (nothing is rotated again).
 fn wrenches_fn(cx: &Ctx) -> TokenStream {
@@ -217,23 +217,21 @@ fn wrenches_fn(cx: &Ctx) -> TokenStream {
         }
     });
     quote! {
-        /// Applied (loads, gravity) and, when `inertia`, d'Alembert inertia wrenches per link.
+        /// Applied (loads, gravity) and d'Alembert inertia wrenches per link, for the motion
+        /// `m` whose link states are `s` (`m.__states()`).
         #[inline(always)]
         fn __wrenches(
             &self,
             m: &#motion,
+            s: &[#p::kinematics::LinkState; #n_links],
             loads: &#loads,
-            inertia: bool,
         ) -> Result<[#p::kinetostatics::Wrench; #n_links], #p::MechError> {
             #p::error::check_finite("loads", &[#values])?;
-            let s = &m.__states();
             let mut f = [#p::kinetostatics::Wrench::zeros(); #n_links];
             #(#weighed)*
             #(#load_terms)*
             #elements
-            if inertia {
-                #(#inertial)*
-            }
+            #(#inertial)*
             Ok(f)
         }
     }
@@ -392,7 +390,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
         ) -> Result<#forces, #p::MechError> {
             let s = &m.__states();
             let joints = self.__joints();
-            let mut f = self.__wrenches(m, loads, true)?;
+            let mut f = self.__wrenches(m, s, loads)?;
             if let Some(extra) = extra {
                 for (fi, ei) in f.iter_mut().zip(extra) {
                     *fi += ei;
@@ -513,8 +511,9 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         #(#[doc = #inputs])*
         pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
             #by_power
-            let f = self.__wrenches(m, loads, true)?;
-            let out = #p::virtual_power::driver_actions(&f, &m.__states(), &m.qd, |qd| self.__velocity_field(m, qd))?;
+            let s = &m.__states();
+            let f = self.__wrenches(m, s, loads)?;
+            let out = #p::virtual_power::driver_actions(&f, s, &m.qd, |qd| self.__velocity_field(m, qd))?;
             Ok(#out)
         }
     }
