@@ -47,11 +47,21 @@ pub enum MechError {
     Invalid(String),
 }
 
-/// True when every value is finite: one sum of v·0 over the values (0 for a finite v, NaN
-/// for an infinity or a NaN, and never an overflow), no branch per value.
+/// True when `v` is an infinity or a NaN: !(|v| < ∞), one compare. Checks OR these
+/// flags over their values rather than summing the values: an OR is exact and
+/// associative, so the compiler joins the flags as a tree, a few cycles deep, where a sum
+/// of n values is n dependent additions (3 to 4 cycles each) that the test at the end of
+/// a solve, and the processor's retirement, would wait on; and it never overflows, so
+/// it raises no false alarm and needs no second look.
+#[inline(always)]
+pub fn non_finite(v: f64) -> bool {
+    !(v.abs() < f64::INFINITY)
+}
+
+/// True when every value is finite ([`non_finite`] over the values, joined by OR).
 #[inline(always)]
 pub fn all_finite(values: &[f64]) -> bool {
-    values.iter().fold(0.0, |z, v| z + v * 0.0) == 0.0
+    !values.iter().fold(false, |bad, &v| bad | non_finite(v))
 }
 
 /// `InvalidInput` unless every value is finite ([`all_finite`]).

@@ -139,74 +139,65 @@ fn overflow(quantity: &str, values: &[f64]) -> Result<(), MechError> {
 
 /// `Ok(())` when every moving link's state is finite up to the level `upto` solved
 /// (position and rotation; velocities from [`Level::Velocity`]; accelerations at
-/// [`Level::Acceleration`]); else [`finite_result`]'s error for the link motions. The
-/// ground (link 0) never moves and is skipped. One sum over the fields (a NaN or an
-/// infinity reaches it), the values examined one by one only when it is not finite.
+/// [`Level::Acceleration`]); else an overflow error for the link motions. The ground
+/// (link 0) never moves and is skipped. [`crate::error::non_finite`] over the fields,
+/// joined by OR (a tree a few operations deep); the error path is given no values, so
+/// that the states need not be written to memory for it.
 #[inline(always)]
 pub fn finite_states(
     states: &[crate::link_state::LinkState],
     upto: Level,
 ) -> Result<(), MechError> {
-    let mut sum = 0.0;
+    use crate::error::non_finite as bad;
+    let mut any = false;
     for s in states.iter().skip(1) {
-        sum += (s.pos.x + s.pos.y) + (s.rot.x + s.rot.y);
-        if upto != Level::Position {
-            sum += s.vel.x + s.vel.y + s.omega;
+        any |= bad(s.pos.x) | bad(s.pos.y) | bad(s.rot.x) | bad(s.rot.y);
+        if upto == Level::Velocity || upto == Level::Acceleration {
+            any |= bad(s.vel.x) | bad(s.vel.y) | bad(s.omega);
         }
         if upto == Level::Acceleration {
-            sum += s.acc.x + s.acc.y + s.alpha;
+            any |= bad(s.acc.x) | bad(s.acc.y) | bad(s.alpha);
         }
     }
-    if sum.is_finite() {
-        Ok(())
+    if any {
+        Err(states_overflow())
     } else {
-        states_overflow(states)
+        Ok(())
     }
 }
 
 #[cold]
 #[inline(never)]
-fn states_overflow(states: &[crate::link_state::LinkState]) -> Result<(), MechError> {
-    let all: Vec<f64> = states
-        .iter()
-        .flat_map(|s| {
-            [
-                s.pos.x, s.pos.y, s.rot.x, s.rot.y, s.vel.x, s.vel.y, s.omega, s.acc.x, s.acc.y,
-                s.alpha,
-            ]
-        })
-        .collect();
-    finite_result("velocities or accelerations", &all)
+fn states_overflow() -> MechError {
+    MechError::InvalidInput("the velocities or accelerations overflow: the inputs, loads or driver are too large for f64 with this mechanism; reduce them".into())
 }
 
-/// `Ok(())` when every reaction (force, moment) and motor action is finite.
-#[inline]
+/// `Ok(())` when every reaction (force, moment) and motor action is finite:
+/// [`crate::error::non_finite`] over them, joined by OR. The error path takes no values:
+/// a non-inlined call given the reactions would make them live in memory on the common
+/// path too, where the solve has them in registers.
+#[inline(always)]
 pub fn finite_reactions(
     reactions: &[crate::kinetostatics::Reaction],
     driver: &[f64],
 ) -> Result<(), MechError> {
-    let sum: f64 = reactions
-        .iter()
-        .map(|r| r.force.x + r.force.y + r.moment)
-        .sum::<f64>()
-        + driver.iter().sum::<f64>();
-    if sum.is_finite() {
+    use crate::error::non_finite as bad;
+    let mut any = false;
+    for r in reactions {
+        any |= bad(r.force.x) | bad(r.force.y) | bad(r.moment);
+    }
+    for &d in driver {
+        any |= bad(d);
+    }
+    if !any {
         Ok(())
     } else {
-        reactions_overflow(reactions, driver)
+        Err(reactions_overflow())
     }
 }
 
 #[cold]
 #[inline(never)]
-fn reactions_overflow(
-    reactions: &[crate::kinetostatics::Reaction],
-    driver: &[f64],
-) -> Result<(), MechError> {
-    let all: Vec<f64> = reactions
-        .iter()
-        .flat_map(|r| [r.force.x, r.force.y, r.moment])
-        .chain(driver.iter().copied())
-        .collect();
-    finite_result("reactions or motor actions", &all)
+fn reactions_overflow() -> MechError {
+    MechError::InvalidInput("the reactions or motor actions overflow: the inputs, loads or driver are too large for f64 with this mechanism; reduce them".into())
 }
