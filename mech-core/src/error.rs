@@ -74,6 +74,22 @@ pub fn check_finite(what: &str, values: &[f64]) -> Result<(), MechError> {
     }
 }
 
+/// The error to report for a solve that failed with `e`, whose inputs are `values`
+/// (named `what`): `InvalidInput` "… must be finite" when one of them is not finite, else
+/// `e` itself. A NaN or an infinity among the inputs reaches every result it touches (IEEE
+/// arithmetic: even ∞·0 is a NaN), so a solve given one fails, at its closed form or at its
+/// results' finiteness check; the inputs are then looked at here, on the error path only,
+/// and the common path checks nothing before it computes.
+#[cold]
+#[inline(never)]
+pub fn blame(what: &str, values: &[f64], e: MechError) -> MechError {
+    if all_finite(values) {
+        e
+    } else {
+        not_finite(what, values)
+    }
+}
+
 /// The error of [`check_finite`], out of line (the success path builds no message).
 #[cold]
 #[inline(never)]

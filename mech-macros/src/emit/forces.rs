@@ -191,7 +191,6 @@ fn forces_type(cx: &Ctx) -> TokenStream {
 fn wrenches_fn(cx: &Ctx) -> TokenStream {
     let Ctx { p, n_links, .. } = cx;
     let (motion, loads) = (&cx.names.motion, &cx.names.loads);
-    let values = load_values(cx);
     let link = |l: usize| &cx.link_ids[l];
     let weighed = cx.weighed().into_iter().map(|l| {
         let lid = link(l);
@@ -225,14 +224,13 @@ fn wrenches_fn(cx: &Ctx) -> TokenStream {
             m: &#motion,
             s: &[#p::kinematics::LinkState; #n_links],
             loads: &#loads,
-        ) -> Result<[#p::kinetostatics::Wrench; #n_links], #p::MechError> {
-            #p::error::check_finite("loads", &[#values])?;
+        ) -> [#p::kinetostatics::Wrench; #n_links] {
             let mut f = [#p::kinetostatics::Wrench::zeros(); #n_links];
             #(#weighed)*
             #(#load_terms)*
             #elements
             #(#inertial)*
-            Ok(f)
+            f
         }
     }
 }
@@ -381,6 +379,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
     } else {
         quote!(d)
     };
+    let load_values = load_values(cx);
     quote! {
         fn __kinetostatics(
             &self,
@@ -390,7 +389,7 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
         ) -> Result<#forces, #p::MechError> {
             let s = &m.__states();
             let joints = self.__joints();
-            let mut f = self.__wrenches(m, s, loads)?;
+            let mut f = self.__wrenches(m, s, loads);
             if let Some(extra) = extra {
                 for (fi, ei) in f.iter_mut().zip(extra) {
                     *fi += ei;
@@ -399,7 +398,8 @@ fn inner_kinetostatics_fn(cx: &Ctx) -> TokenStream {
             let mut r = [#p::kinetostatics::Reaction::default(); #n_joints];
             let mut d = [0.0; #dof];
             #(#calls)*
-            #p::magnitudes::finite_reactions(&r, &d)?;
+            #p::magnitudes::finite_reactions(&r, &d)
+                .map_err(|e| #p::error::blame("loads", &[#load_values], e))?;
             Ok(#forces { driver: #driver, joints: #forces_joints { #(#values)* } })
         }
     }
@@ -456,6 +456,7 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         quote!(out)
     };
     let inputs = &cx.inputs_doc;
+    let load_values = load_values(cx);
     // One input moving: the power balance over the motion itself (no wrench is formed).
     let by_power = if cx.one_dof() {
         let link = |l: usize| &cx.link_ids[l];
@@ -480,7 +481,6 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
                 }
             }
         });
-        let values = load_values(cx);
         let elements = if cx.has_elements() {
             quote!(w.elements(&self.elements, &m.__states());)
         } else {
@@ -488,13 +488,12 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         };
         quote! {
             if m.qd[0] != 0.0 {
-                #p::error::check_finite("loads", &[#values])?;
                 let mut w = #p::virtual_power::Power::default();
                 #(#inertia)*
                 #(#gravity)*
                 #(#applied)*
                 #elements
-                return w.driver(m.qd[0]);
+                return w.driver(m.qd[0]).map_err(|e| #p::error::blame("loads", &[#load_values], e));
             }
         }
     } else {
@@ -512,8 +511,9 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
             #by_power
             let s = &m.__states();
-            let f = self.__wrenches(m, s, loads)?;
-            let out = #p::virtual_power::driver_actions(&f, s, &m.qd, |qd| self.__velocity_field(m, qd))?;
+            let f = self.__wrenches(m, s, loads);
+            let out = #p::virtual_power::driver_actions(&f, s, &m.qd, |qd| self.__velocity_field(m, qd))
+                .map_err(|e| #p::error::blame("loads", &[#load_values], e))?;
             Ok(#out)
         }
     }

@@ -257,9 +257,10 @@ fn pose_fn(cx: &Ctx) -> TokenStream {
         #(#[doc = #inputs])*
         pub fn pose(&self, q: #q_ty) -> Result<#pose, #p::MechError> {
             #q_arr
-            #p::error::check_finite("q", &q)?;
             let zero = [0.0; #dof];
-            let (s, _) = self.__solve(&q, &zero, &zero, #p::kinematics::Level::Position, true)?;
+            let (s, _) = self
+                .__solve(&q, &zero, &zero, #p::kinematics::Level::Position, true)
+                .map_err(|e| #p::error::blame("q", &q, e))?;
             Ok(#pose {
                 links: #pose_links { #(#links)* },
                 points: #pose_points { #(#points)* },
@@ -302,8 +303,9 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
         #(#[doc = #inputs])*
         pub fn kinematics(&self, q: #q_ty, qd: #q_ty, qdd: #q_ty) -> Result<#motion, #p::MechError> {
             #q_arr #qd_arr #qdd_arr
-            #p::error::check_finite("q, qd, qdd", &[#(q[#ks],)* #(qd[#ks],)* #(qdd[#ks],)*])?;
-            let (s, systems) = self.__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration, true)?;
+            let (s, systems) = self
+                .__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration, true)
+                .map_err(|e| #p::error::blame("q, qd, qdd", &[#(q[#ks],)* #(qd[#ks],)* #(qdd[#ks],)*], e))?;
             Ok(#motion {
                 links: #motion_links { #(#links)* },
                 points: #motion_points { #(#points)* },
