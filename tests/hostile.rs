@@ -185,6 +185,49 @@ fn overflow_is_an_error_naming_the_quantity() {
     }
 }
 
+/// 4b. A non-finite input or load is named as such, not reported as the overflow or the
+///     failed assembly it causes: `kinematics`, `pose`, `kinetostatics` and
+///     `driver_action` look at their inputs only once a solve has failed
+///     (`mech::error::blame`), and must still blame them. Every input, every load
+///     component, both routes of `driver_action` (the power balance at q̇ ≠ 0, the wrenches
+///     at q̇ = 0), one and two inputs.
+#[test]
+fn a_non_finite_input_is_named_not_called_an_overflow() {
+    let m = FourBar::new();
+    for x in [f64::NAN, f64::INFINITY, -f64::INFINITY] {
+        invalid(m.pose(x), "q must be finite");
+        invalid(m.kinematics(x, 1.0, 0.0), "q, qd, qdd must be finite");
+        invalid(m.kinematics(0.3, x, 0.0), "q, qd, qdd must be finite");
+        invalid(m.kinematics(0.3, 1.0, x), "q, qd, qdd must be finite");
+        for qd in [1.0, 0.0] {
+            let mo = m.kinematics(0.3, qd, 2.0).unwrap();
+            let ok = FourBarLoads::default();
+            for loads in [
+                FourBarLoads {
+                    tool: Vector2::new(x, 0.0),
+                    ..ok
+                },
+                FourBarLoads {
+                    tool: Vector2::new(0.0, x),
+                    ..ok
+                },
+                FourBarLoads { resist: x, ..ok },
+            ] {
+                invalid(m.kinetostatics(&mo, &loads), "loads must be finite");
+                invalid(m.driver_action(&mo, &loads), "loads must be finite");
+            }
+        }
+    }
+    let five = FiveBar::new();
+    invalid(five.pose([f64::NAN, 1.0]), "q must be finite");
+    invalid(
+        five.kinematics([2.0, 1.0], [0.0, f64::INFINITY], [0.0, 0.0]),
+        "q, qd, qdd must be finite",
+    );
+    // Finite but enormous inputs are still the overflow they cause.
+    invalid(m.kinematics(0.3, 1e155, 0.0), "overflow");
+}
+
 /// 7. A drawing scaled by 1e±200 is refused for its size, not called redundant.
 #[test]
 fn a_drawing_scaled_out_of_range_says_so() {

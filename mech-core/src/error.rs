@@ -96,3 +96,42 @@ pub fn blame(what: &str, values: &[f64], e: MechError) -> MechError {
 fn not_finite(what: &str, values: &[f64]) -> MechError {
     MechError::InvalidInput(format!("{what} must be finite, got {values:?}"))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_finite_flags_exactly_the_infinities_and_nans() {
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            -f64::MAX,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+        ] {
+            assert!(!non_finite(v), "{v}");
+        }
+        for v in [f64::NAN, -f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(non_finite(v), "{v}");
+        }
+        // Values whose sum overflows are still finite (a sum-based test would need a
+        // second look; the flags do not).
+        assert!(all_finite(&[f64::MAX, f64::MAX, f64::MAX]));
+        assert!(all_finite(&[]));
+        assert!(!all_finite(&[1.0, 2.0, 3.0, 4.0, 5.0, f64::NAN]));
+    }
+
+    #[test]
+    fn blame_names_non_finite_inputs_and_passes_other_errors_on() {
+        let e = blame("q, qd", &[1.0, f64::INFINITY], MechError::NoAssembly);
+        assert!(
+            matches!(&e, MechError::InvalidInput(m) if m.starts_with("q, qd must be finite")),
+            "{e:?}"
+        );
+        let e = blame("q, qd", &[1.0, 2.0], MechError::NoAssembly);
+        assert!(matches!(e, MechError::NoAssembly), "{e:?}");
+    }
+}
