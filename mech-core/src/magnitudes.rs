@@ -134,7 +134,13 @@ fn overflow(quantity: &str, values: &[f64]) -> Result<(), MechError> {
         .find(|v| !v.is_finite())
         .copied()
         .unwrap_or(f64::NAN);
-    Err(MechError::InvalidInput(format!("the {quantity} overflow ({v}): the inputs, loads or driver are too large for f64 with this mechanism; reduce them")))
+    Err(overflowed(&format!("{quantity} overflow ({v})")))
+}
+
+/// The overflow error: `what` (the quantity, and the value when it is known), then the
+/// cause and the fix.
+fn overflowed(what: &str) -> MechError {
+    MechError::InvalidInput(format!("the {what}: the inputs, loads or driver are too large for f64 with this mechanism; reduce them"))
 }
 
 /// `Ok(())` when every moving link's state is finite up to the level `upto` solved
@@ -169,7 +175,7 @@ pub fn finite_states(
 #[cold]
 #[inline(never)]
 fn states_overflow() -> MechError {
-    MechError::InvalidInput("the velocities or accelerations overflow: the inputs, loads or driver are too large for f64 with this mechanism; reduce them".into())
+    overflowed("velocities or accelerations overflow")
 }
 
 /// `Ok(())` when every reaction (force, moment) and motor action is finite:
@@ -199,5 +205,5 @@ pub fn finite_reactions(
 #[cold]
 #[inline(never)]
 fn reactions_overflow() -> MechError {
-    MechError::InvalidInput("the reactions or motor actions overflow: the inputs, loads or driver are too large for f64 with this mechanism; reduce them".into())
+    overflowed("reactions or motor actions overflow")
 }
