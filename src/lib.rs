@@ -41,7 +41,7 @@ pub use mech_macros::mechanism;
 /// The paths the generated code uses. Not part of the public API.
 #[doc(hidden)]
 pub mod __private {
-    pub use mech_core::*;
+    pub use mech_core::__private::*;
 }
 
 /// Everything a user of a generated struct needs.

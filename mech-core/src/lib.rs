@@ -25,49 +25,35 @@
 // refused wherever an out-of-range value is.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-pub mod assur;
-pub mod branches;
-pub mod cam;
-pub mod columns;
-pub mod constraints;
-pub mod construction;
-pub mod dsl;
-pub mod dyad;
+pub mod checks;
 pub mod dynamics;
 pub mod elements;
-pub mod energy;
-pub mod equivalent_mass;
 pub mod error;
-pub mod expr;
-pub mod flywheel;
-pub mod friction;
-pub mod gears;
-pub mod generic;
-pub mod geometry;
-pub mod group;
-pub mod grubler;
-pub mod instance;
-pub mod kinematics;
-pub mod kinetostatics;
-pub mod linalg;
-pub mod link_state;
-pub mod magnitudes;
-pub mod mechanism;
+pub mod front;
+pub mod kernel;
 pub mod model;
-pub mod natural;
-pub mod ode;
-pub mod params;
-pub mod pebble;
-pub mod report;
-pub mod resolve;
-pub mod rolling;
-pub mod screw;
-pub mod traits;
-pub mod units;
-pub mod validate;
-pub mod virtual_power;
-pub mod zhukovski;
+pub mod plan;
+pub mod runtime;
+pub mod solvers;
+
+// Transitional flat paths (removed once the dependents use the folders).
+pub use checks::{grubler, magnitudes, pebble, validate};
+pub use dynamics::{equivalent_mass, flywheel, ode};
+pub use elements::{cam, gears, rolling};
+pub use front::{construction, dsl, expr, report, resolve};
+pub use kernel::{
+    branches, constraints, dyad, energy, group, kinematics, kinetostatics, linalg, link_state,
+    natural, screw,
+};
+pub use model::units;
+pub use plan::{assur, geometry};
+pub use runtime::{columns, generic, mechanism};
+pub use solvers::{friction, instance, params, traits, virtual_power, zhukovski};
 
 pub use error::MechError;
-pub use mechanism::Mechanism;
 pub use nalgebra::Vector2;
+pub use runtime::mechanism::Mechanism;
+
+#[doc(hidden)]
+#[path = "private.rs"]
+pub mod __private;

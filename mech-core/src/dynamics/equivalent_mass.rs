@@ -1,0 +1,253 @@
+//! Equivalent mass systems (`docs/theory.md` §9): a rigid link replaced by point masses
+//! rigidly joined. *Static* equivalence keeps the mass and the centre of gravity;
+//! *complete* equivalence also keeps the inertia.
+//!
+//! Coordinates are relative to the link's centre of gravity G (m); masses in kg,
+//! moments and products of inertia about G in kg·m².
+
+use crate::MechError;
+use nalgebra::{SMatrix, SVector};
+
+/// Three point masses of a bar with complete equivalence: at its ends A and B and at G.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BarMasses {
+    /// Mass at A, kg.
+    pub at_a: f64,
+    /// Mass at B, kg.
+    pub at_b: f64,
+    /// Mass at G, kg (may be negative when I_G > m r_A r_B: then no positive system of
+    /// these three points exists).
+    pub at_g: f64,
+}
+
+fn positive(what: &str, v: f64) -> Result<f64, MechError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(MechError::InvalidInput(format!(
+            "{what} must be finite and > 0, got {v}"
+        )))
+    }
+}
+
+fn non_negative(what: &str, v: f64) -> Result<f64, MechError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(MechError::InvalidInput(format!(
+            "{what} must be finite and ≥ 0, got {v}"
+        )))
+    }
+}
+
+/// A bar of mass `m` (kg) and inertia `i_g` about G (kg·m²), G at distances `r_a`, `r_b`
+/// (m) from its ends, as three masses at A, B and G (complete equivalence):
+/// m_A = I_G/(r_A l), m_B = I_G/(r_B l), m_G = m − I_G/(r_A r_B), l = r_A + r_B.
+pub fn bar_three_masses(m: f64, i_g: f64, r_a: f64, r_b: f64) -> Result<BarMasses, MechError> {
+    let (m, i_g) = (non_negative("mass", m)?, non_negative("inertia", i_g)?);
+    let (r_a, r_b) = (positive("r_A", r_a)?, positive("r_B", r_b)?);
+    let l = r_a + r_b;
+    Ok(BarMasses {
+        at_a: i_g / (r_a * l),
+        at_b: i_g / (r_b * l),
+        at_g: m - i_g / (r_a * r_b),
+    })
+}
+
+/// Static equivalence of a bar by two masses at its ends: m_A = m r_B / l, m_B = m r_A / l.
+pub fn bar_two_masses_static(m: f64, r_a: f64, r_b: f64) -> Result<(f64, f64), MechError> {
+    let m = non_negative("mass", m)?;
+    let (r_a, r_b) = (positive("r_A", r_a)?, positive("r_B", r_b)?);
+    let l = r_a + r_b;
+    Ok((m * r_b / l, m * r_a / l))
+}
+
+/// Complete equivalence of a bar by two masses: one at distance `r_a` from G, the other
+/// on the far side at r_B = I_G/(m r_A) (the centre of percussion of A), so that m_G = 0:
+/// returns (m_A, m_B, r_B) with m_A = m r_B/(r_A + r_B), m_B = m r_A/(r_A + r_B).
+pub fn bar_two_masses_complete(m: f64, i_g: f64, r_a: f64) -> Result<(f64, f64, f64), MechError> {
+    let (m, i_g, r_a) = (
+        positive("mass", m)?,
+        positive("inertia", i_g)?,
+        positive("r_A", r_a)?,
+    );
+    let r_b = i_g / (m * r_a);
+    Ok((m * r_b / (r_a + r_b), m * r_a / (r_a + r_b), r_b))
+}
+
+/// A planar link of mass `m` and inertia `i_g` about G by four masses: three at the
+/// given points p_k = (x_k, y_k) relative to G and one at G, from
+/// Σ m_k x_k = 0, Σ m_k y_k = 0, Σ m_k (x_k² + y_k²) = I_G, m_G = m − Σ m_k.
+/// Returns [m_1, m_2, m_3, m_G]; `Singular` when the three points are collinear with G
+/// in a way that leaves the system without a unique solution.
+pub fn planar_four_masses(m: f64, i_g: f64, points: [[f64; 2]; 3]) -> Result<[f64; 4], MechError> {
+    let (m, i_g) = (non_negative("mass", m)?, non_negative("inertia", i_g)?);
+    crate::error::check_finite("points", points.as_flattened())?;
+    let a = SMatrix::<f64, 3, 3>::from_fn(|r, c| {
+        let [x, y] = points[c];
+        [x, y, x * x + y * y][r]
+    });
+    let b = SVector::<f64, 3>::new(0.0, 0.0, i_g);
+    let x = solve(a, b)?;
+    Ok([x[0], x[1], x[2], m - x.sum()])
+}
+
+/// The inertia of a spatial rigid body about its centre of gravity: moments
+/// I_x = Σ m (y² + z²), I_y, I_z and products C_x = Σ m y z, C_y = Σ m x z, C_z = Σ m x y
+/// (the notation of `docs/theory.md` §9.3), kg·m².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpatialInertia {
+    /// I_x, kg·m².
+    pub ix: f64,
+    /// I_y, kg·m².
+    pub iy: f64,
+    /// I_z, kg·m².
+    pub iz: f64,
+    /// C_x = Σ m y z, kg·m².
+    pub cx: f64,
+    /// C_y = Σ m x z, kg·m².
+    pub cy: f64,
+    /// C_z = Σ m x y, kg·m².
+    pub cz: f64,
+}
+
+/// A spatial rigid body of mass `m` by ten point masses at the given points (relative to
+/// G, m): the ten linear conditions of `docs/theory.md` §9.3 — Σ m_i = m,
+/// Σ m_i (x_i, y_i, z_i) = 0, the three moments and the three products of inertia.
+/// `Singular` when the points do not determine the masses.
+pub fn spatial_ten_masses(
+    m: f64,
+    inertia: SpatialInertia,
+    points: [[f64; 3]; 10],
+) -> Result<[f64; 10], MechError> {
+    let m = non_negative("mass", m)?;
+    let SpatialInertia {
+        ix,
+        iy,
+        iz,
+        cx,
+        cy,
+        cz,
+    } = inertia;
+    crate::error::check_finite("inertia", &[ix, iy, iz, cx, cy, cz])?;
+    crate::error::check_finite("points", points.as_flattened())?;
+    let a = SMatrix::<f64, 10, 10>::from_fn(|r, c| {
+        let [x, y, z] = points[c];
+        [
+            1.0,
+            x,
+            y,
+            z,
+            y * y + z * z,
+            x * x + z * z,
+            x * x + y * y,
+            y * z,
+            x * z,
+            x * y,
+        ][r]
+    });
+    let b = SVector::<f64, 10>::from([m, 0.0, 0.0, 0.0, ix, iy, iz, cx, cy, cz]);
+    let x = solve(a, b)?;
+    Ok(x.into())
+}
+
+/// Solve a small square system, `Singular` (with a condition estimate) when it is.
+fn solve<const N: usize>(
+    a: SMatrix<f64, N, N>,
+    b: SVector<f64, N>,
+) -> Result<SVector<f64, N>, MechError> {
+    let lu = crate::kernel::linalg::Lu::new(a);
+    let condition = lu.condition();
+    if !(condition < 1e12) {
+        return Err(MechError::Singular { condition });
+    }
+    Ok(lu.solve(&b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_rod_is_one_sixth_at_each_end_and_two_thirds_at_the_middle() {
+        let (m, l) = (3.0, 0.8);
+        let e = bar_three_masses(m, m * l * l / 12.0, l / 2.0, l / 2.0).unwrap();
+        assert!((e.at_a - m / 6.0).abs() < 1e-15 && (e.at_b - m / 6.0).abs() < 1e-15);
+        assert!((e.at_g - 2.0 * m / 3.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bar_systems_keep_mass_cg_and_inertia() {
+        let (m, i_g, r_a, r_b) = (2.4, 9.5e-3, 0.09, 0.15);
+        let e = bar_three_masses(m, i_g, r_a, r_b).unwrap();
+        assert!((e.at_a + e.at_b + e.at_g - m).abs() < 1e-15);
+        assert!((-e.at_a * r_a + e.at_b * r_b).abs() < 1e-15);
+        assert!((e.at_a * r_a * r_a + e.at_b * r_b * r_b - i_g).abs() < 1e-17);
+        let (sa, sb) = bar_two_masses_static(m, r_a, r_b).unwrap();
+        assert!((sa + sb - m).abs() < 1e-15 && (-sa * r_a + sb * r_b).abs() < 1e-15);
+        let (ca, cb, rb) = bar_two_masses_complete(m, i_g, r_a).unwrap();
+        assert!((ca + cb - m).abs() < 1e-14 && (-ca * r_a + cb * rb).abs() < 1e-15);
+        assert!((ca * r_a * r_a + cb * rb * rb - i_g).abs() < 1e-16);
+        assert!(bar_three_masses(m, i_g, 0.0, r_b).is_err());
+        assert!(bar_two_masses_complete(f64::NAN, i_g, r_a).is_err());
+    }
+
+    #[test]
+    fn planar_four_masses_keep_mass_cg_and_inertia() {
+        let (m, i_g) = (1.377, 0.0079);
+        let pts = [[-0.08, -0.05], [0.12, 0.02], [-0.03, 0.09]];
+        let w = planar_four_masses(m, i_g, pts).unwrap();
+        assert!((w.iter().sum::<f64>() - m).abs() < 1e-14);
+        let sx: f64 = (0..3).map(|k| w[k] * pts[k][0]).sum();
+        let sy: f64 = (0..3).map(|k| w[k] * pts[k][1]).sum();
+        let si: f64 = (0..3)
+            .map(|k| w[k] * (pts[k][0].powi(2) + pts[k][1].powi(2)))
+            .sum();
+        assert!(sx.abs() < 1e-16 && sy.abs() < 1e-16 && (si - i_g).abs() < 1e-17);
+        // Three points on one line through G cannot hold both cg conditions and the inertia.
+        assert!(matches!(
+            planar_four_masses(m, i_g, [[0.1, 0.0], [0.2, 0.0], [-0.1, 0.0]]),
+            Err(MechError::Singular { .. })
+        ));
+    }
+
+    #[test]
+    fn ten_masses_reproduce_a_box() {
+        // A uniform box a × b × c: I_x = m (b² + c²)/12, ..., no products.
+        let (m, a, b, c) = (5.0f64, 0.3f64, 0.2f64, 0.1f64);
+        let inertia = SpatialInertia {
+            ix: m * (b * b + c * c) / 12.0,
+            iy: m * (a * a + c * c) / 12.0,
+            iz: m * (a * a + b * b) / 12.0,
+            cx: 0.0,
+            cy: 0.0,
+            cz: 0.0,
+        };
+        let pts = [
+            [0.0, 0.0, 0.0],
+            [0.1, 0.0, 0.0],
+            [-0.1, 0.02, 0.0],
+            [0.0, 0.1, 0.01],
+            [0.02, -0.1, 0.0],
+            [0.0, 0.01, 0.05],
+            [0.01, 0.0, -0.05],
+            [0.07, 0.07, 0.0],
+            [0.06, 0.0, 0.04],
+            [0.0, 0.05, 0.04],
+        ];
+        let w = spatial_ten_masses(m, inertia, pts).unwrap();
+        let sum = |f: &dyn Fn([f64; 3]) -> f64| (0..10).map(|i| w[i] * f(pts[i])).sum::<f64>();
+        assert!((sum(&|_| 1.0) - m).abs() < 1e-12);
+        for k in 0..3 {
+            assert!(sum(&|p| p[k]).abs() < 1e-12);
+        }
+        assert!((sum(&|p| p[1] * p[1] + p[2] * p[2]) - inertia.ix).abs() < 1e-12);
+        assert!((sum(&|p| p[0] * p[0] + p[2] * p[2]) - inertia.iy).abs() < 1e-12);
+        assert!((sum(&|p| p[0] * p[0] + p[1] * p[1]) - inertia.iz).abs() < 1e-12);
+        assert!(
+            sum(&|p| p[1] * p[2]).abs() < 1e-12
+                && sum(&|p| p[0] * p[2]).abs() < 1e-12
+                && sum(&|p| p[0] * p[1]).abs() < 1e-12
+        );
+    }
+}

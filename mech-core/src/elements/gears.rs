@@ -1,0 +1,661 @@
+//! Gear pairs and racks (`docs/theory.md` §11, `docs/conventions.md#gears`): the pitch
+//! circles (a circle and the rack's pitch line) roll on each other without slipping.
+//!
+//! **Kinematics (Willis).** Relative to the carrier c, the link that holds both centres,
+//! a gear pair with pitch radii r_a, r_b keeps r_a (φ_a − φ_c) + σ r_b (φ_b − φ_c) = 0
+//! (σ = +1 external, −1 internal), φ the rotations since the drawing; a rack sliding s
+//! (along its axis u, relative to the carrier, since the drawing) on a pinion of radius r
+//! keeps s + κ r (φ_a − φ_c) = 0, κ = ±1 the side of the pitch line (left of u from the
+//! pinion's centre: +1). Either way the meshing link's coordinate relative to the carrier
+//! is x_body = −ρ x_partner, with the same ρ for positions, rates and accelerations:
+//! ρ = σ r_a/r_b (gear b from gear a), σ r_b/r_a (a from b), κ r (the rack from the
+//! pinion), κ/r (the pinion from the rack). So a gear train is solved in closed form, one
+//! gear after the other, exactly over any number of turns (the angles φ are carried
+//! unwrapped, [`LinkState::angle`]); links that mesh with one another (the arm and planet
+//! of an epicyclic train driven by its sun) are a [`TrainGroup`], their relations one
+//! small linear system.
+//!
+//! **Kinetostatics.** The tooth force acts at the pitch point P along the line of action,
+//! at the pressure angle α from the common tangent t: F = f_t t + |f_t| tan α s, s the
+//! separating direction (away from the partner's centre for an external pair, outward on
+//! a ring, inward on a pinion inside a ring, away from the pinion on a rack). For a gear
+//! pinned at its centre O, its moment about O fixes f_t = −M_O / ((P − O) × t) (the
+//! separating part passes through O); for a rack, its force along u fixes f_t = −F_rack·u.
+//! The pin (or slide) takes the rest. The flank in contact is the side the tangential
+//! part pushes: reported as the sign of F·t.
+
+use crate::kernel::constraints::{JointGeom, Level};
+use crate::kernel::kinetostatics::{Reaction, Wrench};
+use crate::kernel::link_state::{cross, perp, point_of, rotate, LinkState, V2};
+use crate::MechError;
+
+/// The teeth of one gear pair or rack, in the local frames of its links.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshGeom {
+    /// A rack and pinion (a is the pinion, b the rack).
+    pub rack: bool,
+    /// r_a, the pitch radius of a (m).
+    pub ra: f64,
+    /// r_b, the pitch radius of b (m); 0 for a rack.
+    pub rb: f64,
+    /// σ = +1 external, −1 internal; for a rack κ, the side of its pitch line (±1).
+    pub sign: f64,
+    /// tan α, α the pressure angle.
+    pub tan_pressure: f64,
+    /// Local vector of a's centre in a (m).
+    pub ca: V2,
+    /// Local vector of b's centre in b (for a rack: of its sliding joint's point), m.
+    pub cb: V2,
+    /// The carrier link.
+    pub carrier: usize,
+}
+
+/// The pitch point of a mesh and its tangent in the states `s`: P (m), t (unit) and the
+/// separating direction on b (unit; the force of a on b pushes b along it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pitch {
+    /// The pitch point P.
+    pub p: V2,
+    /// The common tangent t (gear pair: perp of the line of centres a → b; rack: u).
+    pub t: V2,
+    /// The direction the separating force pushes b.
+    pub sep_b: V2,
+}
+
+impl MeshGeom {
+    /// The pitch point, tangent and separating direction (module docs) in the states `s`;
+    /// `u` is the rack's axis (unused for a gear pair).
+    #[inline(always)]
+    pub fn pitch(&self, s: &[LinkState], a: usize, b: usize, u: V2) -> Pitch {
+        let oa = point_of(s, a, self.ca);
+        if self.rack {
+            let n = perp(u) * self.sign;
+            return Pitch {
+                p: oa + n * self.ra,
+                t: u,
+                sep_b: n,
+            };
+        }
+        let ob = point_of(s, b, self.cb);
+        let d = ob - oa;
+        let w = d / d.norm();
+        let (p, sep_b) = if self.sign > 0.0 {
+            (oa + w * self.ra, w)
+        } else if self.ra < self.rb {
+            // b is the ring around a: P beyond a's centre, the ring pushed outward.
+            (oa - w * self.ra, -w)
+        } else {
+            // a is the ring around b: P beyond b's centre, b (inside) pushed inward.
+            (ob + w * self.rb, -w)
+        };
+        Pitch {
+            p,
+            t: perp(w),
+            sep_b,
+        }
+    }
+}
+
+/// A group of one link that meshes (module docs): `body`, held by the joint `pin` (a
+/// revolute at its centre for a gear or pinion, the prismatic slide for a rack) to a
+/// solved link, meshing through joint `joint` (tooth data `mesh`) with the solved link
+/// `partner`, on the solved carrier `carrier`. `*_tracked`: the partner's and carrier's
+/// [`LinkState::angle`] is exact over turns (ground, driven and meshing links); else it
+/// is taken from the rotation, in (−π, π].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MeshGroup {
+    /// The link solved.
+    pub body: usize,
+    /// The joint that holds it.
+    pub pin: usize,
+    /// The mesh joint.
+    pub joint: usize,
+    /// Index into the mechanism's meshes.
+    pub mesh: usize,
+    /// The meshing link already solved.
+    pub partner: usize,
+    /// The carrier.
+    pub carrier: usize,
+    /// The rack's prismatic joint (a rack and pinion only; the body's `pin` when the body
+    /// is the rack).
+    pub slide: usize,
+    /// The body is a rack (it slides on the carrier).
+    pub body_slides: bool,
+    /// The partner is a rack.
+    pub partner_slides: bool,
+    /// The partner's angle is tracked.
+    pub partner_tracked: bool,
+    /// The carrier's angle is tracked.
+    pub carrier_tracked: bool,
+}
+
+/// A link's rotation since the drawing (rad): its tracked angle, or from its rotation.
+#[inline(always)]
+fn turned(s: &[LinkState], l: usize, tracked: bool) -> f64 {
+    if l == 0 {
+        0.0
+    } else if tracked {
+        s[l].angle
+    } else {
+        s[l].rot.y.atan2(s[l].rot.x)
+    }
+}
+
+impl MeshGroup {
+    /// ρ of the module docs: the body's relative coordinate is −ρ × the partner's.
+    #[inline(always)]
+    fn ratio(&self, m: &MeshGeom, joints: &[JointGeom]) -> f64 {
+        let body_is_a = joints[self.joint].a == self.body;
+        match (m.rack, self.body_slides, body_is_a) {
+            (true, true, _) => m.sign * m.ra,
+            (true, false, _) => m.sign / m.ra,
+            (false, _, true) => m.sign * m.rb / m.ra,
+            (false, _, false) => m.sign * m.ra / m.rb,
+        }
+    }
+
+    /// The rack's axis u (global) and its slide's guide point on the carrier: the
+    /// prismatic joint `g` with the carrier on one side.
+    #[inline(always)]
+    fn slide_frame(&self, g: &JointGeom, s: &[LinkState], rack: usize) -> (V2, V2, V2, f64) {
+        // The axis is fixed in the joint's first link; the rack is on one side, the
+        // carrier on the other. Returns (u, the carrier's guide point now, the rack's
+        // point now, s).
+        let (guide, dg, dr) = if g.b == rack {
+            (g.a, g.da, g.db)
+        } else {
+            (g.b, g.db, g.da)
+        };
+        let u0 = if g.a == guide { g.axis } else { -g.axis };
+        let u = if guide == 0 {
+            u0
+        } else {
+            rotate(s[guide].rot, u0)
+        };
+        let q = point_of(s, guide, dg);
+        let b = point_of(s, rack, dr);
+        (u, q, b, u.dot(&(b - q)))
+    }
+
+    /// The partner's relative coordinate (angle or slide), rate and acceleration, and the
+    /// carrier's φ, ω, α.
+    #[inline(always)]
+    fn partner_rel(
+        &self,
+        joints: &[JointGeom],
+        s: &[LinkState],
+        upto: Level,
+    ) -> ([f64; 3], [f64; 3]) {
+        let c = self.carrier;
+        let car = if c == 0 {
+            [0.0; 3]
+        } else {
+            [turned(s, c, self.carrier_tracked), s[c].omega, s[c].alpha]
+        };
+        let p = self.partner;
+        let rel = if self.partner_slides {
+            let (u, _, b, x) = self.slide_frame(&joints[self.slide], s, p);
+            let (mut xd, mut xdd) = (0.0, 0.0);
+            if upto != Level::Position {
+                let vc = if c == 0 {
+                    V2::zeros()
+                } else {
+                    s[c].vel_at(b - s[c].pos)
+                };
+                xd = u.dot(&(s[p].vel_at(b - s[p].pos) - vc));
+                if upto == Level::Acceleration {
+                    let ac = if c == 0 {
+                        V2::zeros()
+                    } else {
+                        s[c].acc_at(b - s[c].pos)
+                    };
+                    xdd = u.dot(&(s[p].acc_at(b - s[p].pos) - ac));
+                }
+            }
+            [x, xd, xdd]
+        } else {
+            [
+                turned(s, p, self.partner_tracked) - car[0],
+                s[p].omega - car[1],
+                s[p].alpha - car[2],
+            ]
+        };
+        (rel, car)
+    }
+}
+
+/// Solve a meshing link up to `upto` (module docs): its relative coordinate from its
+/// partner's by Willis' relation, then its pose, velocity and acceleration.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub fn solve_mesh(
+    grp: &MeshGroup,
+    meshes: &[MeshGeom],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    upto: Level,
+) -> Result<(), MechError> {
+    let m = &meshes[grp.mesh];
+    let rho = grp.ratio(m, joints);
+    let (rel, car) = grp.partner_rel(joints, s, upto);
+    let x = [-rho * rel[0], -rho * rel[1], -rho * rel[2]];
+    let g = joints[grp.pin];
+    let body = grp.body;
+    let c = grp.carrier;
+    let (ca_rot, ca_omega, ca_alpha) = if c == 0 {
+        (V2::new(1.0, 0.0), 0.0, 0.0)
+    } else {
+        (s[c].rot, s[c].omega, s[c].alpha)
+    };
+    if grp.body_slides {
+        // The rack: the carrier's rotation, its slide point at s along u.
+        let (u, q, _, _) = grp.slide_frame(&g, s, body);
+        let dr = if g.b == body { g.db } else { g.da };
+        let b = q + u * x[0];
+        let st = &mut s[body];
+        st.rot = ca_rot;
+        st.angle = car[0];
+        st.pos = b - rotate(ca_rot, dr);
+        if upto == Level::Position {
+            return Ok(());
+        }
+        let (vq, aq) = if c == 0 {
+            (V2::zeros(), V2::zeros())
+        } else {
+            let r = b - s[c].pos;
+            (s[c].vel_at(r), s[c].acc_at(r))
+        };
+        s[body].set_velocity_through(b, vq + u * x[1], ca_omega);
+        if upto == Level::Acceleration {
+            let coriolis = perp(u) * (2.0 * ca_omega * x[1]);
+            s[body].set_acceleration_through(b, aq + coriolis + u * x[2], ca_alpha);
+        }
+        return Ok(());
+    }
+    // A gear or pinion pinned at its centre to a solved link.
+    let (other, d_other, d_body) = if g.b == body {
+        (g.a, g.da, g.db)
+    } else {
+        (g.b, g.db, g.da)
+    };
+    let o = point_of(s, other, d_other);
+    let phi = car[0] + x[0];
+    let (sn, cs) = phi.sin_cos();
+    let rot = V2::new(cs, sn);
+    let st = &mut s[body];
+    st.rot = rot;
+    st.angle = phi;
+    st.pos = o - rotate(rot, d_body);
+    if upto == Level::Position {
+        return Ok(());
+    }
+    let (vo, ao) = if other == 0 {
+        (V2::zeros(), V2::zeros())
+    } else {
+        let r = o - s[other].pos;
+        (s[other].vel_at(r), s[other].acc_at(r))
+    };
+    s[body].set_velocity_through(o, vo, ca_omega + x[1]);
+    if upto == Level::Acceleration {
+        s[body].set_acceleration_through(o, ao, ca_alpha + x[2]);
+    }
+    Ok(())
+}
+
+/// d'Alembert for a meshing link (module docs): the tooth force from the body's moment
+/// about its centre (a gear) or its force along the slide (a rack), the pin or slide
+/// takes the rest; reactions into `out` (joint order: the mesh's as
+/// [`Reaction::force`] by a on b, its tangential sign in [`Reaction::moment`]) and passed
+/// on to the partner and the pin's other link in `f`.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub fn mesh_reactions(
+    grp: &MeshGroup,
+    meshes: &[MeshGeom],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    let m = &meshes[grp.mesh];
+    let gm = &joints[grp.joint];
+    let g = &joints[grp.pin];
+    let body = grp.body;
+    let body_is_b = gm.b == body;
+    let u = if m.rack {
+        let rack = if grp.body_slides { body } else { grp.partner };
+        grp.slide_frame(&joints[grp.slide], s, rack).0
+    } else {
+        V2::zeros()
+    };
+    let pitch = m.pitch(s, gm.a, gm.b, u);
+    let sep = if body_is_b { pitch.sep_b } else { -pitch.sep_b };
+    let wb = f[body];
+    let (fb, anchor) = (V2::new(wb.x, wb.y), s[body].pos);
+    let (other, d_other) = if g.b == body {
+        (g.a, g.da)
+    } else {
+        (g.b, g.db)
+    };
+    let joint_point = point_of(s, other, d_other);
+    let ft = if grp.body_slides {
+        -fb.dot(&pitch.t)
+    } else {
+        let mo = wb.z + cross(anchor - joint_point, fb);
+        let lever = cross(pitch.p - joint_point, pitch.t);
+        if lever == 0.0 {
+            return Err(MechError::Singular {
+                condition: f64::INFINITY,
+            });
+        }
+        -mo / lever
+    };
+    // The force of the partner on the body, and the pin's (or slide's) reaction.
+    let force = pitch.t * ft + sep * (ft.abs() * m.tan_pressure);
+    let r = -(fb + force);
+    let moment = if grp.body_slides {
+        -(wb.z + cross(anchor - joint_point, fb) + cross(pitch.p - joint_point, force))
+    } else {
+        0.0
+    };
+    let on_b = if body_is_b { force } else { -force };
+    out[grp.joint] = Reaction {
+        force: on_b,
+        moment: if on_b.dot(&pitch.t) >= 0.0 { 1.0 } else { -1.0 },
+    };
+    out[grp.pin] = if g.b == body {
+        Reaction { force: r, moment }
+    } else {
+        Reaction {
+            force: -r,
+            moment: -moment,
+        }
+    };
+    let push = |f: &mut [Wrench], l: usize, p: V2, force: V2, couple: f64| {
+        let pos = if l == 0 { V2::zeros() } else { s[l].pos };
+        f[l] += Wrench::new(force.x, force.y, couple + cross(p - pos, force));
+    };
+    push(f, grp.partner, pitch.p, -force, 0.0);
+    push(f, other, joint_point, -r, -moment);
+    Ok(())
+}
+
+/// The most links a gear-train group may have ([`TrainGroup`]).
+pub const TRAIN_MAX: usize = 3;
+
+/// A group of up to [`TRAIN_MAX`] links turning about their centres and meshing with one
+/// another and with solved links, as many meshes as links (for instance the arm and the
+/// planet of an epicyclic train driven by its sun against a fixed ring): Willis' relation
+/// of every mesh is linear in the links' rotations, one n × n system for the angles, the
+/// same matrix for their rates and accelerations. Each link is held by one revolute at
+/// its centre (`pins[k]`), to a solved link or to a link of the group placed before it
+/// (`order`). Only gear pairs (no rack) form such a group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TrainGroup {
+    /// The number of links n.
+    pub n: usize,
+    /// Its links.
+    pub bodies: [usize; TRAIN_MAX],
+    /// The revolute joint at each link's centre.
+    pub pins: [usize; TRAIN_MAX],
+    /// The mesh joints and their indices into the mechanism's meshes.
+    pub meshes: [(usize, usize); TRAIN_MAX],
+    /// The order the links are placed in (indices into `bodies`): each pinned to a solved
+    /// link or to one placed before it.
+    pub order: [usize; TRAIN_MAX],
+    /// Per link of the mechanism up to the 64th: its [`LinkState::angle`] is tracked
+    /// (bit l), for the solved links the meshes reach.
+    pub tracked: u64,
+}
+
+impl TrainGroup {
+    /// The column of link `l` in the group's unknowns, if it is one of them.
+    #[inline(always)]
+    fn col(&self, l: usize) -> Option<usize> {
+        self.bodies[..self.n].iter().position(|&b| b == l)
+    }
+
+    /// Willis' relations as A x = rhs for the links' angle (`level` 0), rate (1) or
+    /// acceleration (2), with the solved links' values from `s`.
+    #[inline(always)]
+    fn willis(
+        &self,
+        meshes: &[MeshGeom],
+        joints: &[JointGeom],
+        s: &[LinkState],
+        level: usize,
+    ) -> (
+        nalgebra::SMatrix<f64, TRAIN_MAX, TRAIN_MAX>,
+        nalgebra::SVector<f64, TRAIN_MAX>,
+    ) {
+        let mut a = nalgebra::SMatrix::<f64, TRAIN_MAX, TRAIN_MAX>::identity();
+        let mut rhs = nalgebra::SVector::<f64, TRAIN_MAX>::zeros();
+        let value = |l: usize| -> f64 {
+            if l == 0 {
+                return 0.0;
+            }
+            match level {
+                0 => turned(s, l, self.tracked >> l.min(63) & 1 == 1),
+                1 => s[l].omega,
+                _ => s[l].alpha,
+            }
+        };
+        for (r, &(j, mi)) in self.meshes[..self.n].iter().enumerate() {
+            let (g, m) = (&joints[j], &meshes[mi]);
+            a[(r, r)] = 0.0;
+            // r_a x_a + σ r_b x_b − (r_a + σ r_b) x_c = 0.
+            for (l, k) in [
+                (g.a, m.ra),
+                (g.b, m.sign * m.rb),
+                (m.carrier, -(m.ra + m.sign * m.rb)),
+            ] {
+                match self.col(l) {
+                    Some(c) => a[(r, c)] += k,
+                    None => rhs[r] -= k * value(l),
+                }
+            }
+        }
+        (a, rhs)
+    }
+}
+
+/// Solve a gear-train group up to `upto` ([`TrainGroup`]): the angles from Willis'
+/// relations, the links placed about their centres in `order`, then the rates and
+/// accelerations from the same matrix. `Singular` when the relations do not fix the angles.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub fn solve_train(
+    grp: &TrainGroup,
+    meshes: &[MeshGeom],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    upto: Level,
+) -> Result<(), MechError> {
+    let (a, rhs) = grp.willis(meshes, joints, s, 0);
+    let lu = crate::kernel::linalg::Lu::new(a);
+    let cond = lu.condition();
+    if !(cond < crate::kernel::linalg::SINGULAR_CONDITION) {
+        return Err(MechError::Singular { condition: cond });
+    }
+    let phi = lu.solve(&rhs);
+    let centre = |s: &[LinkState], k: usize| {
+        let g = &joints[grp.pins[k]];
+        let body = grp.bodies[k];
+        let (other, d_other, d_body) = if g.b == body {
+            (g.a, g.da, g.db)
+        } else {
+            (g.b, g.db, g.da)
+        };
+        (other, point_of(s, other, d_other), d_body)
+    };
+    for &k in &grp.order[..grp.n] {
+        let (_, o, d_body) = centre(s, k);
+        let (sn, cs) = phi[k].sin_cos();
+        let st = &mut s[grp.bodies[k]];
+        st.rot = V2::new(cs, sn);
+        st.angle = phi[k];
+        st.pos = o - rotate(st.rot, d_body);
+    }
+    if upto == Level::Position {
+        return Ok(());
+    }
+    let w = lu.solve(&grp.willis(meshes, joints, s, 1).1);
+    for &k in &grp.order[..grp.n] {
+        let (other, o, _) = centre(s, k);
+        let vo = if other == 0 {
+            V2::zeros()
+        } else {
+            s[other].vel_at(o - s[other].pos)
+        };
+        s[grp.bodies[k]].set_velocity_through(o, vo, w[k]);
+    }
+    if upto == Level::Acceleration {
+        let al = lu.solve(&grp.willis(meshes, joints, s, 2).1);
+        for &k in &grp.order[..grp.n] {
+            let (other, o, _) = centre(s, k);
+            let ao = if other == 0 {
+                V2::zeros()
+            } else {
+                s[other].acc_at(o - s[other].pos)
+            };
+            s[grp.bodies[k]].set_acceleration_through(o, ao, al[k]);
+        }
+    }
+    Ok(())
+}
+
+/// d'Alembert for a gear-train group: every link's three equations in the unknowns — the
+/// force of each pin on its link (2 each) and each mesh's tangential tooth force (1
+/// each) — one 3n × 3n system; the tooth forces' radial parts follow the flanks, which are
+/// settled by solving again until every flank agrees with the sign of its tangential force.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+pub fn train_reactions(
+    grp: &TrainGroup,
+    meshes: &[MeshGeom],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    const M: usize = 3 * TRAIN_MAX;
+    let n = grp.n;
+    let pitch: [Pitch; TRAIN_MAX] = core::array::from_fn(|r| {
+        if r < n {
+            let (j, mi) = grp.meshes[r];
+            let g = &joints[j];
+            meshes[mi].pitch(s, g.a, g.b, V2::zeros())
+        } else {
+            Pitch {
+                p: V2::zeros(),
+                t: V2::zeros(),
+                sep_b: V2::zeros(),
+            }
+        }
+    });
+    let pin_point: [V2; TRAIN_MAX] = core::array::from_fn(|k| {
+        if k < n {
+            let g = &joints[grp.pins[k]];
+            if g.b == grp.bodies[k] {
+                point_of(s, g.a, g.da)
+            } else {
+                point_of(s, g.b, g.db)
+            }
+        } else {
+            V2::zeros()
+        }
+    });
+    // The tooth force on b of mesh r per unit tangential force, for the flanks `fl`.
+    let unit = |r: usize, fl: f64| {
+        pitch[r].t + pitch[r].sep_b * (fl * meshes[grp.meshes[r].1].tan_pressure)
+    };
+    let mut flanks = [1.0; TRAIN_MAX];
+    let mut x = nalgebra::SVector::<f64, M>::zeros();
+    for _ in 0..=(1 << TRAIN_MAX) {
+        let mut a = nalgebra::SMatrix::<f64, M, M>::identity();
+        let mut b = nalgebra::SVector::<f64, M>::zeros();
+        for k in 0..n {
+            for c in 0..3 {
+                a[(3 * k + c, 3 * k + c)] = 0.0;
+            }
+        }
+        // Add the force `dir` × unknown `col` at point `p` to link `l`'s rows.
+        let put = |a: &mut nalgebra::SMatrix<f64, M, M>, l: usize, p: V2, dir: V2, col: usize| {
+            if let Some(k) = grp.col(l) {
+                let r = p - s[l].pos;
+                a[(3 * k, col)] += dir.x;
+                a[(3 * k + 1, col)] += dir.y;
+                a[(3 * k + 2, col)] += cross(r, dir);
+            }
+        };
+        for k in 0..n {
+            let body = grp.bodies[k];
+            let g = &joints[grp.pins[k]];
+            let other = if g.b == body { g.a } else { g.b };
+            for (c, dir) in [(0, V2::new(1.0, 0.0)), (1, V2::new(0.0, 1.0))] {
+                put(&mut a, body, pin_point[k], dir, 2 * k + c);
+                put(&mut a, other, pin_point[k], -dir, 2 * k + c);
+            }
+            let w = f[body];
+            b[3 * k] = -w.x;
+            b[3 * k + 1] = -w.y;
+            b[3 * k + 2] = -w.z;
+        }
+        for r in 0..n {
+            let g = &joints[grp.meshes[r].0];
+            let d = unit(r, flanks[r]);
+            put(&mut a, g.b, pitch[r].p, d, 2 * n + r);
+            put(&mut a, g.a, pitch[r].p, -d, 2 * n + r);
+        }
+        x = crate::kernel::linalg::Lu::new(a).solve(&b);
+        let settled: [f64; TRAIN_MAX] = core::array::from_fn(|r| {
+            if r < n && x[2 * n + r] < 0.0 {
+                -1.0
+            } else {
+                1.0
+            }
+        });
+        if settled == flanks {
+            break;
+        }
+        flanks = settled;
+    }
+    for k in 0..n {
+        let body = grp.bodies[k];
+        let g = &joints[grp.pins[k]];
+        let r = V2::new(x[2 * k], x[2 * k + 1]);
+        let other = if g.b == body { g.a } else { g.b };
+        out[grp.pins[k]] = Reaction {
+            force: if g.b == body { r } else { -r },
+            moment: 0.0,
+        };
+        if grp.col(other).is_none() {
+            let pos = if other == 0 {
+                V2::zeros()
+            } else {
+                s[other].pos
+            };
+            f[other] += Wrench::new(-r.x, -r.y, cross(pin_point[k] - pos, -r));
+        }
+    }
+    for r in 0..n {
+        let (j, _) = grp.meshes[r];
+        let g = &joints[j];
+        let force = unit(r, flanks[r]) * x[2 * n + r];
+        out[j] = Reaction {
+            force,
+            moment: if force.dot(&pitch[r].t) >= 0.0 {
+                1.0
+            } else {
+                -1.0
+            },
+        };
+        for (l, fl) in [(g.a, -force), (g.b, force)] {
+            if grp.col(l).is_none() {
+                let pos = if l == 0 { V2::zeros() } else { s[l].pos };
+                f[l] += Wrench::new(fl.x, fl.y, cross(pitch[r].p - pos, fl));
+            }
+        }
+    }
+    Ok(())
+}

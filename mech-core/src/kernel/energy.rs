@@ -1,0 +1,61 @@
+//! Energies of one link (`docs/theory.md` §6): the kinetic energy, its rate, and the
+//! potential energy of gravity. The generated `link_kinetic_energies` and
+//! `potential_energy` call these once per link whose declaration has the term (see
+//! [`crate::solvers::params::LinkTerms`]), with the run-time mass and inertia; units SI.
+
+use crate::kernel::link_state::{LinkGeom, LinkMotion, V2};
+
+/// Kinetic energy of a link, T = ½ (m |v_G|² + I_G ω²) (J), with m (kg), I_G (kg·m²)
+/// from `l` and the cg velocity v_G (m/s) and angular velocity ω (rad/s) from `m`.
+#[inline]
+pub fn kinetic(l: &LinkGeom, m: &LinkMotion) -> f64 {
+    0.5 * (l.mass * m.cg_vel.norm_squared() + l.inertia * m.omega * m.omega)
+}
+
+/// Rate of change of a link's kinetic energy, dT/dt = m v_G·a_G + I_G ω α (W), with the
+/// cg acceleration a_G (m/s²) and angular acceleration α (rad/s²) from `m`.
+#[inline]
+pub fn kinetic_rate(l: &LinkGeom, m: &LinkMotion) -> f64 {
+    l.mass * m.cg_vel.dot(&m.cg_acc) + l.inertia * m.omega * m.alpha
+}
+
+/// Potential energy of gravity of a link, V = −m g·r_G (J), with gravity g (m/s²) and the
+/// cg position r_G (m) from `m`; zero at the origin of the global frame.
+#[inline]
+pub fn potential(l: &LinkGeom, m: &LinkMotion, g: V2) -> f64 {
+    -(l.mass * g.dot(&m.cg))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn link() -> LinkGeom {
+        LinkGeom {
+            anchor: V2::zeros(),
+            dir_ref: V2::new(1.0, 0.0),
+            dcg: V2::new(0.3, 0.1),
+            mass: 2.0,
+            inertia: 0.05,
+            inertia_anchor: 0.05 + 2.0 * 0.1,
+            cg_span: V2::zeros(),
+        }
+    }
+
+    #[test]
+    fn kinetic_energy_and_its_rate() {
+        let m = LinkMotion {
+            angle: 0.0,
+            omega: 3.0,
+            alpha: -2.0,
+            cg: V2::new(1.0, 2.0),
+            cg_vel: V2::new(0.5, -1.5),
+            cg_acc: V2::new(4.0, 1.0),
+        };
+        let l = link();
+        let close = |a: f64, b: f64| assert!((a - b).abs() <= 1e-15 * b.abs(), "{a} vs {b}");
+        close(kinetic(&l, &m), 0.5 * (2.0 * 2.5 + 0.05 * 9.0));
+        close(kinetic_rate(&l, &m), 2.0 * (2.0 - 1.5) - 0.05 * 6.0);
+        close(potential(&l, &m, V2::new(0.0, -9.81)), 2.0 * 9.81 * 2.0);
+    }
+}

@@ -1,0 +1,16 @@
+//! The kinematic core: a link's frame and its points' motion, the joints' constraint equations,
+//! the closed-form and Newton solutions of each group kind, and the wrenches of d'Alembert.
+//! Everything the generated code and the run-time `Mechanism` call per configuration.
+
+pub mod branches;
+pub mod constraints;
+pub mod dyad;
+pub mod energy;
+pub mod finite;
+pub mod group;
+pub mod kinematics;
+pub mod kinetostatics;
+pub mod linalg;
+pub mod link_state;
+pub mod natural;
+pub mod screw;

@@ -1,0 +1,229 @@
+//! The numbers a generated struct (or the generic solver) works with, derived from a
+//! resolved [`Model`]: local joint geometry, link data, the drawing's states.
+
+use crate::elements::springs::ElementGeom;
+use crate::kernel::constraints::JointGeom;
+use crate::kernel::dyad::{branch, branch_quantity, Solver};
+use crate::kernel::link_state::{quotient, LinkGeom, LinkState, V2};
+use crate::model::{Load, Model};
+use crate::plan::geometry::{anchor, drawing_states, joint_geoms, local};
+use crate::MechError;
+
+/// A mechanism's numbers, ready for the solvers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Instance {
+    /// Joint geometry, joint order.
+    pub joints: Vec<JointGeom>,
+    /// Link data, link order (ground first).
+    pub links: Vec<LinkGeom>,
+    /// The drawing's states.
+    pub drawing: Vec<LinkState>,
+    /// Per point: (owner link, local vector in it).
+    pub points: Vec<(usize, V2)>,
+    /// Per load: local vector of its point in its link (zero for torques).
+    pub loads: Vec<V2>,
+    /// The force elements with their points in their links' frames.
+    pub elements: Vec<ElementGeom>,
+    /// The gear pairs and racks, in joint order.
+    pub meshes: Vec<crate::elements::gears::MeshGeom>,
+    /// The cams, in joint order.
+    pub cams: Vec<crate::elements::cam::CamGeom>,
+    /// The drawing's length scale, m.
+    pub scale: f64,
+    /// Gravity, m/s² (zero when not declared).
+    pub gravity: V2,
+}
+
+/// Derive the numbers of `model`. Runs the drawing and rank checks (`docs/conventions.md#checks`)
+/// (the same code the macro runs), so a run-time change of parameters is checked too.
+pub fn instance(model: &Model) -> Result<Instance, MechError> {
+    let issues = crate::checks::validate::runtime(model);
+    if !issues.is_empty() {
+        let msg = issues
+            .iter()
+            .map(|i| i.message.as_str())
+            .collect::<Vec<_>>()
+            .join("\n");
+        return Err(MechError::Invalid(msg));
+    }
+    let links = (0..model.links.len())
+        .map(|l| {
+            let link = &model.links[l];
+            let th = model.reference_angle(l);
+            let (dcg, mass, inertia) = (
+                local(model, l, link.cg),
+                link.mass.unwrap_or(0.0),
+                link.rotational_inertia(),
+            );
+            LinkGeom {
+                anchor: anchor(model, l),
+                dir_ref: V2::new(th.cos(), th.sin()),
+                dcg,
+                mass,
+                inertia,
+                inertia_anchor: inertia + mass * dcg.norm_squared(),
+                cg_span: match link.points.get(1) {
+                    Some(&p2) => {
+                        let a = local(model, l, model.points[p2].pos);
+                        if a.norm_squared() > 0.0 {
+                            quotient(dcg, a)
+                        } else {
+                            V2::zeros()
+                        }
+                    }
+                    None => V2::zeros(),
+                },
+            }
+        })
+        .collect();
+    let points = (0..model.points.len())
+        .map(|p| {
+            let owner = (0..model.links.len())
+                .find(|&l| model.links[l].points.contains(&p))
+                .unwrap_or(0);
+            (owner, local(model, owner, model.points[p].pos))
+        })
+        .collect();
+    let loads = model
+        .loads
+        .iter()
+        .map(|l| match l {
+            Load::Force { link, point, .. } => local(model, *link, model.points[*point].pos),
+            Load::Torque { .. } => V2::zeros(),
+        })
+        .collect();
+    let elements = model
+        .elements
+        .iter()
+        .map(|e| {
+            let (da, db) = match e.points {
+                Some([p, q]) => (
+                    local(model, e.a, model.points[p].pos),
+                    local(model, e.b, model.points[q].pos),
+                ),
+                None => (V2::zeros(), V2::zeros()),
+            };
+            ElementGeom {
+                a: e.a,
+                b: e.b,
+                rotary: !e.kind.linear(),
+                da,
+                db,
+                stiffness: e.stiffness,
+                damping: e.damping,
+                free: e.free,
+                reference: model.reference_angle(e.b) - model.reference_angle(e.a),
+            }
+        })
+        .collect();
+    let meshes = model
+        .joints
+        .iter()
+        .enumerate()
+        .filter_map(|(j, jt)| {
+            let m = jt.mesh.as_ref()?;
+            let pos = |p: usize| model.points[p].pos;
+            let (oa, ob) = (pos(m.centres[0]), pos(m.centres[1]));
+            let sign = if jt.kind == crate::model::JointKind::Rack {
+                let (p, t) = crate::plan::geometry::pitch_point(model, j)?;
+                let n = crate::kernel::link_state::perp(t);
+                if n.dot(&(p - V2::new(oa[0], oa[1]))) >= 0.0 {
+                    1.0
+                } else {
+                    -1.0
+                }
+            } else if m.internal {
+                -1.0
+            } else {
+                1.0
+            };
+            Some(crate::elements::gears::MeshGeom {
+                rack: jt.kind == crate::model::JointKind::Rack,
+                ra: m.ra,
+                rb: m.rb,
+                sign,
+                tan_pressure: m.pressure_angle.tan(),
+                ca: local(model, jt.a, oa),
+                cb: local(model, jt.b, ob),
+                carrier: m.carrier,
+            })
+        })
+        .collect();
+    let cams = model
+        .joints
+        .iter()
+        .filter_map(|jt| crate::plan::geometry::cam_geom(model, jt))
+        .collect();
+    Ok(Instance {
+        elements,
+        meshes,
+        cams,
+        joints: joint_geoms(model),
+        links,
+        drawing: drawing_states(model),
+        points,
+        loads,
+        scale: model.scale(),
+        gravity: model
+            .gravity
+            .map(|g| V2::new(g[0], g[1]))
+            .unwrap_or_else(V2::zeros),
+    })
+}
+
+impl Instance {
+    /// The branch sign of each group's closed form in the drawing.
+    pub fn branches(&self, solvers: &[Solver]) -> Vec<f64> {
+        solvers
+            .iter()
+            .map(|&s| branch(branch_quantity(s, &self.joints, &self.drawing)))
+            .collect()
+    }
+}
+
+/// Mass data of a link as a run-time parameter.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinkParams {
+    /// Mass, kg (0 = massless).
+    pub mass: f64,
+    /// Moment of inertia about the cg, kg·m².
+    pub inertia: f64,
+    /// A flywheel keyed to the link (kg·m², 0 = none): a pure rotor whose inertia adds to
+    /// the link's on every route (d'Alembert, virtual power, Zhukovski's I*, the kinetic
+    /// energy), so that the direct problem of a machine with its flywheel is one call.
+    pub flywheel: f64,
+    /// Centre of gravity in the drawing, m.
+    pub cg: V2,
+}
+
+/// A linear spring's run-time parameters (`spring(a at P, b at Q)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpringParams {
+    /// k, N/m, ≥ 0.
+    pub stiffness: f64,
+    /// L₀, the unloaded length, m, ≥ 0 (a declared `preload` F₀ is L_drawing − F₀/k).
+    pub free_length: f64,
+}
+
+/// A linear damper's run-time parameter (`damper(a at P, b at Q)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DamperParams {
+    /// c, N·s/m, ≥ 0.
+    pub damping: f64,
+}
+
+/// A torsion spring's run-time parameters (`torsion_spring(a, b)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TorsionSpringParams {
+    /// k, N·m/rad, ≥ 0.
+    pub stiffness: f64,
+    /// φ₀, the relative angle θ_b − θ_a at which it is unloaded, rad.
+    pub free_angle: f64,
+}
+
+/// A rotary damper's run-time parameter (`rotary_damper(a, b)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RotaryDamperParams {
+    /// c, N·m·s/rad, ≥ 0.
+    pub damping: f64,
+}
