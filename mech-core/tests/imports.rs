@@ -1,52 +1,124 @@
-//! The modules of mech-core import one another in one direction only: the graph of
-//! `crate::<module>` references (outside `#[cfg(test)]` code and comments) has no cycle.
+//! The folders of mech-core are layers, and imports run one way: a module imports only
+//! from its own folder or from a folder below it in [`LAYERS`], and the graph of
+//! `crate::<folder>::<module>` references between modules (outside `#[cfg(test)]` code
+//! and comments) has no cycle. ARCHITECTURE.md draws the same layers.
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
 
-fn graph() -> BTreeMap<String, BTreeSet<String>> {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src");
-    let mut sources = BTreeMap::new();
-    for entry in std::fs::read_dir(dir).expect("src") {
-        let path = entry.expect("entry").path();
-        let name = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or_default()
-            .to_string();
-        if path.extension().is_some_and(|e| e == "rs") && name != "lib" {
-            let text = std::fs::read_to_string(&path).expect("read");
-            let code = text.split("#[cfg(test)]").next().unwrap_or_default();
-            let code: String = code
-                .lines()
-                .map(|l| l.split("//").next().unwrap_or_default())
-                .collect::<Vec<_>>()
-                .join("\n");
-            sources.insert(name, code);
+/// The folders (and root files) of `mech-core/src`, lowest first.
+const LAYERS: &[&str] = &[
+    "error", "kernel", "elements", "model", "front", "plan", "checks", "solvers", "dynamics",
+    "runtime",
+];
+
+/// Files that are not a layer's module: the crate root, the generated code's hidden
+/// paths (they reach every layer on purpose).
+const OUTSIDE: &[&str] = &["lib", "private"];
+
+/// Every module file under `src` as `folder::module` (`error` for a root file, `folder`
+/// for a folder's `mod.rs`), with its code stripped of `#[cfg(test)]` tails and comments.
+fn sources() -> BTreeMap<String, String> {
+    fn walk(dir: &Path, prefix: &str, out: &mut BTreeMap<String, String>) {
+        for entry in std::fs::read_dir(dir).expect("src") {
+            let path = entry.expect("entry").path();
+            let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string();
+            if path.is_dir() {
+                let sub = if prefix.is_empty() { stem } else { format!("{prefix}::{stem}") };
+                walk(&path, &sub, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let name = match (prefix.is_empty(), stem.as_str()) {
+                    (true, s) => s.to_string(),
+                    (false, "mod") => prefix.to_string(),
+                    (false, s) => format!("{prefix}::{s}"),
+                };
+                let text = std::fs::read_to_string(&path).expect("read");
+                let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+                let code = code
+                    .lines()
+                    .map(|l| l.split("//").next().unwrap_or_default())
+                    .collect::<Vec<_>>()
+                    .join("\n");
+                out.insert(name, code);
+            }
         }
     }
+    let mut out = BTreeMap::new();
+    walk(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/src")), "", &mut out);
+    out.retain(|name, _| !OUTSIDE.contains(&name.as_str()));
+    out
+}
+
+/// The layer (top folder or root file) of a module name.
+fn layer(module: &str) -> &str {
+    module.split("::").next().unwrap_or_default()
+}
+
+/// Module → the modules it names through `crate::...` paths (the longest known prefix of
+/// each path; the crate root's re-exports `MechError` and `Mechanism` are their modules').
+fn graph() -> BTreeMap<String, BTreeSet<String>> {
+    let sources = sources();
     let names: BTreeSet<String> = sources.keys().cloned().collect();
+    let resolve = |path: &str| -> Option<String> {
+        match path.split("::").next()? {
+            "MechError" => return Some("error".into()),
+            "Mechanism" => return Some("runtime::mechanism".into()),
+            _ => {}
+        }
+        let parts: Vec<&str> = path.split("::").collect();
+        (1..=parts.len().min(3))
+            .rev()
+            .map(|n| parts[..n].join("::"))
+            .find(|p| names.contains(p))
+    };
     sources
         .iter()
         .map(|(m, code)| {
-            let deps = code
-                .split("crate::")
-                .skip(1)
-                .map(|rest| {
-                    rest.chars()
-                        .take_while(|c| c.is_alphanumeric() || *c == '_')
-                        .collect::<String>()
-                })
-                .filter(|d| names.contains(d) && d != m)
-                .collect();
+            let mut deps = BTreeSet::new();
+            for rest in code.split("crate::").skip(1) {
+                if let Some(group) = rest.strip_prefix('{') {
+                    // `use crate::{a::b, C}`: each item of the group.
+                    for item in group.split('}').next().unwrap_or_default().split(',') {
+                        deps.extend(resolve(item.trim()));
+                    }
+                    continue;
+                }
+                let path: String = rest
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
+                    .collect();
+                deps.extend(resolve(path.trim_end_matches(':')));
+            }
+            deps.remove(m);
             (m.clone(), deps)
         })
         .collect()
 }
 
 #[test]
+fn every_folder_is_a_layer() {
+    let g = graph();
+    assert!(g.len() > 40, "read the modules: {:?}", g.keys());
+    for m in g.keys() {
+        assert!(LAYERS.contains(&layer(m)), "{m} is in no layer of {LAYERS:?}");
+    }
+}
+
+#[test]
+fn imports_run_down_the_layers() {
+    let rank = |m: &str| LAYERS.iter().position(|l| *l == layer(m)).expect("a layer");
+    let mut wrong = Vec::new();
+    for (m, deps) in graph() {
+        for d in deps.iter().filter(|d| rank(d) > rank(&m)) {
+            wrong.push(format!("{m} imports {d}"));
+        }
+    }
+    assert!(wrong.is_empty(), "imports up the layers {LAYERS:?}:\n{}", wrong.join("\n"));
+}
+
+#[test]
 fn module_imports_have_no_cycle() {
     let g = graph();
-    assert!(g.len() > 20, "read the modules: {:?}", g.keys());
     // Kahn's algorithm: repeatedly remove modules that import nothing left.
     let mut left = g.clone();
     while !left.is_empty() {
@@ -62,10 +134,10 @@ fn module_imports_have_no_cycle() {
     }
     // The kinematic core sits below the planner and the kernels the generated code calls.
     for (low, high) in [
-        ("link_state", "constraints"),
-        ("constraints", "screw"),
-        ("screw", "kinematics"),
-        ("dyad", "assur"),
+        ("kernel::link_state", "kernel::constraints"),
+        ("kernel::constraints", "kernel::screw"),
+        ("kernel::screw", "kernel::kinematics"),
+        ("kernel::dyad", "plan::assur"),
     ] {
         assert!(g[high].contains(low), "{high} should build on {low}");
         assert!(!g[low].contains(high), "{low} must not import {high}");
