@@ -15,8 +15,8 @@
 mod mechanisms;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use mech::generic::GenericMechanism;
 use mech::Mechanism;
+use mech_oracle::GenericMechanism;
 use mechanisms::*;
 use serde_json::Value;
 

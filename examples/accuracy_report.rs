@@ -24,8 +24,8 @@ mod support;
 
 use mech::assur::plan;
 use mech::dyad::Solver;
-use mech::generic::{GenericMechanism, GenericMotion};
 use mech::prelude::*;
+use mech_oracle::{GenericMechanism, GenericMotion};
 use mechanisms::*;
 use serde_json::Value;
 use std::hint::black_box;
@@ -48,7 +48,7 @@ struct Answer {
 fn generic_answer(
     g: &GenericMechanism,
     m: &GenericMotion,
-    loads: &mech::generic::GenericLoads,
+    loads: &mech_oracle::GenericLoads,
 ) -> Answer {
     let model = g.model();
     let f = g.kinetostatics(m, loads).unwrap();

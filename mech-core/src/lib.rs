@@ -47,7 +47,7 @@ pub use kernel::{
 };
 pub use model::units;
 pub use plan::{assur, geometry};
-pub use runtime::{columns, generic, mechanism};
+pub use runtime::{columns, mechanism};
 pub use solvers::{friction, instance, params, traits, virtual_power, zhukovski};
 
 pub use error::MechError;

@@ -22,9 +22,17 @@ fn sources() -> BTreeMap<String, String> {
     fn walk(dir: &Path, prefix: &str, out: &mut BTreeMap<String, String>) {
         for entry in std::fs::read_dir(dir).expect("src") {
             let path = entry.expect("entry").path();
-            let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string();
+            let stem = path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or_default()
+                .to_string();
             if path.is_dir() {
-                let sub = if prefix.is_empty() { stem } else { format!("{prefix}::{stem}") };
+                let sub = if prefix.is_empty() {
+                    stem
+                } else {
+                    format!("{prefix}::{stem}")
+                };
                 walk(&path, &sub, out);
             } else if path.extension().is_some_and(|e| e == "rs") {
                 let name = match (prefix.is_empty(), stem.as_str()) {
@@ -44,7 +52,11 @@ fn sources() -> BTreeMap<String, String> {
         }
     }
     let mut out = BTreeMap::new();
-    walk(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/src")), "", &mut out);
+    walk(
+        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/src")),
+        "",
+        &mut out,
+    );
     out.retain(|name, _| !OUTSIDE.contains(&name.as_str()));
     out
 }
@@ -100,7 +112,10 @@ fn every_folder_is_a_layer() {
     let g = graph();
     assert!(g.len() > 40, "read the modules: {:?}", g.keys());
     for m in g.keys() {
-        assert!(LAYERS.contains(&layer(m)), "{m} is in no layer of {LAYERS:?}");
+        assert!(
+            LAYERS.contains(&layer(m)),
+            "{m} is in no layer of {LAYERS:?}"
+        );
     }
 }
 
@@ -113,7 +128,11 @@ fn imports_run_down_the_layers() {
             wrong.push(format!("{m} imports {d}"));
         }
     }
-    assert!(wrong.is_empty(), "imports up the layers {LAYERS:?}:\n{}", wrong.join("\n"));
+    assert!(
+        wrong.is_empty(),
+        "imports up the layers {LAYERS:?}:\n{}",
+        wrong.join("\n")
+    );
 }
 
 #[test]

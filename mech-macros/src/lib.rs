@@ -7,9 +7,7 @@
 mod emit;
 
 use mech_core::dsl::Parsed;
-use mech_core::resolve::{resolve, Diagnostic};
 use proc_macro::TokenStream;
-use proc_macro2::Span;
 
 /// Declare a planar mechanism; see the crate `mech` and `docs/conventions.md#dsl` for the grammar.
 #[proc_macro]
@@ -18,31 +16,10 @@ pub fn mechanism(input: TokenStream) -> TokenStream {
         Ok(p) => p.0,
         Err(e) => return e.to_compile_error().into(),
     };
-    let model = match resolve(&desc) {
-        Ok(m) => m,
-        Err(diags) => return emit::outline(&desc, None, &diags).into(),
-    };
-    let issues = mech_core::validate::check(&model);
-    if !issues.is_empty() {
-        let diags: Vec<Diagnostic<Span>> =
-            issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
-        return emit::outline(&desc, Some(&model), &diags).into();
-    }
-    match mech_core::assur::plan(&model) {
-        Ok(plan) => emit::mechanism(&desc, &model, &plan).into(),
-        Err(links) => {
-            let names: Vec<String> = links
-                .iter()
-                .map(|&l| format!("`{}`", model.links[l].name))
-                .collect();
-            let diag = Diagnostic {
-                spans: links.iter().map(|&l| desc.locate(&model, mech_core::resolve::Culprit::Link(l))).collect(),
-                message: format!(
-                    "links {} cannot be solved group by group from the inputs: no Assur group of them has as many equations as unknowns; check the joints and inputs",
-                    names.join(", ")
-                ),
-            };
-            emit::outline(&desc, Some(&model), &[diag]).into()
+    match mech_core::checks::load::check(&desc) {
+        Ok((model, plan)) => emit::mechanism(&desc, &model, &plan).into(),
+        Err(rejected) => {
+            emit::outline(&desc, rejected.model.as_ref(), &rejected.diagnostics).into()
         }
     }
 }
@@ -52,12 +29,12 @@ pub fn mechanism(input: TokenStream) -> TokenStream {
 #[cfg(test)]
 fn expand_parts(text: &str) -> Result<Vec<(&'static str, proc_macro2::TokenStream)>, Vec<String>> {
     let desc = mech_core::dsl::parse_str(text).map_err(|e| vec![e.to_string()])?;
-    let model = resolve(&desc).map_err(|d| d.into_iter().map(|d| d.message).collect::<Vec<_>>())?;
-    let issues = mech_core::validate::check(&model);
-    if !issues.is_empty() {
-        return Err(issues.into_iter().map(|i| i.message).collect());
-    }
-    let plan = mech_core::assur::plan(&model).map_err(|_| vec!["no plan".to_string()])?;
+    let (model, plan) = mech_core::checks::load::check(&desc).map_err(|r| {
+        r.diagnostics
+            .into_iter()
+            .map(|d| d.message)
+            .collect::<Vec<_>>()
+    })?;
     Ok(emit::parts(&desc, &model, &plan))
 }
 

@@ -3,6 +3,7 @@
 //! rank of the constraint Jacobian, input determinacy.
 
 pub mod grubler;
+pub mod load;
 pub mod magnitudes;
 pub mod pebble;
 pub mod validate;

@@ -1,6 +1,12 @@
-//! The run-time mechanism: the same text loaded and solved at run time, its results and
-//! their column names.
+//! The run-time mechanism: the same text loaded and solved at run time, with the generated
+//! code's plan and kernels; its results and their column names.
 
 pub mod columns;
-pub mod generic;
+mod dispatch;
+mod forces;
 pub mod mechanism;
+mod newton;
+pub mod results;
+
+pub use mechanism::Mechanism;
+pub use results::{Forces, Loads, Motion, Pose};

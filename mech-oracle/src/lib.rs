@@ -1,12 +1,12 @@
 //! The generic run-time solver (`docs/conventions.md#algorithms-written-once`): a
-//! mechanism read at run time from the DSL text (the grammar of [`crate::front::dsl`], the checks
-//! of [`crate::checks::validate`], exactly as the `mechanism!` macro runs them) and solved by an
+//! mechanism read at run time from the DSL text (the grammar of [`mech_core::front::dsl`], the checks
+//! of [`mech_core::checks::validate`], exactly as the `mechanism!` macro runs them) and solved by an
 //! interpreter with heap-allocated (dynamic) nalgebra matrices.
 //!
 //! It is the baseline every generated solver is measured against, and the engine for
 //! mechanisms not known at compile time. It uses the same formulas as the generated code —
-//! the constraint kernels [`crate::kernel::kinematics::eval`] and the wrench helpers of
-//! [`crate::kernel::kinetostatics`] — and differs only in assembling ONE global dense system of all
+//! the constraint kernels [`mech_core::kernel::kinematics::eval`] and the wrench helpers of
+//! [`mech_core::kernel::kinetostatics`] — and differs only in assembling ONE global dense system of all
 //! 3(N − 1) coordinates instead of one small system per Assur group:
 //!
 //! - positions: Newton–Raphson on Φ(x; q) = 0 for every coordinate (x, y, φ) of every
@@ -23,32 +23,31 @@
 //! - driver actions by virtual power, and Zhukovski's I*, dI*/dq, M* for one DOF.
 //!
 //! The system is scaled to be dimensionless, as the group systems of
-//! [`crate::kernel::group::GroupSystem`]: columns (x, y, φ·L) and angle rows × L, L the
+//! [`mech_core::kernel::group::GroupSystem`]: columns (x, y, φ·L) and angle rows × L, L the
 //! drawing's length scale ([`Model::scale`], m). The condition estimate is the pivot ratio
 //! max|U_ii| / min|U_ii| of the LU factorisation; beyond
 //! [`HARD_CONDITION`] the solver reports [`MechError::Singular`].
 //!
 //! Units are SI (m, kg, kg·m², N, N·m, rad, s), as everywhere in `mech`.
 
-use crate::error::check_finite;
-use crate::front::dsl::parse_str;
-use crate::front::resolve::{resolve, Diagnostic};
-use crate::kernel::constraints::{
+use mech_core::checks::load::{parse_model, rust_source_model};
+use mech_core::error::check_finite;
+use mech_core::kernel::constraints::{
     eval, row_scale, scaled_rows, Con, ConEval, ConKind, Drive, Level,
 };
-use crate::kernel::kinetostatics::{
+use mech_core::kernel::kinetostatics::{
     add_force, add_gravity, add_inertia, add_torque, slide_force, virtual_power, Wrench,
 };
-use crate::kernel::link_state::{
+use mech_core::kernel::link_state::{
     point_motion, point_pose, rotate, LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2,
 };
-use crate::model::{JointKind, Load, Model};
-use crate::plan::geometry::all_cons;
-use crate::solvers::instance::{instance, Instance};
-use crate::solvers::zhukovski::{self, Reduced};
-use crate::MechError;
+use mech_core::model::{JointKind, Load, Model};
+use mech_core::plan::geometry::all_cons;
+use mech_core::runtime::results::{set_load, JointReaction, LoadValue};
+use mech_core::solvers::instance::{instance, Instance};
+use mech_core::solvers::zhukovski::{self, Reduced};
+use mech_core::MechError;
 use nalgebra::{DMatrix, DVector, Dyn, LU, SVD};
-use proc_macro2::Span;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -91,7 +90,7 @@ pub const DEFAULT_MAX_ERROR: f64 = 1e-6;
 
 /// The condition estimate beyond which the generic solver refuses whatever `max_error`
 /// (its default `max_error` refuses much earlier, from the stated bounds). Looser than
-/// the generated code's [`crate::kernel::linalg::SINGULAR_CONDITION`], so that the stress
+/// the generated code's [`mech_core::kernel::linalg::SINGULAR_CONDITION`], so that the stress
 /// suite can measure errors close to a toggle.
 pub const HARD_CONDITION: f64 = 1e10;
 
@@ -110,33 +109,6 @@ pub fn position_error_bound(condition: f64) -> f64 {
 /// 50-digit reference (`tests/stress.rs`): the errors stay within 1–5 ε κ².
 pub fn rate_error_bound(condition: f64) -> f64 {
     16.0 * f64::EPSILON * condition * condition
-}
-
-/// The value of one declared load.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LoadValue {
-    /// A force, N (global vector), applied at the load's point.
-    Force(V2),
-    /// A pure torque, N·m (CCW positive).
-    Torque(f64),
-}
-
-/// Set the load named `name` of `model` in `values` (declaration order) from its
-/// components: 2 for a force (N), 1 for a torque (N·m); false when there is no such load
-/// or the length is wrong. Shared by [`GenericLoads`] and [`crate::runtime::mechanism::Loads`].
-pub fn set_load(model: &Model, values: &mut [LoadValue], name: &str, value: &[f64]) -> bool {
-    let Some(k) = model.loads.iter().position(|l| l.name() == name) else {
-        return false;
-    };
-    let Some(slot) = values.get_mut(k) else {
-        return false;
-    };
-    match (&model.loads[k], value) {
-        (Load::Force { .. }, [x, y]) => *slot = LoadValue::Force(V2::new(*x, *y)),
-        (Load::Torque { .. }, [t]) => *slot = LoadValue::Torque(*t),
-        _ => return false,
-    }
-    true
 }
 
 /// The values of a generic mechanism's loads, in declaration order (the run-time
@@ -230,16 +202,6 @@ impl GenericMotion {
     }
 }
 
-/// The reaction at one joint: the force BY its first link ON its second (N, global) and,
-/// for a prismatic joint, the moment on the second link about the joint point (N·m, CCW).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct JointReaction {
-    /// Force by a on b, N. Normal to the axis for prismatic and slot joints.
-    pub force: V2,
-    /// Prismatic joints only: moment by a on b about the joint point's position, N·m.
-    pub moment: Option<f64>,
-}
-
 /// Result of [`GenericMechanism::kinetostatics`]: the motor actions and every reaction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GenericForces {
@@ -310,66 +272,6 @@ pub struct GenericMechanism {
     max_error: f64,
 }
 
-use crate::front::report::location;
-
-/// A syntax error as [`MechError::Invalid`], rendered against `source` ([`crate::front::report`]).
-fn syntax(source: &str, origin: Option<&str>, e: syn::Error) -> MechError {
-    MechError::Invalid(crate::front::report::render_syntax(source, origin, &e))
-}
-
-/// The checks' diagnostics as [`MechError::Invalid`], rendered against `source`.
-fn invalid(source: &str, origin: Option<&str>, diags: &[Diagnostic<Span>]) -> MechError {
-    MechError::Invalid(crate::front::report::render(source, origin, diags))
-}
-
-/// The `mechanism! { ... }` invocation declaring `pub struct name` in Rust source text:
-/// its braced group of tokens and the parsed description (spans located in `source`).
-fn find_declaration(
-    source: &str,
-    name: &str,
-) -> Result<(proc_macro2::Group, crate::model::Description<Span>), MechError> {
-    use proc_macro2::TokenTree;
-    let tokens: proc_macro2::TokenStream = source.parse().map_err(|e: proc_macro2::LexError| {
-        MechError::Invalid(format!("{}: {e}", location(&e.span())))
-    })?;
-    let mut found = Vec::new();
-    let mut stack = vec![tokens];
-    while let Some(ts) = stack.pop() {
-        let tt: Vec<TokenTree> = ts.into_iter().collect();
-        for (i, t) in tt.iter().enumerate() {
-            let TokenTree::Group(g) = t else { continue };
-            let invoked = i >= 2
-                && matches!(&tt[i - 2], TokenTree::Ident(id) if id == "mechanism")
-                && matches!(&tt[i - 1], TokenTree::Punct(p) if p.as_char() == '!');
-            if !invoked {
-                stack.push(g.stream());
-                continue;
-            }
-            match syn::parse2::<crate::front::dsl::Parsed>(g.stream()) {
-                Ok(p) if p.0.name.text == name => return Ok((g.clone(), p.0)),
-                Ok(p) => found.push(p.0.name.text),
-                Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => {
-                    return Err(syntax(source, None, e))
-                }
-                Err(_) => {}
-            }
-        }
-    }
-    Err(MechError::Invalid(format!(
-        "no `mechanism!` declares `{name}` here; found: {}",
-        found.join(", ")
-    )))
-}
-
-/// The DSL text of the mechanism `name` declared with `mechanism! { ... }` in Rust source
-/// `source`: the text between the invocation's braces, as written (for
-/// [`GenericMechanism::parse`], a file for [`GenericMechanism::load`], or editing).
-/// [`MechError::Invalid`] as [`GenericMechanism::from_rust_source`].
-pub fn mechanism_text<'a>(source: &'a str, name: &str) -> Result<&'a str, MechError> {
-    let (group, _) = find_declaration(source, name)?;
-    Ok(&source[group.span_open().byte_range().end..group.span_close().byte_range().start])
-}
-
 /// `value` if finite and > 0, else [`MechError::InvalidInput`] naming it.
 fn positive(what: &str, value: f64) -> Result<f64, MechError> {
     if value.is_finite() && value > 0.0 {
@@ -392,8 +294,8 @@ impl std::str::FromStr for GenericMechanism {
 impl GenericMechanism {
     /// Load a mechanism from DSL text: the body of a `mechanism! { ... }` (doc comments,
     /// `#[allow(redundant)]`, `pub struct Name { ... }`), parsed, resolved and validated by
-    /// the same code as the macro ([`crate::front::dsl::parse_str`], [`crate::front::resolve::resolve`],
-    /// [`crate::checks::validate::check`], [`crate::plan::assur::plan`]). Every problem found is reported
+    /// the same code as the macro ([`mech_core::front::dsl::parse_str`], [`mech_core::front::resolve::resolve`],
+    /// [`mech_core::checks::validate::check`], [`mech_core::plan::assur::plan`]). Every problem found is reported
     /// in one [`MechError::Invalid`], each message prefixed with its `line:column`.
     pub fn parse(text: &str) -> Result<Self, MechError> {
         Self::parse_named(text, None)
@@ -415,70 +317,6 @@ impl GenericMechanism {
     }
 }
 
-/// The checked model of DSL text (every check of the macro; messages located in the
-/// text, `origin` naming it): what both run-time solvers are built from.
-pub(crate) fn parse_model(text: &str, origin: Option<&str>) -> Result<Model, MechError> {
-    on_own_thread(|| {
-        let desc = parse_str(text).map_err(|e| syntax(text, origin, e))?;
-        checked_model(&desc, text, origin)
-    })
-}
-
-/// The checked model of the mechanism `name` declared in Rust source text.
-pub(crate) fn rust_source_model(source: &str, name: &str) -> Result<Model, MechError> {
-    on_own_thread(|| checked_model(&find_declaration(source, name)?.1, source, None))
-}
-
-/// Run `f` (a parse and its checks) on a thread of its own: proc-macro2 keeps every parsed
-/// text in a table of its thread for the spans' locations, so parsing on the caller's
-/// thread would keep every text alive (and past 4 GiB on one thread wrap the locations);
-/// the table goes with the thread. The model and the messages come back as plain data.
-fn on_own_thread<T: Send>(f: impl FnOnce() -> Result<T, MechError> + Send) -> Result<T, MechError> {
-    std::thread::scope(|s| {
-        s.spawn(f).join().unwrap_or_else(|_| {
-            Err(MechError::Invalid(
-                "the mechanism's text could not be read (the parser failed)".into(),
-            ))
-        })
-    })
-}
-
-/// Resolve and validate a parsed description (the macro's pipeline after parsing): the
-/// checked model, or every problem rendered against `source`.
-fn checked_model(
-    desc: &crate::model::Description<Span>,
-    source: &str,
-    origin: Option<&str>,
-) -> Result<Model, MechError> {
-    {
-        let model = resolve(desc).map_err(|d| invalid(source, origin, &d))?;
-        let issues = crate::checks::validate::check(&model);
-        if !issues.is_empty() {
-            let diags: Vec<Diagnostic<Span>> =
-                issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
-            return Err(invalid(source, origin, &diags));
-        }
-        if let Err(links) = crate::plan::assur::plan(&model) {
-            let names: Vec<String> = links
-                .iter()
-                .map(|&l| format!("`{}`", model.links[l].name))
-                .collect();
-            let spans = links
-                .iter()
-                .map(|&l| desc.locate(&model, crate::front::resolve::Culprit::Link(l)))
-                .collect();
-            return Err(invalid(source, origin, &[Diagnostic {
-                spans,
-                message: format!(
-                    "links {} cannot be solved group by group from the inputs: no Assur group of them has as many equations as unknowns; check the joints and inputs",
-                    names.join(", ")
-                ),
-            }]));
-        }
-        Ok(model)
-    }
-}
-
 impl GenericMechanism {
     /// Load a mechanism from a file of DSL text (see [`GenericMechanism::parse`]); an
     /// unreadable file is a [`MechError::Invalid`] naming the path.
@@ -490,10 +328,10 @@ impl GenericMechanism {
     }
 
     /// A mechanism from a resolved [`Model`] (e.g. [`GenericMechanism::model`] with other
-    /// masses or coordinates): runs every check of [`crate::checks::validate::check`] on it;
+    /// masses or coordinates): runs every check of [`mech_core::checks::validate::check`] on it;
     /// [`MechError::Invalid`] with the messages (no source locations) when it fails.
     pub fn from_model(model: Model) -> Result<Self, MechError> {
-        let issues = crate::checks::validate::check(&model);
+        let issues = mech_core::checks::validate::check(&model);
         if !issues.is_empty() {
             return Err(MechError::Invalid(
                 issues
@@ -503,7 +341,7 @@ impl GenericMechanism {
                     .join("\n"),
             ));
         }
-        if crate::plan::assur::plan(&model).is_err() {
+        if mech_core::plan::assur::plan(&model).is_err() {
             return Err(MechError::Invalid(
                 "the links cannot be solved group by group from the inputs".into(),
             ));
@@ -515,7 +353,7 @@ impl GenericMechanism {
         if let Some(j) = model
             .joints
             .iter()
-            .find(|j| j.kind.mesh() || j.kind == crate::model::JointKind::Rolling)
+            .find(|j| j.kind.mesh() || j.kind == mech_core::model::JointKind::Rolling)
         {
             return Err(MechError::Invalid(format!(
                 "{} `{}`: the generic solver has no gear pairs, racks or rolling wheels (solved in closed form by `mech::gears` and `mech::rolling`); use the generated struct or `Mechanism`",
@@ -1114,7 +952,7 @@ impl GenericMechanism {
                 }
             }
         }
-        crate::elements::springs::add_wrenches(&self.inst.elements, s, &mut f);
+        mech_core::elements::springs::add_wrenches(&self.inst.elements, s, &mut f);
         if inertia {
             for (l, geom) in self.inst.links.iter().enumerate().skip(1) {
                 if geom.mass != 0.0 || geom.inertia != 0.0 {
@@ -1243,7 +1081,7 @@ impl GenericMechanism {
 
     /// Zhukovski's reduced inertia of a one-DOF mechanism at q: I* = Σ (m |g_G|² + I_G g²)
     /// (kg·m², kg for a prismatic input) and dI*/dq = 2 Σ (m g_G·g′_G + I_G g g′), from the
-    /// motion with q̇ = 1, q̈ = 0 ([`crate::solvers::zhukovski::reduced`]).
+    /// motion with q̇ = 1, q̈ = 0 ([`mech_core::solvers::zhukovski::reduced`]).
     pub fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
         self.one_dof()?;
         let (s, _) = self.solve_states(&[q], &[1.0], &[0.0], Level::Acceleration)?;
@@ -1284,7 +1122,7 @@ impl GenericMechanism {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::kinematics::wrap;
+    use mech_core::kernel::kinematics::wrap;
 
     /// A crank-rocker four-bar with gravity and a load on the rocker.
     const FOUR_BAR: &str = r#"

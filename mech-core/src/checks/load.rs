@@ -1,0 +1,161 @@
+//! Loading: DSL text, or the tokens of a `mechanism! { ... }`, through the whole front end
+//! and every check — parse → resolve → validate → plan — written once and called by the
+//! macro (on its tokens, [`check`]) and by the run-time `Mechanism` (on text,
+//! [`parse_model`], [`rust_source_model`]). A rejected mechanism gives every problem at
+//! once, each located in the text.
+
+use crate::checks::validate;
+use crate::front::dsl::parse_str;
+use crate::front::report::location;
+use crate::front::resolve::{resolve, Culprit, Diagnostic};
+use crate::model::{Description, Model};
+use crate::plan::assur::{self, Group};
+use crate::MechError;
+use proc_macro2::Span;
+
+/// A description the checks refused: the resolved model when resolution got that far
+/// (`None` when a name did not resolve), and every diagnostic, each with its spans.
+#[derive(Debug)]
+pub struct Rejected {
+    /// The model, when names resolved (the checks after resolution need it to locate).
+    pub model: Option<Model>,
+    /// Every problem found, with the spans of its culprits and the message.
+    pub diagnostics: Vec<Diagnostic<Span>>,
+}
+
+/// Resolve, validate and plan a parsed description: the model and its Assur plan (groups
+/// in solving order), or every problem found. The macro's pipeline after parsing, and the
+/// run-time loader's.
+pub fn check(desc: &Description<Span>) -> Result<(Model, Vec<Group>), Rejected> {
+    let model = resolve(desc).map_err(|diagnostics| Rejected {
+        model: None,
+        diagnostics,
+    })?;
+    let issues = validate::check(&model);
+    if !issues.is_empty() {
+        let diagnostics = issues.iter().map(|i| desc.diagnostic(&model, i)).collect();
+        return Err(Rejected {
+            model: Some(model),
+            diagnostics,
+        });
+    }
+    match assur::plan(&model) {
+        Ok(plan) => Ok((model, plan)),
+        Err(links) => {
+            let names: Vec<String> = links
+                .iter()
+                .map(|&l| format!("`{}`", model.links[l].name))
+                .collect();
+            let spans = links
+                .iter()
+                .map(|&l| desc.locate(&model, Culprit::Link(l)))
+                .collect();
+            let message = format!(
+                "links {} cannot be solved group by group from the inputs: no Assur group of them has as many equations as unknowns; check the joints and inputs",
+                names.join(", ")
+            );
+            Err(Rejected {
+                model: Some(model),
+                diagnostics: vec![Diagnostic { spans, message }],
+            })
+        }
+    }
+}
+
+/// [`check`] of a parsed description, its problems rendered against `source` (`origin`
+/// naming the file) as one [`MechError::Invalid`]: the checked model.
+fn checked_model(
+    desc: &Description<Span>,
+    source: &str,
+    origin: Option<&str>,
+) -> Result<Model, MechError> {
+    check(desc)
+        .map(|(model, _)| model)
+        .map_err(|r| invalid(source, origin, &r.diagnostics))
+}
+
+/// A syntax error as [`MechError::Invalid`], rendered against `source` ([`crate::front::report`]).
+fn syntax(source: &str, origin: Option<&str>, e: syn::Error) -> MechError {
+    MechError::Invalid(crate::front::report::render_syntax(source, origin, &e))
+}
+
+/// The checks' diagnostics as [`MechError::Invalid`], rendered against `source`.
+fn invalid(source: &str, origin: Option<&str>, diags: &[Diagnostic<Span>]) -> MechError {
+    MechError::Invalid(crate::front::report::render(source, origin, diags))
+}
+
+/// The `mechanism! { ... }` invocation declaring `pub struct name` in Rust source text:
+/// its braced group of tokens and the parsed description (spans located in `source`).
+fn find_declaration(
+    source: &str,
+    name: &str,
+) -> Result<(proc_macro2::Group, Description<Span>), MechError> {
+    use proc_macro2::TokenTree;
+    let tokens: proc_macro2::TokenStream = source.parse().map_err(|e: proc_macro2::LexError| {
+        MechError::Invalid(format!("{}: {e}", location(&e.span())))
+    })?;
+    let mut found = Vec::new();
+    let mut stack = vec![tokens];
+    while let Some(ts) = stack.pop() {
+        let tt: Vec<TokenTree> = ts.into_iter().collect();
+        for (i, t) in tt.iter().enumerate() {
+            let TokenTree::Group(g) = t else { continue };
+            let invoked = i >= 2
+                && matches!(&tt[i - 2], TokenTree::Ident(id) if id == "mechanism")
+                && matches!(&tt[i - 1], TokenTree::Punct(p) if p.as_char() == '!');
+            if !invoked {
+                stack.push(g.stream());
+                continue;
+            }
+            match syn::parse2::<crate::front::dsl::Parsed>(g.stream()) {
+                Ok(p) if p.0.name.text == name => return Ok((g.clone(), p.0)),
+                Ok(p) => found.push(p.0.name.text),
+                Err(e) if g.stream().to_string().contains(&format!("struct {name} ")) => {
+                    return Err(syntax(source, None, e))
+                }
+                Err(_) => {}
+            }
+        }
+    }
+    Err(MechError::Invalid(format!(
+        "no `mechanism!` declares `{name}` here; found: {}",
+        found.join(", ")
+    )))
+}
+
+/// The DSL text of the mechanism `name` declared with `mechanism! { ... }` in Rust source
+/// `source`: the text between the invocation's braces, as written (for
+/// `Mechanism::from_dsl`, a `.mech` file, or editing). [`MechError::Invalid`] when the
+/// source does not tokenize or declares no such mechanism.
+pub fn mechanism_text<'a>(source: &'a str, name: &str) -> Result<&'a str, MechError> {
+    let (group, _) = find_declaration(source, name)?;
+    Ok(&source[group.span_open().byte_range().end..group.span_close().byte_range().start])
+}
+
+/// The checked model of DSL text (every check of the macro; messages located in the
+/// text, `origin` naming it): what both run-time solvers are built from.
+pub fn parse_model(text: &str, origin: Option<&str>) -> Result<Model, MechError> {
+    on_own_thread(|| {
+        let desc = parse_str(text).map_err(|e| syntax(text, origin, e))?;
+        checked_model(&desc, text, origin)
+    })
+}
+
+/// The checked model of the mechanism `name` declared in Rust source text.
+pub fn rust_source_model(source: &str, name: &str) -> Result<Model, MechError> {
+    on_own_thread(|| checked_model(&find_declaration(source, name)?.1, source, None))
+}
+
+/// Run `f` (a parse and its checks) on a thread of its own: proc-macro2 keeps every parsed
+/// text in a table of its thread for the spans' locations, so parsing on the caller's
+/// thread would keep every text alive (and past 4 GiB on one thread wrap the locations);
+/// the table goes with the thread. The model and the messages come back as plain data.
+fn on_own_thread<T: Send>(f: impl FnOnce() -> Result<T, MechError> + Send) -> Result<T, MechError> {
+    std::thread::scope(|s| {
+        s.spawn(f).join().unwrap_or_else(|_| {
+            Err(MechError::Invalid(
+                "the mechanism's text could not be read (the parser failed)".into(),
+            ))
+        })
+    })
+}
