@@ -30,6 +30,7 @@
 //!
 //! Units are SI (m, kg, kg·m², N, N·m, rad, s), as everywhere in `mech`.
 
+pub use mech_core::checks::load::mechanism_text;
 use mech_core::checks::load::{parse_model, rust_source_model};
 use mech_core::error::check_finite;
 use mech_core::kernel::constraints::{
