@@ -158,7 +158,7 @@ fn driver_hand(c: &FourBarCase) -> f64 {
     let mo = kin_hand(c);
     black_box(&c.h).driver_action(&mo, black_box(&c.loads))
 }
-fn reduced_gen(c: &SliderCrankCase) -> mech::zhukovski::Reduced {
+fn reduced_gen(c: &SliderCrankCase) -> mech::Reduced {
     black_box(&c.m).reduced(black_box(Q)).unwrap()
 }
 fn reduced_hand(c: &SliderCrankCase) -> hand::HandReduced {

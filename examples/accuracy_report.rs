@@ -22,9 +22,9 @@ mod mechanisms;
 #[path = "../tests/support/mod.rs"]
 mod support;
 
-use mech::assur::plan;
-use mech::dyad::Solver;
 use mech::prelude::*;
+use mech_core::kernel::dyad::Solver;
+use mech_core::plan::assur::plan;
 use mech_oracle::{GenericMechanism, GenericMotion};
 use mechanisms::*;
 use serde_json::Value;

@@ -34,11 +34,34 @@
 //! let virtual_power = m.driver_action(&motion, &FourBarLoads::default()).unwrap();
 //! assert!((forces.driver - virtual_power).abs() < 1e-9 * forces.driver.abs().max(1.0));
 //! ```
+#![deny(missing_docs)]
 
-pub use mech_core::*;
 pub use mech_macros::mechanism;
 
-/// The paths the generated code uses. Not part of the public API.
+// The run-time mechanism (`docs/guide.md`): the same text loaded and solved at run time.
+pub use mech_core::runtime::{Forces, JointReaction, LoadValue, Loads, Motion, Pose};
+pub use mech_core::{MechError, Mechanism, Vector2};
+
+// What a solver returns and takes, by concept.
+pub use mech_core::kernel::kinetostatics::{
+    CamReaction, MeshReaction, PrismaticReaction, RevoluteReaction, RollingReaction, SlotReaction,
+};
+pub use mech_core::kernel::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
+pub use mech_core::solvers::instance::{
+    DamperParams, LinkParams, RotaryDamperParams, SpringParams, TorsionSpringParams,
+};
+pub use mech_core::solvers::traits::{Machine, OneDof};
+pub use mech_core::solvers::zhukovski::Reduced;
+
+// The algorithms written once over the traits, and the machine elements.
+pub use mech_core::checks::grubler;
+pub use mech_core::dynamics::{self, equivalent_mass, flywheel, ode};
+pub use mech_core::elements::cam;
+pub use mech_core::model::{self, units};
+pub use mech_core::runtime::columns;
+pub use mech_core::solvers::friction;
+
+/// The paths the generated code uses (`mech_core::__private`). Not part of the public API.
 #[doc(hidden)]
 pub mod __private {
     pub use mech_core::__private::*;
@@ -46,18 +69,10 @@ pub mod __private {
 
 /// Everything a user of a generated struct needs.
 pub mod prelude {
-    pub use crate::mechanism;
-    pub use mech_core::instance::{
-        DamperParams, RotaryDamperParams, SpringParams, TorsionSpringParams,
+    pub use crate::{
+        mechanism, CamReaction, DamperParams, LinkMotion, LinkPose, Machine, MechError, Mechanism,
+        MeshReaction, OneDof, PointMotion, PointPose, PrismaticReaction, Reduced, RevoluteReaction,
+        RollingReaction, RotaryDamperParams, SlotReaction, SpringParams, TorsionSpringParams,
+        Vector2,
     };
-    pub use mech_core::kinetostatics::{
-        CamReaction, MeshReaction, PrismaticReaction, RevoluteReaction, RollingReaction,
-        SlotReaction,
-    };
-    pub use mech_core::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
-    pub use mech_core::traits::{Machine, OneDof};
-    pub use mech_core::zhukovski::Reduced;
-    pub use mech_core::MechError;
-    pub use mech_core::Mechanism;
-    pub use mech_core::Vector2;
 }

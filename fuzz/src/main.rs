@@ -14,7 +14,7 @@
 //! inserted), from a deterministic generator (`--seed`). A failing case is written to
 //! `target/fuzz/` and the run exits with status 1.
 
-use mech_core::traits::OneDof;
+use mech_core::solvers::traits::OneDof;
 use mech_core::Mechanism;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};

@@ -1,5 +1,5 @@
 //! `mech cam FILE [--name lobe] [--points 360] [--svg profile.svg]`: a cam's profile for
-//! drawing and manufacturing (`mech_core::cam::Profile`, `docs/conventions.md#cams`): one
+//! drawing and manufacturing (`mech_core::elements::cam::Profile`, `docs/conventions.md#cams`): one
 //! row per cam angle θ over a turn with the law's lift and its derivatives, the pitch and
 //! contact points in the cam's own frame, the pressure angle and the cam surface's radius
 //! of curvature; then, on standard error, the design figures (the largest pressure angle,
@@ -7,7 +7,7 @@
 
 use crate::output::{Format, Writer};
 use crate::{source, Failure};
-use mech_core::cam::Profile;
+use mech_core::elements::cam::Profile;
 use std::io::Write;
 use std::path::PathBuf;
 

@@ -2,8 +2,8 @@
 //! structure: N, P_I, P_II, G by Grübler, equations against unknowns, and the Assur groups
 //! in solve order with their kinds, saying which are closed-form.
 
-use mech_core::assur::{self, Group};
-use mech_core::dyad::Solver;
+use mech_core::kernel::dyad::Solver;
+use mech_core::plan::assur::{self, Group};
 use mech_core::Mechanism;
 use std::fmt::Write;
 

@@ -1,7 +1,7 @@
 //! `--level`: how much of each configuration the tabular commands compute, as the parts
-//! of [`mech_core::columns`] (which names the columns and computes a row).
+//! of [`mech_core::runtime::columns`] (which names the columns and computes a row).
 
-pub use mech_core::columns::{Columns, Part};
+pub use mech_core::runtime::columns::{Columns, Part};
 
 /// How much of the solution a row holds; nothing beyond it is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, clap::ValueEnum)]

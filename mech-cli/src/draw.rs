@@ -99,7 +99,7 @@ pub fn range(rest: &[f64], from: f64, to: f64, n: usize) -> Vec<Vec<f64>> {
 /// drawing's size around the drawing for a prismatic one.
 pub fn default_range(m: &Mechanism) -> (f64, f64) {
     let model = m.model();
-    if quantity::input_dims(model, 0).0 == mech_core::units::Dim::ANGLE {
+    if quantity::input_dims(model, 0).0 == mech_core::model::units::Dim::ANGLE {
         (0.0, 2.0 * std::f64::consts::PI)
     } else {
         let s = 0.25 * scene::size(model);

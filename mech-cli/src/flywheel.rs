@@ -3,13 +3,13 @@
 //! that balances it (unless `--driver` is given), the maximum fluctuation of energy
 //! ΔE = S_max − S_min, the flywheel inertia by the approximate formula and by
 //! Wittenbauer's exact method, and the check of the exact one by integrating a cycle in
-//! time (`mech_core::flywheel`).
+//! time (`mech_core::dynamics::flywheel`).
 
 use crate::loads::LoadSet;
 use crate::output::{Format, Writer};
 use crate::{quantity, source, Failure};
-use mech_core::flywheel::Cycle;
-use mech_core::units::Dim;
+use mech_core::dynamics::flywheel::Cycle;
+use mech_core::model::units::Dim;
 use std::io::Write;
 use std::path::PathBuf;
 

@@ -7,7 +7,7 @@
 //! columns of one configuration ([`columns`]) and the output formats ([`output`]). The
 //! mechanics are mech-core's run-time [`mech_core::Mechanism`], the same plan and kernels
 //! as the generated code.
-
+#![deny(missing_docs)]
 // Limits are tested as `!(x > limit)` on purpose: true for a NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 

@@ -7,8 +7,8 @@
 
 use crate::quantity;
 use crate::Failure;
+use mech_core::model::units::Dim;
 use mech_core::model::{Load, Model};
-use mech_core::units::Dim;
 use mech_core::Mechanism;
 use std::path::Path;
 
@@ -161,7 +161,7 @@ impl LoadSet {
     }
 
     /// The loads at input q (the first input's value for the tables).
-    pub fn at(&self, m: &Mechanism, q: f64) -> mech_core::mechanism::Loads {
+    pub fn at(&self, m: &Mechanism, q: f64) -> mech_core::runtime::mechanism::Loads {
         let mut loads = m.loads();
         for (name, v) in &self.given {
             let value = match v {

@@ -1,10 +1,10 @@
 //! Numbers on the command line: SI, or with one unit word of the DSL glued or spaced
 //! (`--at 30deg`, `--at "30 deg"`, `--speed 3000rpm`), or an expression (`--period
-//! "4*PI"`), evaluated by the DSL's own [`mech_core::expr`].
+//! "4*PI"`), evaluated by the DSL's own [`mech_core::front::expr`].
 
 use crate::Failure;
-use mech_core::expr::Constants;
-use mech_core::units::Dim;
+use mech_core::front::expr::Constants;
+use mech_core::model::units::Dim;
 use syn::parse::{ParseStream, Parser};
 
 /// The value (SI) of `text` where a quantity of dimension `dim` goes (`what` names it in

@@ -105,7 +105,7 @@ pub fn run(args: ReportArgs) -> Result<(), Failure> {
     // The plots.
     let (w, h) = (560.0, 220.0);
     let mut plots: Vec<(String, String)> = Vec::new();
-    let torque_unit = if quantity::input_dims(model, 0).0 == mech_core::units::Dim::ANGLE {
+    let torque_unit = if quantity::input_dims(model, 0).0 == mech_core::model::units::Dim::ANGLE {
         "N·m"
     } else {
         "N"
@@ -252,7 +252,7 @@ pub fn run(args: ReportArgs) -> Result<(), Failure> {
         last = args.frames - 1,
         speeds = (0..g)
             .map(|k| {
-                let u = if quantity::input_dims(model, k).0 == mech_core::units::Dim::ANGLE { "rad/s" } else { "m/s" };
+                let u = if quantity::input_dims(model, k).0 == mech_core::model::units::Dim::ANGLE { "rad/s" } else { "m/s" };
                 format!("{} {u}", qd[k])
             })
             .collect::<Vec<_>>()

@@ -16,7 +16,7 @@
 //! - every point: its name.
 
 use crate::Failure;
-use mech_core::link_state::{perp, rotate, V2};
+use mech_core::kernel::link_state::{perp, rotate, V2};
 use mech_core::model::{JointKind, Model};
 use mech_core::Mechanism;
 
@@ -98,7 +98,7 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
     for j in &model.joints {
         if j.kind == JointKind::Cam {
             // The cam's surface, turning with the cam about its centre.
-            if let (Some(g), Some(c)) = (mech_core::geometry::cam_geom(model, j), &j.cam) {
+            if let (Some(g), Some(c)) = (mech_core::plan::geometry::cam_geom(model, j), &j.cam) {
                 let o = at(c.centre);
                 let turn = pose.links[j.a].angle - model.reference_angle(j.a);
                 let (sn, cs) = turn.sin_cos();
@@ -117,7 +117,7 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
                     points,
                 });
                 // A roller: its circle about the pitch point, on the cam's surface.
-                if let mech_core::cam::Face::Roller(r) = g.profile.face {
+                if let mech_core::elements::cam::Face::Roller(r) = g.profile.face {
                     let p = at(j.point);
                     shapes.push(Shape {
                         role: Role::Gear,
@@ -388,7 +388,7 @@ pub fn arrows(
     q: &[f64],
     qd: &[f64],
     qdd: &[f64],
-    loads: &mech_core::mechanism::Loads,
+    loads: &mech_core::runtime::mechanism::Loads,
     length: f64,
 ) -> Result<Vec<Shape>, Failure> {
     let motion = m.kinematics(q, qd, qdd)?;

@@ -1,15 +1,15 @@
 //! `mech simulate FILE --q0 .. --speed .. --t-end ..`: the direct problem of a one-input
 //! machine over time, I*(q) q̈ + ½ dI*/dq q̇² = driver + M*(q) (Zhukovski), with the driver
 //! and the loads as constants or tables against q, integrated by DOP853 (default),
-//! Dormand–Prince 5(4) or fixed-step RK4 (`mech_core::ode`), sampled at even times on the
+//! Dormand–Prince 5(4) or fixed-step RK4 (`mech_core::dynamics::ode`), sampled at even times on the
 //! integrator's dense output.
 
 use crate::loads::{LoadSet, Table};
 use crate::output::{Format, Writer};
 use crate::{quantity, source, Failure};
 use mech_core::dynamics::equation_of_motion;
-use mech_core::ode::{self, Dense, Dop853, DormandPrince, Method, Rk4};
-use mech_core::units::Dim;
+use mech_core::dynamics::ode::{self, Dense, Dop853, DormandPrince, Method, Rk4};
+use mech_core::model::units::Dim;
 use mech_core::Mechanism;
 use std::io::Write;
 use std::path::PathBuf;
@@ -131,7 +131,7 @@ trait Acceleration {
         q: f64,
         qd: f64,
         driver: f64,
-        loads: &mech_core::mechanism::Loads,
+        loads: &mech_core::runtime::mechanism::Loads,
     ) -> Result<f64, Failure>;
 }
 
@@ -141,9 +141,9 @@ impl Acceleration for Mechanism {
         q: f64,
         qd: f64,
         driver: f64,
-        loads: &mech_core::mechanism::Loads,
+        loads: &mech_core::runtime::mechanism::Loads,
     ) -> Result<f64, Failure> {
-        Ok(mech_core::traits::OneDof::acceleration(
+        Ok(mech_core::solvers::traits::OneDof::acceleration(
             self, q, qd, driver, loads,
         )?)
     }

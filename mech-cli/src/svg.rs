@@ -5,7 +5,7 @@
 //! ((x − x_min) k + pad, (y_max − y) k + pad) px ([`View`]).
 
 use crate::scene::{Frame, Role, Shape};
-use mech_core::link_state::V2;
+use mech_core::kernel::link_state::V2;
 use std::fmt::Write;
 
 /// The map from the drawing (m, y up) to the picture (px, y down).

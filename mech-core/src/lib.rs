@@ -1,29 +1,31 @@
-//! mech-core: the run-time half of `mech`.
+//! mech-core: the implementation crate of `mech` — the mechanics shared by the code the
+//! `mechanism!` macro generates, the run-time [`Mechanism`] and the checks. Users depend on
+//! the facade crate `mech`, whose API is the chosen subset of this one; the macro, the
+//! `mech` tool and the Python package use this crate directly.
 //!
-//! The pipeline of the `mechanism!` macro, visible in the module names:
-//! [`dsl`] (parse, syn) → [`model`] (plain data) → [`resolve`] (names) and [`validate`]
-//! (the checks of `docs/conventions.md#checks`, with [`grubler`] and [`pebble`]) →
-//! [`assur::plan`] (Assur groups, solve order, each group's kernel) → emit (in `mech-macros`).
+//! Its folders are the pipeline, each a layer that imports only from the layers above it in
+//! this list (the test `tests/imports.rs` enforces it; `ARCHITECTURE.md` draws it):
 //!
-//! One kinematic core, shared by the generated code, the run-time [`Mechanism`] and the
-//! validation, each formula once, imports one way: [`link_state`] (a link's frame, its
-//! points' motion) → [`constraints`] (the joints' equations, their scaled Jacobian) →
-//! [`linalg`] → [`dyad`] (closed-form positions), [`natural`] (the RRR and RRP dyads'
-//! rates and reactions in their natural coordinates), [`screw`] (the other closed-form
-//! groups' rates and reactions by joint screws), [`group`] (Newton and LU for the rest) →
-//! [`kinematics`]
-//! (one entry point per group). The generated code is a sequence of calls into those and
-//! into [`kinetostatics`], [`virtual_power`], [`zhukovski`], [`energy`], [`elements`]
-//! (springs and dampers), [`branches`] and [`friction`], with the numbers of [`instance`] checked against the declaration by
-//! [`params`]. Every generated struct and every run-time [`Mechanism`] implements the
-//! [`traits`] that the algorithms written once here take: [`dynamics`] and [`ode`] (the
-//! direct problem), [`flywheel`] (Wittenbauer), [`friction`], [`equivalent_mass`]. The
-//! dense whole-system solver [`generic`] reads the same text and stays as an independent
-//! cross-check.
+//! | layer | holds |
+//! |---|---|
+//! | [`error`] | [`MechError`], the finiteness tests |
+//! | [`kernel`] | a link's frame and its points' motion, the joints' constraint equations, each group kind's closed form or Newton, d'Alembert's wrenches: one entry point per group kind |
+//! | [`elements`] | machine elements and their pair kernels: cams (law, profile, pair), gears, rolling contacts, springs and dampers |
+//! | [`model`] | the plain data of a mechanism, its units |
+//! | [`front`] | DSL text or tokens → a resolved [`model::Model`] |
+//! | [`plan`] | the drawing's joint geometry, the Assur groups in solving order, each group's kernel |
+//! | [`checks`] | Grübler, equations against unknowns, over-constrained sub-chains, magnitudes, the rank at the drawing; [`checks::load`], the whole front end written once for the macro and the run-time loader |
+//! | [`solvers`] | the numbers of an instance, virtual power, Zhukovski's reduction, friction, the [`solvers::traits`] every mechanism implements |
+//! | [`dynamics`] | the direct problem, the integrators, the flywheel, equivalent masses, written once over the traits |
+//! | [`runtime`] | the run-time [`Mechanism`]: the plan walked with the generated code's kernels, its results |
+//!
+//! The generated code reaches what it needs through one hidden module, `__private`, that
+//! lists exactly those items.
 
 // Limits are tested as `!(x < limit)` on purpose: true for a NaN as well, so a NaN is
 // refused wherever an out-of-range value is.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
+#![deny(missing_docs)]
 
 pub mod checks;
 pub mod dynamics;
@@ -35,20 +37,6 @@ pub mod model;
 pub mod plan;
 pub mod runtime;
 pub mod solvers;
-
-// Transitional flat paths (removed once the dependents use the folders).
-pub use checks::{grubler, magnitudes, pebble, validate};
-pub use dynamics::{equivalent_mass, flywheel, ode};
-pub use elements::{cam, gears, rolling};
-pub use front::{construction, dsl, expr, report, resolve};
-pub use kernel::{
-    branches, constraints, dyad, energy, group, kinematics, kinetostatics, linalg, link_state,
-    natural, screw,
-};
-pub use model::units;
-pub use plan::{assur, geometry};
-pub use runtime::{columns, mechanism};
-pub use solvers::{friction, instance, params, traits, virtual_power, zhukovski};
 
 pub use error::MechError;
 pub use nalgebra::Vector2;

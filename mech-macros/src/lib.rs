@@ -3,10 +3,11 @@
 //!
 //! The macro holds no mechanics: the emitted code is a straight-line sequence of calls
 //! into mech-core's kernels with the topology unrolled as constants.
+#![deny(missing_docs)]
 
 mod emit;
 
-use mech_core::dsl::Parsed;
+use mech_core::front::dsl::Parsed;
 use proc_macro::TokenStream;
 
 /// Declare a planar mechanism; see the crate `mech` and `docs/conventions.md#dsl` for the grammar.
@@ -28,7 +29,7 @@ pub fn mechanism(input: TokenStream) -> TokenStream {
 /// plan → emit, returning the generated code part by part or the diagnostics' messages.
 #[cfg(test)]
 fn expand_parts(text: &str) -> Result<Vec<(&'static str, proc_macro2::TokenStream)>, Vec<String>> {
-    let desc = mech_core::dsl::parse_str(text).map_err(|e| vec![e.to_string()])?;
+    let desc = mech_core::front::dsl::parse_str(text).map_err(|e| vec![e.to_string()])?;
     let (model, plan) = mech_core::checks::load::check(&desc).map_err(|r| {
         r.diagnostics
             .into_iter()

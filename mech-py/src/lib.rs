@@ -1,14 +1,14 @@
 //! The native half of the Python package `mech` (`docs/python.md`): the run-time
 //! [`mech_core::Mechanism`] behind a small class whose solvers take 2-D float arrays of
-//! inputs and return 2-D arrays of the columns of `mech_core::columns`, the loop in Rust
+//! inputs and return 2-D arrays of the columns of `mech_core::runtime::columns`, the loop in Rust
 //! with the GIL released and rayon inside. The Python layer (`python/mech/__init__.py`)
 //! turns scalars, lists and callables into those arrays and the arrays into dicts.
 
-use mech_core::columns::{Columns, Part, RowScratch};
-use mech_core::flywheel::Cycle;
-use mech_core::mechanism::Loads;
+use mech_core::runtime::columns::{Columns, Part, RowScratch};
+use mech_core::dynamics::flywheel::Cycle;
+use mech_core::runtime::mechanism::Loads;
 use mech_core::model::{JointKind, Load};
-use mech_core::traits::OneDof;
+use mech_core::solvers::traits::OneDof;
 use mech_core::{MechError as CoreError, Mechanism};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
 use pyo3::create_exception;
@@ -555,7 +555,7 @@ impl PyMechanism {
         let c = p.check(points);
         Ok((
             cam.to_string(),
-            mech_core::cam::Profile::COLUMNS
+            mech_core::elements::cam::Profile::COLUMNS
                 .iter()
                 .map(|c| c.to_string())
                 .collect(),

@@ -96,7 +96,7 @@ pub fn breakpoints(m: &Shaper) -> [f64; 2] {
 
 /// The loads at crank angle q (rad): (CUT_FORCE, 0) N on the ram while the tool cuts.
 pub fn cut_loads(m: &Shaper, q: f64) -> Result<ShaperLoads, MechError> {
-    mech::error::check_finite("q", &[q])?;
+    mech_core::error::check_finite("q", &[q])?;
     let phi = (q - working_start(m)).rem_euclid(PERIOD);
     let cutting = phi > OVERRUN && phi < working_arc(m) - OVERRUN;
     Ok(ShaperLoads {

@@ -4,6 +4,6 @@
 
 pub mod grubler;
 pub mod load;
-pub mod magnitudes;
-pub mod pebble;
+pub(crate) mod magnitudes;
+pub(crate) mod pebble;
 pub mod validate;

@@ -1,8 +1,8 @@
 //! The front end: DSL text or tokens → a description → a resolved [`crate::model::Model`]
 //! (names, units, constant expressions, constructed points), and the rendering of diagnostics.
 
-pub mod construction;
+pub(crate) mod construction;
 pub mod dsl;
 pub mod expr;
-pub mod report;
+pub(crate) mod report;
 pub mod resolve;

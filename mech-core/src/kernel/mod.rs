@@ -2,11 +2,11 @@
 //! the closed-form and Newton solutions of each group kind, and the wrenches of d'Alembert.
 //! Everything the generated code and the run-time `Mechanism` call per configuration.
 
-pub mod branches;
+pub(crate) mod branches;
 pub mod constraints;
 pub mod dyad;
 pub mod energy;
-pub mod finite;
+pub(crate) mod finite;
 pub mod group;
 pub mod kinematics;
 pub mod kinetostatics;

@@ -113,7 +113,7 @@ impl Mechanism {
     }
 
     /// Positions only, into `out` without allocating once `s` has grown: every point's x
-    /// and y (m, in the order of [`Model::points`]), then every moving link's angle (rad).
+    /// and y (m, in the order of [`Model::points`](crate::model::Model::points)), then every moving link's angle (rad).
     /// `out` holds 2 × points + links − 1 values. The row of `crate::runtime::columns` for
     /// positions.
     pub fn positions_into(
@@ -131,7 +131,7 @@ impl Mechanism {
     }
 
     /// The points alone, into `out` (x and y of each point, m, in the order of
-    /// [`Model::points`]): [`Mechanism::positions_into`] without the links' angles (no
+    /// [`Model::points`](crate::model::Model::points)): [`Mechanism::positions_into`] without the links' angles (no
     /// `atan2`).
     pub fn points_into(
         &self,

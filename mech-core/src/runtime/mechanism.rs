@@ -3,8 +3,8 @@
 //! as the struct the `mechanism!` macro generates.
 //!
 //! Loading runs the macro's pipeline (resolution, every check, the Assur plan, the drawing's
-//! branches); each solver then walks the plan group by group — [`kinematics::solve_driven`]
-//! for a driven crank or slider, [`kinematics::solve_chain`] for a closed-form dyad or slot
+//! branches); each solver then walks the plan group by group — [`kinematics::solve_driven`](crate::kernel::kinematics::solve_driven)
+//! for a driven crank or slider, [`kinematics::solve_chain`](crate::kernel::kinematics::solve_chain) for a closed-form dyad or slot
 //! group (rates and reactions by joint screws, `docs/theory.md` §3.4), Newton and a
 //! fixed-size LU ([`crate::kernel::group::group_solve`]) for a group with no closed form — into a buffer of
 //! link states the caller may keep ([`Mechanism::solve_into`]: no allocation once it has

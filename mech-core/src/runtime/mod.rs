@@ -9,4 +9,4 @@ mod newton;
 pub mod results;
 
 pub use mechanism::Mechanism;
-pub use results::{Forces, Loads, Motion, Pose};
+pub use results::{Forces, JointReaction, LoadValue, Loads, Motion, Pose};

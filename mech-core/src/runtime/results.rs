@@ -1,4 +1,4 @@
-//! What a run-time [`Mechanism`] returns: [`Pose`], [`Motion`], [`Forces`], and the
+//! What a run-time [`Mechanism`](crate::Mechanism) returns: [`Pose`], [`Motion`], [`Forces`], and the
 //! [`Loads`] it takes, each answering by name (`link`, `point`, `reaction`, `set_by_name`).
 
 use crate::kernel::link_state::{LinkMotion, LinkPose, LinkState, PointMotion, PointPose, V2};
@@ -6,7 +6,7 @@ use crate::model::{Load, Model};
 use smallvec::SmallVec;
 use std::sync::Arc;
 
-/// The values of a run-time mechanism's loads, in declaration order. [`Mechanism::loads`]
+/// The values of a run-time mechanism's loads, in declaration order. [`Mechanism::loads`](crate::Mechanism::loads)
 /// makes them all zero with the names; `Default` is "no load" (every load zero).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Loads {
@@ -26,7 +26,7 @@ impl Loads {
     }
 }
 
-/// Result of [`Mechanism::pose`]: every link's angle (rad) and cg (m), every point (m),
+/// Result of [`Mechanism::pose`](crate::Mechanism::pose): every link's angle (rad) and cg (m), every point (m),
 /// indexed like [`Model::links`] (0 = the ground) and [`Model::points`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pose {
@@ -48,7 +48,7 @@ impl Pose {
     }
 }
 
-/// Result of [`Mechanism::kinematics`]: positions, velocities, accelerations of every link
+/// Result of [`Mechanism::kinematics`](crate::Mechanism::kinematics): positions, velocities, accelerations of every link
 /// and point (indexed like the model), and the input values.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Motion {
@@ -86,7 +86,7 @@ impl Motion {
     }
 }
 
-/// Result of [`Mechanism::kinetostatics`]: the motor action of each input and the reaction
+/// Result of [`Mechanism::kinetostatics`](crate::Mechanism::kinetostatics): the motor action of each input and the reaction
 /// at every joint (force BY a ON b, N; a prismatic joint's moment about its point, N·m).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Forces {

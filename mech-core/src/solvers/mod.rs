@@ -5,5 +5,5 @@ pub mod friction;
 pub mod instance;
 pub mod params;
 pub mod traits;
-pub mod virtual_power;
+pub(crate) mod virtual_power;
 pub mod zhukovski;

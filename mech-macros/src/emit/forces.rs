@@ -4,8 +4,8 @@
 //! `driver_action` (virtual power, no reaction).
 
 use super::{id, plan, Ctx};
-use mech_core::assur::{Group, Kernel};
 use mech_core::model::{JointKind, Load};
+use mech_core::plan::assur::{Group, Kernel};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 

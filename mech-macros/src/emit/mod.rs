@@ -23,9 +23,9 @@ mod traits;
 
 pub use outline::outline;
 
-use mech_core::assur::Group;
 use mech_core::model::{Description, JointKind, Model};
-use mech_core::params::LinkTerms;
+use mech_core::plan::assur::Group;
+use mech_core::solvers::params::LinkTerms;
 use names::Names;
 use proc_macro2::{Span, TokenStream};
 use quote::quote;

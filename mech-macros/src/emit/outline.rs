@@ -2,8 +2,8 @@
 //! `compile_error!`, and the outline of the generated types.
 
 use super::names::Names;
+use mech_core::front::resolve::Diagnostic;
 use mech_core::model::{Description, Model};
-use mech_core::resolve::Diagnostic;
 use proc_macro2::{Span, TokenStream};
 use quote::quote;
 

@@ -4,7 +4,7 @@
 
 use super::{f64s, plan, vec2, Ctx};
 use mech_core::model::{ElementKind, JointKind, Load};
-use mech_core::params::LinkTerms;
+use mech_core::solvers::params::LinkTerms;
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -382,20 +382,20 @@ fn model_expr(cx: &Ctx) -> TokenStream {
             Some(c) => {
                 let segs = c.segments.iter().map(|g| {
                     let law = match g.law {
-                        mech_core::cam::Law::Dwell => quote!(Dwell),
-                        mech_core::cam::Law::Uniform => quote!(Uniform),
-                        mech_core::cam::Law::Harmonic => quote!(Harmonic),
-                        mech_core::cam::Law::Cycloidal => quote!(Cycloidal),
-                        mech_core::cam::Law::Poly345 => quote!(Poly345),
-                        mech_core::cam::Law::Poly4567 => quote!(Poly4567),
+                        mech_core::elements::cam::Law::Dwell => quote!(Dwell),
+                        mech_core::elements::cam::Law::Uniform => quote!(Uniform),
+                        mech_core::elements::cam::Law::Harmonic => quote!(Harmonic),
+                        mech_core::elements::cam::Law::Cycloidal => quote!(Cycloidal),
+                        mech_core::elements::cam::Law::Poly345 => quote!(Poly345),
+                        mech_core::elements::cam::Law::Poly4567 => quote!(Poly4567),
                     };
                     let (a, b, h0, h1) = (f64s(g.start), f64s(g.end), f64s(g.from), f64s(g.to));
                     quote!(#p::cam::Segment { law: #p::cam::Law::#law, start: #a, end: #b, from: #h0, to: #h1 })
                 });
                 let face = match c.face {
-                    mech_core::cam::Face::Knife => quote!(#p::cam::Face::Knife),
-                    mech_core::cam::Face::Flat => quote!(#p::cam::Face::Flat),
-                    mech_core::cam::Face::Roller(r) => {
+                    mech_core::elements::cam::Face::Knife => quote!(#p::cam::Face::Knife),
+                    mech_core::elements::cam::Face::Flat => quote!(#p::cam::Face::Flat),
+                    mech_core::elements::cam::Face::Roller(r) => {
                         let r = f64s(r);
                         quote!(#p::cam::Face::Roller(#r))
                     }

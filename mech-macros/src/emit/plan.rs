@@ -7,10 +7,10 @@
 //! change of the mech-core kernels changes those functions only.
 
 use super::Ctx;
-use mech_core::assur::{Group, Kernel};
-use mech_core::dyad::Solver;
-use mech_core::kinematics::{Con, ConKind};
-use mech_core::screw::{Chain, Driven, JointScrew};
+use mech_core::kernel::dyad::Solver;
+use mech_core::kernel::kinematics::{Con, ConKind};
+use mech_core::kernel::screw::{Chain, Driven, JointScrew};
+use mech_core::plan::assur::{Group, Kernel};
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 use syn::Ident;
@@ -70,7 +70,7 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         }
         Kernel::Cam(c) => {
             let kn = mesh_const(gi);
-            let mech_core::cam::CamGroup {
+            let mech_core::elements::cam::CamGroup {
                 follower,
                 slide,
                 joint,
@@ -103,8 +103,8 @@ pub(crate) fn mesh_const(gi: usize) -> Ident {
     format_ident!("__G{}_MESH", gi)
 }
 
-fn rolling_tokens(r: &mech_core::rolling::RollingGroup) -> TokenStream {
-    use mech_core::rolling::RollingGroup;
+fn rolling_tokens(r: &mech_core::elements::rolling::RollingGroup) -> TokenStream {
+    use mech_core::elements::rolling::RollingGroup;
     let p = quote!(::mech::__private::rolling::RollingGroup);
     match *r {
         RollingGroup::Driven { body, joint, input } => {
@@ -116,14 +116,14 @@ fn rolling_tokens(r: &mech_core::rolling::RollingGroup) -> TokenStream {
     }
 }
 
-fn train_tokens(t: &mech_core::gears::TrainGroup) -> TokenStream {
+fn train_tokens(t: &mech_core::elements::gears::TrainGroup) -> TokenStream {
     let (n, bodies, pins, order, tracked) = (t.n, t.bodies, t.pins, t.order, t.tracked);
     let meshes = t.meshes.iter().map(|&(j, m)| quote!((#j, #m)));
     quote!(::mech::__private::gears::TrainGroup { n: #n, bodies: [#(#bodies),*], pins: [#(#pins),*], meshes: [#(#meshes),*], order: [#(#order),*], tracked: #tracked })
 }
 
-fn mesh_tokens(m: &mech_core::gears::MeshGroup) -> TokenStream {
-    let mech_core::gears::MeshGroup {
+fn mesh_tokens(m: &mech_core::elements::gears::MeshGroup) -> TokenStream {
+    let mech_core::elements::gears::MeshGroup {
         body,
         pin,
         joint,
@@ -499,7 +499,7 @@ fn screw_tokens(s: &JointScrew) -> TokenStream {
 }
 
 fn link_tokens(l: usize) -> TokenStream {
-    if l == mech_core::screw::VIRTUAL {
+    if l == mech_core::kernel::screw::VIRTUAL {
         quote!(::mech::__private::screw::VIRTUAL)
     } else {
         quote!(#l)

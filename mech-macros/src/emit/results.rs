@@ -2,7 +2,7 @@
 //! accessors, and the methods that make them, `pose` and `kinematics`.
 
 use super::{plan, Ctx};
-use mech_core::assur::Kernel;
+use mech_core::plan::assur::Kernel;
 use proc_macro2::TokenStream;
 use quote::quote;
 use syn::Ident;
