@@ -17,7 +17,7 @@ pub enum Format {
 }
 
 /// Writes rows in one format, streaming (rows may come in chunks). A row is first
-/// rendered to text ([`Writer::render`], pure: chunks render in parallel), then written in
+/// rendered to text ([`Renderer::render`], pure: chunks render in parallel), then written in
 /// order ([`Writer::push`]).
 pub struct Writer<W: Write> {
     out: W,

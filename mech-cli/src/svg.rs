@@ -268,7 +268,7 @@ pub fn open_picture(view: &View) -> String {
 }
 
 /// A line plot of series (label, values) against `x`, `width` × `height` px, with its
-/// title, axes, the range of y, a legend, and a cursor line `id="cursor-<id>"` at x[0].
+/// title, axes, the range of y, a legend, and a cursor line `id="cursor-<id>"` at `x[0]`.
 pub fn plot(
     id: &str,
     title: &str,
