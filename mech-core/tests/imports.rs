@@ -162,3 +162,42 @@ fn module_imports_have_no_cycle() {
         assert!(!g[low].contains(high), "{low} must not import {high}");
     }
 }
+
+/// The tree drawn in ARCHITECTURE.md (its first ```text block: one `path  what it holds`
+/// line per file of `mech-core/src`) is the tree on disk, file for file.
+#[test]
+fn architecture_draws_the_tree_on_disk() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("../ARCHITECTURE.md")).expect("ARCHITECTURE.md");
+    let block = text
+        .split("```text\n")
+        .nth(1)
+        .and_then(|b| b.split("```").next())
+        .expect("a ```text block");
+    let drawn: BTreeSet<String> = block
+        .lines()
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|p| p.ends_with(".rs"))
+        .map(str::to_string)
+        .collect();
+    fn walk(dir: &Path, rel: &str, out: &mut BTreeSet<String>) {
+        for entry in std::fs::read_dir(dir).expect("src") {
+            let path = entry.expect("entry").path();
+            let name = path.file_name().and_then(|s| s.to_str()).unwrap_or_default();
+            let rel = format!("{rel}/{name}");
+            if path.is_dir() {
+                walk(&path, &rel, out);
+            } else if name.ends_with(".rs") {
+                out.insert(rel);
+            }
+        }
+    }
+    let mut disk = BTreeSet::new();
+    walk(&root.join("src"), "mech-core/src", &mut disk);
+    let missing: Vec<_> = disk.difference(&drawn).collect();
+    let stale: Vec<_> = drawn.difference(&disk).collect();
+    assert!(
+        missing.is_empty() && stale.is_empty(),
+        "ARCHITECTURE.md's tree differs from mech-core/src: not drawn {missing:?}, gone {stale:?}"
+    );
+}
