@@ -183,7 +183,10 @@ fn architecture_draws_the_tree_on_disk() {
     fn walk(dir: &Path, rel: &str, out: &mut BTreeSet<String>) {
         for entry in std::fs::read_dir(dir).expect("src") {
             let path = entry.expect("entry").path();
-            let name = path.file_name().and_then(|s| s.to_str()).unwrap_or_default();
+            let name = path
+                .file_name()
+                .and_then(|s| s.to_str())
+                .unwrap_or_default();
             let rel = format!("{rel}/{name}");
             if path.is_dir() {
                 walk(&path, &rel, out);

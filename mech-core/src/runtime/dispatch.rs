@@ -4,8 +4,10 @@
 
 use crate::kernel::constraints::{Drive, Level};
 use crate::kernel::kinematics;
+use crate::kernel::kinetostatics::{Reaction, Wrench};
 use crate::kernel::link_state::{point_motion, point_pose, LinkState};
-use crate::plan::assur::Kernel;
+use crate::kernel::screw;
+use crate::plan::assur::{Group, Kernel};
 use crate::MechError;
 use smallvec::SmallVec;
 use std::sync::Arc;
@@ -86,28 +88,8 @@ impl Mechanism {
         } else {
             s[0] = self.inst.drawing[0];
         }
-        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
         for (g, &sign) in self.plan.iter().zip(branches) {
-            match &g.kernel {
-                Kernel::Driven(d) => kinematics::solve_driven(g.solver, d, joints, s, drive, upto)?,
-                Kernel::Chain(c) => {
-                    kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)
-                        .map(|_| ())?
-                }
-                Kernel::Mesh(m) => {
-                    crate::elements::gears::solve_mesh(m, &self.inst.meshes, joints, s, upto)?
-                }
-                Kernel::Train(t) => {
-                    crate::elements::gears::solve_train(t, &self.inst.meshes, joints, s, upto)?
-                }
-                Kernel::Rolling(r) => crate::elements::rolling::solve_rolling(
-                    r, joints, s, drive, sign, scale, upto, true,
-                )?,
-                Kernel::Cam(c) => {
-                    crate::elements::cam::solve_cam(c, &self.inst.cams, joints, s, upto)?
-                }
-                Kernel::System => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
-            }
+            self.group_positions(g, sign, drive, upto, s)?;
         }
         Ok(())
     }
@@ -219,6 +201,130 @@ impl Mechanism {
         out.inputs.extend_from_slice(qdd);
         if !Arc::ptr_eq(&out.model, &self.model) {
             out.model = self.model.clone();
+        }
+        Ok(())
+    }
+}
+
+/// The plan's dispatch: the one place where a group's kernel is matched to its entry
+/// point, for positions (and rates, accelerations up to `upto`), the unit-rate velocity
+/// field of virtual power, and the reactions. The generated code calls the same entry
+/// points, unrolled.
+impl Mechanism {
+    /// Solve group `g` on assembly branch `sign` at the inputs `drive`, up to `upto`.
+    #[inline]
+    pub(super) fn group_positions(
+        &self,
+        g: &Group,
+        sign: f64,
+        drive: Drive,
+        upto: Level,
+        s: &mut [LinkState],
+    ) -> Result<(), MechError> {
+        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+        match &g.kernel {
+            Kernel::Driven(d) => kinematics::solve_driven(g.solver, d, joints, s, drive, upto)?,
+            Kernel::Chain(c) => {
+                kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto)
+                    .map(|_| ())?
+            }
+            Kernel::Mesh(m) => {
+                crate::elements::gears::solve_mesh(m, &self.inst.meshes, joints, s, upto)?
+            }
+            Kernel::Train(t) => {
+                crate::elements::gears::solve_train(t, &self.inst.meshes, joints, s, upto)?
+            }
+            Kernel::Rolling(r) => crate::elements::rolling::solve_rolling(
+                r, joints, s, drive, sign, scale, upto, true,
+            )?,
+            Kernel::Cam(c) => crate::elements::cam::solve_cam(c, &self.inst.cams, joints, s, upto)?,
+            Kernel::System => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
+        }
+        Ok(())
+    }
+
+    /// The velocities of group `grp` in the field moving the inputs at the rates of
+    /// `drive` (virtual power's unit field), into `v`.
+    #[inline]
+    pub(super) fn group_unit_rates(
+        &self,
+        grp: &Group,
+        drive: Drive,
+        v: &mut [LinkState],
+    ) -> Result<(), MechError> {
+        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+        match &grp.kernel {
+            Kernel::Driven(d) => screw::driven_rates(d, joints, v, drive, Level::Velocity)?,
+            Kernel::Chain(c) => screw::chain_rates(c, joints, v, scale, Level::Velocity)?,
+            Kernel::Mesh(m) => crate::elements::gears::solve_mesh(
+                m,
+                &self.inst.meshes,
+                joints,
+                v,
+                Level::Velocity,
+            )?,
+            Kernel::Train(t) => crate::elements::gears::solve_train(
+                t,
+                &self.inst.meshes,
+                joints,
+                v,
+                Level::Velocity,
+            )?,
+            Kernel::Cam(c) => {
+                crate::elements::cam::solve_cam(c, &self.inst.cams, joints, v, Level::Velocity)?
+            }
+            Kernel::Rolling(r) => crate::elements::rolling::solve_rolling(
+                r,
+                joints,
+                v,
+                drive,
+                1.0,
+                scale,
+                Level::Velocity,
+                false,
+            )?,
+            Kernel::System => system(grp, |n| n.field(grp, joints, v, drive, scale))?,
+        }
+        Ok(())
+    }
+
+    /// d'Alembert on group `g`: its joints' reactions into `r`, its inputs' motor actions
+    /// into `driver`, the reactions on the links inward added to `f`.
+    #[inline]
+    pub(super) fn group_reactions(
+        &self,
+        g: &Group,
+        s: &[LinkState],
+        f: &mut [Wrench],
+        r: &mut [Reaction],
+        driver: &mut [f64],
+    ) -> Result<(), MechError> {
+        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+        match &g.kernel {
+            Kernel::Driven(k) => screw::driven_reactions(k, joints, s, f, r, driver),
+            Kernel::Chain(c) => kinematics::chain_reactions(
+                g.solver,
+                c,
+                joints,
+                s,
+                f,
+                scale,
+                &kinematics::DyadSystem::None,
+                r,
+            )?,
+            Kernel::Mesh(m) => {
+                crate::elements::gears::mesh_reactions(m, &self.inst.meshes, joints, s, f, r)?
+            }
+            Kernel::Train(t) => {
+                crate::elements::gears::train_reactions(t, &self.inst.meshes, joints, s, f, r)?
+            }
+            Kernel::Cam(c) => {
+                crate::elements::cam::cam_reactions(c, &self.inst.cams, joints, s, f, r)?
+            }
+            Kernel::Rolling(k) => {
+                crate::elements::rolling::rolling_reactions(k, joints, s, f, scale, r, driver)?
+            }
+            Kernel::System => system(g, |n| n.reactions(g, joints, s, f, scale, r, driver))?,
         }
         Ok(())
     }

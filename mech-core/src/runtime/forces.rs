@@ -3,15 +3,12 @@
 //! Zhukovski's reduction, each walking the plan with the same kernels as the generated code.
 
 use crate::kernel::constraints::{Drive, Level};
-use crate::kernel::kinematics;
 use crate::kernel::kinetostatics::{
     add_force, add_gravity, add_inertia, add_torque, PrismaticReaction, Reaction, RevoluteReaction,
     Wrench,
 };
 use crate::kernel::link_state::{point_motion, LinkState, V2};
-use crate::kernel::screw;
 use crate::model::JointKind;
-use crate::plan::assur::Kernel;
 use crate::solvers::friction::{add_joint_friction, flat_len, iterate, Flattener, JointFriction};
 use crate::solvers::zhukovski::Reduction;
 use crate::MechError;
@@ -20,7 +17,6 @@ use std::sync::Arc;
 
 use super::mechanism::Mechanism;
 use super::mechanism::Scratch;
-use super::newton::system;
 use super::results::*;
 
 impl Mechanism {
@@ -100,62 +96,12 @@ impl Mechanism {
                 *fi += e;
             }
         }
-        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+        let (joints, _scale) = (&self.inst.joints[..], self.inst.scale);
         let mut r: Scratch<Reaction> = smallvec![Reaction::default(); joints.len()];
         out.driver.clear();
         out.driver.resize(self.dof(), 0.0);
         for g in self.plan.iter().rev() {
-            match &g.kernel {
-                Kernel::Driven(k) => {
-                    screw::driven_reactions(k, joints, s, &mut f, &mut r, &mut out.driver)
-                }
-                Kernel::Chain(c) => kinematics::chain_reactions(
-                    g.solver,
-                    c,
-                    joints,
-                    s,
-                    &mut f,
-                    scale,
-                    &kinematics::DyadSystem::None,
-                    &mut r,
-                )?,
-                Kernel::Mesh(m) => crate::elements::gears::mesh_reactions(
-                    m,
-                    &self.inst.meshes,
-                    joints,
-                    s,
-                    &mut f,
-                    &mut r,
-                )?,
-                Kernel::Train(t) => crate::elements::gears::train_reactions(
-                    t,
-                    &self.inst.meshes,
-                    joints,
-                    s,
-                    &mut f,
-                    &mut r,
-                )?,
-                Kernel::Cam(c) => crate::elements::cam::cam_reactions(
-                    c,
-                    &self.inst.cams,
-                    joints,
-                    s,
-                    &mut f,
-                    &mut r,
-                )?,
-                Kernel::Rolling(k) => crate::elements::rolling::rolling_reactions(
-                    k,
-                    joints,
-                    s,
-                    &mut f,
-                    scale,
-                    &mut r,
-                    &mut out.driver,
-                )?,
-                Kernel::System => system(g, |n| {
-                    n.reactions(g, joints, s, &mut f, scale, &mut r, &mut out.driver)
-                })?,
-            }
+            self.group_reactions(g, s, &mut f, &mut r, &mut out.driver)?;
         }
         crate::kernel::finite::finite_reactions(&r, &out.driver)?;
         out.joints.clear();
@@ -241,7 +187,7 @@ impl Mechanism {
         let mut f = Scratch::new();
         self.wrenches(s, loads, true, &mut f)?;
         let g = self.dof();
-        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+        let (_joints, _scale) = (&self.inst.joints[..], self.inst.scale);
         let mut out = vec![0.0; g];
         for (k, o) in out.iter_mut().enumerate() {
             let mut v: Scratch<LinkState> = SmallVec::from_slice(s);
@@ -254,46 +200,7 @@ impl Mechanism {
             let zero: Scratch<f64> = smallvec![0.0; g];
             let drive: Drive = (&zero, &qd, &zero);
             for grp in &self.plan {
-                match &grp.kernel {
-                    Kernel::Driven(d) => {
-                        screw::driven_rates(d, joints, &mut v, drive, Level::Velocity)?
-                    }
-                    Kernel::Chain(c) => {
-                        screw::chain_rates(c, joints, &mut v, scale, Level::Velocity)?
-                    }
-                    Kernel::Mesh(m) => crate::elements::gears::solve_mesh(
-                        m,
-                        &self.inst.meshes,
-                        joints,
-                        &mut v,
-                        Level::Velocity,
-                    )?,
-                    Kernel::Train(t) => crate::elements::gears::solve_train(
-                        t,
-                        &self.inst.meshes,
-                        joints,
-                        &mut v,
-                        Level::Velocity,
-                    )?,
-                    Kernel::Cam(c) => crate::elements::cam::solve_cam(
-                        c,
-                        &self.inst.cams,
-                        joints,
-                        &mut v,
-                        Level::Velocity,
-                    )?,
-                    Kernel::Rolling(r) => crate::elements::rolling::solve_rolling(
-                        r,
-                        joints,
-                        &mut v,
-                        drive,
-                        1.0,
-                        scale,
-                        Level::Velocity,
-                        false,
-                    )?,
-                    Kernel::System => system(grp, |n| n.field(grp, joints, &mut v, drive, scale))?,
-                }
+                self.group_unit_rates(grp, drive, &mut v)?;
             }
             *o = -crate::kernel::kinetostatics::virtual_power(&f, &v);
         }
