@@ -1,5 +1,5 @@
 //! Flywheel design of a one-DOF machine in steady state (`docs/theory.md` §7),
-//! written once over [`OneDof`].
+//! written once over [`OneDof`](crate::solvers::traits::OneDof).
 //!
 //! A [`Cycle`] is the machine with its actions over one period λ of its steady state
 //! (2π, or 4π for a four-stroke engine), from the input position q0: the loads as a
@@ -13,8 +13,9 @@
 //! ```
 //!
 //! - steady state needs a zero net work W = S(q0 + λ) ([`Cycle::check_periodic`],
-//!   [`MechError::NotPeriodic`]); [`Cycle::balancing_torque`] is the constant torque
-//!   T = −W/λ on the input that makes it zero, [`Cycle::balanced`] adds it to the driver;
+//!   [`MechError::NotPeriodic`](crate::MechError::NotPeriodic));
+//!   [`Cycle::balancing_torque`] is the constant torque T = −W/λ on the input that makes
+//!   it zero, [`Cycle::balanced`] adds it to the driver;
 //! - ω_a = (ω_max + ω_min)/2, ε = (ω_max − ω_min)/ω_a, so ω_max,min = ω_a (1 ± ε/2);
 //! - approximate inertia (I ≫ I*): I = (S_max − S_min)/(ε ω_a²) ([`Cycle::approximate`]);
 //! - exact inertia, Wittenbauer ([`Cycle::wittenbauer`]): with F(q) = 2 S(q)/ω_a² and
