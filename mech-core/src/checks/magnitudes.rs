@@ -1,5 +1,4 @@
-//! The accepted magnitudes of a drawing's numbers (`docs/conventions.md#magnitudes`), and
-//! the finiteness of every result.
+//! The accepted magnitudes of a drawing's numbers (`docs/conventions.md#magnitudes`).
 //!
 //! f64 holds 1e±308, but the solvers multiply lengths, masses and squared speeds: a mass
 //! of 1e308 kg or a drawing 1e200 m across overflows to an infinity and then to a NaN in a
@@ -7,7 +6,7 @@
 //! looks like zero, and the mechanism would be called redundant). So the checks of the
 //! macro, of the run-time loader and of `from_params` refuse numbers outside ranges wide
 //! enough for any machine, from a MEMS device to a crane, and every solver refuses to
-//! return a non-finite number ([`finite_result`]).
+//! return a non-finite number ([`crate::kernel::finite`]).
 //!
 //! | quantity | accepted |
 //! |---|---|
