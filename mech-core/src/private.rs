@@ -86,5 +86,5 @@ pub mod virtual_power {
     pub use crate::solvers::virtual_power::{driver_actions, Power};
 }
 pub mod zhukovski {
-    pub use crate::solvers::zhukovski::{acceleration, Reduced, Reduction};
+    pub use crate::solvers::zhukovski::{acceleration, Reduced, ZhukovskiSums};
 }

@@ -193,7 +193,7 @@ pub struct LinkGeom {
     pub inertia: f64,
     /// Moment of inertia about the anchor, I_O = I_G + m |d_cg|² (kg·m²): a drawing
     /// constant, kept so that the solvers do not recompute it per call
-    /// ([`crate::solvers::zhukovski::Reduction::inertia_about_anchor`]).
+    /// ([`crate::solvers::zhukovski::ZhukovskiSums::inertia_about_anchor`]).
     pub inertia_anchor: f64,
     /// The cg in the frame of the link's first two points P₁ (the anchor) and P₂, drawn:
     /// κ = (a·g, a × g)/|a|² with a = P₂ − P₁ and g = G − P₁, so that in any pose

@@ -10,7 +10,7 @@ use crate::kernel::kinetostatics::{
 use crate::kernel::link_state::{point_motion, LinkState, V2};
 use crate::model::JointKind;
 use crate::solvers::friction::{add_joint_friction, flat_len, iterate, Flattener, JointFriction};
-use crate::solvers::zhukovski::Reduction;
+use crate::solvers::zhukovski::ZhukovskiSums;
 use crate::MechError;
 use smallvec::{smallvec, SmallVec};
 use std::sync::Arc;
@@ -210,13 +210,13 @@ impl Mechanism {
 
     /// Zhukovski's sums over the motion with q̇ = 1, q̈ = 0 (one input); `qd` is the
     /// input rate the dampers' part of M* is taken at.
-    pub(super) fn reduction(
+    pub(super) fn zhukovski_sums(
         &self,
         q: f64,
         qd: f64,
         loads: Option<&Loads>,
         upto: Level,
-    ) -> Result<Reduction, MechError> {
+    ) -> Result<ZhukovskiSums, MechError> {
         if self.dof() != 1 {
             return Err(MechError::InvalidInput(format!(
                 "Zhukovski's reduction needs one input, the mechanism has {}",
@@ -270,8 +270,8 @@ impl Mechanism {
         loads: Option<&Loads>,
         qd: f64,
         inertia: bool,
-    ) -> Result<Reduction, MechError> {
-        let mut z = Reduction::new();
+    ) -> Result<ZhukovskiSums, MechError> {
+        let mut z = ZhukovskiSums::new();
         for (l, t) in self.terms.iter().enumerate().skip(1) {
             let geom = &self.inst.links[l];
             if inertia && t.inertia() {

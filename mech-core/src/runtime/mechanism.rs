@@ -369,14 +369,18 @@ impl Machine for Mechanism {
 
 impl OneDof for Mechanism {
     fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
-        Ok(self.reduction(q, 0.0, None, Level::Acceleration)?.reduced)
+        Ok(self
+            .zhukovski_sums(q, 0.0, None, Level::Acceleration)?
+            .reduced)
     }
     fn reduced_moment(&self, q: f64, loads: &Loads) -> Result<f64, MechError> {
-        Ok(self.reduction(q, 0.0, Some(loads), Level::Velocity)?.moment)
+        Ok(self
+            .zhukovski_sums(q, 0.0, Some(loads), Level::Velocity)?
+            .moment)
     }
     fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &Loads) -> Result<f64, MechError> {
         crate::error::check_finite("q, qd, driver", &[q, qd, driver])?;
-        let z = self.reduction(q, qd, Some(loads), Level::Acceleration)?;
+        let z = self.zhukovski_sums(q, qd, Some(loads), Level::Acceleration)?;
         crate::solvers::zhukovski::acceleration(z.reduced, z.moment, qd, driver)
     }
 }

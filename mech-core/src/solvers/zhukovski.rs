@@ -68,19 +68,19 @@ pub fn acceleration(
 /// M* = Σ F·g_P + Σ M g + Σ m g·g_G (gravity). Each term is computed once from the link's
 /// state, so the direct problem needs no wrench and no reaction.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Reduction {
+pub struct ZhukovskiSums {
     /// I* and dI*/dq so far.
     pub reduced: Reduced,
     /// M* so far, N·m (N for a prismatic input).
     pub moment: f64,
 }
 
-impl Reduction {
+impl ZhukovskiSums {
     /// Empty sums, started at −0 (the identity of IEEE addition: the first term is taken
     /// as it is, and the compiler drops the addition).
     #[inline(always)]
     pub fn new() -> Self {
-        Reduction {
+        ZhukovskiSums {
             reduced: Reduced {
                 inertia: -0.0,
                 inertia_derivative: -0.0,
@@ -96,7 +96,7 @@ impl Reduction {
     pub fn inertia(&mut self, l: &LinkGeom, s: &LinkState) {
         self.inertia_at(l, s, s.r(l.dcg));
     }
-    /// [`Reduction::inertia`] for a link whose second point is the anchor of the link in
+    /// [`ZhukovskiSums::inertia`] for a link whose second point is the anchor of the link in
     /// state `next` ([`crate::model::Model::span_partner`]): the cg's offset from the
     /// span e = next.pos − pos ([`LinkGeom::cg_by_span`]), so that the sum waits for no
     /// rotation of the link.
@@ -104,7 +104,7 @@ impl Reduction {
     pub fn inertia_spanned(&mut self, l: &LinkGeom, s: &LinkState, next: &LinkState) {
         self.inertia_at(l, s, l.cg_by_span(next.pos - s.pos));
     }
-    /// [`Reduction::inertia`] with the cg's current offset from the anchor r = G − anchor
+    /// [`ZhukovskiSums::inertia`] with the cg's current offset from the anchor r = G − anchor
     /// given.
     #[inline(always)]
     pub fn inertia_at(&mut self, l: &LinkGeom, s: &LinkState, r: V2) {
@@ -144,13 +144,13 @@ impl Reduction {
     pub fn gravity(&mut self, l: &LinkGeom, s: &LinkState, g: V2) {
         self.gravity_at(l, s, g, s.r(l.dcg));
     }
-    /// [`Reduction::gravity`] for a link whose second point is the anchor of the link in
-    /// state `next`, as [`Reduction::inertia_spanned`].
+    /// [`ZhukovskiSums::gravity`] for a link whose second point is the anchor of the link in
+    /// state `next`, as [`ZhukovskiSums::inertia_spanned`].
     #[inline(always)]
     pub fn gravity_spanned(&mut self, l: &LinkGeom, s: &LinkState, next: &LinkState, g: V2) {
         self.gravity_at(l, s, g, l.cg_by_span(next.pos - s.pos));
     }
-    /// [`Reduction::gravity`] with the cg's offset r = G − anchor given.
+    /// [`ZhukovskiSums::gravity`] with the cg's offset r = G − anchor given.
     #[inline(always)]
     pub fn gravity_at(&mut self, l: &LinkGeom, s: &LinkState, g: V2, r: V2) {
         self.moment += l.mass * g.dot(&s.vel_at(r));

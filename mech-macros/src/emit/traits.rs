@@ -114,7 +114,7 @@ fn one_dof_impl(cx: &Ctx) -> TokenStream {
     }
 }
 
-/// Zhukovski's sums term by term (`mech::zhukovski::Reduction`): the inertia of the links
+/// Zhukovski's sums term by term (`mech::zhukovski::ZhukovskiSums`): the inertia of the links
 /// with inertia terms, and the moment of gravity and of every load.
 fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
     let p = &cx.p;
@@ -186,7 +186,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
             #p::error::check_finite("q", &[q])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
-            let mut z = #p::zhukovski::Reduction::new();
+            let mut z = #p::zhukovski::ZhukovskiSums::new();
             #inertia
             #p::magnitudes::finite_result("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
             Ok(z.reduced)
@@ -197,7 +197,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
             #p::error::check_finite("q and the loads", &[q, #values])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity, false)?;
-            let mut z = #p::zhukovski::Reduction::new();
+            let mut z = #p::zhukovski::ZhukovskiSums::new();
             #moment
             #elements_at_rest
             #p::magnitudes::finite_result("reduced moment", &[z.moment])?;
@@ -210,7 +210,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
             #p::error::check_finite("q, qd, driver and the loads", &[q, qd, driver, #values])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
-            let mut z = #p::zhukovski::Reduction::new();
+            let mut z = #p::zhukovski::ZhukovskiSums::new();
             #inertia
             #moment
             #elements_moving
