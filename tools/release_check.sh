@@ -74,6 +74,12 @@ for old, d in DIRS.items():
         text = sub1(r"^\[lib\]\s*$", '[lib]\nname = "%s"' % LIB[old], text, f"{path}: [lib]")
     else:
         text = text.rstrip("\n") + '\n\n[lib]\nname = "%s"\npath = "src/lib.rs"\n' % LIB[old]
+    if d == ".":
+        # The root's [profile.*] tables tune this repository's own builds (tests at opt-level 1,
+        # dependencies at 2); crates.io users never see them (only a workspace root's profiles
+        # count), and verifying the facade with them built mech-core at opt-level 2 again.
+        tables = re.split(r"(?m)^(?=\[)", text)
+        text = "".join(t for t in tables if not t.startswith("[profile"))
     path.write_text(text)
 
 # Every dependency on a renamed package, in every manifest of the copy (fuzz, mech-py too).
