@@ -106,18 +106,19 @@ fn track_centre<S: Clone>(
     errs: &mut Vec<Diagnostic<S>>,
 ) -> Option<(usize, bool)> {
     match (&j.around, j.kind) {
-        (Some((d, inside)), JointKind::Rolling) => {
-            match point_ix.get(&d.text).copied() {
-                Some(di) => Some((di, *inside)),
-                _ => {
-                    errs.push(Diagnostic::at(
+        (Some((d, inside)), JointKind::Rolling) => match point_ix.get(&d.text).copied() {
+            Some(di) => Some((di, *inside)),
+            _ => {
+                errs.push(Diagnostic::at(
                     d.span.clone(),
-                    format!("unknown point `{}`: the centre of rolling joint `{}`'s circular track", d.text, j.name.text),
+                    format!(
+                        "unknown point `{}`: the centre of rolling joint `{}`'s circular track",
+                        d.text, j.name.text
+                    ),
                 ));
-                    None
-                }
+                None
             }
-        }
+        },
         _ => None,
     }
 }

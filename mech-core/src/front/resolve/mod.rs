@@ -226,11 +226,7 @@ pub fn resolve<S: Clone>(d: &Description<S>) -> Result<Model, Vec<Diagnostic<S>>
 }
 
 /// Every link, joint, load, input and element needs its own name.
-fn duplicates<S: Clone>(
-    d: &Description<S>,
-    decls: &[&LinkDecl<S>],
-    errs: &mut Vec<Diagnostic<S>>,
-) {
+fn duplicates<S: Clone>(d: &Description<S>, decls: &[&LinkDecl<S>], errs: &mut Vec<Diagnostic<S>>) {
     dup_check("link", decls.iter().map(|l| &l.name), errs);
     dup_check("joint", d.joints.iter().map(|j| &j.name), errs);
     dup_check("load", d.loads.iter().map(|l| &l.name), errs);
