@@ -448,82 +448,16 @@ pub fn position(
     let mut points = [V2::zeros(); 3];
     match solver {
         Solver::DrivenRevolute { body, joint, input } => {
-            let g = &joints[joint];
-            let (sn, cs) = (drive.0[input] - g.q_ref).sin_cos();
-            let (other, rel) = if g.b == body {
-                (g.a, V2::new(cs, sn))
-            } else {
-                (g.b, V2::new(cs, -sn))
-            };
-            let rot = if other == 0 {
-                rel
-            } else {
-                rotate(s[other].rot, rel)
-            };
-            let (p, d) = pin(g, s, body);
-            place_by_point(&mut s[body], rot, d, p);
+            driven_revolute(&joints[joint], s, body, drive.0[input])
         }
         Solver::DrivenPrismatic { body, joint, input } => {
-            let g = &joints[joint];
-            let q = drive.0[input] - g.q_ref;
-            if g.b == body {
-                let rot = s[g.a].rot;
-                let p = point_of(s, g.a, g.da) + rotate(rot, g.axis) * q;
-                place_by_point(&mut s[body], rot, g.db, p);
-            } else {
-                let rot = s[g.b].rot;
-                let p = point_of(s, g.b, g.db) - rotate(rot, g.axis) * q;
-                place_by_point(&mut s[body], rot, g.da, p);
-            }
+            driven_prismatic(&joints[joint], s, body, drive.0[input])
         }
         Solver::Rrr { b1, b2, ja, jc, jb } => {
-            let (a, da) = pin(&joints[ja], s, b1);
-            let (b, db) = pin(&joints[jb], s, b2);
-            let gc = &joints[jc];
-            let (dc1, dc2) = if gc.a == b1 {
-                (gc.da, gc.db)
-            } else {
-                (gc.db, gc.da)
-            };
-            let c = circle_circle(
-                a,
-                (dc1 - da).norm_squared(),
-                b,
-                (dc2 - db).norm_squared(),
-                sign,
-            )?;
-            place_by_two_points(&mut s[b1], da, dc1, a, c);
-            place_by_two_points(&mut s[b2], db, dc2, b, c);
-            points = [a, c, b];
+            points = rrr(joints, s, b1, b2, [ja, jc, jb], sign)?;
         }
         Solver::Rrp { b1, b2, ja, jc, jp } => {
-            let (a, da) = pin(&joints[ja], s, b1);
-            let gp = &joints[jp];
-            // The slider turns with the guide: its vectors are the guide's rotation of its
-            // local ones (none on the ground).
-            let guide = if gp.b == b2 { gp.a } else { gp.b };
-            let gc = &joints[jc];
-            let (dc1, dc2) = if gc.a == b1 {
-                (gc.da, gc.db)
-            } else {
-                (gc.db, gc.da)
-            };
-            let (q, dq) = if gp.b == b2 {
-                (point_of(s, gp.a, gp.da), gp.db)
-            } else {
-                (point_of(s, gp.b, gp.db), gp.da)
-            };
-            let p = q + dir_of(s, guide, dc2 - dq);
-            let u = dir_of(s, guide, gp.axis);
-            let (c, x, y) = circle_line_along(a, (dc1 - da).norm_squared(), p, u, sign)?;
-            place_by_two_points(&mut s[b1], da, dc1, a, c);
-            s[b2].rot = if guide == 0 {
-                V2::new(1.0, 0.0)
-            } else {
-                s[guide].rot
-            };
-            s[b2].pos = c - dir_of(s, guide, dc2);
-            points = [a, c, V2::new(x, y)];
+            points = rrp(joints, s, b1, b2, [ja, jc, jp], sign)?;
         }
         Solver::Rpr { b1, ja, jp, jb, .. } => {
             let (gp, guide, slider, pa, pb) = rpr_pins(joints, s, b1, ja, jp, jb);
@@ -538,34 +472,8 @@ pub fn position(
             jp1,
             jc,
             jp2,
-        } => {
-            let (g1, g2) = (&joints[jp1], &joints[jp2]);
-            let rot1 = if g1.b == b1 { s[g1.a].rot } else { s[g1.b].rot };
-            let rot2 = if g2.b == b2 { s[g2.a].rot } else { s[g2.b].rot };
-            let gc = &joints[jc];
-            let (dc1, dc2) = if gc.a == b1 {
-                (gc.da, gc.db)
-            } else {
-                (gc.db, gc.da)
-            };
-            let (p1, u1) = slide_line(g1, s, b1, rot1, dc1);
-            let (p2, u2) = slide_line(g2, s, b2, rot2, dc2);
-            let c = line_line(p1, u1, p2, u2)?;
-            place_by_point(&mut s[b1], rot1, dc1, c);
-            place_by_point(&mut s[b2], rot2, dc2, c);
-        }
-        Solver::Rpp { b1, b2, ja, jp, jq } => {
-            let gq = &joints[jq];
-            let rot = if gq.b == b2 { s[gq.a].rot } else { s[gq.b].rot };
-            let (a, da) = pin(&joints[ja], s, b1);
-            place_by_point(&mut s[b1], rot, da, a);
-            // The sliding point of b2 on the solved link, on both lines.
-            let dq = if gq.b == b2 { gq.db } else { gq.da };
-            let (p1, u1) = slide_line(gq, s, b2, rot, dq);
-            let (p2, u2) = slide_line(&joints[jp], s, b2, rot, dq);
-            let c = line_line(p1, u1, p2, u2)?;
-            place_by_point(&mut s[b2], rot, dq, c);
-        }
+        } => prp(joints, s, b1, b2, [jp1, jc, jp2])?,
+        Solver::Rpp { b1, b2, ja, jp, jq } => rpp(joints, s, b1, b2, [ja, jp, jq])?,
         Solver::PinInFixedSlot { body, ja, js } => {
             let (a, da) = pin(&joints[ja], s, body);
             let g = &joints[js];
@@ -590,4 +498,154 @@ pub fn position(
         | Solver::Rrl { .. } => return Err(MechError::NoAssembly),
     }
     Ok(points)
+}
+
+/// [`position`] of a link driven by its revolute joint `g` at the input's angle `q`.
+#[inline(always)]
+fn driven_revolute(g: &JointGeom, s: &mut [LinkState], body: usize, q: f64) {
+    let (sn, cs) = (q - g.q_ref).sin_cos();
+    let (other, rel) = if g.b == body {
+        (g.a, V2::new(cs, sn))
+    } else {
+        (g.b, V2::new(cs, -sn))
+    };
+    let rot = if other == 0 {
+        rel
+    } else {
+        rotate(s[other].rot, rel)
+    };
+    let (p, d) = pin(g, s, body);
+    place_by_point(&mut s[body], rot, d, p);
+}
+
+/// [`position`] of a link driven by its prismatic joint `g` at the input's length `q`.
+#[inline(always)]
+fn driven_prismatic(g: &JointGeom, s: &mut [LinkState], body: usize, q: f64) {
+    let q = q - g.q_ref;
+    if g.b == body {
+        let rot = s[g.a].rot;
+        let p = point_of(s, g.a, g.da) + rotate(rot, g.axis) * q;
+        place_by_point(&mut s[body], rot, g.db, p);
+    } else {
+        let rot = s[g.b].rot;
+        let p = point_of(s, g.b, g.db) - rotate(rot, g.axis) * q;
+        place_by_point(&mut s[body], rot, g.da, p);
+    }
+}
+
+/// [`position`] of an RRR dyad, joints [ja, jc, jb]; its points [A, C, B].
+#[inline(always)]
+fn rrr(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    b1: usize,
+    b2: usize,
+    [ja, jc, jb]: [usize; 3],
+    sign: f64,
+) -> Result<[V2; 3], MechError> {
+    let (a, da) = pin(&joints[ja], s, b1);
+    let (b, db) = pin(&joints[jb], s, b2);
+    let gc = &joints[jc];
+    let (dc1, dc2) = if gc.a == b1 {
+        (gc.da, gc.db)
+    } else {
+        (gc.db, gc.da)
+    };
+    let c = circle_circle(
+        a,
+        (dc1 - da).norm_squared(),
+        b,
+        (dc2 - db).norm_squared(),
+        sign,
+    )?;
+    place_by_two_points(&mut s[b1], da, dc1, a, c);
+    place_by_two_points(&mut s[b2], db, dc2, b, c);
+    Ok([a, c, b])
+}
+
+/// [`position`] of an RRP dyad, joints [ja, jc, jp]; its points [A, C, (x, y)].
+#[inline(always)]
+fn rrp(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    b1: usize,
+    b2: usize,
+    [ja, jc, jp]: [usize; 3],
+    sign: f64,
+) -> Result<[V2; 3], MechError> {
+    let (a, da) = pin(&joints[ja], s, b1);
+    let gp = &joints[jp];
+    // The slider turns with the guide: its vectors are the guide's rotation of its
+    // local ones (none on the ground).
+    let guide = if gp.b == b2 { gp.a } else { gp.b };
+    let gc = &joints[jc];
+    let (dc1, dc2) = if gc.a == b1 {
+        (gc.da, gc.db)
+    } else {
+        (gc.db, gc.da)
+    };
+    let (q, dq) = if gp.b == b2 {
+        (point_of(s, gp.a, gp.da), gp.db)
+    } else {
+        (point_of(s, gp.b, gp.db), gp.da)
+    };
+    let p = q + dir_of(s, guide, dc2 - dq);
+    let u = dir_of(s, guide, gp.axis);
+    let (c, x, y) = circle_line_along(a, (dc1 - da).norm_squared(), p, u, sign)?;
+    place_by_two_points(&mut s[b1], da, dc1, a, c);
+    s[b2].rot = if guide == 0 {
+        V2::new(1.0, 0.0)
+    } else {
+        s[guide].rot
+    };
+    s[b2].pos = c - dir_of(s, guide, dc2);
+    Ok([a, c, V2::new(x, y)])
+}
+
+/// [`position`] of a PRP dyad, joints [jp1, jc, jp2].
+#[inline(always)]
+fn prp(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    b1: usize,
+    b2: usize,
+    [jp1, jc, jp2]: [usize; 3],
+) -> Result<(), MechError> {
+    let (g1, g2) = (&joints[jp1], &joints[jp2]);
+    let rot1 = if g1.b == b1 { s[g1.a].rot } else { s[g1.b].rot };
+    let rot2 = if g2.b == b2 { s[g2.a].rot } else { s[g2.b].rot };
+    let gc = &joints[jc];
+    let (dc1, dc2) = if gc.a == b1 {
+        (gc.da, gc.db)
+    } else {
+        (gc.db, gc.da)
+    };
+    let (p1, u1) = slide_line(g1, s, b1, rot1, dc1);
+    let (p2, u2) = slide_line(g2, s, b2, rot2, dc2);
+    let c = line_line(p1, u1, p2, u2)?;
+    place_by_point(&mut s[b1], rot1, dc1, c);
+    place_by_point(&mut s[b2], rot2, dc2, c);
+    Ok(())
+}
+
+/// [`position`] of an RPP dyad, joints [ja, jp, jq].
+#[inline(always)]
+fn rpp(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    b1: usize,
+    b2: usize,
+    [ja, jp, jq]: [usize; 3],
+) -> Result<(), MechError> {
+    let gq = &joints[jq];
+    let rot = if gq.b == b2 { s[gq.a].rot } else { s[gq.b].rot };
+    let (a, da) = pin(&joints[ja], s, b1);
+    place_by_point(&mut s[b1], rot, da, a);
+    // The sliding point of b2 on the solved link, on both lines.
+    let dq = if gq.b == b2 { gq.db } else { gq.da };
+    let (p1, u1) = slide_line(gq, s, b2, rot, dq);
+    let (p2, u2) = slide_line(&joints[jp], s, b2, rot, dq);
+    let c = line_line(p1, u1, p2, u2)?;
+    place_by_point(&mut s[b2], rot, dq, c);
+    Ok(())
 }

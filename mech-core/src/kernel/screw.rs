@@ -635,236 +635,7 @@ mod tests {
     fn screw_rates_and_reactions_match_the_jacobian_route() {
         let mut kinds = std::collections::BTreeSet::new();
         for text in TEXTS {
-            let model = model_of(text);
-            let inst = crate::solvers::instance::instance(&model).expect("instance");
-            let groups = plan(&model).expect("plan");
-            let solvers: Vec<_> = groups.iter().map(|g| g.solver).collect();
-            let branches = inst.branches(&solvers);
-            let n_in = model.inputs.len();
-            let mut assembled = 0;
-            'q: for k in 0..7 {
-                let q: Vec<f64> = (0..n_in)
-                    .map(|i| 0.3 * k as f64 - 0.8 + 0.1 * i as f64)
-                    .collect();
-                let q: Vec<f64> =
-                    if model.joints[model.inputs[0]].kind == crate::model::JointKind::Revolute {
-                        q.iter()
-                            .map(|&x| inst.joints[model.inputs[0]].q_ref + x)
-                            .collect()
-                    } else {
-                        q.iter().map(|&x| 0.05 * x).collect()
-                    };
-                let qd: Vec<f64> = (0..n_in).map(|i| 3.0 - 1.3 * i as f64).collect();
-                let qdd: Vec<f64> = (0..n_in).map(|i| -2.0 + 0.7 * i as f64).collect();
-                let drive = (&q[..], &qd[..], &qdd[..]);
-                let (mut sa, mut sb) = (inst.drawing.clone(), inst.drawing.clone());
-                for (g, &sign) in groups.iter().zip(&branches) {
-                    if crate::kernel::dyad::position(
-                        g.solver,
-                        &inst.joints,
-                        &mut sa.clone(),
-                        drive,
-                        sign,
-                    ) == Err(MechError::NoAssembly)
-                    {
-                        continue 'q;
-                    }
-                    kinds.insert(
-                        format!("{:?}", g.solver)
-                            .split([' ', '{'])
-                            .next()
-                            .unwrap()
-                            .to_string(),
-                    );
-                    match &g.kernel {
-                        Kernel::Chain(c) => crate::kernel::kinematics::solve_chain(
-                            g.solver,
-                            c,
-                            &inst.joints,
-                            &mut sa,
-                            drive,
-                            sign,
-                            inst.scale,
-                            Level::Acceleration,
-                        )
-                        .map(|_| ()),
-                        Kernel::Driven(d) => crate::kernel::kinematics::solve_driven(
-                            g.solver,
-                            d,
-                            &inst.joints,
-                            &mut sa,
-                            drive,
-                            Level::Acceleration,
-                        ),
-                        Kernel::System
-                        | Kernel::Mesh(_)
-                        | Kernel::Train(_)
-                        | Kernel::Rolling(_)
-                        | Kernel::Cam(_) => {
-                            panic!("{text}: no screw kernel")
-                        }
-                    }
-                    .expect("screw route");
-                    crate::kernel::dyad::position(g.solver, &inst.joints, &mut sb, drive, sign)
-                        .expect("position");
-                    let sys =
-                        GroupSystem::<6>::new(&g.bodies, &g.cons, &inst.joints, &sb, inst.scale);
-                    // One-link groups: a 3×3 system.
-                    if g.bodies.len() == 1 {
-                        let sys = GroupSystem::<3>::new(
-                            &g.bodies,
-                            &g.cons,
-                            &inst.joints,
-                            &sb,
-                            inst.scale,
-                        )
-                        .expect("lu");
-                        group_rates(
-                            &sys,
-                            &g.bodies,
-                            &g.cons,
-                            &inst.joints,
-                            &mut sb,
-                            drive,
-                            Level::Velocity,
-                        );
-                        group_rates(
-                            &sys,
-                            &g.bodies,
-                            &g.cons,
-                            &inst.joints,
-                            &mut sb,
-                            drive,
-                            Level::Acceleration,
-                        );
-                    } else {
-                        let sys = sys.expect("lu");
-                        group_rates(
-                            &sys,
-                            &g.bodies,
-                            &g.cons,
-                            &inst.joints,
-                            &mut sb,
-                            drive,
-                            Level::Velocity,
-                        );
-                        group_rates(
-                            &sys,
-                            &g.bodies,
-                            &g.cons,
-                            &inst.joints,
-                            &mut sb,
-                            drive,
-                            Level::Acceleration,
-                        );
-                    }
-                }
-                for (a, b) in sa.iter().zip(&sb) {
-                    for (x, y) in [
-                        (a.pos.x, b.pos.x),
-                        (a.pos.y, b.pos.y),
-                        (a.vel.x, b.vel.x),
-                        (a.vel.y, b.vel.y),
-                        (a.omega, b.omega),
-                    ] {
-                        assert!(close(x, y, 10.0), "{text}: velocity level {x} vs {y}");
-                    }
-                    for (x, y) in [(a.acc.x, b.acc.x), (a.acc.y, b.acc.y), (a.alpha, b.alpha)] {
-                        assert!(close(x, y, 100.0), "{text}: acceleration level {x} vs {y}");
-                    }
-                }
-                assembled += 1;
-                // Reactions from arbitrary wrenches on every moving link.
-                let n = inst.links.len();
-                let w0: Vec<Wrench> = (0..n)
-                    .map(|l| {
-                        Wrench::new(10.0 - 3.0 * l as f64, 4.0 + l as f64, 0.5 - 0.2 * l as f64)
-                    })
-                    .collect();
-                let (mut fa, mut fb) = (w0.clone(), w0);
-                let nj = inst.joints.len();
-                let (mut ra, mut rb) =
-                    (vec![Reaction::default(); nj], vec![Reaction::default(); nj]);
-                let (mut da, mut db) = (vec![0.0; n_in], vec![0.0; n_in]);
-                for g in groups.iter().rev() {
-                    match &g.kernel {
-                        Kernel::Chain(c) => crate::kernel::kinematics::chain_reactions(
-                            g.solver,
-                            c,
-                            &inst.joints,
-                            &sa,
-                            &mut fa,
-                            inst.scale,
-                            &crate::kernel::natural::DyadSystem::None,
-                            &mut ra,
-                        )
-                        .expect("chain"),
-                        Kernel::Driven(d) => {
-                            driven_reactions(d, &inst.joints, &sa, &mut fa, &mut ra, &mut da)
-                        }
-                        Kernel::System
-                        | Kernel::Mesh(_)
-                        | Kernel::Train(_)
-                        | Kernel::Rolling(_)
-                        | Kernel::Cam(_) => unreachable!(),
-                    }
-                    if g.bodies.len() == 1 {
-                        let lam = group_reactions::<3>(
-                            None,
-                            &g.bodies,
-                            &g.cons,
-                            &inst.joints,
-                            &sb,
-                            &mut fb,
-                            inst.scale,
-                        )
-                        .expect("lu");
-                        lambda_reactions(
-                            &g.cons,
-                            &inst.joints,
-                            &sb,
-                            lam.as_slice(),
-                            &mut rb,
-                            &mut db,
-                        );
-                    } else {
-                        let lam = group_reactions::<6>(
-                            None,
-                            &g.bodies,
-                            &g.cons,
-                            &inst.joints,
-                            &sb,
-                            &mut fb,
-                            inst.scale,
-                        )
-                        .expect("lu");
-                        lambda_reactions(
-                            &g.cons,
-                            &inst.joints,
-                            &sb,
-                            lam.as_slice(),
-                            &mut rb,
-                            &mut db,
-                        );
-                    }
-                }
-                for (a, b) in ra.iter().zip(&rb) {
-                    for (x, y) in [
-                        (a.force.x, b.force.x),
-                        (a.force.y, b.force.y),
-                        (a.moment, b.moment),
-                    ] {
-                        assert!(close(x, y, 100.0), "{text}: reaction {x} vs {y}");
-                    }
-                }
-                for (x, y) in da.iter().zip(&db) {
-                    assert!(close(*x, *y, 100.0), "{text}: driver {x} vs {y}");
-                }
-            }
-            assert!(
-                assembled >= 4,
-                "{text}: only {assembled} of 7 inputs assemble"
-            );
+            both_routes_agree(text, &mut kinds);
         }
         let want = [
             "DrivenRevolute",
@@ -882,6 +653,234 @@ mod tests {
                 kinds.contains(k),
                 "no test mechanism exercises {k}: {kinds:?}"
             );
+        }
+    }
+
+    /// Sweeps the inputs of the mechanism `text` over 7 positions and compares both routes
+    /// at each one that assembles (at least 4); adds the closed-form kinds met to `kinds`.
+    fn both_routes_agree(text: &str, kinds: &mut std::collections::BTreeSet<String>) {
+        let model = model_of(text);
+        let inst = crate::solvers::instance::instance(&model).expect("instance");
+        let groups = plan(&model).expect("plan");
+        let solvers: Vec<_> = groups.iter().map(|g| g.solver).collect();
+        let branches = inst.branches(&solvers);
+        let n_in = model.inputs.len();
+        let mut assembled = 0;
+        for k in 0..7 {
+            let (q, qd, qdd) = inputs_at(&model, &inst, k);
+            let drive = (&q[..], &qd[..], &qdd[..]);
+            let Some((sa, sb)) = both_kinematics(text, &inst, &groups, &branches, drive, kinds)
+            else {
+                continue;
+            };
+            for (a, b) in sa.iter().zip(&sb) {
+                for (x, y) in [
+                    (a.pos.x, b.pos.x),
+                    (a.pos.y, b.pos.y),
+                    (a.vel.x, b.vel.x),
+                    (a.vel.y, b.vel.y),
+                    (a.omega, b.omega),
+                ] {
+                    assert!(close(x, y, 10.0), "{text}: velocity level {x} vs {y}");
+                }
+                for (x, y) in [(a.acc.x, b.acc.x), (a.acc.y, b.acc.y), (a.alpha, b.alpha)] {
+                    assert!(close(x, y, 100.0), "{text}: acceleration level {x} vs {y}");
+                }
+            }
+            assembled += 1;
+            both_reactions_agree(text, &inst, &groups, &sa, &sb, n_in);
+        }
+        assert!(
+            assembled >= 4,
+            "{text}: only {assembled} of 7 inputs assemble"
+        );
+    }
+
+    /// The inputs' positions, rates and accelerations at step `k` of the sweep.
+    fn inputs_at(
+        model: &crate::model::Model,
+        inst: &crate::solvers::instance::Instance,
+        k: usize,
+    ) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let n_in = model.inputs.len();
+        let q: Vec<f64> = (0..n_in)
+            .map(|i| 0.3 * k as f64 - 0.8 + 0.1 * i as f64)
+            .collect();
+        let q: Vec<f64> = if model.joints[model.inputs[0]].kind == crate::model::JointKind::Revolute
+        {
+            q.iter()
+                .map(|&x| inst.joints[model.inputs[0]].q_ref + x)
+                .collect()
+        } else {
+            q.iter().map(|&x| 0.05 * x).collect()
+        };
+        let qd: Vec<f64> = (0..n_in).map(|i| 3.0 - 1.3 * i as f64).collect();
+        let qdd: Vec<f64> = (0..n_in).map(|i| -2.0 + 0.7 * i as f64).collect();
+        (q, qd, qdd)
+    }
+
+    /// The links' states to accelerations by both routes, group by group: (screw kernels,
+    /// Jacobian); `None` when a group does not assemble.
+    fn both_kinematics(
+        text: &str,
+        inst: &crate::solvers::instance::Instance,
+        groups: &[crate::plan::assur::Group],
+        branches: &[f64],
+        drive: Drive,
+        kinds: &mut std::collections::BTreeSet<String>,
+    ) -> Option<(Vec<LinkState>, Vec<LinkState>)> {
+        let (mut sa, mut sb) = (inst.drawing.clone(), inst.drawing.clone());
+        for (g, &sign) in groups.iter().zip(branches) {
+            if crate::kernel::dyad::position(g.solver, &inst.joints, &mut sa.clone(), drive, sign)
+                == Err(MechError::NoAssembly)
+            {
+                return None;
+            }
+            kinds.insert(
+                format!("{:?}", g.solver)
+                    .split([' ', '{'])
+                    .next()
+                    .unwrap()
+                    .to_string(),
+            );
+            match &g.kernel {
+                Kernel::Chain(c) => crate::kernel::kinematics::solve_chain(
+                    g.solver,
+                    c,
+                    &inst.joints,
+                    &mut sa,
+                    drive,
+                    sign,
+                    inst.scale,
+                    Level::Acceleration,
+                )
+                .map(|_| ()),
+                Kernel::Driven(d) => crate::kernel::kinematics::solve_driven(
+                    g.solver,
+                    d,
+                    &inst.joints,
+                    &mut sa,
+                    drive,
+                    Level::Acceleration,
+                ),
+                Kernel::System
+                | Kernel::Mesh(_)
+                | Kernel::Train(_)
+                | Kernel::Rolling(_)
+                | Kernel::Cam(_) => {
+                    panic!("{text}: no screw kernel")
+                }
+            }
+            .expect("screw route");
+            crate::kernel::dyad::position(g.solver, &inst.joints, &mut sb, drive, sign)
+                .expect("position");
+            jacobian_rates(g, inst, &mut sb, drive);
+        }
+        Some((sa, sb))
+    }
+
+    /// The rates of group `g` from its scaled Jacobian (LU): velocities, then accelerations.
+    fn jacobian_rates(
+        g: &crate::plan::assur::Group,
+        inst: &crate::solvers::instance::Instance,
+        sb: &mut [LinkState],
+        drive: Drive,
+    ) {
+        let sys = GroupSystem::<6>::new(&g.bodies, &g.cons, &inst.joints, sb, inst.scale);
+        // One-link groups: a 3×3 system.
+        if g.bodies.len() == 1 {
+            let sys = GroupSystem::<3>::new(&g.bodies, &g.cons, &inst.joints, sb, inst.scale)
+                .expect("lu");
+            for level in [Level::Velocity, Level::Acceleration] {
+                group_rates(&sys, &g.bodies, &g.cons, &inst.joints, sb, drive, level);
+            }
+        } else {
+            let sys = sys.expect("lu");
+            for level in [Level::Velocity, Level::Acceleration] {
+                group_rates(&sys, &g.bodies, &g.cons, &inst.joints, sb, drive, level);
+            }
+        }
+    }
+
+    /// Reactions from arbitrary wrenches on every moving link, by both routes, agree.
+    fn both_reactions_agree(
+        text: &str,
+        inst: &crate::solvers::instance::Instance,
+        groups: &[crate::plan::assur::Group],
+        sa: &[LinkState],
+        sb: &[LinkState],
+        n_in: usize,
+    ) {
+        let n = inst.links.len();
+        let w0: Vec<Wrench> = (0..n)
+            .map(|l| Wrench::new(10.0 - 3.0 * l as f64, 4.0 + l as f64, 0.5 - 0.2 * l as f64))
+            .collect();
+        let (mut fa, mut fb) = (w0.clone(), w0);
+        let nj = inst.joints.len();
+        let (mut ra, mut rb) = (vec![Reaction::default(); nj], vec![Reaction::default(); nj]);
+        let (mut da, mut db) = (vec![0.0; n_in], vec![0.0; n_in]);
+        for g in groups.iter().rev() {
+            match &g.kernel {
+                Kernel::Chain(c) => crate::kernel::kinematics::chain_reactions(
+                    g.solver,
+                    c,
+                    &inst.joints,
+                    sa,
+                    &mut fa,
+                    inst.scale,
+                    &crate::kernel::natural::DyadSystem::None,
+                    &mut ra,
+                )
+                .expect("chain"),
+                Kernel::Driven(d) => {
+                    driven_reactions(d, &inst.joints, sa, &mut fa, &mut ra, &mut da)
+                }
+                Kernel::System
+                | Kernel::Mesh(_)
+                | Kernel::Train(_)
+                | Kernel::Rolling(_)
+                | Kernel::Cam(_) => unreachable!(),
+            }
+            let lam = if g.bodies.len() == 1 {
+                group_reactions::<3>(
+                    None,
+                    &g.bodies,
+                    &g.cons,
+                    &inst.joints,
+                    sb,
+                    &mut fb,
+                    inst.scale,
+                )
+                .expect("lu")
+                .as_slice()
+                .to_vec()
+            } else {
+                group_reactions::<6>(
+                    None,
+                    &g.bodies,
+                    &g.cons,
+                    &inst.joints,
+                    sb,
+                    &mut fb,
+                    inst.scale,
+                )
+                .expect("lu")
+                .as_slice()
+                .to_vec()
+            };
+            lambda_reactions(&g.cons, &inst.joints, sb, &lam, &mut rb, &mut db);
+        }
+        for (a, b) in ra.iter().zip(&rb) {
+            for (x, y) in [
+                (a.force.x, b.force.x),
+                (a.force.y, b.force.y),
+                (a.moment, b.moment),
+            ] {
+                assert!(close(x, y, 100.0), "{text}: reaction {x} vs {y}");
+            }
+        }
+        for (x, y) in da.iter().zip(&db) {
+            assert!(close(*x, *y, 100.0), "{text}: driver {x} vs {y}");
         }
     }
 }

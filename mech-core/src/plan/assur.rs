@@ -421,157 +421,168 @@ fn subsets(items: &[usize], k: usize) -> Vec<Vec<usize>> {
 
 /// Recognise a closed-form group.
 fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
-    let kind = |c: &Con| model.joints[c.joint].kind;
-    let touches = |c: &Con, b: usize| model.joints[c.joint].a == b || model.joints[c.joint].b == b;
     match *bodies {
-        [body] => {
-            let drive = cons.iter().find(|c| {
-                matches!(
-                    c.kind,
-                    ConKind::DriveRevolute(_) | ConKind::DrivePrismatic(_)
-                )
-            });
-            if let Some(d) = drive {
-                if let (ConKind::DrivePrismatic(k), JointKind::Rolling, None) = (
-                    d.kind,
-                    model.joints[d.joint].kind,
-                    model.joints[d.joint].around,
-                ) {
-                    return Solver::DrivenRolling {
-                        body,
-                        joint: d.joint,
-                        input: k,
-                    };
-                }
-                return match d.kind {
-                    ConKind::DriveRevolute(k) => Solver::DrivenRevolute {
-                        body,
-                        joint: d.joint,
-                        input: k,
-                    },
-                    ConKind::DrivePrismatic(k) => Solver::DrivenPrismatic {
-                        body,
-                        joint: d.joint,
-                        input: k,
-                    },
-                    _ => unreachable!(),
-                };
-            }
-            let mesh = cons.iter().find(|c| c.kind == ConKind::Mesh);
-            let held = cons
-                .iter()
-                .any(|c| matches!(c.kind, ConKind::Revolute | ConKind::Prismatic));
-            if let (Some(m), true, 2) = (mesh, held, cons.len()) {
-                if model.joints[m.joint].kind == JointKind::Cam {
-                    return if model.joints[m.joint].b == body {
-                        Solver::Cam {
-                            body,
-                            joint: m.joint,
-                        }
-                    } else {
-                        Solver::Newton
-                    };
-                }
-                return Solver::Mesh {
-                    body,
-                    joint: m.joint,
-                };
-            }
-            let rev = cons.iter().find(|c| c.kind == ConKind::Revolute);
-            let slot = cons.iter().find(|c| c.kind == ConKind::Slot);
-            if let (Some(r), Some(s), 2) = (rev, slot, cons.len()) {
-                return if model.joints[s.joint].b == body {
-                    Solver::PinInFixedSlot {
-                        body,
-                        ja: r.joint,
-                        js: s.joint,
-                    }
-                } else {
-                    Solver::SlottedLever {
-                        body,
-                        ja: r.joint,
-                        js: s.joint,
-                    }
-                };
-            }
-            Solver::Newton
-        }
-        [x, y] if cons.len() == 3 => {
-            // The joint between the two links, and one joint from each to solved links.
-            let Some(mid) = cons.iter().find(|c| touches(c, x) && touches(c, y)) else {
-                return Solver::Newton;
-            };
-            for (b1, b2) in [(x, y), (y, x)] {
-                let outer1 = cons.iter().find(|c| touches(c, b1) && !touches(c, b2));
-                let outer2 = cons.iter().find(|c| touches(c, b2) && !touches(c, b1));
-                let (Some(o1), Some(o2)) = (outer1, outer2) else {
-                    return Solver::Newton;
-                };
-                match (kind(o1), kind(mid), kind(o2)) {
-                    (JointKind::Revolute, JointKind::Revolute, JointKind::Revolute) => {
-                        return Solver::Rrr {
-                            b1,
-                            b2,
-                            ja: o1.joint,
-                            jc: mid.joint,
-                            jb: o2.joint,
-                        }
-                    }
-                    (JointKind::Revolute, JointKind::Revolute, JointKind::Rolling)
-                        if model.joints[o2.joint].b == b2
-                            && model.joints[mid.joint].point == model.joints[o2.joint].point =>
-                    {
-                        return Solver::Rrl {
-                            b1,
-                            b2,
-                            ja: o1.joint,
-                            jc: mid.joint,
-                            jr: o2.joint,
-                        }
-                    }
-                    (JointKind::Revolute, JointKind::Revolute, JointKind::Prismatic) => {
-                        return Solver::Rrp {
-                            b1,
-                            b2,
-                            ja: o1.joint,
-                            jc: mid.joint,
-                            jp: o2.joint,
-                        }
-                    }
-                    (JointKind::Revolute, JointKind::Prismatic, JointKind::Revolute) => {
-                        return Solver::Rpr {
-                            b1,
-                            b2,
-                            ja: o1.joint,
-                            jp: mid.joint,
-                            jb: o2.joint,
-                        }
-                    }
-                    (JointKind::Prismatic, JointKind::Revolute, JointKind::Prismatic) => {
-                        return Solver::Prp {
-                            b1,
-                            b2,
-                            jp1: o1.joint,
-                            jc: mid.joint,
-                            jp2: o2.joint,
-                        }
-                    }
-                    (JointKind::Revolute, JointKind::Prismatic, JointKind::Prismatic) => {
-                        return Solver::Rpp {
-                            b1,
-                            b2,
-                            ja: o1.joint,
-                            jp: mid.joint,
-                            jq: o2.joint,
-                        }
-                    }
-                    _ => {}
-                }
-            }
-            Solver::Newton
-        }
+        [body] => classify_single(model, body, cons),
+        [x, y] if cons.len() == 3 => classify_dyad(model, x, y, cons),
         _ if is_train(model, bodies, cons) => Solver::Train,
         _ => Solver::Newton,
+    }
+}
+
+/// A one-link group: driven by an input, held by a pin (or slide) and a mesh or cam, or
+/// by a pin and a slot.
+fn classify_single(model: &Model, body: usize, cons: &[Con]) -> Solver {
+    let drive = cons.iter().find(|c| {
+        matches!(
+            c.kind,
+            ConKind::DriveRevolute(_) | ConKind::DrivePrismatic(_)
+        )
+    });
+    if let Some(d) = drive {
+        return classify_driven(model, body, d);
+    }
+    let mesh = cons.iter().find(|c| c.kind == ConKind::Mesh);
+    let held = cons
+        .iter()
+        .any(|c| matches!(c.kind, ConKind::Revolute | ConKind::Prismatic));
+    if let (Some(m), true, 2) = (mesh, held, cons.len()) {
+        if model.joints[m.joint].kind == JointKind::Cam {
+            return if model.joints[m.joint].b == body {
+                Solver::Cam {
+                    body,
+                    joint: m.joint,
+                }
+            } else {
+                Solver::Newton
+            };
+        }
+        return Solver::Mesh {
+            body,
+            joint: m.joint,
+        };
+    }
+    let rev = cons.iter().find(|c| c.kind == ConKind::Revolute);
+    let slot = cons.iter().find(|c| c.kind == ConKind::Slot);
+    if let (Some(r), Some(s), 2) = (rev, slot, cons.len()) {
+        return if model.joints[s.joint].b == body {
+            Solver::PinInFixedSlot {
+                body,
+                ja: r.joint,
+                js: s.joint,
+            }
+        } else {
+            Solver::SlottedLever {
+                body,
+                ja: r.joint,
+                js: s.joint,
+            }
+        };
+    }
+    Solver::Newton
+}
+
+/// A one-link group driven by the input of its driver row `d`.
+fn classify_driven(model: &Model, body: usize, d: &Con) -> Solver {
+    if let (ConKind::DrivePrismatic(k), JointKind::Rolling, None) = (
+        d.kind,
+        model.joints[d.joint].kind,
+        model.joints[d.joint].around,
+    ) {
+        return Solver::DrivenRolling {
+            body,
+            joint: d.joint,
+            input: k,
+        };
+    }
+    match d.kind {
+        ConKind::DriveRevolute(k) => Solver::DrivenRevolute {
+            body,
+            joint: d.joint,
+            input: k,
+        },
+        ConKind::DrivePrismatic(k) => Solver::DrivenPrismatic {
+            body,
+            joint: d.joint,
+            input: k,
+        },
+        _ => unreachable!(),
+    }
+}
+
+/// A two-link group of three joints: the joint between the two links, and one joint from
+/// each to solved links, in either order of the links.
+fn classify_dyad(model: &Model, x: usize, y: usize, cons: &[Con]) -> Solver {
+    let touches = |c: &Con, b: usize| model.joints[c.joint].a == b || model.joints[c.joint].b == b;
+    // The joint between the two links, and one joint from each to solved links.
+    let Some(mid) = cons.iter().find(|c| touches(c, x) && touches(c, y)) else {
+        return Solver::Newton;
+    };
+    for (b1, b2) in [(x, y), (y, x)] {
+        let outer1 = cons.iter().find(|c| touches(c, b1) && !touches(c, b2));
+        let outer2 = cons.iter().find(|c| touches(c, b2) && !touches(c, b1));
+        let (Some(o1), Some(o2)) = (outer1, outer2) else {
+            return Solver::Newton;
+        };
+        if let Some(solver) = dyad_kind(model, b1, b2, o1, mid, o2) {
+            return solver;
+        }
+    }
+    Solver::Newton
+}
+
+/// The dyad of links `b1`, `b2` with joints `o1` (b₁ to a solved link), `mid` (between
+/// them) and `o2` (b₂ to a solved link), when its kinds have a closed form.
+fn dyad_kind(model: &Model, b1: usize, b2: usize, o1: &Con, mid: &Con, o2: &Con) -> Option<Solver> {
+    let kind = |c: &Con| model.joints[c.joint].kind;
+    match (kind(o1), kind(mid), kind(o2)) {
+        (JointKind::Revolute, JointKind::Revolute, JointKind::Revolute) => Some(Solver::Rrr {
+            b1,
+            b2,
+            ja: o1.joint,
+            jc: mid.joint,
+            jb: o2.joint,
+        }),
+        (JointKind::Revolute, JointKind::Revolute, JointKind::Rolling)
+            if model.joints[o2.joint].b == b2
+                && model.joints[mid.joint].point == model.joints[o2.joint].point =>
+        {
+            Some(Solver::Rrl {
+                b1,
+                b2,
+                ja: o1.joint,
+                jc: mid.joint,
+                jr: o2.joint,
+            })
+        }
+        (JointKind::Revolute, JointKind::Revolute, JointKind::Prismatic) => Some(Solver::Rrp {
+            b1,
+            b2,
+            ja: o1.joint,
+            jc: mid.joint,
+            jp: o2.joint,
+        }),
+        (JointKind::Revolute, JointKind::Prismatic, JointKind::Revolute) => Some(Solver::Rpr {
+            b1,
+            b2,
+            ja: o1.joint,
+            jp: mid.joint,
+            jb: o2.joint,
+        }),
+        (JointKind::Prismatic, JointKind::Revolute, JointKind::Prismatic) => Some(Solver::Prp {
+            b1,
+            b2,
+            jp1: o1.joint,
+            jc: mid.joint,
+            jp2: o2.joint,
+        }),
+        (JointKind::Revolute, JointKind::Prismatic, JointKind::Prismatic) => Some(Solver::Rpp {
+            b1,
+            b2,
+            ja: o1.joint,
+            jp: mid.joint,
+            jq: o2.joint,
+        }),
+        _ => None,
     }
 }
 

@@ -1,0 +1,138 @@
+//! The points and links of [`super::resolve`]: points defined once and reused by name,
+//! each link's points, mass and cg; and [`Known`], what the later sections look names up in.
+
+use super::{list, Diagnostic};
+use crate::model::*;
+use std::collections::HashMap;
+
+/// Points: defined once, reused by name. The points in order of definition, and the
+/// index of each name.
+pub(super) fn points<S: Clone>(
+    decls: &[&LinkDecl<S>],
+    errs: &mut Vec<Diagnostic<S>>,
+) -> (Vec<Point>, HashMap<String, usize>) {
+    let mut points: Vec<Point> = Vec::new();
+    let mut point_ix: HashMap<String, usize> = HashMap::new();
+    for l in decls {
+        for p in &l.points {
+            if let Some(at) = &p.at {
+                if point_ix.contains_key(&p.name.text) {
+                    errs.push(Diagnostic::at(
+                        p.name.span.clone(),
+                        format!(
+                            "point `{}` is defined twice: give its coordinates once and reuse it by name elsewhere (`{}` alone)",
+                            p.name.text, p.name.text
+                        ),
+                    ));
+                } else {
+                    point_ix.insert(p.name.text.clone(), points.len());
+                    points.push(Point {
+                        name: p.name.text.clone(),
+                        pos: at.value,
+                    });
+                }
+            }
+        }
+    }
+    (points, point_ix)
+}
+
+/// The links in declaration order (ground first): their points by index, mass, inertia
+/// and cg (the first known point's position when no `cg` is given).
+pub(super) fn links<S: Clone>(
+    decls: &[&LinkDecl<S>],
+    points: &[Point],
+    point_ix: &HashMap<String, usize>,
+    errs: &mut Vec<Diagnostic<S>>,
+) -> Vec<Link> {
+    let mut links = Vec::new();
+    for l in decls {
+        let mut pts = Vec::new();
+        for p in &l.points {
+            match point_ix.get(&p.name.text) {
+                Some(&i) => {
+                    if pts.contains(&i) {
+                        errs.push(Diagnostic::at(
+                            p.name.span.clone(),
+                            format!("point `{}` is listed twice in link `{}`", p.name.text, l.name.text),
+                        ));
+                    } else {
+                        pts.push(i)
+                    }
+                }
+                None => errs.push(Diagnostic::at(
+                    p.name.span.clone(),
+                    format!(
+                        "unknown point `{}`: no link defines it; define it once with its coordinates, e.g. `{}: (0.1, 0.2)`",
+                        p.name.text, p.name.text
+                    ),
+                )),
+            }
+        }
+        if let (Some(m), None) = (&l.mass, &l.cg) {
+            errs.push(Diagnostic::at(
+                m.span.clone(),
+                format!("link `{}` has a mass but no `cg`: add `cg: (x, y)`, its centre of gravity in the drawing", l.name.text),
+            ));
+        }
+        links.push(Link {
+            name: l.name.text.clone(),
+            points: pts,
+            mass: l.mass.as_ref().map(|m| m.value),
+            inertia: l.inertia.as_ref().map(|m| m.value).unwrap_or(0.0),
+            flywheel: 0.0,
+            cg: l.cg.as_ref().map(|c| c.value).unwrap_or_else(|| {
+                l.points
+                    .iter()
+                    .find_map(|p| point_ix.get(&p.name.text))
+                    .map(|&i| points[i].pos)
+                    .unwrap_or([0.0, 0.0])
+            }),
+        });
+    }
+    links
+}
+
+/// The points and links resolved so far, which the later sections refer to by name.
+pub(super) struct Known<'a> {
+    pub(super) points: &'a [Point],
+    pub(super) point_ix: &'a HashMap<String, usize>,
+    pub(super) links: &'a [Link],
+    link_names: Vec<&'a str>,
+}
+
+impl<'a> Known<'a> {
+    pub(super) fn new(
+        points: &'a [Point],
+        point_ix: &'a HashMap<String, usize>,
+        links: &'a [Link],
+    ) -> Self {
+        let link_names: Vec<&str> = links.iter().map(|l| l.name.as_str()).collect();
+        Known {
+            points,
+            point_ix,
+            links,
+            link_names,
+        }
+    }
+
+    /// The index of link `n`, or a diagnostic that lists the links.
+    pub(super) fn find_link<S: Clone>(
+        &self,
+        n: &Name<S>,
+        errs: &mut Vec<Diagnostic<S>>,
+    ) -> Option<usize> {
+        let r = self.links.iter().position(|l| l.name == n.text);
+        if r.is_none() {
+            errs.push(Diagnostic::at(
+                n.span.clone(),
+                format!(
+                    "unknown link `{}`: the links are {}",
+                    n.text,
+                    list(&self.link_names)
+                ),
+            ));
+        }
+        r
+    }
+}
