@@ -20,7 +20,15 @@ fn listing(package: &str, lib: &str) -> Result<Vec<String>, String> {
         .current_dir(root)
         .env_remove("RUSTFLAGS")
         .env_remove("RUSTDOCFLAGS")
-        .args(["+nightly", "rustdoc", "-q", "--lib", "-p", package, "--target-dir"])
+        .args([
+            "+nightly",
+            "rustdoc",
+            "-q",
+            "--lib",
+            "-p",
+            package,
+            "--target-dir",
+        ])
         .arg(&target)
         .args(["--", "-Z", "unstable-options", "--output-format", "json"])
         .output()
@@ -29,8 +37,9 @@ fn listing(package: &str, lib: &str) -> Result<Vec<String>, String> {
         return Err(String::from_utf8_lossy(&out.stderr).into_owned());
     }
     let path: PathBuf = target.join("doc").join(format!("{lib}.json"));
-    let json: Value = serde_json::from_str(&std::fs::read_to_string(&path).map_err(|e| e.to_string())?)
-        .map_err(|e| e.to_string())?;
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).map_err(|e| e.to_string())?)
+            .map_err(|e| e.to_string())?;
     let mut lines = Vec::new();
     walk(&json, &json["root"], lib, &mut lines);
     lines.sort();
@@ -51,7 +60,9 @@ fn item<'a>(json: &'a Value, id: &Value) -> Option<&'a Value> {
 /// Every public item below the module `id` at `path`, as `kind path` or `use path = source`.
 fn walk(json: &Value, id: &Value, path: &str, out: &mut Vec<String>) {
     let Some(module) = item(json, id) else { return };
-    let Some(children) = module["inner"]["module"]["items"].as_array() else { return };
+    let Some(children) = module["inner"]["module"]["items"].as_array() else {
+        return;
+    };
     for child in children.iter().filter_map(|c| item(json, c)) {
         if child["visibility"] != "public" {
             continue;
@@ -93,7 +104,10 @@ fn check(package: &str, lib: &str) {
         }
         Err(e) => panic!("rustdoc JSON of {package} failed:\n{e}"),
     };
-    assert!(listing.len() > 20, "{package}: too few public items read: {listing:?}");
+    assert!(
+        listing.len() > 20,
+        "{package}: too few public items read: {listing:?}"
+    );
     let file = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("docs/public-api")
         .join(format!("{package}.txt"));

@@ -34,7 +34,8 @@ fn sources() -> BTreeMap<String, String> {
                     format!("{prefix}::{stem}")
                 };
                 walk(&path, &sub, out);
-            } else if path.extension().is_some_and(|e| e == "rs") {
+            } else if path.extension().is_some_and(|e| e == "rs") && stem != "tests" {
+                // (`tests.rs`: a folder's `#[cfg(test)] mod tests`, as the tails below)
                 let name = match (prefix.is_empty(), stem.as_str()) {
                     (true, s) => s.to_string(),
                     (false, "mod") => prefix.to_string(),

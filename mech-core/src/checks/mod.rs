@@ -5,5 +5,5 @@
 pub mod grubler;
 pub mod load;
 pub(crate) mod magnitudes;
-pub(crate) mod pebble;
+pub mod pebble;
 pub mod validate;
