@@ -2,17 +2,14 @@
 //! (`docs/conventions.md#solver-requirements`), proved with a counting global allocator,
 //! for every example topology.
 
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
+use crate::mechanisms;
 
 use mechanisms::*;
-#[path = "common/counting.rs"]
-mod counting;
+use crate::counting;
 
-/// This thread's allocations are counted (`tests/common/counting.rs`): the harness's own
-/// threads, which may allocate while a test runs, do not count.
-#[global_allocator]
-static GLOBAL: counting::Counting = counting::Counting;
+// This thread's allocations are counted (`tests/common/counting.rs`, the global allocator
+// of the suite, installed in `tests/suite.rs`): the harness's own threads, and the other
+// tests running in them, which may allocate while a test runs, do not count.
 
 /// Allocations made by `f` (the test harness runs other tests in other threads, so
 /// this file holds a single test).

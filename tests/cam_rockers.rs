@@ -18,8 +18,7 @@ use mech::prelude::*;
 use serde_json::Value;
 use std::f64::consts::TAU;
 
-#[path = "common/data.rs"]
-mod data;
+use crate::data;
 use data::{close, num};
 
 mechanism! {
@@ -346,11 +345,7 @@ fn coasting_rocker_keeps_its_energy() {
     assert!(worst <= 1e-7 * e0, "energy drift {worst:e} J");
 }
 
-#[path = "common/counting.rs"]
-mod counting;
-
-#[global_allocator]
-static ALLOC: counting::Counting = counting::Counting;
+use crate::counting;
 
 /// Every generated solver of the two rockers allocates nothing (a counting allocator).
 #[test]

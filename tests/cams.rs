@@ -8,8 +8,7 @@ use mech::prelude::*;
 use serde_json::Value;
 use std::f64::consts::TAU;
 
-#[path = "common/data.rs"]
-mod data;
+use crate::data;
 use data::{close, num};
 
 mechanism! {

@@ -3,8 +3,7 @@
 //! yoke of the reference tables, and a slotted crank driving a slider on a fixed line (PRP)
 //! against the textbook solution x = h cot q.
 
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
+use crate::mechanisms;
 
 use mech::prelude::*;
 use mechanisms::{ScotchYoke, ScotchYokeLoads};

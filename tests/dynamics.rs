@@ -8,9 +8,8 @@
 //!   matrix and velocity terms of Lagrange's equations (truth driver actions);
 //! - exact invariants: the energy of conservative machines.
 
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
-mod support;
+use crate::mechanisms;
+use crate::support;
 
 use mech::dynamics::{
     equation_of_motion, lagrange_acceleration, lagrange_equations, mass_matrix, quinn_coefficients,
@@ -26,11 +25,7 @@ use support::*;
 // ---------------------------------------------------------------------------------------
 // A counting allocator: stepping must not allocate.
 
-#[path = "common/counting.rs"]
-mod counting;
-
-#[global_allocator]
-static ALLOC: counting::Counting = counting::Counting;
+use crate::counting;
 
 // ---------------------------------------------------------------------------------------
 // The reference trajectories

@@ -14,8 +14,7 @@ use mech::ode::{solve, Dop853};
 use mech::prelude::*;
 use serde_json::Value;
 
-#[path = "common/data.rs"]
-mod data;
+use crate::data;
 use data::{close, num};
 
 mechanism! {
@@ -356,11 +355,7 @@ fn damped_energy_loss_is_the_dissipated_work() {
     );
 }
 
-#[path = "common/counting.rs"]
-mod counting;
-
-#[global_allocator]
-static ALLOC: counting::Counting = counting::Counting;
+use crate::counting;
 
 /// Every generated solver of a machine with force elements allocates nothing.
 #[test]

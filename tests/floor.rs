@@ -14,8 +14,7 @@
 //! accelerations, of I* against dI*/dq, and the inverse problem (the generated d'Alembert
 //! driver at the hand-written q̈ gives back the applied torque).
 
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
+use crate::mechanisms;
 
 #[path = "../benches/floor/hand.rs"]
 mod hand;

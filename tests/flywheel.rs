@@ -7,10 +7,8 @@
 //! d/dq (F − c I*) = 0. Same drawing (tests/data/engine.drawing.json, generated with
 //! tests/common/engine.rs from the same design numbers), same gas model.
 
-#[path = "common/engine.rs"]
-mod engine;
-#[path = "common/shaper.rs"]
-mod shaper;
+use crate::engine;
+use crate::shaper;
 
 #[allow(dead_code)]
 #[path = "../examples/engine.rs"]

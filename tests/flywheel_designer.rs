@@ -6,8 +6,7 @@
 //! (`tests/data/engine.flywheel.json`, mpmath), the energy balance, the three routes to
 //! the driver torque.
 
-#[path = "common/engine.rs"]
-mod engine;
+use crate::engine;
 
 use mech::flywheel::Cycle;
 use mech::prelude::*;

@@ -11,8 +11,7 @@ use mech::ode::{solve, Dop853};
 use mech::prelude::*;
 use serde_json::Value;
 
-#[path = "common/data.rs"]
-mod data;
+use crate::data;
 use data::{close, num};
 
 mechanism! {
@@ -583,11 +582,7 @@ fn gear_train_energy_is_conserved_over_many_turns() {
     );
 }
 
-#[path = "common/counting.rs"]
-mod counting;
-
-#[global_allocator]
-static ALLOC: counting::Counting = counting::Counting;
+use crate::counting;
 
 /// The generated solvers of a geared machine allocate nothing.
 #[test]

@@ -4,9 +4,8 @@
 //! of `tests/data/` to 1e-12 relative (scaled by the largest entry of the same kind), as
 //! `docs/conventions.md#solver-requirements` asks of the generated code.
 
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
-mod support;
+use crate::mechanisms;
+use crate::support;
 
 use mech::generic::{mechanism_text, GenericMechanism};
 use mech::prelude::*;
@@ -21,9 +20,7 @@ fn generic(name: &str) -> GenericMechanism {
     GenericMechanism::from_rust_source(MECHANISMS, name).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
-#[path = "common/against_reference.rs"]
-#[macro_use]
-mod against_reference;
+use crate::against_reference;
 use against_reference::motion_agrees;
 
 generic_test!(

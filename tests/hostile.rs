@@ -4,9 +4,7 @@
 //! and absurd magnitudes, the parser's memory, size (tests/large.rs), and a drawing scaled
 //! by 1e±200.
 
-#[path = "common/mechanisms.rs"]
-#[allow(dead_code)]
-mod mechanisms;
+use crate::mechanisms;
 
 use mech::generic::GenericMechanism;
 use mech::prelude::*;

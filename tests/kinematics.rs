@@ -2,8 +2,7 @@
 //! differences of `pose`, the input-rate scaling law, and continuity on the drawing's
 //! assembly branch over a whole crank revolution.
 
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
+use crate::mechanisms;
 
 use mechanisms::*;
 

@@ -5,9 +5,8 @@
 //! (scaled by the largest entry of the same kind): the reference tables through the
 //! run-time path.
 
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
-mod support;
+use crate::mechanisms;
+use crate::support;
 
 use mech::prelude::*;
 use mech::Mechanism;
@@ -22,9 +21,7 @@ fn generic(name: &str) -> Mechanism {
     Mechanism::from_rust_source(MECHANISMS, name).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
-#[path = "common/against_reference.rs"]
-#[macro_use]
-mod against_reference;
+use crate::against_reference;
 use against_reference::motion_agrees;
 
 generic_test!(

@@ -6,9 +6,8 @@
 //! (positions, velocities, accelerations, angles, forces ...), as
 //! `docs/conventions.md#solver-requirements` states.
 
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
-mod support;
+use crate::mechanisms;
+use crate::support;
 
 use mechanisms::*;
 use support::*;

@@ -8,8 +8,7 @@ use mech::dynamics::{equation_of_motion, total_energy};
 use mech::ode::{solve, Dop853};
 use mech::prelude::*;
 
-#[path = "common/data.rs"]
-mod data;
+use crate::data;
 use data::{close, num};
 
 mechanism! {
@@ -337,11 +336,7 @@ fn wheel_rod_energy_is_conserved() {
     );
 }
 
-#[path = "common/counting.rs"]
-mod counting;
-
-#[global_allocator]
-static ALLOC: counting::Counting = counting::Counting;
+use crate::counting;
 
 /// The generated solvers of rolling wheels allocate nothing.
 #[test]

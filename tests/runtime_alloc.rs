@@ -6,13 +6,11 @@
 
 use mech::kinematics::{Level, LinkState};
 use mech::prelude::*;
-#[path = "common/counting.rs"]
-mod counting;
+use crate::counting;
 
-/// This thread's allocations are counted (`tests/common/counting.rs`): the harness's own
-/// threads, which may allocate while a test runs, do not count.
-#[global_allocator]
-static GLOBAL: counting::Counting = counting::Counting;
+// This thread's allocations are counted (`tests/common/counting.rs`, the global allocator
+// of the suite, installed in `tests/suite.rs`): the harness's own threads, and the other
+// tests running in them, which may allocate while a test runs, do not count.
 
 fn count<R>(f: impl FnOnce() -> R) -> (usize, R) {
     let before = counting::count();

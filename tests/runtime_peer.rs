@@ -3,10 +3,8 @@
 //! flywheel of the engine example from a file of DSL text, the direct problem, Quinn's
 //! coefficients, Lagrange's equations for two inputs, Coulomb friction.
 
-#[path = "common/engine.rs"]
-mod engine;
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
+use crate::engine;
+use crate::mechanisms;
 
 use mech::dynamics::{equation_of_motion, lagrange_acceleration, mass_matrix, quinn_coefficients};
 use mech::flywheel::Cycle;

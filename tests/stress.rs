@@ -14,9 +14,8 @@
 //! 8 ε κ × L, and everything computed from velocities and accelerations (rates, motor
 //! actions, reactions) within 16 ε κ² relative.
 
-#[path = "common/mechanisms.rs"]
-mod mechanisms;
-mod support;
+use crate::mechanisms;
+use crate::support;
 
 use mech::generic::{
     mechanism_text, position_error_bound, rate_error_bound, GenericLoads, GenericMechanism,

@@ -2,7 +2,8 @@
 //! `tests/mechanism.rs` (the run-time `mech::Mechanism`): a solver loaded at run time from
 //! the text of `tests/common/mechanisms.rs` agrees with the generated struct and with the
 //! 50-digit table `tests/data/<name>.truth.json` to 1e-12 relative, on every quantity.
-//! Include it after `mod support;` and the mechanisms, and define `fn generic(name)`
+//! A module of the suite, declared after `support` with `#[macro_use]`; a module using
+//! `generic_test!` imports `motion_agrees` and `support::*` and defines `fn generic(name)`
 //! returning the solver under test.
 
 use crate::support::Kinds;

@@ -1,7 +1,7 @@
 //! A counting global allocator for the allocation-free tests: each thread counts its own
-//! allocations (the test harness runs tests on several threads). Include it with
-//! `#[path = "common/counting.rs"] mod counting;` and install it with
-//! `#[global_allocator] static ALLOC: counting::Counting = counting::Counting;`.
+//! allocations (the test harness runs tests on several threads). It is a module of the
+//! suite (`tests/suite.rs`), which installs it as the binary's one global allocator; a test
+//! module reads it with `use crate::counting;`.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -30,4 +30,51 @@ unsafe impl GlobalAlloc for Counting {
 /// Allocations made by this thread so far.
 pub fn count() -> usize {
     COUNT.with(|c| c.get())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::count;
+    use std::hint::black_box;
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+    use std::sync::Arc;
+
+    /// The allocator is installed: an allocation is counted (a missing `#[global_allocator]`
+    /// would make every "allocates nothing" test pass for nothing).
+    #[test]
+    fn an_allocation_of_this_thread_is_counted() {
+        let before = count();
+        let v = black_box(vec![1u8; 100]);
+        let after = count();
+        drop(v);
+        assert!(after > before, "{before} -> {after}");
+    }
+
+    /// Another thread allocating meanwhile (another test, the harness) does not change this
+    /// thread's count.
+    #[test]
+    fn the_allocations_of_another_thread_are_not_counted() {
+        let (done, stop) = (Arc::new(AtomicUsize::new(0)), Arc::new(AtomicBool::new(false)));
+        let other = {
+            let (done, stop) = (done.clone(), stop.clone());
+            std::thread::spawn(move || {
+                while !stop.load(Ordering::SeqCst) {
+                    black_box(vec![0u64; 16]);
+                    done.fetch_add(1, Ordering::SeqCst);
+                }
+            })
+        };
+        while done.load(Ordering::SeqCst) == 0 {
+            std::hint::spin_loop();
+        }
+        let before = count();
+        let start = done.load(Ordering::SeqCst);
+        while done.load(Ordering::SeqCst) < start + 1000 {
+            std::hint::spin_loop();
+        }
+        let after = count();
+        stop.store(true, Ordering::SeqCst);
+        other.join().unwrap();
+        assert_eq!(after, before, "another thread's 1000 allocations were counted here");
+    }
 }
