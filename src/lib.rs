@@ -50,7 +50,7 @@ pub use mech_core::kernel::link_state::{LinkMotion, LinkPose, PointMotion, Point
 pub use mech_core::solvers::instance::{
     DamperParams, LinkParams, RotaryDamperParams, SpringParams, TorsionSpringParams,
 };
-pub use mech_core::solvers::traits::{Machine, OneDof};
+pub use mech_core::solvers::traits::{DeterminateReactions, Machine, OneDof};
 pub use mech_core::solvers::zhukovski::Reduced;
 
 // The algorithms written once over the traits, and the machine elements.
@@ -70,9 +70,9 @@ pub mod __private {
 /// Everything a user of a generated struct needs.
 pub mod prelude {
     pub use crate::{
-        mechanism, CamReaction, DamperParams, LinkMotion, LinkPose, Machine, MechError, Mechanism,
-        MeshReaction, OneDof, PointMotion, PointPose, PrismaticReaction, Reduced, RevoluteReaction,
-        RollingReaction, RotaryDamperParams, SlotReaction, SpringParams, TorsionSpringParams,
-        Vector2,
+        mechanism, CamReaction, DamperParams, DeterminateReactions, LinkMotion, LinkPose, Machine,
+        MechError, Mechanism, MeshReaction, OneDof, PointMotion, PointPose, PrismaticReaction,
+        Reduced, RevoluteReaction, RollingReaction, RotaryDamperParams, SlotReaction, SpringParams,
+        TorsionSpringParams, Vector2,
     };
 }

@@ -6,7 +6,7 @@
 //!   potential, dampers through Rayleigh's function), its equilibrium and natural frequency;
 //! - exact invariants: the energy of the undamped machine over 10⁴ oscillations, and the
 //!   energy the damped one loses equal to the work its dampers dissipate (integrated apart,
-//!   from the points' velocities, not from `mech::elements`);
+//!   from the points' velocities, not from `mech_core::elements`);
 //! - the three routes to the driver torque and the run-time mechanism read from this file.
 
 use mech::dynamics::{equation_of_motion, total_energy};

@@ -383,10 +383,10 @@ fn epicyclic_train_matches_willis_and_newton_euler() {
 fn planetary_driven_by_its_sun_matches_newton_euler() {
     let m = Planetary::new();
     let rt = runtime("Planetary");
-    let plan = mech::assur::plan(rt.model()).unwrap();
+    let plan = mech_core::plan::assur::plan(rt.model()).unwrap();
     assert!(plan
         .iter()
-        .any(|g| matches!(g.kernel, mech::assur::Kernel::Train(_))));
+        .any(|g| matches!(g.kernel, mech_core::plan::assur::Kernel::Train(_))));
     for c in reference()["planetary"].as_array().unwrap() {
         let loads = PlanetaryLoads {
             load: num(&c["load"]),

@@ -1,4 +1,4 @@
-//! The generic run-time solver (`mech::generic`) on the ten example mechanisms: loaded at
+//! The generic run-time solver (`mech_oracle`) on the ten example mechanisms: loaded at
 //! run time from the very DSL text the macro compiled (`tests/common/mechanisms.rs`, read
 //! as text), it must agree with every generated solver and with the high-precision tables
 //! of `tests/data/` to 1e-12 relative (scaled by the largest entry of the same kind), as
@@ -7,8 +7,8 @@
 use crate::mechanisms;
 use crate::support;
 
-use mech::generic::{mechanism_text, GenericMechanism};
 use mech::prelude::*;
+use mech_oracle::{mechanism_text, GenericMechanism};
 use mechanisms::*;
 use support::*;
 

@@ -6,9 +6,9 @@
 
 use crate::mechanisms;
 
-use mech::generic::GenericMechanism;
 use mech::prelude::*;
 use mech::Mechanism;
+use mech_oracle::GenericMechanism;
 use mechanisms::*;
 
 fn invalid(r: Result<impl std::fmt::Debug, MechError>, part: &str) {
@@ -24,7 +24,7 @@ fn invalid(r: Result<impl std::fmt::Debug, MechError>, part: &str) {
 ///    error after at most its step budget, not after 100 000 SVDs.
 #[test]
 fn an_unreachable_input_ends_in_an_error() {
-    let text = mech::generic::GenericMechanism::parse(
+    let text = mech_oracle::GenericMechanism::parse(
         &mechanism_text("FourBar").replace("input: O2,", "input: O4,"),
     )
     .unwrap();
@@ -186,7 +186,7 @@ fn overflow_is_an_error_naming_the_quantity() {
 /// 4b. A non-finite input or load is named as such, not reported as the overflow or the
 ///     failed assembly it causes: `kinematics`, `pose`, `kinetostatics` and
 ///     `driver_action` look at their inputs only once a solve has failed
-///     (`mech::error::blame`), and must still blame them. Every input, every load
+///     (`mech_core::error::blame`), and must still blame them. Every input, every load
 ///     component, both routes of `driver_action` (the power balance at q̇ ≠ 0, the wrenches
 ///     at q̇ = 0), one and two inputs.
 #[test]
@@ -279,4 +279,30 @@ fn loading_many_mechanisms_keeps_memory_flat() {
         after < before + 2_000,
         "resident memory grew from {before} kB to {after} kB"
     );
+}
+
+/// The points and cgs derived from finite link states can still overflow (ω² r past f64's
+/// range far from the anchor): the run-time `kinematics` says so, never `Ok` with an
+/// infinity (issue 28: 328 such results were found by an outside fuzzer).
+#[test]
+fn point_accelerations_that_overflow_are_an_error() {
+    let m = Mechanism::from_dsl(
+        "pub struct Crank {
+            ground { O: (0.0, 0.0) },
+            link crank { points { O, A: (0.01, 0.0), B: (10.0, 0.0) } },
+            joints { O: revolute(ground, crank) },
+            input: O,
+        }",
+    )
+    .unwrap();
+    // ω² = 1e308 and ω² |OA| = 1e306 are finite, ω² |OB| = 1e309 is not.
+    let w: f64 = 1e154;
+    assert!((w * w * 0.01).is_finite() && !(w * w * 10.0).is_finite());
+    match m.kinematics(&[0.0], &[w], &[0.0]) {
+        Ok(k) => panic!("Ok with B.acc = {:?}", k.point("B").map(|p| p.acc)),
+        Err(e) => assert!(e.to_string().contains("overflow"), "{e}"),
+    }
+    // At a speed where every point is finite, the same call is Ok.
+    let k = m.kinematics(&[0.0], &[1e150], &[0.0]).unwrap();
+    assert!(k.point("B").unwrap().acc.x.is_finite());
 }

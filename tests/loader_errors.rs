@@ -4,8 +4,8 @@
 //! `GenericMechanism::from_rust_source` (the loader behind `mech::Mechanism`) and compared
 //! with its `.stderr`.
 
-use mech::generic::GenericMechanism;
 use mech::prelude::*;
+use mech_oracle::GenericMechanism;
 
 /// (message's first line, line, column) of each `error: ...` the macro reports, from a
 /// trybuild `.stderr` (pointers "involved here" and type errors `error[E...]` skipped).

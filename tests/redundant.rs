@@ -97,8 +97,7 @@ fn coupled_wheels_move_and_need_the_textbook_torque() {
 /// motion, the same motor torque (virtual power) and I*, and no reactions.
 #[test]
 fn the_run_time_mechanism_solves_it_too() {
-    let text =
-        mech::generic::mechanism_text(include_str!("redundant.rs"), "CoupledWheels").unwrap();
+    let text = mech_oracle::mechanism_text(include_str!("redundant.rs"), "CoupledWheels").unwrap();
     let rt = mech::Mechanism::from_dsl(text).unwrap();
     assert!(rt.redundant());
     let m = CoupledWheels::new();

@@ -9,9 +9,9 @@ use crate::mechanisms;
 use mech::dynamics::{equation_of_motion, lagrange_acceleration, mass_matrix, quinn_coefficients};
 use mech::flywheel::Cycle;
 use mech::friction::JointFriction;
-use mech::generic::mechanism_text;
 use mech::ode::{integrate, Dop853};
 use mech::prelude::*;
+use mech_oracle::mechanism_text;
 
 const MECHANISMS: &str = include_str!("common/mechanisms.rs");
 
@@ -35,7 +35,7 @@ fn engine_flywheel_from_a_file() {
     std::fs::remove_file(&path).ok();
     let gen = engine::Engine::new();
 
-    let rt_loads = |q: f64| -> Result<mech::mechanism::Loads, MechError> {
+    let rt_loads = |q: f64| -> Result<mech_core::runtime::Loads, MechError> {
         let x_b = rt.pose(&[q])?.point("B").unwrap().pos.x;
         let mut l = rt.loads();
         let f = -(engine::pressure(q, x_b) - engine::P_CRANKCASE) * engine::PISTON_AREA;
@@ -274,6 +274,6 @@ fn degenerate_input_is_an_error_not_a_panic() {
     ));
     // Loads of another mechanism's shape (fewer values) count as zero.
     assert!(m
-        .driver_action(&mo, &mech::mechanism::Loads::default())
+        .driver_action(&mo, &mech_core::runtime::Loads::default())
         .is_ok());
 }

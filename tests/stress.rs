@@ -9,7 +9,7 @@
 //!   with R_ba = −R_ab, and generated = generic;
 //! - bad input: the loader, `from_params`, and NaN / infinite / huge inputs.
 //!
-//! Stated error bounds (`mech::generic::{position_error_bound, rate_error_bound}`), κ the
+//! Stated error bounds (`mech_oracle::{position_error_bound, rate_error_bound}`), κ the
 //! condition estimate of the constraint Jacobian: angles within 8 ε κ rad, positions within
 //! 8 ε κ × L, and everything computed from velocities and accelerations (rates, motor
 //! actions, reactions) within 16 ε κ² relative.
@@ -17,13 +17,13 @@
 use crate::mechanisms;
 use crate::support;
 
-use mech::generic::{
+use mech::model::{JointKind, Load, Model};
+use mech::prelude::*;
+use mech_core::solvers::instance::LinkParams;
+use mech_oracle::{
     mechanism_text, position_error_bound, rate_error_bound, GenericLoads, GenericMechanism,
     LoadValue,
 };
-use mech::instance::LinkParams;
-use mech::model::{JointKind, Load, Model};
-use mech::prelude::*;
 use mechanisms::*;
 use proptest::prelude::*;
 use support::as_vec;
@@ -1698,7 +1698,7 @@ fn generic_nine_prismatic_inputs() {
 #[test]
 fn wrap_reduces_huge_angles() {
     for a in [1e17, 1e20, -3e19, 1e300] {
-        let w = mech::kinematics::wrap(a);
+        let w = mech_core::kernel::kinematics::wrap(a);
         assert!(
             w > -std::f64::consts::PI && w <= std::f64::consts::PI,
             "wrap({a:e}) = {w}"

@@ -65,6 +65,7 @@ mod large;
 mod loader_errors;
 mod mechanism;
 mod params;
+mod public_api;
 mod python_package;
 mod redundant;
 mod reference;

@@ -15,7 +15,7 @@
 //! `target/fuzz/` and the run exits with status 1.
 
 use mech_core::solvers::traits::OneDof;
-use mech_core::Mechanism;
+use mech_core::{MechError, Mechanism};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -200,9 +200,14 @@ fn run(text: &str) -> (Vec<Finding>, bool) {
         }
     };
     let mut loaded = None;
-    timed("load", &mut || {
-        loaded = Mechanism::from_dsl(text).ok();
-        None
+    timed("load", &mut || match Mechanism::from_dsl(text) {
+        Ok(m) => {
+            loaded = Some(m);
+            None
+        }
+        // The loader catches a panic of its own thread: a defect, counted as a panic.
+        Err(e @ MechError::Internal(_)) => std::panic::panic_any(e.to_string()),
+        Err(_) => None,
     });
     let Some(m) = loaded else {
         return (found, false);

@@ -45,6 +45,10 @@ pub enum MechError {
     /// A mechanism description was rejected (run-time loader); the messages of every check.
     #[error("invalid mechanism:\n{0}")]
     Invalid(String),
+    /// A defect of mech, not of the input: a panic caught where the loader runs the front
+    /// end on a thread of its own. Tests and the fuzzer count it as a panic.
+    #[error("internal error (a defect of mech; please report it with the input): {0}")]
+    Internal(String),
 }
 
 /// True when `v` is an infinity or a NaN: !(|v| < ∞), one compare. Checks OR these

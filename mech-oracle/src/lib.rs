@@ -44,7 +44,8 @@ use mech_core::kernel::link_state::{
 };
 use mech_core::model::{JointKind, Load, Model};
 use mech_core::plan::geometry::all_cons;
-use mech_core::runtime::results::{set_load, JointReaction, LoadValue};
+use mech_core::runtime::results::set_load;
+pub use mech_core::runtime::{JointReaction, LoadValue};
 use mech_core::solvers::instance::{instance, Instance};
 use mech_core::solvers::zhukovski::{self, Reduced};
 use mech_core::MechError;

@@ -15,21 +15,21 @@ pub trait Solved {
     fn point(&self, name: &str) -> Option<&PointMotion>;
 }
 
-impl Solved for mech::generic::GenericMotion {
+impl Solved for mech_oracle::GenericMotion {
     fn link(&self, name: &str) -> Option<&LinkMotion> {
-        mech::generic::GenericMotion::link(self, name)
+        mech_oracle::GenericMotion::link(self, name)
     }
     fn point(&self, name: &str) -> Option<&PointMotion> {
-        mech::generic::GenericMotion::point(self, name)
+        mech_oracle::GenericMotion::point(self, name)
     }
 }
 
-impl Solved for mech::mechanism::Motion {
+impl Solved for mech_core::runtime::Motion {
     fn link(&self, name: &str) -> Option<&LinkMotion> {
-        mech::mechanism::Motion::link(self, name)
+        mech_core::runtime::Motion::link(self, name)
     }
     fn point(&self, name: &str) -> Option<&PointMotion> {
-        mech::mechanism::Motion::point(self, name)
+        mech_core::runtime::Motion::point(self, name)
     }
 }
 

@@ -152,10 +152,15 @@ pub fn rust_source_model(source: &str, name: &str) -> Result<Model, MechError> {
 /// the table goes with the thread. The model and the messages come back as plain data.
 fn on_own_thread<T: Send>(f: impl FnOnce() -> Result<T, MechError> + Send) -> Result<T, MechError> {
     std::thread::scope(|s| {
-        s.spawn(f).join().unwrap_or_else(|_| {
-            Err(MechError::Invalid(
-                "the mechanism's text could not be read (the parser failed)".into(),
-            ))
+        s.spawn(f).join().unwrap_or_else(|p| {
+            let what = p
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            Err(MechError::Internal(format!(
+                "the loader panicked while reading the mechanism's text: {what}"
+            )))
         })
     })
 }

@@ -65,6 +65,25 @@ pub fn finite_states(
     }
 }
 
+/// `Ok(())` when every point's position, velocity and acceleration and every link's cg
+/// velocity and acceleration is finite: the quantities derived from finite states after
+/// [`finite_states`] (a point far from its link's anchor at a huge speed, ω² r, can still
+/// overflow). Checked on what a run-time `kinematics` returns.
+pub fn finite_motion(
+    links: &[crate::kernel::link_state::LinkMotion],
+    points: &[crate::kernel::link_state::PointMotion],
+) -> Result<(), MechError> {
+    use crate::error::non_finite as bad;
+    let v = |v: &crate::kernel::link_state::V2| bad(v.x) | bad(v.y);
+    let any = links.iter().any(|l| v(&l.cg) | v(&l.cg_vel) | v(&l.cg_acc))
+        || points.iter().any(|p| v(&p.pos) | v(&p.vel) | v(&p.acc));
+    if any {
+        Err(states_overflow())
+    } else {
+        Ok(())
+    }
+}
+
 #[cold]
 #[inline(never)]
 fn states_overflow() -> MechError {

@@ -195,6 +195,7 @@ impl Mechanism {
         out.points.clear();
         out.points
             .extend(self.inst.points.iter().map(|&(o, d)| point_motion(s, o, d)));
+        crate::kernel::finite::finite_motion(&out.links, &out.points)?;
         out.inputs.clear();
         out.inputs.extend_from_slice(q);
         out.inputs.extend_from_slice(qd);
