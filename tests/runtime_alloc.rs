@@ -9,8 +9,8 @@ use mech::prelude::*;
 use mech_core::kernel::kinematics::{Level, LinkState};
 
 // This thread's allocations are counted (`tests/common/counting.rs`, the global allocator
-// of the suite, installed in `tests/suite.rs`): the harness's own threads, and the other
-// tests running in them, which may allocate while a test runs, do not count.
+// of the `machines` test binary, installed in `tests/machines.rs`): the harness's own
+// threads, and the other tests running in them, which may allocate meanwhile, do not count.
 
 fn count<R>(f: impl FnOnce() -> R) -> (usize, R) {
     let before = counting::count();

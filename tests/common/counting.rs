@@ -1,7 +1,7 @@
 //! A counting global allocator for the allocation-free tests: each thread counts its own
-//! allocations (the test harness runs tests on several threads). It is a module of the
-//! suite (`tests/suite.rs`), which installs it as the binary's one global allocator; a test
-//! module reads it with `use crate::counting;`.
+//! allocations (the test harness runs tests on several threads). It is a module of each
+//! test binary (`tests/suite.rs`, `tests/machines.rs`), which installs it as its one global
+//! allocator; a test module reads it with `use crate::counting;`.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

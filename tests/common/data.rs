@@ -1,7 +1,7 @@
 //! Reading the committed high-precision references of `tests/data` (written by the
 //! scripts under `tools/`): a file as JSON, a number stored as a string of many digits
 //! (or as a plain JSON number), and the comparison that names what differs. A module of the
-//! suite (`tests/suite.rs`): use it with `use crate::data;`.
+//! `machines` test binary (`tests/machines.rs`): use it with `use crate::data;`.
 
 #![allow(dead_code)]
 
