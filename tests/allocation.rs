@@ -4,8 +4,8 @@
 
 use crate::mechanisms;
 
-use mechanisms::*;
 use crate::counting;
+use mechanisms::*;
 
 // This thread's allocations are counted (`tests/common/counting.rs`, the global allocator
 // of the suite, installed in `tests/suite.rs`): the harness's own threads, and the other

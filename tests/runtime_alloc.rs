@@ -4,9 +4,9 @@
 //! the direct problem), for mechanisms of up to 8 links and joints. Proved with a counting
 //! global allocator (one test in this file: the harness runs tests in threads).
 
+use crate::counting;
 use mech::kinematics::{Level, LinkState};
 use mech::prelude::*;
-use crate::counting;
 
 // This thread's allocations are counted (`tests/common/counting.rs`, the global allocator
 // of the `machines` test binary, installed in `tests/machines.rs`): the harness's own

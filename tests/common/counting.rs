@@ -54,7 +54,10 @@ mod tests {
     /// thread's count.
     #[test]
     fn the_allocations_of_another_thread_are_not_counted() {
-        let (done, stop) = (Arc::new(AtomicUsize::new(0)), Arc::new(AtomicBool::new(false)));
+        let (done, stop) = (
+            Arc::new(AtomicUsize::new(0)),
+            Arc::new(AtomicBool::new(false)),
+        );
         let other = {
             let (done, stop) = (done.clone(), stop.clone());
             std::thread::spawn(move || {
@@ -75,6 +78,9 @@ mod tests {
         let after = count();
         stop.store(true, Ordering::SeqCst);
         other.join().unwrap();
-        assert_eq!(after, before, "another thread's 1000 allocations were counted here");
+        assert_eq!(
+            after, before,
+            "another thread's 1000 allocations were counted here"
+        );
     }
 }
