@@ -3,7 +3,7 @@
 //! holds the expected diagnostics (message and span).
 //!
 //! Regenerate the expected output after a deliberate change of a message with
-//! `TRYBUILD=overwrite cargo test --test compile_fail`, then read every changed `.stderr`.
+//! `TRYBUILD=overwrite cargo test --test machines compile_fail::`, then read every changed `.stderr`.
 
 #[test]
 fn ui() {
