@@ -76,3 +76,8 @@ pub mod prelude {
         TorsionSpringParams, Vector2,
     };
 }
+
+/// The README's Rust example, compiled and run as a doctest (`cargo test --doc`).
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
