@@ -54,10 +54,12 @@ macro_rules! reference_test {
                 let drivers: Vec<f64> = c["drivers"].as_array().unwrap().iter().map(|d| d["value"].as_f64().unwrap()).collect();
                 let fs = m.kinetostatics(&mo, &loads).unwrap();
                 let vp = m.driver_action(&mo, &loads).unwrap();
-                let fscale = k.force.max(drivers.iter().fold(0.0f64, |a, d| a.max(d.abs())));
+                // The motor actions on their own scale (the largest of them, N·m or N), not
+                // on the reactions' (issue 28: that was 8-370x looser).
+                let dscale = drivers.iter().fold(0.0f64, |a, d| a.max(d.abs()));
                 for (i, d) in drivers.iter().enumerate() {
-                    k.close(&ctx, "driver (d'Alembert)", as_vec(&fs.driver)[i], *d, fscale);
-                    k.close(&ctx, "driver (virtual power)", as_vec(&vp)[i], *d, fscale);
+                    k.close(&ctx, "driver (d'Alembert)", as_vec(&fs.driver)[i], *d, dscale);
+                    k.close(&ctx, "driver (virtual power)", as_vec(&vp)[i], *d, dscale);
                 }
                 for (jname, rt) in c["reactions"].as_object().unwrap() {
                     let (f, mom) = fs.reaction(jname).unwrap_or_else(|| panic!("{ctx}: no joint {jname}"));

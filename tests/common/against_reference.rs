@@ -142,7 +142,8 @@ macro_rules! generic_test {
                 let fs = gen.kinetostatics(&mo, &loads).unwrap();
                 let gf = g.kinetostatics(&gm, &gloads).unwrap();
                 let gvp = g.driver_action(&gm, &gloads).unwrap();
-                let fscale = k.force.max(drivers.iter().fold(0.0f64, |a, d| a.max(d.abs())));
+                // The motor actions on their own scale (issue 28).
+                let fscale = drivers.iter().fold(0.0f64, |a, d| a.max(d.abs()));
                 for (i, d) in drivers.iter().enumerate() {
                     k.close(&ctx, "generic driver (d'Alembert)", gf.driver[i], *d, fscale);
                     k.close(&ctx, "generic driver (virtual power)", gvp[i], *d, fscale);
