@@ -97,7 +97,7 @@ fn walk(json: &Value, id: &Value, path: &str, out: &mut Vec<String>) {
 fn check(package: &str, lib: &str) {
     let listing = match listing(package, lib) {
         Ok(l) => l,
-        Err(e) if e.contains("toolchain 'nightly'") && e.contains("not installed") => {
+        Err(e) if e.contains("toolchain 'nightly") && e.contains("not installed") => {
             // The listing needs nightly rustdoc; without it nothing can be compared.
             eprintln!("public_api: no nightly toolchain here, {package} not checked");
             return;
