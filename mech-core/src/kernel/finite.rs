@@ -75,8 +75,14 @@ pub fn finite_motion(
 ) -> Result<(), MechError> {
     use crate::error::non_finite as bad;
     let v = |v: &crate::kernel::link_state::V2| bad(v.x) | bad(v.y);
-    let any = links.iter().any(|l| v(&l.cg) | v(&l.cg_vel) | v(&l.cg_acc))
-        || points.iter().any(|p| v(&p.pos) | v(&p.vel) | v(&p.acc));
+    // Flags ORed over every value, no branch per value (as `finite_states`).
+    let mut any = false;
+    for l in links {
+        any |= v(&l.cg) | v(&l.cg_vel) | v(&l.cg_acc);
+    }
+    for p in points {
+        any |= v(&p.pos) | v(&p.vel) | v(&p.acc);
+    }
     if any {
         Err(states_overflow())
     } else {
