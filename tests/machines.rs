@@ -34,6 +34,7 @@ mod cams;
 mod compile_fail;
 mod compile_pass;
 mod dimensions;
+mod docs_figures;
 mod elements;
 mod flywheel;
 mod flywheel_designer;

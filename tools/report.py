@@ -1,0 +1,352 @@
+#!/usr/bin/env python3
+"""Every measured figure of the README and docs/, printed by one command.
+
+    python3 tools/report.py list               # the figures: name, command, where they are shown
+    python3 tools/report.py NAME [NAME ...]    # measure, print each figure's block
+    python3 tools/report.py NAME --write       # ... and put the block into README.md / docs/*.md
+    python3 tools/report.py all --write        # every figure (about 1.5 h, the fuzzer's long run included)
+
+A figure is shown in a document between two markers, and nowhere else:
+
+    <!-- report NAME -->
+    ...the table this command printed...
+    <sub>Printed by `python3 tools/report.py NAME` (...the underlying command...) on the code
+    of COMMIT (tree FNV-1a HASH of PATHS), MACHINE, DATE.</sub>
+    <!-- /report NAME -->
+
+`--write` replaces the text between the markers of NAME in every document that holds them.
+The test `docs_figures` (root `suite` binary) reads the blocks back: every block names a
+figure of this script; every measured-looking number of README.md and docs/*.md (a ratio
+`1.2×`, a time `40 ns`, a rate `/s`) stands inside a block; and a block of the README whose
+code has changed since it was measured (the FNV-1a hash of the files under PATHS, computed
+the same way in Rust) fails, with the command that measures it again.
+
+Measurements are made on this machine, as it is: run nothing else at the same time. The
+machine is read from `lscpu` and `nproc`.
+"""
+
+import argparse
+import datetime
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+DOCS = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
+
+# The code every generated-solver figure depends on.
+CORE = ["mech-core/src", "mech-macros/src", "src"]
+
+
+# ---------------------------------------------------------------------------------------
+# the code hash, the commit, the machine
+
+
+def code_hash(paths):
+    """FNV-1a 64 over every file under `paths` (sorted by its path relative to the
+    repository, '/'-separated): path bytes, NUL, content bytes, NUL. The Rust test
+    `docs_figures` computes the same."""
+    files = []
+    for p in paths:
+        full = ROOT / p
+        if full.is_file():
+            files.append(p)
+        else:
+            for f in full.rglob("*"):
+                if f.is_file():
+                    files.append(f.relative_to(ROOT).as_posix())
+    h = 0xCBF29CE484222325
+    for rel in sorted(set(files)):
+        for byte in rel.encode() + b"\0" + (ROOT / rel).read_bytes() + b"\0":
+            h ^= byte
+            h = (h * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    return f"{h:016x}"
+
+
+def commit():
+    out = subprocess.run(["git", "rev-parse", "--short=7", "HEAD"], cwd=ROOT,
+                         capture_output=True, text=True).stdout.strip()
+    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=ROOT,
+                           capture_output=True, text=True).stdout.strip()
+    return out + ("+uncommitted changes" if dirty else "")
+
+
+def machine():
+    model = "unknown processor"
+    try:
+        for line in subprocess.run(["lscpu"], capture_output=True, text=True).stdout.splitlines():
+            if line.startswith("Model name:"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return f"{model}, {os.cpu_count()} cores"
+
+
+# ---------------------------------------------------------------------------------------
+# running things
+
+
+def sh(cmd, env=None, **kw):
+    """Run `cmd` (a list) in the repository; its stdout; stderr passes through."""
+    print("$ " + " ".join(cmd), file=sys.stderr)
+    full_env = dict(os.environ, **(env or {}))
+    r = subprocess.run(cmd, cwd=ROOT, env=full_env, stdout=subprocess.PIPE, text=True, **kw)
+    if r.returncode:
+        sys.exit(f"`{' '.join(cmd)}` failed with status {r.returncode}")
+    return r.stdout
+
+
+def target_dir():
+    return Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
+
+
+def criterion_medians():
+    """{full_id: median (ns, or the value itself for a ratio)} of every criterion result."""
+    out = {}
+    for bench in (target_dir() / "criterion").glob("**/new/benchmark.json"):
+        try:
+            meta = json.loads(bench.read_text())
+            est = json.loads((bench.parent / "estimates.json").read_text())
+        except (OSError, ValueError):
+            continue
+        out[meta["full_id"]] = est["median"]["point_estimate"]
+    return out
+
+
+def ns(v):
+    return "—" if v is None else (f"{v:.0f}" if v >= 100 else f"{v:.1f}")
+
+
+# ---------------------------------------------------------------------------------------
+# the figures
+
+
+def floor():
+    sh(["cargo", "bench", "--bench", "floor"])
+    return sh([sys.executable, "tools/floor_ratios.py"]).strip()
+
+
+FLOOR_CMD = "`cargo bench --bench floor`, tabulated by `tools/floor_ratios.py`"
+
+MACHINES = [("four_bar", "four-bar"), ("slider_crank", "slider-crank"),
+            ("watt2", "Watt II six-bar"), ("five_bar", "five-bar (2 DOF)")]
+
+
+def runtime():
+    sh(["cargo", "bench", "--bench", "generated_vs_generic", "--", r"kinematics\+kinetostatics",
+        "--warm-up-time", "1", "--measurement-time", "3"])
+    med = criterion_medians()
+    rows = ["| mechanism | generated (ns) | run-time, caller buffers (ns) | run-time / generated "
+            "| dense oracle (ns) | oracle / generated |", "|---|---:|---:|---:|---:|---:|"]
+    for key, name in MACHINES:
+        g = med.get(f"{key}/kinematics+kinetostatics/generated")
+        r = med.get(f"{key}/kinematics+kinetostatics/runtime_buffers")
+        o = med.get(f"{key}/kinematics+kinetostatics/generic")
+        if g is None:
+            sys.exit(f"no result for {key}/kinematics+kinetostatics/generated")
+        rows.append(f"| {name} | {ns(g)} | {ns(r)} | {r / g:.2f}× | {ns(o)} | {o / g:.0f}× |")
+    return "\n".join(rows)
+
+
+RUNTIME_CMD = ("`cargo bench --bench generated_vs_generic -- 'kinematics\\+kinetostatics' "
+               "--warm-up-time 1 --measurement-time 3`, medians, `kinematics + kinetostatics` per call")
+
+
+def elements():
+    sh(["cargo", "bench", "--bench", "machine_elements"])
+    med = criterion_medians()
+    ops = ["kinematics+kinetostatics", "acceleration"]
+    variants = sorted({k.split("/")[1] for k in med if k.startswith("slider_crank/")
+                       and len(k.split("/")) == 3 and k.split("/")[2] in ops})
+    rows = ["| slider-crank | " + " | ".join(f"`{o}` (ns)" for o in ops) + " |",
+            "|---|" + "---:|" * len(ops)]
+    for v in variants:
+        rows.append(f"| {v} | " + " | ".join(ns(med.get(f"slider_crank/{v}/{o}")) for o in ops) + " |")
+    return "\n".join(rows)
+
+
+def accuracy():
+    return sh(["cargo", "run", "--release", "--example", "accuracy_report"]).strip()
+
+
+def dynamics():
+    sh(["cargo", "bench", "--bench", "dynamics"])
+    med = criterion_medians()
+    rows = ["| benchmark | median |", "|---|---:|"]
+    for k in sorted(med):
+        if k.startswith("slider_crank/acceleration") or k.startswith("slider_crank/integrate"):
+            if "/" in k[len("slider_crank/"):]:
+                continue
+            v = med[k]
+            rows.append(f"| `{k}` | " + (f"{v:.0f} ns" if v < 1e4 else f"{v / 1e6:.3f} ms") + " |")
+    return "\n".join(rows)
+
+
+def engine_output():
+    out = sh(["cargo", "run", "--release", "--example", "engine"])
+    return [l for l in out.splitlines() if not l.startswith("done in ")]
+
+
+def engine():
+    return "```text\n" + "\n".join(engine_output()).strip() + "\n```"
+
+
+def engine_flywheel():
+    lines = engine_output()
+    a = next(i for i, l in enumerate(lines) if "balanced by a constant" in l)
+    b = next(i for i, l in enumerate(lines) if "without a flywheel" in l)
+    return "```text\n" + "\n".join(lines[a:b + 1]) + "\n```"
+
+
+def work_precision():
+    out = sh(["cargo", "run", "--release", "--example", "work_precision"])
+    return "\n".join(l for l in out.splitlines() if l.startswith("|") or l.startswith("Slider")).strip()
+
+
+def sweep():
+    sh(["cargo", "build", "--release", "-p", "mech-cli"])
+    exe = str(target_dir() / "release" / "mech")
+    rows = ["| `--level` | configurations | wall time (s) | configurations/s |", "|---|---:|---:|---:|"]
+    for level in ["pose", "kinematics", "forces"]:
+        cmd = [exe, "sweep", "examples/mech/watt_ii.mech", "--from", "0", "--to", "360deg",
+               "--steps", "999999", "--level", level, "--format", "csv"]
+        best = float("inf")
+        for _ in range(3):
+            t0 = time.perf_counter()
+            subprocess.run(cmd, cwd=ROOT, stdout=subprocess.DEVNULL, check=True)
+            best = min(best, time.perf_counter() - t0)
+        rows.append(f"| {level} | 1 000 000 | {best:.2f} | {1e6 / best:,.0f} |".replace(",", " "))
+    return "\n".join(rows)
+
+
+SWEEP_CMD = ("`mech sweep examples/mech/watt_ii.mech --from 0 --to 360deg --steps 999999 "
+             "--level L --format csv > /dev/null`, best of 3, the release build")
+
+
+def pyslvs():
+    return sh([sys.executable, "tools/python_vs_pyslvs.py", "--table"]).strip()
+
+
+def montecarlo():
+    code = "\n".join([
+        "import sys, time",
+        "sys.path.insert(0, 'mech-py/examples')",
+        "import tolerance_study as ts",
+        "ts.run_serial(1000, 1)  # warm up",
+        "times = []",
+        "for _ in range(3):",
+        "    t0 = time.perf_counter()",
+        "    ts.run_serial(10000, 1)",
+        "    times.append(time.perf_counter() - t0)",
+        "print(min(times))",
+    ])
+    env = {"OPENBLAS_NUM_THREADS": "1"}
+    seconds = float(sh([sys.executable, "-c", code], env=env).strip())
+    import_threads = sh([sys.executable, "-c", "import mech; print(mech.num_threads())"], env=env).strip()
+    return ("| configurations | threads | wall time (s), best of 3 | configurations/s |\n|---:|---:|---:|---:|\n"
+            f"| 720 000 | {import_threads} | {seconds:.2f} | {7.2e5 / seconds:,.0f} |".replace(",", " "))
+
+
+def fuzz():
+    out = sh(["cargo", "run", "--release", "-p", "mech-fuzz", "--", "--cases", "1000000"])
+    return out.strip().splitlines()[-1]
+
+
+def macro_cost():
+    return sh(["bash", "tools/macro_cost.sh", "3"]).strip()
+
+
+class Figure:
+    def __init__(self, run, command, paths):
+        self.run, self.command, self.paths = run, command, paths
+
+
+FIGURES = {
+    "floor": Figure(floor, FLOOR_CMD, CORE + ["benches/floor.rs", "benches/floor"]),
+    "runtime": Figure(runtime, RUNTIME_CMD, CORE + ["mech-oracle/src", "benches/generated_vs_generic.rs"]),
+    "elements": Figure(elements, "`cargo bench --bench machine_elements`, medians",
+                       CORE + ["benches/machine_elements.rs"]),
+    "accuracy": Figure(accuracy, "`cargo run --release --example accuracy_report`",
+                       CORE + ["mech-oracle/src", "examples/accuracy_report.rs", "tests/data"]),
+    "dynamics": Figure(dynamics, "`cargo bench --bench dynamics`, medians",
+                       CORE + ["benches/dynamics.rs"]),
+    "work_precision": Figure(work_precision, "`cargo run --release --example work_precision`",
+                             CORE + ["examples/work_precision.rs"]),
+    "engine": Figure(engine, "`cargo run --release --example engine`, all but its last line (the time it took)",
+                     CORE + ["examples/engine.rs", "examples/common"]),
+    "engine_flywheel": Figure(engine_flywheel, "`cargo run --release --example engine`, the flywheel's lines",
+                              CORE + ["examples/engine.rs", "examples/common"]),
+    "sweep": Figure(sweep, SWEEP_CMD, CORE + ["mech-cli/src", "examples/mech/watt_ii.mech"]),
+    "pyslvs": Figure(pyslvs, "`python3 tools/python_vs_pyslvs.py --table` (needs `mech` and `pyslvs` installed)",
+                     CORE + ["mech-py/src", "mech-py/python", "tools/python_vs_pyslvs.py"]),
+    "montecarlo": Figure(montecarlo, "`run_serial(10000, 1)` of `mech-py/examples/tolerance_study.py`, best of 3 "
+                         "(needs `mech` installed)", CORE + ["mech-py/src", "mech-py/examples/tolerance_study.py"]),
+    "fuzz": Figure(fuzz, "`cargo run --release -p mech-fuzz -- --cases 1000000`",
+                   CORE + ["fuzz/src"]),
+    "macro_cost": Figure(macro_cost, "`tools/macro_cost.sh 3`", CORE + ["tools/macro_cost.sh"]),
+}
+
+
+# ---------------------------------------------------------------------------------------
+# blocks
+
+
+def block(name, body):
+    f = FIGURES[name]
+    today = datetime.date.today().isoformat()
+    sub = (f"<sub>Printed by `python3 tools/report.py {name}` ({f.command}) on the code of "
+           f"{commit()} (tree FNV-1a {code_hash(f.paths)} of {', '.join(f.paths)}), "
+           f"{machine()}, {today}.</sub>")
+    return f"<!-- report {name} -->\n{body}\n\n{sub}\n<!-- /report {name} -->"
+
+
+def pattern(name):
+    return re.compile(r"<!-- report " + re.escape(name) + r" -->.*?<!-- /report " + re.escape(name) + r" -->",
+                      re.S)
+
+
+def write(name, text):
+    hits = []
+    for doc in DOCS:
+        src = doc.read_text()
+        new, n = pattern(name).subn(lambda _: text, src)
+        if n:
+            doc.write_text(new)
+            hits.append(doc.relative_to(ROOT).as_posix())
+    return hits
+
+
+def shown_in(name):
+    return [d.relative_to(ROOT).as_posix() for d in DOCS if pattern(name).search(d.read_text())]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+    ap.add_argument("names", nargs="+", help="figure names, `all`, or `list`")
+    ap.add_argument("--write", action="store_true", help="put each block into the documents that show it")
+    args = ap.parse_args()
+    if args.names == ["list"]:
+        for name, f in FIGURES.items():
+            print(f"{name:15} {f.command}\n{'':15} shown in: {', '.join(shown_in(name)) or '(nowhere)'}")
+        return
+    names = list(FIGURES) if args.names == ["all"] else args.names
+    for n in names:
+        if n not in FIGURES:
+            sys.exit(f"unknown figure `{n}`; the figures: {', '.join(FIGURES)}")
+    for n in names:
+        text = block(n, FIGURES[n].run())
+        print(text + "\n")
+        if args.write:
+            hits = write(n, text)
+            print(f"(written into {', '.join(hits) or 'no document: add the markers first'})\n",
+                  file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
