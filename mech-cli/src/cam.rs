@@ -6,7 +6,7 @@
 //! the smallest convex radius, undercut). `--svg` writes the cam surface as a closed path.
 
 use crate::output::{Format, Writer};
-use crate::{source, Failure};
+use crate::{limits, source, Failure};
 use mech_core::elements::cam::Profile;
 use std::io::Write;
 use std::path::PathBuf;
@@ -19,8 +19,8 @@ pub struct CamArgs {
     /// The cam joint (omitted: the mechanism's only cam).
     #[arg(long)]
     pub name: Option<String>,
-    /// Cam angles over the turn, evenly from θ = 0.
-    #[arg(long, default_value_t = 360)]
+    /// Cam angles over the turn, evenly from θ = 0 (3 to 10⁶).
+    #[arg(long, default_value_t = 360, allow_hyphen_values = true, value_parser = limits::points)]
     pub points: usize,
     /// Write the cam surface (contact points, mm, y up) as an SVG path to this file.
     #[arg(long)]
@@ -47,6 +47,9 @@ pub fn run(args: CamArgs, out: impl Write) -> Result<(), Failure> {
             "--points {}: a profile needs at least 3 points",
             args.points
         )));
+    }
+    if let Some(path) = &args.svg {
+        limits::writable(path, "--svg", "svg")?;
     }
     let m = source::load(&args.file)?;
     let (name, g) = m
@@ -79,9 +82,7 @@ pub fn run(args: CamArgs, out: impl Write) -> Result<(), Failure> {
             r / 200.0,
             r / 60.0
         );
-        std::fs::write(path, svg)
-            .map_err(|e| Failure::usage(format!("cannot write {}: {e}", path.display())))?;
-        eprintln!("wrote {}", path.display());
+        limits::write_file(path, &svg, "--svg", "svg")?;
     }
     Ok(())
 }

@@ -5,7 +5,7 @@
 //! an SVG that animates itself (SMIL) in any browser.
 
 use crate::loads::LoadSet;
-use crate::{quantity, scene, source, svg, Failure};
+use crate::{limits, quantity, scene, source, svg, Failure};
 use mech_core::Mechanism;
 use std::path::PathBuf;
 
@@ -41,11 +41,11 @@ pub struct DrawArgs {
     /// Loads for --forces: NAME=VALUE or NAME=@table.csv. Repeatable.
     #[arg(long = "load", allow_hyphen_values = true)]
     pub load: Vec<String>,
-    /// Picture width, px.
-    #[arg(long, default_value_t = 800.0)]
+    /// Picture width, px (1 to 100000).
+    #[arg(long, default_value_t = 800.0, allow_hyphen_values = true, value_parser = limits::pixels)]
     pub width: f64,
     /// Smallest picture height, px (the drawing's aspect ratio decides above it).
-    #[arg(long, default_value_t = 200.0)]
+    #[arg(long, default_value_t = 200.0, allow_hyphen_values = true, value_parser = limits::pixels)]
     pub height: f64,
 }
 
@@ -67,20 +67,20 @@ pub struct AnimateArgs {
     /// The other inputs' values (several DOF), in order after the first.
     #[arg(long = "rest", value_delimiter = ',', allow_hyphen_values = true)]
     pub rest: Vec<String>,
-    /// Number of frames.
-    #[arg(long, default_value_t = 120)]
+    /// Number of frames (2 to 10⁴).
+    #[arg(long, default_value_t = 120, allow_hyphen_values = true, value_parser = limits::frames)]
     pub frames: usize,
-    /// Duration of one loop, s.
-    #[arg(long, default_value_t = 4.0)]
+    /// Duration of one loop, s (0.001 to 86400).
+    #[arg(long, default_value_t = 4.0, allow_hyphen_values = true, value_parser = limits::seconds)]
     pub seconds: f64,
     /// Draw the path of this point under the animation. Repeatable.
     #[arg(long = "path")]
     pub path: Vec<String>,
-    /// Picture width, px.
-    #[arg(long, default_value_t = 800.0)]
+    /// Picture width, px (1 to 100000).
+    #[arg(long, default_value_t = 800.0, allow_hyphen_values = true, value_parser = limits::pixels)]
     pub width: f64,
     /// Smallest picture height, px.
-    #[arg(long, default_value_t = 200.0)]
+    #[arg(long, default_value_t = 200.0, allow_hyphen_values = true, value_parser = limits::pixels)]
     pub height: f64,
 }
 
@@ -127,6 +127,13 @@ pub fn inputs(
         .map(|t| quantity::parse(t, d, "--to"))
         .transpose()?
         .unwrap_or(b0);
+    if !(b - a).is_finite() {
+        return Err(Failure::usage(format!(
+            "--from {} --to {}: the range overflows f64; give a narrower range",
+            from.as_deref().unwrap_or("(default)"),
+            to.as_deref().unwrap_or("(default)")
+        )));
+    }
     if rest.len() + 1 != m.dof() {
         return Err(Failure::usage(format!(
             "--rest: {} value(s) for the {} input(s) after the first",
@@ -145,15 +152,13 @@ pub fn inputs(
     Ok((a, b, q))
 }
 
-fn write(path: &PathBuf, text: &str) -> Result<(), Failure> {
-    std::fs::write(path, text)
-        .map_err(|e| Failure::usage(format!("cannot write {}: {e}", path.display())))?;
-    eprintln!("wrote {}", path.display());
-    Ok(())
+fn write(path: &std::path::Path, text: &str) -> Result<(), Failure> {
+    limits::write_file(path, text, "-o", "svg")
 }
 
 /// Run `mech draw`.
 pub fn draw(args: DrawArgs) -> Result<(), Failure> {
+    limits::writable(&args.output, "-o", "svg")?;
     let m = source::load(&args.file)?;
     let model = m.model();
     let q = quantity::per_input(&args.at, model, 0, "--at", 0.0)?;
@@ -190,6 +195,7 @@ pub fn animate(args: AnimateArgs) -> Result<(), Failure> {
             args.frames, args.seconds
         )));
     }
+    limits::writable(&args.output, "-o", "svg")?;
     let m = source::load(&args.file)?;
     let (a, b, q) = inputs(&m, &args.from, &args.to, &args.rest)?;
     let qs = range(&q, a, b, args.frames - 1);

@@ -7,7 +7,7 @@
 
 use crate::loads::LoadSet;
 use crate::output::{Format, Writer};
-use crate::{quantity, source, Failure};
+use crate::{limits, quantity, source, Failure};
 use mech_core::dynamics::flywheel::Cycle;
 use mech_core::model::units::Dim;
 use std::io::Write;
@@ -27,8 +27,8 @@ pub struct FlywheelArgs {
     /// Mean speed ω_a (rad/s, or rpm).
     #[arg(long, allow_hyphen_values = true)]
     pub speed: String,
-    /// Coefficient of fluctuation of speed ε = (ω_max − ω_min)/ω_a.
-    #[arg(long)]
+    /// Coefficient of fluctuation of speed ε = (ω_max − ω_min)/ω_a (1e-9 to below 2).
+    #[arg(long, allow_hyphen_values = true, value_parser = limits::irregularity)]
     pub irregularity: f64,
     /// Input angles (inside the cycle) where the loads are not smooth: panels end there.
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
@@ -40,8 +40,8 @@ pub struct FlywheelArgs {
     /// balances the cycle's work.
     #[arg(long, allow_hyphen_values = true)]
     pub driver: Option<String>,
-    /// Relative tolerance of the verifying time integration (DOP853).
-    #[arg(long, default_value_t = 1e-10)]
+    /// Relative tolerance of the verifying time integration (DOP853; 1e-15 to 0.1).
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true, value_parser = limits::rtol)]
     pub rtol: f64,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Table)]
@@ -59,7 +59,22 @@ fn results(args: &FlywheelArgs) -> Result<Vec<(&'static str, &'static str, f64)>
         ));
     }
     let period = quantity::parse(&args.period, Dim::ANGLE, "--period")?;
+    if period > limits::PERIOD {
+        return Err(Failure::usage(format!(
+            "--period {}: {:.3e} turns, more than the limit of {:.0} turns; a cycle is the shortest span after which the loads repeat",
+            args.period,
+            period / std::f64::consts::TAU,
+            limits::PERIOD / std::f64::consts::TAU
+        )));
+    }
     let start = quantity::parse(&args.start, Dim::ANGLE, "--start")?;
+    // Beyond this the cycle's angles lose their precision (q0 + λ rounds).
+    if start.abs() * f64::EPSILON > 1e-9 * period.abs() {
+        return Err(Failure::usage(format!(
+            "--start {}: so large beside the period that the cycle's angles lose their precision; give a start within a few periods of 0",
+            args.start
+        )));
+    }
     let omega = quantity::parse(&args.speed, Dim::SPEED, "--speed")?;
     let breakpoints: Vec<f64> = args
         .breakpoints
@@ -113,6 +128,7 @@ pub fn run(args: FlywheelArgs, out: impl Write) -> Result<(), Failure> {
         for (n, u, v) in r {
             writeln!(out, "{n:<24} {v:>22.12e}  {u}")?;
         }
+        out.flush()?;
         return Ok(());
     }
     let names: Vec<String> = r.iter().map(|(n, _, _)| n.to_string()).collect();

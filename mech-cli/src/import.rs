@@ -13,7 +13,7 @@
 //! slider drives the slider. No masses: a comment says so.
 
 use crate::pmks::{self, Kind};
-use crate::Failure;
+use crate::{limits, Failure};
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -26,7 +26,7 @@ pub struct ImportArgs {
     #[arg(short = 'o', long = "output")]
     pub output: Option<PathBuf>,
     /// An input as in pyslvs: base joint and driver joint indices, `B,D`. Repeatable.
-    #[arg(long = "input", value_parser = parse_pair)]
+    #[arg(long = "input", value_parser = parse_pair, allow_hyphen_values = true)]
     pub input: Vec<(usize, usize)>,
     /// The struct name of the mechanism.
     #[arg(long, default_value = "Imported")]
@@ -40,13 +40,23 @@ fn parse_pair(s: &str) -> Result<(usize, usize), String> {
     let (a, b) = s
         .split_once(',')
         .ok_or_else(|| format!("`{s}`: expected two joint indices `B,D`"))?;
-    Ok((
-        a.trim().parse().map_err(|e| format!("`{a}`: {e}"))?,
-        b.trim().parse().map_err(|e| format!("`{b}`: {e}"))?,
-    ))
+    let index = |t: &str| {
+        t.trim().parse::<usize>().map_err(|_| {
+            format!("`{}`: not a joint index; give two indices 0, 1, 2, ... of the expression's joints, `B,D`", t.trim())
+        })
+    };
+    Ok((index(a)?, index(b)?))
 }
 
 const GROUND: &str = "ground";
+
+/// A Rust identifier of ASCII letters, digits and `_`, not starting with a digit.
+fn is_ident(s: &str) -> bool {
+    s.chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
 
 /// A name the DSL accepts for a link (pyslvs allows `-`).
 fn ident(name: &str) -> String {
@@ -264,18 +274,39 @@ fn revolute_name(j: &pmks::Joint, i: usize, first: &str, other: &str) -> String 
 }
 
 /// Run `mech import`.
-pub fn run(args: ImportArgs) -> Result<(), Failure> {
-    let (text, origin) = crate::source::read(&args.file)?;
+pub fn run(args: ImportArgs, mut out: impl std::io::Write) -> Result<(), Failure> {
+    if !is_ident(&args.name) {
+        return Err(Failure::usage(format!(
+            "--name `{}`: not a struct name; give letters, digits and `_`, not starting with a digit (e.g. `Imported`)",
+            args.name
+        )));
+    }
+    if let Some(u) = &args.unit {
+        let length = mech_core::model::units::Dim::LENGTH;
+        if !is_ident(u) || crate::quantity::parse(&format!("1 {u}"), length, "--unit").is_err() {
+            return Err(Failure::usage(format!(
+                "--unit `{u}`: not a unit word of length; give one such as `mm`, `cm` or `m`"
+            )));
+        }
+    }
+    if let Some(path) = &args.output {
+        limits::writable(path, "-o", "mech")?;
+    }
+    let text = limits::read_text(&args.file, limits::MECH_BYTES, "the PMKS file")?;
+    let origin = if args.file.as_os_str() == "-" {
+        "<stdin>".to_string()
+    } else {
+        args.file.display().to_string()
+    };
     let joints =
         pmks::parse(&text).map_err(|f| Failure::mechanism(format!("{origin}:{}", f.message)))?;
     let mech = to_mech(&joints, &args.name, &args.input, args.unit.as_deref())?;
     match &args.output {
-        Some(path) => {
-            std::fs::write(path, &mech)
-                .map_err(|e| Failure::usage(format!("cannot write {}: {e}", path.display())))?;
-            eprintln!("wrote {}", path.display());
+        Some(path) => limits::write_file(path, &mech, "-o", "mech")?,
+        None => {
+            out.write_all(mech.as_bytes())?;
+            out.flush()?;
         }
-        None => print!("{mech}"),
     }
     Ok(())
 }

@@ -17,6 +17,7 @@ pub mod columns;
 pub mod draw;
 pub mod flywheel;
 pub mod import;
+pub mod limits;
 pub mod loads;
 pub mod output;
 pub mod pmks;

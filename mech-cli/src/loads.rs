@@ -5,8 +5,8 @@
 //! are the load. A table is interpolated linearly in q and repeats with the period
 //! q_last − q_first (a cycle: its last row closes on its first).
 
-use crate::quantity;
 use crate::Failure;
+use crate::{limits, quantity};
 use mech_core::model::units::Dim;
 use mech_core::model::{Load, Model};
 use mech_core::Mechanism;
@@ -16,53 +16,139 @@ use std::path::Path;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Table {
     q: Vec<f64>,
-    values: Vec<Vec<f64>>,
+    /// Row after row, `width` values each.
+    values: Vec<f64>,
+    width: usize,
 }
 
 impl Table {
+    /// The table of the CSV file `path` (`flag` names it in messages): at most
+    /// [`limits::TABLE_BYTES`] of UTF-8 text.
+    pub fn read(path: &str, width: usize, flag: &str) -> Result<Self, Failure> {
+        let text = limits::read_text(Path::new(path), limits::TABLE_BYTES, flag)?;
+        Table::parse(&text, width, path)
+    }
+
     /// Read a table of `width` value columns from CSV text (`origin` for messages).
     pub fn parse(text: &str, width: usize, origin: &str) -> Result<Self, Failure> {
+        let bad = |m: String| Failure::usage(format!("{origin}: {m}"));
+        let shape = format!(
+            "a header `q` (or `q_deg`) and {width} value column(s), {} in all",
+            width + 1
+        );
         let mut r = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
+            .flexible(true)
             .from_reader(text.as_bytes());
-        let headers = r
-            .headers()
-            .map_err(|e| Failure::usage(format!("{origin}: {e}")))?
-            .clone();
+        let headers = r.headers().map_err(|e| bad(e.to_string()))?.clone();
         let scale = match headers.get(0) {
             Some("q") => 1.0,
             Some("q_deg") => std::f64::consts::PI / 180.0,
-            other => return Err(Failure::usage(format!("{origin}: the first column must be `q` (rad) or `q_deg` (degrees), found {other:?}"))),
-        };
-        let (mut q, mut values) = (Vec::new(), Vec::new());
-        for (i, rec) in r.records().enumerate() {
-            let rec = rec.map_err(|e| Failure::usage(format!("{origin}: {e}")))?;
-            let nums: Result<Vec<f64>, _> = rec.iter().map(str::parse::<f64>).collect();
-            let nums = nums.map_err(|e| Failure::usage(format!("{origin}: row {}: {e}", i + 2)))?;
-            if nums.len() != width + 1 || nums.iter().any(|x| !x.is_finite()) {
-                return Err(Failure::usage(format!(
-                    "{origin}: row {}: expected q and {width} finite value(s), found {:?}",
-                    i + 2,
-                    nums
+            None | Some("") if headers.len() <= 1 => {
+                return Err(bad(format!(
+                    "empty; a table needs {shape}, then at least two rows"
+                )))
+            }
+            Some(other) => {
+                let hint = if other.contains([';', '\t']) {
+                    " (columns are separated by commas)"
+                } else {
+                    ""
+                };
+                return Err(bad(format!(
+                    "the first column must be `q` (rad) or `q_deg` (degrees), found `{other}`{hint}"
                 )));
             }
-            if let Some(&last) = q.last() {
-                if !(nums[0] * scale > last) {
-                    return Err(Failure::usage(format!(
-                        "{origin}: row {}: q must increase",
-                        i + 2
-                    )));
-                }
-            }
-            q.push(nums[0] * scale);
-            values.push(nums[1..].to_vec());
-        }
-        if q.len() < 2 {
-            return Err(Failure::usage(format!(
-                "{origin}: a table needs at least two rows"
+            None => unreachable!("a record of two or more fields has a first"),
+        };
+        if headers.len() != width + 1 {
+            let names: Vec<&str> = headers.iter().collect();
+            return Err(bad(format!(
+                "{} column(s) (`{}`), but this load needs {shape}",
+                headers.len(),
+                names.join(", ")
             )));
         }
-        Ok(Table { q, values })
+        for (i, h) in headers.iter().enumerate() {
+            if let Some(j) = headers.iter().take(i).position(|g| g == h) {
+                return Err(bad(format!(
+                    "the column name `{h}` appears twice (columns {} and {}); name each column once",
+                    j + 1,
+                    i + 1
+                )));
+            }
+        }
+        let (mut q, mut values) = (Vec::new(), Vec::new());
+        let mut record = csv::StringRecord::new();
+        loop {
+            match r.read_record(&mut record) {
+                Ok(true) => {}
+                Ok(false) => break,
+                Err(e) => return Err(bad(e.to_string())),
+            }
+            let line = record.position().map_or(0, |p| p.line());
+            if let Some(field) = record.iter().find(|f| f.contains('\n')) {
+                return Err(bad(format!(
+                    "line {line}: an unterminated quote (`\"`) runs over {} line(s); close it or remove it",
+                    field.matches('\n').count() + 1
+                )));
+            }
+            if record.len() != width + 1 {
+                return Err(bad(format!(
+                    "line {line}: {} field(s), but the header has {}",
+                    record.len(),
+                    width + 1
+                )));
+            }
+            for (c, field) in record.iter().enumerate() {
+                let x: f64 = field.parse().map_err(|_| {
+                    bad(format!(
+                        "line {line}, column {} (`{}`): not a number{}",
+                        c + 1,
+                        field.chars().take(40).collect::<String>(),
+                        if field.contains('"') {
+                            " (an unbalanced quote `\"`?)"
+                        } else {
+                            ""
+                        }
+                    ))
+                })?;
+                if !x.is_finite() {
+                    return Err(bad(format!(
+                        "line {line}, column {} (`{field}`): not a finite number",
+                        c + 1
+                    )));
+                }
+                if c == 0 {
+                    let x = x * scale;
+                    if let Some(&last) = q.last() {
+                        if !(x > last) {
+                            return Err(bad(format!(
+                                "line {line}: q = {field} does not increase; sort the rows by q, each q once"
+                            )));
+                        }
+                    }
+                    q.push(x);
+                } else {
+                    values.push(x);
+                }
+            }
+        }
+        if q.len() < 2 {
+            return Err(bad(format!(
+                "{} row(s); a table needs at least two rows after its header",
+                q.len()
+            )));
+        }
+        let (first, last) = (q[0], q[q.len() - 1]);
+        if !(last - first).is_finite() {
+            return Err(bad(format!(
+                "q spans from {} to {}: too wide to interpolate in f64; give q in one cycle",
+                limits::show(first),
+                limits::show(last)
+            )));
+        }
+        Ok(Table { q, values, width })
     }
 
     /// The load at q: linear interpolation, the table repeating with its span.
@@ -76,10 +162,20 @@ impl Table {
             .clamp(1, self.q.len() - 1);
         let (a, b) = (self.q[k - 1], self.q[k]);
         let t = (x - a) / (b - a);
-        self.values[k - 1]
+        let w = self.width;
+        self.values[(k - 1) * w..k * w]
             .iter()
-            .zip(&self.values[k])
-            .map(|(u, v)| u + t * (v - u))
+            .zip(&self.values[k * w..(k + 1) * w])
+            .map(|(u, v)| {
+                let d = v - u;
+                // Two values of opposite signs near f64's largest: d overflows, the
+                // weighted mean does not.
+                if d.is_finite() {
+                    u + t * d
+                } else {
+                    u * (1.0 - t) + v * t
+                }
+            })
             .collect()
     }
 }
@@ -130,10 +226,7 @@ impl LoadSet {
             let name = name.trim();
             let w = width(model, name)?;
             let value = if let Some(path) = value.strip_prefix('@') {
-                let text = std::fs::read_to_string(Path::new(path)).map_err(|e| {
-                    Failure::usage(format!("--load {name}: cannot read {path}: {e}"))
-                })?;
-                Value::Table(Table::parse(&text, w, path)?)
+                Value::Table(Table::read(path, w, &format!("--load {name}"))?)
             } else {
                 let dim = if w == 2 { Dim::FORCE } else { Dim::TORQUE };
                 let parts: Vec<&str> = value.split(',').collect();
@@ -192,5 +285,15 @@ mod tests {
         assert!(Table::parse("x, f\n0, 1\n1, 2\n", 1, "t.csv").is_err());
         assert!(Table::parse("q, f\n0, 1\n0, 2\n", 1, "t.csv").is_err());
         assert!(Table::parse("q, fx\n0, 1\n1, 2\n", 2, "t.csv").is_err());
+    }
+
+    #[test]
+    fn values_near_the_largest_f64_interpolate_finitely() {
+        let t = Table::parse("q, f\n0, 1e308\n1, -1e308\n", 1, "t.csv").unwrap();
+        for q in [0.0, 0.25, 0.5, 0.75, 0.999] {
+            let v = t.at(q)[0];
+            assert!(v.is_finite(), "at {q}: {v}");
+        }
+        assert_eq!(t.at(0.5)[0], 0.0);
     }
 }

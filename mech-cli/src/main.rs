@@ -7,8 +7,9 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    cam, check, draw, flywheel, import, quantity, report, simulate, solve, source, Failure,
+    cam, check, draw, flywheel, import, limits, quantity, report, simulate, solve, source, Failure,
 };
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -80,8 +81,8 @@ enum Command {
         /// Last value of the first input (included).
         #[arg(long, allow_hyphen_values = true)]
         to: String,
-        /// Number of steps (rows = steps + 1).
-        #[arg(long)]
+        /// Number of steps (rows = steps + 1), at most 10⁸.
+        #[arg(long, allow_hyphen_values = true, value_parser = limits::steps)]
         steps: usize,
         /// The other inputs' values (several DOF), in order after the first.
         #[arg(long = "rest", value_delimiter = ',', allow_hyphen_values = true)]
@@ -136,11 +137,13 @@ fn rates(
 }
 
 fn run(command: Command) -> Result<(), Failure> {
-    let stdout = std::io::BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
+    let mut stdout =
+        std::io::BufWriter::with_capacity(1 << 16, limits::Stdout(std::io::stdout().lock()));
     match command {
         Command::Check { file } => {
             let m = source::load(&file)?;
-            print!("{}", check::summary(&m));
+            write!(stdout, "{}", check::summary(&m))?;
+            stdout.flush()?;
             Ok(())
         }
         Command::Solve { file, at, state } => {
@@ -164,6 +167,11 @@ fn run(command: Command) -> Result<(), Failure> {
                 quantity::parse(&from, d, "--from")?,
                 quantity::parse(&to, d, "--to")?,
             );
+            if !(b - a).is_finite() {
+                return Err(Failure::usage(format!(
+                    "--from {from} --to {to}: the range overflows f64; give a narrower range"
+                )));
+            }
             let g = m.dof();
             if rest.len() + 1 != g {
                 return Err(Failure::usage(format!(
@@ -198,7 +206,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Draw(args) => draw::draw(args),
         Command::Animate(args) => draw::animate(args),
         Command::Report(args) => report::run(args),
-        Command::Import(args) => import::run(args),
+        Command::Import(args) => import::run(args, stdout),
         Command::Cam(args) => cam::run(args, stdout),
     }
 }

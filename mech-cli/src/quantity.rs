@@ -11,6 +11,17 @@ use syn::parse::{ParseStream, Parser};
 /// messages); a plain number is SI.
 pub fn parse(text: &str, dim: Dim, what: &str) -> Result<f64, Failure> {
     let c = Constants::default();
+    let word = text
+        .trim()
+        .trim_start_matches(['-', '+'])
+        .to_ascii_lowercase();
+    if ["nan", "inf", "infinity"].contains(&word.as_str()) {
+        return Err(Failure::usage(format!(
+            "{what} `{}`: not a finite number; give a finite value, SI or with a unit word (`30deg`, `3000rpm`)",
+            text.trim()
+        )));
+    }
+    crate::limits::nesting(text, what)?;
     // `4pi`, `2 pi`, `4π`: a multiple of π, as written on the command line.
     let trimmed = text.trim();
     let expr = match trimmed
@@ -32,8 +43,15 @@ pub fn parse(text: &str, dim: Dim, what: &str) -> Result<f64, Failure> {
     })
     .parse_str(text)
     .map_err(|e| Failure::usage(format!("{what} `{text}`: {e}")))?;
-    q.expect(dim, what)
-        .map_err(|e| Failure::usage(format!("{what} `{text}`: {e}")))
+    let v = q
+        .expect(dim, what)
+        .map_err(|e| Failure::usage(format!("{what} `{text}`: {e}")))?;
+    if !v.is_finite() {
+        return Err(Failure::usage(format!(
+            "{what} `{text}`: overflows to {v}; give a value within ±1.8e308"
+        )));
+    }
+    Ok(v)
 }
 
 /// The dimension of input `k`'s coordinate and of its rate: (angle, angular speed) for a

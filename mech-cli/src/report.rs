@@ -7,7 +7,7 @@
 use crate::columns::{Columns, Part};
 use crate::draw::{inputs, range};
 use crate::loads::LoadSet;
-use crate::{quantity, scene, source, svg, Failure};
+use crate::{limits, quantity, scene, source, svg, Failure};
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -38,8 +38,8 @@ pub struct ReportArgs {
     /// Plot the speed of this point. Repeatable (default: the last point).
     #[arg(long = "point")]
     pub point: Vec<String>,
-    /// Number of frames over the range.
-    #[arg(long, default_value_t = 120)]
+    /// Number of frames over the range (2 to 10⁴).
+    #[arg(long, default_value_t = 120, allow_hyphen_values = true, value_parser = limits::frames)]
     pub frames: usize,
 }
 
@@ -78,6 +78,7 @@ pub fn run(args: ReportArgs) -> Result<(), Failure> {
     if args.frames < 2 {
         return Err(Failure::usage("--frames: at least 2"));
     }
+    limits::writable(&args.output, "-o", "html")?;
     let m = source::load(&args.file)?;
     let model = m.model();
     let (a, b, q0) = inputs(&m, &args.from, &args.to, &args.rest)?;
@@ -266,10 +267,7 @@ pub fn run(args: ReportArgs) -> Result<(), Failure> {
         page.push_str(p);
     }
     let _ = write!(page, "</div>\n<script type=\"application/json\" id=\"data\">{}</script>\n<script>{SCRIPT}</script>\n</body></html>\n", data);
-    std::fs::write(&args.output, page)
-        .map_err(|e| Failure::usage(format!("cannot write {}: {e}", args.output.display())))?;
-    eprintln!("wrote {}", args.output.display());
-    Ok(())
+    limits::write_file(&args.output, &page, "-o", "html")
 }
 
 fn html(s: &str) -> String {
@@ -279,8 +277,8 @@ fn html(s: &str) -> String {
 }
 
 /// The doc comment of the mechanism file (its `///` lines), for the page's heading.
-fn m_doc(path: &PathBuf) -> String {
-    std::fs::read_to_string(path)
+fn m_doc(path: &std::path::Path) -> String {
+    limits::read_text(path, limits::MECH_BYTES, "the mechanism file")
         .unwrap_or_default()
         .lines()
         .filter_map(|l| l.trim().strip_prefix("///"))

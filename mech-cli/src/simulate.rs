@@ -6,11 +6,12 @@
 
 use crate::loads::{LoadSet, Table};
 use crate::output::{Format, Writer};
-use crate::{quantity, source, Failure};
+use crate::{limits, quantity, source, Failure};
 use mech_core::dynamics::equation_of_motion;
 use mech_core::dynamics::ode::{self, Dense, Dop853, DormandPrince, Method, Rk4};
 use mech_core::model::units::Dim;
 use mech_core::Mechanism;
+use std::cell::Cell;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -36,8 +37,8 @@ pub struct SimulateArgs {
     /// Initial speed q̇0 (rad/s, rpm, or m/s).
     #[arg(long, default_value = "0", allow_hyphen_values = true)]
     pub speed: String,
-    /// End time, s.
-    #[arg(long = "t-end")]
+    /// End time, s (positive).
+    #[arg(long = "t-end", allow_hyphen_values = true, value_parser = limits::positive)]
     pub t_end: f64,
     /// Driver action on the input: a constant (N·m or N) or @table.csv against q.
     #[arg(long, default_value = "0", allow_hyphen_values = true)]
@@ -48,17 +49,18 @@ pub struct SimulateArgs {
     /// The integrator.
     #[arg(long, value_enum, default_value_t = Integrator::Dop853)]
     pub method: Integrator,
-    /// Relative and absolute tolerance of an adaptive integrator.
-    #[arg(long, default_value_t = 1e-10)]
+    /// Relative tolerance of an adaptive integrator (1e-15 to 0.1).
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true, value_parser = limits::rtol)]
     pub rtol: f64,
-    /// Absolute tolerance of an adaptive integrator.
-    #[arg(long, default_value_t = 1e-10)]
+    /// Absolute tolerance of an adaptive integrator (0 to 1).
+    #[arg(long, default_value_t = 1e-10, allow_hyphen_values = true, value_parser = limits::atol)]
     pub atol: f64,
     /// Step of RK4, s.
-    #[arg(long, default_value_t = 1e-4)]
+    #[arg(long, default_value_t = 1e-4, allow_hyphen_values = true, value_parser = limits::positive)]
     pub step: f64,
-    /// Output rows: the state at this many even intervals of [0, t_end] (plus t = 0).
-    #[arg(long, default_value_t = 100)]
+    /// Output rows: the state at this many even intervals of [0, t_end] (plus t = 0), at
+    /// most 10⁷.
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = limits::samples)]
     pub samples: usize,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Table)]
@@ -80,7 +82,10 @@ impl Driver {
     }
 }
 
-/// Integrate with `method` and write (t, q, q̇, q̈) at the sample times.
+/// Integrate with `method` and write (t, q, q̇, q̈) at the sample times, row by row as
+/// the integrator passes them (no memory in the number of samples). The run stops with a
+/// message when it would take more than [`limits::INTEGRATION_STEPS`] steps: at once for
+/// RK4 (t_end / step), by the rate so far for an adaptive method.
 fn integrate<Mt: Method<2>>(
     mut method: Mt,
     m: &Mechanism,
@@ -90,32 +95,68 @@ fn integrate<Mt: Method<2>>(
     loads: &LoadSet,
     w: &mut Writer<impl Write>,
 ) -> Result<(), Failure> {
+    let limit = limits::INTEGRATION_STEPS;
     let n = args.samples.max(1);
-    let times: Vec<f64> = (0..=n).map(|k| args.t_end * k as f64 / n as f64).collect();
-    let mut rows: Vec<[f64; 2]> = vec![y0];
-    let mut next = 1;
-    let f = equation_of_motion(m, |_, q, _| (driver.at(q), loads.at(m, q)));
-    let mut observe = |d: &Mt::Dense| {
-        while next < times.len() && times[next] <= d.t_end() {
-            rows.push(d.eval(times[next]));
-            next += 1;
+    let time = |k: usize| args.t_end * k as f64 / n as f64;
+    let qdd = |y: [f64; 2]| m.acceleration_at(y[0], y[1], driver.at(y[0]), &loads.at(m, y[0]));
+    w.row(&[0.0, y0[0], y0[1], qdd(y0)?])?;
+    // Accepted steps and the time they reached; the budget's verdict.
+    let (steps, reached) = (Cell::new(0u64), Cell::new(0.0f64));
+    let over: Cell<Option<(u64, f64, f64)>> = Cell::new(None);
+    let mut eom = equation_of_motion(m, |_, q, _| (driver.at(q), loads.at(m, q)));
+    let f = |t: f64, y: &[f64; 2]| {
+        let (k, at) = (steps.get(), reached.get());
+        // After 10³ steps, the rate so far predicts the whole run's.
+        let whole = if at > 0.0 {
+            k as f64 * args.t_end / at
+        } else {
+            0.0
+        };
+        if k >= limit || (k >= 1000 && whole > 10.0 * limit as f64) {
+            over.set(Some((k, at, whole)));
+            return Err(mech_core::MechError::InvalidInput("step budget".into()));
         }
+        eom(t, y)
     };
-    let out = ode::solve(
-        &mut method,
-        f,
-        0.0,
-        y0,
-        args.t_end,
-        None,
-        Some(&mut observe),
-    )?;
-    while rows.len() < times.len() {
-        rows.push(out.y);
+    let mut next = 1;
+    let mut failure: Option<Failure> = None;
+    let out = {
+        let mut observe = |d: &Mt::Dense| {
+            steps.set(steps.get() + 1);
+            reached.set(d.t_end());
+            while next <= n && time(next) <= d.t_end() {
+                if failure.is_none() {
+                    let y = d.eval(time(next));
+                    if let Err(e) = qdd(y).and_then(|a| Ok(w.row(&[time(next), y[0], y[1], a])?)) {
+                        failure = Some(e);
+                    }
+                }
+                next += 1;
+            }
+        };
+        ode::solve(
+            &mut method,
+            f,
+            0.0,
+            y0,
+            args.t_end,
+            None,
+            Some(&mut observe),
+        )
+    };
+    if let Some((k, at, whole)) = over.get() {
+        return Err(Failure::usage(format!(
+            "--t-end {}: after {k} steps the integration has reached t = {at:.3e} s; the whole run would take about {whole:.1e} steps, more than the limit of {limit}; shorten --t-end, or loosen --rtol and --atol",
+            limits::show(args.t_end)
+        )));
     }
-    for (t, y) in times.iter().zip(rows) {
-        let qdd = m.acceleration_at(y[0], y[1], driver.at(y[0]), &loads.at(m, y[0]))?;
-        w.row(&[*t, y[0], y[1], qdd])?;
+    let out = out?;
+    if let Some(f) = failure {
+        return Err(f);
+    }
+    while next <= n {
+        w.row(&[time(next), out.y[0], out.y[1], qdd(out.y)?])?;
+        next += 1;
     }
     eprintln!(
         "{} steps, {} evaluations of q̈",
@@ -164,11 +205,7 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
         quantity::parse(&args.speed, dv, "--speed")?,
     ];
     let driver = match args.driver.strip_prefix('@') {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| Failure::usage(format!("--driver: cannot read {path}: {e}")))?;
-            Driver::Table(Table::parse(&text, 1, path)?)
-        }
+        Some(path) => Driver::Table(Table::read(path, 1, "--driver")?),
         None => Driver::Constant(quantity::parse(
             &args.driver,
             if dq == Dim::ANGLE {
@@ -206,7 +243,18 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
             &loads,
             &mut w,
         )?,
-        Integrator::Rk4 => integrate(Rk4 { h: args.step }, &m, &args, y0, &driver, &loads, &mut w)?,
+        Integrator::Rk4 => {
+            let steps = (args.t_end / args.step).ceil();
+            if steps > limits::INTEGRATION_STEPS as f64 {
+                return Err(Failure::usage(format!(
+                    "--t-end {} with --step {}: {steps:.1e} steps, more than the limit of {}; take a larger --step or a shorter --t-end",
+                    limits::show(args.t_end),
+                    limits::show(args.step),
+                    limits::INTEGRATION_STEPS
+                )));
+            }
+            integrate(Rk4 { h: args.step }, &m, &args, y0, &driver, &loads, &mut w)?
+        }
     }
     w.finish()?;
     Ok(())

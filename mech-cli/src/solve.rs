@@ -37,6 +37,7 @@ pub fn solve(
         for ((n, u), v) in cols.names.iter().zip(&cols.units).zip(&row) {
             writeln!(out, "{n:<w$}  {v:>20.12e}  {u}")?;
         }
+        out.flush()?;
         return Ok(());
     }
     let mut w = Writer::new(out, format, &cols.names, &cols.units)?;

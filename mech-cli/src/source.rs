@@ -1,21 +1,22 @@
 //! Reading a mechanism file (`*.mech`: the text between the braces of `mechanism! { ... }`,
 //! so a file pastes into Rust code unchanged) or standard input (`-`).
 
+use crate::limits;
 use crate::Failure;
 use mech_core::Mechanism;
-use std::io::Read;
 use std::path::Path;
 
-/// The text of `path` (`-` = standard input) and the name its messages show.
+/// The text of `path` (`-` = standard input) and the name its messages show. At most
+/// [`limits::MECH_BYTES`] of UTF-8 text, nested at most [`limits::NESTING`] deep.
 pub fn read(path: &Path) -> Result<(String, String), Failure> {
-    if path.as_os_str() == "-" {
-        let mut text = String::new();
-        std::io::stdin().read_to_string(&mut text)?;
-        return Ok((text, "<stdin>".to_string()));
-    }
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| Failure::usage(format!("cannot read {}: {e}", path.display())))?;
-    Ok((text, path.display().to_string()))
+    let text = limits::read_text(path, limits::MECH_BYTES, "the mechanism file")?;
+    let origin = if path.as_os_str() == "-" {
+        "<stdin>".to_string()
+    } else {
+        path.display().to_string()
+    };
+    limits::nesting(&text, &origin)?;
+    Ok((text, origin))
 }
 
 /// The mechanism of `path`, through every check of the macro; a bad file is a

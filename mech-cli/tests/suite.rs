@@ -9,6 +9,7 @@
 
 mod cli;
 mod draw;
+mod hostile;
 mod import;
 mod snapshots;
 

@@ -4,16 +4,18 @@
 //! with the GIL released and rayon inside. The Python layer (`python/mech/__init__.py`)
 //! turns scalars, lists and callables into those arrays and the arrays into dicts.
 
-use mech_core::runtime::columns::{Columns, Part, RowScratch};
 use mech_core::dynamics::flywheel::Cycle;
-use mech_core::runtime::mechanism::Loads;
 use mech_core::model::{JointKind, Load};
+use mech_core::runtime::columns::{Columns, Part, RowScratch};
+use mech_core::runtime::mechanism::Loads;
 use mech_core::solvers::traits::OneDof;
 use mech_core::{MechError as CoreError, Mechanism};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
 use pyo3::create_exception;
-use pyo3::exceptions::PyException;
+use pyo3::exceptions::{PyException, PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::sync::GILOnceCell;
+use pyo3::types::{PyDict, PyTuple, PyType};
 use rayon::prelude::*;
 use std::mem::MaybeUninit;
 use std::sync::OnceLock;
@@ -42,12 +44,136 @@ create_exception!(
     MechError,
     "A dead point: the system is not solvable to the requested accuracy."
 );
-create_exception!(
-    _mech,
-    InvalidInput,
-    MechError,
-    "A bad number: NaN, infinite, out of range, or the wrong shape."
-);
+
+/// `mech.InvalidInput`: a bad number (NaN, infinite, out of range), the wrong shape, or a
+/// size beyond the package's limits. Both a `mech.MechError` and a `ValueError`, so that
+/// `except ValueError` catches it as it catches numpy's own; built with `type()` since a
+/// pyo3 exception has one base.
+fn invalid_input_type(py: Python<'_>) -> &Bound<'_, PyType> {
+    static TYPE: GILOnceCell<Py<PyType>> = GILOnceCell::new();
+    TYPE.get_or_init(py, || {
+        let bases = PyTuple::new(
+            py,
+            [py.get_type::<MechError>(), py.get_type::<PyValueError>()],
+        )
+        .expect("a tuple");
+        let dict = PyDict::new(py);
+        dict.set_item("__module__", "mech._mech").expect("a dict");
+        dict.set_item(
+            "__doc__",
+            "A bad number (NaN, infinite, out of range), the wrong shape, or a size beyond \
+             the limits: a mech.MechError and a ValueError.",
+        )
+        .expect("a dict");
+        py.get_type::<PyType>()
+            .call1(("InvalidInput", bases, dict))
+            .and_then(|t| Ok(t.downcast_into::<PyType>()?))
+            .expect("the type InvalidInput")
+            .unbind()
+    })
+    .bind(py)
+}
+
+/// A `mech.InvalidInput` with `message`.
+fn invalid(message: impl Into<String>) -> PyErr {
+    let message = message.into();
+    Python::with_gil(|py| PyErr::from_type(invalid_input_type(py).clone(), message))
+}
+
+/// The most values (f64) one call returns: 2²⁸, 2 GiB. A larger batch is refused before
+/// anything is allocated (it would end the process when memory runs out): split it.
+const MAX_VALUES: usize = 1 << 28;
+
+/// The largest DSL text, bytes (the largest example is a few kB).
+const MAX_TEXT: usize = 4 << 20;
+
+/// The deepest nesting of brackets, and the longest run of signs, in a DSL text: the
+/// parser is recursive, and a deeper text would overflow the thread's stack (a crash of
+/// the Python process, not an exception).
+const MAX_NESTING: usize = 64;
+
+/// The longest cycle of `flywheel`, rad (1000 turns).
+const MAX_PERIOD: f64 = 2000.0 * std::f64::consts::PI;
+
+/// The most points of a cam profile.
+const MAX_POINTS: usize = 1_000_000;
+
+/// Refuse a text too large or nested too deep for the parser (`origin` names it).
+fn check_text(text: &str, origin: &str) -> PyResult<()> {
+    if text.len() > MAX_TEXT {
+        return Err(invalid(format!(
+            "{origin}: {:.1} MB of text, more than the {} MB a mechanism may have; is it the right text?",
+            text.len() as f64 / (1 << 20) as f64,
+            MAX_TEXT >> 20
+        )));
+    }
+    if let Some(at) = text.find('\0') {
+        return Err(invalid(format!(
+            "{origin}: a NUL character at offset {at}: binary data, not a mechanism's text"
+        )));
+    }
+    let (mut depth, mut run, mut line, mut col) = (0usize, 0usize, 1usize, 0usize);
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        col += 1;
+        match c {
+            '\n' => {
+                line += 1;
+                col = 0;
+                continue;
+            }
+            '/' if chars.peek() == Some(&'/') => {
+                for c in chars.by_ref() {
+                    if c == '\n' {
+                        line += 1;
+                        col = 0;
+                        break;
+                    }
+                }
+                run = 0;
+                continue;
+            }
+            '(' | '[' | '{' => {
+                depth += 1;
+                run = 0;
+            }
+            ')' | ']' | '}' => {
+                depth = depth.saturating_sub(1);
+                run = 0;
+            }
+            '-' | '+' | '!' => run += 1,
+            c if c.is_whitespace() => {}
+            _ => run = 0,
+        }
+        if depth > MAX_NESTING || run > MAX_NESTING {
+            let what = if depth > MAX_NESTING {
+                format!("brackets nested more than {MAX_NESTING} deep")
+            } else {
+                format!("more than {MAX_NESTING} signs in a row")
+            };
+            return Err(invalid(format!(
+                "{origin}:{line}:{col}: {what}; write the expression flatter"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Refuse an output of `rows` × `width` values beyond [`MAX_VALUES`].
+fn check_size(rows: usize, width: usize, what: &str) -> PyResult<()> {
+    let n = rows.saturating_mul(width.max(1));
+    if n > MAX_VALUES {
+        return Err(invalid(format!(
+            "{what}: {rows} rows × {width} columns = {n} values ({:.1} GB), more than the limit of {MAX_VALUES} (2 GB); split the batch into chunks (docs/scale-out.md) or ask for fewer parts",
+            n as f64 * 8.0 / 1e9
+        )));
+    }
+    Ok(())
+}
+
+/// The first error a Python callable raised during a native computation: re-raised as it
+/// is once the computation stops, not turned into a NaN.
+type Raised = std::cell::RefCell<Option<PyErr>>;
 
 /// The Python exception of a mech error. A check's message starts `[FILE:]LINE:COLUMN:`:
 /// the exception carries `line`, `column` and `message`.
@@ -69,7 +195,7 @@ fn py_err(py: Python<'_>, e: CoreError) -> PyErr {
         }
         CoreError::NoAssembly => NoAssembly::new_err(e.to_string()),
         CoreError::Singular { .. } => Singular::new_err(e.to_string()),
-        CoreError::InvalidInput(_) => InvalidInput::new_err(e.to_string()),
+        CoreError::InvalidInput(_) => invalid(e.to_string()),
         other => MechError::new_err(other.to_string()),
     }
 }
@@ -108,7 +234,9 @@ fn parts_of(names: &[String]) -> PyResult<Vec<Part>> {
             "driver" => Ok(Part::Driver),
             "virtual_power" => Ok(Part::VirtualPower),
             "zhukovski" => Ok(Part::Zhukovski),
-            other => Err(InvalidInput::new_err(format!("unknown part `{other}`"))),
+            other => Err(invalid(format!(
+                "unknown part `{other}`: the parts are inputs, positions, points, rates, reactions, driver, virtual_power, zhukovski"
+            ))),
         })
         .collect()
 }
@@ -150,6 +278,52 @@ fn row<'a>(a: &'a numpy::ndarray::ArrayView2<'a, f64>, k: usize) -> Vec<f64> {
     a.row(k).to_vec()
 }
 
+/// The number of flat load values per row (force: 2, torque: 1, in declaration order).
+fn load_width(m: &Mechanism) -> usize {
+    m.model()
+        .loads
+        .iter()
+        .map(|l| {
+            if matches!(l, Load::Force { .. }) {
+                2
+            } else {
+                1
+            }
+        })
+        .sum()
+}
+
+/// The shapes of a batch: q (n, G), q̇ and q̈ the same, the flat loads (n, L). A mismatch
+/// is an `InvalidInput`, never a slice out of bounds.
+fn check_shapes(
+    m: &Mechanism,
+    q: &[usize],
+    qd: &[usize],
+    qdd: &[usize],
+    loads: &[usize],
+) -> PyResult<()> {
+    let (g, l) = (m.dof(), load_width(m));
+    if q[1] != g {
+        return Err(invalid(format!(
+            "inputs of shape {q:?} for {g} input(s): give (n, {g}), one row per configuration"
+        )));
+    }
+    for (name, s) in [("qd", qd), ("qdd", qdd)] {
+        if s != q {
+            return Err(invalid(format!(
+                "{name} of shape {s:?} but q of shape {q:?}: give one row per row of q"
+            )));
+        }
+    }
+    if loads != [q[0], l] {
+        return Err(invalid(format!(
+            "loads of shape {loads:?} for {} rows of {l} load value(s) each: give ({}, {l})",
+            q[0], q[0]
+        )));
+    }
+    Ok(())
+}
+
 /// The native mechanism (wrapped by `mech.Mechanism`).
 #[pyclass(module = "mech._mech", name = "_Mechanism")]
 #[derive(Clone)]
@@ -171,6 +345,7 @@ impl PyMechanism {
     #[staticmethod]
     #[pyo3(signature = (text, origin=None))]
     fn from_dsl(py: Python<'_>, text: &str, origin: Option<&str>) -> PyResult<Self> {
+        check_text(text, origin.unwrap_or("the text"))?;
         let m = match origin {
             Some(o) => Mechanism::from_dsl_named(text, o),
             None => Mechanism::from_dsl(text),
@@ -257,7 +432,15 @@ impl PyMechanism {
             qdd.as_array(),
             loads.as_array(),
         );
+        check_shapes(
+            &self.inner,
+            q.shape(),
+            qd.shape(),
+            qdd.shape(),
+            loads.shape(),
+        )?;
         let n = q.nrows();
+        check_size(n, cols.names.len(), "the table")?;
         // Rows as plain slices of the (n, G) and (n, L) arrays in row-major order (copied
         // once if numpy gave another layout).
         let (g, nl) = (q.ncols(), loads.ncols());
@@ -343,12 +526,27 @@ impl PyMechanism {
         Option<String>,
     )> {
         if self.inner.dof() != 1 {
-            return Err(InvalidInput::new_err(format!(
+            return Err(invalid(format!(
                 "the direct problem by Zhukovski needs one input; this mechanism has {}",
                 self.inner.dof()
             )));
         }
         let loads = loads.as_array();
+        let n = q.len();
+        if qd.len() != n || driver.len() != n {
+            return Err(invalid(format!(
+                "q, qd and driver of lengths {n}, {} and {}: give one value of each per configuration",
+                qd.len(),
+                driver.len()
+            )));
+        }
+        let l = load_width(&self.inner);
+        if loads.shape() != [n, l] {
+            return Err(invalid(format!(
+                "loads of shape {:?} for {n} rows of {l} load value(s) each: give ({n}, {l})",
+                loads.shape()
+            )));
+        }
         let m = &self.inner;
         let out: Vec<Result<f64, CoreError>> = py.allow_threads(|| {
             pool().install(|| {
@@ -399,7 +597,15 @@ impl PyMechanism {
             qdd.as_array(),
             loads.as_array(),
         );
+        check_shapes(
+            &self.inner,
+            q.shape(),
+            qd.shape(),
+            qdd.shape(),
+            loads.shape(),
+        )?;
         let (n, width, nv) = (q.nrows(), cols.names.len(), variants.len());
+        check_size(nv.saturating_mul(n), width, "the sweep")?;
         let base = &self.inner;
         let results: Vec<(Vec<f64>, Vec<bool>)> = py.allow_threads(|| {
             pool().install(|| {
@@ -472,17 +678,37 @@ impl PyMechanism {
     ) -> PyResult<Vec<(String, f64)>> {
         let m = &self.inner;
         if m.dof() != 1 || m.model().joints[m.model().inputs[0]].kind != JointKind::Revolute {
-            return Err(InvalidInput::new_err(
-                "flywheel sizing needs one revolute input",
-            ));
+            return Err(invalid("flywheel sizing needs one revolute input"));
         }
+        if period.is_finite() && period > MAX_PERIOD {
+            return Err(invalid(format!(
+                "period = {period:e} rad: {:.3e} turns, more than the limit of {:.0} turns; a cycle is the shortest span after which the loads repeat",
+                period / std::f64::consts::TAU,
+                MAX_PERIOD / std::f64::consts::TAU
+            )));
+        }
+        if start.is_finite() && period > 0.0 && start.abs() * f64::EPSILON > 1e-9 * period {
+            return Err(invalid(format!(
+                "start = {start:e} rad: so large beside the period that the cycle's angles lose their precision; give a start within a few periods of 0"
+            )));
+        }
+        // The first exception of a callable, re-raised as it is.
+        let raised = Raised::default();
+        let keep = |e: PyErr| {
+            let mut r = raised.borrow_mut();
+            if r.is_none() {
+                *r = Some(e);
+            }
+        };
         let call_loads = |q: f64| -> Result<Loads, CoreError> {
             let flat: Vec<f64> =
                 loads
                     .call1(py, (q,))
                     .and_then(|v| v.extract(py))
                     .map_err(|e| {
-                        CoreError::InvalidInput(format!("the loads callable at q = {q}: {e}"))
+                        let text = format!("the loads callable at q = {q}: {e}");
+                        keep(e);
+                        CoreError::InvalidInput(text)
                     })?;
             Ok(loads_of(m, &flat))
         };
@@ -491,7 +717,10 @@ impl PyMechanism {
             driver.as_ref().map_or(0.0, |d| {
                 d.call1(py, (q,))
                     .and_then(|v| v.extract::<f64>(py))
-                    .unwrap_or(f64::NAN)
+                    .unwrap_or_else(|e| {
+                        keep(e);
+                        f64::NAN
+                    })
             })
         };
         let run = || -> Result<Vec<(String, f64)>, CoreError> {
@@ -524,7 +753,11 @@ impl PyMechanism {
             .map(|(k, v)| (k.to_string(), v))
             .collect())
         };
-        run().map_err(|e| py_err(py, e))
+        let out = run();
+        if let Some(e) = raised.borrow_mut().take() {
+            return Err(e);
+        }
+        out.map_err(|e| py_err(py, e))
     }
 
     /// A cam's profile at `points` cam angles over a turn (`mech::cam::Profile::row`):
@@ -545,9 +778,9 @@ impl PyMechanism {
         (f64, f64, f64, f64, bool),
     )> {
         let (cam, g) = self.inner.cam(name.as_deref()).map_err(|e| py_err(py, e))?;
-        if points < 3 {
-            return Err(InvalidInput::new_err(format!(
-                "points = {points}: a profile needs at least 3"
+        if !(3..=MAX_POINTS).contains(&points) {
+            return Err(invalid(format!(
+                "points = {points}: a profile needs from 3 to {MAX_POINTS} points"
             )));
         }
         let p = &g.profile;
@@ -573,8 +806,8 @@ impl PyMechanism {
     /// Reduce for pickling: the DSL text cannot be recovered from the model, so the
     /// Python wrapper pickles its text and parameters; this native object refuses.
     fn __reduce__(&self) -> PyResult<()> {
-        Err(InvalidInput::new_err(
-            "pickle mech.Mechanism (the wrapper keeps the text), not its native core",
+        Err(PyTypeError::new_err(
+            "cannot pickle the native core mech._mech._Mechanism: pickle the mech.Mechanism that holds it (it travels as its text and parameters)",
         ))
     }
 }
@@ -585,10 +818,20 @@ fn _mech(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMechanism>()?;
     m.add_function(wrap_pyfunction!(num_threads, m)?)?;
     let py = m.py();
+    // The module they are found in, for pickle (a worker's exception travels back to
+    // the client): `mech._mech`, not the `_mech` the macro names.
+    for t in [
+        py.get_type::<MechError>(),
+        py.get_type::<InvalidMechanism>(),
+        py.get_type::<NoAssembly>(),
+        py.get_type::<Singular>(),
+    ] {
+        t.setattr("__module__", "mech._mech")?;
+    }
     m.add("MechError", py.get_type::<MechError>())?;
     m.add("InvalidMechanism", py.get_type::<InvalidMechanism>())?;
     m.add("NoAssembly", py.get_type::<NoAssembly>())?;
     m.add("Singular", py.get_type::<Singular>())?;
-    m.add("InvalidInput", py.get_type::<InvalidInput>())?;
+    m.add("InvalidInput", invalid_input_type(py))?;
     Ok(())
 }

@@ -12,10 +12,37 @@ one input, ``(n, G)`` for G inputs) and returns a dict of NumPy arrays keyed lik
 
 Units are SI: m, kg, kg·m², rad, s, N, N·m.
 
+What the solvers accept (``mech-py/tests/test_hostile.py``):
+
+- **dtypes**: Python numbers and arrays of any integer or floating dtype (``int64``,
+  ``uint8``, ``float32``, ...) are converted to float64; object arrays are converted when
+  every element is a real number. ``bool``, complex, string and bytes values, ``None``,
+  datetimes and object arrays holding anything else raise ``TypeError`` naming the
+  argument — nothing is dropped silently (a complex value would lose its imaginary part).
+- **layouts**: any strides — slices with a step, transposed and Fortran-ordered arrays —
+  give the same answer as a C-contiguous copy.
+- **shapes**: ``q`` is a number, ``(n,)`` for one input or ``(n, G)`` for G inputs (a
+  ``(G,)`` vector is one configuration); ``qd``, ``qdd``, a driver and load arrays give
+  one value (broadcast) or one per row of ``q``. Other shapes, and 3-D arrays, raise
+  ``mech.InvalidInput`` naming the shapes. An empty ``q`` gives empty columns.
+- **values**: a NaN or infinite input, rate or load raises ``mech.InvalidInput``; with
+  ``errors="mask"`` its row is NaN with ``out["ok"]`` False instead, the other rows
+  unaffected. ``mech.InvalidInput`` is both a ``mech.MechError`` and a ``ValueError``.
+- **sizes**: a batch of more than 2²⁸ output values (2 GB), a cam profile of more than
+  10⁶ points, a flywheel cycle of more than 1000 turns, and a DSL text of more than 4 MB
+  or nested more than 64 brackets deep raise ``mech.InvalidInput`` before anything is
+  allocated.
+- **pickling**: a ``Mechanism`` and every result pickle and round-trip; the native core
+  alone raises ``TypeError``.
+
 >>> import mech
 >>> m = mech.Mechanism.load("examples/mech/engine.mech")          # doctest: +SKIP
 >>> m.reduced([0.0, 0.5])["inertia"]                                # doctest: +SKIP
 """
+
+import numbers
+import os
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -34,6 +61,96 @@ __all__ = [
 ]
 
 _ALL = ["inputs", "positions", "rates", "reactions", "driver", "virtual_power", "zhukovski"]
+
+# The most values one call returns (the native limit, checked here before any copy).
+_MAX_VALUES = 1 << 28
+
+# The largest mechanism file, bytes.
+_MAX_TEXT = 4 << 20
+
+
+def _kind(x):
+    """A short description of a value's type, for messages."""
+    if x is None:
+        return "None"
+    if isinstance(x, np.ndarray):
+        return "an array of dtype %s" % x.dtype
+    name = type(x).__name__
+    return ("an %s" if name[0] in "aeiou" else "a %s") % name
+
+
+def _floats(x, name):
+    """``x`` as a float64 array (any shape), converting integer and floating dtypes;
+    ``TypeError`` for bool, complex, str, bytes, None, datetimes and objects that are not
+    real numbers."""
+    if x is None:
+        raise TypeError("%s is None: give a number or an array of numbers" % name)
+    if isinstance(x, (str, bytes)):
+        raise TypeError("%s is %s (%r): give a number or an array of numbers; convert text with float()" % (name, _kind(x), x[:40]))
+    try:
+        a = np.asarray(x)
+    except (ValueError, TypeError) as e:
+        raise InvalidInput("%s cannot be read as an array of numbers (ragged nesting?): %s" % (name, e)) from None
+    if a.size > _MAX_VALUES:
+        raise InvalidInput("%s has %d values, more than the limit of %d (2 GB); split the batch into chunks" % (name, a.size, _MAX_VALUES))
+    k = a.dtype.kind
+    if k == "f" and a.dtype == np.float64:
+        return a
+    if k in "iuf":
+        return a.astype(np.float64)
+    if k == "O":
+        for v in a.flat:
+            if isinstance(v, (bool, np.bool_)) or not isinstance(v, numbers.Real):
+                raise TypeError("%s holds %s (%r): give real numbers" % (name, _kind(v), v))
+        return a.astype(np.float64)
+    what = {
+        "b": "booleans: give numbers (0.0 and 1.0 if you meant them)",
+        "c": "complex numbers: give real numbers (take .real if the imaginary parts are zero)",
+        "U": "strings: give numbers; convert text with float()",
+        "S": "bytes: give numbers",
+        "M": "datetimes: give numbers (rad, m, s ...)",
+        "m": "time deltas: give numbers of seconds",
+    }.get(k, "values of dtype %s: give real numbers" % a.dtype)
+    raise TypeError("%s holds %s" % (name, what))
+
+
+def _number(x, name):
+    """A finite real scalar ``x`` as a float (``TypeError`` for a non-number,
+    ``InvalidInput`` for NaN or an infinity)."""
+    a = _floats(x, name)
+    if a.ndim != 0 and a.size != 1:
+        raise InvalidInput("%s of shape %s: give one number" % (name, a.shape))
+    v = float(a.reshape(()))
+    if not np.isfinite(v):
+        raise InvalidInput("%s = %r: not a finite number" % (name, v))
+    return v
+
+
+def _check_errors(errors):
+    if errors not in ("raise", "mask"):
+        raise ValueError("errors=%r: give \"raise\" (the default: a row that does not solve raises) or \"mask\" (its values are NaN, out[\"ok\"] False)" % (errors,))
+
+
+def _text(text, what="text"):
+    """The DSL text: a str (``TypeError`` for bytes or anything else)."""
+    if isinstance(text, (bytes, bytearray)):
+        raise TypeError("%s is bytes: give a str; decode it first, e.g. text.decode(\"utf-8\")" % what)
+    if not isinstance(text, str):
+        raise TypeError("%s is %s: give the mechanism's DSL text as a str" % (what, _kind(text)))
+    return text
+
+
+def _parts(parts):
+    """The list of parts: default all; a str is one part."""
+    if parts is None:
+        return list(_ALL)
+    if isinstance(parts, str):
+        return [parts]
+    parts = list(parts)
+    for p in parts:
+        if not isinstance(p, str):
+            raise TypeError("a part is %s: give part names as str (%s)" % (_kind(p), ", ".join(_ALL)))
+    return parts or list(_ALL)
 
 
 def _raise(message):
@@ -58,9 +175,17 @@ class Mechanism:
 
     Picklable: the text and the parameters set since loading travel, so Dask and Ray can
     ship it to workers.
+
+    The solvers take numbers or arrays of any real dtype (converted to float64) and any
+    strides; bool, complex, str, bytes and ``None`` are a ``TypeError``; bad values,
+    shapes and sizes a ``mech.InvalidInput`` (also a ``ValueError``). See the package
+    docstring for the whole policy.
     """
 
     def __init__(self, text, origin=None, params=()):
+        text = _text(text)
+        if origin is not None and not isinstance(origin, str):
+            raise TypeError("origin is %s: give a str (a file name for the messages) or None" % _kind(origin))
         self._text = text
         self._origin = origin
         self._core = _mech._Mechanism.from_dsl(text, origin)
@@ -70,15 +195,34 @@ class Mechanism:
 
     @classmethod
     def from_dsl(cls, text):
-        """The mechanism described by ``text``; ``InvalidMechanism`` (with ``line``,
-        ``column`` and ``message``) when a check fails."""
+        """The mechanism described by ``text`` (a str; ``TypeError`` for bytes, ``None``
+        or anything else); ``InvalidMechanism`` (with ``line``, ``column`` and
+        ``message``) when a check fails; ``InvalidInput`` for a text of more than 4 MB or
+        nested more than 64 brackets deep."""
         return cls(text)
 
     @classmethod
     def load(cls, path):
-        """The mechanism of a ``.mech`` file; messages name the file."""
-        with open(path, encoding="utf-8") as f:
-            return cls(f.read(), origin=str(path))
+        """The mechanism of a ``.mech`` file; messages name the file. ``OSError`` when it
+        cannot be read; ``InvalidInput`` for a file of more than 4 MB, a binary file or
+        one that is not UTF-8 text."""
+        if path is None or not isinstance(path, (str, bytes, os.PathLike)):
+            raise TypeError("path is %s: give a file name (str or os.PathLike)" % _kind(path))
+        size = os.stat(path).st_size
+        if size > _MAX_TEXT:
+            raise InvalidInput("%s is %.1f MB, more than the %d MB a mechanism file may have; is it the right file?" % (os.fsdecode(path), size / 2**20, _MAX_TEXT >> 20))
+        with open(path, "rb") as f:
+            data = f.read(_MAX_TEXT + 1)
+        name = os.fsdecode(path)
+        if len(data) > _MAX_TEXT:
+            raise InvalidInput("%s holds more than the %d MB a mechanism file may have; is it the right file?" % (name, _MAX_TEXT >> 20))
+        if b"\0" in data:
+            raise InvalidInput("%s is a binary file (a NUL byte at offset %d), not a mechanism's text" % (name, data.index(b"\0")))
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as e:
+            raise InvalidInput("%s is not UTF-8 text (byte 0x%02x at offset %d); save it as UTF-8" % (name, data[e.start], e.start)) from None
+        return cls(text, origin=name)
 
     def __reduce__(self):
         return (_restore, (self._text, self._origin, tuple(self._params)))
@@ -117,28 +261,52 @@ class Mechanism:
         """Change one number of the drawing, re-checked: ``points.A`` = (x, y) m,
         ``links.rod.mass`` kg, ``links.rod.inertia`` kg·m², ``links.rod.cg`` (x, y) m,
         ``axes.guide`` (ux, uy), ``gravity`` (gx, gy) m/s²."""
-        value = [float(v) for v in np.atleast_1d(np.asarray(value, dtype=float))]
+        if not isinstance(path, str):
+            raise TypeError("path is %s: give a parameter path as a str, e.g. \"links.rod.mass\"" % _kind(path))
+        value = [float(v) for v in np.atleast_1d(_floats(value, "value")).ravel()]
         self._core.set_param(path, value)
         self._params.append((path, value))
 
     def columns(self, parts=None):
-        """The names of the columns of ``parts`` (default: all)."""
-        return self._core.columns(list(parts or _ALL))
+        """The names of the columns of ``parts`` (default: all; a str is one part)."""
+        return self._core.columns(_parts(parts))
 
     # -- inputs and loads --------------------------------------------------------------
 
-    def _rows(self, x, n=None):
-        """x as (n, G) floats; whether it was a scalar (one configuration)."""
-        a = np.asarray(x, dtype=float)
+    def _count(self, a):
+        """The number of configurations in a float array of inputs (no copy)."""
+        if a.ndim == 0:
+            return 1
+        if a.ndim == 1:
+            return 1 if (self.dof > 1 and a.shape[0] == self.dof) else a.shape[0]
+        return a.shape[0]
+
+    def _check_size(self, rows, parts, what="the table"):
+        """Refuse an output beyond the limit before anything is allocated."""
+        width = max(len(self._core.columns(list(parts))), 1)
+        if rows * width > _MAX_VALUES:
+            raise InvalidInput("%s: %d rows × %d columns = %d values (%.1f GB), more than the limit of %d (2 GB); split the batch into chunks (docs/scale-out.md) or ask for fewer parts" % (what, rows, width, rows * width, rows * width * 8e-9, _MAX_VALUES))
+
+    def _rows(self, x, n=None, name="q"):
+        """x as C-contiguous (n, G) float64 (any dtype of real numbers, any strides);
+        whether it was a scalar (one configuration). With ``n``, one row is repeated to
+        n and any other count than n is refused."""
+        a = _floats(x, name)
         g = self.dof
         scalar = a.ndim == 0 or (g > 1 and a.ndim == 1 and a.shape[0] == g)
+        if a.ndim > 2:
+            raise InvalidInput("%s of shape %s has %d dimensions: give a number, (n,) for one input or (n, G) for G" % (name, a.shape, a.ndim))
+        shape = a.shape
         if a.ndim == 0:
-            a = a.reshape(1, 1)
+            # A number: every input (several inputs: the same value for each).
+            a = np.full((1, g), float(a))
         elif a.ndim == 1:
             a = a.reshape(1, g) if (g > 1 and a.shape[0] == g) else a.reshape(-1, 1)
         if a.shape[1] != g:
-            raise InvalidInput("inputs of shape %s for %d input(s): give (n,) for one input, (n, G) for G" % (a.shape, g))
-        if n is not None and a.shape[0] == 1 and n > 1:
+            raise InvalidInput("inputs of shape %s for %d input(s): %s is %s; give (n,) for one input, (n, G) for G" % (a.shape, g, name, shape))
+        if n is not None and a.shape[0] != n:
+            if a.shape[0] != 1:
+                raise InvalidInput("%s has %d rows but q has %d: give one value, or one per row of q" % (name, a.shape[0], n))
             a = np.repeat(a, n, axis=0)
         return np.ascontiguousarray(a), scalar
 
@@ -149,25 +317,39 @@ class Mechanism:
         spec = self.load_names
         width = sum(w for _, w in spec)
         out = np.zeros((n, width))
+        if loads is not None and not isinstance(loads, Mapping):
+            raise TypeError("loads is %s: give a dict of load name -> value (a number, a pair, an array over the rows, or a callable of q)" % _kind(loads))
         loads = dict(loads or {})
         at = 0
         for name, w in spec:
             if name in loads:
                 v = loads.pop(name)
+                what = "loads[%r]" % name
                 if callable(v):
-                    v = np.array([np.asarray(v(qk[0] if self.dof == 1 else qk), dtype=float) for qk in q])
-                v = np.asarray(v, dtype=float)
-                out[:, at:at + w] = np.broadcast_to(v.reshape(-1, w) if v.size > w else v.reshape(w), (n, w))
+                    v = np.array([_floats(v(qk[0] if self.dof == 1 else qk), what + "(q)") for qk in q])
+                v = _floats(v, what)
+                shape = "(fx, fy) or an (n, 2) array" if w == 2 else "a number or an (n,) array"
+                kind = "a force" if w == 2 else "a torque"
+                if v.size == w:
+                    v = v.reshape(w)
+                elif v.ndim >= 1 and v.size == n * w and (v.shape == (n, w) or (w == 1 and v.shape == (n,))):
+                    v = v.reshape(n, w)
+                else:
+                    raise InvalidInput("%s of shape %s for %d rows: `%s` is %s, give %s" % (what, v.shape, n, name, kind, shape))
+                out[:, at:at + w] = np.broadcast_to(v, (n, w))
             at += w
         if loads:
             raise InvalidInput("no load named %s: the mechanism's loads are %s" % (", ".join(sorted(loads)), ", ".join(n for n, _ in spec) or "none"))
         return out
 
     def _table(self, parts, q, qd=0.0, qdd=0.0, loads=None, errors="raise", rename=None):
+        _check_errors(errors)
+        q = _floats(q, "q")
+        self._check_size(self._count(q), parts)
         q, scalar = self._rows(q)
         n = q.shape[0]
-        qd, _ = self._rows(qd, n)
-        qdd, _ = self._rows(qdd, n)
+        qd, _ = self._rows(qd, n, "qd")
+        qdd, _ = self._rows(qdd, n, "qdd")
         flat = self._loads(loads, q)
         names, data, ok, first = self._core.table(list(parts), q, qd, qdd, flat)
         if first is not None and errors == "raise":
@@ -223,12 +405,15 @@ class Mechanism:
     def acceleration(self, q, qd, driver, loads=None, errors="raise"):
         """The direct problem: ``qdd`` = q̈ from I* q̈ + ½ dI*/dq q̇² = driver + M* (one
         input; ``driver`` N·m, a number, an array or a callable of q)."""
+        _check_errors(errors)
+        if self.dof != 1:
+            raise InvalidInput("the direct problem by Zhukovski needs one input; this mechanism has %d" % self.dof)
         q, scalar = self._rows(q)
         n = q.shape[0]
-        qd, _ = self._rows(qd, n)
+        qd, _ = self._rows(qd, n, "qd")
         if callable(driver):
-            driver = [driver(x) for x in q[:, 0]]
-        d, _ = self._rows(driver, n)
+            driver = [_number(driver(x), "driver(q)") for x in q[:, 0]]
+        d, _ = self._rows(driver, n, "driver")
         flat = self._loads(loads, q)
         qdd, ok, first = self._core.acceleration(list(q[:, 0]), list(qd[:, 0]), list(d[:, 0]), flat)
         if first is not None and errors == "raise":
@@ -245,13 +430,26 @@ class Mechanism:
         the net work, the balancing torque, S_max, S_min, ``fluctuation`` ΔE, the inertia
         by the approximate formula and by Wittenbauer's exact method (kg·m²), and the
         speeds of one simulated cycle with the exact flywheel."""
+        period, speed, irregularity = _number(period, "period"), _number(speed, "speed"), _number(irregularity, "irregularity")
+        start, rtol = _number(start, "start"), _number(rtol, "rtol")
+        breakpoints = [float(b) for b in np.atleast_1d(_floats(breakpoints, "breakpoints")).ravel()]
+        if self.dof != 1:
+            raise InvalidInput("flywheel sizing needs one revolute input; this mechanism has %d inputs" % self.dof)
+        if loads is not None and not isinstance(loads, Mapping):
+            raise TypeError("loads is %s: give a dict of load name -> value" % _kind(loads))
+
         def flat(q):
             return [float(v) for v in self._loads(loads, np.array([[q]]))[0]]
 
         drv = None
         if driver is not None:
-            drv = driver if callable(driver) else (lambda q, c=float(driver): c)
-        return dict(self._core.flywheel(float(start), float(period), [float(b) for b in breakpoints], float(speed), float(irregularity), flat, drv, float(rtol)))
+            if callable(driver):
+                def drv(q):
+                    return _number(driver(q), "driver(q)")
+            else:
+                c = _number(driver, "driver")
+                drv = lambda q: c  # noqa: E731
+        return dict(self._core.flywheel(start, period, breakpoints, speed, irregularity, flat, drv, rtol))
 
     def cam_profile(self, name=None, points=360):
         """A cam's profile at ``points`` cam angles over a turn (``name``: the cam joint;
@@ -262,6 +460,13 @@ class Mechanism:
         frame, m), ``pressure_angle`` (rad) and ``curvature_radius`` (m, > 0 convex); and
         the design figures ``max_pressure_angle`` and ``at`` (rad), ``min_convex_radius``
         (m) and ``at`` (rad), ``undercut``."""
+        if name is not None and not isinstance(name, str):
+            raise TypeError("name is %s: give the cam joint's name as a str, or None for the only cam" % _kind(name))
+        if isinstance(points, (bool, np.bool_)) or not isinstance(points, (int, np.integer, float, np.floating)):
+            raise TypeError("points is %s: give a whole number from 3 to 1000000" % _kind(points))
+        whole = isinstance(points, (int, np.integer)) or (np.isfinite(points) and float(points).is_integer())
+        if not (whole and 3 <= points <= 1_000_000):
+            raise InvalidInput("points = %r: give a whole number from 3 to 1000000" % (points,))
         cam, names, rows, (phi, phi_at, rho, rho_at, undercut) = self._core.cam_profile(name, int(points))
         out = {n: rows[:, k] for k, n in enumerate(names)}
         out["name"] = cam
@@ -277,22 +482,32 @@ def sweep(mechanism, params, q, qd=0.0, qdd=0.0, loads=None, parts=None):
     ``(V,)``, or ``(V, 2)`` for points and vectors) or a list of V dicts. Returns a dict of
     arrays of shape ``(V, n)`` and ``ok`` (V, n): a variant whose drawing fails a check, or
     a configuration that does not assemble, is NaN with ``ok`` False, never an exception."""
-    if isinstance(params, dict):
-        arrays = {k: np.asarray(v, dtype=float) for k, v in params.items()}
+    if not isinstance(mechanism, Mechanism):
+        raise TypeError("mechanism is %s: give a mech.Mechanism" % _kind(mechanism))
+    if isinstance(params, Mapping):
+        for k in params:
+            if not isinstance(k, str):
+                raise TypeError("params key %r is %s: give parameter paths as str" % (k, _kind(k)))
+        arrays = {k: np.atleast_1d(_floats(v, "params[%r]" % k)) for k, v in params.items()}
         sizes = {a.shape[0] for a in arrays.values()}
         if len(sizes) > 1:
             raise InvalidInput("every parameter needs the same number of variants, got %s" % sorted(sizes))
         nv = sizes.pop() if sizes else 1
         variants = [[(k, [float(x) for x in np.atleast_1d(a[i])]) for k, a in arrays.items()] for i in range(nv)]
+    elif isinstance(params, (list, tuple)) and all(isinstance(p, Mapping) for p in params):
+        variants = [[(k, [float(x) for x in np.atleast_1d(_floats(v, "params[%d][%r]" % (i, k))).ravel()]) for k, v in p.items()] for i, p in enumerate(params)]
     else:
-        variants = [[(k, [float(x) for x in np.atleast_1d(np.asarray(v, dtype=float))]) for k, v in p.items()] for p in params]
+        raise TypeError("params is %s: give a dict of parameter path -> V values, or a list of V such dicts" % _kind(params))
     m = mechanism
-    qa, _ = m._rows(q)
+    parts = _parts(parts)
+    qa = _floats(q, "q")
+    m._check_size(len(variants) * m._count(qa), parts, "the sweep (variants × rows)")
+    qa, _ = m._rows(qa)
     n = qa.shape[0]
-    qd, _ = m._rows(qd, n)
-    qdd, _ = m._rows(qdd, n)
+    qd, _ = m._rows(qd, n, "qd")
+    qdd, _ = m._rows(qdd, n, "qdd")
     flat = m._loads(loads, qa)
-    names, data, ok = m._core.sweep(variants, list(parts or _ALL), qa, qd, qdd, flat)
+    names, data, ok = m._core.sweep(variants, parts, qa, qd, qdd, flat)
     out = {name: data[:, :, k] for k, name in enumerate(names)}
     out["ok"] = ok
     return out

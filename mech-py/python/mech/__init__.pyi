@@ -25,8 +25,8 @@ class NoAssembly(MechError):
 class Singular(MechError):
     """A dead point: not solvable to the requested accuracy."""
 
-class InvalidInput(MechError):
-    """A bad number or shape."""
+class InvalidInput(MechError, ValueError):
+    """A bad number (NaN, infinite, out of range), shape or size: a MechError and a ValueError."""
 
 def num_threads() -> int:
     """Threads of the solvers (MECH_NUM_THREADS)."""
