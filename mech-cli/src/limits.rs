@@ -26,7 +26,7 @@ pub const POINTS: usize = 1_000_000;
 /// The most frames of an animation or a report (`--frames`).
 pub const FRAMES: usize = 10_000;
 /// The deepest nesting of brackets, or the longest run of signs, in a text.
-pub const NESTING: usize = 64;
+pub const NESTING: usize = mech_core::checks::load::MAX_NESTING;
 /// The largest picture side, px (`--width`, `--height`).
 pub const PICTURE: f64 = 100_000.0;
 
@@ -122,54 +122,13 @@ fn line_col(prefix: &[u8]) -> (usize, usize) {
 
 /// Refuse a text nested deeper than [`NESTING`] brackets, or with a longer run of signs
 /// (`- - - 1`): the parser is recursive, and such a text would overflow its stack.
-/// Comments (`//` to the end of the line) are skipped. `origin` names the text.
+/// Comments (`//` to the end of the line) are skipped. `origin` names the text. The rule
+/// is the loader's own (`mech_core::checks::load::check_text`), said here before any work.
 pub fn nesting(text: &str, origin: &str) -> Result<(), Failure> {
-    let (mut depth, mut run) = (0usize, 0usize);
-    let (mut line, mut col) = (1usize, 0usize);
-    let mut chars = text.chars().peekable();
-    while let Some(c) = chars.next() {
-        col += 1;
-        match c {
-            '\n' => {
-                line += 1;
-                col = 0;
-                continue;
-            }
-            '/' if chars.peek() == Some(&'/') => {
-                for c in chars.by_ref() {
-                    if c == '\n' {
-                        line += 1;
-                        col = 0;
-                        break;
-                    }
-                }
-                run = 0;
-                continue;
-            }
-            '(' | '[' | '{' => {
-                depth += 1;
-                run = 0;
-            }
-            ')' | ']' | '}' => {
-                depth = depth.saturating_sub(1);
-                run = 0;
-            }
-            '-' | '+' | '!' => run += 1,
-            c if c.is_whitespace() => {}
-            _ => run = 0,
-        }
-        if depth > NESTING || run > NESTING {
-            let what = if depth > NESTING {
-                format!("brackets nested more than {NESTING} deep")
-            } else {
-                format!("more than {NESTING} signs in a row")
-            };
-            return Err(Failure::usage(format!(
-                "{origin}:{line}:{col}: {what}; write the expression flatter"
-            )));
-        }
-    }
-    Ok(())
+    mech_core::checks::load::check_text(text, Some(origin)).map_err(|e| match e {
+        mech_core::MechError::Invalid(m) => Failure::usage(m),
+        other => Failure::usage(other.to_string()),
+    })
 }
 
 /// Why `path` cannot be written, said before the work: a directory, or a parent folder

@@ -84,79 +84,19 @@ fn invalid(message: impl Into<String>) -> PyErr {
 /// anything is allocated (it would end the process when memory runs out): split it.
 const MAX_VALUES: usize = 1 << 28;
 
-/// The largest DSL text, bytes (the largest example is a few kB).
-const MAX_TEXT: usize = 4 << 20;
-
-/// The deepest nesting of brackets, and the longest run of signs, in a DSL text: the
-/// parser is recursive, and a deeper text would overflow the thread's stack (a crash of
-/// the Python process, not an exception).
-const MAX_NESTING: usize = 64;
-
 /// The longest cycle of `flywheel`, rad (1000 turns).
 const MAX_PERIOD: f64 = 2000.0 * std::f64::consts::PI;
 
 /// The most points of a cam profile.
 const MAX_POINTS: usize = 1_000_000;
 
-/// Refuse a text too large or nested too deep for the parser (`origin` names it).
+/// Refuse a text too large, binary or nested too deep for the parser (`origin` names it):
+/// the loader's rule, `mech_core::checks::load::check_text`, as an `InvalidInput`.
 fn check_text(text: &str, origin: &str) -> PyResult<()> {
-    if text.len() > MAX_TEXT {
-        return Err(invalid(format!(
-            "{origin}: {:.1} MB of text, more than the {} MB a mechanism may have; is it the right text?",
-            text.len() as f64 / (1 << 20) as f64,
-            MAX_TEXT >> 20
-        )));
-    }
-    if let Some(at) = text.find('\0') {
-        return Err(invalid(format!(
-            "{origin}: a NUL character at offset {at}: binary data, not a mechanism's text"
-        )));
-    }
-    let (mut depth, mut run, mut line, mut col) = (0usize, 0usize, 1usize, 0usize);
-    let mut chars = text.chars().peekable();
-    while let Some(c) = chars.next() {
-        col += 1;
-        match c {
-            '\n' => {
-                line += 1;
-                col = 0;
-                continue;
-            }
-            '/' if chars.peek() == Some(&'/') => {
-                for c in chars.by_ref() {
-                    if c == '\n' {
-                        line += 1;
-                        col = 0;
-                        break;
-                    }
-                }
-                run = 0;
-                continue;
-            }
-            '(' | '[' | '{' => {
-                depth += 1;
-                run = 0;
-            }
-            ')' | ']' | '}' => {
-                depth = depth.saturating_sub(1);
-                run = 0;
-            }
-            '-' | '+' | '!' => run += 1,
-            c if c.is_whitespace() => {}
-            _ => run = 0,
-        }
-        if depth > MAX_NESTING || run > MAX_NESTING {
-            let what = if depth > MAX_NESTING {
-                format!("brackets nested more than {MAX_NESTING} deep")
-            } else {
-                format!("more than {MAX_NESTING} signs in a row")
-            };
-            return Err(invalid(format!(
-                "{origin}:{line}:{col}: {what}; write the expression flatter"
-            )));
-        }
-    }
-    Ok(())
+    mech_core::checks::load::check_text(text, Some(origin)).map_err(|e| match e {
+        CoreError::Invalid(m) => invalid(m),
+        other => invalid(other.to_string()),
+    })
 }
 
 /// Refuse an output of `rows` × `width` values beyond [`MAX_VALUES`].

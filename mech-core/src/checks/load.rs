@@ -132,9 +132,82 @@ pub fn mechanism_text<'a>(source: &'a str, name: &str) -> Result<&'a str, MechEr
     Ok(&source[group.span_open().byte_range().end..group.span_close().byte_range().start])
 }
 
+/// The largest text the loader reads, bytes (the largest example is a few kB).
+pub const MAX_TEXT: usize = 4 << 20;
+
+/// The deepest nesting of brackets, and the longest run of signs (`- - - 1`), in a text
+/// the loader reads: the parser is recursive, and a deeper text would overflow its stack.
+pub const MAX_NESTING: usize = 64;
+
+/// Refuse, before any parsing, a text the parser must not be given: over [`MAX_TEXT`]
+/// bytes, holding a NUL (binary data), or nested deeper than [`MAX_NESTING`] brackets or
+/// signs (comments `//` skipped). [`MechError::Invalid`] locates it as `origin:line:col`.
+pub fn check_text(text: &str, origin: Option<&str>) -> Result<(), MechError> {
+    let origin = origin.unwrap_or("the text");
+    if text.len() > MAX_TEXT {
+        return Err(MechError::Invalid(format!(
+            "{origin}: {:.1} MB of text, more than the {} MB a mechanism may have; is it the right text?",
+            text.len() as f64 / (1 << 20) as f64,
+            MAX_TEXT >> 20
+        )));
+    }
+    if let Some(at) = text.find('\0') {
+        return Err(MechError::Invalid(format!(
+            "{origin}: a NUL character at offset {at}: binary data, not a mechanism's text"
+        )));
+    }
+    let (mut depth, mut run, mut line, mut col) = (0usize, 0usize, 1usize, 0usize);
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        col += 1;
+        match c {
+            '\n' => {
+                line += 1;
+                col = 0;
+                continue;
+            }
+            '/' if chars.peek() == Some(&'/') => {
+                for c in chars.by_ref() {
+                    if c == '\n' {
+                        line += 1;
+                        col = 0;
+                        break;
+                    }
+                }
+                run = 0;
+                continue;
+            }
+            '(' | '[' | '{' => {
+                depth += 1;
+                run = 0;
+            }
+            ')' | ']' | '}' => {
+                depth = depth.saturating_sub(1);
+                run = 0;
+            }
+            '-' | '+' | '!' => run += 1,
+            c if c.is_whitespace() => {}
+            _ => run = 0,
+        }
+        if depth > MAX_NESTING || run > MAX_NESTING {
+            let what = if depth > MAX_NESTING {
+                format!("brackets nested more than {MAX_NESTING} deep")
+            } else {
+                format!("more than {MAX_NESTING} signs in a row")
+            };
+            return Err(MechError::Invalid(format!(
+                "{origin}:{line}:{col}: {what}; write the expression flatter"
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// The checked model of DSL text (every check of the macro; messages located in the
-/// text, `origin` naming it): what both run-time solvers are built from.
+/// text, `origin` naming it): what both run-time solvers are built from. The text is
+/// first held to [`check_text`].
 pub fn parse_model(text: &str, origin: Option<&str>) -> Result<Model, MechError> {
+    check_text(text, origin)?;
     on_own_thread(|| {
         let desc = parse_str(text).map_err(|e| syntax(text, origin, e))?;
         checked_model(&desc, text, origin)
@@ -143,6 +216,7 @@ pub fn parse_model(text: &str, origin: Option<&str>) -> Result<Model, MechError>
 
 /// The checked model of the mechanism `name` declared in Rust source text.
 pub fn rust_source_model(source: &str, name: &str) -> Result<Model, MechError> {
+    check_text(source, None)?;
     on_own_thread(|| checked_model(&find_declaration(source, name)?.1, source, None))
 }
 
@@ -163,4 +237,32 @@ fn on_own_thread<T: Send>(f: impl FnOnce() -> Result<T, MechError> + Send) -> Re
             )))
         })
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deep nesting and long sign runs are refused with where they are, before the
+    /// recursive parser could overflow its thread's stack (it did on 10⁵ brackets).
+    #[test]
+    fn texts_the_parser_must_not_see_are_refused_with_their_place() {
+        let deep = format!("consts {{ a: {}1{} }}", "(".repeat(100_000), ")".repeat(100_000));
+        let e = parse_model(&deep, Some("deep.mech")).unwrap_err().to_string();
+        assert!(e.contains("deep.mech:1:") && e.contains("nested more than 64 deep"), "{e}");
+        let signs = format!("consts {{ a: {}1 }}", "- ".repeat(100_000));
+        let e = parse_model(&signs, None).unwrap_err().to_string();
+        assert!(e.contains("more than 64 signs in a row"), "{e}");
+        let e = parse_model("ground { O: (0.0, 0.0) }\0", None).unwrap_err().to_string();
+        assert!(e.contains("NUL character at offset 24"), "{e}");
+        let big = "// x\n".repeat(MAX_TEXT / 5 + 1);
+        assert!(parse_model(&big, None).unwrap_err().to_string().contains("MB of text"));
+        let e = rust_source_model(&format!("fn f() {{ {} }}", "[".repeat(1000)), "M")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("nested more than 64 deep"), "{e}");
+        // Comments do not count, and 64 levels still parse as far as the grammar goes.
+        assert!(check_text(&format!("// {}\n", "(".repeat(1000)), None).is_ok());
+        assert!(check_text(&format!("{}1{}", "(".repeat(64), ")".repeat(64)), None).is_ok());
+    }
 }
