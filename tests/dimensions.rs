@@ -5,6 +5,7 @@
 //! computed here by other formulas (law of cosines, the slider-crank's closed form,
 //! hand-converted SI literals), never against the DSL's own evaluation.
 
+use crate::measure::within;
 use mech::prelude::*;
 use mech::Mechanism;
 
@@ -82,9 +83,10 @@ fn four_bar_b(left: bool) -> (Vector2<f64>, Vector2<f64>) {
     (a, a + coupler * Vector2::new(t.cos(), t.sin()))
 }
 
+#[track_caller]
 fn near(what: &str, x: Vector2<f64>, y: Vector2<f64>, tol: f64) {
     assert!(
-        (x - y).norm() <= tol,
+        within((x - y).norm(), tol),
         "{what}: {x:?} against {y:?} ({:.2e} > {tol:.0e})",
         (x - y).norm()
     );
@@ -122,7 +124,7 @@ fn a_four_bar_from_its_lengths_on_both_branches() {
         near("A", pa, a, 1e-15);
         near("B", pb, b, 1e-14);
         assert!(
-            ((pb - pa).norm() - 0.26).abs() < 1e-15 && ((pb - po4).norm() - 0.19).abs() < 1e-15
+            within(((pb - pa).norm() - 0.26).abs(), 1e-15) && within(((pb - po4).norm() - 0.19).abs(), 1e-15)
         );
         // cgs in each link's frame: along(25 mm) on O2 → A, local(110, 40) mm on A → B.
         let e = (b - a) / 0.26;
@@ -280,7 +282,7 @@ mechanism! {
 /// x and y equal to within the rounding of one unit conversion (one ulp of each factor).
 fn same(what: &str, x: f64, y: f64) {
     assert!(
-        (x - y).abs() <= 2.0 * f64::EPSILON * y.abs(),
+        within((x - y).abs(), 2.0 * f64::EPSILON * y.abs()),
         "{what}: {x:e} against {y:e}"
     );
 }
@@ -362,7 +364,7 @@ fn a_vertical_engine_at_45_degrees_after_top_dead_centre() {
     let q = 45f64.to_radians();
     let p = m.pose(q).unwrap();
     assert!(
-        (p.links.crank.angle - 135f64.to_radians()).abs() < 1e-15,
+        within((p.links.crank.angle - 135f64.to_radians()).abs(), 1e-15),
         "{}",
         p.links.crank.angle
     );
@@ -391,7 +393,7 @@ fn a_vertical_engine_at_45_degrees_after_top_dead_centre() {
             abs.driver_action(&ma, &abs_loads).unwrap(),
         );
         assert!(
-            (t - ta).abs() <= 1e-12 * ta.abs().max(1.0),
+            within((t - ta).abs(), 1e-12 * ta.abs().max(1.0)),
             "q = {q}: {t} against {ta}"
         );
         let z = m.acceleration(q, 150.0, 40.0, &loads).unwrap();
@@ -399,7 +401,7 @@ fn a_vertical_engine_at_45_degrees_after_top_dead_centre() {
             .acceleration(q + 90f64.to_radians(), 150.0, 40.0, &abs_loads)
             .unwrap();
         assert!(
-            (z - za).abs() <= 1e-10 * za.abs().max(1.0),
+            within((z - za).abs(), 1e-10 * za.abs().max(1.0)),
             "q̈ at q = {q}: {z} against {za}"
         );
     }
@@ -457,7 +459,7 @@ fn the_run_time_loader_reads_the_same_grammar() {
         };
         let i = OneDof::reduced(&rt, q).unwrap().inertia;
         assert!(
-            (i - reduced.inertia).abs() <= 1e-12 * reduced.inertia,
+            within((i - reduced.inertia).abs(), 1e-12 * reduced.inertia),
             "{name}: I* {i} against {}",
             reduced.inertia
         );

@@ -5,6 +5,7 @@
 //! (scaled by the largest entry of the same kind): the reference tables through the
 //! run-time path.
 
+use crate::measure::within;
 use crate::mechanisms;
 use crate::support;
 
@@ -143,12 +144,12 @@ fn parameters_by_name_match_from_params() {
             rt.kinetostatics(&rm, &rloads).unwrap().driver[0],
         );
         assert!(
-            (d - rd).abs() <= 1e-12 * d.abs().max(1.0),
+            within((d - rd).abs(), 1e-12 * d.abs().max(1.0)),
             "q = {q}: driver {d} vs {rd}"
         );
         let (r, rr) = (gen.reduced(q).unwrap(), rt.reduced(q).unwrap());
         assert!(
-            (r.inertia - rr.inertia).abs() <= 1e-12 * r.inertia.abs(),
+            within((r.inertia - rr.inertia).abs(), 1e-12 * r.inertia.abs()),
             "q = {q}: I*"
         );
         let (ms, rms) = (
@@ -156,7 +157,7 @@ fn parameters_by_name_match_from_params() {
             rt.reduced_moment(q, &rloads).unwrap(),
         );
         assert!(
-            (ms - rms).abs() <= 1e-12 * ms.abs().max(1.0),
+            within((ms - rms).abs(), 1e-12 * ms.abs().max(1.0)),
             "q = {q}: M* {ms} vs {rms}"
         );
     }

@@ -5,6 +5,7 @@
 //! `mass: 0.0`; a mass or inertia given to a link declared without a term for it is
 //! refused with a message that names the link and the fix.
 
+use crate::measure::within;
 use mech::prelude::*;
 
 type V = Vector2<f64>;
@@ -82,9 +83,10 @@ struct Routes {
     reduced_kinetic: f64,
 }
 
+#[track_caller]
 fn close(what: &str, a: f64, b: f64, scale: f64, tol: f64) {
     assert!(
-        (a - b).abs() <= tol * scale,
+        within((a - b).abs(), tol * scale),
         "{what}: {a:e} vs {b:e} (difference {:e}, scale {scale:e})",
         a - b
     );

@@ -4,6 +4,7 @@
 //! (`tests/data/rolling.json` from `tools/rolling_reference.py`, mpmath 50 digits); the
 //! three routes to the driver, the run-time mechanism, energy over many turns.
 
+use crate::measure::{within, within_at};
 use mech::dynamics::{equation_of_motion, total_energy};
 use mech::ode::{solve, Dop853};
 use mech::prelude::*;
@@ -236,7 +237,7 @@ macro_rules! wheel_case {
                 let turn = num(&c["wheel_turn"]);
                 let d = (mo.links.wheel.angle - turn).rem_euclid(std::f64::consts::TAU);
                 assert!(
-                    d.min(std::f64::consts::TAU - d) <= 1e-12,
+                    within_at("wheel turn", d.min(std::f64::consts::TAU - d), 1e-12),
                     "{at}: wheel turn {} vs {turn}",
                     mo.links.wheel.angle
                 );
@@ -331,7 +332,7 @@ fn wheel_rod_energy_is_conserved() {
     let turns = out.y[0] / std::f64::consts::TAU;
     assert!(turns > 200.0, "{turns} turns");
     assert!(
-        worst <= 1e-9 * e0,
+        within(worst, 1e-9 * e0),
         "energy drift {worst:e} J of {e0} J over {turns:.0} turns"
     );
 }

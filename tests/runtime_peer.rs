@@ -3,6 +3,7 @@
 //! flywheel of the engine example from a file of DSL text, the direct problem, Quinn's
 //! coefficients, Lagrange's equations for two inputs, Coulomb friction.
 
+use crate::measure::within;
 use crate::engine;
 use crate::mechanisms;
 
@@ -62,7 +63,7 @@ fn engine_flywheel_from_a_file() {
     )
     .unwrap()
     .balanced();
-    assert!(rel(r_t, g_t) < 1e-10, "balancing torque {r_t} vs {g_t}");
+    assert!(within(rel(r_t, g_t), 1e-10), "balancing torque {r_t} vs {g_t}");
     let g = g_cycle
         .flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY)
         .unwrap();
@@ -70,13 +71,13 @@ fn engine_flywheel_from_a_file() {
         .flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY)
         .unwrap();
     assert!(
-        rel(r.approximate.inertia, g.approximate.inertia) < 1e-10,
+        within(rel(r.approximate.inertia, g.approximate.inertia), 1e-10),
         "approximate {} vs {}",
         r.approximate.inertia,
         g.approximate.inertia
     );
     assert!(
-        rel(r.exact.inertia, g.exact.inertia) < 1e-10,
+        within(rel(r.exact.inertia, g.exact.inertia), 1e-10),
         "exact {} vs {}",
         r.exact.inertia,
         g.exact.inertia
@@ -118,7 +119,7 @@ fn direct_problem() {
     )
     .unwrap();
     assert!(
-        rel(b.y[0], a.y[0]) < 1e-10 && rel(b.y[1], a.y[1]) < 1e-10,
+        within(rel(b.y[0], a.y[0]), 1e-10) && within(rel(b.y[1], a.y[1]), 1e-10),
         "{:?} vs {:?}",
         b.y,
         a.y
@@ -129,7 +130,7 @@ fn direct_problem() {
             mech::dynamics::total_energy(&gen, &[q], &[20.0]).unwrap(),
             mech::dynamics::total_energy(&rt, &[q], &[20.0]).unwrap(),
         );
-        assert!(rel(e2, e1) < 1e-12, "q={q}: energy {e2} vs {e1}");
+        assert!(within(rel(e2, e1), 1e-12), "q={q}: energy {e2} vs {e1}");
     }
 }
 
@@ -144,7 +145,7 @@ fn quinn() {
         quinn_coefficients(&gen, q, &mut a).unwrap();
         quinn_coefficients(&rt, q, &mut b).unwrap();
         for (x, y) in a.iter().zip(&b) {
-            assert!((x - y).abs() < 1e-12, "q={q}: {a:?} vs {b:?}");
+            assert!(within((x - y).abs(), 1e-12), "q={q}: {a:?} vs {b:?}");
         }
     }
 }
@@ -168,7 +169,7 @@ fn lagrange_two_inputs() {
         for i in 0..2 {
             for j in 0..2 {
                 assert!(
-                    (ma[i][j] - mb[i][j]).abs() < 1e-12 * ma[0][0].abs().max(ma[1][1].abs()),
+                    within((ma[i][j] - mb[i][j]).abs(), 1e-12 * ma[0][0].abs().max(ma[1][1].abs())),
                     "q={q:?} M[{i}][{j}]"
                 );
             }
@@ -180,7 +181,7 @@ fn lagrange_two_inputs() {
         );
         for i in 0..2 {
             assert!(
-                (aa[i] - ab[i]).abs() < 1e-10 * aa[i].abs().max(1.0),
+                within((aa[i] - ab[i]).abs(), 1e-10 * aa[i].abs().max(1.0)),
                 "q={q:?}: {aa:?} vs {ab:?}"
             );
         }
@@ -200,6 +201,7 @@ fn friction() {
     let mut gl = mechanisms::SliderCrankLoads::default();
     let mut rl = rt.loads();
     assert!(gl.set_by_name("gas", &[-1500.0, 0.0]) && rl.set_by_name("gas", &[-1500.0, 0.0]));
+    let mut solved = 0;
     for k in 0..10 {
         let q = 0.3 + 0.6 * k as f64;
         let (mo, rm) = (
@@ -212,9 +214,13 @@ fn friction() {
         );
         match (a, b) {
             (Ok(a), Ok(b)) => {
+                solved += 1;
+                // The motor torque on its own scale (issue 28; it was the gas force's, 1500 N),
+                // the reactions on the gas force's.
                 let scale = a.driver.abs().max(1500.0);
+                let dscale = a.driver.abs().max(1.0);
                 assert!(
-                    (a.driver - b.driver[0]).abs() < 1e-12 * scale,
+                    within((a.driver - b.driver[0]).abs(), 1e-12 * dscale),
                     "q={q}: driver {} vs {}",
                     a.driver,
                     b.driver[0]
@@ -227,17 +233,21 @@ fn friction() {
                 for name in mechanisms::SliderCrank::JOINT_NAMES {
                     let (ga, gm) = a.reaction(name).unwrap();
                     let (ra, rmom) = b.reaction(name).unwrap();
-                    assert!((ga - ra).norm() < 1e-12 * scale, "q={q} {name}");
+                    assert!(within((ga - ra).norm(), 1e-12 * scale), "q={q} {name}");
                     assert_eq!(gm.is_some(), rmom.is_some());
                     if let (Some(x), Some(y)) = (gm, rmom) {
-                        assert!((x - y).abs() < 1e-12 * scale, "q={q} {name} moment");
+                        assert!(within((x - y).abs(), 1e-12 * scale), "q={q} {name} moment");
                     }
                 }
             }
+            // Self-locking at this angle, alike: skipped, counted.
             (Err(MechError::SelfLocking(_)), Err(MechError::SelfLocking(_))) => {}
             (a, b) => panic!("q={q}: {a:?} vs {b:?}"),
         }
     }
+    // None self-locks at these angles (be05608): a refusal would leave an angle unchecked.
+    println!("COUNT friction: {solved} of 10 angles solved");
+    assert!(solved >= 10, "only {solved} of 10 angles solved");
 }
 
 /// Degenerate input gives an answer or a `MechError`, never a panic: a ground-only

@@ -165,6 +165,7 @@ pub fn dissipation(elements: &[ElementGeom], s: &[LinkState]) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    use crate::measure::within;
     use super::*;
 
     fn linear(k: f64, c: f64, free: f64) -> ElementGeom {
@@ -200,7 +201,7 @@ mod tests {
         let el = linear(k, c, l0);
         let t = k * (l - l0) + c * ldot;
         let close =
-            |x: f64, y: f64| assert!((x - y).abs() <= 1e-13 * y.abs().max(1.0), "{x} vs {y}");
+            |x: f64, y: f64| assert!(within((x - y).abs(), 1e-13 * y.abs().max(1.0)), "{x} vs {y}");
         let mut f = [Wrench::zeros(); 2];
         add_wrenches(&[el], &s, &mut f);
         close(f[1].x, -t * e.x);
@@ -245,11 +246,11 @@ mod tests {
         let s = [LinkState::default(), b];
         let st = el.stretch(&s);
         let defl = 0.3 + 3.2 - 0.2 - std::f64::consts::TAU;
-        assert!((st.deflection - defl).abs() < 1e-14, "{}", st.deflection);
+        assert!(within((st.deflection - defl).abs(), 1e-14), "{}", st.deflection);
         let t = 5.0 * defl + 0.5 * -2.0;
         let mut f = [Wrench::zeros(); 2];
         add_wrenches(&[el], &s, &mut f);
-        assert!((f[1].z + t).abs() < 1e-14 && (f[0].z - t).abs() < 1e-14);
-        assert!((power(&[el], &s) - (-t * -2.0)).abs() < 1e-13);
+        assert!(within((f[1].z + t).abs(), 1e-14) && within((f[0].z - t).abs(), 1e-14));
+        assert!(within((power(&[el], &s) - (-t * -2.0)).abs(), 1e-13));
     }
 }

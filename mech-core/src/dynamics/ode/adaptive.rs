@@ -321,6 +321,7 @@ impl<const N: usize, T: Tableau<N>> Method<N> for Adaptive<T> {
 
 #[cfg(test)]
 mod tests {
+    use crate::measure::{within, within_at};
     use crate::dynamics::ode::test_rhs::{exp_rhs, oscillator};
     use crate::dynamics::ode::{integrate, Dop853, DormandPrince, Outcome};
 
@@ -354,12 +355,12 @@ mod tests {
             ),
         ] {
             assert!(
-                (r.y[0] - t_end.cos()).abs() < tol,
+                within_at(name, (r.y[0] - t_end.cos()).abs(), tol),
                 "{name}: {:e}",
                 r.y[0] - t_end.cos()
             );
             assert!(
-                (r.y[1] + t_end.sin()).abs() < tol,
+                within_at(name, (r.y[1] + t_end.sin()).abs(), tol),
                 "{name}: {:e}",
                 r.y[1] + t_end.sin()
             );
@@ -374,7 +375,7 @@ mod tests {
             -2.0,
         )
         .unwrap();
-        assert!((r.y[0] - 2f64.cos()).abs() < 1e-10 && (r.y[1] - 2f64.sin()).abs() < 1e-10);
+        assert!(within((r.y[0] - 2f64.cos()).abs(), 1e-10) && within((r.y[1] - 2f64.sin()).abs(), 1e-10));
     }
 
     #[test]
@@ -395,11 +396,11 @@ mod tests {
             .unwrap()
         });
         assert!(
-            e_lo < 1e-8 && e_hi < 1e-4 && e_lo < e_hi / 100.0,
+            within(e_lo, 1e-8) && within(e_hi, 1e-4) && e_lo < e_hi / 100.0,
             "{e_hi:e} {e_lo:e}"
         );
         let e8 =
             err(&mut || integrate(&mut Dop853::new(1e-13, 0.0), exp_rhs, 0.0, [1.0], 3.0).unwrap());
-        assert!(e8 < 1e-12, "{e8:e}");
+        assert!(within(e8, 1e-12), "{e8:e}");
     }
 }

@@ -81,6 +81,7 @@ impl<const N: usize> Method<N> for Rk4 {
 
 #[cfg(test)]
 mod tests {
+    use crate::measure::within;
     use super::*;
     use crate::dynamics::ode::integrate;
     use crate::dynamics::ode::test_rhs::exp_rhs;
@@ -95,7 +96,7 @@ mod tests {
             .abs()
         };
         let (e1, e2) = (e(0.02), e(0.01));
-        assert!(e2 < 1e-9, "{e2}");
+        assert!(within(e2, 1e-9), "{e2}");
         let order = (e1 / e2).log2();
         assert!((order - 4.0).abs() < 0.1, "observed order {order}");
         let r = integrate(&mut Rk4 { h: 0.01 }, exp_rhs, 0.0, [1.0], 1.0).unwrap();

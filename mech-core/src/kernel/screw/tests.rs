@@ -6,6 +6,7 @@
 
 use super::*;
 use crate::front::resolve::model_of;
+use crate::measure::within;
 use crate::kernel::group::{group_rates, GroupSystem};
 use crate::kernel::kinetostatics::{group_reactions, lambda_reactions};
 use crate::plan::assur::{plan, Kernel};
@@ -67,8 +68,9 @@ const TEXTS: &[&str] = &[
       input: drive }",
 ];
 
+#[track_caller]
 fn close(a: f64, b: f64, scale: f64) -> bool {
-    (a - b).abs() <= 1e-10 * scale.max(1.0)
+    within((a - b).abs(), 1e-10 * scale.max(1.0))
 }
 
 #[test]
