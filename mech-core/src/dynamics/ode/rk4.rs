@@ -96,7 +96,7 @@ mod tests {
             .abs()
         };
         let (e1, e2) = (e(0.02), e(0.01));
-        assert!(within(e2, 1e-9), "{e2}");
+        assert!(within(e2, 1e-9), "{e2}"); // measured worst 2.3e-10 (be05608); RK4's step error at h = 0.01
         let order = (e1 / e2).log2();
         assert!((order - 4.0).abs() < 0.1, "observed order {order}");
         let r = integrate(&mut Rk4 { h: 0.01 }, exp_rhs, 0.0, [1.0], 1.0).unwrap();
