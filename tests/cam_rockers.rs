@@ -99,8 +99,10 @@ fn compare_profile(what: &str, p: &Profile, rows: &Value) {
         let at = p.at(th);
         let c = &row["contact"];
         let w = format!("{what} at {:.0}°", th.to_degrees());
-        close(&format!("{w}: contact x"), at.contact[0], num(&c[0]), 1e-15); // measured worst 2.1e-17 (be05608); 100×
-        close(&format!("{w}: contact y"), at.contact[1], num(&c[1]), 1e-15); // measured worst 1.4e-17 (be05608); 100×
+        // measured worst 2.1e-17 (be05608); 100×
+        close(&format!("{w}: contact x"), at.contact[0], num(&c[0]), 1e-15);
+        // measured worst 1.4e-17 (be05608); 100×
+        close(&format!("{w}: contact y"), at.contact[1], num(&c[1]), 1e-15);
         close(
             &format!("{w}: pressure angle"),
             at.pressure_angle,
@@ -169,8 +171,14 @@ fn contact_force_over_a_revolution() {
     let loads = RockerCamLoads::default();
     // The motor torque on its own scale (issue 28), the contact force on its own.
     let points = r["points"].as_array().unwrap();
-    let dscale = points.iter().map(|p| num(&p["driver"]).abs()).fold(0.0, f64::max);
-    let fscale = points.iter().map(|p| num(&p["normal_force"]).abs()).fold(0.0, f64::max);
+    let dscale = points
+        .iter()
+        .map(|p| num(&p["driver"]).abs())
+        .fold(0.0, f64::max);
+    let fscale = points
+        .iter()
+        .map(|p| num(&p["normal_force"]).abs())
+        .fold(0.0, f64::max);
     let lw = law(15f64.to_radians());
     let arm0 = (-0.012f64).atan2(-0.06);
     for p in r["points"].as_array().unwrap() {
@@ -188,7 +196,8 @@ fn contact_force_over_a_revolution() {
         let turn = ((pp.y - a.y).atan2(pp.x - a.x) - arm0 + 3.0 * std::f64::consts::PI)
             .rem_euclid(TAU)
             - std::f64::consts::PI;
-        close(&format!("rocker's turn at {at}"), turn, -psi, 1e-14); // measured worst 1.3e-15 (be05608); 100×
+        // measured worst 1.3e-15 (be05608); 100×
+        close(&format!("rocker's turn at {at}"), turn, -psi, 1e-14);
         close(
             &format!("rocker's rate at {at}"),
             mo.links.rocker.omega,
@@ -198,12 +207,16 @@ fn contact_force_over_a_revolution() {
         let f = m.kinetostatics(&mo, &loads).unwrap();
         let c = f.joints.lobe;
         close(
+            // measured worst 2.1e-16 (be05608); 100×
             &format!("contact force at {at}"),
             c.normal_force,
             num(&p["normal_force"]),
             5e-14 * fscale, // measured worst 7.3e-16 (be05608); 100×
         );
-        assert!(within((c.force.norm() - c.normal_force.abs()).abs(), 2e-14 * fscale)); // measured worst 2.1e-16 (be05608); 100×
+        assert!(within(
+            (c.force.norm() - c.normal_force.abs()).abs(),
+            2e-14 * fscale
+        ));
         // The pressure angle: from the roller centre's motion σ perp(P − A) to the force.
         let arm = pp - a;
         let d = Vector2::new(arm.y, -arm.x) / arm.norm();
@@ -215,7 +228,8 @@ fn contact_force_over_a_revolution() {
             2e-14, // measured worst 3.9e-16 (be05608); 100×
         );
         let t = num(&p["driver"]);
-        close(&format!("d'Alembert at {at}"), f.driver, t, 5e-14 * dscale); // measured worst 7.3e-16 (be05608); 100×
+        // measured worst 7.3e-16 (be05608); 100×
+        close(&format!("d'Alembert at {at}"), f.driver, t, 5e-14 * dscale);
         close(
             &format!("virtual power at {at}"),
             m.driver_action(&mo, &loads).unwrap(),
@@ -276,7 +290,8 @@ fn jump_speed() {
             jump = jump.min((-a / b).sqrt());
         }
     }
-    close("jump speed", jump, num(&r["jump_speed"]), 1e-10 * jump); // measured worst 5.4e-12 (be05608); 100×
+    // measured worst 5.4e-12 (be05608); 100×
+    close("jump speed", jump, num(&r["jump_speed"]), 1e-10 * jump);
     assert!(grid.iter().all(|&th| fnorm(th, 0.99 * jump) > 0.0));
     assert!(grid.iter().any(|&th| fnorm(th, 1.01 * jump) < 0.0));
 }
@@ -347,7 +362,8 @@ fn coasting_rocker_keeps_its_energy() {
         slowest < 0.99 * w0,
         "the lift should slow the cam: {slowest}"
     );
-    assert!(within(worst, 1e-7 * e0), "energy drift {worst:e} J"); // measured worst 1.4e-8 (be05608); the integration's error at C² joints (above), not the model's
+    // measured worst 1.4e-8 (be05608); the integration's error at C² joints (above), not the model's
+    assert!(within(worst, 1e-7 * e0), "energy drift {worst:e} J");
 }
 
 use crate::counting;
@@ -445,7 +461,8 @@ fn table_rocker() {
         let turn = ((pp.y - a.y).atan2(pp.x - a.x) - arm0 + 3.0 * std::f64::consts::PI)
             .rem_euclid(TAU)
             - std::f64::consts::PI;
-        close("table rocker's turn", turn, -spline.eval(q)[0], 1e-14); // measured worst 1.3e-15 (be05608); 100×
+        // measured worst 1.3e-15 (be05608); 100×
+        close("table rocker's turn", turn, -spline.eval(q)[0], 1e-14);
         let d = m.kinetostatics(&mo, &l).unwrap().driver;
         close(
             "virtual power",

@@ -49,8 +49,14 @@ fn contact_force_over_a_revolution() {
     let loads = ValveTrainLoads::default();
     // The motor torque on its own scale (issue 28), the contact force on its own.
     let points = r["points"].as_array().unwrap();
-    let dscale = points.iter().map(|p| num(&p["driver"]).abs()).fold(0.0, f64::max);
-    let fscale = points.iter().map(|p| num(&p["normal_force"]).abs()).fold(0.0, f64::max);
+    let dscale = points
+        .iter()
+        .map(|p| num(&p["driver"]).abs())
+        .fold(0.0, f64::max);
+    let fscale = points
+        .iter()
+        .map(|p| num(&p["normal_force"]).abs())
+        .fold(0.0, f64::max);
     for p in r["points"].as_array().unwrap() {
         let th = num(&p["theta"]);
         let at = format!("θ = {:.2}°", th.to_degrees());
@@ -78,7 +84,8 @@ fn contact_force_over_a_revolution() {
             1e-14, // measured worst 1.8e-16 (be05608); 100×
         );
         let t = num(&p["driver"]);
-        close(&format!("d'Alembert at {at}"), f.driver, t, 5e-14 * dscale); // measured worst 9.8e-16 (be05608); 100×
+        // measured worst 9.8e-16 (be05608); 100×
+        close(&format!("d'Alembert at {at}"), f.driver, t, 5e-14 * dscale);
         close(
             &format!("virtual power at {at}"),
             m.driver_action(&mo, &loads).unwrap(),
@@ -134,7 +141,8 @@ fn jump_speed_and_minimum_preload() {
             jump = jump.min((-a / b).sqrt());
         }
     }
-    close("jump speed", jump, num(&r["jump_speed"]), 1e-10 * jump); // measured worst 1.5e-12 (be05608); 100×
+    // measured worst 1.5e-12 (be05608); 100×
+    close("jump speed", jump, num(&r["jump_speed"]), 1e-10 * jump);
     // Below it the follower stays on the cam, above it leaves it somewhere.
     assert!(grid.iter().all(|&th| fnorm(&m, th, 0.99 * jump) > 0.0));
     assert!(grid.iter().any(|&th| fnorm(&m, th, 1.01 * jump) < 0.0));
@@ -238,8 +246,13 @@ fn table_cam() {
         let q = TAU * k as f64 / 36.0 + 0.05;
         let mo = m.kinematics(q, 100.0, 0.0).unwrap();
         let lift = mo.points.P.pos.y - 0.05;
-        close("table lift", lift, spline.eval(q)[0], 2e-16); // measured worst 3.5e-18 (be05608); 100×
-        assert!(within((lift - 0.005 * (1.0 - q.cos())).abs(), 5e-5), "{lift}"); // measured worst 9.8e-7 (be05608); the spline against the lift it samples, not an error
+        // measured worst 3.5e-18 (be05608); 100×
+        close("table lift", lift, spline.eval(q)[0], 2e-16);
+        // measured worst 9.8e-7 (be05608); the spline against the lift it samples, not an error
+        assert!(
+            within((lift - 0.005 * (1.0 - q.cos())).abs(), 5e-5),
+            "{lift}"
+        );
         let l = TableCamLoads::default();
         let d = m.kinetostatics(&mo, &l).unwrap().driver;
         close(

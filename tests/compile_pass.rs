@@ -13,7 +13,8 @@ use mech::prelude::*;
 
 /// Tolerance on reproduced points, m (the drawings are 0.1–1 m across): at most 100× the
 /// worst error measured over every drawing (tests/README.md, "Tolerances").
-const TOL: f64 = 5e-14; // measured worst 5.0e-16 (be05608); 100×
+// measured worst 5.0e-16 (be05608); 100×
+const TOL: f64 = 5e-14;
 
 /// The reference angle of the vector from `p` to `q` (rad).
 fn angle(p: (f64, f64), q: (f64, f64)) -> f64 {
@@ -624,7 +625,11 @@ fn jansen_leg() {
             );
         }
         // The frame stays put.
-        assert!(within((p.point("B").unwrap().pos - Vector2::new(-0.38, -0.078)).norm(), 1e-15)); // measured worst 0 (be05608); exact; a few ulps
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within(
+            (p.point("B").unwrap().pos - Vector2::new(-0.38, -0.078)).norm(),
+            1e-15
+        ));
     }
 }
 

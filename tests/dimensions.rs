@@ -121,21 +121,26 @@ fn a_four_bar_from_its_lengths_on_both_branches() {
     right.links.rocker.cg = pr.links.rocker.cg;
     for (left, [pa, pb, po4, g2, g3, g4]) in [(true, drawn(pl)), (false, drawn(&right))] {
         let (a, b) = four_bar_b(left);
-        near("A", pa, a, 1e-15); // measured worst 0 (be05608); exact; a few ulps
-        near("B", pb, b, 2e-15); // measured worst 2.8e-17 (be05608); 100×
+        // measured worst 0 (be05608); exact; a few ulps
+        near("A", pa, a, 1e-15);
+        // measured worst 2.8e-17 (be05608); 100×
+        near("B", pb, b, 2e-15);
         assert!(
-            within(((pb - pa).norm() - 0.26).abs(), 1e-15) && within(((pb - po4).norm() - 0.19).abs(), 1e-15) // measured worst 5.6e-17, 5.6e-17 (be05608); 100×
+            within(((pb - pa).norm() - 0.26).abs(), 1e-15)
+                && within(((pb - po4).norm() - 0.19).abs(), 1e-15) // measured worst 5.6e-17, 5.6e-17 (be05608); 100×
         );
         // cgs in each link's frame: along(25 mm) on O2 → A, local(110, 40) mm on A → B.
         let e = (b - a) / 0.26;
-        near("crank cg", g2, a * (0.025 / 0.08), 1e-16); // measured worst 1.7e-18 (be05608); 100×
+        // measured worst 1.7e-18 (be05608); 100×
+        near("crank cg", g2, a * (0.025 / 0.08), 1e-16);
         near(
             "coupler cg",
             g3,
             a + e * 0.110 + Vector2::new(-e.y, e.x) * 0.040,
             1e-15, // measured worst 2.8e-17 (be05608); 100×
         );
-        near("rocker cg", g4, po4 + (b - po4) * (0.095 / 0.19), 1e-15); // measured worst 6.2e-17 (be05608); 100×
+        // measured worst 6.2e-17 (be05608); 100×
+        near("rocker cg", g4, po4 + (b - po4) * (0.095 / 0.19), 1e-15);
     }
     assert_eq!(pl.links.crank.inertia, 5.2e-4);
     // Each branch is kept over a turn: B stays on its side of A → O4.
@@ -204,8 +209,10 @@ fn a_slider_crank_from_its_lengths_on_both_branches() {
             SliderForward::new().pose(q).unwrap(),
             SliderBackward::new().pose(q).unwrap(),
         );
-        near("A", f.points.A.pos, a, 1e-15); // measured worst 1.6e-17 (be05608); 100×
-        near("B forward", f.points.B.pos, Vector2::new(a.x + s, e), 5e-15); // measured worst 5.6e-17 (be05608); 100×
+        // measured worst 1.6e-17 (be05608); 100×
+        near("A", f.points.A.pos, a, 1e-15);
+        // measured worst 5.6e-17 (be05608); 100×
+        near("B forward", f.points.B.pos, Vector2::new(a.x + s, e), 5e-15);
         near(
             "B backward",
             b.points.B.pos,
@@ -360,7 +367,8 @@ fn a_vertical_engine_at_45_degrees_after_top_dead_centre() {
     let (r, l) = (0.05, 0.2);
     let (m, abs) = (Vertical::new(), VerticalAbsolute::new());
     let top = m.pose(0.0).unwrap();
-    near("TDC", top.points.B.pos, Vector2::new(0.0, r + l), 1e-15); // measured worst 1.5e-17 (be05608); 100×
+    // measured worst 1.5e-17 (be05608); 100×
+    near("TDC", top.points.B.pos, Vector2::new(0.0, r + l), 1e-15);
     let q = 45f64.to_radians();
     let p = m.pose(q).unwrap();
     assert!(
@@ -507,5 +515,6 @@ fn the_readme_mechanism_is_valid() {
     let s = (l * l - (e - r * q.sin()).powi(2)).sqrt();
     let pose = m.pose(&[q]).unwrap();
     let b = pose.point("B").unwrap().pos;
-    near("B", b, Vector2::new(r * q.cos() + s, e), 1e-15); // measured worst 0 (be05608); exact; a few ulps
+    // measured worst 0 (be05608); exact; a few ulps
+    near("B", b, Vector2::new(r * q.cos() + s, e), 1e-15);
 }

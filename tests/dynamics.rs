@@ -125,7 +125,11 @@ fn slider_crank_time_integration_matches_reference() {
         let y0 = [c["q0"].as_f64().unwrap(), c["qd0"].as_f64().unwrap()];
         let mut out = vec![[0.0; 2]; s.len()];
         // (method, tolerance on q, on q̇): measured worst 3.8e-13, 1.3e-11 (DOP853), 2.2e-13, 1.2e-11 (DP5), 1.1e-11, 3.5e-10 (RK4) (be05608); 100×
-        for (label, tol, tol_d) in [("dop853", 2e-11, 1e-9), ("dp5", 2e-11, 1e-9), ("rk4", 1e-9, 2e-8)] {
+        for (label, tol, tol_d) in [
+            ("dop853", 2e-11, 1e-9),
+            ("dp5", 2e-11, 1e-9),
+            ("rk4", 1e-9, 2e-8),
+        ] {
             let f = equation_of_motion(&m, actions(name));
             let stats = match label {
                 "dop853" => sample(&mut Dop853::new(1e-13, 1e-13), f, 0.0, y0, &times, &mut out),
@@ -463,7 +467,11 @@ fn mass_matrix_and_velocity_terms_match_truth() {
                 tau[i]
             );
         }
-        assert!(within((mm[0][1] - mm[1][0]).abs(), 1e-13 * mm[0][0].abs().max(mm[1][1].abs()))); // measured worst 1.9e-14 (be05608); 100×
+        // measured worst 1.9e-14 (be05608); 100×
+        assert!(within(
+            (mm[0][1] - mm[1][0]).abs(),
+            1e-13 * mm[0][0].abs().max(mm[1][1].abs())
+        ));
         assert!(mm[0][0] > 0.0 && mm[0][0] * mm[1][1] - mm[0][1] * mm[1][0] > 0.0);
         let acc = lagrange_acceleration(&m, &q, &qd, &[tau[0], tau[1]], &loads).unwrap();
         for i in 0..2 {
@@ -491,7 +499,8 @@ fn mass_matrix_and_velocity_terms_match_truth() {
             z["M_star"].as_f64().unwrap(),
         );
         let mm = mass_matrix(&m, &[q]).unwrap();
-        assert!(within((mm[0][0] - i_star).abs(), 1e-12 * i_star)); // measured worst 2.6e-14 (be05608); 100×
+        // measured worst 2.6e-14 (be05608); 100×
+        assert!(within((mm[0][0] - i_star).abs(), 1e-12 * i_star));
         let b = velocity_terms(&m, &[q], &[qd], &loads).unwrap()[0];
         let want = 0.5 * di * qd * qd - m_star;
         assert!(
@@ -538,7 +547,11 @@ fn five_bar_lagrange_integration_conserves_energy() {
         Some(&mut obs),
     )
     .unwrap();
-    assert!(within(worst, 2e-12 * e0.abs()), "energy drift {worst:e} of {e0}"); // measured worst 3.0e-14 (be05608); 100×
+    // measured worst 3.0e-14 (be05608); 100×
+    assert!(
+        within(worst, 2e-12 * e0.abs()),
+        "energy drift {worst:e} of {e0}"
+    );
     let r5 = integrate(
         &mut DormandPrince::new(1e-11, 1e-12),
         lagrange_equations(&m, springs),
@@ -585,7 +598,8 @@ fn five_bar_lagrange_integration_conserves_energy() {
 #[test]
 fn conservative_four_bar_keeps_its_energy_for_10000_revolutions() {
     const RTOL: f64 = 1e-10;
-    const BOUND: f64 = 1e-6; // measured worst 5.3e-7 (be05608); 100×
+    // measured worst 5.3e-7 (be05608); 100×
+    const BOUND: f64 = 1e-6;
     let m = FourBar::new();
     let q0 = 1.0;
     let mut y = [q0, 100.0];

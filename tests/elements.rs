@@ -76,16 +76,25 @@ fn undamped() -> SpringFourBar {
 fn params_hold_the_declared_elements() {
     let p = SpringFourBarParams::default();
     assert_eq!(p.elements.k1.stiffness, 2000.0);
-    assert!(within((p.elements.k1.free_length - 0.08).abs(), 1e-17)); // measured worst 0 (be05608); exact; a few ulps
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(within((p.elements.k1.free_length - 0.08).abs(), 1e-17));
     let l_drawn = (0.3f64).hypot(0.1);
-    assert!(within((p.elements.k2.free_length - (l_drawn - 30.0 / 500.0)).abs(), 1e-16)); // measured worst 0 (be05608); exact; a few ulps
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(within(
+        (p.elements.k2.free_length - (l_drawn - 30.0 / 500.0)).abs(),
+        1e-16
+    ));
     close(
         "k2 free length",
         p.elements.k2.free_length,
         num(&reference()["free_length_k2"]),
         1e-16, // measured worst 0 (be05608); exact; a few ulps
     );
-    assert!(within((p.elements.kt.free_angle - 60f64.to_radians()).abs(), 1e-16)); // measured worst 0 (be05608); exact; a few ulps
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(within(
+        (p.elements.kt.free_angle - 60f64.to_radians()).abs(),
+        1e-16
+    ));
     assert_eq!(p.elements.c1.damping, 40.0);
     assert_eq!(p.elements.ct.damping, 0.05);
 }
@@ -107,7 +116,8 @@ fn three_routes_match_the_energy_method() {
         let at = format!("q = {q}, q̇ = {qd}, q̈ = {qdd}");
         let red = m.reduced(q).unwrap();
         let i_star = num(&c["I_star"]);
-        close(&format!("I* at {at}"), red.inertia, i_star, 5e-14 * i_star); // measured worst 6.4e-16 (be05608); 100×
+        // measured worst 6.4e-16 (be05608); 100×
+        close(&format!("I* at {at}"), red.inertia, i_star, 5e-14 * i_star);
         let di = num(&c["dI_star_dq"]);
         close(
             &format!("dI*/dq at {at}"),
@@ -176,12 +186,15 @@ fn runtime_mechanism_is_a_peer() {
             g.kinetostatics(&gm, &gl).unwrap(),
             rt.kinetostatics(&rm, &rl).unwrap(),
         );
-        let tol = 1e-13; // measured worst 1.8e-15 N·m (driver; driver_action, M*, V: 0) (be05608); 100×
+        // measured worst 1.8e-15 N·m (driver; driver_action, M*, V: 0) (be05608); 100×
+        let tol = 1e-13;
         close("driver", rf.driver[0], gf.driver, tol);
         for name in SpringFourBar::JOINT_NAMES {
             let (a, b) = (gf.reaction(name).unwrap().0, rf.reaction(name).unwrap().0);
-            close(name, b.x, a.x, 2e-14 * 100.0); // measured worst 2.8e-16 (of 100 N) (be05608); 100×
-            close(name, b.y, a.y, 2e-14 * 100.0); // measured worst 2.8e-16 (of 100 N) (be05608); 100×
+            // measured worst 2.8e-16 (of 100 N) (be05608); 100×
+            close(name, b.x, a.x, 2e-14 * 100.0);
+            // measured worst 2.8e-16 (of 100 N) (be05608); 100×
+            close(name, b.y, a.y, 2e-14 * 100.0);
         }
         close(
             "driver_action",
@@ -265,11 +278,14 @@ fn equilibrium_and_natural_frequency() {
     for _ in 0..20 {
         q += moment(q) / stiffness(q);
     }
-    close("q*", q, num(&r["q"]), 1e-15); // measured worst 0 (be05608); exact; a few ulps
+    // measured worst 0 (be05608); exact; a few ulps
+    close("q*", q, num(&r["q"]), 1e-15);
     let k = stiffness(q);
-    close("K*", k, num(&r["stiffness_star"]), 5e-12 * k); // measured worst 8.1e-14 (be05608); 100×
+    // measured worst 8.1e-14 (be05608); 100×
+    close("K*", k, num(&r["stiffness_star"]), 5e-12 * k);
     let wn = (k / m.reduced(q).unwrap().inertia).sqrt();
-    close("ω_n", wn, num(&r["natural_frequency"]), 2e-12 * wn); // measured worst 4.0e-14 (be05608); 100×
+    // measured worst 4.0e-14 (be05608); 100×
+    close("ω_n", wn, num(&r["natural_frequency"]), 2e-12 * wn);
 }
 
 /// Released at rest 0.3 rad from its equilibrium, the undamped machine oscillates; DOP853
@@ -305,7 +321,8 @@ fn undamped_energy_is_conserved_over_ten_thousand_oscillations() {
         1e4 * period,
         out.stats.steps
     );
-    assert!(within(worst, 1e-8 * scale), "energy drift {worst:e} J"); // measured worst 9.5e-10 (be05608); an explicit integrator over 3.6e5 steps (above)
+    // measured worst 9.5e-10 (be05608); an explicit integrator over 3.6e5 steps (above)
+    assert!(within(worst, 1e-8 * scale), "energy drift {worst:e} J");
 }
 
 /// With its dampers the machine loses energy: integrated with the dissipated work

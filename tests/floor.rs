@@ -27,7 +27,8 @@ use mechanisms::*;
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
 
-const TOL: f64 = 1e-13; // measured worst 1.9e-15 over the quantities (be05608); 100×
+// measured worst 1.9e-15 over the quantities (be05608); 100×
+const TOL: f64 = 1e-13;
 const STEPS: usize = 72;
 const QD: f64 = 12.0;
 const QDD: f64 = -3.0;
@@ -420,9 +421,13 @@ fn four_bar_hand_by_finite_differences() {
         );
         let lin = h.kinematics(q, 0.0, 1.0).unwrap();
         assert!(
-            within((lin.coupler.alpha - k.coupler.omega).abs(), 1e-15 * k.coupler.omega.abs().max(1.0)) // measured worst 0 (be05608); exact; a few ulps
+            within(
+                (lin.coupler.alpha - k.coupler.omega).abs(),
+                1e-15 * k.coupler.omega.abs().max(1.0)
+            ) // measured worst 0 (be05608); exact; a few ulps
         );
-        assert!(within((lin.p.acc - k.p.vel).norm(), 1e-15 * k.p.vel.norm())); // measured worst 0 (be05608); exact; a few ulps
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((lin.p.acc - k.p.vel).norm(), 1e-15 * k.p.vel.norm()));
     }
 }
 
@@ -442,7 +447,10 @@ fn slider_crank_hand_independent_checks() {
         let fd = (h.reduced(q + step).unwrap().inertia - h.reduced(q - step).unwrap().inertia)
             / (2.0 * step);
         assert!(
-            within((fd - r.inertia_derivative).abs(), 1e-8 * r.inertia.max(1e-6)), // measured worst 1.4e-10 (be05608); 100×
+            within(
+                (fd - r.inertia_derivative).abs(),
+                1e-8 * r.inertia.max(1e-6)
+            ), // measured worst 1.4e-10 (be05608); 100×
             "dI*/dq at {q}: fd {fd} vs {}",
             r.inertia_derivative
         );

@@ -99,10 +99,14 @@ fn engine_flywheel_matches_the_mpmath_reference() {
     let fw = cycle.flywheel(w, eps).unwrap();
     let a = fw.approximate;
     let ds = num(&res["s_max"]) - num(&res["s_min"]);
-    close("S_max", a.s_max, num(&res["s_max"]), ds, 1e-14); // measured worst 1.7e-16 (be05608); 100×
-    close("S_min", a.s_min, num(&res["s_min"]), ds, 1e-15); // measured worst 0 (be05608); exact; a few ulps
-    close("q(S_max)", a.q_s_max, num(&res["q_s_max"]), 1.0, 5e-7); // measured worst 7.9e-9 (be05608); 100×
-    close("q(S_min)", a.q_s_min, num(&res["q_s_min"]), 1.0, 1e-6); // measured worst 1.1e-8 (be05608); 100×
+    // measured worst 1.7e-16 (be05608); 100×
+    close("S_max", a.s_max, num(&res["s_max"]), ds, 1e-14);
+    // measured worst 0 (be05608); exact; a few ulps
+    close("S_min", a.s_min, num(&res["s_min"]), ds, 1e-15);
+    // measured worst 7.9e-9 (be05608); 100×
+    close("q(S_max)", a.q_s_max, num(&res["q_s_max"]), 1.0, 5e-7);
+    // measured worst 1.1e-8 (be05608); 100×
+    close("q(S_min)", a.q_s_min, num(&res["q_s_min"]), 1.0, 1e-6);
     let e_approx = close(
         "approximate inertia",
         a.inertia,
@@ -129,7 +133,8 @@ fn engine_flywheel_matches_the_mpmath_reference() {
     let f_scale = 2.0 * ds / (w * w);
     for (t, name) in [(&x.upper, "tangent_max"), (&x.lower, "tangent_min")] {
         let rt = &res[name];
-        close(&format!("{name} q"), t.q, num(&rt["q"]), 1.0, 1e-6); // measured worst 1.9e-8 (be05608); 100×
+        // measured worst 1.9e-8 (be05608); 100×
+        close(&format!("{name} q"), t.q, num(&rt["q"]), 1.0, 1e-6);
         close(
             &format!("{name} I*"),
             t.reduced_inertia,
@@ -137,7 +142,8 @@ fn engine_flywheel_matches_the_mpmath_reference() {
             num(&rt["I_star"]),
             2e-8, // measured worst 4.9e-10 (be05608); 100×
         );
-        close(&format!("{name} F"), t.f, num(&rt["F"]), f_scale, 2e-8); // measured worst 4.3e-10 (be05608); 100×
+        // measured worst 4.3e-10 (be05608); 100×
+        close(&format!("{name} F"), t.f, num(&rt["F"]), f_scale, 2e-8);
         close(
             &format!("{name} slope"),
             t.slope,
@@ -298,7 +304,8 @@ fn a_simulated_cycle_with_the_exact_flywheel_has_the_requested_irregularity() {
         let sim = cycle.simulate(&fw.state, 1e-12).unwrap();
         println!("eps = {eps}: simulated eps = {:.12} (rel. error {:.2e}), w_max {:.9}, w_min {:.9}, {} steps", sim.speeds.irregularity, sim.speeds.irregularity / eps - 1.0, sim.speeds.omega_max, sim.speeds.omega_min, sim.stats.steps);
         close("simulated eps", sim.speeds.irregularity, eps, eps, eps_tol);
-        close("simulated mean speed", sim.speeds.omega_mean, w, w, 1e-9); // measured worst 2.5e-11 (be05608); 100×
+        // measured worst 2.5e-11 (be05608); 100×
+        close("simulated mean speed", sim.speeds.omega_mean, w, w, 1e-9);
         close(
             "simulated w_max",
             sim.speeds.omega_max,
@@ -320,8 +327,10 @@ fn a_simulated_cycle_with_the_exact_flywheel_has_the_requested_irregularity() {
             w,
             1e-9, // measured worst 2.0e-11 (be05608); 100×
         );
-        close("where w_max", sim.speeds.q_max, fw.upper.q, 1.0, 2e-5); // measured worst 3.6e-7 (be05608); 100×
-        close("where w_min", sim.speeds.q_min, fw.lower.q, 1.0, 1e-5); // measured worst 1.5e-7 (be05608); 100×
+        // measured worst 3.6e-7 (be05608); 100×
+        close("where w_max", sim.speeds.q_max, fw.upper.q, 1.0, 2e-5);
+        // measured worst 1.5e-7 (be05608); 100×
+        close("where w_min", sim.speeds.q_min, fw.lower.q, 1.0, 1e-5);
     }
     // The approximate inertia, simulated, misses ε (here by about its 5 % excess).
     let fw = cycle.flywheel(w, engine::IRREGULARITY).unwrap();
@@ -344,15 +353,17 @@ fn the_steady_state_of_the_exact_inertia_is_the_requested_one() {
     let w = engine::OMEGA_MEAN;
     let fw = cycle.wittenbauer(w, engine::IRREGULARITY).unwrap();
     let s = cycle.steady_state(w, fw.inertia).unwrap();
-    close("mean speed", s.speeds.omega_mean, w, w, 1e-14); // measured worst 1.8e-16 (be05608); 100×
+    // measured worst 1.8e-16 (be05608); 100×
+    close("mean speed", s.speeds.omega_mean, w, w, 1e-14);
     close(
+        // measured worst 0 (be05608); exact; a few ulps
         "irregularity",
         s.speeds.irregularity,
         engine::IRREGULARITY,
         engine::IRREGULARITY,
         5e-13, // measured worst 5.4e-15 (be05608); 100×
     );
-    close("energy", s.energy, fw.state.energy, fw.state.energy, 1e-15); // measured worst 0 (be05608); exact; a few ulps
+    close("energy", s.energy, fw.state.energy, fw.state.energy, 1e-15);
     // ω(q) from the state: the extremes at the tangent points, z = (F + C)/(I + I*).
     close(
         "w at the upper tangent",
@@ -371,7 +382,8 @@ fn the_steady_state_of_the_exact_inertia_is_the_requested_one() {
     for p in cycle.sample(72).unwrap() {
         let z = (cycle.speed(&fw.state, p.q).unwrap() / w).powi(2);
         let z_formula = (2.0 * p.work / (w * w) + fw.c) / (fw.inertia + p.inertia);
-        close("z = (F + C)/(I + I*)", z, z_formula, 1.0, 2e-14); // measured worst 4.4e-16 (be05608); 100×
+        // measured worst 4.4e-16 (be05608); 100×
+        close("z = (F + C)/(I + I*)", z, z_formula, 1.0, 2e-14);
         assert!(
             within(z / fw.upper.slope - 1.0, 1e-12) && within(1.0 - z / fw.lower.slope, 1e-12) // measured worst -2.8e-5 (z stays inside) (be05608); a bound, not a tolerance
         );
@@ -468,8 +480,9 @@ fn net_work_balancing_and_periodicity() {
     let (cycle, t2) = gas.balanced();
     assert_eq!(t2, t);
     assert_eq!(cycle.net_work(), 0.0);
+    // measured worst 0 (be05608); exact
     cycle.check_periodic().unwrap();
-    close("driver = T", cycle.driver(1.0), t, t, 0.0); // measured worst 0 (be05608); exact
+    close("driver = T", cycle.driver(1.0), t, t, 0.0);
     // Recomputing the balanced cycle from scratch gives a net work within tolerance.
     let again = Cycle::new(
         &eng,
@@ -709,7 +722,8 @@ fn the_dimensioned_engine_is_the_drawn_one() {
     for k in 0..36 {
         let q = engine::Q_TDC + (10.0 * k as f64).to_radians();
         let (rd, rl) = (dim.reduced(q).unwrap(), lit.reduced(q).unwrap());
-        close("I*", rd.inertia, rl.inertia, rl.inertia, 2e-14); // measured worst 4.0e-16 (be05608); 100×
+        // measured worst 4.0e-16 (be05608); 100×
+        close("I*", rd.inertia, rl.inertia, rl.inertia, 2e-14);
         close(
             "dI*/dq",
             rd.inertia_derivative,

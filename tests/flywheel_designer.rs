@@ -6,8 +6,8 @@
 //! (`tests/data/engine.flywheel.json`, mpmath), the energy balance, the three routes to
 //! the driver torque.
 
-use crate::measure::within;
 use crate::engine;
+use crate::measure::within;
 
 use mech::flywheel::Cycle;
 use mech::prelude::*;
@@ -48,13 +48,17 @@ fn the_fluctuation_of_energy_is_the_reference_one() {
     );
     let f = cycle.fluctuation().unwrap();
     let (smax, smin) = (r["s_max"].as_f64().unwrap(), r["s_min"].as_f64().unwrap());
-    close("ΔE", f.energy, smax - smin, 1e-14); // measured worst 1.3e-16 (be05608); 100×
-    close("S_max", f.s_max, smax, 5e-14); // measured worst 6.8e-16 (be05608); 100×
+    // measured worst 1.3e-16 (be05608); 100×
+    close("ΔE", f.energy, smax - smin, 1e-14);
+    // measured worst 6.8e-16 (be05608); 100×
+    close("S_max", f.s_max, smax, 5e-14);
     // An extreme's position is determined to about √ε of the flat function.
-    close("q(S_min)", f.q_s_min, r["q_s_min"].as_f64().unwrap(), 1e-7); // measured worst 1.8e-9 (be05608); 100×
+    // measured worst 1.8e-9 (be05608); 100×
+    close("q(S_min)", f.q_s_min, r["q_s_min"].as_f64().unwrap(), 1e-7);
     // Balancing again adds nothing: the cycle was not consumed and stays periodic.
     let again = cycle.balance();
-    assert!(within(again.abs(), 1e-15 * t.abs()), "{again}"); // measured worst 0 (be05608); exact; a few ulps
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(within(again.abs(), 1e-15 * t.abs()), "{again}");
     assert!(cycle.check_periodic().is_ok());
     close(
         "ΔE after a second balance",
@@ -136,9 +140,13 @@ fn a_flywheel_through_the_parameters() {
     for k in 0..24 {
         let q = 0.1 + 0.5 * k as f64;
         let (a, b) = (plain.reduced(q).unwrap(), fly.reduced(q).unwrap());
-        close("I* + I_f", b.inertia, a.inertia + i_f, 1e-14); // measured worst 1.3e-16 (be05608); 100×
+        // measured worst 1.3e-16 (be05608); 100×
+        close("I* + I_f", b.inertia, a.inertia + i_f, 1e-14);
         assert!(
-            within((b.inertia_derivative - a.inertia_derivative).abs(), 1e-15 * b.inertia), // measured worst 0 (be05608); exact; a few ulps
+            within(
+                (b.inertia_derivative - a.inertia_derivative).abs(),
+                1e-15 * b.inertia
+            ), // measured worst 0 (be05608); exact; a few ulps
             "dI*/dq"
         );
         close(
@@ -157,13 +165,18 @@ fn a_flywheel_through_the_parameters() {
             - fly.reduced_moment(q, &loads).unwrap();
         let scale = dalembert.abs().max(i_f * qdd.abs());
         assert!(
-            within((vp - dalembert).abs(), 5e-14 * scale) && within((zh - dalembert).abs(), 5e-14 * scale), // measured worst 8.7e-16 and 6.5e-16 (be05608); 100×
+            within((vp - dalembert).abs(), 5e-14 * scale)
+                && within((zh - dalembert).abs(), 5e-14 * scale), // measured worst 8.7e-16 and 6.5e-16 (be05608); 100×
             "{dalembert} {vp} {zh}"
         );
         // The flywheel's share of the driver torque is I_f q̈.
         let m0 = plain.kinematics(q, qd, qdd).unwrap();
         let d0 = plain.kinetostatics(&m0, &loads).unwrap().driver;
-        assert!(within((dalembert - d0 - i_f * qdd).abs(), 1e-14 * scale), "I_f q̈"); // measured worst 1.6e-16 (be05608); 100×
+        // measured worst 1.6e-16 (be05608); 100×
+        assert!(
+            within((dalembert - d0 - i_f * qdd).abs(), 1e-14 * scale),
+            "I_f q̈"
+        );
         let t = |e: &engine::Engine, m| mech::dynamics::kinetic_energy(e, m);
         close(
             "T + ½ I_f q̇²",

@@ -104,7 +104,11 @@ fn block_on_incline_needs_mg_sin_plus_mu_mg_cos() {
             "v={v}: {} vs {want}",
             f.driver
         );
-        assert!(within((f.joints.stroke.force.norm() - 12.0 * 9.81 * th.cos()).abs(), 1e-12)); // measured worst 1.4e-14 (be05608); 100×
+        // measured worst 1.4e-14 (be05608); 100×
+        assert!(within(
+            (f.joints.stroke.force.norm() - 12.0 * 9.81 * th.cos()).abs(),
+            1e-12
+        ));
     }
 }
 
@@ -170,7 +174,8 @@ fn piston_driven_crank_self_locks_at_the_dead_centre() {
     let loads = PistonDrivenLoads { brake: -4.0 };
     // Lever arm of the rod about O2 ≈ r sin θ against μ r_pin = 9 mm: locked below θ ≈ 0.18.
     let mo = m.kinematics(stroke_at(0.05), -0.1, 0.0).unwrap();
-    assert!(within((mo.links.crank.angle - 0.05).abs(), 5e-13)); // measured worst 7.3e-15 (be05608); 100×
+    // measured worst 7.3e-15 (be05608); 100×
+    assert!(within((mo.links.crank.angle - 0.05).abs(), 5e-13));
     let locked = m.kinetostatics_with_friction(&mo, &loads, &fr);
     assert!(
         matches!(locked, Err(MechError::SelfLocking(_))),

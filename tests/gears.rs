@@ -225,8 +225,10 @@ fn check_train<M: OneDof>(
     let rs = reaction_scale(c);
     for (joint, f, flank) in &joints {
         let want = c["reactions"][joint].as_array().unwrap();
-        close(&format!("{at}: {joint}.x"), f.x, num(&want[0]), 2e-14 * rs); // measured worst 2.8e-16 (be05608); 100×
-        close(&format!("{at}: {joint}.y"), f.y, num(&want[1]), 2e-14 * rs); // measured worst 2.8e-16 (be05608); 100×
+        // measured worst 2.8e-16 (be05608); 100×
+        close(&format!("{at}: {joint}.x"), f.x, num(&want[0]), 2e-14 * rs);
+        // measured worst 2.8e-16 (be05608); 100×
+        close(&format!("{at}: {joint}.y"), f.y, num(&want[1]), 2e-14 * rs);
         if let Some(fl) = flank {
             assert_eq!(*fl, num(&c["flanks"][joint]), "{at}: flank of {joint}");
         }
@@ -267,7 +269,11 @@ fn compound_gear_train_matches_newton_euler() {
                     ("m12".into(), j.m12.force, Some(j.m12.flank)),
                     ("m34".into(), j.m34.force, Some(j.m34.flank)),
                 ];
-                assert!(within((j.m12.tooth_load - j.m12.force.norm()).abs(), 1e-15 * j.m12.tooth_load)); // measured worst 0 (be05608); exact; a few ulps
+                // measured worst 0 (be05608); exact; a few ulps
+                assert!(within(
+                    (j.m12.tooth_load - j.m12.force.norm()).abs(),
+                    1e-15 * j.m12.tooth_load
+                ));
                 (
                     links,
                     m.driver_action(&mo, &loads).unwrap(),
@@ -529,7 +535,8 @@ fn linkage_case<M: OneDof>(
     let at = format!("{name} at q = {q}, q̇ = {qd}, q̈ = {qdd}");
     let red = m.reduced(q).unwrap();
     let i_star = num(&c["I_star"]);
-    close(&format!("{at}: I*"), red.inertia, i_star, 5e-13 * i_star); // measured worst 6.6e-15 (be05608); 100×
+    // measured worst 6.6e-15 (be05608); 100×
+    close(&format!("{at}: I*"), red.inertia, i_star, 5e-13 * i_star);
     close(
         &format!("{at}: dI*/dq"),
         red.inertia_derivative,
@@ -547,7 +554,8 @@ fn linkage_case<M: OneDof>(
         .iter()
         .zip(drivers(q, qd, qdd))
     {
-        close(&format!("{at}: {route}"), d, driver, 2e-13 * scale); // measured worst 2.9e-15 (be05608); 100×
+        // measured worst 2.9e-15 (be05608); 100×
+        close(&format!("{at}: {route}"), d, driver, 2e-13 * scale);
     }
     close(
         &format!("{at}: Zhukovski q̈"),
@@ -639,7 +647,13 @@ fn gearbox_example() {
     let rows = gearbox::table(2.0).unwrap();
     let mut mean = 0.0;
     for r in &rows {
-        close("routes", r.driver.1, r.driver.0, 5e-14 * r.driver.0.abs().max(1.0)); // measured worst 5.6e-16 (be05608); 100×
+        // measured worst 5.6e-16 (be05608); 100×
+        close(
+            "routes",
+            r.driver.1,
+            r.driver.0,
+            5e-14 * r.driver.0.abs().max(1.0),
+        );
         assert!(
             r.sp.0 > 0.0 && within((r.sp.0 - r.pr.0).abs(), 5e-14 * r.sp.0), // measured worst 6.5e-16 (be05608); 100×
             "{} vs {}",
@@ -648,6 +662,7 @@ fn gearbox_example() {
         );
         mean += r.driver.0 / rows.len() as f64;
     }
-    close("mean motor torque", mean, 20.0 / 4.0, 1e-13); // measured worst 1.8e-15 (be05608); 100×
+    // measured worst 1.8e-15 (be05608); 100×
+    close("mean motor torque", mean, 20.0 / 4.0, 1e-13);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -135,14 +135,24 @@ fn sweeps_over_a_revolution() {
             let r = g.reduced(q).unwrap();
             let m = g.reduced_moment(q, &loads).unwrap();
             for (what, got, want, s) in [
-                ("I*", r.inertia, p["I_star"].as_f64().unwrap(), Scale::inertia(iscale)),
+                (
+                    "I*",
+                    r.inertia,
+                    p["I_star"].as_f64().unwrap(),
+                    Scale::inertia(iscale),
+                ),
                 (
                     "dI*/dq",
                     r.inertia_derivative,
                     p["dI_star_dq"].as_f64().unwrap(),
                     Scale::inertia_derivative(iscale),
                 ),
-                ("M*", m, p["M_star"].as_f64().unwrap(), Scale::reduced_moment(mscale)),
+                (
+                    "M*",
+                    m,
+                    p["M_star"].as_f64().unwrap(),
+                    Scale::reduced_moment(mscale),
+                ),
             ] {
                 assert!(
                     within_at(what, (got - want).abs(), s.rel * s.value),
@@ -182,7 +192,8 @@ fn load_from_text_file_and_model() {
         let p = gen.pose(q).unwrap();
         for pt in &g.model().points {
             let d = a.point(&pt.name).unwrap().pos - p.point(&pt.name).unwrap().pos;
-            assert!(within(d.amax(), 1e-14), "{}: {d:?}", pt.name); // measured worst 1.1e-16 (be05608); 100×
+            // measured worst 1.1e-16 (be05608); 100×
+            assert!(within(d.amax(), 1e-14), "{}: {d:?}", pt.name);
         }
     }
 
@@ -207,7 +218,8 @@ fn load_from_text_file_and_model() {
         heavy.driver_action(&mh, &heavy.loads()).unwrap()[0],
         light.driver_action(&ml, &light.loads()).unwrap()[0],
     );
-    assert!(within((th - 2.0 * tl).abs(), 1e-15 * th.abs()), "{th} {tl}"); // measured worst 0 (be05608); exact; a few ulps
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(within((th - 2.0 * tl).abs(), 1e-15 * th.abs()), "{th} {tl}");
 
     // A bad model is rejected with the validator's message.
     model.links[2].mass = Some(-1.0);
@@ -232,6 +244,7 @@ fn newton_tolerance_parameter() {
         let err = (b.x - want[0]).abs().max((b.y - want[1]).abs());
         // Newton's last step is below tol·L and convergence is quadratic: the error after
         // that step is far below tol·L (L ≈ 0.34 m here).
-        assert!(within(err, tol * 0.34 + 1e-15), "tol {tol}: error {err:e}"); // measured worst 0.041 of the bound (be05608); Newton's last step below tol·L: a bound of the method, not an error
+        // measured worst 0.041 of the bound (be05608); Newton's last step below tol·L: a bound of the method, not an error
+        assert!(within(err, tol * 0.34 + 1e-15), "tol {tol}: error {err:e}");
     }
 }

@@ -55,20 +55,37 @@ macro_rules! differences {
                         fd_a
                     );
                     let g = general.point(n).unwrap();
-                    assert!(within_at("vel scaling", (g.vel - u.vel * 2.5).norm(), 5e-15 * scale * 2.5)); // measured worst 9.3e-17 (be05608); 100×
-                    assert!(within_at("acc scaling", (g.acc - (u.acc * 6.25 - u.vel * 4.0)).norm(), 1e-14 * scale * 10.0)); // measured worst 1.6e-16 (be05608); 100×
+                    // measured worst 9.3e-17 (be05608); 100×
+                    assert!(within_at(
+                        "vel scaling",
+                        (g.vel - u.vel * 2.5).norm(),
+                        5e-15 * scale * 2.5
+                    ));
+                    // measured worst 1.6e-16 (be05608); 100×
+                    assert!(within_at(
+                        "acc scaling",
+                        (g.acc - (u.acc * 6.25 - u.vel * 4.0)).norm(),
+                        1e-14 * scale * 10.0
+                    ));
                 }
                 for n in $ty::LINK_NAMES {
                     let fd_w = angle_diff(pp.link(n).unwrap().angle, pm.link(n).unwrap().angle)
                         / (2.0 * h1);
                     assert!(
-                        within_at("omega by differences", (unit.link(n).unwrap().omega - fd_w).abs(), 5e-8 * unit.link(n).unwrap().omega.abs().max(1.0)) // measured worst 6.7e-10 (be05608); 100×
+                        within_at(
+                            "omega by differences",
+                            (unit.link(n).unwrap().omega - fd_w).abs(),
+                            5e-8 * unit.link(n).unwrap().omega.abs().max(1.0)
+                        ) // measured worst 6.7e-10 (be05608); 100×
                     );
                 }
             }
             // All 12 assemble for every example (be05608): a configuration lost to a wrong
             // `NoAssembly` fails here rather than going unchecked.
-            println!("COUNT {}: {solved} of 12 configurations assemble", stringify!($ty));
+            println!(
+                "COUNT {}: {solved} of 12 configurations assemble",
+                stringify!($ty)
+            );
             assert!(
                 solved >= $min,
                 "{}: only {solved} of 12 configurations assemble",
@@ -104,7 +121,11 @@ fn differences_hydraulic_lever() {
         let (pp, pm) = (m.pose(q + h).unwrap(), m.pose(q - h).unwrap());
         for n in HydraulicLever::POINT_NAMES {
             let fd = (pp.point(n).unwrap().pos - pm.point(n).unwrap().pos) / (2.0 * h);
-            assert!(within((u.point(n).unwrap().vel - fd).norm(), 1e-8), "{n} at q={q}"); // measured worst 1.5e-10 (be05608); 100×
+            // measured worst 1.5e-10 (be05608); 100×
+            assert!(
+                within((u.point(n).unwrap().vel - fd).norm(), 1e-8),
+                "{n} at q={q}"
+            );
         }
     }
 }
@@ -147,7 +168,12 @@ macro_rules! continuity {
                 prev_speed = speed;
             }
             for n in $ty::POINT_NAMES {
-                assert!(within_at("back to the start", (prev.point(n).unwrap().pos - first.point(n).unwrap().pos).norm(), 2e-15)); // measured worst 2.8e-17 (be05608); 100×
+                // measured worst 2.8e-17 (be05608); 100×
+                assert!(within_at(
+                    "back to the start",
+                    (prev.point(n).unwrap().pos - first.point(n).unwrap().pos).norm(),
+                    2e-15
+                ));
             }
         }
     };

@@ -224,7 +224,8 @@ macro_rules! wheel_case {
                 // The torques (M*, the motor torque) on their own scale (issue 28; it was a
                 // hand-set 10 N·m, 3 to 100 times them).
                 let tscale = num(&c["driver"]).abs().max(num(&c["M_star"]).abs());
-                close(&format!("I* {at}"), red.inertia, i_star, 1e-13 * i_star); // measured worst 1.1e-15 (be05608); 100×
+                // measured worst 1.1e-15 (be05608); 100×
+                close(&format!("I* {at}"), red.inertia, i_star, 1e-13 * i_star);
                 close(
                     &format!("dI*/dq {at}"),
                     red.inertia_derivative,
@@ -247,7 +248,13 @@ macro_rules! wheel_case {
                 );
                 let driver = num(&c["driver"]);
                 let f = m.kinetostatics(&mo, &loads).unwrap();
-                close(&format!("d'Alembert {at}"), f.driver, driver, 2e-13 * tscale); // measured worst 4.3e-15 (be05608); 100×
+                // measured worst 4.3e-15 (be05608); 100×
+                close(
+                    &format!("d'Alembert {at}"),
+                    f.driver,
+                    driver,
+                    2e-13 * tscale,
+                );
                 close(
                     &format!("virtual power {at}"),
                     m.driver_action(&mo, &loads).unwrap(),

@@ -3,8 +3,8 @@
 //! flywheel of the engine example from a file of DSL text, the direct problem, Quinn's
 //! coefficients, Lagrange's equations for two inputs, Coulomb friction.
 
-use crate::measure::within;
 use crate::engine;
+use crate::measure::within;
 use crate::mechanisms;
 
 use mech::dynamics::{equation_of_motion, lagrange_acceleration, mass_matrix, quinn_coefficients};
@@ -63,7 +63,11 @@ fn engine_flywheel_from_a_file() {
     )
     .unwrap()
     .balanced();
-    assert!(within(rel(r_t, g_t), 5e-14), "balancing torque {r_t} vs {g_t}"); // measured worst 7.3e-16 (be05608); 100×
+    // measured worst 7.3e-16 (be05608); 100×
+    assert!(
+        within(rel(r_t, g_t), 5e-14),
+        "balancing torque {r_t} vs {g_t}"
+    );
     let g = g_cycle
         .flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY)
         .unwrap();
@@ -130,7 +134,8 @@ fn direct_problem() {
             mech::dynamics::total_energy(&gen, &[q], &[20.0]).unwrap(),
             mech::dynamics::total_energy(&rt, &[q], &[20.0]).unwrap(),
         );
-        assert!(within(rel(e2, e1), 1e-15), "q={q}: energy {e2} vs {e1}"); // measured worst 0 (be05608); exact; a few ulps
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within(rel(e2, e1), 1e-15), "q={q}: energy {e2} vs {e1}");
     }
 }
 
@@ -145,7 +150,8 @@ fn quinn() {
         quinn_coefficients(&gen, q, &mut a).unwrap();
         quinn_coefficients(&rt, q, &mut b).unwrap();
         for (x, y) in a.iter().zip(&b) {
-            assert!(within((x - y).abs(), 1e-15), "q={q}: {a:?} vs {b:?}"); // measured worst 0 (be05608); exact; a few ulps
+            // measured worst 0 (be05608); exact; a few ulps
+            assert!(within((x - y).abs(), 1e-15), "q={q}: {a:?} vs {b:?}");
         }
     }
 }
@@ -169,7 +175,10 @@ fn lagrange_two_inputs() {
         for i in 0..2 {
             for j in 0..2 {
                 assert!(
-                    within((ma[i][j] - mb[i][j]).abs(), 5e-13 * ma[0][0].abs().max(ma[1][1].abs())), // measured worst 8.3e-15 (be05608); 100×
+                    within(
+                        (ma[i][j] - mb[i][j]).abs(),
+                        5e-13 * ma[0][0].abs().max(ma[1][1].abs())
+                    ), // measured worst 8.3e-15 (be05608); 100×
                     "q={q:?} M[{i}][{j}]"
                 );
             }
@@ -233,10 +242,12 @@ fn friction() {
                 for name in mechanisms::SliderCrank::JOINT_NAMES {
                     let (ga, gm) = a.reaction(name).unwrap();
                     let (ra, rmom) = b.reaction(name).unwrap();
-                    assert!(within((ga - ra).norm(), 1e-15 * scale), "q={q} {name}"); // measured worst 5.9e-19 (be05608); a few ulps of the scale, not below
+                    // measured worst 5.9e-19 (be05608); a few ulps of the scale, not below
+                    assert!(within((ga - ra).norm(), 1e-15 * scale), "q={q} {name}");
                     assert_eq!(gm.is_some(), rmom.is_some());
                     if let (Some(x), Some(y)) = (gm, rmom) {
-                        assert!(within((x - y).abs(), 1e-15 * scale), "q={q} {name} moment"); // measured worst 0 (be05608); exact; a few ulps
+                        // measured worst 0 (be05608); exact; a few ulps
+                        assert!(within((x - y).abs(), 1e-15 * scale), "q={q} {name} moment");
                     }
                 }
             }

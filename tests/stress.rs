@@ -179,7 +179,14 @@ const SAME: Units = Units {
 fn agree(ctx: &str, a: &Snap, b: &Snap, u: Units, rel: f64) {
     // Measured per caller and kind (`tests/common/measure.rs`).
     let at = std::panic::Location::caller();
-    let key = |what: &str| format!("from {}:{} {}", at.file(), at.line(), what.split('[').next().unwrap());
+    let key = |what: &str| {
+        format!(
+            "from {}:{} {}",
+            at.file(),
+            at.line(),
+            what.split('[').next().unwrap()
+        )
+    };
     let close = |what: &str, x: f64, y: f64, scale: f64| {
         assert!(
             within_at(&key(what), (x - y).abs(), rel * scale.max(1e-300)),
@@ -202,7 +209,11 @@ fn agree(ctx: &str, a: &Snap, b: &Snap, u: Units, rel: f64) {
     for (i, (p, q)) in a.angle.iter().zip(&b.angle).enumerate() {
         let d = (p - q).rem_euclid(std::f64::consts::TAU);
         assert!(
-            within_at(&key("angle"), d.min(std::f64::consts::TAU - d), rel * std::f64::consts::PI),
+            within_at(
+                &key("angle"),
+                d.min(std::f64::consts::TAU - d),
+                rel * std::f64::consts::PI
+            ),
             "{ctx}: angle[{i}] {p} vs {q}"
         );
     }
@@ -289,7 +300,11 @@ fn balances(
             s.driver[0]
         );
         assert!(
-            within_at(&key("direct"), (acc - qdd[0]).abs(), rel * scale / i.abs().max(1e-300) + rel * qdd[0].abs()),
+            within_at(
+                &key("direct"),
+                (acc - qdd[0]).abs(),
+                rel * scale / i.abs().max(1e-300) + rel * qdd[0].abs()
+            ),
             "{ctx}: direct q'' {acc} vs {}",
             qdd[0]
         );
@@ -356,7 +371,11 @@ fn balances(
             link.name
         );
         assert!(
-            within_at(&key("sum M"), sum_m.abs(), rel * mscale.max(fscale * model.scale())),
+            within_at(
+                &key("sum M"),
+                sum_m.abs(),
+                rel * mscale.max(fscale * model.scale())
+            ),
             "{ctx}: link {}: ΣM = {sum_m:e} (largest term {mscale:e})",
             link.name
         );
@@ -599,7 +618,10 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
         // The pose alone is within its (much smaller) bound.
         let p = any.pose(&[q]).unwrap();
         assert!(
-            within((p.link("coupler").unwrap().angle - tb[0]).abs(), 2.0 * p.error_bound() + 4.0 * EPS), // measured worst 0.14 of the bound (be05608); the stated bound
+            within(
+                (p.link("coupler").unwrap().angle - tb[0]).abs(),
+                2.0 * p.error_bound() + 4.0 * EPS
+            ), // measured worst 0.14 of the bound (be05608); the stated bound
             "{ctx}: pose"
         );
 
@@ -689,7 +711,10 @@ fn generated_toggle_is_accurate_to_a_thousandth_or_singular() {
     }
     // Refused as `Singular` only close to the toggle: 5 of the 7 answer (δ ≥ 1e-5 rad,
     // be05608); fewer would leave the claim checked on fewer angles.
-    println!("COUNT generated toggle: {answered} of {} answered", TOGGLE_TRUTH.len());
+    println!(
+        "COUNT generated toggle: {answered} of {} answered",
+        TOGGLE_TRUTH.len()
+    );
     assert!(answered >= 5, "only {answered} answers near the toggle");
 }
 
@@ -807,10 +832,12 @@ fn metres_and_millimetres_agree() {
         let ctx = format!("slider-crank q = {q}");
         let a = snap_generated!(m, g.model(), q, qd, qdd, loads, one_dof = true).unwrap();
         let b = snap_generated!(mm, gmm.model(), q, qd, qdd, loads_mm, one_dof = true).unwrap();
-        agree(&ctx, &a, &b, MM_G, 2e-14); // measured worst 4.2e-16 over the kinds (be05608); 100×
+        // measured worst 4.2e-16 over the kinds (be05608); 100×
+        agree(&ctx, &a, &b, MM_G, 2e-14);
         let c = snap_generic(&g, &[q], &[qd], &[qdd], &gl).unwrap();
         let d = snap_generic(&gmm, &[q], &[qd], &[qdd], &glmm).unwrap();
-        agree(&format!("{ctx} (generic)"), &c, &d, MM_G, 2e-14); // measured worst 4.2e-16 over the kinds (be05608); 100×
+        // measured worst 4.2e-16 over the kinds (be05608); 100×
+        agree(&format!("{ctx} (generic)"), &c, &d, MM_G, 2e-14);
         agree(
             &format!("{ctx} (generic vs generated)"),
             &a,
@@ -851,10 +878,12 @@ fn metres_and_millimetres_agree() {
             one_dof = true
         )
         .unwrap();
-        agree(&ctx, &a, &b, MM_G_PRISMATIC, 1e-13); // measured worst 1.6e-15 over the kinds (be05608); 100×
+        // measured worst 1.6e-15 over the kinds (be05608); 100×
+        agree(&ctx, &a, &b, MM_G_PRISMATIC, 1e-13);
         let c = snap_generic(&g, &[q], &[qd], &[qdd], &gl).unwrap();
         let d = snap_generic(&gmm, &[q * 1e3], &[qd * 1e3], &[qdd * 1e3], &glmm).unwrap();
-        agree(&format!("{ctx} (generic)"), &c, &d, MM_G_PRISMATIC, 5e-14); // measured worst 6.7e-16 over the kinds (be05608); 100×
+        // measured worst 6.7e-16 over the kinds (be05608); 100×
+        agree(&format!("{ctx} (generic)"), &c, &d, MM_G_PRISMATIC, 5e-14);
         agree(
             &format!("{ctx} (generic vs generated)"),
             &a,
@@ -925,8 +954,10 @@ fn mass_ratios_from_1e_minus_6_to_1e6() {
             let ctx = format!("ratio {r:e}, q = {q}");
             let a = snap_generated!(gen, g.model(), *q, *qd, *qdd, loads, one_dof = true).unwrap();
             let b = snap_generic(&g, &[*q], &[*qd], &[*qdd], &gl).unwrap();
-            agree(&ctx, &a, &b, SAME, 1e-13); // measured worst 1.9e-15 over the kinds (be05608); 100×
-            balances(&ctx, g.model(), &a, &gl.values, &[*qd], &[*qdd], 5e-14); // measured worst 8.9e-16 over the balances (be05608); 100×
+            // measured worst 1.9e-15 over the kinds (be05608); 100×
+            agree(&ctx, &a, &b, SAME, 1e-13);
+            // measured worst 8.9e-16 over the balances (be05608); 100×
+            balances(&ctx, g.model(), &a, &gl.values, &[*qd], &[*qdd], 5e-14);
             balances(
                 &format!("{ctx} (generic)"),
                 g.model(),
@@ -1320,10 +1351,19 @@ fn random_four_bars() {
     property("random four-bars", 32, four_bar_case(), 0.75, |c| {
         let mut p = FourBarParams::default();
         let pt = &c.points;
-        (p.points.O2, p.points.O4, p.points.A, p.points.B, p.points.P) = (pt[0], pt[1], pt[2], pt[3], pt[4]);
+        (p.points.O2, p.points.O4, p.points.A, p.points.B, p.points.P) =
+            (pt[0], pt[1], pt[2], pt[3], pt[4]);
         (p.links.crank, p.links.coupler, p.links.rocker) = (lp(&c, 0), lp(&c, 1), lp(&c, 2));
         p.gravity = c.gravity;
-        random_case!(&c, base, &["O2", "O4", "A", "B", "P"], "B", p, FourBar, FourBarLoads)
+        random_case!(
+            &c,
+            base,
+            &["O2", "O4", "A", "B", "P"],
+            "B",
+            p,
+            FourBar,
+            FourBarLoads
+        )
     });
 }
 
@@ -1338,7 +1378,15 @@ fn random_slider_cranks() {
         p.axes.guide = c.axis.unwrap();
         (p.links.crank, p.links.rod, p.links.piston) = (lp(&c, 0), lp(&c, 1), lp(&c, 2));
         p.gravity = c.gravity;
-        random_case!(&c, base, &["O2", "A", "B"], "A", p, SliderCrank, SliderCrankLoads)
+        random_case!(
+            &c,
+            base,
+            &["O2", "A", "B"],
+            "A",
+            p,
+            SliderCrank,
+            SliderCrankLoads
+        )
     });
 }
 
@@ -1350,10 +1398,32 @@ fn random_watt_six_bars() {
     property("random Watt II six-bars", 32, watt2_case(), 0.75, |c| {
         let mut p = Watt2Params::default();
         let pt = &c.points;
-        (p.points.O2, p.points.O4, p.points.O6, p.points.A, p.points.B, p.points.C, p.points.D) = (pt[0], pt[1], pt[2], pt[3], pt[4], pt[5], pt[6]);
-        (p.links.crank, p.links.coupler, p.links.rocker, p.links.link5, p.links.rocker6) = (lp(&c, 0), lp(&c, 1), lp(&c, 2), lp(&c, 3), lp(&c, 4));
+        (
+            p.points.O2,
+            p.points.O4,
+            p.points.O6,
+            p.points.A,
+            p.points.B,
+            p.points.C,
+            p.points.D,
+        ) = (pt[0], pt[1], pt[2], pt[3], pt[4], pt[5], pt[6]);
+        (
+            p.links.crank,
+            p.links.coupler,
+            p.links.rocker,
+            p.links.link5,
+            p.links.rocker6,
+        ) = (lp(&c, 0), lp(&c, 1), lp(&c, 2), lp(&c, 3), lp(&c, 4));
         p.gravity = c.gravity;
-        random_case!(&c, base, &["O2", "O4", "O6", "A", "B", "C", "D"], "D", p, Watt2, Watt2Loads)
+        random_case!(
+            &c,
+            base,
+            &["O2", "O4", "O6", "A", "B", "C", "D"],
+            "D",
+            p,
+            Watt2,
+            Watt2Loads
+        )
     });
 }
 
@@ -1480,31 +1550,59 @@ fn loader_rejects_bad_descriptions_with_locations() {
 /// loads (the solvers run on it), skipped when it is `Invalid`.
 #[test]
 fn loader_never_panics_on_edited_text() {
-    let edits = prop::collection::vec((0usize..10_000, 0usize..4, prop::sample::select(vec!['{', '}', '(', ')', ',', ':', '-', '.', '0', '9', 'e', 'A', 'B', 'x', ' ', '\n'])), 1..4);
+    let edits = prop::collection::vec(
+        (
+            0usize..10_000,
+            0usize..4,
+            prop::sample::select(vec![
+                '{', '}', '(', ')', ',', ':', '-', '.', '0', '9', 'e', 'A', 'B', 'x', ' ', '\n',
+            ]),
+        ),
+        1..4,
+    );
     // Exercised (the edited text still loads): 148 of 1000 cases (be05608), about 14 of
     // 96; at least 1 % asserted (1 of 96: none loading happens once in about 10⁶ runs).
-    property("edited descriptions", 96, (edits, any::<bool>()), 0.01, |(edits, slider)| {
-        let mut text: Vec<char> = if slider { slider_text() } else { four_bar_text() }.chars().collect();
-        for (at, kind, ch) in edits {
-            let i = at % text.len();
-            match kind {
-                0 => { text.remove(i); }
-                1 => text.insert(i, ch),
-                2 => text[i] = ch,
-                _ => { let end = (i + 8).min(text.len()); text.drain(i..end); }
+    property(
+        "edited descriptions",
+        96,
+        (edits, any::<bool>()),
+        0.01,
+        |(edits, slider)| {
+            let mut text: Vec<char> = if slider {
+                slider_text()
+            } else {
+                four_bar_text()
             }
-        }
-        let text: String = text.into_iter().collect();
-        match GenericMechanism::parse(&text) {
-            Ok(g) => {
-                let q = g.reference_inputs().to_vec();
-                let _ = g.kinematics(&q, &vec![1.0; q.len()], &vec![0.0; q.len()]).map(|m| g.kinetostatics(&m, &g.loads()));
-                Ok(true)
+            .chars()
+            .collect();
+            for (at, kind, ch) in edits {
+                let i = at % text.len();
+                match kind {
+                    0 => {
+                        text.remove(i);
+                    }
+                    1 => text.insert(i, ch),
+                    2 => text[i] = ch,
+                    _ => {
+                        let end = (i + 8).min(text.len());
+                        text.drain(i..end);
+                    }
+                }
             }
-            Err(MechError::Invalid(_)) => Ok(false),
-            Err(e) => Err(TestCaseError::fail(format!("unexpected error {e:?}"))),
-        }
-    });
+            let text: String = text.into_iter().collect();
+            match GenericMechanism::parse(&text) {
+                Ok(g) => {
+                    let q = g.reference_inputs().to_vec();
+                    let _ = g
+                        .kinematics(&q, &vec![1.0; q.len()], &vec![0.0; q.len()])
+                        .map(|m| g.kinetostatics(&m, &g.loads()));
+                    Ok(true)
+                }
+                Err(MechError::Invalid(_)) => Ok(false),
+                Err(e) => Err(TestCaseError::fail(format!("unexpected error {e:?}"))),
+            }
+        },
+    );
 }
 
 /// `from_params` re-runs the drawing, rank and determinacy checks: NaN and infinite
@@ -1693,7 +1791,8 @@ fn huge_inputs_answer_quickly() {
         let b = g.pose(&[q]).unwrap();
         for p in &g.model().points {
             let d = a.point(&p.name).unwrap().pos - b.point(&p.name).unwrap().pos;
-            assert!(within(d.amax(), 5e-15), "q = {q:e}: {}: {d:?}", p.name); // measured worst 5.6e-17 (be05608); 100×
+            // measured worst 5.6e-17 (be05608); 100×
+            assert!(within(d.amax(), 5e-15), "q = {q:e}: {}: {d:?}", p.name);
         }
     }
     let h = HydraulicLever::new();
@@ -1744,7 +1843,8 @@ fn ninth_prismatic_input_does_not_panic() {
     let m = NineSliders::new();
     let q = [0.1; 9];
     let mo = m.kinematics(q, [1.0; 9], [0.0; 9]).unwrap();
-    assert!(within((mo.links.s9.cg_vel.x - 1.0).abs(), 1e-15)); // measured worst 0 (be05608); exact; a few ulps
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(within((mo.links.s9.cg_vel.x - 1.0).abs(), 1e-15));
 }
 
 /// The generic solver never evaluates at `Level::Jacobian`: nine prismatic inputs work.
@@ -1763,7 +1863,8 @@ fn generic_nine_prismatic_inputs() {
     }
     // Each actuator pushes its own slider: F = m a = 2 N.
     let d = g.driver_action(&m, &g.loads()).unwrap();
-    assert!(d.iter().all(|f| within((f - 2.0).abs(), 1e-15)), "{d:?}"); // measured worst 0 (be05608); exact; a few ulps
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(d.iter().all(|f| within((f - 2.0).abs(), 1e-15)), "{d:?}");
 }
 
 /// `kinematics::wrap` reduces huge angles into (−π, π]. (Regression: a − 2π·round(a/2π)

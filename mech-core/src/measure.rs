@@ -57,7 +57,11 @@ fn record(key: String, err: f64, tol: f64) {
 pub fn within(err: f64, tol: f64) -> bool {
     if measuring() {
         let l = Location::caller();
-        record(format!("{}:{}:{}", l.file(), l.line(), l.column()), err, tol);
+        record(
+            format!("{}:{}:{}", l.file(), l.line(), l.column()),
+            err,
+            tol,
+        );
     }
     err <= tol
 }
@@ -68,7 +72,11 @@ pub fn within(err: f64, tol: f64) -> bool {
 pub fn within_at(key: &str, err: f64, tol: f64) -> bool {
     if measuring() {
         let l = Location::caller();
-        record(format!("{}:{}:{} {key}", l.file(), l.line(), l.column()), err, tol);
+        record(
+            format!("{}:{}:{} {key}", l.file(), l.line(), l.column()),
+            err,
+            tol,
+        );
     }
     err <= tol
 }

@@ -2,8 +2,8 @@
 //! with a tolerance relative to the largest entry of the same kind.
 #![allow(dead_code)]
 
-use mech::prelude::Vector2;
 use crate::measure::within_at;
+use mech::prelude::Vector2;
 use serde_json::Value;
 
 /// A truth or mechanism file of `tests/data/`.

@@ -321,9 +321,9 @@ impl<const N: usize, T: Tableau<N>> Method<N> for Adaptive<T> {
 
 #[cfg(test)]
 mod tests {
-    use crate::measure::{within, within_at};
     use crate::dynamics::ode::test_rhs::{exp_rhs, oscillator};
     use crate::dynamics::ode::{integrate, Dop853, DormandPrince, Outcome};
+    use crate::measure::{within, within_at};
 
     #[test]
     fn adaptive_methods_on_the_harmonic_oscillator() {
@@ -375,7 +375,11 @@ mod tests {
             -2.0,
         )
         .unwrap();
-        assert!(within((r.y[0] - 2f64.cos()).abs(), 2e-12) && within((r.y[1] - 2f64.sin()).abs(), 1e-12)); // measured worst 4.7e-14, 2.0e-14 (be05608); 100×
+        // measured worst 4.7e-14, 2.0e-14 (be05608); 100×
+        assert!(
+            within((r.y[0] - 2f64.cos()).abs(), 2e-12)
+                && within((r.y[1] - 2f64.sin()).abs(), 1e-12)
+        );
     }
 
     #[test]
@@ -401,6 +405,7 @@ mod tests {
         );
         let e8 =
             err(&mut || integrate(&mut Dop853::new(1e-13, 0.0), exp_rhs, 0.0, [1.0], 3.0).unwrap());
-        assert!(within(e8, 5e-13), "{e8:e}"); // measured worst 5.5e-15 (be05608); 100×
+        // measured worst 5.5e-15 (be05608); 100×
+        assert!(within(e8, 5e-13), "{e8:e}");
     }
 }

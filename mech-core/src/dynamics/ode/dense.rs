@@ -63,10 +63,10 @@ impl<const N: usize> Interpolant<N> for Hermite<N> {
 
 #[cfg(test)]
 mod tests {
-    use crate::measure::{within, within_at};
     use super::*;
     use crate::dynamics::ode::test_rhs::oscillator;
     use crate::dynamics::ode::{sample, Dop853, DormandPrince, Method, Rk4, Stats};
+    use crate::measure::{within, within_at};
 
     #[test]
     fn dense_output_matches_the_solution() {
@@ -124,7 +124,10 @@ mod tests {
         let d = m.step(&mut f, 0.0, &y0, &dy0, 5.0, true, &mut st).unwrap();
         let (a, b) = (d.eval(d.t_start()), d.eval(d.t_end()));
         for i in 0..2 {
-            assert!(within((a[i] - y0[i]).abs(), 1e-15) && within((b[i] - d.y_end()[i]).abs(), 1e-15)); // measured worst 0 (be05608); exact; a few ulps
+            // measured worst 0 (be05608); exact; a few ulps
+            assert!(
+                within((a[i] - y0[i]).abs(), 1e-15) && within((b[i] - d.y_end()[i]).abs(), 1e-15)
+            );
         }
     }
 }

@@ -215,10 +215,10 @@ where
 
 #[cfg(test)]
 mod tests {
-    use crate::measure::{within, within_at};
     use super::*;
     use crate::dynamics::ode::test_rhs::{exp_rhs, oscillator};
     use crate::dynamics::ode::{Dop853, DormandPrince, Rk4};
+    use crate::measure::{within, within_at};
 
     #[test]
     fn event_is_located_on_the_dense_output() {
@@ -264,11 +264,19 @@ mod tests {
             // 1.4e-13, 2.9e-15 in y (be05608); 100×.
             let tol = [2e-12, 2e-13, 1e-12][method];
             assert!(
-                within_at(["rk4", "dp5", "dop853"][method], (r.t - std::f64::consts::FRAC_PI_2).abs(), tol),
+                within_at(
+                    ["rk4", "dp5", "dop853"][method],
+                    (r.t - std::f64::consts::FRAC_PI_2).abs(),
+                    tol
+                ),
                 "method {method}: {:e}",
                 r.t - std::f64::consts::FRAC_PI_2
             );
-            assert!(within_at(["rk4", "dp5", "dop853"][method], (r.y[1] + 1.0).abs(), [2e-13, 1e-11, 2e-13][method]));
+            assert!(within_at(
+                ["rk4", "dp5", "dop853"][method],
+                (r.y[1] + 1.0).abs(),
+                [2e-13, 1e-11, 2e-13][method]
+            ));
         }
         // Upward crossings only: x = cos t first rises through 0 at 3π/2.
         let mut g = |_: f64, y: &[f64; 2]| y[0];
@@ -287,7 +295,8 @@ mod tests {
             None,
         )
         .unwrap();
-        assert!(within((r.t - 1.5 * std::f64::consts::PI).abs(), 5e-12)); // measured worst 9.2e-14 (be05608); 100×
+        // measured worst 9.2e-14 (be05608); 100×
+        assert!(within((r.t - 1.5 * std::f64::consts::PI).abs(), 5e-12));
     }
 
     #[test]

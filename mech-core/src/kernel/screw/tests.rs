@@ -6,9 +6,9 @@
 
 use super::*;
 use crate::front::resolve::model_of;
-use crate::measure::within;
 use crate::kernel::group::{group_rates, GroupSystem};
 use crate::kernel::kinetostatics::{group_reactions, lambda_reactions};
+use crate::measure::within;
 use crate::plan::assur::{plan, Kernel};
 
 /// One mechanism per closed-form kind (and the driven crank and slider).
@@ -123,10 +123,12 @@ fn both_routes_agree(text: &str, kinds: &mut std::collections::BTreeSet<String>)
                 (a.vel.y, b.vel.y),
                 (a.omega, b.omega),
             ] {
-                assert!(close(x, y, 2e-11), "{text}: velocity level {x} vs {y}"); // measured worst 2.3e-13 (be05608); 100×
+                // measured worst 2.3e-13 (be05608); 100×
+                assert!(close(x, y, 2e-11), "{text}: velocity level {x} vs {y}");
             }
             for (x, y) in [(a.acc.x, b.acc.x), (a.acc.y, b.acc.y), (a.alpha, b.alpha)] {
-                assert!(close(x, y, 1e-8), "{text}: acceleration level {x} vs {y}"); // measured worst 1.2e-10 (be05608); 100×
+                // measured worst 1.2e-10 (be05608); 100×
+                assert!(close(x, y, 1e-8), "{text}: acceleration level {x} vs {y}");
             }
         }
         assembled += 1;
@@ -315,10 +317,12 @@ fn both_reactions_agree(
             (a.force.y, b.force.y),
             (a.moment, b.moment),
         ] {
-            assert!(close(x, y, 2e-13), "{text}: reaction {x} vs {y}"); // measured worst 3.6e-15 (be05608); 100×
+            // measured worst 3.6e-15 (be05608); 100×
+            assert!(close(x, y, 2e-13), "{text}: reaction {x} vs {y}");
         }
     }
     for (x, y) in da.iter().zip(&db) {
-        assert!(close(*x, *y, 2e-13), "{text}: driver {x} vs {y}"); // measured worst 3.6e-15 (be05608); 100×
+        // measured worst 3.6e-15 (be05608); 100×
+        assert!(close(*x, *y, 2e-13), "{text}: driver {x} vs {y}");
     }
 }
