@@ -12,9 +12,9 @@
 //! one-liner that reduces a run to one line per site. A tolerance at most 100× the error
 //! measured is a ratio of at least 0.01.
 //!
-//! The unit tests' copy of the root tests' `tests/common/measure.rs` (the same code; the
-//! root tests cannot reach a `#[cfg(test)]` module of this crate): use it with
-//! `use crate::measure::within;`.
+//! The unit tests' copy of the root tests' `tests/common/measure.rs` (the same `within` and
+//! `within_at`; the root tests cannot reach a `#[cfg(test)]` module of this crate): use it
+//! with `use crate::measure::within;`.
 
 #![allow(dead_code)]
 
