@@ -38,10 +38,6 @@ pub mod plan;
 pub mod runtime;
 pub mod solvers;
 
-/// The tolerance check of the unit tests, measured under `MECH_MEASURE` (`tests/README.md`).
-#[cfg(test)]
-mod measure;
-
 pub use error::MechError;
 pub use nalgebra::Vector2;
 pub use runtime::mechanism::Mechanism;

@@ -167,7 +167,7 @@ fn solve<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
 
     #[test]
     fn uniform_rod_is_one_sixth_at_each_end_and_two_thirds_at_the_middle() {

@@ -624,7 +624,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
 
     #[test]
     fn gauss_kronrod_rules_are_exact_for_polynomials() {

@@ -166,7 +166,7 @@ pub fn dissipation(elements: &[ElementGeom], s: &[LinkState]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
 
     fn linear(k: f64, c: f64, free: f64) -> ElementGeom {
         ElementGeom {

@@ -165,7 +165,7 @@ pub fn local(p0: V2, p1: V2, u: f64, v: f64) -> Result<V2, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
 
     #[test]
     fn circles_on_each_side() {

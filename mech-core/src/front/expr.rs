@@ -467,7 +467,7 @@ fn finite(q: Quantity) -> syn::Result<Quantity> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
     use syn::parse::Parser;
 
     fn eval_with(consts: &str, text: &str) -> Result<Quantity, String> {

@@ -29,7 +29,7 @@ pub fn potential(l: &LinkGeom, m: &LinkMotion, g: V2) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
 
     fn link() -> LinkGeom {
         LinkGeom {

@@ -373,7 +373,7 @@ pub fn point_pose(s: &[LinkState], l: usize, d: V2) -> PointPose {
 #[cfg(test)]
 mod tests {
     use super::wrap;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
     use std::f64::consts::{PI, TAU};
 
     /// `wrap` against the independent route atan2(sin a, cos a), over the ordinary range

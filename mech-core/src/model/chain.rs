@@ -616,7 +616,7 @@ impl Model {
 #[cfg(test)]
 mod tests {
     use crate::front::resolve::model_of;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
 
     /// Which links turn about a ground pin at their anchor, and which slide on the ground:
     /// what the solvers' shortcuts rest on.

@@ -181,7 +181,7 @@ pub fn all_words() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
 
     #[test]
     fn factors_to_si() {

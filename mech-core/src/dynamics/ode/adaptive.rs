@@ -323,7 +323,7 @@ impl<const N: usize, T: Tableau<N>> Method<N> for Adaptive<T> {
 mod tests {
     use crate::dynamics::ode::test_rhs::{exp_rhs, oscillator};
     use crate::dynamics::ode::{integrate, Dop853, DormandPrince, Outcome};
-    use crate::measure::{within, within_at};
+    use crate::kernel::measure::{within, within_at};
 
     #[test]
     fn adaptive_methods_on_the_harmonic_oscillator() {

@@ -66,7 +66,7 @@ mod tests {
     use super::*;
     use crate::dynamics::ode::test_rhs::oscillator;
     use crate::dynamics::ode::{sample, Dop853, DormandPrince, Method, Rk4, Stats};
-    use crate::measure::{within, within_at};
+    use crate::kernel::measure::{within, within_at};
 
     #[test]
     fn dense_output_matches_the_solution() {

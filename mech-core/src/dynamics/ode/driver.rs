@@ -218,7 +218,7 @@ mod tests {
     use super::*;
     use crate::dynamics::ode::test_rhs::{exp_rhs, oscillator};
     use crate::dynamics::ode::{Dop853, DormandPrince, Rk4};
-    use crate::measure::{within, within_at};
+    use crate::kernel::measure::{within, within_at};
 
     #[test]
     fn event_is_located_on_the_dense_output() {

@@ -84,7 +84,7 @@ mod tests {
     use super::*;
     use crate::dynamics::ode::integrate;
     use crate::dynamics::ode::test_rhs::exp_rhs;
-    use crate::measure::within;
+    use crate::kernel::measure::within;
 
     #[test]
     fn rk4_is_fourth_order_on_exp() {

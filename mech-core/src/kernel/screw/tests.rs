@@ -8,7 +8,7 @@ use super::*;
 use crate::front::resolve::model_of;
 use crate::kernel::group::{group_rates, GroupSystem};
 use crate::kernel::kinetostatics::{group_reactions, lambda_reactions};
-use crate::measure::within;
+use crate::kernel::measure::within;
 use crate::plan::assur::{plan, Kernel};
 
 /// One mechanism per closed-form kind (and the driven crank and slider).
