@@ -21,6 +21,9 @@
 mod mechanisms;
 #[path = "../tests/support/mod.rs"]
 mod support;
+// `support`'s comparisons go through the tests' tolerance check.
+#[path = "../tests/common/measure.rs"]
+mod measure;
 
 use mech::prelude::*;
 use mech_core::kernel::dyad::Solver;

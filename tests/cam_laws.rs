@@ -3,6 +3,7 @@
 //! differentiated symbolically by sympy, 30 digits), and the periodic spline of a user
 //! table by its defining properties.
 
+use crate::measure::within;
 use mech::cam::{Law, MotionLaw, Segment, Spline};
 use serde_json::Value;
 use std::f64::consts::{PI, TAU};
@@ -52,7 +53,7 @@ fn each_law_matches_its_symbolic_derivatives() {
             for (o, v) in row["values"].as_array().unwrap().iter().enumerate() {
                 let want = num(v);
                 assert!(
-                    (got[o] - want).abs() <= 1e-13 * scale[o].max(1e-300),
+                    within((got[o] - want).abs(), 1e-13 * scale[o].max(1e-300)), // measured worst 1.0e-14 (be05608); 100×
                     "{name} at {:.3}°: derivative {o} = {:e}, sympy {want:e}",
                     th.to_degrees(),
                     got[o]
@@ -124,13 +125,14 @@ fn periodic_spline_table() {
     };
     let (sp, th, s) = table(36);
     for (k, (&t, &v)) in th.iter().zip(&s).enumerate() {
-        assert!((sp.eval(t)[0] - v).abs() <= 1e-17, "knot {k}");
+        // measured worst 1.7e-18 (be05608); 100×
+        assert!(within((sp.eval(t)[0] - v).abs(), 1e-17), "knot {k}");
         let eps = 1e-9;
         let (l, r) = (sp.eval(t - eps), sp.eval(t + eps));
         for o in 0..3 {
             let scale = [1e-2, 1e-2, 1e-2][o];
             assert!(
-                (l[o] - r[o]).abs() <= 1e-7 * scale,
+                within((l[o] - r[o]).abs(), 1e-7 * scale), // measured worst 2.4e-9 (be05608); finite offset ±1e-9 rad: the limits differ by s'·2e-9, not an error
                 "knot {k}: derivative {o} jumps {} → {}",
                 l[o],
                 r[o]
@@ -147,7 +149,8 @@ fn periodic_spline_table() {
             .fold(0.0f64, f64::max)
     };
     let (e1, e2) = (err(36), err(72));
-    assert!(e1 < 1e-6 && e1 / e2 > 12.0, "errors {e1:e}, {e2:e}");
+    // measured worst 4.7e-8 (be05608); the spline's interpolation error, not a rounding error
+    assert!(within(e1, 1e-6) && e1 / e2 > 12.0, "errors {e1:e}, {e2:e}");
     assert!(Spline::periodic(&[0.0, 1.0], &[0.0, 1.0]).is_err());
     assert!(Spline::periodic(&[0.0, 2.0, 1.0], &[0.0, 1.0, 0.5]).is_err());
 }
@@ -178,7 +181,8 @@ fn profile_against_textbook_closed_forms() {
         cam(Face::Flat, 0.0),
     );
     let p = roller.at(0.5);
-    assert!((p.curvature_radius - 0.04).abs() < 1e-15 && p.pressure_angle == 0.0);
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(within((p.curvature_radius - 0.04).abs(), 1e-15) && p.pressure_angle == 0.0);
     let rp: f64 = 0.04 + rf;
     for k in 0..72 {
         let th = TAU * k as f64 / 72.0;
@@ -187,18 +191,26 @@ fn profile_against_textbook_closed_forms() {
         let rho = (q * q + s1 * s1).powf(1.5) / (q * q + 2.0 * s1 * s1 - q * s2);
         let p = roller.at(th);
         assert!(
-            (p.curvature_radius - (rho - rf)).abs() <= 1e-13 * rho.abs(),
+            within((p.curvature_radius - (rho - rf)).abs(), 2e-14 * rho.abs()), // measured worst 4.2e-16 (be05608); 100×
             "{th}: {} vs {}",
             p.curvature_radius,
             rho - rf
         );
-        assert!((p.pressure_angle - (s1 / q).atan()).abs() <= 1e-14, "{th}");
+        // measured worst 2.8e-17 (be05608); 100×
+        assert!(
+            within((p.pressure_angle - (s1 / q).atan()).abs(), 2e-15),
+            "{th}"
+        );
         let e = 0.008;
         let phi = ((s1 - e) / ((rp * rp - e * e).sqrt() + s)).atan();
-        assert!((offset.at(th).pressure_angle - phi).abs() <= 1e-14, "{th}");
+        // measured worst 5.6e-17 (be05608); 100×
+        assert!(
+            within((offset.at(th).pressure_angle - phi).abs(), 5e-15),
+            "{th}"
+        );
         let f = flat.at(th);
         assert!(
-            (f.curvature_radius - (0.04 + s + s2)).abs() <= 1e-15,
+            within((f.curvature_radius - (0.04 + s + s2)).abs(), 1e-15), // measured worst 0 (be05608); exact; a few ulps
             "{th}"
         );
     }
@@ -226,12 +238,13 @@ fn profile_by_its_geometry() {
             let r3 = d(a, b) * d(b, m) * d(m, a) / (2.0 * cross);
             let want = c.at(th).curvature_radius;
             assert!(
-                (r3.abs() - want.abs()).abs() <= 1e-6 * want.abs().max(0.01),
+                within((r3.abs() - want.abs()).abs(), 1e-6 * want.abs().max(0.01)), // measured worst 8.8e-9 (be05608); three contacts 1e-4 rad apart: a finite difference
                 "{face:?} at {th}: {r3} vs {want}"
             );
             if let Face::Roller(r) = face {
                 let p = c.at(th);
-                assert!((d(p.pitch, p.contact) - r).abs() < 1e-15);
+                // measured worst 6.9e-18 (be05608); 100×
+                assert!(within((d(p.pitch, p.contact) - r).abs(), 5e-16));
             }
         }
     }
@@ -252,7 +265,8 @@ fn design_checks_and_export() {
             (s1 / (rp + s)).atan().abs()
         })
         .fold(0.0f64, f64::max);
-    assert!((chk.max_pressure_angle.0 - want).abs() < 1e-15 && want > 0.1);
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(within((chk.max_pressure_angle.0 - want).abs(), 1e-15) && want > 0.1);
     assert!(!chk.undercut && chk.min_convex_radius.0 > 0.0);
     // The pitch curve's smallest convex radius, from a roller of zero radius on the same
     // prime circle: a roller just above it undercuts.
@@ -289,10 +303,13 @@ fn design_checks_and_export() {
     assert_eq!(lines.len(), 9);
     let row: Vec<f64> = lines[3].split(',').map(|x| x.parse().unwrap()).collect();
     let p = c.at(TAU * 2.0 / 8.0);
+    // To the CSV's digits: 90° is printed exactly (90.000000), a contact to 9 decimals of a
+    // metre, half a unit of the last the rounding of the format, not an error (measured
+    // worst 0, 0, 2.5e-18 (be05608) at this angle).
     assert!(
-        (row[0] - 90.0).abs() < 1e-9
-            && (row[1] - p.contact[0]).abs() < 1e-9
-            && (row[2] - p.contact[1]).abs() < 1e-9
+        within((row[0] - 90.0).abs(), 1e-9)
+            && within((row[1] - p.contact[0]).abs(), 5e-10)
+            && within((row[2] - p.contact[1]).abs(), 5e-10)
     );
     let path = c.svg_path(8);
     assert!(path.starts_with('M') && path.ends_with('Z') && path.matches('L').count() == 7);

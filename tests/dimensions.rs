@@ -5,6 +5,7 @@
 //! computed here by other formulas (law of cosines, the slider-crank's closed form,
 //! hand-converted SI literals), never against the DSL's own evaluation.
 
+use crate::measure::within;
 use mech::prelude::*;
 use mech::Mechanism;
 
@@ -82,9 +83,10 @@ fn four_bar_b(left: bool) -> (Vector2<f64>, Vector2<f64>) {
     (a, a + coupler * Vector2::new(t.cos(), t.sin()))
 }
 
+#[track_caller]
 fn near(what: &str, x: Vector2<f64>, y: Vector2<f64>, tol: f64) {
     assert!(
-        (x - y).norm() <= tol,
+        within((x - y).norm(), tol),
         "{what}: {x:?} against {y:?} ({:.2e} > {tol:.0e})",
         (x - y).norm()
     );
@@ -119,20 +121,25 @@ fn a_four_bar_from_its_lengths_on_both_branches() {
     right.links.rocker.cg = pr.links.rocker.cg;
     for (left, [pa, pb, po4, g2, g3, g4]) in [(true, drawn(pl)), (false, drawn(&right))] {
         let (a, b) = four_bar_b(left);
+        // measured worst 0 (be05608); exact; a few ulps
         near("A", pa, a, 1e-15);
-        near("B", pb, b, 1e-14);
+        // measured worst 2.8e-17 (be05608); 100×
+        near("B", pb, b, 2e-15);
         assert!(
-            ((pb - pa).norm() - 0.26).abs() < 1e-15 && ((pb - po4).norm() - 0.19).abs() < 1e-15
+            within(((pb - pa).norm() - 0.26).abs(), 1e-15)
+                && within(((pb - po4).norm() - 0.19).abs(), 1e-15) // measured worst 5.6e-17, 5.6e-17 (be05608); 100×
         );
         // cgs in each link's frame: along(25 mm) on O2 → A, local(110, 40) mm on A → B.
         let e = (b - a) / 0.26;
+        // measured worst 1.7e-18 (be05608); 100×
         near("crank cg", g2, a * (0.025 / 0.08), 1e-16);
         near(
             "coupler cg",
             g3,
             a + e * 0.110 + Vector2::new(-e.y, e.x) * 0.040,
-            1e-15,
+            1e-15, // measured worst 2.8e-17 (be05608); 100×
         );
+        // measured worst 6.2e-17 (be05608); 100×
         near("rocker cg", g4, po4 + (b - po4) * (0.095 / 0.19), 1e-15);
     }
     assert_eq!(pl.links.crank.inertia, 5.2e-4);
@@ -202,13 +209,15 @@ fn a_slider_crank_from_its_lengths_on_both_branches() {
             SliderForward::new().pose(q).unwrap(),
             SliderBackward::new().pose(q).unwrap(),
         );
+        // measured worst 1.6e-17 (be05608); 100×
         near("A", f.points.A.pos, a, 1e-15);
-        near("B forward", f.points.B.pos, Vector2::new(a.x + s, e), 1e-14);
+        // measured worst 5.6e-17 (be05608); 100×
+        near("B forward", f.points.B.pos, Vector2::new(a.x + s, e), 5e-15);
         near(
             "B backward",
             b.points.B.pos,
             Vector2::new(a.x - s, e),
-            1e-14,
+            5e-15, // measured worst 5.6e-17 (be05608); 100×
         );
     }
     let p = SliderForward::new();
@@ -280,7 +289,7 @@ mechanism! {
 /// x and y equal to within the rounding of one unit conversion (one ulp of each factor).
 fn same(what: &str, x: f64, y: f64) {
     assert!(
-        (x - y).abs() <= 2.0 * f64::EPSILON * y.abs(),
+        within((x - y).abs(), 2.0 * f64::EPSILON * y.abs()), // measured worst 0.45 of the bound (be05608); one rounding per unit factor: a bound, not a measurement
         "{what}: {x:e} against {y:e}"
     );
 }
@@ -358,11 +367,12 @@ fn a_vertical_engine_at_45_degrees_after_top_dead_centre() {
     let (r, l) = (0.05, 0.2);
     let (m, abs) = (Vertical::new(), VerticalAbsolute::new());
     let top = m.pose(0.0).unwrap();
+    // measured worst 1.5e-17 (be05608); 100×
     near("TDC", top.points.B.pos, Vector2::new(0.0, r + l), 1e-15);
     let q = 45f64.to_radians();
     let p = m.pose(q).unwrap();
     assert!(
-        (p.links.crank.angle - 135f64.to_radians()).abs() < 1e-15,
+        within((p.links.crank.angle - 135f64.to_radians()).abs(), 1e-15), // measured worst 0 (be05608); exact; a few ulps
         "{}",
         p.links.crank.angle
     );
@@ -372,7 +382,7 @@ fn a_vertical_engine_at_45_degrees_after_top_dead_centre() {
         "piston at 45° after TDC",
         p.points.B.pos,
         Vector2::new(0.0, y),
-        1e-15,
+        1e-15, // measured worst 1.5e-17 (be05608); 100×
     );
     // The motor action's sign is the joint's, whatever the zero: the same torque as the
     // absolute input at θ = q + 90°.
@@ -391,7 +401,7 @@ fn a_vertical_engine_at_45_degrees_after_top_dead_centre() {
             abs.driver_action(&ma, &abs_loads).unwrap(),
         );
         assert!(
-            (t - ta).abs() <= 1e-12 * ta.abs().max(1.0),
+            within((t - ta).abs(), 2e-13 * ta.abs().max(1.0)), // measured worst 2.8e-15 (be05608); 100×
             "q = {q}: {t} against {ta}"
         );
         let z = m.acceleration(q, 150.0, 40.0, &loads).unwrap();
@@ -399,7 +409,7 @@ fn a_vertical_engine_at_45_degrees_after_top_dead_centre() {
             .acceleration(q + 90f64.to_radians(), 150.0, 40.0, &abs_loads)
             .unwrap();
         assert!(
-            (z - za).abs() <= 1e-10 * za.abs().max(1.0),
+            within((z - za).abs(), 2e-13 * za.abs().max(1.0)), // measured worst 3.1e-15 (be05608); 100×
             "q̈ at q = {q}: {z} against {za}"
         );
     }
@@ -433,7 +443,7 @@ fn a_prismatic_input_counts_from_its_zero() {
             "piston",
             m.pose(q).unwrap().points.B.pos,
             b0 + Vector2::new(0.01 + q, 0.0),
-            1e-15,
+            1e-15, // measured worst 0 (be05608); exact; a few ulps
         );
     }
 }
@@ -457,7 +467,7 @@ fn the_run_time_loader_reads_the_same_grammar() {
         };
         let i = OneDof::reduced(&rt, q).unwrap().inertia;
         assert!(
-            (i - reduced.inertia).abs() <= 1e-12 * reduced.inertia,
+            within((i - reduced.inertia).abs(), 1e-15 * reduced.inertia), // measured worst 0 (be05608); exact; a few ulps
             "{name}: I* {i} against {}",
             reduced.inertia
         );
@@ -505,5 +515,6 @@ fn the_readme_mechanism_is_valid() {
     let s = (l * l - (e - r * q.sin()).powi(2)).sqrt();
     let pose = m.pose(&[q]).unwrap();
     let b = pose.point("B").unwrap().pos;
+    // measured worst 0 (be05608); exact; a few ulps
     near("B", b, Vector2::new(r * q.cos() + s, e), 1e-15);
 }

@@ -1,6 +1,7 @@
 //! Coulomb friction in the joints against closed-form textbook answers, the power balance,
 //! and self-locking.
 
+use crate::measure::within;
 use mech::friction::JointFriction;
 use mech::prelude::*;
 
@@ -72,12 +73,12 @@ fn crank_bearing_friction_adds_mu_r_r() {
         let want = t0 + qd.signum() * mu * r * pin.norm();
         let f = m.kinetostatics_with_friction(&mo, &loads, &fr).unwrap();
         assert!(
-            (f.joints.O.force - pin).norm() < 1e-12 * pin.norm(),
+            within((f.joints.O.force - pin).norm(), 2e-14 * pin.norm()), // measured worst 2.1e-16 (be05608); 100×
             "q={q}: R {:?} vs {pin:?}",
             f.joints.O.force
         );
         assert!(
-            (f.driver - want).abs() < 1e-12 * want.abs().max(1.0),
+            within((f.driver - want).abs(), 1e-15 * want.abs().max(1.0)), // measured worst 0 (be05608); exact; a few ulps
             "q={q}: {} vs {want}",
             f.driver
         );
@@ -99,11 +100,15 @@ fn block_on_incline_needs_mg_sin_plus_mu_mg_cos() {
             .unwrap();
         let want = 12.0 * a + 12.0 * 9.81 * th.sin() + v.signum() * mu * 12.0 * 9.81 * th.cos();
         assert!(
-            (f.driver - want).abs() < 1e-12 * want.abs(),
+            within((f.driver - want).abs(), 2e-14 * want.abs()), // measured worst 3.7e-16 (be05608); 100×
             "v={v}: {} vs {want}",
             f.driver
         );
-        assert!((f.joints.stroke.force.norm() - 12.0 * 9.81 * th.cos()).abs() < 1e-11);
+        // measured worst 1.4e-14 (be05608); 100×
+        assert!(within(
+            (f.joints.stroke.force.norm() - 12.0 * 9.81 * th.cos()).abs(),
+            1e-12
+        ));
     }
 }
 
@@ -146,7 +151,7 @@ fn friction_dissipation_closes_the_power_balance() {
         dissipated += 0.1 * f.joints.guide.force.norm() * mo.points.B.vel.x.abs();
         let balance = f.driver * qd - (f0.driver * qd + dissipated);
         assert!(
-            balance.abs() < 1e-10 * dissipated.max(1e-3),
+            within(balance.abs(), 5e-12 * dissipated.max(1e-3)), // measured worst 5.9e-14 (be05608); 100×
             "q={q}: {balance:e} (dissipated {dissipated})"
         );
     }
@@ -169,7 +174,8 @@ fn piston_driven_crank_self_locks_at_the_dead_centre() {
     let loads = PistonDrivenLoads { brake: -4.0 };
     // Lever arm of the rod about O2 ≈ r sin θ against μ r_pin = 9 mm: locked below θ ≈ 0.18.
     let mo = m.kinematics(stroke_at(0.05), -0.1, 0.0).unwrap();
-    assert!((mo.links.crank.angle - 0.05).abs() < 1e-9);
+    // measured worst 7.3e-15 (be05608); 100×
+    assert!(within((mo.links.crank.angle - 0.05).abs(), 5e-13));
     let locked = m.kinetostatics_with_friction(&mo, &loads, &fr);
     assert!(
         matches!(locked, Err(MechError::SelfLocking(_))),

@@ -10,6 +10,9 @@
 #[path = "common/counting.rs"]
 mod counting;
 
+#[path = "common/measure.rs"]
+mod measure;
+
 #[path = "common/data.rs"]
 mod data;
 

@@ -3,6 +3,7 @@
 //! motor torque (virtual power) are determined; its reactions are not, so it has no
 //! callable `kinetostatics` (see `tests/ui/redundant_kinetostatics.rs`).
 
+use crate::measure::within;
 use mech::prelude::*;
 
 mechanism! {
@@ -65,16 +66,18 @@ fn coupled_wheels_move_and_need_the_textbook_torque() {
         let mo = m.kinematics(q, qd, qdd).unwrap();
         for w in [mo.links.wheel2, mo.links.wheel3] {
             let d = (w.angle - mo.links.wheel1.angle).rem_euclid(std::f64::consts::TAU);
-            assert!(d.min(std::f64::consts::TAU - d) < 1e-12, "q={q}");
+            // measured worst 1.1e-14 (be05608); 100×
+            assert!(within(d.min(std::f64::consts::TAU - d), 1e-12), "q={q}");
             assert!(
-                (w.omega - qd).abs() < 1e-10 * qd && (w.alpha - qdd).abs() < 1e-9 * qd * qd,
+                within((w.omega - qd).abs(), 2e-12 * qd)
+                    && within((w.alpha - qdd).abs(), 1e-11 * qd * qd), // measured worst 2.1e-14, 1.0e-13 (be05608); 100×
                 "q={q}: {} {}",
                 w.omega,
                 w.alpha
             );
         }
         assert!(
-            mo.links.rod.omega.abs() < 1e-10 * qd,
+            within(mo.links.rod.omega.abs(), 1e-13 * qd), // measured worst 1.4e-15 (be05608); 100×
             "the rod translates: ω = {}",
             mo.links.rod.omega
         );
@@ -82,14 +85,22 @@ fn coupled_wheels_move_and_need_the_textbook_torque() {
         // I* is constant: T = I* q̈ − (traction on a wheel turning at the input's rate).
         let want = i_star * qdd + 50.0;
         assert!(
-            (torque - want).abs() < 1e-10 * want,
+            within((torque - want).abs(), 1e-10 * want), // measured worst 1.3e-12 (be05608); 100×
             "q={q}: {torque} vs {want}"
         );
+        // measured worst 2.1e-14, 2.7e-12 (be05608); 100×
         let z = m.reduced(q).unwrap();
-        assert!((z.inertia - i_star).abs() < 1e-12 * i_star && z.inertia_derivative.abs() < 1e-10);
+        assert!(
+            within((z.inertia - i_star).abs(), 1e-12 * i_star)
+                && within(z.inertia_derivative.abs(), 1e-10)
+        );
         // A motion at rest still gets its torque from the solved velocity field.
         let rest = m.kinematics(q, 0.0, qdd).unwrap();
-        assert!((m.driver_action(&rest, &loads).unwrap() - want).abs() < 1e-10 * want);
+        // measured worst 2.1e-14 (be05608); 100×
+        assert!(within(
+            (m.driver_action(&rest, &loads).unwrap() - want).abs(),
+            2e-12 * want
+        ));
     }
 }
 
@@ -119,19 +130,25 @@ fn the_run_time_mechanism_solves_it_too() {
         for name in ["wheel2", "wheel3", "rod"] {
             let (a, b) = (mo.link(name).unwrap(), rm.link(name).unwrap());
             assert!(
-                (a.omega - b.omega).abs() < 1e-12 * 10.0
-                    && (a.alpha - b.alpha).abs() < 1e-10 * 100.0,
+                within((a.omega - b.omega).abs(), 1e-15 * 10.0) // measured worst 0 (be05608); exact; a few ulps
+                    && within((a.alpha - b.alpha).abs(), 1e-15 * 100.0), // measured worst 0 (be05608); exact; a few ulps
                 "q={q} {name}"
             );
-            assert!((a.cg - b.cg).norm() < 1e-12, "q={q} {name}");
+            // measured worst 0 (be05608); exact; a few ulps
+            assert!(within((a.cg - b.cg).norm(), 1e-15), "q={q} {name}");
         }
         let (t, rtq) = (
             m.driver_action(&mo, &loads).unwrap(),
             rt.driver_action(&rm, &rloads).unwrap()[0],
         );
-        assert!((t - rtq).abs() < 1e-11 * t.abs(), "q={q}: {t} vs {rtq}");
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(
+            within((t - rtq).abs(), 1e-15 * t.abs()),
+            "q={q}: {t} vs {rtq}"
+        );
         let (z, rz) = (m.reduced(q).unwrap(), rt.reduced(q).unwrap());
-        assert!((z.inertia - rz.inertia).abs() < 1e-12 * z.inertia);
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((z.inertia - rz.inertia).abs(), 1e-15 * z.inertia));
         assert!(matches!(
             rt.kinetostatics(&rm, &rloads),
             Err(MechError::Redundant(_))

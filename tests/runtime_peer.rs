@@ -4,6 +4,7 @@
 //! coefficients, Lagrange's equations for two inputs, Coulomb friction.
 
 use crate::engine;
+use crate::measure::within;
 use crate::mechanisms;
 
 use mech::dynamics::{equation_of_motion, lagrange_acceleration, mass_matrix, quinn_coefficients};
@@ -25,7 +26,7 @@ fn rel(a: f64, b: f64) -> f64 {
 
 /// The engine example's flywheel (approximate and Wittenbauer's exact inertia), from the
 /// engine's DSL text written to a file and loaded at run time, equals the generated
-/// engine's to 1e-10.
+/// engine's to 1e-13 (the balancing torque to 5e-14).
 #[test]
 fn engine_flywheel_from_a_file() {
     let text = mechanism_text(include_str!("common/engine.rs"), "Engine").unwrap();
@@ -62,7 +63,11 @@ fn engine_flywheel_from_a_file() {
     )
     .unwrap()
     .balanced();
-    assert!(rel(r_t, g_t) < 1e-10, "balancing torque {r_t} vs {g_t}");
+    // measured worst 7.3e-16 (be05608); 100×
+    assert!(
+        within(rel(r_t, g_t), 5e-14),
+        "balancing torque {r_t} vs {g_t}"
+    );
     let g = g_cycle
         .flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY)
         .unwrap();
@@ -70,13 +75,13 @@ fn engine_flywheel_from_a_file() {
         .flywheel(engine::OMEGA_MEAN, engine::IRREGULARITY)
         .unwrap();
     assert!(
-        rel(r.approximate.inertia, g.approximate.inertia) < 1e-10,
+        within(rel(r.approximate.inertia, g.approximate.inertia), 1e-13), // measured worst 1.3e-15 (be05608); 100×
         "approximate {} vs {}",
         r.approximate.inertia,
         g.approximate.inertia
     );
     assert!(
-        rel(r.exact.inertia, g.exact.inertia) < 1e-10,
+        within(rel(r.exact.inertia, g.exact.inertia), 1e-13), // measured worst 1.2e-15 (be05608); 100×
         "exact {} vs {}",
         r.exact.inertia,
         g.exact.inertia
@@ -118,7 +123,7 @@ fn direct_problem() {
     )
     .unwrap();
     assert!(
-        rel(b.y[0], a.y[0]) < 1e-10 && rel(b.y[1], a.y[1]) < 1e-10,
+        within(rel(b.y[0], a.y[0]), 1e-10) && within(rel(b.y[1], a.y[1]), 1e-10), // measured worst 2.6e-12 (q), 8.7e-11 (q̇) (be05608); an ulp of q̈ moves the end state by 2e-10 near rtol 1e-11 (above); 100×
         "{:?} vs {:?}",
         b.y,
         a.y
@@ -129,7 +134,8 @@ fn direct_problem() {
             mech::dynamics::total_energy(&gen, &[q], &[20.0]).unwrap(),
             mech::dynamics::total_energy(&rt, &[q], &[20.0]).unwrap(),
         );
-        assert!(rel(e2, e1) < 1e-12, "q={q}: energy {e2} vs {e1}");
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within(rel(e2, e1), 1e-15), "q={q}: energy {e2} vs {e1}");
     }
 }
 
@@ -144,7 +150,8 @@ fn quinn() {
         quinn_coefficients(&gen, q, &mut a).unwrap();
         quinn_coefficients(&rt, q, &mut b).unwrap();
         for (x, y) in a.iter().zip(&b) {
-            assert!((x - y).abs() < 1e-12, "q={q}: {a:?} vs {b:?}");
+            // measured worst 0 (be05608); exact; a few ulps
+            assert!(within((x - y).abs(), 1e-15), "q={q}: {a:?} vs {b:?}");
         }
     }
 }
@@ -168,7 +175,10 @@ fn lagrange_two_inputs() {
         for i in 0..2 {
             for j in 0..2 {
                 assert!(
-                    (ma[i][j] - mb[i][j]).abs() < 1e-12 * ma[0][0].abs().max(ma[1][1].abs()),
+                    within(
+                        (ma[i][j] - mb[i][j]).abs(),
+                        5e-13 * ma[0][0].abs().max(ma[1][1].abs())
+                    ), // measured worst 8.3e-15 (be05608); 100×
                     "q={q:?} M[{i}][{j}]"
                 );
             }
@@ -180,7 +190,7 @@ fn lagrange_two_inputs() {
         );
         for i in 0..2 {
             assert!(
-                (aa[i] - ab[i]).abs() < 1e-10 * aa[i].abs().max(1.0),
+                within((aa[i] - ab[i]).abs(), 5e-13 * aa[i].abs().max(1.0)), // measured worst 8.9e-15 (be05608); 100×
                 "q={q:?}: {aa:?} vs {ab:?}"
             );
         }
@@ -200,6 +210,7 @@ fn friction() {
     let mut gl = mechanisms::SliderCrankLoads::default();
     let mut rl = rt.loads();
     assert!(gl.set_by_name("gas", &[-1500.0, 0.0]) && rl.set_by_name("gas", &[-1500.0, 0.0]));
+    let mut solved = 0;
     for k in 0..10 {
         let q = 0.3 + 0.6 * k as f64;
         let (mo, rm) = (
@@ -212,9 +223,13 @@ fn friction() {
         );
         match (a, b) {
             (Ok(a), Ok(b)) => {
+                solved += 1;
+                // The motor torque on its own scale (issue 28; it was the gas force's, 1500 N),
+                // the reactions on the gas force's.
                 let scale = a.driver.abs().max(1500.0);
+                let dscale = a.driver.abs().max(1.0);
                 assert!(
-                    (a.driver - b.driver[0]).abs() < 1e-12 * scale,
+                    within((a.driver - b.driver[0]).abs(), 1e-15 * dscale), // measured worst 0 (be05608); exact; a few ulps
                     "q={q}: driver {} vs {}",
                     a.driver,
                     b.driver[0]
@@ -227,17 +242,23 @@ fn friction() {
                 for name in mechanisms::SliderCrank::JOINT_NAMES {
                     let (ga, gm) = a.reaction(name).unwrap();
                     let (ra, rmom) = b.reaction(name).unwrap();
-                    assert!((ga - ra).norm() < 1e-12 * scale, "q={q} {name}");
+                    // measured worst 5.9e-19 (be05608); a few ulps of the scale, not below
+                    assert!(within((ga - ra).norm(), 1e-15 * scale), "q={q} {name}");
                     assert_eq!(gm.is_some(), rmom.is_some());
                     if let (Some(x), Some(y)) = (gm, rmom) {
-                        assert!((x - y).abs() < 1e-12 * scale, "q={q} {name} moment");
+                        // measured worst 0 (be05608); exact; a few ulps
+                        assert!(within((x - y).abs(), 1e-15 * scale), "q={q} {name} moment");
                     }
                 }
             }
+            // Self-locking at this angle, alike: skipped, counted.
             (Err(MechError::SelfLocking(_)), Err(MechError::SelfLocking(_))) => {}
             (a, b) => panic!("q={q}: {a:?} vs {b:?}"),
         }
     }
+    // None self-locks at these angles (be05608): a refusal would leave an angle unchecked.
+    println!("COUNT friction: {solved} of 10 angles solved");
+    assert!(solved >= 10, "only {solved} of 10 angles solved");
 }
 
 /// Degenerate input gives an answer or a `MechError`, never a panic: a ground-only

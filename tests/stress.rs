@@ -14,6 +14,7 @@
 //! 8 ε κ × L, and everything computed from velocities and accelerations (rates, motor
 //! actions, reactions) within 16 ε κ² relative.
 
+use crate::measure::{within, within_at};
 use crate::mechanisms;
 use crate::support;
 
@@ -174,10 +175,21 @@ const SAME: Units = Units {
 };
 
 /// `a` and `b` (in units `u`) agree to `rel` of the largest entry of each kind.
+#[track_caller]
 fn agree(ctx: &str, a: &Snap, b: &Snap, u: Units, rel: f64) {
+    // Measured per caller and kind (`tests/common/measure.rs`).
+    let at = std::panic::Location::caller();
+    let key = |what: &str| {
+        format!(
+            "from {}:{} {}",
+            at.file(),
+            at.line(),
+            what.split('[').next().unwrap()
+        )
+    };
     let close = |what: &str, x: f64, y: f64, scale: f64| {
         assert!(
-            (x - y).abs() <= rel * scale.max(1e-300),
+            within_at(&key(what), (x - y).abs(), rel * scale.max(1e-300)),
             "{ctx}: {what}: {x:.17e} vs {y:.17e} (scale {scale:e}, rel {rel:e})"
         );
     };
@@ -197,7 +209,11 @@ fn agree(ctx: &str, a: &Snap, b: &Snap, u: Units, rel: f64) {
     for (i, (p, q)) in a.angle.iter().zip(&b.angle).enumerate() {
         let d = (p - q).rem_euclid(std::f64::consts::TAU);
         assert!(
-            d.min(std::f64::consts::TAU - d) <= rel * std::f64::consts::PI,
+            within_at(
+                &key("angle"),
+                d.min(std::f64::consts::TAU - d),
+                rel * std::f64::consts::PI
+            ),
             "{ctx}: angle[{i}] {p} vs {q}"
         );
     }
@@ -241,6 +257,7 @@ fn agree(ctx: &str, a: &Snap, b: &Snap, u: Units, rel: f64) {
 /// d'Alembert = virtual power (= Zhukovski I* q̈ + ½ I*′ q̇² − M* for one DOF); Newton–Euler
 /// of every moving link with the reported reactions (+R on b, −R on a); the power balance
 /// Σ Q q̇ + P_loads + P_gravity = dT/dt, dT/dt = Σ (m v_G·a_G + I ω α).
+#[track_caller]
 fn balances(
     ctx: &str,
     model: &Model,
@@ -250,6 +267,9 @@ fn balances(
     qdd: &[f64],
     rel: f64,
 ) {
+    // Measured per caller and balance (`tests/common/measure.rs`).
+    let at = std::panic::Location::caller();
+    let key = |what: &str| format!("from {}:{} {what}", at.file(), at.line());
     let nl = model.links.len() - 1;
     let g = model
         .gravity
@@ -262,7 +282,7 @@ fn balances(
         .max(amax(&s.moment));
     for k in 0..s.driver.len() {
         assert!(
-            (s.driver[k] - s.vp[k]).abs() <= rel * dscale,
+            within_at(&key("vp"), (s.driver[k] - s.vp[k]).abs(), rel * dscale),
             "{ctx}: d'Alembert {} vs virtual power {}",
             s.driver[k],
             s.vp[k]
@@ -275,12 +295,16 @@ fn balances(
             .max((0.5 * di * qd[0] * qd[0]).abs())
             .max(ms.abs());
         assert!(
-            (zh - s.driver[0]).abs() <= rel * scale,
+            within_at(&key("zhukovski"), (zh - s.driver[0]).abs(), rel * scale),
             "{ctx}: Zhukovski {zh} vs d'Alembert {}",
             s.driver[0]
         );
         assert!(
-            (acc - qdd[0]).abs() <= rel * scale / i.abs().max(1e-300) + rel * qdd[0].abs(),
+            within_at(
+                &key("direct"),
+                (acc - qdd[0]).abs(),
+                rel * scale / i.abs().max(1e-300) + rel * qdd[0].abs()
+            ),
             "{ctx}: direct q'' {acc} vs {}",
             qdd[0]
         );
@@ -342,12 +366,16 @@ fn balances(
         let fscale = terms.iter().fold(0.0f64, |a, t| a.max(t.0.amax()));
         let mscale = terms.iter().fold(0.0f64, |a, t| a.max(t.1.abs()));
         assert!(
-            sum_f.amax() <= rel * fscale,
+            within_at(&key("sum F"), sum_f.amax(), rel * fscale),
             "{ctx}: link {}: ΣF = {sum_f:?} (largest term {fscale:e})",
             link.name
         );
         assert!(
-            sum_m.abs() <= rel * mscale.max(fscale * model.scale()),
+            within_at(
+                &key("sum M"),
+                sum_m.abs(),
+                rel * mscale.max(fscale * model.scale())
+            ),
             "{ctx}: link {}: ΣM = {sum_m:e} (largest term {mscale:e})",
             link.name
         );
@@ -374,7 +402,7 @@ fn balances(
     }
     let sum: f64 = terms.iter().sum();
     assert!(
-        sum.abs() <= rel * amax(&terms),
+        within_at(&key("power"), sum.abs(), rel * amax(&terms)),
         "{ctx}: power balance {sum:e} (largest term {:e})",
         amax(&terms)
     );
@@ -534,7 +562,7 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
         let check = |who: &str, th: [f64; 2], w: [f64; 2], al: [f64; 2], t: f64, vp: f64| {
             for i in 0..2 {
                 assert!(
-                    (th[i] - tb[i]).abs() <= 2.0 * pb + 4.0 * EPS,
+                    within((th[i] - tb[i]).abs(), 2.0 * pb + 4.0 * EPS), // measured worst 0.15 of the bound (be05608); the stated bound (8 ε κ), the claim under test
                     "{ctx}: {who}: θ{} {} vs textbook {} (bound {pb:e})",
                     i + 3,
                     th[i],
@@ -543,14 +571,14 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
                 let ws = tb[2].abs().max(tb[3].abs());
                 let als = tb[4].abs().max(tb[5].abs());
                 assert!(
-                    (w[i] - tb[2 + i]).abs() <= 2.0 * rb * ws,
+                    within((w[i] - tb[2 + i]).abs(), 2.0 * rb * ws), // measured worst 0.086 of the bound (be05608); the stated bound (16 ε κ²), the claim under test
                     "{ctx}: {who}: ω{} {} vs textbook {} (bound {rb:e})",
                     i + 3,
                     w[i],
                     tb[2 + i]
                 );
                 assert!(
-                    (al[i] - tb[4 + i]).abs() <= 2.0 * rb * als,
+                    within((al[i] - tb[4 + i]).abs(), 2.0 * rb * als), // measured worst 0.25 of the bound (be05608); the stated bound
                     "{ctx}: {who}: α{} {} vs textbook {}",
                     i + 3,
                     al[i],
@@ -558,21 +586,21 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
                 );
             }
             assert!(
-                (w[0] - w3).abs() <= rb * w3.abs(),
+                within((w[0] - w3).abs(), rb * w3.abs()), // measured worst 0.11 of the bound (be05608); the stated bound
                 "{ctx}: {who}: ω3 {} vs reference {w3} (bound {rb:e})",
                 w[0]
             );
             assert!(
-                (al[0] - a3).abs() <= rb * a3.abs(),
+                within((al[0] - a3).abs(), rb * a3.abs()), // measured worst 0.32 of the bound (be05608); the stated bound
                 "{ctx}: {who}: α3 {} vs reference {a3}",
                 al[0]
             );
             assert!(
-                (t - torque).abs() <= rb * torque.abs(),
+                within((t - torque).abs(), rb * torque.abs()), // measured worst 0.43 of the bound (be05608); the stated bound
                 "{ctx}: {who}: torque {t:e} vs reference {torque:e} (bound {rb:e})"
             );
             assert!(
-                (vp - torque).abs() <= rb * torque.abs(),
+                within((vp - torque).abs(), rb * torque.abs()), // measured worst 0.43 of the bound (be05608); the stated bound
                 "{ctx}: {who}: virtual-power torque {vp:e} vs reference {torque:e}"
             );
         };
@@ -590,7 +618,10 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
         // The pose alone is within its (much smaller) bound.
         let p = any.pose(&[q]).unwrap();
         assert!(
-            (p.link("coupler").unwrap().angle - tb[0]).abs() <= 2.0 * p.error_bound() + 4.0 * EPS,
+            within(
+                (p.link("coupler").unwrap().angle - tb[0]).abs(),
+                2.0 * p.error_bound() + 4.0 * EPS
+            ), // measured worst 0.14 of the bound (be05608); the stated bound
             "{ctx}: pose"
         );
 
@@ -651,24 +682,26 @@ fn dead_point_results_are_within_the_stated_bound_or_singular() {
 
 /// `docs/conventions.md#solver-requirements`: "near a dead point the result is either
 /// accurate or `Singular`": every generated answer near the toggle is within 1e-3 of the
-/// reference. (Regression: with `SINGULAR_CONDITION` = 1e10 the generated four-bar
+/// reference (ω, measured far inside it, within 2e-4). (Regression: with `SINGULAR_CONDITION` = 1e10 the generated four-bar
 /// answered at a transmission angle of 1e-7 rad, κ ≈ 1.5e7, with ω 2.2 % and the torque
 /// 9 % off and no error; rate errors grow as ε κ², and the threshold is now 1e6.)
 #[test]
 fn generated_toggle_is_accurate_to_a_thousandth_or_singular() {
     let gen = Toggle::new();
     let loads = ToggleLoads { resist: -3.0 };
+    let mut answered = 0;
     for &(delta, q, w3, _, torque) in &TOGGLE_TRUTH {
         match gen.kinematics(q, 1.0, 0.5) {
             Ok(m) => {
+                answered += 1;
                 let t = gen.kinetostatics(&m, &loads).unwrap().driver;
                 assert!(
-                    (m.links.coupler.omega - w3).abs() <= 1e-3 * w3.abs(),
+                    within((m.links.coupler.omega - w3).abs(), 2e-4 * w3.abs()), // measured worst 3.9e-6 (be05608); 100× (the requirement is 1e-3)
                     "δ = {delta:e}: ω {} vs {w3}",
                     m.links.coupler.omega
                 );
                 assert!(
-                    (t - torque).abs() <= 1e-3 * torque.abs(),
+                    within((t - torque).abs(), 1e-3 * torque.abs()), // measured worst 1.6e-5 (be05608); 100×
                     "δ = {delta:e}: torque {t:e} vs {torque:e}"
                 );
             }
@@ -676,6 +709,13 @@ fn generated_toggle_is_accurate_to_a_thousandth_or_singular() {
             Err(e) => panic!("{e}"),
         }
     }
+    // Refused as `Singular` only close to the toggle: 5 of the 7 answer (δ ≥ 1e-5 rad,
+    // be05608); fewer would leave the claim checked on fewer angles.
+    println!(
+        "COUNT generated toggle: {answered} of {} answered",
+        TOGGLE_TRUTH.len()
+    );
+    assert!(answered >= 5, "only {answered} answers near the toggle");
 }
 
 // =======================================================================================
@@ -766,7 +806,7 @@ const MM_G_PRISMATIC: Units = Units {
 };
 
 /// The same machine in metres and kilograms and in millimetres and grams gives the same
-/// results after unit conversion, to 1e-12 relative (largest entry of each kind), with
+/// results after unit conversion, to 2e-14 … 1e-13 relative (largest entry of each kind), with
 /// the generated solvers (closed form and Newton fallback) and with the generic solver.
 #[test]
 fn metres_and_millimetres_agree() {
@@ -792,16 +832,18 @@ fn metres_and_millimetres_agree() {
         let ctx = format!("slider-crank q = {q}");
         let a = snap_generated!(m, g.model(), q, qd, qdd, loads, one_dof = true).unwrap();
         let b = snap_generated!(mm, gmm.model(), q, qd, qdd, loads_mm, one_dof = true).unwrap();
-        agree(&ctx, &a, &b, MM_G, 1e-12);
+        // measured worst 4.2e-16 over the kinds (be05608); 100×
+        agree(&ctx, &a, &b, MM_G, 2e-14);
         let c = snap_generic(&g, &[q], &[qd], &[qdd], &gl).unwrap();
         let d = snap_generic(&gmm, &[q], &[qd], &[qdd], &glmm).unwrap();
-        agree(&format!("{ctx} (generic)"), &c, &d, MM_G, 1e-12);
+        // measured worst 4.2e-16 over the kinds (be05608); 100×
+        agree(&format!("{ctx} (generic)"), &c, &d, MM_G, 2e-14);
         agree(
             &format!("{ctx} (generic vs generated)"),
             &a,
             &c,
             SAME,
-            1e-12,
+            2e-14, // measured worst 2.8e-16 over the kinds (be05608); 100×
         );
     }
 
@@ -836,16 +878,18 @@ fn metres_and_millimetres_agree() {
             one_dof = true
         )
         .unwrap();
-        agree(&ctx, &a, &b, MM_G_PRISMATIC, 1e-12);
+        // measured worst 1.6e-15 over the kinds (be05608); 100×
+        agree(&ctx, &a, &b, MM_G_PRISMATIC, 1e-13);
         let c = snap_generic(&g, &[q], &[qd], &[qdd], &gl).unwrap();
         let d = snap_generic(&gmm, &[q * 1e3], &[qd * 1e3], &[qdd * 1e3], &glmm).unwrap();
-        agree(&format!("{ctx} (generic)"), &c, &d, MM_G_PRISMATIC, 1e-12);
+        // measured worst 6.7e-16 over the kinds (be05608); 100×
+        agree(&format!("{ctx} (generic)"), &c, &d, MM_G_PRISMATIC, 5e-14);
         agree(
             &format!("{ctx} (generic vs generated)"),
             &a,
             &c,
             SAME,
-            1e-12,
+            1e-13, // measured worst 1.6e-15 over the kinds (be05608); 100×
         );
     }
 }
@@ -856,7 +900,7 @@ fn metres_and_millimetres_agree() {
 
 /// Masses and inertias of neighbouring links of the Watt II six-bar in ratios 1e-6 … 1e6
 /// (every other link scaled by r), set at run time with `from_params` (generated) and
-/// `from_model` (generic): the two agree, and every balance holds, to 1e-12 relative.
+/// `from_model` (generic): the two agree, and every balance holds, to 1e-13 relative.
 #[test]
 fn mass_ratios_from_1e_minus_6_to_1e6() {
     let base = generic(MECHANISMS, "Watt2");
@@ -910,8 +954,10 @@ fn mass_ratios_from_1e_minus_6_to_1e6() {
             let ctx = format!("ratio {r:e}, q = {q}");
             let a = snap_generated!(gen, g.model(), *q, *qd, *qdd, loads, one_dof = true).unwrap();
             let b = snap_generic(&g, &[*q], &[*qd], &[*qdd], &gl).unwrap();
-            agree(&ctx, &a, &b, SAME, 1e-12);
-            balances(&ctx, g.model(), &a, &gl.values, &[*qd], &[*qdd], 1e-12);
+            // measured worst 1.9e-15 over the kinds (be05608); 100×
+            agree(&ctx, &a, &b, SAME, 1e-13);
+            // measured worst 8.9e-16 over the balances (be05608); 100×
+            balances(&ctx, g.model(), &a, &gl.values, &[*qd], &[*qdd], 5e-14);
             balances(
                 &format!("{ctx} (generic)"),
                 g.model(),
@@ -919,7 +965,7 @@ fn mass_ratios_from_1e_minus_6_to_1e6() {
                 &gl.values,
                 &[*qd],
                 &[*qdd],
-                1e-12,
+                1e-13, // measured worst 1.4e-15 over the balances (be05608); 100×
             );
         }
     }
@@ -1200,7 +1246,9 @@ fn lp(c: &Case, k: usize) -> LinkParams {
 /// One random case through both solvers: the generic one from the run-time model, the
 /// generated one through `from_params`; both accept or reject the drawing alike; when
 /// both solve, they agree within twice the stated bound, every balance holds, and
-/// declaring the coupler–rocker pin the other way round negates its reaction.
+/// declaring the coupler–rocker pin the other way round negates its reaction. `Ok(true)`
+/// when the case was exercised, `Ok(false)` when it was skipped (refused alike by both, or
+/// no number at the offset input).
 macro_rules! random_case {
     ($c:expr, $base:expr, $names:expr, $swap:expr, $params:expr, $ty:ident, $loads:ident) => {{
         let c: &Case = $c;
@@ -1209,7 +1257,8 @@ macro_rules! random_case {
         let g = GenericMechanism::from_model(model.clone());
         let gen = $ty::from_params($params);
         prop_assert_eq!(g.is_ok(), gen.is_ok(), "the generic and generated run-time checks disagree: {:?} / {:?}", g.as_ref().err(), gen.as_ref().err());
-        let (Ok(g), Ok(gen)) = (g, gen) else { return Ok(()) };
+        // Refused alike by both (the drawing is checked at run time): skipped, counted.
+        let (Ok(g), Ok(gen)) = (g, gen) else { return Ok(false) };
         let q = g.reference_inputs()[0] + c.dq;
         let gl = generic_loads(&g, c);
         let mut loads = $loads::default();
@@ -1222,17 +1271,23 @@ macro_rules! random_case {
         }
         let b = match snap_generic(&g, &[q], &[c.qd], &[c.qdd], &gl) {
             Ok(b) => b,
-            // Past a limit of the input's range, or too close to a dead point: no number.
-            Err(MechError::NoAssembly | MechError::Singular { .. }) => return Ok(()),
+            // Past a limit of the input's range, or too close to a dead point: no number;
+            // skipped, counted.
+            Err(MechError::NoAssembly | MechError::Singular { .. }) => return Ok(false),
             Err(e) => panic!("{e}"),
         };
         let kappa = g.kinematics(&[q], &[c.qd], &[c.qdd]).unwrap().condition;
+        // Twice the stated bound, at least 1e-12: measured worst 0.18, 0.12, 0.035 of it
+        // (Watt II, four-bar, slider-crank; 1000 cases each, be05608); the balances, a
+        // tenth of it: measured worst 0.095, 0.073, 0.027 of that. 100× (6000 more cases
+        // each passed).
         let tol = (2.0 * rate_error_bound(kappa)).max(1e-12);
+        let tol_balance = 0.1 * tol;
         let a = snap_generated!(gen, g.model(), q, c.qd, c.qdd, loads, one_dof = true)
             .unwrap_or_else(|e| panic!("the generic solver answered but the generated one says {e} (κ = {kappa:e})"));
         agree("generated vs generic", &a, &b, SAME, tol);
-        balances("generated", g.model(), &a, &gl.values, &[c.qd], &[c.qdd], tol);
-        balances("generic", g.model(), &b, &gl.values, &[c.qd], &[c.qdd], tol);
+        balances("generated", g.model(), &a, &gl.values, &[c.qd], &[c.qdd], tol_balance);
+        balances("generic", g.model(), &b, &gl.values, &[c.qd], &[c.qdd], tol_balance);
         // R_ba = −R_ab: the same pin declared (b, a).
         let j = model.joint_index($swap).unwrap();
         let (ja, jb) = (model.joints[j].a, model.joints[j].b);
@@ -1241,46 +1296,136 @@ macro_rules! random_case {
         let swapped = GenericMechanism::from_model(model).unwrap();
         let s = snap_generic(&swapped, &[q], &[c.qd], &[c.qdd], &generic_loads(&swapped, c)).unwrap();
         let fscale = vmax(&b.force);
-        prop_assert!((s.force[j] + b.force[j]).amax() <= tol * fscale, "R_ba {:?} vs R_ab {:?}", s.force[j], b.force[j]);
+        // Measured worst 0 (be05608, 3000 cases): exact; a few ulps.
+        prop_assert!(within((s.force[j] + b.force[j]).amax(), 1e-15 * fscale), "R_ba {:?} vs R_ab {:?}", s.force[j], b.force[j]);
+        Ok(true)
     }};
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig { cases: 32, failure_persistence: None, ..ProptestConfig::default() })]
+/// Run one property over `cases` random cases (a new seed each run; `MECH_PROPERTY_CASES`
+/// sets another number, to re-measure the fraction exercised over many: tests/README.md,
+/// "Tolerances"): `case`
+/// returns `Ok(true)` for a case exercised, `Ok(false)` for one skipped. Both counts are
+/// printed, and at least the fraction `min` of the cases must have been exercised: a
+/// property whose cases are mostly skipped passes without checking anything.
+fn property<S: Strategy>(
+    name: &str,
+    cases: u32,
+    strategy: S,
+    min: f64,
+    case: impl Fn(S::Value) -> Result<bool, TestCaseError>,
+) where
+    S::Value: std::fmt::Debug,
+{
+    let cases = std::env::var("MECH_PROPERTY_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(cases);
+    let mut runner = proptest::test_runner::TestRunner::new(ProptestConfig {
+        cases,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    });
+    let (exercised, skipped) = (std::cell::Cell::new(0u32), std::cell::Cell::new(0u32));
+    let result = runner.run(&strategy, |c| {
+        let count = if case(c)? { &exercised } else { &skipped };
+        count.set(count.get() + 1);
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{name}: {e}");
+    }
+    let (e, s) = (exercised.get(), skipped.get());
+    println!("COUNT {name}: {e} exercised, {s} skipped of {cases}");
+    assert!(
+        f64::from(e) >= min * f64::from(cases),
+        "{name}: {e} of {cases} cases exercised ({s} skipped), fewer than {min}"
+    );
+}
 
-    #[test]
-    fn random_four_bars(c in four_bar_case()) {
-        let base = generic(MECHANISMS, "FourBar");
+#[test]
+fn random_four_bars() {
+    let base = generic(MECHANISMS, "FourBar");
+    // Exercised: 979 of 1000 and 5841 of 6000 cases (97–98 %, be05608; the others past a
+    // limit of the input's range at the offset input); at least 75 % asserted (24 of 32:
+    // at 3 % skipped, a false failure once in about 3·10⁶ runs).
+    property("random four-bars", 32, four_bar_case(), 0.75, |c| {
         let mut p = FourBarParams::default();
         let pt = &c.points;
-        (p.points.O2, p.points.O4, p.points.A, p.points.B, p.points.P) = (pt[0], pt[1], pt[2], pt[3], pt[4]);
+        (p.points.O2, p.points.O4, p.points.A, p.points.B, p.points.P) =
+            (pt[0], pt[1], pt[2], pt[3], pt[4]);
         (p.links.crank, p.links.coupler, p.links.rocker) = (lp(&c, 0), lp(&c, 1), lp(&c, 2));
         p.gravity = c.gravity;
-        random_case!(&c, base, &["O2", "O4", "A", "B", "P"], "B", p, FourBar, FourBarLoads);
-    }
+        random_case!(
+            &c,
+            base,
+            &["O2", "O4", "A", "B", "P"],
+            "B",
+            p,
+            FourBar,
+            FourBarLoads
+        )
+    });
+}
 
-    #[test]
-    fn random_slider_cranks(c in slider_crank_case()) {
-        let base = generic(MECHANISMS, "SliderCrank");
+#[test]
+fn random_slider_cranks() {
+    let base = generic(MECHANISMS, "SliderCrank");
+    // Exercised: 999 of 1000 and 5995 of 6000 cases (be05608); at least 75 % asserted.
+    property("random slider-cranks", 32, slider_crank_case(), 0.75, |c| {
         let mut p = SliderCrankParams::default();
         let pt = &c.points;
         (p.points.O2, p.points.A, p.points.B) = (pt[0], pt[1], pt[2]);
         p.axes.guide = c.axis.unwrap();
         (p.links.crank, p.links.rod, p.links.piston) = (lp(&c, 0), lp(&c, 1), lp(&c, 2));
         p.gravity = c.gravity;
-        random_case!(&c, base, &["O2", "A", "B"], "A", p, SliderCrank, SliderCrankLoads);
-    }
+        random_case!(
+            &c,
+            base,
+            &["O2", "A", "B"],
+            "A",
+            p,
+            SliderCrank,
+            SliderCrankLoads
+        )
+    });
+}
 
-    #[test]
-    fn random_watt_six_bars(c in watt2_case()) {
-        let base = generic(MECHANISMS, "Watt2");
+#[test]
+fn random_watt_six_bars() {
+    let base = generic(MECHANISMS, "Watt2");
+    // Exercised: 977 of 1000 and 5825 of 6000 cases (97–98 %, be05608); at least 75 %
+    // asserted (24 of 32: at 3 % skipped, a false failure once in about 3·10⁶ runs).
+    property("random Watt II six-bars", 32, watt2_case(), 0.75, |c| {
         let mut p = Watt2Params::default();
         let pt = &c.points;
-        (p.points.O2, p.points.O4, p.points.O6, p.points.A, p.points.B, p.points.C, p.points.D) = (pt[0], pt[1], pt[2], pt[3], pt[4], pt[5], pt[6]);
-        (p.links.crank, p.links.coupler, p.links.rocker, p.links.link5, p.links.rocker6) = (lp(&c, 0), lp(&c, 1), lp(&c, 2), lp(&c, 3), lp(&c, 4));
+        (
+            p.points.O2,
+            p.points.O4,
+            p.points.O6,
+            p.points.A,
+            p.points.B,
+            p.points.C,
+            p.points.D,
+        ) = (pt[0], pt[1], pt[2], pt[3], pt[4], pt[5], pt[6]);
+        (
+            p.links.crank,
+            p.links.coupler,
+            p.links.rocker,
+            p.links.link5,
+            p.links.rocker6,
+        ) = (lp(&c, 0), lp(&c, 1), lp(&c, 2), lp(&c, 3), lp(&c, 4));
         p.gravity = c.gravity;
-        random_case!(&c, base, &["O2", "O4", "O6", "A", "B", "C", "D"], "D", p, Watt2, Watt2Loads);
-    }
+        random_case!(
+            &c,
+            base,
+            &["O2", "O4", "O6", "A", "B", "C", "D"],
+            "D",
+            p,
+            Watt2,
+            Watt2Loads
+        )
+    });
 }
 
 // =======================================================================================
@@ -1400,37 +1545,66 @@ fn loader_rejects_bad_descriptions_with_locations() {
     ));
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig { cases: 96, failure_persistence: None, ..ProptestConfig::default() })]
-
-    /// Random edits of a valid description (deleted, inserted or replaced characters):
-    /// the loader answers `Ok` or `Invalid`, never panics, and whatever loads can be
-    /// solved at its drawing without panicking.
-    #[test]
-    fn loader_never_panics_on_edited_text(
-        edits in prop::collection::vec((0usize..10_000, 0usize..4, prop::sample::select(vec!['{', '}', '(', ')', ',', ':', '-', '.', '0', '9', 'e', 'A', 'B', 'x', ' ', '\n'])), 1..4),
-        slider in any::<bool>(),
-    ) {
-        let mut text: Vec<char> = if slider { slider_text() } else { four_bar_text() }.chars().collect();
-        for (at, kind, ch) in edits {
-            let i = at % text.len();
-            match kind {
-                0 => { text.remove(i); }
-                1 => text.insert(i, ch),
-                2 => text[i] = ch,
-                _ => { let end = (i + 8).min(text.len()); text.drain(i..end); }
+/// Random edits of a valid description (deleted, inserted or replaced characters):
+/// the loader answers `Ok` or `Invalid`, never panics, and whatever loads can be
+/// solved at its drawing without panicking. A case is exercised when the edited text still
+/// loads (the solvers run on it), skipped when it is `Invalid`.
+#[test]
+fn loader_never_panics_on_edited_text() {
+    let edits = prop::collection::vec(
+        (
+            0usize..10_000,
+            0usize..4,
+            prop::sample::select(vec![
+                '{', '}', '(', ')', ',', ':', '-', '.', '0', '9', 'e', 'A', 'B', 'x', ' ', '\n',
+            ]),
+        ),
+        1..4,
+    );
+    // Exercised (the edited text still loads): 148 of 1000 and 886 of 6000 cases (15 %,
+    // be05608), about 14 of 96; at least 1 % asserted (1 of 96: none loading happens once
+    // in about 5·10⁶ runs).
+    property(
+        "edited descriptions",
+        96,
+        (edits, any::<bool>()),
+        0.01,
+        |(edits, slider)| {
+            let mut text: Vec<char> = if slider {
+                slider_text()
+            } else {
+                four_bar_text()
             }
-        }
-        let text: String = text.into_iter().collect();
-        match GenericMechanism::parse(&text) {
-            Ok(g) => {
-                let q = g.reference_inputs().to_vec();
-                let _ = g.kinematics(&q, &vec![1.0; q.len()], &vec![0.0; q.len()]).map(|m| g.kinetostatics(&m, &g.loads()));
+            .chars()
+            .collect();
+            for (at, kind, ch) in edits {
+                let i = at % text.len();
+                match kind {
+                    0 => {
+                        text.remove(i);
+                    }
+                    1 => text.insert(i, ch),
+                    2 => text[i] = ch,
+                    _ => {
+                        let end = (i + 8).min(text.len());
+                        text.drain(i..end);
+                    }
+                }
             }
-            Err(MechError::Invalid(_)) => {}
-            Err(e) => prop_assert!(false, "unexpected error {e:?}"),
-        }
-    }
+            let text: String = text.into_iter().collect();
+            match GenericMechanism::parse(&text) {
+                Ok(g) => {
+                    let q = g.reference_inputs().to_vec();
+                    let _ = g
+                        .kinematics(&q, &vec![1.0; q.len()], &vec![0.0; q.len()])
+                        .map(|m| g.kinetostatics(&m, &g.loads()));
+                    Ok(true)
+                }
+                Err(MechError::Invalid(_)) => Ok(false),
+                Err(e) => Err(TestCaseError::fail(format!("unexpected error {e:?}"))),
+            }
+        },
+    );
 }
 
 /// `from_params` re-runs the drawing, rank and determinacy checks: NaN and infinite
@@ -1619,7 +1793,8 @@ fn huge_inputs_answer_quickly() {
         let b = g.pose(&[q]).unwrap();
         for p in &g.model().points {
             let d = a.point(&p.name).unwrap().pos - b.point(&p.name).unwrap().pos;
-            assert!(d.amax() < 1e-12, "q = {q:e}: {}: {d:?}", p.name);
+            // measured worst 5.6e-17 (be05608); 100×
+            assert!(within(d.amax(), 5e-15), "q = {q:e}: {}: {d:?}", p.name);
         }
     }
     let h = HydraulicLever::new();
@@ -1670,7 +1845,8 @@ fn ninth_prismatic_input_does_not_panic() {
     let m = NineSliders::new();
     let q = [0.1; 9];
     let mo = m.kinematics(q, [1.0; 9], [0.0; 9]).unwrap();
-    assert!((mo.links.s9.cg_vel.x - 1.0).abs() < 1e-15);
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(within((mo.links.s9.cg_vel.x - 1.0).abs(), 1e-15));
 }
 
 /// The generic solver never evaluates at `Level::Jacobian`: nine prismatic inputs work.
@@ -1682,14 +1858,15 @@ fn generic_nine_prismatic_inputs() {
     for k in 1..=9 {
         let l = m.link(&format!("s{k}")).unwrap();
         assert!(
-            (l.cg - V::new(0.1 * k as f64, k as f64)).amax() < 1e-14
-                && (l.cg_vel.x - 1.0).abs() < 1e-14,
+            within((l.cg - V::new(0.1 * k as f64, k as f64)).amax(), 1e-14) // measured worst 0 (be05608); exact; a few ulps of 9 m
+                && within((l.cg_vel.x - 1.0).abs(), 1e-15), // measured worst 0 (be05608); exact; a few ulps
             "s{k}: {l:?}"
         );
     }
     // Each actuator pushes its own slider: F = m a = 2 N.
     let d = g.driver_action(&m, &g.loads()).unwrap();
-    assert!(d.iter().all(|f| (f - 2.0).abs() < 1e-13), "{d:?}");
+    // measured worst 0 (be05608); exact; a few ulps
+    assert!(d.iter().all(|f| within((f - 2.0).abs(), 1e-15)), "{d:?}");
 }
 
 /// `kinematics::wrap` reduces huge angles into (−π, π]. (Regression: a − 2π·round(a/2π)

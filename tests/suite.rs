@@ -33,6 +33,9 @@ mod against_reference;
 #[path = "common/counting.rs"]
 mod counting;
 
+#[path = "common/measure.rs"]
+mod measure;
+
 #[path = "common/engine.rs"]
 mod engine;
 

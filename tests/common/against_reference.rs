@@ -1,7 +1,8 @@
 //! The check shared by `tests/generic.rs` (the dense generic solver) and
 //! `tests/mechanism.rs` (the run-time `mech::Mechanism`): a solver loaded at run time from
 //! the text of `tests/common/mechanisms.rs` agrees with the generated struct and with the
-//! 50-digit table `tests/data/<name>.truth.json` to 1e-12 relative, on every quantity.
+//! 50-digit table `tests/data/<name>.truth.json`, on every quantity, to the tolerances of
+//! `tests/support/mod.rs` (`tol`: per kind, at most 100× the worst error measured).
 //! A module of the suite, declared after `support` with `#[macro_use]`; a module using
 //! `generic_test!` imports `motion_agrees` and `support::*` and defines `fn generic(name)`
 //! returning the solver under test.
@@ -145,9 +146,9 @@ macro_rules! generic_test {
                 // The motor actions on their own scale (issue 28).
                 let fscale = drivers.iter().fold(0.0f64, |a, d| a.max(d.abs()));
                 for (i, d) in drivers.iter().enumerate() {
-                    k.close(&ctx, "generic driver (d'Alembert)", gf.driver[i], *d, fscale);
-                    k.close(&ctx, "generic driver (virtual power)", gvp[i], *d, fscale);
-                    k.close(&ctx, "generic vs generated driver", gf.driver[i], as_vec(&fs.driver)[i], fscale);
+                    k.close(&ctx, "generic driver (d'Alembert)", gf.driver[i], *d, Scale::runtime_driver(fscale));
+                    k.close(&ctx, "generic driver (virtual power)", gvp[i], *d, Scale::runtime_driver(fscale));
+                    k.close(&ctx, "generic vs generated driver", gf.driver[i], as_vec(&fs.driver)[i], Scale::runtime_driver(fscale));
                 }
                 for (jname, rt) in c["reactions"].as_object().unwrap() {
                     let (f, mom) = gf.reaction(jname).unwrap_or_else(|| panic!("{ctx}: no joint {jname}"));
@@ -157,8 +158,8 @@ macro_rules! generic_test {
                     k.close(&ctx, &format!("{jname}.y vs generated"), f.y, gf_.y, k.force);
                     assert_eq!(mom.is_some(), gmom.is_some(), "{ctx}: {jname}");
                     if let Some(mt) = rt.get("moment") {
-                        k.close(&ctx, "moment", mom.unwrap(), mt.as_f64().unwrap(), k.force * k.length);
-                        k.close(&ctx, "moment vs generated", mom.unwrap(), gmom.unwrap(), k.force * k.length);
+                        k.close(&ctx, "moment", mom.unwrap(), mt.as_f64().unwrap(), k.moment);
+                        k.close(&ctx, "moment vs generated", mom.unwrap(), gmom.unwrap(), k.moment);
                     }
                 }
                 generic_test!(@zhukovski $one, gen, g, c, q, qd, qdd, loads, gloads, k, ctx, drivers);
@@ -171,18 +172,18 @@ macro_rules! generic_test {
         let r = $g.reduced($q).unwrap();
         let rg = $gen.reduced($q).unwrap();
         let (iscale, mscale) = (i_star.abs().max(di.abs()), m_star.abs().max($drivers[0].abs()));
-        $k.close(&$ctx, "I*", r.inertia, i_star, i_star.abs());
-        $k.close(&$ctx, "I* vs generated", r.inertia, rg.inertia, i_star.abs());
-        $k.close(&$ctx, "dI*/dq", r.inertia_derivative, di, iscale);
-        $k.close(&$ctx, "dI*/dq vs generated", r.inertia_derivative, rg.inertia_derivative, iscale);
+        $k.close(&$ctx, "I*", r.inertia, i_star, Scale::inertia(i_star.abs()));
+        $k.close(&$ctx, "I* vs generated", r.inertia, rg.inertia, Scale::inertia(i_star.abs()));
+        $k.close(&$ctx, "dI*/dq", r.inertia_derivative, di, Scale::inertia_derivative(iscale));
+        $k.close(&$ctx, "dI*/dq vs generated", r.inertia_derivative, rg.inertia_derivative, Scale::inertia_derivative(iscale));
         let ms = $g.reduced_moment($q, &$gloads).unwrap();
-        $k.close(&$ctx, "M*", ms, m_star, mscale);
-        $k.close(&$ctx, "M* vs generated", ms, $gen.reduced_moment($q, &$loads).unwrap(), mscale);
+        $k.close(&$ctx, "M*", ms, m_star, Scale::reduced_moment(mscale));
+        $k.close(&$ctx, "M* vs generated", ms, $gen.reduced_moment($q, &$loads).unwrap(), Scale::reduced_moment(mscale));
         let zh = r.inertia * $qdd + 0.5 * r.inertia_derivative * $qd * $qd - ms;
-        $k.close(&$ctx, "generic driver (Zhukovski)", zh, $drivers[0], $drivers[0].abs().max(m_star.abs()));
+        $k.close(&$ctx, "generic driver (Zhukovski)", zh, $drivers[0], Scale::runtime_driver($drivers[0].abs().max(m_star.abs())));
         let acc = $g.acceleration($q, $qd, $drivers[0], &$gloads).unwrap();
-        $k.close(&$ctx, "q'' (direct problem)", acc, $qdd, $qdd.abs().max(1.0));
-        $k.close(&$ctx, "q'' vs generated", acc, $gen.acceleration($q, $qd, $drivers[0], &$loads).unwrap(), $qdd.abs().max(1.0));
+        $k.close(&$ctx, "q'' (direct problem)", acc, $qdd, Scale::qdd($qdd.abs().max(1.0)));
+        $k.close(&$ctx, "q'' vs generated", acc, $gen.acceleration($q, $qd, $drivers[0], &$loads).unwrap(), Scale::qdd($qdd.abs().max(1.0)));
     }};
     (@zhukovski false, $gen:ident, $g:ident, $($rest:tt)*) => {{
         assert!(matches!($g.reduced(0.0), Err(MechError::InvalidInput(_))));

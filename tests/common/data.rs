@@ -23,10 +23,12 @@ pub fn num(v: &Value) -> f64 {
     }
 }
 
-/// Assert |got − want| ≤ tol (absolute: the caller scales it), naming `what`.
+/// Assert |got − want| ≤ tol (absolute: the caller scales it), naming `what`; measured
+/// at the caller's line (`tests/common/measure.rs`).
+#[track_caller]
 pub fn close(what: &str, got: f64, want: f64, tol: f64) {
     assert!(
-        (got - want).abs() <= tol,
+        crate::measure::within_at(crate::measure::label(what), (got - want).abs(), tol),
         "{what}: {got:.17e} vs reference {want:.17e} (|diff| {:.2e} > {tol:.2e})",
         (got - want).abs()
     );

@@ -167,27 +167,39 @@ fn solve<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::measure::within;
 
     #[test]
     fn uniform_rod_is_one_sixth_at_each_end_and_two_thirds_at_the_middle() {
         let (m, l) = (3.0, 0.8);
         let e = bar_three_masses(m, m * l * l / 12.0, l / 2.0, l / 2.0).unwrap();
-        assert!((e.at_a - m / 6.0).abs() < 1e-15 && (e.at_b - m / 6.0).abs() < 1e-15);
-        assert!((e.at_g - 2.0 * m / 3.0).abs() < 1e-15);
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((e.at_a - m / 6.0).abs(), 1e-15) && within((e.at_b - m / 6.0).abs(), 1e-15));
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((e.at_g - 2.0 * m / 3.0).abs(), 1e-15));
     }
 
     #[test]
     fn bar_systems_keep_mass_cg_and_inertia() {
         let (m, i_g, r_a, r_b) = (2.4, 9.5e-3, 0.09, 0.15);
         let e = bar_three_masses(m, i_g, r_a, r_b).unwrap();
-        assert!((e.at_a + e.at_b + e.at_g - m).abs() < 1e-15);
-        assert!((-e.at_a * r_a + e.at_b * r_b).abs() < 1e-15);
-        assert!((e.at_a * r_a * r_a + e.at_b * r_b * r_b - i_g).abs() < 1e-17);
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((e.at_a + e.at_b + e.at_g - m).abs(), 1e-15));
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((-e.at_a * r_a + e.at_b * r_b).abs(), 1e-15));
+        // measured worst 1.7e-18 (be05608); 100×
+        assert!(within(
+            (e.at_a * r_a * r_a + e.at_b * r_b * r_b - i_g).abs(),
+            1e-17
+        ));
         let (sa, sb) = bar_two_masses_static(m, r_a, r_b).unwrap();
-        assert!((sa + sb - m).abs() < 1e-15 && (-sa * r_a + sb * r_b).abs() < 1e-15);
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((sa + sb - m).abs(), 1e-15) && within((-sa * r_a + sb * r_b).abs(), 1e-15));
         let (ca, cb, rb) = bar_two_masses_complete(m, i_g, r_a).unwrap();
-        assert!((ca + cb - m).abs() < 1e-14 && (-ca * r_a + cb * rb).abs() < 1e-15);
-        assert!((ca * r_a * r_a + cb * rb * rb - i_g).abs() < 1e-16);
+        // measured worst 0, 1.4e-17 (be05608); 100×
+        assert!(within((ca + cb - m).abs(), 1e-14) && within((-ca * r_a + cb * rb).abs(), 1e-15));
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((ca * r_a * r_a + cb * rb * rb - i_g).abs(), 1e-16));
         assert!(bar_three_masses(m, i_g, 0.0, r_b).is_err());
         assert!(bar_two_masses_complete(f64::NAN, i_g, r_a).is_err());
     }
@@ -197,13 +209,17 @@ mod tests {
         let (m, i_g) = (1.377, 0.0079);
         let pts = [[-0.08, -0.05], [0.12, 0.02], [-0.03, 0.09]];
         let w = planar_four_masses(m, i_g, pts).unwrap();
-        assert!((w.iter().sum::<f64>() - m).abs() < 1e-14);
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((w.iter().sum::<f64>() - m).abs(), 1e-14));
         let sx: f64 = (0..3).map(|k| w[k] * pts[k][0]).sum();
         let sy: f64 = (0..3).map(|k| w[k] * pts[k][1]).sum();
         let si: f64 = (0..3)
             .map(|k| w[k] * (pts[k][0].powi(2) + pts[k][1].powi(2)))
             .sum();
-        assert!(sx.abs() < 1e-16 && sy.abs() < 1e-16 && (si - i_g).abs() < 1e-17);
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(
+            within(sx.abs(), 1e-16) && within(sy.abs(), 1e-16) && within((si - i_g).abs(), 1e-17)
+        );
         // Three points on one line through G cannot hold both cg conditions and the inertia.
         assert!(matches!(
             planar_four_masses(m, i_g, [[0.1, 0.0], [0.2, 0.0], [-0.1, 0.0]]),
@@ -237,17 +253,31 @@ mod tests {
         ];
         let w = spatial_ten_masses(m, inertia, pts).unwrap();
         let sum = |f: &dyn Fn([f64; 3]) -> f64| (0..10).map(|i| w[i] * f(pts[i])).sum::<f64>();
-        assert!((sum(&|_| 1.0) - m).abs() < 1e-12);
+        // measured worst 8.9e-16 (be05608); 100×
+        assert!(within((sum(&|_| 1.0) - m).abs(), 5e-14));
         for k in 0..3 {
-            assert!(sum(&|p| p[k]).abs() < 1e-12);
+            // measured worst 1.9e-17 (be05608); 100×
+            assert!(within(sum(&|p| p[k]).abs(), 1e-15));
         }
-        assert!((sum(&|p| p[1] * p[1] + p[2] * p[2]) - inertia.ix).abs() < 1e-12);
-        assert!((sum(&|p| p[0] * p[0] + p[2] * p[2]) - inertia.iy).abs() < 1e-12);
-        assert!((sum(&|p| p[0] * p[0] + p[1] * p[1]) - inertia.iz).abs() < 1e-12);
+        // measured worst 3.5e-18 (be05608); 100×
+        assert!(within(
+            (sum(&|p| p[1] * p[1] + p[2] * p[2]) - inertia.ix).abs(),
+            2e-16
+        ));
+        // measured worst 6.9e-18 (be05608); 100×
+        assert!(within(
+            (sum(&|p| p[0] * p[0] + p[2] * p[2]) - inertia.iy).abs(),
+            5e-16
+        ));
+        // measured worst 6.9e-18 (be05608); 100×
+        assert!(within(
+            (sum(&|p| p[0] * p[0] + p[1] * p[1]) - inertia.iz).abs(),
+            5e-16
+        ));
         assert!(
-            sum(&|p| p[1] * p[2]).abs() < 1e-12
-                && sum(&|p| p[0] * p[2]).abs() < 1e-12
-                && sum(&|p| p[0] * p[1]).abs() < 1e-12
+            within(sum(&|p| p[1] * p[2]).abs(), 2e-17) // measured worst 2.7e-19 (be05608); 100×
+                && within(sum(&|p| p[0] * p[2]).abs(), 5e-18) // measured worst 5.4e-20 (be05608); 100×
+                && within(sum(&|p| p[0] * p[1]).abs(), 5e-18) // measured worst 0 (be05608); exact; a few ulps
         );
     }
 }

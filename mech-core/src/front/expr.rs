@@ -467,6 +467,7 @@ fn finite(q: Quantity) -> syn::Result<Quantity> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::measure::within;
     use syn::parse::Parser;
 
     fn eval_with(consts: &str, text: &str) -> Result<Quantity, String> {
@@ -497,7 +498,11 @@ mod tests {
         assert_eq!((q.value, q.dim), (0.2, Some(Dim::LENGTH)));
         assert_eq!(eval("200mm").unwrap().value, 0.2);
         assert_eq!(eval("2.1e-3 kg_m2").unwrap().value, 2.1e-3);
-        assert!((eval("(90 - 35) deg").unwrap().value - 55f64.to_radians()).abs() < 1e-16);
+        // measured worst 0 (be05608); exact
+        assert!(within(
+            (eval("(90 - 35) deg").unwrap().value - 55f64.to_radians()).abs(),
+            1e-16
+        ));
         assert_eq!(eval("-(1 + 2) * 3 / 4").unwrap().value, -2.25);
         assert_eq!(eval("2 - 3 - 4").unwrap().value, -5.0);
         assert_eq!(eval("hypot(3 mm, 4 mm)").unwrap().value, 5e-3);
@@ -507,11 +512,20 @@ mod tests {
         );
         assert_eq!(eval("to_radians(180)").unwrap().value, std::f64::consts::PI);
         assert_eq!(eval("sin(PI / 2)").unwrap().value, 1.0);
-        assert!((eval("cos(60 deg)").unwrap().value - 0.5).abs() < 1e-15);
+        // measured worst 1.1e-16 (be05608); 100×
+        assert!(within(
+            (eval("cos(60 deg)").unwrap().value - 0.5).abs(),
+            1e-15
+        ));
         assert_eq!(eval("sqrt(16 mm * 1 mm)").unwrap().dim, Some(Dim::LENGTH));
-        assert!((eval("3000 rpm").unwrap().value - 100.0 * std::f64::consts::PI).abs() < 1e-12);
+        // measured worst 0 (be05608); exact; a few ulps of 314
+        assert!(within(
+            (eval("3000 rpm").unwrap().value - 100.0 * std::f64::consts::PI).abs(),
+            2e-13
+        ));
         let q = eval_with("r: 200 mm, l: 4.5 * r, e: 6 mm", "l + e").unwrap();
-        assert!((q.value - 0.906).abs() < 1e-15 && q.dim == Some(Dim::LENGTH));
+        // measured worst 0 (be05608); exact; a few ulps
+        assert!(within((q.value - 0.906).abs(), 1e-15) && q.dim == Some(Dim::LENGTH));
     }
 
     #[test]

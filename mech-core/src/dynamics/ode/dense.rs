@@ -66,12 +66,14 @@ mod tests {
     use super::*;
     use crate::dynamics::ode::test_rhs::oscillator;
     use crate::dynamics::ode::{sample, Dop853, DormandPrince, Method, Rk4, Stats};
+    use crate::kernel::measure::{within, within_at};
 
     #[test]
     fn dense_output_matches_the_solution() {
         let times: Vec<f64> = (0..=200).map(|i| i as f64 * 0.05).collect();
         let mut out = vec![[0.0; 2]; times.len()];
-        for (name, tol) in [("rk4", 1e-8), ("dp5", 1e-8), ("dop853", 1e-11)] {
+        // Measured worst 7.9e-10 (RK4), 8.4e-13 (DP5), 5.8e-14 (DOP853) (be05608); 100×.
+        for (name, tol) in [("rk4", 1e-8), ("dp5", 5e-11), ("dop853", 5e-12)] {
             match name {
                 "rk4" => sample(
                     &mut Rk4 { h: 0.01 },
@@ -101,12 +103,12 @@ mod tests {
             .unwrap();
             for (t, y) in times.iter().zip(&out) {
                 assert!(
-                    (y[0] - t.cos()).abs() < tol,
+                    within_at(name, (y[0] - t.cos()).abs(), tol),
                     "{name} at {t}: {:e}",
                     y[0] - t.cos()
                 );
                 assert!(
-                    (y[1] + t.sin()).abs() < tol,
+                    within_at(name, (y[1] + t.sin()).abs(), tol),
                     "{name} at {t}: {:e}",
                     y[1] + t.sin()
                 );
@@ -122,7 +124,10 @@ mod tests {
         let d = m.step(&mut f, 0.0, &y0, &dy0, 5.0, true, &mut st).unwrap();
         let (a, b) = (d.eval(d.t_start()), d.eval(d.t_end()));
         for i in 0..2 {
-            assert!((a[i] - y0[i]).abs() < 1e-15 && (b[i] - d.y_end()[i]).abs() < 1e-15);
+            // measured worst 0 (be05608); exact; a few ulps
+            assert!(
+                within((a[i] - y0[i]).abs(), 1e-15) && within((b[i] - d.y_end()[i]).abs(), 1e-15)
+            );
         }
     }
 }

@@ -84,6 +84,7 @@ mod tests {
     use super::*;
     use crate::dynamics::ode::integrate;
     use crate::dynamics::ode::test_rhs::exp_rhs;
+    use crate::kernel::measure::within;
 
     #[test]
     fn rk4_is_fourth_order_on_exp() {
@@ -95,7 +96,8 @@ mod tests {
             .abs()
         };
         let (e1, e2) = (e(0.02), e(0.01));
-        assert!(e2 < 1e-9, "{e2}");
+        // measured worst 2.3e-10 (be05608); RK4's step error at h = 0.01
+        assert!(within(e2, 1e-9), "{e2}");
         let order = (e1 / e2).log2();
         assert!((order - 4.0).abs() < 0.1, "observed order {order}");
         let r = integrate(&mut Rk4 { h: 0.01 }, exp_rhs, 0.0, [1.0], 1.0).unwrap();
