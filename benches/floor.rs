@@ -1,16 +1,36 @@
 //! The floor: the generated solvers against expert hand-written closed-form code of the
-//! same machines (`benches/floor/hand.rs`), timed in the same run so that the ratio
-//! generated / hand is meaningful. `tests/floor.rs` proves that both compute the same
-//! numbers (1e-12 relative on a sweep of a full turn).
+//! same machines (`benches/floor/hand.rs` and the `hand_*.rs` beside it), timed in the same
+//! run so that the ratio generated / hand is meaningful. `tests/floor.rs` proves that both
+//! compute the same numbers (1e-12 relative on a sweep of a full turn).
 //!
-//! Groups (each with the functions `generated` and `hand`):
-//! `four_bar/pose`, `four_bar/kinematics`, `four_bar/kinematics+kinetostatics`,
-//! `four_bar/kinematics+driver_action`, `slider_crank/reduced`,
-//! `slider_crank/acceleration`. Inputs as in `benches/solvers.rs`: q = 0.7, q̇ = 12,
-//! q̈ = −3; the four-bar carries the tool force (80, −60) N at P and a 2 N·m resisting
-//! torque on the rocker; the slider-crank a −1500 N gas force on the piston at B, a
-//! −4 N·m shaft torque and a 5 N·m driver (acceleration). All inputs, and the
-//! solver struct itself, go through `black_box` (no constant folding of the drawing).
+//! Machines, by the kind of group that follows their driven crank, and their groups (each
+//! with the functions `generated` and `hand`):
+//!
+//! - the crank-rocker four-bar (an RRR dyad): `four_bar/pose`, `four_bar/kinematics`,
+//!   `four_bar/kinematics+kinetostatics`, `four_bar/kinematics+driver_action`;
+//! - the offset slider-crank (an RRP dyad): `slider_crank/reduced`,
+//!   `slider_crank/acceleration`;
+//! - the crank-shaper quick-return (`QuickReturn`: the block on the crank pin slides in a
+//!   lever pivoted on the ground, an RPR dyad whose guide is pinned to the ground),
+//!   `quick_return/<op>`;
+//! - the Scotch yoke (`ScotchYoke`: the crank pin in the slot of a yoke guided by the
+//!   ground, a one-link group of a guide and a pin in a slot, which the generated code
+//!   solves by its fixed-size Newton fallback), `scotch_yoke/<op>`;
+//! - the inverted slider-crank (`InvertedSliderCrank` of `benches/floor/machines.rs`: the
+//!   rod pinned to the crank slides through a block pivoted on the ground, its slide line
+//!   off the pin, an RPR dyad whose guide is pinned to the crank),
+//!   `inverted_slider_crank/<op>`,
+//!
+//! where `<op>` is each of `pose`, `kinematics`, `kinematics+kinetostatics`,
+//! `kinematics+driver_action`, `reduced`, `acceleration`. Inputs as in `benches/solvers.rs`:
+//! q = 0.7, q̇ = 12, q̈ = −3; the four-bar carries the tool force (80, −60) N at P and a
+//! 2 N·m resisting torque on the rocker; the slider-crank a −1500 N gas force on the piston
+//! at B, a −4 N·m shaft torque and a 5 N·m driver (acceleration); the quick-return a cutting
+//! force (−250, 30) N at the lever's end C and a −1.5 N·m friction torque on the crank; the
+//! Scotch yoke a force (−120, 15) N on the yoke at Y and a −1.5 N·m drag on the crank; the
+//! inverted slider-crank a force (−300, 40) N on the rod at P and a 2.5 N·m torque on the
+//! block; these three a 5 N·m driver (acceleration). All inputs, and the solver struct
+//! itself, go through `black_box` (no constant folding of the drawing).
 //!
 //! Run and tabulate:
 //!
@@ -49,7 +69,7 @@
 //! Valgrind runs the code ~50× slower, so `--profile-time 1` is a few hundred thousand
 //! iterations, plenty for a stable count.
 //!
-//! The group `ratio` measures the same six operations as ratios generated / hand, the two
+//! The group `ratio` measures the same operations as ratios generated / hand, the two
 //! sides interleaved in blocks within every sample (`benches/floor/interleaved.rs`): the
 //! estimate that a shared machine's drifting speed does not move. Its "time" is the ratio
 //! (criterion prints `1.234×`); `tools/floor_ratios.py` tabulates it beside the medians.

@@ -1,18 +1,25 @@
-//! The hand-written floor (`benches/floor/hand.rs`) computes the same numbers as the
-//! generated solvers: every quantity of every operation timed in `benches/floor.rs`, on a
-//! sweep of 72 crank angles over a full turn, to 1e-12 relative.
+//! The hand-written floor (`benches/floor/hand.rs` and the `hand_*.rs` beside it) computes
+//! the same numbers as the generated solvers: every quantity of every operation timed in
+//! `benches/floor.rs` (the four-bar, the slider-crank, the quick-return, the Scotch yoke and
+//! the inverted slider-crank of `benches/floor/machines.rs`), on a sweep of 72 crank angles
+//! over a full turn, to 1e-12 relative.
 //!
 //! "Relative" is scaled by the largest entry of the quantity: for a quantity made of
 //! several entries (the three link angles, the cg positions of the three links, the pin
 //! forces of the four joints, ...) the largest |entry| at that q; for a single scalar
-//! (driver torque, I*, dI*/dq, M*, q̈), which can cross zero inside the turn, the largest
-//! |value| over the sweep. Angles are compared modulo 2π (the generated angles are
-//! wrapped to (−π, π], the hand-written crank angle is q itself).
+//! (driver torque, a prismatic joint's moment, I*, dI*/dq, M*, q̈), which can cross zero
+//! inside the turn, the largest |value| over the sweep. Angles are compared modulo 2π (the
+//! generated angles are wrapped to (−π, π], the hand-written crank angle is q itself).
 //!
 //! Independent checks of the hand-written side (so that a shared mistake cannot pass):
 //! central finite differences of positions against velocities and of velocities against
 //! accelerations, of I* against dI*/dq, and the inverse problem (the generated d'Alembert
-//! driver at the hand-written q̈ gives back the applied torque).
+//! driver at the hand-written q̈ gives back the applied torque). For the quick-return, the
+//! Scotch yoke and the inverted slider-crank, on the hand-written side alone: finite
+//! differences of every point, cg and link angle (velocities, accelerations, q̈ entering
+//! linearly), every link's d'Alembert balance with the hand-written reactions, the driver
+//! torque by d'Alembert, by virtual power and by Zhukovski, dI*/dq against I*, M* against
+//! the power of gravity and the loads on the positions, and the inverse problem.
 
 use crate::mechanisms;
 
@@ -536,7 +543,6 @@ fn six_expected(extra: &[&'static str]) -> Vec<&'static str> {
 
 /// Record one machine's pose and kinematics: (generated, hand) link poses, point
 /// positions, link motions and point motions, matched by name in the caller.
-#[allow(clippy::type_complexity)]
 fn record_motion(
     r: &mut Report,
     q: f64,
@@ -846,12 +852,16 @@ fn inverted_slider_crank_hand_matches_generated() {
     r.check(&six_expected(&["kinetostatics: slide moment"]));
 }
 
+/// (name, value, its rate, its second rate): a point's position, velocity and acceleration,
+/// or a link's angle, ω and α.
+type Track<T> = (&'static str, T, T, T);
+
 /// What the finite-difference check follows of one hand-written motion: every moving
-/// point and cg as (name, pos, vel, acc), every link as (name, angle, ω, α).
+/// point and cg, every link.
 #[derive(Default)]
 struct Tracked {
-    points: Vec<(&'static str, Vector2<f64>, Vector2<f64>, Vector2<f64>)>,
-    links: Vec<(&'static str, f64, f64, f64)>,
+    points: Vec<Track<Vector2<f64>>>,
+    links: Vec<Track<f64>>,
 }
 
 impl Tracked {
@@ -1219,4 +1229,36 @@ fn inverted_slider_crank_hand_independent_checks() {
                 .driver,
         }
     });
+}
+
+/// The kinds of group the floor's machines exercise, as the macro's plan solves them
+/// (`mech_core::plan::assur`, the decomposition the generated code is emitted from): what
+/// each bench group measures. The Scotch yoke's yoke (a guide and a pin in a slot) has no
+/// closed-form kernel: the generated code solves it by its fixed-size Newton fallback.
+#[test]
+fn floor_machines_group_kinds() {
+    use mech_core::plan::assur::plan;
+    use mech_oracle::GenericMechanism;
+    const REFERENCE: &str = include_str!("common/mechanisms.rs");
+    const FLOOR: &str = include_str!("../benches/floor/machines.rs");
+    let kinds = |source: &str, name: &str| -> Vec<String> {
+        let g = GenericMechanism::from_rust_source(source, name).unwrap();
+        plan(g.model())
+            .unwrap()
+            .iter()
+            .map(|group| {
+                let s = format!("{:?}", group.solver);
+                s.split([' ', '{']).next().unwrap().to_owned()
+            })
+            .collect()
+    };
+    for (source, name, expected) in [
+        (REFERENCE, "FourBar", ["DrivenRevolute", "Rrr"]),
+        (REFERENCE, "SliderCrank", ["DrivenRevolute", "Rrp"]),
+        (REFERENCE, "QuickReturn", ["DrivenRevolute", "Rpr"]),
+        (REFERENCE, "ScotchYoke", ["DrivenRevolute", "Newton"]),
+        (FLOOR, "InvertedSliderCrank", ["DrivenRevolute", "Rpr"]),
+    ] {
+        assert_eq!(kinds(source, name), expected, "{name}");
+    }
 }

@@ -23,8 +23,8 @@
 //! (u, v) in the frame of a link whose first→second vector is `a` (length L, u along
 //! `a`, v to its left) is at `first + (u/L)·a + (v/L)·perp(a)`, so no unit vector and
 //! no trigonometric function of a link angle is ever needed, only the angles reported.
-//! (The machines with a slide keep their offsets in the slide's frame, whose unit vector
-//! they have anyway.)
+//! (The quick-return and the inverted slider-crank keep the offsets of the links that turn
+//! with their slide in the slide's frame, whose unit vector they compute anyway.)
 
 #![allow(dead_code)]
 

@@ -164,16 +164,17 @@ impl InvertedSliderCrankHand {
         let d = self.o4 - a;
         let l2 = d.norm_squared();
         let t2 = l2 - self.esq;
-        if !(t2 > 0.0) {
-            return None;
+        if t2 > 0.0 {
+            let t = self.sigma * t2.sqrt();
+            let inv_l2 = 1.0 / l2;
+            let u = V2::new(
+                (t * d.x + self.e * d.y) * inv_l2,
+                (t * d.y - self.e * d.x) * inv_l2,
+            );
+            Some(RodFrame { a2, a, t, u })
+        } else {
+            None // (NaN too)
         }
-        let t = self.sigma * t2.sqrt();
-        let inv_l2 = 1.0 / l2;
-        let u = V2::new(
-            (t * d.x + self.e * d.y) * inv_l2,
-            (t * d.y - self.e * d.x) * inv_l2,
-        );
-        Some(RodFrame { a2, a, t, u })
     }
 
     /// The block's rotation since the drawing: the angle from u₀ to u.

@@ -157,16 +157,17 @@ impl QuickReturnHand {
         let a = self.o2 + a2;
         let d = a - self.o4;
         let s2 = d.norm_squared();
-        if !(s2 > 0.0) {
-            return None;
+        if s2 > 0.0 {
+            let inv_s = 1.0 / s2.sqrt();
+            Some(Slot {
+                a2,
+                a,
+                inv_s,
+                u: d * inv_s,
+            })
+        } else {
+            None // (NaN too)
         }
-        let inv_s = 1.0 / s2.sqrt();
-        Some(Slot {
-            a2,
-            a,
-            inv_s,
-            u: d * inv_s,
-        })
     }
 
     /// The block's rotation since the drawing: the angle from u₀ to u.
