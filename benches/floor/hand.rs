@@ -61,6 +61,20 @@ fn cross(a: V2, b: V2) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// A difference of two angles in (−π, π] (of two atan2) brought into (−π, π]: one
+/// correction by 2π at most, no division.
+#[inline(always)]
+fn wrap_difference(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    if a > PI {
+        a - TAU
+    } else if a <= -PI {
+        a + TAU
+    } else {
+        a
+    }
+}
+
 /// Coordinates (u/L, v/L) of `p` in the frame of the link from `o` to `e` (L = |e − o|),
 /// so that p = o + (u/L)·(e − o) + (v/L)·perp(e − o) in every pose.
 fn local_scaled(o: V2, e: V2, p: V2) -> (f64, f64) {

@@ -26,8 +26,8 @@ pub struct InvertedSliderCrankHand {
     esq: f64,
     /// Branch: sign of t in the drawing.
     sigma: f64,
-    /// The slide's direction in the drawing (the block's zero).
-    u0: V2,
+    /// θ₃ in the drawing (the block's zero: it turns with the rod).
+    theta3_ref: f64,
     /// cg of the crank in its frame O2→A, scaled by 1/r₂.
     g2: (f64, f64),
     /// Rod cg − A and P − A in the rod frame (m).
@@ -134,7 +134,7 @@ impl InvertedSliderCrankHand {
             e,
             esq: e * e,
             sigma: u0.dot(&d).signum(),
-            u0,
+            theta3_ref: (pp.y - a.y).atan2(pp.x - a.x),
             g2: local_scaled(o2, a, crank.cg),
             g3: frame(rod.cg - a),
             p3,
@@ -177,27 +177,30 @@ impl InvertedSliderCrankHand {
         }
     }
 
-    /// The block's rotation since the drawing: the angle from u₀ to u.
+    /// θ₃ = atan2(P − A) and the block's angle, its rotation since the drawing (the
+    /// rod's): θ₃ − θ₃(drawing), in (−π, π].
     #[inline(always)]
-    fn block_angle(&self, u: V2) -> f64 {
-        cross(self.u0, u).atan2(self.u0.dot(&u))
+    fn angles(&self, rp: V2) -> (f64, f64) {
+        let theta3 = rp.y.atan2(rp.x);
+        (theta3, wrap_difference(theta3 - self.theta3_ref))
     }
 
     /// Position analysis: θ₂ = q, θ₃ = atan2(P − A), the block's rotation, the cgs, A, P.
     pub fn pose(&self, q: f64) -> Option<InvertedSliderCrankHandPose> {
         let RodFrame { a2, a, u, .. } = self.close(q)?;
         let rp = at(V2::zeros(), u, self.p3);
+        let (theta3, theta4) = self.angles(rp);
         Some(InvertedSliderCrankHandPose {
             crank: HandLinkPose {
                 angle: q,
                 cg: at(self.o2, a2, self.g2),
             },
             rod: HandLinkPose {
-                angle: rp.y.atan2(rp.x),
+                angle: theta3,
                 cg: at(a, u, self.g3),
             },
             block: HandLinkPose {
-                angle: self.block_angle(u),
+                angle: theta4,
                 cg: at(self.o4, u, self.g4),
             },
             o2: self.o2,
@@ -229,9 +232,10 @@ impl InvertedSliderCrankHand {
             cg_acc: perp(r) * al2 - r * (w2 * w2),
         };
         let rp = at(V2::zeros(), u, self.p3);
+        let (theta3, theta4) = self.angles(rp);
         let r = at(V2::zeros(), u, self.g3);
         let rod = HandLinkMotion {
-            angle: rp.y.atan2(rp.x),
+            angle: theta3,
             omega: w,
             alpha: al,
             cg: a + r,
@@ -240,7 +244,7 @@ impl InvertedSliderCrankHand {
         };
         let r = at(V2::zeros(), u, self.g4);
         let block = HandLinkMotion {
-            angle: self.block_angle(u),
+            angle: theta4,
             omega: w,
             alpha: al,
             cg: self.o4 + r,

@@ -19,8 +19,8 @@ pub struct QuickReturnHand {
     o4: V2,
     /// r₂, crank length (m).
     r2: f64,
-    /// The slot's direction in the drawing, (A₀ − O4)/|A₀ − O4| (the block's zero).
-    u0: V2,
+    /// θ₄ in the drawing (the block's zero: it turns with the lever).
+    theta4_ref: f64,
     /// cg of the crank in its frame O2→A, scaled by 1/r₂.
     g2: (f64, f64),
     /// Block cg − A in the slot frame (m).
@@ -129,7 +129,7 @@ impl QuickReturnHand {
             o2,
             o4,
             r2: (a - o2).norm(),
-            u0,
+            theta4_ref: (c.y - o4.y).atan2(c.x - o4.x),
             g2: local_scaled(o2, a, crank.cg),
             g3: frame(u0, block.cg - a),
             g4: frame(u0, lever.cg - o4),
@@ -170,27 +170,30 @@ impl QuickReturnHand {
         }
     }
 
-    /// The block's rotation since the drawing: the angle from u₀ to u.
+    /// θ₄ = atan2(C − O4) and the block's angle, its rotation since the drawing (the
+    /// lever's): θ₄ − θ₄(drawing), in (−π, π].
     #[inline(always)]
-    fn block_angle(&self, u: V2) -> f64 {
-        cross(self.u0, u).atan2(self.u0.dot(&u))
+    fn angles(&self, rc: V2) -> (f64, f64) {
+        let theta4 = rc.y.atan2(rc.x);
+        (theta4, wrap_difference(theta4 - self.theta4_ref))
     }
 
     /// Position analysis: θ₂ = q, the block's rotation, θ₄ = atan2(C − O4), the cgs, A, C.
     pub fn pose(&self, q: f64) -> Option<QuickReturnHandPose> {
         let Slot { a2, a, u, .. } = self.slot(q)?;
         let rc = at(V2::zeros(), u, self.c4);
+        let (theta4, theta3) = self.angles(rc);
         Some(QuickReturnHandPose {
             crank: HandLinkPose {
                 angle: q,
                 cg: at(self.o2, a2, self.g2),
             },
             block: HandLinkPose {
-                angle: self.block_angle(u),
+                angle: theta3,
                 cg: at(a, u, self.g3),
             },
             lever: HandLinkPose {
-                angle: rc.y.atan2(rc.x),
+                angle: theta4,
                 cg: at(self.o4, u, self.g4),
             },
             o2: self.o2,
@@ -219,9 +222,11 @@ impl QuickReturnHand {
             cg_vel: perp(r) * w2,
             cg_acc: perp(r) * al2 - r * (w2 * w2),
         };
+        let rc = at(V2::zeros(), u, self.c4);
+        let (theta4, theta3) = self.angles(rc);
         let r = at(V2::zeros(), u, self.g3);
         let block = HandLinkMotion {
-            angle: self.block_angle(u),
+            angle: theta3,
             omega: w4,
             alpha: al4,
             cg: a + r,
@@ -229,9 +234,8 @@ impl QuickReturnHand {
             cg_acc: aa + perp(r) * al4 - r * (w4 * w4),
         };
         let r = at(V2::zeros(), u, self.g4);
-        let rc = at(V2::zeros(), u, self.c4);
         let lever = HandLinkMotion {
-            angle: rc.y.atan2(rc.x),
+            angle: theta4,
             omega: w4,
             alpha: al4,
             cg: self.o4 + r,
