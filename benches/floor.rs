@@ -1,16 +1,36 @@
 //! The floor: the generated solvers against expert hand-written closed-form code of the
-//! same machines (`benches/floor/hand.rs`), timed in the same run so that the ratio
-//! generated / hand is meaningful. `tests/floor.rs` proves that both compute the same
-//! numbers (1e-12 relative on a sweep of a full turn).
+//! same machines (`benches/floor/hand.rs` and the `hand_*.rs` beside it), timed in the same
+//! run so that the ratio generated / hand is meaningful. `tests/floor.rs` proves that both
+//! compute the same numbers (1e-12 relative on a sweep of a full turn).
 //!
-//! Groups (each with the functions `generated` and `hand`):
-//! `four_bar/pose`, `four_bar/kinematics`, `four_bar/kinematics+kinetostatics`,
-//! `four_bar/kinematics+driver_action`, `slider_crank/reduced`,
-//! `slider_crank/acceleration`. Inputs as in `benches/solvers.rs`: q = 0.7, q̇ = 12,
-//! q̈ = −3; the four-bar carries the tool force (80, −60) N at P and a 2 N·m resisting
-//! torque on the rocker; the slider-crank a −1500 N gas force on the piston at B, a
-//! −4 N·m shaft torque and a 5 N·m driver (acceleration). All inputs, and the
-//! solver struct itself, go through `black_box` (no constant folding of the drawing).
+//! Machines, by the kind of group that follows their driven crank, and their groups (each
+//! with the functions `generated` and `hand`):
+//!
+//! - the crank-rocker four-bar (an RRR dyad): `four_bar/pose`, `four_bar/kinematics`,
+//!   `four_bar/kinematics+kinetostatics`, `four_bar/kinematics+driver_action`;
+//! - the offset slider-crank (an RRP dyad): `slider_crank/reduced`,
+//!   `slider_crank/acceleration`;
+//! - the crank-shaper quick-return (`QuickReturn`: the block on the crank pin slides in a
+//!   lever pivoted on the ground, an RPR dyad whose guide is pinned to the ground),
+//!   `quick_return/<op>`;
+//! - the Scotch yoke (`ScotchYoke`: the crank pin in the slot of a yoke guided by the
+//!   ground, a one-link group of a guide and a pin in a slot, which the generated code
+//!   solves by its fixed-size Newton fallback), `scotch_yoke/<op>`;
+//! - the inverted slider-crank (`InvertedSliderCrank` of `benches/floor/machines.rs`: the
+//!   rod pinned to the crank slides through a block pivoted on the ground, its slide line
+//!   off the pin, an RPR dyad whose guide is pinned to the crank),
+//!   `inverted_slider_crank/<op>`,
+//!
+//! where `<op>` is each of `pose`, `kinematics`, `kinematics+kinetostatics`,
+//! `kinematics+driver_action`, `reduced`, `acceleration`. Inputs as in `benches/solvers.rs`:
+//! q = 0.7, q̇ = 12, q̈ = −3; the four-bar carries the tool force (80, −60) N at P and a
+//! 2 N·m resisting torque on the rocker; the slider-crank a −1500 N gas force on the piston
+//! at B, a −4 N·m shaft torque and a 5 N·m driver (acceleration); the quick-return a cutting
+//! force (−250, 30) N at the lever's end C and a −1.5 N·m friction torque on the crank; the
+//! Scotch yoke a force (−120, 15) N on the yoke at Y and a −1.5 N·m drag on the crank; the
+//! inverted slider-crank a force (−300, 40) N on the rod at P and a 2.5 N·m torque on the
+//! block; these three a 5 N·m driver (acceleration). All inputs, and the solver struct
+//! itself, go through `black_box` (no constant folding of the drawing).
 //!
 //! Run and tabulate:
 //!
@@ -49,7 +69,7 @@
 //! Valgrind runs the code ~50× slower, so `--profile-time 1` is a few hundred thousand
 //! iterations, plenty for a stable count.
 //!
-//! The group `ratio` measures the same six operations as ratios generated / hand, the two
+//! The group `ratio` measures the same operations as ratios generated / hand, the two
 //! sides interleaved in blocks within every sample (`benches/floor/interleaved.rs`): the
 //! estimate that a shared machine's drifting speed does not move. Its "time" is the ratio
 //! (criterion prints `1.234×`); `tools/floor_ratios.py` tabulates it beside the medians.
@@ -62,6 +82,10 @@
 #[allow(dead_code)]
 mod mechanisms;
 
+#[path = "floor/machines.rs"]
+#[allow(dead_code)]
+mod machines;
+
 #[path = "floor/hand.rs"]
 mod hand;
 
@@ -70,8 +94,11 @@ mod interleaved;
 
 use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use hand::{FourBarHand, SliderCrankHand};
+use hand::{
+    FourBarHand, InvertedSliderCrankHand, QuickReturnHand, ScotchYokeHand, SliderCrankHand,
+};
 use interleaved::Interleaved;
+use machines::*;
 use mechanisms::*;
 
 const Q: f64 = 0.7;
@@ -112,6 +139,67 @@ impl SliderCrankCase {
         assert!(loads.set_by_name("gas", &[-1500.0, 0.0]));
         assert!(loads.set_by_name("shaft", &[-4.0]));
         SliderCrankCase {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+/// One of the machines that bench all six operations: the generated solver, its
+/// hand-written twin, its loads and the driver torque of `acceleration`.
+struct Case<M, H, L> {
+    m: M,
+    h: H,
+    loads: L,
+    driver: f64,
+}
+
+impl Case<QuickReturn, QuickReturnHand, QuickReturnLoads> {
+    /// A cutting force (−250, 30) N on the ram's end C of the lever, a −1.5 N·m friction
+    /// torque on the crank.
+    fn quick_return() -> Self {
+        let m = QuickReturn::new();
+        let h = QuickReturnHand::new(m.params());
+        let mut loads = QuickReturnLoads::default();
+        assert!(loads.set_by_name("cut", &[-250.0, 30.0]));
+        assert!(loads.set_by_name("friction", &[-1.5]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<ScotchYoke, ScotchYokeHand, ScotchYokeLoads> {
+    /// A resisting force (−120, 15) N on the yoke at Y, a −1.5 N·m drag on the crank.
+    fn scotch_yoke() -> Self {
+        let m = ScotchYoke::new();
+        let h = ScotchYokeHand::new(m.params());
+        let mut loads = ScotchYokeLoads::default();
+        assert!(loads.set_by_name("resist", &[-120.0, 15.0]));
+        assert!(loads.set_by_name("drag", &[-1.5]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<InvertedSliderCrank, InvertedSliderCrankHand, InvertedSliderCrankLoads> {
+    /// A force (−300, 40) N on the rod at P, a 2.5 N·m resisting torque on the block.
+    fn inverted_slider_crank() -> Self {
+        let m = InvertedSliderCrank::new();
+        let h = InvertedSliderCrankHand::new(m.params());
+        let mut loads = InvertedSliderCrankLoads::default();
+        assert!(loads.set_by_name("push", &[-300.0, 40.0]));
+        assert!(loads.set_by_name("resist", &[2.5]));
+        Case {
             m,
             h,
             loads,
@@ -185,6 +273,168 @@ fn acceleration_hand(c: &SliderCrankCase) -> f64 {
         .unwrap()
 }
 
+/// The six operations of one machine of [`Case`], both sides, as the functions above
+/// (every input through `black_box`), in the module `$module`, with `pairs` (the groups
+/// `$name/<op>`) and `ratios` (the entries `ratio/$name/<op>`).
+macro_rules! six_operations {
+    (
+        $module:ident, $name:literal, $case:ty,
+        pose: $pose:ty, $hand_pose:ty,
+        motion: $motion:ty, $hand_motion:ty,
+        forces: $forces:ty, $hand_forces:ty $(,)?
+    ) => {
+        mod $module {
+            use super::*;
+
+            type C = $case;
+
+            fn pose_gen(c: &C) -> $pose {
+                black_box(&c.m).pose(black_box(Q)).unwrap()
+            }
+            fn pose_hand(c: &C) -> $hand_pose {
+                black_box(&c.h).pose(black_box(Q)).unwrap()
+            }
+            fn kin_gen(c: &C) -> $motion {
+                black_box(&c.m)
+                    .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                    .unwrap()
+            }
+            fn kin_hand(c: &C) -> $hand_motion {
+                black_box(&c.h)
+                    .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                    .unwrap()
+            }
+            fn kinetostatics_gen(c: &C) -> $forces {
+                let mo = kin_gen(c);
+                black_box(&c.m)
+                    .kinetostatics(&mo, black_box(&c.loads))
+                    .unwrap()
+            }
+            fn kinetostatics_hand(c: &C) -> $hand_forces {
+                let mo = kin_hand(c);
+                black_box(&c.h).kinetostatics(&mo, black_box(&c.loads))
+            }
+            fn driver_gen(c: &C) -> f64 {
+                let mo = kin_gen(c);
+                black_box(&c.m)
+                    .driver_action(&mo, black_box(&c.loads))
+                    .unwrap()
+            }
+            fn driver_hand(c: &C) -> f64 {
+                let mo = kin_hand(c);
+                black_box(&c.h).driver_action(&mo, black_box(&c.loads))
+            }
+            fn reduced_gen(c: &C) -> mech::Reduced {
+                black_box(&c.m).reduced(black_box(Q)).unwrap()
+            }
+            fn reduced_hand(c: &C) -> hand::HandReduced {
+                black_box(&c.h).reduced(black_box(Q)).unwrap()
+            }
+            fn acceleration_gen(c: &C) -> f64 {
+                black_box(&c.m)
+                    .acceleration(
+                        black_box(Q),
+                        black_box(QD),
+                        black_box(c.driver),
+                        black_box(&c.loads),
+                    )
+                    .unwrap()
+            }
+            fn acceleration_hand(c: &C) -> f64 {
+                black_box(&c.h)
+                    .acceleration(
+                        black_box(Q),
+                        black_box(QD),
+                        black_box(c.driver),
+                        black_box(&c.loads),
+                    )
+                    .unwrap()
+            }
+
+            /// The groups `$name/<op>`, generated then hand.
+            pub fn pairs(c: &mut Criterion, k: &C) {
+                pair(c, concat!($name, "/pose"), k, pose_gen, pose_hand);
+                pair(c, concat!($name, "/kinematics"), k, kin_gen, kin_hand);
+                pair(
+                    c,
+                    concat!($name, "/kinematics+kinetostatics"),
+                    k,
+                    kinetostatics_gen,
+                    kinetostatics_hand,
+                );
+                pair(
+                    c,
+                    concat!($name, "/kinematics+driver_action"),
+                    k,
+                    driver_gen,
+                    driver_hand,
+                );
+                pair(c, concat!($name, "/reduced"), k, reduced_gen, reduced_hand);
+                pair(
+                    c,
+                    concat!($name, "/acceleration"),
+                    k,
+                    acceleration_gen,
+                    acceleration_hand,
+                );
+            }
+
+            /// The entries `ratio/$name/<op>`, interleaved.
+            pub fn ratios(c: &mut Criterion<Interleaved>, k: &C) {
+                ratio(c, concat!($name, "/pose"), k, pose_gen, pose_hand);
+                ratio(c, concat!($name, "/kinematics"), k, kin_gen, kin_hand);
+                ratio(
+                    c,
+                    concat!($name, "/kinematics+kinetostatics"),
+                    k,
+                    kinetostatics_gen,
+                    kinetostatics_hand,
+                );
+                ratio(
+                    c,
+                    concat!($name, "/kinematics+driver_action"),
+                    k,
+                    driver_gen,
+                    driver_hand,
+                );
+                ratio(c, concat!($name, "/reduced"), k, reduced_gen, reduced_hand);
+                ratio(
+                    c,
+                    concat!($name, "/acceleration"),
+                    k,
+                    acceleration_gen,
+                    acceleration_hand,
+                );
+            }
+        }
+    };
+}
+
+six_operations!(
+    quick_return_ops,
+    "quick_return",
+    Case<QuickReturn, QuickReturnHand, QuickReturnLoads>,
+    pose: QuickReturnPose, hand::QuickReturnHandPose,
+    motion: QuickReturnMotion, hand::QuickReturnHandMotion,
+    forces: QuickReturnForces, hand::QuickReturnHandForces,
+);
+six_operations!(
+    scotch_yoke_ops,
+    "scotch_yoke",
+    Case<ScotchYoke, ScotchYokeHand, ScotchYokeLoads>,
+    pose: ScotchYokePose, hand::ScotchYokeHandPose,
+    motion: ScotchYokeMotion, hand::ScotchYokeHandMotion,
+    forces: ScotchYokeForces, hand::ScotchYokeHandForces,
+);
+six_operations!(
+    inverted_slider_crank_ops,
+    "inverted_slider_crank",
+    Case<InvertedSliderCrank, InvertedSliderCrankHand, InvertedSliderCrankLoads>,
+    pose: InvertedSliderCrankPose, hand::InvertedSliderCrankHandPose,
+    motion: InvertedSliderCrankMotion, hand::InvertedSliderCrankHandMotion,
+    forces: InvertedSliderCrankForces, hand::InvertedSliderCrankHandForces,
+);
+
 /// The group `name` with the functions `generated` and `hand`, timed one after the other.
 /// (Each function is passed as its own zero-sized type, so the calls are direct and inline
 /// as the closures of a hand-written bench would.)
@@ -246,6 +496,18 @@ fn slider_crank(c: &mut Criterion) {
     );
 }
 
+fn quick_return(c: &mut Criterion) {
+    quick_return_ops::pairs(c, &Case::quick_return());
+}
+
+fn scotch_yoke(c: &mut Criterion) {
+    scotch_yoke_ops::pairs(c, &Case::scotch_yoke());
+}
+
+fn inverted_slider_crank(c: &mut Criterion) {
+    inverted_slider_crank_ops::pairs(c, &Case::inverted_slider_crank());
+}
+
 fn ratios(c: &mut Criterion<Interleaved>) {
     let k = FourBarCase::new();
     ratio(c, "four_bar/pose", &k, pose_gen, pose_hand);
@@ -273,9 +535,19 @@ fn ratios(c: &mut Criterion<Interleaved>) {
         acceleration_gen,
         acceleration_hand,
     );
+    quick_return_ops::ratios(c, &Case::quick_return());
+    scotch_yoke_ops::ratios(c, &Case::scotch_yoke());
+    inverted_slider_crank_ops::ratios(c, &Case::inverted_slider_crank());
 }
 
-criterion_group!(benches, four_bar, slider_crank);
+criterion_group!(
+    benches,
+    four_bar,
+    slider_crank,
+    quick_return,
+    scotch_yoke,
+    inverted_slider_crank
+);
 criterion_group! {
     name = interleaved_ratios;
     config = Criterion::default().with_measurement(Interleaved);

@@ -211,11 +211,17 @@ fn measured(line: &str) -> Option<String> {
     let chars: Vec<char> = line.chars().collect();
     for (i, _) in chars.iter().enumerate().filter(|(_, c)| c.is_ascii_digit()) {
         // Only at the start of a number.
-        if i > 0 && (chars[i - 1].is_ascii_digit() || chars[i - 1] == '.' || chars[i - 1].is_alphabetic()) {
+        if i > 0
+            && (chars[i - 1].is_ascii_digit()
+                || chars[i - 1] == '.'
+                || chars[i - 1].is_alphabetic())
+        {
             continue;
         }
         let mut j = i;
-        while j < chars.len() && (chars[j].is_ascii_digit() || chars[j] == '.' || chars[j] == '\u{202f}') {
+        while j < chars.len()
+            && (chars[j].is_ascii_digit() || chars[j] == '.' || chars[j] == '\u{202f}')
+        {
             j += 1;
         }
         let number: String = chars[i..j].iter().collect();
@@ -224,7 +230,9 @@ fn measured(line: &str) -> Option<String> {
         let spaced = unit.len() < after.len();
         let ratio = !spaced
             && unit.starts_with('×')
-            && !unit[('×'.len_utf8())..].trim_start().starts_with(|c: char| c.is_ascii_digit());
+            && !unit[('×'.len_utf8())..]
+                .trim_start()
+                .starts_with(|c: char| c.is_ascii_digit());
         let time = ["ns", "µs", "ms"].iter().any(|u| {
             unit.strip_prefix(u)
                 .is_some_and(|r| !r.starts_with(|c: char| c.is_alphanumeric()))
@@ -236,7 +244,14 @@ fn measured(line: &str) -> Option<String> {
         // A target, not a measurement.
         let before: String = chars[..i].iter().collect();
         let lead = before.trim_end();
-        let tail: String = lead.chars().rev().take(24).collect::<Vec<_>>().into_iter().rev().collect();
+        let tail: String = lead
+            .chars()
+            .rev()
+            .take(24)
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect();
         if ["≤", "<", "within", "at most", "below", "target", "under"]
             .iter()
             .any(|t| tail.ends_with(t) || tail.ends_with(&format!("{t} ~")))
@@ -264,12 +279,19 @@ fn every_block_names_a_figure_and_its_provenance() {
             let (_, hash, paths) = provenance(&b);
             assert_eq!(hash.len(), 16, "{doc}:{}: hash {hash}", b.line);
             for p in &paths {
-                assert!(root().join(p).exists(), "{doc}:{}: {p} does not exist", b.line);
+                assert!(
+                    root().join(p).exists(),
+                    "{doc}:{}: {p} does not exist",
+                    b.line
+                );
             }
             seen += 1;
         }
     }
-    assert!(seen >= 5, "only {seen} report blocks in README.md and docs/");
+    assert!(
+        seen >= 5,
+        "only {seen} report blocks in README.md and docs/"
+    );
 }
 
 #[test]

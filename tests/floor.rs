@@ -1,27 +1,44 @@
+<<<<<<< HEAD
 //! The hand-written floor (`benches/floor/hand.rs`) computes the same numbers as the
 //! generated solvers: every quantity of every operation timed in `benches/floor.rs`, on a
 //! sweep of 72 crank angles over a full turn, to 1e-13 relative (`TOL`: at most 100× the
 //! worst error measured over the quantities).
+=======
+//! The hand-written floor (`benches/floor/hand.rs` and the `hand_*.rs` beside it) computes
+//! the same numbers as the generated solvers: every quantity of every operation timed in
+//! `benches/floor.rs` (the four-bar, the slider-crank, the quick-return, the Scotch yoke and
+//! the inverted slider-crank of `benches/floor/machines.rs`), on a sweep of 72 crank angles
+//! over a full turn, to 1e-12 relative.
+>>>>>>> floorkinds
 //!
 //! "Relative" is scaled by the largest entry of the quantity: for a quantity made of
 //! several entries (the three link angles, the cg positions of the three links, the pin
 //! forces of the four joints, ...) the largest |entry| at that q; for a single scalar
-//! (driver torque, I*, dI*/dq, M*, q̈), which can cross zero inside the turn, the largest
-//! |value| over the sweep. Angles are compared modulo 2π (the generated angles are
-//! wrapped to (−π, π], the hand-written crank angle is q itself).
+//! (driver torque, a prismatic joint's moment, I*, dI*/dq, M*, q̈), which can cross zero
+//! inside the turn, the largest |value| over the sweep. Angles are compared modulo 2π (the
+//! generated angles are wrapped to (−π, π], the hand-written crank angle is q itself).
 //!
 //! Independent checks of the hand-written side (so that a shared mistake cannot pass):
 //! central finite differences of positions against velocities and of velocities against
 //! accelerations, of I* against dI*/dq, and the inverse problem (the generated d'Alembert
-//! driver at the hand-written q̈ gives back the applied torque).
+//! driver at the hand-written q̈ gives back the applied torque). For the quick-return, the
+//! Scotch yoke and the inverted slider-crank, on the hand-written side alone: finite
+//! differences of every point, cg and link angle (velocities, accelerations, q̈ entering
+//! linearly), every link's d'Alembert balance with the hand-written reactions, the driver
+//! torque by d'Alembert, by virtual power and by Zhukovski, dI*/dq against I*, M* against
+//! the power of gravity and the loads on the positions, and the inverse problem.
 
 use crate::measure::{within, within_at};
 use crate::mechanisms;
+
+#[path = "../benches/floor/machines.rs"]
+mod machines;
 
 #[path = "../benches/floor/hand.rs"]
 mod hand;
 
 use hand::*;
+use machines::*;
 use mech::prelude::*;
 use mechanisms::*;
 use std::collections::BTreeMap;
@@ -479,5 +496,785 @@ fn slider_crank_hand_independent_checks() {
             within((t - driver).abs(), 2e-14 * (1.0 + loads.gas.norm() * 0.1)), // measured worst 2.1e-16 (be05608); 100×
             "inverse problem at {q}: {t} vs {driver}"
         );
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// The quick-return, the Scotch yoke and the inverted slider-crank: all six operations.
+// ---------------------------------------------------------------------------------------
+
+const DRIVER: f64 = 5.0;
+
+fn quick_return_loads() -> QuickReturnLoads {
+    let mut l = QuickReturnLoads::default();
+    assert!(l.set_by_name("cut", &[-250.0, 30.0]));
+    assert!(l.set_by_name("friction", &[-1.5]));
+    l
+}
+
+fn scotch_yoke_loads() -> ScotchYokeLoads {
+    let mut l = ScotchYokeLoads::default();
+    assert!(l.set_by_name("resist", &[-120.0, 15.0]));
+    assert!(l.set_by_name("drag", &[-1.5]));
+    l
+}
+
+fn inverted_slider_crank_loads() -> InvertedSliderCrankLoads {
+    let mut l = InvertedSliderCrankLoads::default();
+    assert!(l.set_by_name("push", &[-300.0, 40.0]));
+    assert!(l.set_by_name("resist", &[2.5]));
+    l
+}
+
+/// The quantities every machine of the six operations records (`record_six`), and the
+/// names of its own (joint forces, prismatic moment) to add.
+fn six_expected(extra: &[&'static str]) -> Vec<&'static str> {
+    let mut v = vec![
+        "pose: link angle",
+        "pose: link cg",
+        "pose: point pos",
+        "kinematics: link angle",
+        "kinematics: link omega",
+        "kinematics: link alpha",
+        "kinematics: link cg",
+        "kinematics: link cg_vel",
+        "kinematics: link cg_acc",
+        "kinematics: point pos",
+        "kinematics: point vel",
+        "kinematics: point acc",
+        "kinetostatics: joint force",
+        "driver: generated d'Alembert vs hand d'Alembert",
+        "driver: generated virtual power vs hand virtual power",
+        "driver: generated d'Alembert vs hand virtual power",
+        "driver: generated virtual power vs hand d'Alembert",
+        "reduced: I*",
+        "reduced: dI*/dq",
+        "reduced_moment: M*",
+        "acceleration: q̈ (gravity, loads, driver)",
+        "acceleration: q̈ (gravity only, no driver)",
+    ];
+    v.extend_from_slice(extra);
+    v
+}
+
+/// Record one machine's pose and kinematics: (generated, hand) link poses, point
+/// positions, link motions and point motions, matched by name in the caller.
+fn record_motion(
+    r: &mut Report,
+    q: f64,
+    pose_links: &[(LinkPose, HandLinkPose)],
+    pose_points: &[(Vector2<f64>, Vector2<f64>)],
+    links: &[(LinkMotion, HandLinkMotion)],
+    points: &[(PointMotion, HandPointMotion)],
+) {
+    let angles: Vec<_> = pose_links.iter().map(|(g, h)| (g.angle, h.angle)).collect();
+    r.angles("pose: link angle", q, &angles);
+    let cgs: Vec<_> = pose_links.iter().map(|(g, h)| (g.cg, h.cg)).collect();
+    r.vecs("pose: link cg", q, &cgs);
+    r.vecs("pose: point pos", q, pose_points);
+    let s = |f: fn(&LinkMotion, &HandLinkMotion) -> (f64, f64)| {
+        links.iter().map(|(g, h)| f(g, h)).collect::<Vec<_>>()
+    };
+    r.angles("kinematics: link angle", q, &s(|g, h| (g.angle, h.angle)));
+    r.scalars("kinematics: link omega", q, &s(|g, h| (g.omega, h.omega)));
+    r.scalars("kinematics: link alpha", q, &s(|g, h| (g.alpha, h.alpha)));
+    type V = Vector2<f64>;
+    let v = |f: fn(&LinkMotion, &HandLinkMotion) -> (V, V)| {
+        links.iter().map(|(g, h)| f(g, h)).collect::<Vec<_>>()
+    };
+    r.vecs("kinematics: link cg", q, &v(|g, h| (g.cg, h.cg)));
+    r.vecs(
+        "kinematics: link cg_vel",
+        q,
+        &v(|g, h| (g.cg_vel, h.cg_vel)),
+    );
+    r.vecs(
+        "kinematics: link cg_acc",
+        q,
+        &v(|g, h| (g.cg_acc, h.cg_acc)),
+    );
+    let p = |f: fn(&PointMotion, &HandPointMotion) -> (V, V)| {
+        points.iter().map(|(g, h)| f(g, h)).collect::<Vec<_>>()
+    };
+    r.vecs("kinematics: point pos", q, &p(|g, h| (g.pos, h.pos)));
+    r.vecs("kinematics: point vel", q, &p(|g, h| (g.vel, h.vel)));
+    r.vecs("kinematics: point acc", q, &p(|g, h| (g.acc, h.acc)));
+}
+
+/// Record the drivers by both routes on both sides, crossed.
+fn record_drivers(r: &mut Report, q: f64, gen: (f64, f64), hand: (f64, f64)) {
+    let ((gf, gd), (hf, hd)) = (gen, hand);
+    r.scalar("driver: generated d'Alembert vs hand d'Alembert", q, gf, hf);
+    r.scalar(
+        "driver: generated virtual power vs hand virtual power",
+        q,
+        gd,
+        hd,
+    );
+    r.scalar(
+        "driver: generated d'Alembert vs hand virtual power",
+        q,
+        gf,
+        hd,
+    );
+    r.scalar(
+        "driver: generated virtual power vs hand d'Alembert",
+        q,
+        gd,
+        hf,
+    );
+}
+
+/// Record Zhukovski's I*, dI*/dq, M* and the direct problem's q̈ (with the loads and the
+/// driver, and with gravity alone).
+fn record_reduced(
+    r: &mut Report,
+    q: f64,
+    gen: (Reduced, f64, f64, f64),
+    hand: (HandReduced, f64, f64, f64),
+) {
+    r.scalar("reduced: I*", q, gen.0.inertia, hand.0.inertia);
+    r.scalar(
+        "reduced: dI*/dq",
+        q,
+        gen.0.inertia_derivative,
+        hand.0.inertia_derivative,
+    );
+    r.scalar("reduced_moment: M*", q, gen.1, hand.1);
+    r.scalar("acceleration: q̈ (gravity, loads, driver)", q, gen.2, hand.2);
+    r.scalar(
+        "acceleration: q̈ (gravity only, no driver)",
+        q,
+        gen.3,
+        hand.3,
+    );
+}
+
+#[test]
+fn quick_return_hand_matches_generated() {
+    let m = QuickReturn::new();
+    let h = QuickReturnHand::new(m.params());
+    let loads = quick_return_loads();
+    let none = QuickReturnLoads::default();
+    let mut r = Report::default();
+    for q in sweep() {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[
+                (gl.crank, hp.crank),
+                (gl.block, hp.block),
+                (gl.lever, hp.lever),
+            ],
+            &[
+                (gpt.O2.pos, hp.o2),
+                (gpt.O4.pos, hp.o4),
+                (gpt.A.pos, hp.a),
+                (gpt.C.pos, hp.c),
+            ],
+            &[
+                (l.crank, hm.crank),
+                (l.block, hm.block),
+                (l.lever, hm.lever),
+            ],
+            &[(pt.O2, hm.o2), (pt.O4, hm.o4), (pt.A, hm.a), (pt.C, hm.c)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O2.force, hf.o2),
+                (j.A.force, hf.a),
+                (j.slot.force, hf.slot),
+                (j.O4.force, hf.o4),
+            ],
+        );
+        r.scalar(
+            "kinetostatics: slot moment",
+            q,
+            j.slot.moment,
+            hf.slot_moment,
+        );
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    r.check(&six_expected(&["kinetostatics: slot moment"]));
+}
+
+#[test]
+fn scotch_yoke_hand_matches_generated() {
+    let m = ScotchYoke::new();
+    let h = ScotchYokeHand::new(m.params());
+    let loads = scotch_yoke_loads();
+    let none = ScotchYokeLoads::default();
+    let mut r = Report::default();
+    for q in sweep() {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[(gl.crank, hp.crank), (gl.yoke, hp.yoke)],
+            &[(gpt.O2.pos, hp.o2), (gpt.A.pos, hp.a), (gpt.Y.pos, hp.y)],
+            &[(l.crank, hm.crank), (l.yoke, hm.yoke)],
+            &[(pt.O2, hm.o2), (pt.A, hm.a), (pt.Y, hm.y)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O2.force, hf.o2),
+                (j.guide.force, hf.guide),
+                (j.slot.force, hf.slot),
+            ],
+        );
+        r.scalar(
+            "kinetostatics: guide moment",
+            q,
+            j.guide.moment,
+            hf.guide_moment,
+        );
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    r.check(&six_expected(&["kinetostatics: guide moment"]));
+}
+
+#[test]
+fn inverted_slider_crank_hand_matches_generated() {
+    let m = InvertedSliderCrank::new();
+    let h = InvertedSliderCrankHand::new(m.params());
+    let loads = inverted_slider_crank_loads();
+    let none = InvertedSliderCrankLoads::default();
+    let mut r = Report::default();
+    for q in sweep() {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[(gl.crank, hp.crank), (gl.rod, hp.rod), (gl.block, hp.block)],
+            &[
+                (gpt.O2.pos, hp.o2),
+                (gpt.O4.pos, hp.o4),
+                (gpt.A.pos, hp.a),
+                (gpt.P.pos, hp.p),
+            ],
+            &[(l.crank, hm.crank), (l.rod, hm.rod), (l.block, hm.block)],
+            &[(pt.O2, hm.o2), (pt.O4, hm.o4), (pt.A, hm.a), (pt.P, hm.p)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O2.force, hf.o2),
+                (j.A.force, hf.a),
+                (j.slide.force, hf.slide),
+                (j.O4.force, hf.o4),
+            ],
+        );
+        r.scalar(
+            "kinetostatics: slide moment",
+            q,
+            j.slide.moment,
+            hf.slide_moment,
+        );
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    r.check(&six_expected(&["kinetostatics: slide moment"]));
+}
+
+/// (name, value, its rate, its second rate): a point's position, velocity and acceleration,
+/// or a link's angle, ω and α.
+type Track<T> = (&'static str, T, T, T);
+
+/// What the finite-difference check follows of one hand-written motion: every moving
+/// point and cg, every link.
+#[derive(Default)]
+struct Tracked {
+    points: Vec<Track<Vector2<f64>>>,
+    links: Vec<Track<f64>>,
+}
+
+impl Tracked {
+    fn point(&mut self, name: &'static str, p: &HandPointMotion) {
+        self.points.push((name, p.pos, p.vel, p.acc));
+    }
+    fn link(&mut self, name: &'static str, l: &HandLinkMotion) {
+        self.links.push((name, l.angle, l.omega, l.alpha));
+        self.points.push((name, l.cg, l.cg_vel, l.cg_acc));
+    }
+}
+
+/// A hand-written `kinematics(q, q̇, q̈)` against itself by central differences at every q
+/// of the sweep: d(position)/dq = the velocity at q̇ = 1, q̈ = 0, and d(that velocity)/dq =
+/// the acceleration at q̇ = 1, q̈ = 0, for every point and cg; the same for the link
+/// angles (differenced modulo 2π), ω and α; and q̈ enters linearly (the acceleration at
+/// q̇ = 0, q̈ = 1 is the velocity at q̇ = 1, α there is ω).
+fn check_by_finite_differences(machine: &str, motion: impl Fn(f64, f64, f64) -> Tracked) {
+    let h = 1e-5;
+    for q in sweep() {
+        let (k, lin) = (motion(q, 1.0, 0.0), motion(q, 0.0, 1.0));
+        let (plus, minus) = (motion(q + h, 1.0, 0.0), motion(q - h, 1.0, 0.0));
+        for (i, &(name, _, v, a)) in k.points.iter().enumerate() {
+            let fv = (plus.points[i].1 - minus.points[i].1) / (2.0 * h);
+            let fa = (plus.points[i].2 - minus.points[i].2) / (2.0 * h);
+            assert!(
+                (fv - v).norm() < 1e-8 * v.norm().max(0.1),
+                "{machine}: {name} velocity at {q}: fd {fv:?} vs {v:?}"
+            );
+            assert!(
+                (fa - a).norm() < 1e-7 * a.norm().max(0.1),
+                "{machine}: {name} acceleration at {q}: fd {fa:?} vs {a:?}"
+            );
+            let acc_at_unit_qdd = lin.points[i].3;
+            assert!(
+                (acc_at_unit_qdd - v).norm() <= 1e-12 * v.norm().max(0.1),
+                "{machine}: {name} at q̈ = 1: {acc_at_unit_qdd:?} vs {v:?}"
+            );
+        }
+        for (i, &(name, _, w, al)) in k.links.iter().enumerate() {
+            let fw = wrap(plus.links[i].1 - minus.links[i].1) / (2.0 * h);
+            let fal = (plus.links[i].2 - minus.links[i].2) / (2.0 * h);
+            assert!(
+                (fw - w).abs() < 1e-8 * w.abs().max(0.1),
+                "{machine}: {name} ω at {q}: fd {fw} vs {w}"
+            );
+            assert!(
+                (fal - al).abs() < 1e-7 * al.abs().max(0.1),
+                "{machine}: {name} α at {q}: fd {fal} vs {al}"
+            );
+            assert!(
+                (lin.links[i].3 - w).abs() <= 1e-12 * w.abs().max(0.1),
+                "{machine}: {name} α at q̈ = 1: {} vs {w}",
+                lin.links[i].3
+            );
+        }
+    }
+}
+
+/// One q of a hand-written machine's dynamics, against itself: the driver torque by
+/// d'Alembert (`kinetostatics`), by virtual power (`driver_action`) and by Zhukovski
+/// (I* q̈ + ½ dI*/dq q̇² − M*) at (q, q̇, q̈) = (q, 12, −3); dI*/dq by a central difference
+/// of I*; M* by the power of gravity and the loads on a central difference of the
+/// positions (`moment_by_positions`); and the inverse problem: d'Alembert at the q̈ of
+/// `acceleration` gives back its driver.
+struct Dynamics {
+    /// Driver by d'Alembert, by virtual power, at (q, q̇, q̈).
+    dalembert: f64,
+    virtual_power: f64,
+    /// I*, dI*/dq, M* at q; I* at q ± h.
+    reduced: HandReduced,
+    reduced_moment: f64,
+    inertia_plus: f64,
+    inertia_minus: f64,
+    /// M* from the positions at q ± h.
+    moment_by_positions: f64,
+    /// d'Alembert's driver at (q, q̇, acceleration(q, q̇, DRIVER)).
+    inverse: f64,
+}
+
+const FD_STEP: f64 = 1e-5;
+
+fn check_dynamics(machine: &str, at: impl Fn(f64) -> Dynamics) {
+    for q in sweep() {
+        let d = at(q);
+        let r = d.reduced;
+        let zhukovski = r.inertia * QDD + 0.5 * r.inertia_derivative * QD * QD - d.reduced_moment;
+        let scale = (r.inertia * QDD)
+            .abs()
+            .max((0.5 * r.inertia_derivative * QD * QD).abs())
+            .max(d.reduced_moment.abs())
+            .max(d.dalembert.abs());
+        for (what, a, b) in [
+            ("d'Alembert vs virtual power", d.dalembert, d.virtual_power),
+            ("d'Alembert vs Zhukovski", d.dalembert, zhukovski),
+            ("virtual power vs Zhukovski", d.virtual_power, zhukovski),
+        ] {
+            assert!(
+                (a - b).abs() <= 1e-12 * scale,
+                "{machine} at {q}: driver {what}: {a} vs {b} (scale {scale})"
+            );
+        }
+        let fd = (d.inertia_plus - d.inertia_minus) / (2.0 * FD_STEP);
+        assert!(
+            (fd - r.inertia_derivative).abs() < 1e-8 * r.inertia,
+            "{machine}: dI*/dq at {q}: fd {fd} vs {}",
+            r.inertia_derivative
+        );
+        assert!(
+            (d.moment_by_positions - d.reduced_moment).abs()
+                < 1e-8 * d.reduced_moment.abs().max(1.0),
+            "{machine}: M* at {q}: by positions {} vs {}",
+            d.moment_by_positions,
+            d.reduced_moment
+        );
+        assert!(
+            (d.inverse - DRIVER).abs() < 1e-12 * scale.max(DRIVER),
+            "{machine}: inverse problem at {q}: {} vs {DRIVER}",
+            d.inverse
+        );
+    }
+}
+
+/// One link's free body with the hand-written reactions and driver, balanced by
+/// d'Alembert about the global origin: Σ F + m g − m a_G = 0 and
+/// Σ x × F + Σ M + G × (m g − m a_G) − I α = 0, each to 1e-12 of the sum of the
+/// magnitudes of its terms. `forces` are (point of application, force), `moments` the
+/// pure moments (torques, a prismatic joint's moment) on the link.
+fn check_balance(
+    what: &str,
+    q: f64,
+    (mass, inertia, gravity): (f64, f64, Vector2<f64>),
+    l: &HandLinkMotion,
+    forces: &[(Vector2<f64>, Vector2<f64>)],
+    moments: &[f64],
+) {
+    let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
+    let own = (gravity - l.cg_acc) * mass;
+    let mut f = own;
+    let mut f_scale = own.norm();
+    let mut m = cross(l.cg, own) - inertia * l.alpha;
+    let mut m_scale = cross(l.cg, own).abs() + (inertia * l.alpha).abs();
+    for &(x, force) in forces {
+        f += force;
+        f_scale += force.norm();
+        m += cross(x, force);
+        m_scale += cross(x, force).abs();
+    }
+    for &t in moments {
+        m += t;
+        m_scale += t.abs();
+    }
+    assert!(
+        f.norm() <= 1e-12 * f_scale,
+        "{what} at {q}: forces do not balance, {f:?} (scale {f_scale})"
+    );
+    assert!(
+        m.abs() <= 1e-12 * m_scale,
+        "{what} at {q}: moments do not balance, {m} (scale {m_scale})"
+    );
+}
+
+/// dX/dq by a central difference of `f` (step `FD_STEP`).
+fn d_dq(f: impl Fn(f64) -> Vector2<f64>, q: f64) -> Vector2<f64> {
+    (f(q + FD_STEP) - f(q - FD_STEP)) / (2.0 * FD_STEP)
+}
+
+#[test]
+fn quick_return_hand_independent_checks() {
+    let m = QuickReturn::new();
+    let p = m.params().clone();
+    let h = QuickReturnHand::new(&p);
+    check_by_finite_differences("quick-return", |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("A", &k.a);
+        t.point("C", &k.c);
+        t.link("crank", &k.crank);
+        t.link("block", &k.block);
+        t.link("lever", &k.lever);
+        t
+    });
+    let loads = quick_return_loads();
+    let (l, g) = (&p.links, p.gravity);
+    for q in sweep() {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let f = h.kinetostatics(&k, &loads);
+        let (o2, o4, a, c) = (k.o2.pos, k.o4.pos, k.a.pos, k.c.pos);
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "quick-return crank",
+            q,
+            body(&l.crank),
+            &k.crank,
+            &[(o2, f.o2), (a, -f.a)],
+            &[f.driver, loads.friction],
+        );
+        check_balance(
+            "quick-return block",
+            q,
+            body(&l.block),
+            &k.block,
+            &[(a, f.a), (a, f.slot)],
+            &[f.slot_moment],
+        );
+        check_balance(
+            "quick-return lever",
+            q,
+            body(&l.lever),
+            &k.lever,
+            &[(o4, f.o4), (a, -f.slot), (c, loads.cut)],
+            &[-f.slot_moment],
+        );
+    }
+    check_dynamics("quick-return", |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
+                + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
+                + l.lever.mass * g.dot(&d_dq(|q| pose(q).lever.cg, q))
+                + loads.cut.dot(&d_dq(|q| pose(q).c, q))
+                + loads.friction,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
+#[test]
+fn scotch_yoke_hand_independent_checks() {
+    let m = ScotchYoke::new();
+    let p = m.params().clone();
+    let h = ScotchYokeHand::new(&p);
+    check_by_finite_differences("Scotch yoke", |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("A", &k.a);
+        t.point("Y", &k.y);
+        t.link("crank", &k.crank);
+        t.link("yoke", &k.yoke);
+        t
+    });
+    let loads = scotch_yoke_loads();
+    let (l, g) = (&p.links, p.gravity);
+    for q in sweep() {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let f = h.kinetostatics(&k, &loads);
+        let (o2, a, y) = (k.o2.pos, k.a.pos, k.y.pos);
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "Scotch yoke crank",
+            q,
+            body(&l.crank),
+            &k.crank,
+            &[(o2, f.o2), (a, f.slot)],
+            &[f.driver, loads.drag],
+        );
+        check_balance(
+            "Scotch yoke yoke",
+            q,
+            body(&l.yoke),
+            &k.yoke,
+            &[(y, f.guide), (a, -f.slot), (y, loads.resist)],
+            &[f.guide_moment],
+        );
+    }
+    check_dynamics("Scotch yoke", |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
+                + l.yoke.mass * g.dot(&d_dq(|q| pose(q).yoke.cg, q))
+                + loads.resist.dot(&d_dq(|q| pose(q).y, q))
+                + loads.drag,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
+#[test]
+fn inverted_slider_crank_hand_independent_checks() {
+    let m = InvertedSliderCrank::new();
+    let p = m.params().clone();
+    let h = InvertedSliderCrankHand::new(&p);
+    check_by_finite_differences("inverted slider-crank", |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("A", &k.a);
+        t.point("P", &k.p);
+        t.link("crank", &k.crank);
+        t.link("rod", &k.rod);
+        t.link("block", &k.block);
+        t
+    });
+    let loads = inverted_slider_crank_loads();
+    let (l, g) = (&p.links, p.gravity);
+    for q in sweep() {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let f = h.kinetostatics(&k, &loads);
+        let (o2, o4, a, pp) = (k.o2.pos, k.o4.pos, k.a.pos, k.p.pos);
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "inverted slider-crank crank",
+            q,
+            body(&l.crank),
+            &k.crank,
+            &[(o2, f.o2), (a, -f.a)],
+            &[f.driver],
+        );
+        check_balance(
+            "inverted slider-crank rod",
+            q,
+            body(&l.rod),
+            &k.rod,
+            &[(a, f.a), (o4, -f.slide), (pp, loads.push)],
+            &[-f.slide_moment],
+        );
+        check_balance(
+            "inverted slider-crank block",
+            q,
+            body(&l.block),
+            &k.block,
+            &[(o4, f.o4), (o4, f.slide)],
+            &[f.slide_moment, loads.resist],
+        );
+    }
+    check_dynamics("inverted slider-crank", |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        let block_turn =
+            wrap(pose(q + FD_STEP).block.angle - pose(q - FD_STEP).block.angle) / (2.0 * FD_STEP);
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
+                + l.rod.mass * g.dot(&d_dq(|q| pose(q).rod.cg, q))
+                + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
+                + loads.push.dot(&d_dq(|q| pose(q).p, q))
+                + loads.resist * block_turn,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
+/// The kinds of group the floor's machines exercise, as the macro's plan solves them
+/// (`mech_core::plan::assur`, the decomposition the generated code is emitted from): what
+/// each bench group measures. The Scotch yoke's yoke (a guide and a pin in a slot) has no
+/// closed-form kernel: the generated code solves it by its fixed-size Newton fallback.
+#[test]
+fn floor_machines_group_kinds() {
+    use mech_core::plan::assur::plan;
+    use mech_oracle::GenericMechanism;
+    const REFERENCE: &str = include_str!("common/mechanisms.rs");
+    const FLOOR: &str = include_str!("../benches/floor/machines.rs");
+    let kinds = |source: &str, name: &str| -> Vec<String> {
+        let g = GenericMechanism::from_rust_source(source, name).unwrap();
+        plan(g.model())
+            .unwrap()
+            .iter()
+            .map(|group| {
+                let s = format!("{:?}", group.solver);
+                s.split([' ', '{']).next().unwrap().to_owned()
+            })
+            .collect()
+    };
+    for (source, name, expected) in [
+        (REFERENCE, "FourBar", ["DrivenRevolute", "Rrr"]),
+        (REFERENCE, "SliderCrank", ["DrivenRevolute", "Rrp"]),
+        (REFERENCE, "QuickReturn", ["DrivenRevolute", "Rpr"]),
+        (REFERENCE, "ScotchYoke", ["DrivenRevolute", "Newton"]),
+        (FLOOR, "InvertedSliderCrank", ["DrivenRevolute", "Rpr"]),
+    ] {
+        assert_eq!(kinds(source, name), expected, "{name}");
     }
 }

@@ -23,6 +23,15 @@ import sys
 from pathlib import Path
 
 # The groups of benches/floor.rs, in the order of the table.
+# The four-bar and the slider-crank first, then the machines with all six operations.
+OPERATIONS = (
+    "pose",
+    "kinematics",
+    "kinematics+kinetostatics",
+    "kinematics+driver_action",
+    "reduced",
+    "acceleration",
+)
 GROUPS = [
     "four_bar/pose",
     "four_bar/kinematics",
@@ -30,6 +39,10 @@ GROUPS = [
     "four_bar/kinematics+driver_action",
     "slider_crank/reduced",
     "slider_crank/acceleration",
+] + [
+    f"{machine}/{op}"
+    for machine in ("quick_return", "scotch_yoke", "inverted_slider_crank")
+    for op in OPERATIONS
 ]
 FUNCTIONS = ("generated", "hand")
 

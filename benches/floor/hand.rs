@@ -1,13 +1,18 @@
-//! Hand-written closed-form solvers of the crank-rocker `FourBar` and the offset
-//! `SliderCrank` of `tests/common/mechanisms.rs`: the code an engineer who knows the
-//! two machines writes in an afternoon, used as the *floor* that the generated solvers
-//! are timed against (`benches/floor.rs`) and checked against (`tests/floor.rs`).
+//! Hand-written closed-form solvers of the crank-rocker `FourBar`, the offset
+//! `SliderCrank`, the crank-shaper `QuickReturn` and the `ScotchYoke` of
+//! `tests/common/mechanisms.rs` and of the `InvertedSliderCrank` of
+//! `benches/floor/machines.rs`: the code an engineer who knows these machines writes in an
+//! afternoon, used as the *floor* that the generated solvers are timed against
+//! (`benches/floor.rs`) and checked against (`tests/floor.rs`). The last three are in
+//! modules of their own (`hand_quick_return.rs`, `hand_scotch_yoke.rs`,
+//! `hand_inverted_slider_crank.rs`, beside this file), re-exported here.
 //!
 //! Conventions are those of `docs/conventions.md`: x right, y up, angles CCW; a link's
-//! angle is the direction of its first listed point → second listed point; the reaction
-//! at a joint declared `(a, b)` is the force BY a ON b at the joint point; the driver is
-//! the torque by the ground on the crank; gravity acts at every cg. The input q is the
-//! crank angle θ₂ (the drawing has no input offset).
+//! angle is the direction of its first listed point → second listed point (a link with one
+//! point: its rotation since the drawing); the reaction at a joint declared `(a, b)` is the
+//! force BY a ON b at the joint point (and, at a prismatic joint, the moment by a on b
+//! about that point); the driver is the torque by the ground on the crank; gravity acts at
+//! every cg. The input q is the crank angle θ₂ (no drawing has an input offset).
 //!
 //! Everything is plain scalar `f64` code (with `Vector2<f64>` as the 2-vector), all
 //! constants of the drawing (lengths, branch signs, cg and coupler-point offsets in the
@@ -18,11 +23,28 @@
 //! (u, v) in the frame of a link whose first→second vector is `a` (length L, u along
 //! `a`, v to its left) is at `first + (u/L)·a + (v/L)·perp(a)`, so no unit vector and
 //! no trigonometric function of a link angle is ever needed, only the angles reported.
+//! (The quick-return and the inverted slider-crank keep the offsets of the links that turn
+//! with their slide in the slide's frame, whose unit vector they compute anyway.)
 
 #![allow(dead_code)]
 
-use crate::mechanisms::{FourBarLoads, FourBarParams, SliderCrankLoads, SliderCrankParams};
+use super::machines::{InvertedSliderCrankLoads, InvertedSliderCrankParams};
+use crate::mechanisms::{
+    FourBarLoads, FourBarParams, QuickReturnLoads, QuickReturnParams, ScotchYokeLoads,
+    ScotchYokeParams, SliderCrankLoads, SliderCrankParams,
+};
 use mech::prelude::Vector2;
+
+#[path = "hand_inverted_slider_crank.rs"]
+mod inverted_slider_crank;
+#[path = "hand_quick_return.rs"]
+mod quick_return;
+#[path = "hand_scotch_yoke.rs"]
+mod scotch_yoke;
+
+pub use inverted_slider_crank::*;
+pub use quick_return::*;
+pub use scotch_yoke::*;
 
 /// A plane vector (m, m/s, m/s², N).
 pub type V2 = Vector2<f64>;
@@ -37,6 +59,20 @@ fn perp(v: V2) -> V2 {
 #[inline(always)]
 fn cross(a: V2, b: V2) -> f64 {
     a.x * b.y - a.y * b.x
+}
+
+/// A difference of two angles in (−π, π] (of two atan2) brought into (−π, π]: one
+/// correction by 2π at most, no division.
+#[inline(always)]
+fn wrap_difference(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    if a > PI {
+        a - TAU
+    } else if a <= -PI {
+        a + TAU
+    } else {
+        a
+    }
 }
 
 /// Coordinates (u/L, v/L) of `p` in the frame of the link from `o` to `e` (L = |e − o|),

@@ -247,16 +247,30 @@ mod tests {
     /// recursive parser could overflow its thread's stack (it did on 10⁵ brackets).
     #[test]
     fn texts_the_parser_must_not_see_are_refused_with_their_place() {
-        let deep = format!("consts {{ a: {}1{} }}", "(".repeat(100_000), ")".repeat(100_000));
-        let e = parse_model(&deep, Some("deep.mech")).unwrap_err().to_string();
-        assert!(e.contains("deep.mech:1:") && e.contains("nested more than 64 deep"), "{e}");
+        let deep = format!(
+            "consts {{ a: {}1{} }}",
+            "(".repeat(100_000),
+            ")".repeat(100_000)
+        );
+        let e = parse_model(&deep, Some("deep.mech"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("deep.mech:1:") && e.contains("nested more than 64 deep"),
+            "{e}"
+        );
         let signs = format!("consts {{ a: {}1 }}", "- ".repeat(100_000));
         let e = parse_model(&signs, None).unwrap_err().to_string();
         assert!(e.contains("more than 64 signs in a row"), "{e}");
-        let e = parse_model("ground { O: (0.0, 0.0) }\0", None).unwrap_err().to_string();
+        let e = parse_model("ground { O: (0.0, 0.0) }\0", None)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("NUL character at offset 24"), "{e}");
         let big = "// x\n".repeat(MAX_TEXT / 5 + 1);
-        assert!(parse_model(&big, None).unwrap_err().to_string().contains("MB of text"));
+        assert!(parse_model(&big, None)
+            .unwrap_err()
+            .to_string()
+            .contains("MB of text"));
         let e = rust_source_model(&format!("fn f() {{ {} }}", "[".repeat(1000)), "M")
             .unwrap_err()
             .to_string();
