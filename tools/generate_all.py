@@ -426,7 +426,11 @@ def main(argv):
                     continue
                 if not a.check:
                     status[tb.name] = "ok"
-                    report(tb, secs, "written", ", ".join(tb.outputs) or "(checked)")
+                    if tb.outputs:
+                        report(tb, secs, "written", ", ".join(tb.outputs) if len(tb.outputs) <= 3 else
+                               "%d files" % len(tb.outputs))
+                    else:
+                        report(tb, secs, "OK")
                     continue
                 verdict, notes = "OK", []
                 for rel in tb.outputs:
