@@ -305,8 +305,12 @@ def run(table, root, jobs, extra):
     argv = [sys.executable, os.path.join(HERE, table.args[0])] + table.argv(root, jobs)[1:]
     argv = [a for a in (x.replace("{pyslvs_example}", extra.get("pyslvs_example") or "") for x in argv) if a]
     t0 = time.time()
-    r = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True)
-    return r.returncode, r.stdout + r.stderr, time.time() - t0
+    p = subprocess.Popen(argv, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    out = p.stdout.read().decode("utf-8", "replace")
+    p.stdout.close()
+    _, st, ru = os.wait4(p.pid, 0)   # the CPU time of the generator and its worker processes
+    p.returncode = os.WEXITSTATUS(st) if os.WIFEXITED(st) else -os.WTERMSIG(st)
+    return p.returncode, out, (time.time() - t0, ru.ru_utime + ru.ru_stime)
 
 
 def unclaimed(all_tables):
@@ -394,8 +398,13 @@ def main(argv):
     pending = sorted(chosen, key=lambda tb: -path_secs(tb))
     running = {}
 
+    cpu_total = [0.0]
+
     def report(tb, secs, verdict, detail=""):
-        print("%-22s %7.1f s  %s%s" % (tb.name, secs, verdict, ("  " + detail) if detail else ""), flush=True)
+        wall, cpu = secs if isinstance(secs, tuple) else (secs, secs)
+        cpu_total[0] += cpu
+        print("%-22s %7.1f s %7.1f s cpu  %s%s" % (tb.name, wall, cpu, verdict, ("  " + detail) if detail else ""),
+              flush=True)
 
     with ThreadPoolExecutor(max_workers=max(1, a.j)) as pool:
         while pending or running:
@@ -470,15 +479,15 @@ def main(argv):
     if a.check:
         orphans = unclaimed(all_tables)
         for rel in orphans:
-            print("%-22s %7s    NO GENERATOR  %s is neither a table's output nor a source" % ("-", "", rel))
+            print("%-22s %27s  NO GENERATOR  %s is neither a table's output nor a source" % ("-", "", rel))
         bad += len(orphans)
         if a.keep:
             print("regenerated files kept in", tmp)
         else:
             shutil.rmtree(tmp, ignore_errors=True)
-    print("%d tables, %.0f s, %s" % (len(chosen), time.time() - t_start,
-                                     "all reproduce the committed files" if a.check and not bad else
-                                     "%d failed" % bad if bad else "done"))
+    print("%d tables, %.0f s wall, %.0f s cpu: %s" % (
+        len(chosen), time.time() - t_start, cpu_total[0],
+        "all reproduce the committed files" if a.check and not bad else "%d failed" % bad if bad else "done"))
     return 1 if bad else 0
 
 
