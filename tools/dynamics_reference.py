@@ -36,7 +36,8 @@ Checks written to the file's "verification" block:
     first 0.15 s); the largest difference in q and q' over the outputs.
 
 Usage:  python3 tools/dynamics_reference.py [-j 2] [--out-root DIR] [OUT.json]
-        (default OUT = tests/data/slider_crank.dynamics.json; about an hour of CPU: use -j 2)
+        (default OUT = tests/data/slider_crank.dynamics.json; about 7 minutes of CPU, 2026-11-27;
+        -j 2 runs its four integrations on two processes)
         --out-root DIR: read DIR/tests/data/slider_crank.mechanism.json and write
         DIR/tests/data/slider_crank.dynamics.json (tools/outroot.py)
 """

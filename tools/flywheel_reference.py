@@ -44,7 +44,7 @@ Usage: python3 tools/flywheel_reference.py [--drawing-only] [--out-root DIR]
   --out-root DIR   write the three files under DIR (same relative paths) instead of the
                    repository; the generated block replaces the one of DIR/tests/common/engine.rs,
                    which must exist (tools/outroot.py)
-Takes a few minutes otherwise.  Needs mpmath.
+Takes about a minute of CPU otherwise.  Needs mpmath.
 """
 
 import math

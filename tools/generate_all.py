@@ -38,10 +38,11 @@ digits, 1e-14 for the 17-digit CSV, 1e-12 for pyslvs's float64 positions) and fl
 below 1e-30. CSV files are compared cell by cell the same way; Rust files byte for byte only.
 The tests compare with these tables to 1e-12 ... 1e-15 of a quantity's scale (pyslvs: 1e-9).
 
---fast selects the tables marked fast (they regenerate in about 80 s on one core; CI runs
-`--check --fast`). -j N runs N generators at once (default 1). Needs Python >= 3.8 with mpmath
-and sympy (pip install mpmath sympy); the pyslvs table also needs numpy and pyslvs 22.7.0
-(tools/README.md). The slowest table, dynamics, takes about an hour of CPU.
+--fast selects the tables marked fast (all but flywheel, dynamics and pyslvs: about 55 s of
+CPU, against about 530 s for all; CI runs `--check --fast`). -j N runs N generators at once
+(default 1). Each line gives the generator's wall and CPU seconds (its worker processes
+included). Needs Python >= 3.8 with mpmath and sympy (pip install mpmath sympy); the pyslvs
+table also needs numpy and pyslvs 22.7.0 (tools/README.md).
 """
 
 import argparse
@@ -88,7 +89,7 @@ class Table:
         self.deps = list(deps)      # tables whose outputs it reads
         self.fast = fast
         self.needs = list(needs)    # Python modules
-        self.seconds = seconds      # measured, one core (tools/README.md)
+        self.seconds = seconds      # measured CPU seconds (tools/README.md)
         self.reads = list(reads)    # sources it reads
 
     def argv(self, root, jobs):
@@ -110,52 +111,52 @@ def tables():
     T.append(Table("drawings", ["drawings.py", "--out-root", "{root}"],
                    [t("tests/data", n + ".mechanism.json") for n in DRAWINGS]
                    + [t("tools/cases", n + ".cases.json") for n in DRAWINGS],
-                   rtol="1e-30", fast=True, seconds=0.2))
+                   rtol="1e-30", fast=True, seconds=0.1))
     # tools/reference.py on the published worked examples: writes nothing, must reproduce them
     T.append(Table("check_reference", ["check_reference.py", os.path.join(ROOT, "tests", "data")], [],
-                   fast=True, seconds=3.8, reads=SOURCES[:4]))
-    secs = {"four_bar": 5.4, "slider_crank": 5.4, "quick_return": 5.9, "watt2": 12.8, "stephenson3": 13.5,
-            "scotch_yoke": 2.3, "five_bar": 2.6, "hydraulic_lever": 2.5}
+                   fast=True, seconds=2.2, reads=SOURCES[:4]))
+    secs = {"four_bar": 2.8, "slider_crank": 2.8, "quick_return": 2.9, "watt2": 6.1, "stephenson3": 5.8,
+            "scotch_yoke": 0.9, "five_bar": 1.0, "hydraulic_lever": 1.3}
     for n in DRAWINGS:
         T.append(Table("truth:" + n, ["reference.py", "{root}/tests/data/%s.mechanism.json" % n,
                                       "{root}/tools/cases/%s.cases.json" % n, "{root}/tests/data/%s.truth.json" % n],
                        [t("tests/data", n + ".truth.json")], rtol="1e-22",
                        deps=["drawings", "check_reference"], fast=True, seconds=secs[n]))
-    for n, s in zip(SWEEPS, [8.3, 9.3]):
+    for n, s in zip(SWEEPS, [3.4, 4.1]):
         T.append(Table("sweep:" + n, ["reference.py", "--sweep", "{root}/tests/data/%s.mechanism.json" % n,
                                       "{root}/tools/cases/%s.cases.json" % n, "{root}/tests/data/%s.sweep.json" % n],
                        [t("tests/data", n + ".sweep.json")], rtol="1e-22",
                        deps=["drawings", "check_reference"], fast=True, seconds=s))
     T.append(Table("mechanisms.rs", ["to_dsl.py", "--out-root", "{root}"], ["tests/common/mechanisms.rs"],
-                   deps=["drawings"], fast=True, seconds=0.2, reads=SOURCES[:4]))
+                   deps=["drawings"], fast=True, seconds=0.1, reads=SOURCES[:4]))
     T.append(Table("engine.rs", ["flywheel_reference.py", "--drawing-only", "--out-root", "{root}"],
                    ["tests/data/engine.drawing.json", "tests/common/engine.rs"], rtol="1e-30",
-                   fast=True, seconds=0.2, reads=["tests/common/engine.rs"]))
+                   fast=True, seconds=0.1, reads=["tests/common/engine.rs"]))
     # rewrites the drawing and the block of engine.rs (the same) before its own table
     T.append(Table("flywheel", ["flywheel_reference.py", "--out-root", "{root}"],
-                   ["tests/data/engine.flywheel.json"], rtol="1e-22", deps=["engine.rs"], seconds=88))
+                   ["tests/data/engine.flywheel.json"], rtol="1e-22", deps=["engine.rs"], seconds=56.6))
     T.append(Table("engine_gas.csv", ["engine_gas_table.py", "--out-root", "{root}"],
-                   ["examples/mech/engine_gas.csv"], rtol="1e-14", fast=True, seconds=1.4))
+                   ["examples/mech/engine_gas.csv"], rtol="1e-14", fast=True, seconds=0.6))
     T.append(Table("dynamics", ["dynamics_reference.py", "-j", "{jobs}", "--out-root", "{root}"],
-                   ["tests/data/slider_crank.dynamics.json"], rtol="1e-22", deps=["drawings"], seconds=None))
+                   ["tests/data/slider_crank.dynamics.json"], rtol="1e-22", deps=["drawings"], seconds=408))
     T.append(Table("cam_laws", ["cam_reference.py", "--out-root", "{root}"], ["tests/data/cam_laws.json"],
-                   rtol="1e-27", fast=True, needs=["sympy"], seconds=1.6))
+                   rtol="1e-27", fast=True, needs=["sympy"], seconds=0.8))
     T.append(Table("cam_follower", ["cam_follower_reference.py", "--out-root", "{root}"],
-                   ["tests/data/cam_follower.json"], rtol="1e-30", fast=True, seconds=2.1))
+                   ["tests/data/cam_follower.json"], rtol="1e-30", fast=True, seconds=1.0))
     T.append(Table("cam_rocker", ["cam_rocker_reference.py", "--out-root", "{root}"],
-                   ["tests/data/cam_rocker.json"], rtol="1e-27", needs=["sympy"], seconds=51))
+                   ["tests/data/cam_rocker.json"], rtol="1e-27", fast=True, needs=["sympy"], seconds=17.8))
     T.append(Table("spring_four_bar", ["elements_reference.py", "--out-root", "{root}"],
-                   ["tests/data/spring_four_bar.json"], rtol="1e-30", fast=True, seconds=0.5))
+                   ["tests/data/spring_four_bar.json"], rtol="1e-30", fast=True, seconds=0.3))
     T.append(Table("gears", ["gears_reference.py", "--out-root", "{root}"], ["tests/data/gears.json"],
-                   rtol="1e-30", fast=True, seconds=0.5))
+                   rtol="1e-30", fast=True, seconds=0.3))
     T.append(Table("rolling", ["rolling_reference.py", "--out-root", "{root}"], ["tests/data/rolling.json"],
-                   rtol="1e-30", fast=True, seconds=0.7))
+                   rtol="1e-30", fast=True, seconds=0.4))
     T.append(Table("large.rs", ["large_mechanisms.py", "--out-root", "{root}"], ["tests/large.rs"],
-                   fast=True, seconds=0.1))
+                   fast=True, seconds=0.05))
     # reads pyslvs's example list from the installed pyslvs (pyslvs_example_py below)
     T.append(Table("pyslvs", ["pyslvs_examples.py", "--out-root", "{root}", "{pyslvs_example}"],
                    ["tests/data/pyslvs/examples.json"], rtol="1e-12", floor="1", needs=["numpy", "pyslvs"],
-                   seconds=None))
+                   seconds=8.2))
     return T
 
 
