@@ -38,7 +38,7 @@ digits, 1e-14 for the 17-digit CSV, 1e-12 for pyslvs's float64 positions) and fl
 below 1e-30. CSV files are compared cell by cell the same way; Rust files byte for byte only.
 The tests compare with these tables to 1e-12 ... 1e-15 of a quantity's scale (pyslvs: 1e-9).
 
---fast selects the tables marked fast (all but flywheel, dynamics and pyslvs: about 55 s of
+--fast selects the tables marked fast (all but flywheel, dynamics and pyslvs: about 50 s of
 CPU, against about 530 s for all; CI runs `--check --fast`). -j N runs N generators at once
 (default 1). Each line gives the generator's wall and CPU seconds (its worker processes
 included). Needs Python >= 3.8 with mpmath and sympy (pip install mpmath sympy); the pyslvs
