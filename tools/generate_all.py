@@ -6,7 +6,7 @@
                                   temporary directory and compare with the committed files
     python3 tools/generate_all.py --list                                       the tables
 
-A *table* is one run of one generator of tools/ and the files it writes (TABLES below: the
+A *table* is one run of one generator of tools/ and the files it writes (tables() below: the
 generator, its arguments, its outputs, the tables it reads). Every generator takes
 `--out-root DIR` (tools/outroot.py) and then writes its files at their repository paths under
 DIR, reading the generated files it depends on from there too. In place, DIR is the
@@ -15,7 +15,7 @@ files that no table writes (SOURCES: the published worked examples, the hand-wri
 tests/common/engine.rs) and, with --fast / --only, the committed outputs of the tables not
 selected that a selected one reads.
 
-Check mode prints one line per table: its name, its seconds, and
+Check mode prints one line per table: its name, its wall and CPU seconds, and
   OK            every output identical to the committed file, byte for byte
   OK ~          not identical, but every number within the table's tolerance (below)
   DIFF          the first difference: file, path in the file, committed vs regenerated value
@@ -23,7 +23,7 @@ Check mode prints one line per table: its name, its seconds, and
   FAIL          the generator exited non-zero (its output follows)
   NEEDS         a Python module it needs is not installed (not run)
   SKIPPED       a table it reads failed
-and exits non-zero unless every selected table is OK. It also fails when a file under
+and exits non-zero unless every selected table is OK (or OK ~). It also fails when a file under
 tests/data or tools/cases is neither a table's output nor a source.
 
 Comparison when not byte-identical: JSON files are parsed with every key in its order and
