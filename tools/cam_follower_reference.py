@@ -11,7 +11,7 @@ T w = (m x'' + F_spring + m g) x'. The jump speed: the smallest w where F_n reac
 w_jump^2 = min over s'' < 0 of (F_spring + m g) / (-m s''); the smallest preload that
 keeps contact at w: F0 = max over theta of (-m s'' w^2 - k s - m g).
 
-Writes tests/data/cam_follower.json. Usage: python3 tools/cam_follower_reference.py
+Writes tests/data/cam_follower.json. Usage: python3 tools/cam_follower_reference.py [--out-root DIR]
 """
 
 import json
@@ -22,6 +22,15 @@ from mpmath import mp, mpf, pi, sin, cos, atan, sqrt
 mp.dps = 40
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "tests", "data", "cam_follower.json")
+
+
+def out_path():
+    """OUT, or the same path under `--out-root DIR` (tools/outroot.py)."""
+    import sys
+    import outroot
+    root, _ = outroot.split(sys.argv[1:])
+    return outroot.path(root, "tests", "data", "cam_follower.json")
+
 
 M, G, K, F0 = mpf("0.08"), mpf("9.81"), mpf(5000), mpf(50)
 RP = mpf("0.05")  # base circle 40 mm + roller 10 mm
@@ -58,6 +67,7 @@ def point(th, w):
 
 
 def main():
+    out = out_path()
     w = mpf(150)
     thetas = [mpf(k) * 2 * pi / 72 + mpf("0.01") for k in range(72)]
     fine = [mpf(k) * 2 * pi / 7200 for k in range(7200)]
@@ -73,9 +83,9 @@ def main():
         "preload_at": float(w2),
         "min_preload": str(preload),
     }
-    with open(OUT, "w") as f:
+    with open(out, "w") as f:
         json.dump(doc, f, indent=1)
-    print("wrote", OUT, "jump speed", mp.nstr(jump, 12), "rad/s; min preload at 400 rad/s", mp.nstr(preload, 12), "N")
+    print("wrote", out, "jump speed", mp.nstr(jump, 12), "rad/s; min preload at 400 rad/s", mp.nstr(preload, 12), "N")
 
 
 if __name__ == "__main__":

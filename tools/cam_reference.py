@@ -5,7 +5,7 @@ differentiated SYMBOLICALLY three times (mech writes the derivatives out by hand
 evaluated at 30 digits at a dozen angles of a rise (90 deg -> 180 deg, 0 -> 10 mm) and a
 fall (240 deg -> 360 deg, 10 mm -> 0) of a dwell-rise-dwell-fall cam.
 
-Writes tests/data/cam_laws.json. Usage: python3 tools/cam_reference.py
+Writes tests/data/cam_laws.json. Usage: python3 tools/cam_reference.py [--out-root DIR]
 """
 
 import json
@@ -15,6 +15,15 @@ import sympy as sp
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "tests", "data", "cam_laws.json")
+
+
+def out_path():
+    """OUT, or the same path under `--out-root DIR` (tools/outroot.py)."""
+    import sys
+    import outroot
+    root, _ = outroot.split(sys.argv[1:])
+    return outroot.path(root, "tests", "data", "cam_laws.json")
+
 
 th = sp.symbols("theta", real=True)
 
@@ -34,6 +43,7 @@ def law(name, t0, t1, h0, h1):
 
 
 def main():
+    out = out_path()
     rise = (sp.pi / 2, sp.pi, sp.Rational(0), sp.Rational(1, 100))
     fall = (sp.Rational(4, 3) * sp.pi, 2 * sp.pi, sp.Rational(1, 100), sp.Rational(0))
     doc = {"about": "tools/cam_reference.py: sympy, symbolic derivatives, 30 digits", "laws": {}}
@@ -49,9 +59,9 @@ def main():
                     "values": [str(sp.N(d.subs(th, at), 30)) for d in ds],
                 })
         doc["laws"][name] = rows
-    with open(OUT, "w") as f:
+    with open(out, "w") as f:
         json.dump(doc, f, indent=1)
-    print("wrote", OUT)
+    print("wrote", out)
 
 
 if __name__ == "__main__":

@@ -19,7 +19,7 @@ mech does not take:
   torque by the power balance, T w = (I_A D'' - M_spring - M_gravity) D'; the jump speed, the
   smallest w where F_n reaches 0 on a grid of 7 200 cam angles.
 
-Writes tests/data/cam_rocker.json. Usage: python3 tools/cam_rocker_reference.py
+Writes tests/data/cam_rocker.json. Usage: python3 tools/cam_rocker_reference.py [--out-root DIR]
 """
 
 import json
@@ -31,6 +31,15 @@ from mpmath import mp, mpf
 mp.dps = 40
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "tests", "data", "cam_rocker.json")
+
+
+def out_path():
+    """OUT, or the same path under `--out-root DIR` (tools/outroot.py)."""
+    import sys
+    import outroot
+    root, _ = outroot.split(sys.argv[1:])
+    return outroot.path(root, "tests", "data", "cam_rocker.json")
+
 
 th = sp.symbols("theta", real=True)
 DEG = sp.pi / 180
@@ -240,6 +249,7 @@ def dynamics():
 
 
 def main():
+    out = out_path()
     w, rows, jump = dynamics()
     doc = {
         "about": "tools/cam_rocker_reference.py: sympy (symbolic derivatives, envelopes) and mpmath (the rocker's moment equation)",
@@ -249,9 +259,9 @@ def main():
         "points": rows,
         "jump_speed": mp.nstr(jump, 30),
     }
-    with open(OUT, "w") as f:
+    with open(out, "w") as f:
         json.dump(doc, f, indent=1)
-    print("wrote", OUT, "jump speed", mp.nstr(jump, 12), "rad/s")
+    print("wrote", out, "jump speed", mp.nstr(jump, 12), "rad/s")
 
 
 if __name__ == "__main__":

@@ -12,7 +12,9 @@ offsets) at 50 significant digits and writes
 The exact decimal strings are the definition: the truth files are computed from
 them, not from the design numbers.
 
-Usage: python3 tools/drawings.py [--survey]
+Usage: python3 tools/drawings.py [--survey] [--out-root DIR]
+  --out-root DIR  write the files under DIR (same relative paths) instead of the
+            repository (tools/outroot.py)
   --survey  also sweep each drawing over its input range (at 20 digits) and
             print the worst conditioning of the constraint Jacobian, to make
             sure no configuration is near a dead point.
@@ -499,13 +501,13 @@ def survey(spec, cases):
 
 
 def main(argv):
-    os.makedirs(DATA, exist_ok=True)
-    os.makedirs(CASES, exist_ok=True)
+    import outroot
+    root, argv = outroot.split(argv)
     for d, cases in mechanisms():
         spec = d.to_json()
-        with open(os.path.join(DATA, d.name + ".mechanism.json"), "w") as f:
+        with open(outroot.path(root, "tests", "data", d.name + ".mechanism.json"), "w") as f:
             f.write(dumps(spec) + "\n")
-        with open(os.path.join(CASES, d.name + ".cases.json"), "w") as f:
+        with open(outroot.path(root, "tools", "cases", d.name + ".cases.json"), "w") as f:
             f.write(dumps(cases) + "\n")
         msg = "%-16s N=%d P_I=%d P_II=%d G=%d" % (
             d.name, spec["structure"]["N_links_including_ground"], spec["structure"]["P_I"],

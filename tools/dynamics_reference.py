@@ -35,8 +35,11 @@ Checks written to the file's "verification" block:
   * every case: a second run with a 1000x tighter tolerance (constant_torque: over its
     first 0.15 s); the largest difference in q and q' over the outputs.
 
-Usage:  python3 tools/dynamics_reference.py [-j 2] [OUT.json]
-        (default OUT = tests/data/slider_crank.dynamics.json; about an hour of CPU: use -j 2)
+Usage:  python3 tools/dynamics_reference.py [-j 2] [--out-root DIR] [OUT.json]
+        (default OUT = tests/data/slider_crank.dynamics.json; about 7 minutes of CPU, 2026-11-27;
+        -j 2 runs its four integrations on two processes)
+        --out-root DIR: read DIR/tests/data/slider_crank.mechanism.json and write
+        DIR/tests/data/slider_crank.dynamics.json (tools/outroot.py)
 """
 
 import os
@@ -164,8 +167,8 @@ def gbs_step(f, t, y, H, f0):
     return best, err
 
 
-def integrate(name, tol, n_out):
-    mech = R.Mechanism(R.load_json(os.path.join(ROOT, "tests", "data", MECH_FILE)))
+def integrate(name, tol, n_out, mech_path):
+    mech = R.Mechanism(R.load_json(mech_path))
     z = Zhukovski(mech)
     f = make_rhs(z, name)
     t = mpf(0)
@@ -192,21 +195,25 @@ def integrate(name, tol, n_out):
 
 
 def run_case(args):
-    name, tol, n_out = args
+    name, tol, n_out, mech_path = args
     t0 = time.time()
-    out, st = integrate(name, tol, n_out)
+    out, st = integrate(name, tol, n_out, mech_path)
     st["seconds"] = time.time() - t0
     return name, tol, out, st
 
 
 def main(argv):
+    import outroot
+    root, argv = outroot.split(argv)
     jobs = 1
     if argv[:1] == ["-j"]:
         jobs = int(argv[1])
         argv = argv[2:]
-    path = argv[0] if argv else os.path.join(ROOT, "tests", "data", "slider_crank.dynamics.json")
+    path = argv[0] if argv else outroot.path(root, "tests", "data", "slider_crank.dynamics.json")
+    mech_path = os.path.join(root, "tests", "data", MECH_FILE)
     names = ["constant_torque", "time_and_speed"]
-    work = [(n, TOL, len(T_OUT[n])) for n in names] + [(n, TOL / 1000, CHECKED[n]) for n in names]
+    work = ([(n, TOL, len(T_OUT[n]), mech_path) for n in names]
+            + [(n, TOL / 1000, CHECKED[n], mech_path) for n in names])
     if jobs > 1:
         with Pool(jobs) as p:
             results = p.map(run_case, work)
@@ -227,7 +234,7 @@ def main(argv):
     doc["digits"] = "every number has 25 significant digits"
     cases = []
     ver = OrderedDict()
-    mech = R.Mechanism(R.load_json(os.path.join(ROOT, "tests", "data", MECH_FILE)))
+    mech = R.Mechanism(R.load_json(mech_path))
     for n in names:
         out, st = by[(n, TOL)]
         fine, st_fine = by[(n, TOL / 1000)]

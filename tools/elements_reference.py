@@ -15,7 +15,7 @@ function D = 1/2 sum c xdot^2 = 1/2 q'^2 sum c (dx/dq)^2. Then, for one input q,
 - the equilibrium q* (no driver, no load, at rest): dV/dq = 0, V'' > 0 (findroot);
 - the natural frequency of small oscillations about it: w_n = sqrt(V''(q*) / I*(q*)).
 
-Writes tests/data/spring_four_bar.json. Usage: python3 tools/elements_reference.py
+Writes tests/data/spring_four_bar.json. Usage: python3 tools/elements_reference.py [--out-root DIR]
 """
 
 import json
@@ -26,6 +26,14 @@ from mpmath import mp, mpf, cos, sin, sqrt, atan2, diff, findroot, pi
 mp.dps = 50
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "tests", "data", "spring_four_bar.json")
+
+
+def out_path():
+    """OUT, or the same path under `--out-root DIR` (tools/outroot.py)."""
+    import sys
+    import outroot
+    root, _ = outroot.split(sys.argv[1:])
+    return outroot.path(root, "tests", "data", "spring_four_bar.json")
 
 
 def v(x, y):
@@ -181,6 +189,7 @@ def config(q, qd, qdd, resist):
 
 
 def main():
+    out = out_path()
     configs = [
         config(q, qd, qdd, r)
         for (q, qd, qdd, r) in [
@@ -211,9 +220,9 @@ def main():
             "natural_frequency": str(wn),
         },
     }
-    with open(OUT, "w") as f:
+    with open(out, "w") as f:
         json.dump(doc, f, indent=1)
-    print(f"wrote {OUT}: q* = {mp.nstr(q_star, 20)}, w_n = {mp.nstr(wn, 20)} rad/s")
+    print(f"wrote {out}: q* = {mp.nstr(q_star, 20)}, w_n = {mp.nstr(wn, 20)} rad/s")
 
 
 if __name__ == "__main__":

@@ -8,7 +8,7 @@ with the piston position in closed form, x_B = r cos q + sqrt(l^2 - (e - r sin q
 At the two valve events (bottom dead centres, where the pressure jumps) the table has a
 row on each side, 1e-9 rad apart, so that linear interpolation keeps the jump.
 
-    python3 tools/engine_gas_table.py
+    python3 tools/engine_gas_table.py [--out-root DIR]     (tools/outroot.py)
     mech flywheel examples/mech/engine.mech --period 4pi --start 0.032263661668246964 \\
         --speed 3000rpm --irregularity 0.02 --load gas=@examples/mech/engine_gas.csv
 """
@@ -26,6 +26,9 @@ STEP_DEG = mpf("0.1")
 
 
 def main():
+    import outroot
+    root, _ = outroot.split(sys.argv[1:])
+    out = outroot.path(root, "examples", "mech", "engine_gas.csv")
     mp.dps = 30
     geo = F.geometry()
     gas = F.Gas(geo)
@@ -38,14 +41,14 @@ def main():
     for j in jumps:
         qs += [j - mpf("1e-9"), j + mpf("1e-9")]
     qs.sort()
-    with open(OUT, "w") as f:
+    with open(out, "w") as f:
         f.write("q, fx, fy\n")
         for q in qs:
             x_b = r * mpmath.cos(q) + mpmath.sqrt(l ** 2 - (e - r * mpmath.sin(q)) ** 2)
             # the last row closes the cycle on the first
             force = gas.force(q if q < q0 + 4 * mp.pi else q0, x_b)
             f.write("%s, %s, 0\n" % (mpmath.nstr(q, 17), mpmath.nstr(force, 17)))
-    print("wrote", os.path.normpath(OUT), len(qs), "rows")
+    print("wrote", os.path.normpath(out), len(qs), "rows")
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@ digits), by formulations independent of mech's:
   closed form, velocity coefficients by numerical differentiation: driver = I* q'' +
   1/2 dI*/dq q'^2 - M*, M* the power of gravity and the loads per unit q'.
 
-Writes tests/data/gears.json. Usage: python3 tools/gears_reference.py
+Writes tests/data/gears.json. Usage: python3 tools/gears_reference.py [--out-root DIR]
 """
 
 import json
@@ -23,6 +23,16 @@ from mpmath import mp, mpf, cos, sin, sqrt, atan2, diff, matrix, lu_solve, pi
 mp.dps = 50
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "tests", "data", "gears.json")
+
+
+def out_path():
+    """OUT, or the same path under `--out-root DIR` (tools/outroot.py)."""
+    import sys
+    import outroot
+    root, _ = outroot.split(sys.argv[1:])
+    return outroot.path(root, "tests", "data", "gears.json")
+
+
 MM = mpf(1) / 1000
 G = (mpf(0), mpf("-9.81"))
 
@@ -371,6 +381,7 @@ def rack_steering(q, qd, qdd, align):
 
 
 def main():
+    out = out_path()
     doc = {
         "about": "tools/gears_reference.py: mpmath 50 digits; trains by one Newton-Euler linear system, linkages by the energy method",
         "gear_train": [gear_train(mpf(q), mpf(qd), mpf(qdd), mpf(t)) for (q, qd, qdd, t) in [
@@ -389,9 +400,9 @@ def main():
             ("0.0", "3.0", "5.0", "1.5"), ("1.2", "-2.0", "20.0", "-3.0"),
             ("-1.0", "4.0", "-10.0", "0.7")]],
     }
-    with open(OUT, "w") as f:
+    with open(out, "w") as f:
         json.dump(doc, f, indent=1)
-    print("wrote", OUT)
+    print("wrote", out)
 
 
 if __name__ == "__main__":

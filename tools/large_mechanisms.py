@@ -5,7 +5,7 @@
   links): module k's rocker carries the point E_k that drives module k + 1;
 - `FiveBars8`: 8 five-bars side by side, 16 inputs.
 
-    python3 tools/large_mechanisms.py
+    python3 tools/large_mechanisms.py [--out-root DIR]     (tools/outroot.py)
 """
 import os
 
@@ -69,9 +69,11 @@ use mech::Mechanism;
 '''
 
 TESTS = '''
-
 fn close(what: &str, a: f64, b: f64, scale: f64) {
-    assert!((a - b).abs() <= 1e-12 * scale.max(1e-300), "{what}: {a} against {b}");
+    assert!(
+        (a - b).abs() <= 1e-12 * scale.max(1e-300),
+        "{what}: {a} against {b}"
+    );
 }
 
 /// The generated and the run-time solvers agree on every point: position, velocity and
@@ -93,7 +95,10 @@ fn points_agree(
             ("velocity", a.vel, b.vel, sv),
             ("acceleration", a.acc, b.acc, sa),
         ] {
-            assert!((x - y).norm() <= 1e-12 * s, "{name} {what}: {x:?} against {y:?}");
+            assert!(
+                (x - y).norm() <= 1e-12 * s,
+                "{name} {what}: {x:?} against {y:?}"
+            );
         }
     }
 }
@@ -111,16 +116,36 @@ fn forty_modules_in_series() {
         // Each coupler closes its loop: |E_{k-1} B_k| = 0.26 m.
         let (e, b) = (p.points.E39.pos, p.points.B40.pos);
         close("|E39 B40|", (b - e).norm(), 0.26, 1.0);
-        close("B40.x run-time", r.point("B40").unwrap().pos.x, mo.points.B40.pos.x, 1.0);
-        close("rocker40 alpha", r.link("rocker40").unwrap().alpha, mo.links.rocker40.alpha, mo.links.rocker40.alpha.abs().max(1.0));
+        close(
+            "B40.x run-time",
+            r.point("B40").unwrap().pos.x,
+            mo.points.B40.pos.x,
+            1.0,
+        );
+        close(
+            "rocker40 alpha",
+            r.link("rocker40").unwrap().alpha,
+            mo.links.rocker40.alpha,
+            mo.links.rocker40.alpha.abs().max(1.0),
+        );
         let loads = Chain40Loads { resist: -3.0 };
         let f = m.kinetostatics(&mo, &loads).unwrap();
         let vp = m.driver_action(&mo, &loads).unwrap();
-        close("d'Alembert = virtual power", f.driver, vp, f.driver.abs().max(1.0));
+        close(
+            "d'Alembert = virtual power",
+            f.driver,
+            vp,
+            f.driver.abs().max(1.0),
+        );
         let mut rl = rt.loads();
         assert!(rl.set_by_name("resist", &[-3.0]));
         let fr = rt.kinetostatics(&r, &rl).unwrap();
-        close("run-time driver", fr.driver[0], f.driver, f.driver.abs().max(1.0));
+        close(
+            "run-time driver",
+            fr.driver[0],
+            f.driver,
+            f.driver.abs().max(1.0),
+        );
     }
 }
 
@@ -138,8 +163,15 @@ fn sixteen_inputs() {
     let mo = m.kinematics(q, qd, [0.0; 16]).unwrap();
     let r = rt.kinematics(&q, &qd, &[0.0; 16]).unwrap();
     points_agree(&FiveBars8::POINT_NAMES, |n| mo.point(n).copied(), &r);
-    close("C7.y", r.point("C7").unwrap().pos.y, mo.points.C7.pos.y, 1.0);
-    let loads = FiveBars8Loads { pen: Vector2::new(10.0, -20.0) };
+    close(
+        "C7.y",
+        r.point("C7").unwrap().pos.y,
+        mo.points.C7.pos.y,
+        1.0,
+    );
+    let loads = FiveBars8Loads {
+        pen: Vector2::new(10.0, -20.0),
+    };
     let f = m.kinetostatics(&mo, &loads).unwrap();
     let vp = m.driver_action(&mo, &loads).unwrap();
     for k in 0..16 {
@@ -149,6 +181,12 @@ fn sixteen_inputs() {
 }
 '''
 
-with open(os.path.join(ROOT, "tests", "large.rs"), "w") as f:
-    f.write(HEAD + chain() + "\n\n" + five_bars() + "\n" + TESTS)
-print("wrote tests/large.rs")
+if __name__ == "__main__":
+    import sys
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import outroot
+    root, _ = outroot.split(sys.argv[1:])
+    out = outroot.path(root, "tests", "large.rs")
+    with open(out, "w") as f:
+        f.write(HEAD + chain() + "\n\n" + five_bars() + "\n" + TESTS)
+    print("wrote", out)

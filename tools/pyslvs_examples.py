@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """pyslvs's example mechanisms, with reference positions, for `mech import`'s tests.
 
-    python3 tools/pyslvs_examples.py [path/to/pyslvs/example.py]
+    python3 tools/pyslvs_examples.py [--out-root DIR] [path/to/pyslvs/example.py]
 
 Reads the examples (name -> (PMKS expression, inputs)) from pyslvs's `example.py` with
 Python's `ast` (no import of pyslvs needed; without an argument the file comes from
@@ -212,6 +212,9 @@ def with_pyslvs(expr, inputs):
 
 
 def main(argv):
+    import outroot
+    root, argv = outroot.split(argv)
+    out_path = outroot.path(root, "tests", "data", "pyslvs", "examples.json")
     ex = examples(example_source(argv))
     try:
         import pyslvs  # noqa: F401
@@ -233,10 +236,9 @@ def main(argv):
                 c["pyslvs"] = theirs.get(tuple(c["angles"]))
         entry["configs"] = configs
         out["examples"].append(entry)
-    os.makedirs(os.path.dirname(OUT), exist_ok=True)
-    with open(OUT, "w") as f:
+    with open(out_path, "w") as f:
         json.dump(out, f, indent=1)
-    print("wrote", OUT, len(out["examples"]), "examples;", how)
+    print("wrote", out_path, len(out["examples"]), "examples;", how)
 
 
 if __name__ == "__main__":

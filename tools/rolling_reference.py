@@ -5,7 +5,7 @@ method: positions in closed form, the wheel's turn -s/r from its centre's travel
 velocity coefficients by numerical differentiation; driver = I* q'' + 1/2 dI*/dq q'^2 -
 M*, M* the power of gravity and of the load torque on the wheel per unit q').
 
-Writes tests/data/rolling.json. Usage: python3 tools/rolling_reference.py
+Writes tests/data/rolling.json. Usage: python3 tools/rolling_reference.py [--out-root DIR]
 """
 
 import json
@@ -16,6 +16,16 @@ from mpmath import mp, mpf, cos, sin, sqrt, atan2, diff
 mp.dps = 50
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "tests", "data", "rolling.json")
+
+
+def out_path():
+    """OUT, or the same path under `--out-root DIR` (tools/outroot.py)."""
+    import sys
+    import outroot
+    root, _ = outroot.split(sys.argv[1:])
+    return outroot.path(root, "tests", "data", "rolling.json")
+
+
 MM = mpf(1) / 1000
 G = (mpf(0), mpf("-9.81"))
 
@@ -122,6 +132,7 @@ CONFIGS = [
 
 
 def main():
+    out = out_path()
     doc = {
         "about": "tools/rolling_reference.py: the crank-rod-wheels of tests/rolling.rs by the energy method, mpmath 50 digits",
         "configs": [config(*c) for c in CONFIGS],
@@ -133,9 +144,9 @@ def main():
         POSES["line"] = circle_pose(d, inside)
         doc[key] = [config(*c) for c in CONFIGS]
     POSES["line"] = None
-    with open(OUT, "w") as f:
+    with open(out, "w") as f:
         json.dump(doc, f, indent=1)
-    print("wrote", OUT)
+    print("wrote", out)
 
 
 if __name__ == "__main__":

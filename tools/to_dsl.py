@@ -7,7 +7,9 @@ round-trip exactly (Python repr of the double, always with a '.' in the
 mantissa).  Struct names are the CamelCase of the JSON names
 (public_slider_crank -> PublicSliderCrank, watt2 -> Watt2).
 
-Usage: python3 tools/to_dsl.py [OUT.rs]
+Usage: python3 tools/to_dsl.py [--out-root DIR] [OUT.rs]
+  --out-root DIR  read DIR/tests/data/*.mechanism.json and write DIR/tests/common/mechanisms.rs
+                  (tools/outroot.py); OUT.rs, when given, is the file written
 """
 
 import json
@@ -128,7 +130,10 @@ def to_dsl(spec):
 
 
 def main(argv):
-    out_path = argv[0] if argv else OUT
+    import outroot
+    root, argv = outroot.split(argv)
+    DATA = os.path.join(root, "tests", "data")
+    out_path = argv[0] if argv else os.path.join(root, "tests", "common", "mechanisms.rs")
     names = [n for n in ORDER if os.path.exists(os.path.join(DATA, n + ".mechanism.json"))]
     extra = sorted(f[:-len(".mechanism.json")] for f in os.listdir(DATA)
                    if f.endswith(".mechanism.json") and f[:-len(".mechanism.json")] not in ORDER)
