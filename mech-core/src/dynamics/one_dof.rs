@@ -53,7 +53,8 @@ pub fn kinetic_energy<M: Machine>(machine: &M, motion: &M::Motion) -> f64 {
 }
 
 /// Total mechanical energy T + V at (q, q̇), J: V = Σ −m_j g·r_Gj (gravity only; the
-/// loads have no potential). `q`, `qd` have length G.
+/// loads have no potential). `q`, `qd` have length G. `InvalidInput` when T or V
+/// overflows f64 (a finite speed too large for this mechanism).
 pub fn total_energy<M: Machine>(machine: &M, q: &[f64], qd: &[f64]) -> Result<f64, MechError> {
     if q.len() != machine.dof() || qd.len() != machine.dof() {
         return Err(MechError::InvalidInput(format!(
@@ -63,7 +64,13 @@ pub fn total_energy<M: Machine>(machine: &M, q: &[f64], qd: &[f64]) -> Result<f6
     }
     // The accelerations do not enter T or V: q̇ serves as any finite q̈ of the right length.
     let motion = machine.motion(q, qd, qd)?;
-    Ok(kinetic_energy(machine, &motion) + machine.potential_energy(&motion))
+    let (t, v) = (
+        kinetic_energy(machine, &motion),
+        machine.potential_energy(&motion),
+    );
+    // Finite speeds can still square past f64 (m v² of a link at 1e160 m/s).
+    crate::kernel::finite::finite_result("kinetic and potential energy", &[t, v, t + v])?;
+    Ok(t + v)
 }
 
 /// Quinn's energy-contribution coefficients (`docs/theory.md` §6.5) at position q:
