@@ -272,7 +272,10 @@ fn loading_many_mechanisms_keeps_memory_flat() {
     }
     fn resident_kb() -> usize {
         let s = std::fs::read_to_string("/proc/self/statm").expect("/proc/self/statm");
-        let pages = s.split_whitespace().nth(1).and_then(|v| v.parse::<usize>().ok());
+        let pages = s
+            .split_whitespace()
+            .nth(1)
+            .and_then(|v| v.parse::<usize>().ok());
         pages.expect("resident pages in /proc/self/statm") * 4
     }
     let text = mechanism_text("SliderCrank");
@@ -355,7 +358,11 @@ fn a_spring_of_zero_length_is_named_not_called_an_overflow() {
         "k1: spring(ground at C, crank at A) stiffness 2 kN_per_m free_length 80 mm,",
     ] {
         let text = crank_with(element);
-        let kind = if element.contains("damper") { "damper" } else { "spring" };
+        let kind = if element.contains("damper") {
+            "damper"
+        } else {
+            "spring"
+        };
         let named = |r: Result<f64, MechError>, what: &str| match r {
             Err(MechError::InvalidInput(m)) => assert!(
                 m.contains(&format!("{kind} `k1`")) && m.contains("same place"),
@@ -368,7 +375,10 @@ fn a_spring_of_zero_length_is_named_not_called_an_overflow() {
         assert!(l.set_by_name("t", &[1.0]));
         for qd in [0.0, 2.0] {
             let mo = m.kinematics(&[0.0], &[qd], &[0.0]).unwrap();
-            named(m.kinetostatics(&mo, &l).map(|f| f.driver[0]), "kinetostatics");
+            named(
+                m.kinetostatics(&mo, &l).map(|f| f.driver[0]),
+                "kinetostatics",
+            );
             named(m.driver_action(&mo, &l).map(|d| d[0]), "driver_action");
         }
         named(m.reduced_moment(0.0, &l), "reduced_moment");
@@ -378,8 +388,14 @@ fn a_spring_of_zero_length_is_named_not_called_an_overflow() {
         assert!(l.set_by_name("t", &[1.0]));
         for qd in [0.0, 2.0] {
             let mo = o.kinematics(&[0.0], &[qd], &[0.0]).unwrap();
-            named(o.kinetostatics(&mo, &l).map(|f| f.driver[0]), "oracle kinetostatics");
-            named(o.driver_action(&mo, &l).map(|d| d[0]), "oracle driver_action");
+            named(
+                o.kinetostatics(&mo, &l).map(|f| f.driver[0]),
+                "oracle kinetostatics",
+            );
+            named(
+                o.driver_action(&mo, &l).map(|d| d[0]),
+                "oracle driver_action",
+            );
         }
         named(o.reduced_moment(0.0, &l), "oracle reduced_moment");
         named(o.acceleration(0.0, 1.0, 0.0, &l), "oracle acceleration");

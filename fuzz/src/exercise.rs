@@ -202,7 +202,7 @@ pub fn run(text: &str, pick: u64, dog: &Watchdog) -> (Vec<Finding>, bool) {
     refusals(&mut c, &m);
     // The direct problem and the flywheel cost tens of milliseconds, a hundred times the
     // rest: one loaded mechanism in DYNAMICS_EVERY gets them.
-    if g == 1 && (pick >> 40) % DYNAMICS_EVERY == 0 {
+    if g == 1 && (pick >> 40).checked_rem(DYNAMICS_EVERY) == Some(0) {
         dynamics(&mut c, &m);
     }
     cams(&mut c, &m);
@@ -267,7 +267,9 @@ fn lagrange<const G: usize>(c: &mut Case, m: &Mechanism, q: &[f64], qd: &[f64], 
         return;
     };
     c.solve("mass_matrix", || mass_matrix::<_, G>(m, &q));
-    c.solve("velocity_terms", || velocity_terms::<_, G>(m, &q, &qd, loads));
+    c.solve("velocity_terms", || {
+        velocity_terms::<_, G>(m, &q, &qd, loads)
+    });
     c.solve("lagrange_acceleration", || {
         lagrange_acceleration::<_, G>(m, &q, &qd, &[1e3; G], loads)
     });
@@ -303,7 +305,9 @@ fn refusals(c: &mut Case, m: &Mechanism) {
         if g == 1 {
             let l = m.loads();
             c.refuse("reduced (NaN q)", || OneDof::reduced(m, bad));
-            c.refuse("reduced_moment (NaN q)", || OneDof::reduced_moment(m, bad, &l));
+            c.refuse("reduced_moment (NaN q)", || {
+                OneDof::reduced_moment(m, bad, &l)
+            });
             c.refuse("acceleration (NaN q)", || {
                 OneDof::acceleration(m, bad, 1.0, 0.0, &l)
             });
@@ -351,7 +355,15 @@ fn dynamics(c: &mut Case, m: &Mechanism) {
                 )
             });
             c.solve("simulate (RK4)", || {
-                ode::solve(&mut Rk4 { h: 1e-3 }, rhs(), 0.0, [q0, w0], t_end, None, None)
+                ode::solve(
+                    &mut Rk4 { h: 1e-3 },
+                    rhs(),
+                    0.0,
+                    [q0, w0],
+                    t_end,
+                    None,
+                    None,
+                )
             });
             if let Some(mut e) = c.attempt("energy method", || {
                 EnergyMethod::new(m, 0.0, q0, 10.0, |_| (0.0, l.clone()), 1e-8)
@@ -373,7 +385,11 @@ fn dynamics(c: &mut Case, m: &Mechanism) {
     };
     c.numbers(
         "cycle works",
-        &[cycle.net_work(), cycle.gross_work(), cycle.balancing_torque()],
+        &[
+            cycle.net_work(),
+            cycle.gross_work(),
+            cycle.balancing_torque(),
+        ],
     );
     let Some((cycle, torque)) = c.call("balance", || cycle.balanced()) else {
         return;
@@ -383,7 +399,9 @@ fn dynamics(c: &mut Case, m: &Mechanism) {
     c.solve("cycle sample", || cycle.sample(8));
     c.solve("fluctuation", || cycle.fluctuation());
     if let Some(fw) = c.solve("flywheel", || cycle.flywheel(10.0, 0.05)) {
-        c.solve("flywheel simulate", || cycle.simulate(&fw.exact.state, 1e-8));
+        c.solve("flywheel simulate", || {
+            cycle.simulate(&fw.exact.state, 1e-8)
+        });
         c.solve("speed", || cycle.speed(&fw.exact.state, 1.0));
     }
     c.solve("steady_state", || cycle.steady_state(10.0, 1.0));
@@ -391,7 +409,9 @@ fn dynamics(c: &mut Case, m: &Mechanism) {
         cycle.speed_fluctuation(1e200, 1.0)
     });
     c.solve("flywheel (hostile speed)", || cycle.flywheel(1e200, 0.05));
-    c.solve("flywheel (hostile irregularity)", || cycle.flywheel(10.0, 1e-300));
+    c.solve("flywheel (hostile irregularity)", || {
+        cycle.flywheel(10.0, 1e-300)
+    });
     c.refuse("flywheel (NaN speed)", || cycle.flywheel(f64::NAN, 0.05));
     c.refuse("steady_state (NaN flywheel)", || {
         cycle.steady_state(10.0, f64::NAN)
@@ -463,7 +483,9 @@ fn equivalent_masses(c: &mut Case, m: &Mechanism) {
             eq::bar_two_masses_complete(mass, i_g, r(*a))
         });
         let pts = [model.points[*a].pos, model.points[*b].pos, link.cg];
-        c.solve("planar_four_masses", || eq::planar_four_masses(mass, i_g, pts));
+        c.solve("planar_four_masses", || {
+            eq::planar_four_masses(mass, i_g, pts)
+        });
     }
 }
 
@@ -473,7 +495,12 @@ fn equivalent_masses(c: &mut Case, m: &Mechanism) {
 fn parameter(c: &mut Case, m: &Mechanism, pick: u64) {
     let model = m.model();
     let mut paths: Vec<(String, usize)> = vec![("gravity".into(), 2)];
-    paths.extend(model.points.iter().map(|p| (format!("points.{}", p.name), 2)));
+    paths.extend(
+        model
+            .points
+            .iter()
+            .map(|p| (format!("points.{}", p.name), 2)),
+    );
     for l in model.links.iter().skip(1) {
         paths.push((format!("links.{}.cg", l.name), 2));
         for what in ["mass", "inertia", "flywheel"] {

@@ -138,7 +138,11 @@ fn replay(file: &str, dense: bool) -> i32 {
     let mut found = 0;
     // Every parameter path (up to 64) with every value; the costly dynamics once (they
     // run when pick's bits 40 and up are 0 modulo DYNAMICS_EVERY).
-    let picks = if dense { 1 } else { 64 * exercise::PARAMS.len() as u64 };
+    let picks = if dense {
+        1
+    } else {
+        64 * exercise::PARAMS.len() as u64
+    };
     for k in 0..picks {
         let pick = (k % 64) | (k / 64) << 16 | u64::from(k > 0) << 40;
         let (findings, ok) = if dense {

@@ -74,7 +74,9 @@ pub fn run(text: &str, dog: &Watchdog) -> (Vec<Finding>, bool) {
         if g == 1 {
             c.solve("oracle reduced", || m.reduced(q[0]));
             c.solve("oracle reduced_moment", || m.reduced_moment(q[0], &l));
-            c.solve("oracle acceleration", || m.acceleration(q[0], qd[0], 1e3, &l));
+            c.solve("oracle acceleration", || {
+                m.acceleration(q[0], qd[0], 1e3, &l)
+            });
         }
     }
     c.at.clear();

@@ -114,7 +114,7 @@ impl Watchdog {
             .iter()
             .map(|(k, (d, n))| (*k, *d, *n))
             .collect();
-        v.sort_by(|a, b| b.1.cmp(&a.1));
+        v.sort_by_key(|e| std::cmp::Reverse(e.1));
         v
     }
 }

@@ -282,7 +282,11 @@ fn finite_result(quantity: &str, values: &[f64]) -> Result<(), MechError> {
     if all_finite(values) {
         return Ok(());
     }
-    let v = values.iter().find(|v| !v.is_finite()).copied().unwrap_or(f64::NAN);
+    let v = values
+        .iter()
+        .find(|v| !v.is_finite())
+        .copied()
+        .unwrap_or(f64::NAN);
     Err(MechError::InvalidInput(format!(
         "the {quantity} overflow ({v}): the inputs, loads or driver are too large for f64 with this mechanism; reduce them"
     )))
@@ -853,15 +857,19 @@ impl GenericMechanism {
         let numbers: Vec<f64> = (s.iter().skip(1))
             .flat_map(|st| {
                 [
-                    st.pos.x, st.pos.y, st.rot.x, st.rot.y, st.vel.x, st.vel.y, st.omega,
-                    st.acc.x, st.acc.y, st.alpha,
+                    st.pos.x, st.pos.y, st.rot.x, st.rot.y, st.vel.x, st.vel.y, st.omega, st.acc.x,
+                    st.acc.y, st.alpha,
                 ]
             })
             .collect();
         let n = if upto == Level::Acceleration { 10 } else { 7 };
         finite_result(
             "link velocities or accelerations",
-            &numbers.chunks(10).flat_map(|c| &c[..n]).copied().collect::<Vec<_>>(),
+            &numbers
+                .chunks(10)
+                .flat_map(|c| &c[..n])
+                .copied()
+                .collect::<Vec<_>>(),
         )?;
         Ok((s, sys.condition))
     }
@@ -939,9 +947,11 @@ impl GenericMechanism {
                     l.cg_acc.y,
                 ]
             })
-            .chain(points.iter().flat_map(|p| {
-                [p.pos.x, p.pos.y, p.vel.x, p.vel.y, p.acc.x, p.acc.y]
-            }))
+            .chain(
+                points
+                    .iter()
+                    .flat_map(|p| [p.pos.x, p.pos.y, p.vel.x, p.vel.y, p.acc.x, p.acc.y]),
+            )
             .collect();
         finite_result("velocities or accelerations", &numbers)?;
         Ok(GenericMotion {
@@ -1085,9 +1095,11 @@ impl GenericMechanism {
             }
         }
         let numbers: Vec<f64> = (driver.iter().copied())
-            .chain(joints.iter().flat_map(|r| {
-                [r.force.x, r.force.y, r.moment.unwrap_or(0.0)]
-            }))
+            .chain(
+                joints
+                    .iter()
+                    .flat_map(|r| [r.force.x, r.force.y, r.moment.unwrap_or(0.0)]),
+            )
             .collect();
         finite_result("reactions or motor actions", &numbers)
             .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;

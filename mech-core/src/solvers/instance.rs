@@ -196,7 +196,10 @@ impl Instance {
         let ends = match el.points {
             Some([p, q]) => format!(
                 "{} at {}, {} at {}",
-                model.links[el.a].name, model.points[p].name, model.links[el.b].name, model.points[q].name
+                model.links[el.a].name,
+                model.points[p].name,
+                model.links[el.b].name,
+                model.points[q].name
             ),
             None => String::new(),
         };

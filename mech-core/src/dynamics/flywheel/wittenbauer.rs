@@ -126,7 +126,15 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         let energy = 0.5 * c * omega_mean * omega_mean;
         finite_design(
             "Wittenbauer flywheel's inertia and energy",
-            &[inertia, c, energy, upper.f, lower.f, upper.intercept, lower.intercept],
+            &[
+                inertia,
+                c,
+                energy,
+                upper.f,
+                lower.f,
+                upper.intercept,
+                lower.intercept,
+            ],
         )?;
         let total = inertia + self.min_inertia()?;
         if !(total > 0.0) {
