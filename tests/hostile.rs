@@ -500,3 +500,23 @@ fn a_flywheel_of_extreme_speed_or_irregularity_is_finite_or_an_error() {
         );
     }
 }
+
+/// 8d. Lagrange's equations: q̈ = M⁻¹ (τ − b) of finite terms overflowed inside `Ok`
+///     (a damper of 1e308 N·m·s/rad: b = c q̇ = 1e308, over a mass matrix of 0.0125
+///     kg·m², gave q̈ = −inf). An error naming q̈ now; the mass matrix likewise.
+#[test]
+fn a_lagrange_acceleration_that_overflows_is_an_error() {
+    let m = Mechanism::from_dsl(&crank_with(
+        "k1: rotary_damper(ground, crank) damping 1e308 N_m_s_per_rad,",
+    ))
+    .unwrap();
+    let l = m.loads();
+    let b = mech::dynamics::velocity_terms::<_, 1>(&m, &[0.3], &[1.0], &l).unwrap();
+    assert!(b[0].is_finite() && b[0] > 1e307, "{b:?}");
+    invalid(
+        mech::dynamics::lagrange_acceleration::<_, 1>(&m, &[0.3], &[1.0], &[0.0], &l),
+        "accelerations q̈",
+    );
+    let a = mech::dynamics::lagrange_acceleration::<_, 1>(&m, &[0.3], &[1e-300], &[0.0], &l);
+    assert!(a.unwrap()[0].is_finite());
+}

@@ -554,6 +554,8 @@ pub fn mass_matrix<M: Machine, const G: usize>(
             m[i][k] = col[i] - base[i];
         }
     }
+    // Two finite motor actions can differ by more than f64 holds.
+    crate::kernel::finite::finite_result("mass matrix", m.as_flattened())?;
     Ok(m)
 }
 
@@ -590,7 +592,10 @@ pub fn lagrange_acceleration<M: Machine, const G: usize>(
     match mm.cholesky() {
         Some(c) => {
             let x = c.solve(&rhs);
-            Ok(core::array::from_fn(|i| x[i]))
+            let qdd = core::array::from_fn(|i| x[i]);
+            // τ − b of finite terms, divided by a small M, can overflow.
+            crate::kernel::finite::finite_result("accelerations q̈ (M⁻¹ (τ − b))", &qdd)?;
+            Ok(qdd)
         }
         None => Err(MechError::NonPositiveInertia(
             (0..G).map(|i| m[i][i]).fold(f64::INFINITY, f64::min),
