@@ -161,7 +161,21 @@ fn replay(file: &str, dense: bool) -> i32 {
             found += 1;
         }
     }
+    if std::env::args().any(|a| a == "--profile") {
+        print_spent(&dog.spent());
+    }
     i32::from(found > 0)
+}
+
+/// The time spent per kind of call, the costliest first (`--profile`).
+fn print_spent(spent: &[(&'static str, std::time::Duration, u64)]) {
+    for (what, t, n) in spent {
+        println!(
+            "{what:<36} {:>9.3} s {n:>10} calls {:>10.1} µs/call",
+            t.as_secs_f64(),
+            t.as_secs_f64() * 1e6 / *n as f64
+        );
+    }
 }
 
 /// Panics inside the solvers are findings (caught and written out): keep them quiet.
@@ -197,13 +211,7 @@ fn main() {
         s.slow
     );
     if std::env::args().any(|a| a == "--profile") {
-        for (what, t, n) in &s.spent {
-            println!(
-                "{what:<36} {:>9.3} s {n:>10} calls {:>10.1} µs/call",
-                t.as_secs_f64(),
-                t.as_secs_f64() * 1e6 / *n as f64
-            );
-        }
+        print_spent(&s.spent);
     }
     if s.bad > 0 || s.slow > 0 {
         std::process::exit(1);
