@@ -821,3 +821,54 @@ fn a_plateau_of_the_cycle_is_not_searched_panel_by_panel() {
         assert!((s.speeds.omega_mean - 10.0).abs() < 1e-9, "{file}: {s:?}");
     }
 }
+
+/// A slider-crank whose crank and rod are both 64 m long, run through its near-toggle: M*
+/// there is the rounding noise of an ill-conditioned configuration, far above the cycle's
+/// quadrature tolerance (1e-13), and the adaptive quadrature of a panel bisected it into a
+/// tree 2^48 intervals deep (`mech-fuzz`: `Cycle::new` still running after 20 s). The
+/// quadrature now ends after its budget of intervals with an error naming where.
+#[test]
+fn a_cycle_through_a_noisy_toggle_ends_in_an_error_not_a_hang() {
+    let m = mech::Mechanism::from_dsl(
+        "pub struct SliderCrank {
+            gravity: (0.0, -9.81),
+            ground { O2: (0.0, 0.0) },
+            link crank {
+                points { O2, A: (0.042132444371543794, -63.96464668146724) },
+                mass: 1.1, inertia: 0.00135, cg: (0.0061767322404058704, 0.009751819257468356),
+            },
+            link rod {
+                points { A, B: (0.23103914733547787, 0.015) },
+                mass: 0.85, inertia: 0.0032, cg: (0.1081811584228632, 0.032260201631147026),
+            },
+            link piston { points { B }, mass: 0.62, inertia: 0.00036, cg: (0.22703914733547786, 0.0125) },
+            joints {
+                O2: revolute(ground, crank),
+                A: revolute(crank, rod),
+                B: revolute(rod, piston),
+                guide: prismatic(ground, piston) at B along (1.0, 0.0),
+            },
+            input: O2,
+            loads { gas: force on piston at B, shaft: torque on crank },
+        }",
+    )
+    .unwrap();
+    let mut loads = m.loads();
+    assert!(loads.set_by_name("gas", &[1e3, -2e3]) && loads.set_by_name("shaft", &[1e3]));
+    let start = std::time::Instant::now();
+    match Cycle::of(&m, std::f64::consts::TAU, |_| Ok(loads.clone())) {
+        Err(MechError::InvalidInput(e)) => {
+            assert!(e.contains("did not reach its tolerance"), "{e}")
+        }
+        Err(e) => panic!("expected the quadrature's error, got {e}"),
+        Ok(c) => panic!(
+            "expected the quadrature's error, got a cycle of net work {}",
+            c.net_work()
+        ),
+    }
+    assert!(
+        start.elapsed().as_secs_f64() < 10.0,
+        "{:?}",
+        start.elapsed()
+    );
+}
