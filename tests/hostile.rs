@@ -272,7 +272,10 @@ fn loading_many_mechanisms_keeps_memory_flat() {
     }
     fn resident_kb() -> usize {
         let s = std::fs::read_to_string("/proc/self/statm").expect("/proc/self/statm");
-        let pages = s.split_whitespace().nth(1).and_then(|v| v.parse::<usize>().ok());
+        let pages = s
+            .split_whitespace()
+            .nth(1)
+            .and_then(|v| v.parse::<usize>().ok());
         pages.expect("resident pages in /proc/self/statm") * 4
     }
     let text = mechanism_text("SliderCrank");
@@ -317,4 +320,203 @@ fn point_accelerations_that_overflow_are_an_error() {
     // At a speed where every point is finite, the same call is Ok.
     let k = m.kinematics(&[0.0], &[1e150], &[0.0]).unwrap();
     assert!(k.point("B").unwrap().acc.x.is_finite());
+}
+
+/// A one-crank mechanism with gravity, a torque load and the force element `element`
+/// (its ends the ground's `C` and the crank's `A` or `O`).
+fn crank_with(element: &str) -> String {
+    format!(
+        "pub struct Sprung {{
+            gravity: (0.0, -9.81),
+            ground {{ O: (0.0, 0.0), C: (0.1, 0.0) }},
+            link crank {{ points {{ O, A: (0.1, 0.0) }}, mass: 1.0, inertia: 0.01, cg: (0.05, 0.01) }},
+            joints {{ O: revolute(ground, crank) }},
+            input: O,
+            loads {{ t: torque on crank }},
+            elements {{ {element} }},
+        }}"
+    )
+}
+
+/// 8. What the fuzzer of the run-time path found (issue 28, `mech-fuzz`), each an `Ok`
+///    holding a non-finite number before, or an error naming the wrong cause.
+///
+///    A linear spring or damper whose ends are at the same place has no direction: its
+///    force is undefined there. The run-time solvers reported it as an overflow ("the
+///    inputs are too large for f64"); the dense oracle returned `Ok(NaN)` from
+///    `reduced_moment`, `kinetostatics` and `driver_action` (589 of the 673 non-finite
+///    results of a minute of outside fuzzing). Both now name the element, where its ends
+///    are and the fix; a spring of zero free length and no damper, whose force k (Q − P)
+///    vanishes there, is accepted and adds nothing.
+#[test]
+fn a_spring_of_zero_length_is_named_not_called_an_overflow() {
+    for element in [
+        // Ends on the same point of the pin: zero length in every configuration.
+        "k1: spring(ground at O, crank at O) stiffness 2 kN_per_m free_length 80 mm,",
+        "k1: damper(ground at O, crank at O) damping 5 N_s_per_m,",
+        // Ends that meet in the drawing, q = 0.
+        "k1: spring(ground at C, crank at A) stiffness 2 kN_per_m free_length 80 mm,",
+    ] {
+        let text = crank_with(element);
+        let kind = if element.contains("damper") {
+            "damper"
+        } else {
+            "spring"
+        };
+        let named = |r: Result<f64, MechError>, what: &str| match r {
+            Err(MechError::InvalidInput(m)) => assert!(
+                m.contains(&format!("{kind} `k1`")) && m.contains("same place"),
+                "{element} {what}: {m}"
+            ),
+            other => panic!("{element} {what}: expected the spring named, got {other:?}"),
+        };
+        let m = Mechanism::from_dsl(&text).unwrap();
+        let mut l = m.loads();
+        assert!(l.set_by_name("t", &[1.0]));
+        for qd in [0.0, 2.0] {
+            let mo = m.kinematics(&[0.0], &[qd], &[0.0]).unwrap();
+            named(
+                m.kinetostatics(&mo, &l).map(|f| f.driver[0]),
+                "kinetostatics",
+            );
+            named(m.driver_action(&mo, &l).map(|d| d[0]), "driver_action");
+        }
+        named(m.reduced_moment(0.0, &l), "reduced_moment");
+        named(m.acceleration(0.0, 1.0, 0.0, &l), "acceleration");
+        let o = GenericMechanism::parse(&text).unwrap();
+        let mut l = o.loads();
+        assert!(l.set_by_name("t", &[1.0]));
+        for qd in [0.0, 2.0] {
+            let mo = o.kinematics(&[0.0], &[qd], &[0.0]).unwrap();
+            named(
+                o.kinetostatics(&mo, &l).map(|f| f.driver[0]),
+                "oracle kinetostatics",
+            );
+            named(
+                o.driver_action(&mo, &l).map(|d| d[0]),
+                "oracle driver_action",
+            );
+        }
+        named(o.reduced_moment(0.0, &l), "oracle reduced_moment");
+        named(o.acceleration(0.0, 1.0, 0.0, &l), "oracle acceleration");
+        // Away from the coincidence every solver answers.
+        if element.contains("at C") {
+            let mo = m.kinematics(&[0.5], &[2.0], &[0.0]).unwrap();
+            assert!(m.driver_action(&mo, &m.loads()).unwrap()[0].is_finite());
+            assert!(m.reduced_moment(0.5, &m.loads()).unwrap().is_finite());
+        }
+    }
+    // A spring of zero free length and no damper: its force k (Q − P) is zero where its
+    // ends meet; every route gives the results of the crank without it.
+    let zero = Mechanism::from_dsl(&crank_with(
+        "k1: spring(ground at O, crank at O) stiffness 2 kN_per_m free_length 0 mm,",
+    ))
+    .unwrap();
+    let bare = Mechanism::from_dsl(&crank_with("")).unwrap();
+    let (mut lz, mut lb) = (zero.loads(), bare.loads());
+    assert!(lz.set_by_name("t", &[1.0]) && lb.set_by_name("t", &[1.0]));
+    for (q, qd) in [(0.0, 0.0), (0.7, 2.0)] {
+        let (mz, mb) = (
+            zero.kinematics(&[q], &[qd], &[1.0]).unwrap(),
+            bare.kinematics(&[q], &[qd], &[1.0]).unwrap(),
+        );
+        assert_eq!(
+            zero.kinetostatics(&mz, &lz).unwrap().driver,
+            bare.kinetostatics(&mb, &lb).unwrap().driver
+        );
+        assert_eq!(
+            zero.driver_action(&mz, &lz).unwrap(),
+            bare.driver_action(&mb, &lb).unwrap()
+        );
+        assert_eq!(
+            zero.reduced_moment(q, &lz).unwrap(),
+            bare.reduced_moment(q, &lb).unwrap()
+        );
+        assert_eq!(zero.potential_energy(&mz), bare.potential_energy(&mb));
+    }
+}
+
+/// 8b. The energies: a finite speed whose kinetic energy overflows f64 (I ω² with
+///     ω = 1e153 rad/s, I = 1e3 kg·m², while ω² r = 1e305 m/s² is finite) is an error
+///     naming the energy, not `Ok(inf)` from `total_energy`.
+#[test]
+fn an_energy_that_overflows_is_an_error() {
+    let m = Mechanism::from_dsl(
+        "pub struct Heavy {
+            ground { O: (0.0, 0.0) },
+            link crank { points { O, A: (0.1, 0.0) }, mass: 1.0, inertia: 1000.0, cg: (0.05, 0.0) },
+            joints { O: revolute(ground, crank) },
+            input: O,
+        }",
+    )
+    .unwrap();
+    let w = 1e153;
+    assert!(m.kinematics(&[0.3], &[w], &[0.0]).is_ok());
+    invalid(
+        mech::dynamics::total_energy(&m, &[0.3], &[w]),
+        "kinetic and potential energy overflow",
+    );
+    let e = mech::dynamics::total_energy(&m, &[0.3], &[1e150]).unwrap();
+    assert!(e.is_finite() && e > 0.0);
+}
+
+/// 8c. The flywheel of a cycle: a mean speed of 1e200 rad/s gave `Ok` with an infinite
+///     energy, an irregularity of 1e-300 `Ok` with an infinite inertia (a − b =
+///     (1 + ε/2)² − (1 − ε/2)² rounded to 0). The difference is now 2ε exactly (it lost
+///     the digits of any small ε: a relative error of 1e-6 at ε = 1e-10), and a result
+///     that still overflows is an error naming it.
+#[test]
+fn a_flywheel_of_extreme_speed_or_irregularity_is_finite_or_an_error() {
+    use mech::flywheel::Cycle;
+    // A crank with its cg off the pin under gravity: M*(q) = −m g r cos q, I* = I_O.
+    let m = Mechanism::from_dsl(
+        "pub struct Pendulum {
+            gravity: (0.0, -9.81),
+            ground { O: (0.0, 0.0) },
+            link crank { points { O, A: (0.1, 0.0) }, mass: 2.0, inertia: 0.01, cg: (0.05, 0.0) },
+            joints { O: revolute(ground, crank) },
+            input: O,
+        }",
+    )
+    .unwrap();
+    let cycle = Cycle::of(&m, std::f64::consts::TAU, |_| Ok(m.loads())).unwrap();
+    invalid(
+        cycle.flywheel(1e200, 0.05).map(|_| ()),
+        "flywheel's inertia and energy overflow",
+    );
+    // I* is constant (I_O = I_G + m r² = 0.015 kg·m²), so Wittenbauer's inertia is the
+    // approximate one less I*, to the digits of the extremes.
+    let i_o = 0.01 + 2.0 * 0.05 * 0.05;
+    for eps in [0.05, 1e-10, 1e-300] {
+        let fw = cycle.flywheel(10.0, eps).unwrap();
+        let (exact, approx) = (fw.exact.inertia, fw.approximate.inertia);
+        assert!(
+            exact.is_finite() && fw.exact.state.energy.is_finite() && fw.exact.c.is_finite(),
+            "ε = {eps}: {fw:?}"
+        );
+        assert!(
+            (exact - (approx - i_o)).abs() <= 1e-9 * approx,
+            "ε = {eps}: exact {exact}, approximate {approx} − I* {i_o}"
+        );
+    }
+}
+
+/// 8d. Lagrange's equations: q̈ = M⁻¹ (τ − b) of finite terms overflowed inside `Ok`
+///     (a damper of 1e308 N·m·s/rad: b = c q̇ = 1e308, over a mass matrix of 0.0125
+///     kg·m², gave q̈ = −inf). An error naming q̈ now; the mass matrix likewise.
+#[test]
+fn a_lagrange_acceleration_that_overflows_is_an_error() {
+    let m = Mechanism::from_dsl(&crank_with(
+        "k1: rotary_damper(ground, crank) damping 1e308 N_m_s_per_rad,",
+    ))
+    .unwrap();
+    let l = m.loads();
+    let b = mech::dynamics::velocity_terms::<_, 1>(&m, &[0.3], &[1.0], &l).unwrap();
+    assert!(b[0].is_finite() && b[0] > 1e307, "{b:?}");
+    invalid(
+        mech::dynamics::lagrange_acceleration::<_, 1>(&m, &[0.3], &[1.0], &[0.0], &l),
+        "accelerations q̈",
+    );
+    let a = mech::dynamics::lagrange_acceleration::<_, 1>(&m, &[0.3], &[1e-300], &[0.0], &l);
+    assert!(a.unwrap()[0].is_finite());
 }

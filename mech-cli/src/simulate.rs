@@ -8,7 +8,7 @@ use crate::loads::{LoadSet, Table};
 use crate::output::{Format, Writer};
 use crate::{limits, quantity, source, Failure};
 use mech_core::dynamics::equation_of_motion;
-use mech_core::dynamics::ode::{self, Dense, Dop853, DormandPrince, Method, Rk4};
+use mech_core::dynamics::ode::{self, Dense, Dop853, DormandPrince, Method, Rk4, Tolerance};
 use mech_core::model::units::Dim;
 use mech_core::Mechanism;
 use std::cell::Cell;
@@ -58,6 +58,10 @@ pub struct SimulateArgs {
     /// Step of RK4, s.
     #[arg(long, default_value_t = 1e-4, allow_hyphen_values = true, value_parser = limits::positive)]
     pub step: f64,
+    /// The most steps an adaptive integrator may take (accepted and rejected): past it
+    /// the run stops with an error (a stiff or runaway machine).
+    #[arg(long = "max-steps", default_value_t = ode::DEFAULT_MAX_STEPS)]
+    pub max_steps: usize,
     /// Output rows: the state at this many even intervals of [0, t_end] (plus t = 0), at
     /// most 10⁷.
     #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = limits::samples)]
@@ -224,18 +228,14 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
     };
     let names = ["t", "q", "qd", "qdd"].map(String::from);
     let mut w = Writer::new(out, args.format, &names, &unit)?;
+    let tol = Tolerance {
+        max_steps: args.max_steps,
+        ..Tolerance::new(args.rtol, args.atol)
+    };
     match args.method {
-        Integrator::Dop853 => integrate(
-            Dop853::new(args.rtol, args.atol),
-            &m,
-            &args,
-            y0,
-            &driver,
-            &loads,
-            &mut w,
-        )?,
+        Integrator::Dop853 => integrate(Dop853::with(tol), &m, &args, y0, &driver, &loads, &mut w)?,
         Integrator::Dopri5 => integrate(
-            DormandPrince::new(args.rtol, args.atol),
+            DormandPrince::with(tol),
             &m,
             &args,
             y0,

@@ -508,6 +508,21 @@ fn bad_arguments_are_usage_errors() {
             1,
             "period must be positive",
         ),
+        // The step budget of an adaptive run (issue 28: a stiff or runaway machine).
+        (
+            vec![
+                "simulate",
+                f,
+                "--speed",
+                "20",
+                "--t-end",
+                "10",
+                "--max-steps",
+                "5",
+            ],
+            1,
+            "the integration took 5 steps",
+        ),
     ] {
         let out = mech()
             .args(&args)

@@ -32,7 +32,7 @@
 
 pub use mech_core::checks::load::mechanism_text;
 use mech_core::checks::load::{parse_model, rust_source_model};
-use mech_core::error::check_finite;
+use mech_core::error::{all_finite, check_finite};
 use mech_core::kernel::constraints::{
     eval, row_scale, scaled_rows, Con, ConEval, ConKind, Drive, Level,
 };
@@ -272,6 +272,24 @@ pub struct GenericMechanism {
     q_ref: Vec<f64>,
     tol: f64,
     max_error: f64,
+}
+
+/// `Ok` when every value of `quantity` is finite; else `InvalidInput` naming it: the
+/// inputs (speeds, loads, the driver) are too large for f64 with this mechanism (the
+/// run-time solvers' overflow error). A result derived from finite inputs may still be
+/// infinite (ω² r past f64's range) or NaN (∞ − ∞, a spring of zero length).
+fn finite_result(quantity: &str, values: &[f64]) -> Result<(), MechError> {
+    if all_finite(values) {
+        return Ok(());
+    }
+    let v = values
+        .iter()
+        .find(|v| !v.is_finite())
+        .copied()
+        .unwrap_or(f64::NAN);
+    Err(MechError::InvalidInput(format!(
+        "the {quantity} overflow ({v}): the inputs, loads or driver are too large for f64 with this mechanism; reduce them"
+    )))
 }
 
 /// `value` if finite and > 0, else [`MechError::InvalidInput`] naming it.
@@ -836,6 +854,23 @@ impl GenericMechanism {
             let x = self.solve(&sys, &self.rhs(&s, (q, qd, qdd), Level::Acceleration))?;
             Self::store(&mut s, &x, Level::Acceleration);
         }
+        let numbers: Vec<f64> = (s.iter().skip(1))
+            .flat_map(|st| {
+                [
+                    st.pos.x, st.pos.y, st.rot.x, st.rot.y, st.vel.x, st.vel.y, st.omega, st.acc.x,
+                    st.acc.y, st.alpha,
+                ]
+            })
+            .collect();
+        let n = if upto == Level::Acceleration { 10 } else { 7 };
+        finite_result(
+            "link velocities or accelerations",
+            &numbers
+                .chunks(10)
+                .flat_map(|c| &c[..n])
+                .copied()
+                .collect::<Vec<_>>(),
+        )?;
         Ok((s, sys.condition))
     }
 
@@ -856,7 +891,7 @@ impl GenericMechanism {
                 condition: sys.condition,
             });
         }
-        Ok(GenericPose {
+        let pose = GenericPose {
             links: self
                 .inst
                 .links
@@ -872,7 +907,13 @@ impl GenericMechanism {
                 .collect(),
             condition: sys.condition,
             model: self.model.clone(),
-        })
+        };
+        let numbers: Vec<f64> = (pose.links.iter())
+            .flat_map(|l| [l.angle, l.cg.x, l.cg.y])
+            .chain(pose.points.iter().flat_map(|p| [p.pos.x, p.pos.y]))
+            .collect();
+        finite_result("positions", &numbers)?;
+        Ok(pose)
     }
 
     /// Position, velocity and acceleration analysis at (q, q̇, q̈): J ẋ = −Φ̇ and
@@ -885,20 +926,37 @@ impl GenericMechanism {
         qdd: &[f64],
     ) -> Result<GenericMotion, MechError> {
         let (s, condition) = self.solve_states(q, qd, qdd, Level::Acceleration)?;
+        let links: Vec<LinkMotion> = self
+            .inst
+            .links
+            .iter()
+            .zip(&s)
+            .map(|(l, st)| l.motion(st))
+            .collect();
+        let points: Vec<PointMotion> = self
+            .inst
+            .points
+            .iter()
+            .map(|&(o, d)| point_motion(&s, o, d))
+            .collect();
+        // The points and cgs derived from finite states can still overflow (ω² r).
+        let numbers: Vec<f64> = (links.iter())
+            .flat_map(|l| {
+                [
+                    l.angle, l.omega, l.alpha, l.cg.x, l.cg.y, l.cg_vel.x, l.cg_vel.y, l.cg_acc.x,
+                    l.cg_acc.y,
+                ]
+            })
+            .chain(
+                points
+                    .iter()
+                    .flat_map(|p| [p.pos.x, p.pos.y, p.vel.x, p.vel.y, p.acc.x, p.acc.y]),
+            )
+            .collect();
+        finite_result("velocities or accelerations", &numbers)?;
         Ok(GenericMotion {
-            links: self
-                .inst
-                .links
-                .iter()
-                .zip(&s)
-                .map(|(l, st)| l.motion(st))
-                .collect(),
-            points: self
-                .inst
-                .points
-                .iter()
-                .map(|&(o, d)| point_motion(&s, o, d))
-                .collect(),
+            links,
+            points,
             q: q.to_vec(),
             qd: qd.to_vec(),
             qdd: qdd.to_vec(),
@@ -962,6 +1020,11 @@ impl GenericMechanism {
                 }
             }
         }
+        // Before a dense solve meets them: a NaN there is a spring of zero length (or an
+        // overflow), not a singular system.
+        let numbers: Vec<f64> = f.iter().flat_map(|w| [w.x, w.y, w.z]).collect();
+        finite_result("applied and inertia forces", &numbers)
+            .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         Ok(f)
     }
 
@@ -1031,6 +1094,15 @@ impl GenericMechanism {
                 ConKind::Mesh | ConKind::Rolling => {} // One row of a revolute (never produced by `all_cons`; kept total).
             }
         }
+        let numbers: Vec<f64> = (driver.iter().copied())
+            .chain(
+                joints
+                    .iter()
+                    .flat_map(|r| [r.force.x, r.force.y, r.moment.unwrap_or(0.0)]),
+            )
+            .collect();
+        finite_result("reactions or motor actions", &numbers)
+            .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         Ok(GenericForces {
             driver,
             joints,
@@ -1067,6 +1139,8 @@ impl GenericMechanism {
             Self::store(&mut v, &x, Level::Velocity);
             out.push(-virtual_power(&f, &v));
         }
+        finite_result("motor actions", &out)
+            .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         Ok(out)
     }
 
@@ -1087,7 +1161,9 @@ impl GenericMechanism {
     pub fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
         self.one_dof()?;
         let (s, _) = self.solve_states(&[q], &[1.0], &[0.0], Level::Acceleration)?;
-        Ok(zhukovski::reduced(&self.inst.links, &s))
+        let r = zhukovski::reduced(&self.inst.links, &s);
+        finite_result("reduced inertia", &[r.inertia, r.inertia_derivative])?;
+        Ok(r)
     }
 
     /// Zhukovski's reduced moment of a one-DOF mechanism at q (N·m, N for a prismatic
@@ -1096,7 +1172,10 @@ impl GenericMechanism {
         self.one_dof()?;
         let (s, _) = self.solve_states(&[q], &[1.0], &[0.0], Level::Velocity)?;
         let f = self.wrenches(&s, loads, false)?;
-        Ok(virtual_power(&f, &s))
+        let moment = virtual_power(&f, &s);
+        finite_result("reduced moment", &[moment])
+            .map_err(|e| self.inst.blame_elements(&self.model, &s, e))?;
+        Ok(moment)
     }
 
     /// The direct problem of a one-DOF mechanism: q̈ from I* q̈ + ½ dI*/dq q̇² = driver + M*
@@ -1118,6 +1197,7 @@ impl GenericMechanism {
             qd,
             driver,
         )
+        .map_err(|e| self.inst.blame_elements(&self.model, &s, e))
     }
 }
 

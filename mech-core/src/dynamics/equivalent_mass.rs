@@ -47,11 +47,13 @@ pub fn bar_three_masses(m: f64, i_g: f64, r_a: f64, r_b: f64) -> Result<BarMasse
     let (m, i_g) = (non_negative("mass", m)?, non_negative("inertia", i_g)?);
     let (r_a, r_b) = (positive("r_A", r_a)?, positive("r_B", r_b)?);
     let l = r_a + r_b;
-    Ok(BarMasses {
+    let out = BarMasses {
         at_a: i_g / (r_a * l),
         at_b: i_g / (r_b * l),
         at_g: m - i_g / (r_a * r_b),
-    })
+    };
+    finite_masses(&[out.at_a, out.at_b, out.at_g])?;
+    Ok(out)
 }
 
 /// Static equivalence of a bar by two masses at its ends: m_A = m r_B / l, m_B = m r_A / l.
@@ -59,7 +61,9 @@ pub fn bar_two_masses_static(m: f64, r_a: f64, r_b: f64) -> Result<(f64, f64), M
     let m = non_negative("mass", m)?;
     let (r_a, r_b) = (positive("r_A", r_a)?, positive("r_B", r_b)?);
     let l = r_a + r_b;
-    Ok((m * r_b / l, m * r_a / l))
+    let out = (m * r_b / l, m * r_a / l);
+    finite_masses(&[out.0, out.1])?;
+    Ok(out)
 }
 
 /// Complete equivalence of a bar by two masses: one at distance `r_a` from G, the other
@@ -72,7 +76,9 @@ pub fn bar_two_masses_complete(m: f64, i_g: f64, r_a: f64) -> Result<(f64, f64, 
         positive("r_A", r_a)?,
     );
     let r_b = i_g / (m * r_a);
-    Ok((m * r_b / (r_a + r_b), m * r_a / (r_a + r_b), r_b))
+    let out = (m * r_b / (r_a + r_b), m * r_a / (r_a + r_b), r_b);
+    finite_masses(&[out.0, out.1, out.2])?;
+    Ok(out)
 }
 
 /// A planar link of mass `m` and inertia `i_g` about G by four masses: three at the
@@ -89,7 +95,9 @@ pub fn planar_four_masses(m: f64, i_g: f64, points: [[f64; 2]; 3]) -> Result<[f6
     });
     let b = SVector::<f64, 3>::new(0.0, 0.0, i_g);
     let x = solve(a, b)?;
-    Ok([x[0], x[1], x[2], m - x.sum()])
+    let out = [x[0], x[1], x[2], m - x.sum()];
+    finite_masses(&out)?;
+    Ok(out)
 }
 
 /// The inertia of a spatial rigid body about its centre of gravity: moments
@@ -148,7 +156,20 @@ pub fn spatial_ten_masses(
     });
     let b = SVector::<f64, 10>::from([m, 0.0, 0.0, 0.0, ix, iy, iz, cx, cy, cz]);
     let x = solve(a, b)?;
+    finite_masses(x.as_slice())?;
     Ok(x.into())
+}
+
+/// `Ok` when every mass (and distance) is finite; else `InvalidInput`: the numbers
+/// given are so far apart (an inertia of 1e15 kg·m² at 1e-300 m) that a mass overflows f64.
+fn finite_masses(values: &[f64]) -> Result<(), MechError> {
+    if crate::error::all_finite(values) {
+        Ok(())
+    } else {
+        Err(MechError::InvalidInput(format!(
+            "the equivalent masses overflow f64 ({values:?}): the mass, inertia and distances given are too far apart in magnitude; check their units"
+        )))
+    }
 }
 
 /// Solve a small square system, `Singular` (with a condition estimate) when it is.
@@ -202,6 +223,24 @@ mod tests {
         assert!(within((ca * r_a * r_a + cb * rb * rb - i_g).abs(), 1e-16));
         assert!(bar_three_masses(m, i_g, 0.0, r_b).is_err());
         assert!(bar_two_masses_complete(f64::NAN, i_g, r_a).is_err());
+    }
+
+    /// Numbers each in range but far apart in magnitude made `Ok` with an infinity or a
+    /// NaN (found by `mech-fuzz` on the links of mutated mechanisms): an error now.
+    #[test]
+    fn masses_that_overflow_are_an_error_not_an_infinity() {
+        let overflow = |r: Result<Vec<f64>, MechError>| match r {
+            Err(MechError::InvalidInput(m)) => assert!(m.contains("overflow"), "{m}"),
+            other => panic!("expected the overflow, got {other:?}"),
+        };
+        // I_G/(r_A l) = 1e15/1e-600.
+        overflow(bar_three_masses(1.0, 1e15, 1e-300, 1e-300).map(|e| vec![e.at_a, e.at_b, e.at_g]));
+        // r_B = I_G/(m r_A) = inf, then m r_B/(r_A + r_B) = inf/inf = NaN.
+        overflow(bar_two_masses_complete(1e-18, 1e15, 1e-300).map(|(a, b, r)| vec![a, b, r]));
+        overflow(bar_two_masses_static(1e308, 1e308, 1e308).map(|(a, b)| vec![a, b]));
+        // The same bars at ordinary numbers are finite.
+        assert!(bar_three_masses(1.0, 1e-3, 0.1, 0.2).is_ok());
+        assert!(bar_two_masses_complete(1.0, 1e-3, 0.1).is_ok());
     }
 
     #[test]

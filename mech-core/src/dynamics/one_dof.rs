@@ -53,7 +53,8 @@ pub fn kinetic_energy<M: Machine>(machine: &M, motion: &M::Motion) -> f64 {
 }
 
 /// Total mechanical energy T + V at (q, q̇), J: V = Σ −m_j g·r_Gj (gravity only; the
-/// loads have no potential). `q`, `qd` have length G.
+/// loads have no potential). `q`, `qd` have length G. `InvalidInput` when T or V
+/// overflows f64 (a finite speed too large for this mechanism).
 pub fn total_energy<M: Machine>(machine: &M, q: &[f64], qd: &[f64]) -> Result<f64, MechError> {
     if q.len() != machine.dof() || qd.len() != machine.dof() {
         return Err(MechError::InvalidInput(format!(
@@ -63,7 +64,13 @@ pub fn total_energy<M: Machine>(machine: &M, q: &[f64], qd: &[f64]) -> Result<f6
     }
     // The accelerations do not enter T or V: q̇ serves as any finite q̈ of the right length.
     let motion = machine.motion(q, qd, qd)?;
-    Ok(kinetic_energy(machine, &motion) + machine.potential_energy(&motion))
+    let (t, v) = (
+        kinetic_energy(machine, &motion),
+        machine.potential_energy(&motion),
+    );
+    // Finite speeds can still square past f64 (m v² of a link at 1e160 m/s).
+    crate::kernel::finite::finite_result("kinetic and potential energy", &[t, v, t + v])?;
+    Ok(t + v)
 }
 
 /// Quinn's energy-contribution coefficients (`docs/theory.md` §6.5) at position q:
@@ -132,6 +139,22 @@ const WG: [f64; 4] = [
 /// Deepest bisection of the adaptive quadratures.
 const MAX_DEPTH: u32 = 48;
 
+/// The most intervals one adaptive quadrature evaluates ([`gauss_kronrod`]; a tenth of it
+/// for one leg of [`EnergyMethod`]'s time integral, whose intervals cost 15 quadratures
+/// each). A point singularity costs two per level of
+/// [`MAX_DEPTH`]; an integrand noisy above the tolerance over a stretch (the rounding of an
+/// ill-conditioned configuration) never converges there, and its bisection tree, 2^48
+/// intervals deep, would never end.
+const MAX_INTERVALS: usize = 10_000;
+
+/// The error of an adaptive quadrature past [`MAX_INTERVALS`] on [a, b].
+#[cold]
+fn not_converged(what: &str, a: f64, b: f64, rtol: f64) -> MechError {
+    MechError::InvalidInput(format!(
+        "{what} did not reach its tolerance (rtol {rtol:e}) in {MAX_INTERVALS} intervals, the last over [{a}, {b}]: the integrand is not smooth to that tolerance there (the rounding noise of a configuration near a dead point, or a singularity); keep the machine away from its dead points or loosen the tolerance"
+    ))
+}
+
 /// The 15 abscissae of the Gauss–Kronrod rule on [a, b], in the order of [`gk15_sums`].
 fn gk15_nodes(a: f64, b: f64) -> [f64; 15] {
     let (c, hl) = (0.5 * (a + b), 0.5 * (b - a));
@@ -162,7 +185,8 @@ fn gk15_sums(a: f64, b: f64, fx: &[f64; 15]) -> (f64, f64) {
 /// when |K15 − G7| ≤ max(rtol·|K15|, atol·|interval| / |b − a|), so the result is within
 /// about max(rtol·Σ|K|, atol) (the K15 value is far more accurate than that bound for
 /// smooth f). Errors: those of f, non-finite values of f, [`MechError::StepUnderflow`]
-/// (with `t` = the abscissa) when an interval can no longer be halved.
+/// (with `t` = the abscissa) when an interval can no longer be halved, `InvalidInput`
+/// past 10 000 intervals (an integrand noisy above the tolerance).
 pub fn gauss_kronrod<F>(mut f: F, a: f64, b: f64, rtol: f64, atol: f64) -> Result<f64, MechError>
 where
     F: FnMut(f64) -> Result<f64, MechError>,
@@ -184,7 +208,12 @@ where
         rtol: f64,
         atol_per: f64,
         depth: u32,
+        budget: &mut usize,
     ) -> Result<f64, MechError> {
+        if *budget == 0 {
+            return Err(not_converged("the quadrature", a, b, rtol));
+        }
+        *budget -= 1;
         let x = gk15_nodes(a, b);
         let mut fx = [0.0; 15];
         for (v, xi) in fx.iter_mut().zip(x) {
@@ -203,9 +232,10 @@ where
         if depth >= MAX_DEPTH || m == a || m == b {
             return Err(MechError::StepUnderflow { t: m });
         }
-        Ok(rec(f, a, m, rtol, atol_per, depth + 1)? + rec(f, m, b, rtol, atol_per, depth + 1)?)
+        Ok(rec(f, a, m, rtol, atol_per, depth + 1, budget)?
+            + rec(f, m, b, rtol, atol_per, depth + 1, budget)?)
     }
-    rec(&mut f, a, b, rtol, atol / span, 0)
+    rec(&mut f, a, b, rtol, atol / span, 0, &mut { MAX_INTERVALS })
 }
 
 // ---------------------------------------------------------------------------------------
@@ -397,7 +427,8 @@ where
     }
 
     /// One interval [ua, ub] of the time integral in the variable u of `map`, whose start
-    /// q(ua) has work `w_a`: returns (Δt, W at q(ub)).
+    /// q(ua) has work `w_a`: returns (Δt, W at q(ub)). At most `budget` intervals (each
+    /// 15 quadratures of the work) are evaluated.
     fn time_leg(
         &mut self,
         map: Map,
@@ -405,7 +436,17 @@ where
         ub: f64,
         w_a: f64,
         depth: u32,
+        budget: &mut usize,
     ) -> Result<(f64, f64), MechError> {
+        if *budget == 0 {
+            return Err(not_converged(
+                "the time integral of the energy method",
+                map.q(ua),
+                map.q(ub),
+                self.rtol,
+            ));
+        }
+        *budget -= 1;
         let qa = map.q(ua);
         let scale = self.energy_scale(w_a);
         let us = gk15_nodes(ua, ub);
@@ -425,8 +466,8 @@ where
         if depth >= MAX_DEPTH || um == ua || um == ub {
             return Err(MechError::StepUnderflow { t: self.here.t });
         }
-        let (t1, w_m) = self.time_leg(map, ua, um, w_a, depth + 1)?;
-        let (t2, w_b) = self.time_leg(map, um, ub, w_m, depth + 1)?;
+        let (t1, w_m) = self.time_leg(map, ua, um, w_a, depth + 1, budget)?;
+        let (t2, w_b) = self.time_leg(map, um, ub, w_m, depth + 1, budget)?;
         Ok((t1 + t2, w_b))
     }
 
@@ -460,9 +501,16 @@ where
                 },
             );
             let (dt, w_b) = if here.omega == 0.0 {
-                self.time_leg(Map::FromRest { a, len: b - a }, 0.0, 1.0, here.work, 0)?
+                self.time_leg(
+                    Map::FromRest { a, len: b - a },
+                    0.0,
+                    1.0,
+                    here.work,
+                    0,
+                    &mut (MAX_INTERVALS / 10),
+                )?
             } else {
-                self.time_leg(Map::Linear, a, b, here.work, 0)?
+                self.time_leg(Map::Linear, a, b, here.work, 0, &mut (MAX_INTERVALS / 10))?
             };
             let inertia = self.machine.reduced(b)?.inertia;
             let omega = self.sign * speed_from_energy(self.kinetic0, w_b, inertia, b)?;
@@ -547,6 +595,8 @@ pub fn mass_matrix<M: Machine, const G: usize>(
             m[i][k] = col[i] - base[i];
         }
     }
+    // Two finite motor actions can differ by more than f64 holds.
+    crate::kernel::finite::finite_result("mass matrix", m.as_flattened())?;
     Ok(m)
 }
 
@@ -583,7 +633,10 @@ pub fn lagrange_acceleration<M: Machine, const G: usize>(
     match mm.cholesky() {
         Some(c) => {
             let x = c.solve(&rhs);
-            Ok(core::array::from_fn(|i| x[i]))
+            let qdd = core::array::from_fn(|i| x[i]);
+            // τ − b of finite terms, divided by a small M, can overflow.
+            crate::kernel::finite::finite_result("accelerations q̈ (M⁻¹ (τ − b))", &qdd)?;
+            Ok(qdd)
         }
         None => Err(MechError::NonPositiveInertia(
             (0..G).map(|i| m[i][i]).fold(f64::INFINITY, f64::min),
@@ -670,6 +723,35 @@ mod tests {
             Err(MechError::InvalidInput(_))
         ));
         assert!(gauss_kronrod(|x| Ok(1.0 / x), -1.0, 1.0, 1e-9, 0.0).is_err());
+    }
+
+    /// An integrand that converges only on intervals far below its span (sin(10⁷ x)
+    /// over [0, 1]: some 2^24 intervals) made a bisection tree of millions of intervals
+    /// (`mech-fuzz` found a flywheel cycle through a near-toggle, whose M* is rounding
+    /// noise there, still integrating after 20 s). It ends after its budget of intervals
+    /// with an error that says why; a tolerance the rule meets sooner is unaffected.
+    #[test]
+    fn a_quadrature_that_cannot_converge_ends_in_an_error_not_a_hang() {
+        let mut calls = 0usize;
+        let r = gauss_kronrod(
+            |x: f64| {
+                calls += 1;
+                Ok((1e7 * x).sin())
+            },
+            0.0,
+            1.0,
+            1e-13,
+            0.0,
+        );
+        match r {
+            Err(MechError::InvalidInput(m)) => {
+                assert!(m.contains("did not reach its tolerance"), "{m}")
+            }
+            other => panic!("expected the budget's error, got {other:?}"),
+        }
+        assert!(calls <= 15 * MAX_INTERVALS, "{calls} evaluations");
+        let v = gauss_kronrod(|x: f64| Ok((1e3 * x).sin()), 0.0, 1.0, 1e-12, 0.0).unwrap();
+        assert!((v - (1.0 - 1e3f64.cos()) / 1e3).abs() < 1e-14, "{v}");
     }
 
     #[test]

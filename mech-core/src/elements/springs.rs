@@ -59,8 +59,11 @@ pub struct Stretch {
 
 impl ElementGeom {
     /// The extension of the element in the states `s` (the ground's state, index 0, at rest
-    /// and unrotated). A linear element whose points coincide has no direction: its e and
-    /// rate are NaN, which the callers' finiteness checks report.
+    /// and unrotated). A linear element whose points coincide (L = 0) has no direction e:
+    /// a spring of zero free length and no damping pulls with T = k L = 0 there, and gets
+    /// e = 0, L̇ = 0 (its force k (Q − P) and power are zero, their limits); any other
+    /// element's force is undefined there, and its e and rate are NaN, which the callers'
+    /// finiteness checks catch and [`undirected`] names.
     #[inline(always)]
     pub fn stretch(&self, s: &[LinkState]) -> Stretch {
         let (sa, sb) = (&s[self.a], &s[self.b]);
@@ -77,7 +80,13 @@ impl ElementGeom {
         let (ra, rb) = (sa.r(self.da), sb.r(self.db));
         let d = (sb.pos + rb) - (sa.pos + ra);
         let l = d.norm();
-        let e = d / l;
+        let e = if l > 0.0 {
+            d / l
+        } else if self.pulls_at_zero_length() {
+            V2::new(f64::NAN, f64::NAN)
+        } else {
+            V2::zeros()
+        };
         Stretch {
             deflection: l - self.free,
             rate: e.dot(&(sb.vel_at(rb) - sa.vel_at(ra))),
@@ -87,11 +96,35 @@ impl ElementGeom {
         }
     }
 
+    /// True when the linear element has a force at zero length, whose direction is then
+    /// undefined: a stiffness with a free length, or a damping (a spring of zero free
+    /// length and no damping has none).
+    #[inline(always)]
+    pub fn pulls_at_zero_length(&self) -> bool {
+        (self.stiffness != 0.0 && self.free != 0.0) || self.damping != 0.0
+    }
+
     /// T = k (x − x₀) + c ẋ (N or N·m), with ẋ = `rate`.
     #[inline(always)]
     pub fn tension(&self, st: &Stretch, rate: f64) -> f64 {
         self.stiffness * st.deflection + self.damping * rate
     }
+}
+
+/// The first linear element whose points coincide in the states `s` while it has a force
+/// there ([`ElementGeom::pulls_at_zero_length`]): its index and where its points are (m).
+/// Its force has no direction, so every result it enters is NaN; the solvers look here
+/// when a result is not finite, to say so instead of reporting an overflow.
+#[cold]
+pub fn undirected(elements: &[ElementGeom], s: &[LinkState]) -> Option<(usize, V2)> {
+    elements.iter().enumerate().find_map(|(k, el)| {
+        if el.rotary || !el.pulls_at_zero_length() {
+            return None;
+        }
+        let (sa, sb) = (&s[el.a], &s[el.b]);
+        let (p, q) = (sa.pos + sa.r(el.da), sb.pos + sb.r(el.db));
+        ((q - p).norm() == 0.0).then_some((k, p))
+    })
 }
 
 /// Add every element's forces to the links' wrenches `f` (about their anchors) in the
@@ -228,6 +261,31 @@ mod tests {
             crate::kernel::kinetostatics::virtual_power(&f, &s),
             -t * ldot,
         );
+    }
+
+    /// Ends at the same place: a spring of zero free length and no damper pulls with
+    /// k (Q − P) = 0 (finite, zero on every route); one with a free length, or a damper,
+    /// has no direction there (NaN, which `undirected` names).
+    #[test]
+    fn coincident_ends() {
+        let mut b = LinkState::at(V2::new(-0.1, 0.0));
+        b.omega = 3.0;
+        let s = [LinkState::default(), b];
+        let zero = linear(2000.0, 0.0, 0.0);
+        let st = zero.stretch(&s);
+        assert_eq!((st.e, st.rate, st.deflection), (V2::zeros(), 0.0, 0.0));
+        let mut f = [Wrench::zeros(); 2];
+        add_wrenches(&[zero], &s, &mut f);
+        assert_eq!(f, [Wrench::zeros(); 2]);
+        assert_eq!(power(&[zero], &s), 0.0);
+        assert_eq!(reduced_moment(&[zero], &s, 2.0), 0.0);
+        assert_eq!(undirected(&[zero], &s), None);
+        for el in [linear(2000.0, 0.0, 0.08), linear(0.0, 5.0, 0.0)] {
+            assert!(power(&[el], &s).is_nan());
+            assert_eq!(undirected(&[zero, el], &s), Some((1, V2::zeros())));
+            // The potential ½ k (0 − L₀)² needs no direction.
+            assert!(potential(&[el], &s).is_finite());
+        }
     }
 
     /// A torsion spring turned past ±π from its free angle takes the shortest turn back.

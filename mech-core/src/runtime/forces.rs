@@ -103,7 +103,8 @@ impl Mechanism {
         for g in self.plan.iter().rev() {
             self.group_reactions(g, s, &mut f, &mut r, &mut out.driver)?;
         }
-        crate::kernel::finite::finite_reactions(&r, &out.driver)?;
+        crate::kernel::finite::finite_reactions(&r, &out.driver)
+            .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         out.joints.clear();
         out.joints
             .extend(self.model.joints.iter().zip(r).map(|(j, r)| JointReaction {
@@ -182,7 +183,10 @@ impl Mechanism {
     pub fn driver_action(&self, m: &Motion, loads: &Loads) -> Result<Vec<f64>, MechError> {
         let s = &m.states;
         if self.dof() == 1 && m.qd()[0] != 0.0 {
-            return Ok(vec![self.power(m, loads)?.driver(m.qd()[0])?]);
+            let d = self.power(m, loads)?.driver(m.qd()[0]);
+            return Ok(vec![
+                d.map_err(|e| self.inst.blame_elements(&self.model, s, e))?
+            ]);
         }
         let mut f = Scratch::new();
         self.wrenches(s, loads, true, &mut f)?;
@@ -204,7 +208,8 @@ impl Mechanism {
             }
             *o = -crate::kernel::kinetostatics::virtual_power(&f, &v);
         }
-        crate::kernel::finite::finite_result("motor actions", &out)?;
+        crate::kernel::finite::finite_result("motor actions", &out)
+            .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         Ok(out)
     }
 
@@ -310,7 +315,8 @@ impl Mechanism {
         crate::kernel::finite::finite_result(
             "reduced inertia and moment",
             &[z.reduced.inertia, z.reduced.inertia_derivative, z.moment],
-        )?;
+        )
+        .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         Ok(z)
     }
 }

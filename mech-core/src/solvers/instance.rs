@@ -179,6 +179,40 @@ impl Instance {
             .map(|&s| branch(branch_quantity(s, &self.joints, &self.drawing)))
             .collect()
     }
+
+    /// The error of a result of `model` that is not finite in the states `s`: when a
+    /// linear spring or damper has its two ends at the same place there
+    /// ([`crate::elements::springs::undirected`]), its force has no direction and is the
+    /// cause: `InvalidInput` naming it, where, its numbers and the fix; otherwise `e`
+    /// (an overflow). Called on the error path only.
+    #[cold]
+    #[inline(never)]
+    pub fn blame_elements(&self, model: &Model, s: &[LinkState], e: MechError) -> MechError {
+        let Some((k, at)) = crate::elements::springs::undirected(&self.elements, s) else {
+            return e;
+        };
+        let el = &model.elements[k];
+        let kind = el.kind.keyword();
+        let ends = match el.points {
+            Some([p, q]) => format!(
+                "{} at {}, {} at {}",
+                model.links[el.a].name,
+                model.points[p].name,
+                model.links[el.b].name,
+                model.points[q].name
+            ),
+            None => String::new(),
+        };
+        let numbers = if el.kind.spring() {
+            format!("stiffness {} N/m, free length {} m", el.stiffness, el.free)
+        } else {
+            format!("damping {} N·s/m", el.damping)
+        };
+        MechError::InvalidInput(format!(
+            "{kind} `{}` ({ends}) has its two ends at the same place, ({}, {}) m, in this configuration: a {kind} of zero length has no direction, so its force ({numbers}) is undefined there; keep its ends apart over the motion (move one of its points), or give a spring zero free length and no damper (its force k (Q − P) is then zero there)",
+            el.name, at.x, at.y
+        ))
+    }
 }
 
 /// Mass data of a link as a run-time parameter.

@@ -125,10 +125,25 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             };
             self.nodes[k].q + shift
         };
+        // The candidates: panel ends at least as high as their neighbours and within the
+        // margin of the highest, the highest first.
+        let neighbours = |k: usize| (vals[(k + m - 1) % m], vals[(k + 1) % m]);
+        let mut candidates: Vec<usize> = (0..m)
+            .filter(|&k| {
+                let (prev, next) = neighbours(k);
+                vals[k] >= prev && vals[k] >= next && vals[k] >= hi - margin
+            })
+            .collect();
+        candidates.sort_by(|&a, &b| vals[b].total_cmp(&vals[a]));
         let mut best: Option<(f64, f64)> = None;
-        for k in 0..m {
-            let (prev, next) = (vals[(k + m - 1) % m], vals[(k + 1) % m]);
-            if vals[k] < prev || vals[k] < next || vals[k] < hi - margin {
+        for k in candidates {
+            // A parabola through the three panel ends peaks at most (v_k − min(v_k−1,
+            // v_k+1))/8 above the middle one: a candidate that cannot beat the best found
+            // so far even by twice its drop is not refined (on a plateau, flat or flat up
+            // to rounding, every panel end is a candidate, and each search costs some
+            // sixty quadratures).
+            let (prev, next) = neighbours(k);
+            if best.is_some_and(|(_, b)| vals[k] + 2.0 * (vals[k] - prev.min(next)) <= b) {
                 continue;
             }
             let (x, v) = golden_max(h, q_at(k as isize - 1), q_at(k as isize + 1))?;

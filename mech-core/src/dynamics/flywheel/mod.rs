@@ -30,10 +30,12 @@
 //! Numerics: the cycle is cut into panels (at most λ/720 wide) whose ends include the
 //! caller's breakpoints (where the loads are not smooth); S at the panel ends comes from
 //! adaptive Gauss–Kronrod quadrature ([`crate::dynamics::gauss_kronrod`], relative
-//! tolerance 1e-13), and S(q) inside a panel from the same quadrature over the rest. The
-//! extremes over the cycle (tangent points, S_max, S_min, ω_max, ω_min) are bracketed on the
-//! panel ends and located by golden-section search to 1e-13 rad: the flywheel inertias are
-//! accurate to about 1e-12 relative, not read off a drawing.
+//! tolerance 1e-13; a panel that does not converge within its budget of intervals, M*
+//! noisy there near a dead point, is an error), and S(q) inside a panel from the same
+//! quadrature over the rest. The extremes over the cycle (tangent points, S_max, S_min,
+//! ω_max, ω_min) are bracketed on the panel ends and located by golden-section search to
+//! 1e-13 rad (on a plateau, only the panel ends that could beat the best found): the
+//! flywheel inertias are accurate to about 1e-12 relative, not read off a drawing.
 //!
 //! The module's files, by aspect: `cycle` (the [`Cycle`], its table of S(q), the net work
 //! and its balancing, [`CycleBuilder`]), `extremes` (samples and extremes over the cycle,

@@ -78,8 +78,10 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     ) -> Result<Approximate, MechError> {
         check_design(omega_mean, irregularity)?;
         let f = self.fluctuation()?;
+        let inertia = f.energy / (irregularity * omega_mean * omega_mean);
+        finite_design("approximate flywheel inertia", &[inertia])?;
         Ok(Approximate {
-            inertia: f.energy / (irregularity * omega_mean * omega_mean),
+            inertia,
             s_max: f.s_max,
             q_s_max: f.q_s_max,
             s_min: f.s_min,
@@ -117,15 +119,30 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         );
         let upper = tangent(a, true)?;
         let lower = tangent(b, false)?;
-        let inertia = (upper.intercept - lower.intercept) / (a - b);
+        // a − b = (1 + ε/2)² − (1 − ε/2)² = 2ε exactly: the difference of the rounded
+        // squares would lose the digits of a small ε (all of them below 1e-16).
+        let inertia = (upper.intercept - lower.intercept) / (2.0 * irregularity);
         let c = a * inertia - upper.intercept;
+        let energy = 0.5 * c * omega_mean * omega_mean;
+        finite_design(
+            "Wittenbauer flywheel's inertia and energy",
+            &[
+                inertia,
+                c,
+                energy,
+                upper.f,
+                lower.f,
+                upper.intercept,
+                lower.intercept,
+            ],
+        )?;
         let total = inertia + self.min_inertia()?;
         if !(total > 0.0) {
             return Err(MechError::NonPositiveInertia(total));
         }
         let state = SteadyState {
             flywheel: inertia,
-            energy: 0.5 * c * omega_mean * omega_mean,
+            energy,
             speeds: SpeedRange {
                 omega_max: omega_mean * (1.0 + 0.5 * irregularity),
                 q_max: upper.q,
@@ -153,6 +170,18 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             approximate: self.approximate(omega_mean, irregularity)?,
         })
     }
+}
+
+/// `Ok` when the flywheel's numbers `values` (named `what`) are finite; else
+/// `InvalidInput`: a mean speed or an irregularity so extreme (ω_a of 1e200 rad/s, ε of
+/// 1e-300) that the inertia or the energy overflows f64.
+fn finite_design(what: &str, values: &[f64]) -> Result<(), MechError> {
+    if crate::error::all_finite(values) {
+        return Ok(());
+    }
+    Err(MechError::InvalidInput(format!(
+        "the {what} overflow f64 ({values:?}): the mean speed or the irregularity is too extreme for this cycle; give a speed and an irregularity of a real machine"
+    )))
 }
 
 /// ω_a > 0 and 0 < ε < 2 (so that ω_min = ω_a (1 − ε/2) > 0), finite.

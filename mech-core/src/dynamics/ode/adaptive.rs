@@ -8,10 +8,17 @@ use super::method::{eval, lincomb, Method, Stats};
 use super::rk4::clip_step;
 use crate::MechError;
 
+/// The default step budget of an adaptive run ([`Tolerance::max_steps`]): Hairer's `nmax`.
+pub const DEFAULT_MAX_STEPS: usize = 100_000;
+
 /// Tolerances and limits of an adaptive method. A step is accepted when the RMS over the
 /// components of eᵢ / (atol + rtol·max(|y0ᵢ|, |y1ᵢ|)) is ≤ 1 (e the error estimate); the next
 /// step is h·min(10, max(0.2, 0.9·err^(−1/(p+1) + 0.03)·err_prev^0.04)), p the estimator's
 /// order (Lund-stabilized controller, β = 0.04, fewer rejected steps than the plain one).
+/// A run that needs more than `max_steps` step attempts (accepted or rejected) stops with
+/// an error, as Hairer's codes stop at `nmax`: a stiff system (a spring of 1e16 N/m) or a
+/// motion that runs away (thousands of turns in the span) would otherwise take minutes or
+/// hours of tiny steps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerance {
     /// Relative tolerance (> 0).
@@ -22,16 +29,20 @@ pub struct Tolerance {
     pub h_max: f64,
     /// First step, s; `None` chooses it (Hairer's starting-step algorithm, 1 evaluation).
     pub h_init: Option<f64>,
+    /// The most step attempts of one run, accepted and rejected (> 0;
+    /// [`DEFAULT_MAX_STEPS`]).
+    pub max_steps: usize,
 }
 
 impl Tolerance {
-    /// rtol and atol, no step limit, automatic first step.
+    /// rtol and atol, no step limit, automatic first step, [`DEFAULT_MAX_STEPS`].
     pub fn new(rtol: f64, atol: f64) -> Self {
         Tolerance {
             rtol,
             atol,
             h_max: f64::INFINITY,
             h_init: None,
+            max_steps: DEFAULT_MAX_STEPS,
         }
     }
     /// The error scale of one component, atol + rtol·max(|a|, |b|) (the state's unit).
@@ -57,12 +68,13 @@ impl Control {
             && tol.atol >= 0.0
             && tol.atol.is_finite()
             && tol.h_max > 0.0
+            && tol.max_steps > 0
             && !matches!(tol.h_init, Some(h) if !(h > 0.0 && h.is_finite()));
         if ok {
             Ok(())
         } else {
             Err(MechError::InvalidInput(format!(
-                "bad tolerance {tol:?}: rtol > 0, atol >= 0, h_max > 0, h_init > 0 required"
+                "bad tolerance {tol:?}: rtol > 0, atol >= 0, h_max > 0, h_init > 0, max_steps > 0 required"
             )))
         }
     }
@@ -153,6 +165,9 @@ impl Control {
         let expo = -1.0 / (p as f64 + 1.0);
         let mut rejected = false;
         loop {
+            if stats.steps + stats.rejected >= self.tol.max_steps {
+                return Err(too_many_steps(self.tol.max_steps, t, t_end, self.h));
+            }
             let h_abs = self.h.min(self.tol.h_max);
             let min_step = 16.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE.sqrt());
             if !(h_abs >= min_step) {
@@ -182,6 +197,14 @@ impl Control {
             self.h = h.abs() * fac;
         }
     }
+}
+
+/// The error of a run past its step budget, at time `t` with the step `h` then.
+#[cold]
+fn too_many_steps(max: usize, t: f64, t_end: f64, h: f64) -> MechError {
+    MechError::InvalidInput(format!(
+        "the integration took {max} steps (Tolerance::max_steps; `mech simulate --max-steps`) and reached t = {t:e} s of {t_end:e} s, with steps of {h:e} s: the system is stiff (a very stiff spring) or its motion runs away (many turns in the span) for an explicit method at this tolerance; integrate a shorter span, loosen rtol, or raise max_steps"
+    ))
 }
 
 /// An embedded Runge–Kutta pair: one step attempt with its error estimate, and its
@@ -324,6 +347,34 @@ mod tests {
     use crate::dynamics::ode::test_rhs::{exp_rhs, oscillator};
     use crate::dynamics::ode::{integrate, Dop853, DormandPrince, Outcome};
     use crate::kernel::measure::{within, within_at};
+
+    /// A stiff problem, y' = −1e9 (y − cos t), needs steps of about 3e-9 s from an
+    /// explicit method: a second of it is 3e8 steps (minutes; `mech-fuzz` found a
+    /// simulation of a machine with a spring of 1e16 N/m running past 20 s). The run
+    /// stops at its step budget with an error that says so.
+    #[test]
+    fn a_stiff_run_stops_at_its_step_budget() {
+        use crate::dynamics::ode::{Adaptive, Dp5, Tolerance, DEFAULT_MAX_STEPS};
+        use crate::MechError;
+        let stiff = |t: f64, y: &[f64; 1]| Ok([-1e9 * (y[0] - t.cos())]);
+        match integrate(&mut Dop853::new(1e-8, 1e-10), stiff, 0.0, [1.0], 1.0) {
+            Err(MechError::InvalidInput(m)) => assert!(
+                m.contains(&format!("took {DEFAULT_MAX_STEPS} steps")),
+                "{m}"
+            ),
+            other => panic!("expected the step budget, got {other:?}"),
+        }
+        let mut small = Adaptive::<Dp5>::with(Tolerance {
+            max_steps: 50,
+            ..Tolerance::new(1e-8, 1e-10)
+        });
+        let e = integrate(&mut small, stiff, 0.0, [1.0], 1.0).unwrap_err();
+        assert!(e.to_string().contains("took 50 steps"), "{e}");
+        // Within its budget the same run is unaffected: a short span of the stiff one.
+        let o = integrate(&mut Dop853::new(1e-8, 1e-10), stiff, 0.0, [1.0], 1e-6).unwrap();
+        assert!(o.stats.steps + o.stats.rejected < DEFAULT_MAX_STEPS);
+        assert!((o.y[0] - 1.0).abs() < 1e-8, "{:?}", o.y);
+    }
 
     #[test]
     fn adaptive_methods_on_the_harmonic_oscillator() {

@@ -41,7 +41,7 @@ mod driver;
 mod method;
 mod rk4;
 
-pub use adaptive::{Adaptive, Tableau, Tolerance};
+pub use adaptive::{Adaptive, Tableau, Tolerance, DEFAULT_MAX_STEPS};
 pub use dense::{Hermite, Interpolant, StepDense};
 pub use dop853::{Dop8, Dop853, Dop853Dense, Dop8Poly};
 pub use dormand_prince::{DormandPrince, Dp5, Dp5Poly};
