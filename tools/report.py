@@ -67,10 +67,12 @@ def code_hash(paths):
     return f"{h:016x}"
 
 
-def commit():
+def commit(paths):
+    """HEAD, marked when the measured `paths` differ from it (the documents that --write
+    rewrites are not among them)."""
     out = subprocess.run(["git", "rev-parse", "--short=7", "HEAD"], cwd=ROOT,
                          capture_output=True, text=True).stdout.strip()
-    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=ROOT,
+    dirty = subprocess.run(["git", "status", "--porcelain", "--"] + list(paths), cwd=ROOT,
                            capture_output=True, text=True).stdout.strip()
     return out + ("+uncommitted changes" if dirty else "")
 
@@ -300,7 +302,7 @@ def block(name, body):
     f = FIGURES[name]
     today = datetime.date.today().isoformat()
     sub = (f"<sub>Printed by `python3 tools/report.py {name}` ({f.command}) on the code of "
-           f"{commit()} (tree FNV-1a {code_hash(f.paths)} of {', '.join(f.paths)}), "
+           f"{commit(f.paths)} (tree FNV-1a {code_hash(f.paths)} of {', '.join(f.paths)}), "
            f"{machine()}, {today}.</sub>")
     return f"<!-- report {name} -->\n{body}\n\n{sub}\n<!-- /report {name} -->"
 
