@@ -185,3 +185,45 @@ fn piston_driven_crank_self_locks_at_the_dead_centre() {
     let mo = m.kinematics(stroke_at(1.0), -0.8, 0.0).unwrap();
     assert!(m.kinetostatics_with_friction(&mo, &loads, &fr).is_ok());
 }
+
+/// A friction coefficient or pin radius that is NaN, infinite or negative is refused by
+/// the run-time mechanism with the joint's name (issue 28: `mech-fuzz`; it was reported
+/// as an overflow of the reactions, or, where no joint slid, not at all).
+#[test]
+fn a_non_finite_or_negative_friction_is_named() {
+    let m = mech::Mechanism::from_dsl(
+        "pub struct Crank {
+            gravity: (0.0, -9.81),
+            ground { O: (0.0, 0.0) },
+            link crank { points { O, A: (0.12, 0.05) }, mass: 2.0, inertia: 0.01, cg: (0.04, 0.01) },
+            joints { O: revolute(ground, crank) },
+            input: O,
+        }",
+    )
+    .unwrap();
+    for (mu, pin_radius) in [
+        (f64::NAN, 0.01),
+        (f64::INFINITY, 0.01),
+        (-0.1, 0.01),
+        (0.1, f64::NAN),
+        (0.1, -1.0),
+    ] {
+        // At rest too, where a NaN coefficient met no sliding and was silently ignored.
+        for qd in [0.0, 2.0] {
+            let mo = m.kinematics(&[0.3], &[qd], &[0.0]).unwrap();
+            match m.kinetostatics_with_friction(
+                &mo,
+                &m.loads(),
+                &[JointFriction { mu, pin_radius }],
+            ) {
+                Err(MechError::InvalidInput(e)) => {
+                    assert!(
+                        e.contains("joint `O`") && e.contains("finite and ≥ 0"),
+                        "{e}"
+                    )
+                }
+                other => panic!("μ = {mu}, r = {pin_radius}: expected an error, got {other:?}"),
+            }
+        }
+    }
+}

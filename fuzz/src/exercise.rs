@@ -8,7 +8,7 @@
 use crate::check::{first_non_finite, Numbers};
 use crate::watchdog::{Watchdog, SLOW};
 use mech_core::dynamics::flywheel::Cycle;
-use mech_core::dynamics::ode::{self, Dop853, DormandPrince, Rk4};
+use mech_core::dynamics::ode::{self, Dop853, DormandPrince, Rk4, Tolerance, DEFAULT_MAX_STEPS};
 use mech_core::dynamics::{
     equation_of_motion, kinetic_energy, lagrange_acceleration, mass_matrix, quinn_coefficients,
     total_energy, velocity_terms, EnergyMethod,
@@ -218,16 +218,16 @@ fn solvers(c: &mut Case, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], load
     c.solve("pose", || m.pose(q));
     if let Some(mo) = c.solve("kinematics", || m.kinematics(q, qd, qdd)) {
         c.solve("kinetostatics", || m.kinetostatics(&mo, loads));
-        let friction = vec![
-            JointFriction {
-                mu: 0.15,
-                pin_radius: 0.01,
-            };
-            m.model().joints.len()
-        ];
-        c.solve("kinetostatics with friction", || {
-            m.kinetostatics_with_friction(&mo, loads, &friction)
-        });
+        // Friction of a real joint, then a hostile one (finite, or self-locking).
+        for (what, mu, pin_radius) in [
+            ("kinetostatics with friction", 0.15, 0.01),
+            ("kinetostatics with friction (hostile)", 1e6, 1e3),
+        ] {
+            let friction = vec![JointFriction { mu, pin_radius }; m.model().joints.len()];
+            c.solve(what, || {
+                m.kinetostatics_with_friction(&mo, loads, &friction)
+            });
+        }
         c.solve("driver_action", || m.driver_action(&mo, loads));
         if c.solve("total_energy", || total_energy(m, q, qd)).is_some() {
             // The parts of a finite total: each finite too.
@@ -240,8 +240,15 @@ fn solvers(c: &mut Case, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], load
             }
         }
     }
-    let columns = Columns::new(m, Part::ALL);
-    c.solve("columns row", || columns.row(m, q, qd, qdd, loads));
+    // Every part; positions alone and points alone (their own, allocation-free path).
+    for (what, parts) in [
+        ("columns row", Part::ALL),
+        ("columns row (pose)", Part::POSE),
+        ("columns row (points)", &[Part::Inputs, Part::Points][..]),
+    ] {
+        let columns = Columns::new(m, parts);
+        c.solve(what, || columns.row(m, q, qd, qdd, loads));
+    }
     if m.dof() == 1 {
         c.solve("reduced", || OneDof::reduced(m, q[0]));
         c.solve("reduced_moment", || OneDof::reduced_moment(m, q[0], loads));
@@ -286,10 +293,12 @@ fn refusals(c: &mut Case, m: &Mechanism) {
         c.refuse("kinematics (NaN qd)", || m.kinematics(&ok, &v, &ok));
         c.refuse("kinematics (NaN qdd)", || m.kinematics(&ok, &ok, &v));
         c.refuse("total_energy (NaN qd)", || total_energy(m, &ok, &v));
-        let columns = Columns::new(m, Part::ALL);
-        c.refuse("columns row (NaN q)", || {
-            columns.row(m, &v, &ok, &ok, &m.loads())
-        });
+        for parts in [Part::ALL, Part::POSE, &[Part::Inputs, Part::Points][..]] {
+            let columns = Columns::new(m, parts);
+            c.refuse("columns row (NaN q)", || {
+                columns.row(m, &v, &ok, &ok, &m.loads())
+            });
+        }
         if !m.model().loads.is_empty() {
             let nan = loads(m, bad);
             if let Some(mo) = c.attempt("kinematics", || m.kinematics(&ok, &ok, &ok)) {
@@ -301,6 +310,20 @@ fn refusals(c: &mut Case, m: &Mechanism) {
                     OneDof::reduced_moment(m, 0.5, &nan)
                 });
             }
+        }
+        // A NaN or infinite friction coefficient.
+        if let Some(mo) = c.attempt("kinematics", || m.kinematics(&ok, &ok, &ok)) {
+            let friction = vec![
+                JointFriction {
+                    mu: bad,
+                    pin_radius: 0.01,
+                };
+                m.model().joints.len()
+            ];
+            let l = loads(m, 1e3);
+            c.refuse("kinetostatics with friction (NaN mu)", || {
+                m.kinetostatics_with_friction(&mo, &l, &friction)
+            });
         }
         if g == 1 {
             let l = m.loads();
@@ -329,11 +352,17 @@ fn dynamics(c: &mut Case, m: &Mechanism) {
     for (k, (q0, w0)) in [(0.3, 1.0f64), (0.3, 1e6)].into_iter().enumerate() {
         c.at = format!(" from q = {q0}, qd = {w0}");
         let rhs = || equation_of_motion(m, |_, _, _| (1e3, l.clone()));
+        // A fifth of the default step budget bounds each run (a stiff or runaway machine
+        // ends in the budget's error) to well under the second a call may take.
+        let tol = Tolerance {
+            max_steps: DEFAULT_MAX_STEPS / 5,
+            ..Tolerance::new(1e-8, 1e-10)
+        };
         // About half a turn: the integrators' work grows with the turns simulated.
         let t_end = (0.5 / w0).min(0.05);
         c.solve("simulate (DOP853)", || {
             ode::solve(
-                &mut Dop853::new(1e-8, 1e-10),
+                &mut Dop853::with(tol),
                 rhs(),
                 0.0,
                 [q0, w0],
@@ -345,7 +374,7 @@ fn dynamics(c: &mut Case, m: &Mechanism) {
         if k == 0 {
             c.solve("simulate (Dormand-Prince)", || {
                 ode::solve(
-                    &mut DormandPrince::new(1e-8, 1e-10),
+                    &mut DormandPrince::with(tol),
                     rhs(),
                     0.0,
                     [q0, w0],

@@ -52,6 +52,8 @@ struct Summary {
     bad: u64,
     /// Calls over 1 s (written under target/fuzz).
     slow: u64,
+    /// The longest call and its kind.
+    slowest: (std::time::Duration, &'static str),
     /// Per kind of call: the time spent in it and how many were made, the costliest first.
     spent: Vec<(&'static str, std::time::Duration, u64)>,
 }
@@ -118,6 +120,7 @@ fn fuzz(seconds: Option<f64>, cases: Option<u64>, seed: u64, dense: bool) -> Sum
         loaded,
         bad,
         slow,
+        slowest: dog.slowest(),
         spent: dog.spent(),
     }
 }
@@ -201,14 +204,16 @@ fn main() {
     }
     let s = fuzz(seconds, cases, seed, dense);
     println!(
-        "{} cases from {} seeds in {:.1} s ({:.0} cases/s): {} loaded and solved, {} panics or non-finite results, {} calls over 1 s",
+        "{} cases from {} seeds in {:.1} s ({:.0} cases/s): {} loaded and solved, {} panics or non-finite results, {} calls over 1 s (the longest {:.3} s, {})",
         s.cases,
         s.seeds,
         s.seconds,
         s.cases as f64 / s.seconds,
         s.loaded,
         s.bad,
-        s.slow
+        s.slow,
+        s.slowest.0.as_secs_f64(),
+        s.slowest.1
     );
     if std::env::args().any(|a| a == "--profile") {
         print_spent(&s.spent);
@@ -229,6 +234,10 @@ mod tests {
     #[test]
     fn a_minute_of_mutations_finds_no_panic_no_non_finite_result_and_no_slow_call() {
         let s = super::fuzz(Some(60.0), None, 0x9E37_79B9_7F4A_7C15, false);
+        eprintln!(
+            "{} cases, {} loaded, the longest call {:?} ({})",
+            s.cases, s.loaded, s.slowest.0, s.slowest.1
+        );
         assert_eq!(s.bad, 0, "{s:?}: see target/fuzz");
         assert_eq!(s.slow, 0, "{s:?}: see target/fuzz");
         assert!(

@@ -28,6 +28,8 @@ struct Current {
     call: Option<(&'static str, Instant)>,
     /// Per kind of call: the time spent in it and how many were made.
     spent: HashMap<&'static str, (Duration, u64)>,
+    /// The longest call so far and its kind.
+    slowest: (Duration, &'static str),
 }
 
 /// The shared record of the call under way, and the thread that watches it.
@@ -100,10 +102,19 @@ impl Watchdog {
     pub fn leave(&self) {
         let mut cur = self.lock();
         if let Some((what, since)) = cur.call.take() {
+            let dt = since.elapsed();
             let e = cur.spent.entry(what).or_default();
-            e.0 += since.elapsed();
+            e.0 += dt;
             e.1 += 1;
+            if dt > cur.slowest.0 {
+                cur.slowest = (dt, what);
+            }
         }
+    }
+
+    /// The longest call so far and its kind.
+    pub fn slowest(&self) -> (Duration, &'static str) {
+        self.lock().slowest
     }
 
     /// The time spent per kind of call and how many were made, the costliest first.

@@ -139,6 +139,15 @@ impl Mechanism {
                 friction.len()
             )));
         }
+        for (j, f) in self.model.joints.iter().zip(friction) {
+            if !(f.mu >= 0.0 && f.mu.is_finite() && f.pin_radius >= 0.0 && f.pin_radius.is_finite())
+            {
+                return Err(MechError::InvalidInput(format!(
+                    "the friction of joint `{}` is μ = {}, pin radius {} m: both must be finite and ≥ 0",
+                    j.name, f.mu, f.pin_radius
+                )));
+            }
+        }
         let kinds: Vec<JointKind> = self.model.joints.iter().map(|j| j.kind).collect();
         let len = flat_len(self.dof(), &kinds);
         let flat = |f: &Forces| {
