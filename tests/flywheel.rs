@@ -894,3 +894,63 @@ fn a_cycle_through_a_noisy_toggle_ends_in_an_error_not_a_hang() {
         start.elapsed()
     );
 }
+
+/// A one-input machine with no moment whose I*(q) = 1 + ½ sin(4000 q) kg·m² swings 4000
+/// times a turn: its speed swings as often, and one cycle of it is some 40 000 steps of
+/// DOP853.
+struct Buzzing;
+
+impl Machine for Buzzing {
+    type Loads = ();
+    type Motion = ();
+    fn dof(&self) -> usize {
+        1
+    }
+    fn links(&self) -> usize {
+        2
+    }
+    fn motion(&self, _: &[f64], _: &[f64], _: &[f64]) -> Result<(), MechError> {
+        Ok(())
+    }
+    fn driver_actions(&self, _: &(), _: &(), out: &mut [f64]) -> Result<(), MechError> {
+        out.fill(0.0);
+        Ok(())
+    }
+    fn link_kinetic_energies(&self, _: &(), out: &mut [f64]) {
+        out.fill(0.0);
+    }
+    fn potential_energy(&self, _: &()) -> f64 {
+        0.0
+    }
+}
+
+impl OneDof for Buzzing {
+    fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
+        Ok(Reduced {
+            inertia: 1.0 + 0.5 * (4000.0 * q).sin(),
+            inertia_derivative: 2000.0 * (4000.0 * q).cos(),
+        })
+    }
+    fn reduced_moment(&self, _: f64, _: &()) -> Result<f64, MechError> {
+        Ok(0.0)
+    }
+    fn acceleration(&self, q: f64, qd: f64, driver: f64, _: &()) -> Result<f64, MechError> {
+        let r = self.reduced(q)?;
+        Ok((driver - 0.5 * r.inertia_derivative * qd * qd) / r.inertia)
+    }
+}
+
+/// `Cycle::simulate` integrates one cycle under a budget of 20 000 steps (a cycle of a
+/// real machine takes hundreds; `mech-fuzz` found cycle simulations near a second, and an
+/// unbounded one can take minutes): past it, the budget's error, promptly.
+#[test]
+fn a_cycle_simulation_stops_at_its_step_budget() {
+    let cycle = Cycle::of(&Buzzing, std::f64::consts::TAU, |_| Ok(())).unwrap();
+    let state = cycle.steady_state(10.0, 1.0).unwrap();
+    let start = std::time::Instant::now();
+    match cycle.simulate(&state, 1e-10) {
+        Err(MechError::InvalidInput(e)) => assert!(e.contains("took 20000 steps"), "{e}"),
+        other => panic!("expected the step budget's error, got {other:?}"),
+    }
+    assert!(start.elapsed().as_secs_f64() < 5.0, "{:?}", start.elapsed());
+}

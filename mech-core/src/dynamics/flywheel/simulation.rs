@@ -5,10 +5,15 @@
 use super::cycle::Cycle;
 use super::extremes::golden_max;
 use super::steady_state::{SpeedRange, SteadyState};
-use crate::dynamics::ode::{self, Dense, Dop853, Event, Stats};
+use crate::dynamics::ode::{self, Dense, Dop853, Event, Stats, Tolerance};
 use crate::solvers::traits::OneDof;
 use crate::solvers::zhukovski::{self, Reduced};
 use crate::MechError;
+
+/// The step budget of [`Cycle::simulate`]'s one cycle: a cycle of a machine that is not
+/// stiff takes hundreds of steps, and a stiff one ends in the budget's error within a
+/// fraction of a second.
+const CYCLE_MAX_STEPS: usize = 20_000;
 
 /// One simulated cycle ([`Cycle::simulate`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -29,7 +34,9 @@ impl<'a, M: OneDof> Cycle<'a, M> {
     /// The check by time integration: the machine with the flywheel (I + I*) q̈ + ½ dI*/dq q̇²
     /// = M*(q), from q0 at ω(q0) of `state`, integrated by DOP853 (relative tolerance `rtol`)
     /// until q = q0 + λ (an event); ω_max and ω_min are located on the dense output where
-    /// q̈ changes sign. Errors: bad `rtol`, the machine's and the integrator's errors.
+    /// q̈ changes sign. Errors: bad `rtol`, the machine's and the integrator's errors, and
+    /// a cycle that needs more than 20 000 steps (a stiff machine: a cycle of
+    /// a real one takes hundreds).
     pub fn simulate(&self, state: &SteadyState, rtol: f64) -> Result<CycleSimulation, MechError> {
         crate::error::check_finite("rtol", &[rtol])?;
         if !(rtol > 0.0) {
@@ -91,7 +98,10 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         };
         // Long enough to pass q0 + λ at the slowest speed the state allows.
         let t_end = 4.0 * self.period / state.speeds.omega_min.max(1e-3 * omega0);
-        let mut method = Dop853::new(rtol, rtol * 1e-6);
+        let mut method = Dop853::with(Tolerance {
+            max_steps: CYCLE_MAX_STEPS,
+            ..Tolerance::new(rtol, rtol * 1e-6)
+        });
         let out = ode::solve(
             &mut method,
             &mut rhs,

@@ -8,8 +8,10 @@ use super::method::{eval, lincomb, Method, Stats};
 use super::rk4::clip_step;
 use crate::MechError;
 
-/// The default step budget of an adaptive run ([`Tolerance::max_steps`]): Hairer's `nmax`.
-pub const DEFAULT_MAX_STEPS: usize = 100_000;
+/// The default step budget of an adaptive run ([`Tolerance::max_steps`]): ten times
+/// Hairer's `nmax`, room for 10⁴ periods of an oscillating machine at rtol 1e-11 (3.6e5
+/// steps, `tests/elements.rs`), a few seconds of a stiff one before its error.
+pub const DEFAULT_MAX_STEPS: usize = 1_000_000;
 
 /// Tolerances and limits of an adaptive method. A step is accepted when the RMS over the
 /// components of eᵢ / (atol + rtol·max(|y0ᵢ|, |y1ᵢ|)) is ≤ 1 (e the error estimate); the next
@@ -17,7 +19,7 @@ pub const DEFAULT_MAX_STEPS: usize = 100_000;
 /// order (Lund-stabilized controller, β = 0.04, fewer rejected steps than the plain one).
 /// A run that needs more than `max_steps` step attempts (accepted or rejected) stops with
 /// an error, as Hairer's codes stop at `nmax`: a stiff system (a spring of 1e16 N/m) or a
-/// motion that runs away (thousands of turns in the span) would otherwise take minutes or
+/// motion that runs away (millions of turns in the span) would otherwise take minutes or
 /// hours of tiny steps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tolerance {
@@ -351,7 +353,8 @@ mod tests {
     /// A stiff problem, y' = −1e9 (y − cos t), needs steps of about 3e-9 s from an
     /// explicit method: a second of it is 3e8 steps (minutes; `mech-fuzz` found a
     /// simulation of a machine with a spring of 1e16 N/m running past 20 s). The run
-    /// stops at its step budget with an error that says so.
+    /// stops at its step budget (the default, a million, then 50) with an error that says
+    /// so.
     #[test]
     fn a_stiff_run_stops_at_its_step_budget() {
         use crate::dynamics::ode::{Adaptive, Dp5, Tolerance, DEFAULT_MAX_STEPS};
