@@ -306,8 +306,8 @@ fn undamped_energy_is_conserved_over_ten_thousand_oscillations() {
         let y = d.y_end();
         worst = worst.max((total_energy(&m, &[y[0]], &[y[1]]).unwrap() - e0).abs());
     };
-    // 10⁴ oscillations take about 370 000 steps: past the default budget of an adaptive run
-    // (Tolerance::max_steps, 100 000), which this long run raises on purpose.
+    // 10⁴ oscillations take about 370 000 steps: this long run states its own step budget
+    // (Tolerance::max_steps) rather than lean on the default.
     let mut method = Dop853::new(1e-11, 1e-11);
     method.tol.max_steps = 1_000_000;
     let out = solve(
