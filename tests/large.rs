@@ -176,10 +176,7 @@ fn points_agree(
             ("velocity", a.vel, b.vel, sv * 1e-13),
             ("acceleration", a.acc, b.acc, sa * 5e-14),
         ] {
-            assert!(
-                (x - y).norm() <= s,
-                "{name} {what}: {x:?} against {y:?}"
-            );
+            assert!((x - y).norm() <= s, "{name} {what}: {x:?} against {y:?}");
         }
     }
 }
