@@ -123,6 +123,19 @@ for p in "${PKGS[@]}"; do
 done
 
 # 4. The dry run: every package packaged, then built from its .crate alone.
+# Cargo unpacks the .crate files of its temporary local registry under
+# $CARGO_HOME/registry/src/-<hash of the registry's path>/ and does not unpack a version it
+# finds there again: a second run from the same folder would verify against the sources of
+# the first (a stale mech-dynamics-core 0.1.0 failed CI this way). Those unpacked copies of our
+# own unpublished packages are removed first; nothing from crates.io is touched.
+CARGO_HOME_DIR=${CARGO_HOME:-$HOME/.cargo}
+for d in "$CARGO_HOME_DIR"/registry/src/-*/mech-dynamics*-0.1.0; do
+    [ -d "$d" ] && rm -rf "$d"
+done
+# For the same reason (a registry crate's version is trusted to name its contents) the builds
+# of those packages left in the target folder by an earlier run are forgotten: their
+# fingerprints are removed, so each is compiled again from this run's .crate.
+rm -rf "$CARGO_TARGET_DIR"/*/.fingerprint/mech-dynamics-*
 if [ "$MODE" = --publish ]; then
     cargo publish --workspace --exclude mech-fuzz --allow-dirty
 else
