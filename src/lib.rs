@@ -53,6 +53,13 @@ pub use mech_core::solvers::instance::{
 pub use mech_core::solvers::traits::{DeterminateReactions, Machine, OneDof};
 pub use mech_core::solvers::zhukovski::Reduced;
 
+/// Many configurations per call (`docs/batch.md`): what the `*_many` methods return, and
+/// the size from which they run on rayon's pool.
+pub mod batch {
+    pub use mech_core::solvers::batch::{BatchErrors, CHUNK, PARALLEL_FROM};
+}
+pub use batch::BatchErrors;
+
 // The algorithms written once over the traits, and the machine elements.
 pub use mech_core::checks::grubler;
 pub use mech_core::dynamics::{self, equivalent_mass, flywheel, ode};
@@ -70,10 +77,10 @@ pub mod __private {
 /// Everything a user of a generated struct needs.
 pub mod prelude {
     pub use crate::{
-        mechanism, CamReaction, DamperParams, DeterminateReactions, LinkMotion, LinkPose, Machine,
-        MechError, Mechanism, MeshReaction, OneDof, PointMotion, PointPose, PrismaticReaction,
-        Reduced, RevoluteReaction, RollingReaction, RotaryDamperParams, SlotReaction, SpringParams,
-        TorsionSpringParams, Vector2,
+        mechanism, BatchErrors, CamReaction, DamperParams, DeterminateReactions, LinkMotion,
+        LinkPose, Machine, MechError, Mechanism, MeshReaction, OneDof, PointMotion, PointPose,
+        PrismaticReaction, Reduced, RevoluteReaction, RollingReaction, RotaryDamperParams,
+        SlotReaction, SpringParams, TorsionSpringParams, Vector2,
     };
 }
 

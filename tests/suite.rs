@@ -50,6 +50,7 @@ static ALLOC: counting::Counting = counting::Counting;
 // The test modules, one for each file tests/<name>.rs.
 
 mod allocation;
+mod batch;
 mod dyads;
 mod dynamics;
 mod floor;

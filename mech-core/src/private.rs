@@ -88,3 +88,6 @@ pub mod virtual_power {
 pub mod zhukovski {
     pub use crate::solvers::zhukovski::{acceleration, Reduced, ZhukovskiSums};
 }
+pub mod batch {
+    pub use crate::solvers::batch::{each, refuse, same_len, BatchErrors, Block, Nan, NAN2};
+}

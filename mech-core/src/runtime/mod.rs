@@ -1,6 +1,7 @@
 //! The run-time mechanism: the same text loaded and solved at run time, with the generated
 //! code's plan and kernels; its results and their column names.
 
+mod batch;
 pub mod columns;
 mod dispatch;
 mod forces;

@@ -9,10 +9,13 @@
 //! - [`forces`]: `Loads`, `__wrenches`, `Forces`, `kinetostatics`,
 //!   `kinetostatics_with_friction`, `driver_action`;
 //! - [`traits`]: the `Machine` and `OneDof` impls and the one-DOF methods `reduced`,
-//!   `reduced_moment`, `acceleration`.
+//!   `reduced_moment`, `acceleration`;
+//! - [`batch`]: many configurations per call, `pose_many`, `points_many`,
+//!   `driver_action_many`, `reduced_many`, `acceleration_many`.
 //!
 //! [`outline()`] is what is emitted instead when the mechanism has errors.
 
+mod batch;
 mod forces;
 mod names;
 mod outline;
@@ -191,6 +194,7 @@ pub(crate) fn parts(
         ("results", results::emit(&cx)),
         ("forces", forces::emit(&cx)),
         ("traits", traits::emit(&cx)),
+        ("batch", batch::emit(&cx)),
     ]
 }
 

@@ -158,14 +158,14 @@ fn by_name(cx: &Ctx, ty: &Ident, what: &str) -> TokenStream {
 /// anchor of the moving link whose first point it is (that link's state itself, nothing
 /// rotated); else by the first link that carries it.
 #[derive(Clone, Copy)]
-enum Owner {
+pub(crate) enum Owner {
     /// The material point of this link at the point's local vector.
     Local(usize),
     /// This link's anchor.
     Anchor(usize),
 }
 
-fn owners(cx: &Ctx) -> Vec<Owner> {
+pub(crate) fn owners(cx: &Ctx) -> Vec<Owner> {
     let links = &cx.model.links;
     (0..cx.n_points)
         .map(|pt| {

@@ -1,0 +1,203 @@
+//! Many configurations per call on the run-time [`Mechanism`] (`docs/batch.md`): the
+//! `*_many` methods of the generated structs, with the inputs of G-input mechanisms laid
+//! out configuration after configuration (`q[i·G + k]` is input k of configuration i).
+//!
+//! Each chunk of the batch keeps one buffer of link states (and one [`Motion`]), so a batch
+//! allocates a few buffers per thread, not one per configuration.
+
+use super::mechanism::{Mechanism, Scratch};
+use super::results::{Loads, Motion, Pose};
+use crate::kernel::constraints::Level;
+use crate::kernel::link_state::{point_pose, LinkState};
+use crate::solvers::batch::{each, each_with, refuse, same_len, BatchErrors, Block, Nan, NAN2};
+use crate::solvers::traits::OneDof;
+use crate::MechError;
+use smallvec::SmallVec;
+
+impl Nan for Pose {
+    fn set_nan(&mut self) {
+        self.links.iter_mut().for_each(Nan::set_nan);
+        self.points.iter_mut().for_each(|p| p.pos = NAN2);
+    }
+}
+
+/// The number of configurations in `q` (G values each); refused when G does not divide it.
+fn configs(q: &[f64], g: usize) -> Result<usize, MechError> {
+    if g == 0 || q.len() % g != 0 {
+        return Err(MechError::InvalidInput(format!(
+            "`q` has {} values, not a multiple of the {g} inputs: give G values per configuration",
+            q.len()
+        )));
+    }
+    Ok(q.len() / g)
+}
+
+/// Configuration i's G inputs.
+#[inline]
+fn inputs(x: &[f64], g: usize, i: usize) -> &[f64] {
+    &x[i * g..(i + 1) * g]
+}
+
+impl Mechanism {
+    /// A pose with NaN everywhere and this mechanism's links and points: the element of the
+    /// output of [`Mechanism::pose_many`] (`vec![m.nan_pose(); n]`).
+    pub fn nan_pose(&self) -> Pose {
+        let mut p = Pose {
+            links: vec![Default::default(); self.inst.links.len()],
+            points: vec![Default::default(); self.inst.points.len()],
+            model: self.model.clone(),
+        };
+        p.set_nan();
+        p
+    }
+
+    /// [`Mechanism::pose`] for every configuration of `q` (G values each) into `out` (one
+    /// pose per configuration, reused: its vectors are refilled, not reallocated once they
+    /// have the mechanism's sizes). A configuration that fails gets NaN and its index in the
+    /// returned [`BatchErrors`].
+    pub fn pose_many(&self, q: &[f64], out: &mut [Pose]) -> BatchErrors {
+        let g = self.dof();
+        let rows = match configs(q, g).and_then(|n| Ok((n, Block::new("out", out, 1, n)?))) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        let zero: Scratch<f64> = SmallVec::from_elem(0.0, g);
+        each_with(
+            rows.0,
+            rows.1,
+            Vec::<LinkState>::new,
+            |i, r: &mut Block<Pose>, s| {
+                self.solve_into(inputs(q, g, i), &zero, &zero, Level::Position, s)?;
+                crate::kernel::finite::finite_states(s, Level::Position)?;
+                let p = r.at(i);
+                p.links.clear();
+                p.links.extend(
+                    self.inst
+                        .links
+                        .iter()
+                        .zip(s.iter())
+                        .map(|(l, st)| l.pose(st)),
+                );
+                p.points.clear();
+                p.points
+                    .extend(self.inst.points.iter().map(|&(o, d)| point_pose(s, o, d)));
+                p.model = self.model.clone();
+                Ok(())
+            },
+        )
+    }
+
+    /// The points of every configuration of `q` (G values each) into `out`: x and y (m) of
+    /// each point in declaration order, configuration after configuration (2 × points
+    /// values per configuration). A configuration that fails gets NaN and its index in the
+    /// returned [`BatchErrors`].
+    pub fn points_many(&self, q: &[f64], out: &mut [f64]) -> BatchErrors {
+        let (g, np) = (self.dof(), self.inst.points.len());
+        let rows = match configs(q, g).and_then(|n| Ok((n, Block::new("out", out, 2 * np, n)?))) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        each_with(
+            rows.0,
+            rows.1,
+            Vec::<LinkState>::new,
+            |i, r: &mut Block<f64>, s| self.points_into(inputs(q, g, i), s, r.row(i)),
+        )
+    }
+
+    /// The motor actions by virtual power ([`Mechanism::driver_action`]) at every
+    /// configuration (q, q̇, q̈) (G values each) into `out` (G values per configuration: N·m
+    /// or N). A configuration that fails gets NaN and its index in the returned
+    /// [`BatchErrors`].
+    pub fn driver_action_many(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        loads: &Loads,
+        out: &mut [f64],
+    ) -> BatchErrors {
+        let g = self.dof();
+        let rows = match configs(q, g).and_then(|n| {
+            same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len())?;
+            Ok((n, Block::new("out", out, g, n)?))
+        }) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        let motion = || Motion {
+            links: Vec::new(),
+            points: Vec::new(),
+            inputs: SmallVec::new(),
+            states: Vec::new(),
+            model: self.model.clone(),
+        };
+        each_with(rows.0, rows.1, motion, |i, r: &mut Block<f64>, m| {
+            let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
+            self.kinematics_into(qi, qdi, qddi, m)?;
+            r.row(i).copy_from_slice(&self.driver_action(m, loads)?);
+            Ok(())
+        })
+    }
+
+    /// Zhukovski's I* (kg·m²) and dI*/dq (kg·m²/rad) at every q of a one-input mechanism,
+    /// into `inertia` and `derivative` (one value per configuration). A configuration that
+    /// fails gets NaN in both and its index in the returned [`BatchErrors`].
+    pub fn reduced_many(
+        &self,
+        q: &[f64],
+        inertia: &mut [f64],
+        derivative: &mut [f64],
+    ) -> BatchErrors {
+        let n = q.len();
+        let rows = match self.one_input().and_then(|()| {
+            Ok((
+                Block::new("inertia", inertia, 1, n)?,
+                Block::new("derivative", derivative, 1, n)?,
+            ))
+        }) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        each(n, rows, |i, (a, b): &mut (Block<f64>, Block<f64>)| {
+            let z = OneDof::reduced(self, q[i])?;
+            *a.at(i) = z.inertia;
+            *b.at(i) = z.inertia_derivative;
+            Ok(())
+        })
+    }
+
+    /// The direct problem's q̈ (rad/s²) at every (q, q̇, driver) of a one-input mechanism
+    /// ([`OneDof::acceleration`]) into `out`. A configuration that fails gets NaN and its
+    /// index in the returned [`BatchErrors`].
+    pub fn acceleration_many(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        driver: &[f64],
+        loads: &Loads,
+        out: &mut [f64],
+    ) -> BatchErrors {
+        let n = q.len();
+        let rows = match self.one_input().and_then(|()| {
+            same_len(&[("qd", qd.len()), ("driver", driver.len())], n)?;
+            Block::new("out", out, 1, n)
+        }) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        each(n, rows, |i, r: &mut Block<f64>| {
+            *r.at(i) = OneDof::acceleration(self, q[i], qd[i], driver[i], loads)?;
+            Ok(())
+        })
+    }
+
+    fn one_input(&self) -> Result<(), MechError> {
+        match self.dof() {
+            1 => Ok(()),
+            g => Err(MechError::InvalidInput(format!(
+                "Zhukovski's reduction needs one input, the mechanism has {g}: use driver_action_many"
+            ))),
+        }
+    }
+}

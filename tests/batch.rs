@@ -1,0 +1,353 @@
+//! Many configurations per call (`docs/batch.md`): on every reference mechanism, the
+//! generated `*_many` and the run-time `Mechanism`'s equal their one-configuration solvers
+//! configuration by configuration — the same numbers (to 1e-12 relative), NaN where the
+//! solver fails, and the failed index with the solver's own error in `BatchErrors` — over
+//! random configurations that include NaN inputs and ones that do not assemble; on the
+//! calling thread and on rayon's pool; and slices of the wrong length are refused.
+
+use crate::mechanisms::*;
+use mech::batch::PARALLEL_FROM;
+use mech::prelude::*;
+
+const MECHANISMS: &str = include_str!("common/mechanisms.rs");
+
+/// A small deterministic generator (xorshift64*), so that a failure names its inputs.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// Uniform in [lo, hi); one value in 23 is NaN (a configuration the batch must mask).
+    fn input(&mut self, lo: f64, hi: f64) -> f64 {
+        if self.next() < 1.0 / 23.0 {
+            f64::NAN
+        } else {
+            lo + (hi - lo) * self.next()
+        }
+    }
+}
+
+/// `a` equals `b` to 1e-12 relative (to the larger magnitude, at least 1), NaN for NaN.
+/// The batched forms call the one-configuration solvers, so the difference measured is 0.
+fn same(what: &str, i: usize, a: f64, b: f64) {
+    let tol = 1e-12 * a.abs().max(b.abs()).max(1.0);
+    assert!(
+        (a - b).abs() <= tol || (a.is_nan() && b.is_nan()),
+        "{what}, configuration {i}: batched {a:e}, one by one {b:e}"
+    );
+}
+
+/// What every one-input check needs: configurations q (with NaN and wide angles), rates and
+/// driver torques.
+struct Inputs {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    driver: Vec<f64>,
+}
+
+fn inputs(n: usize, seed: u64) -> Inputs {
+    let mut r = Rng(seed);
+    let q = (0..n).map(|_| r.input(-20.0, 20.0)).collect();
+    let qd = (0..n).map(|_| r.input(-50.0, 50.0)).collect();
+    let qdd = (0..n).map(|_| r.input(-500.0, 500.0)).collect();
+    let driver = (0..n).map(|_| r.input(-100.0, 100.0)).collect();
+    Inputs { q, qd, qdd, driver }
+}
+
+/// The one-input checks of a generated struct `$ty` against its own scalar solvers and
+/// against the run-time `Mechanism` of the same text. Returns (configurations, failures).
+macro_rules! one_input_batch {
+    ($ty:ident, $n:expr, $seed:expr) => {{
+        let m = $ty::new();
+        let rt = Mechanism::from_rust_source(MECHANISMS, stringify!($ty)).unwrap();
+        let x = inputs($n, $seed);
+        let n = x.q.len();
+        let loads = Default::default();
+        let mut failed = 0;
+
+        let mut poses = vec![<$ty as HasPose>::nan(); n];
+        let errs = m.pose_many(&x.q, &mut poses);
+        let np = rt.model().points.len();
+        let mut points = vec![0.0; 2 * np * n];
+        let perrs = m.points_many(&x.q, &mut points);
+        let mut rt_points = vec![0.0; 2 * np * n];
+        let rerrs = rt.points_many(&x.q, &mut rt_points);
+        for i in 0..n {
+            match m.pose(x.q[i]) {
+                Ok(p) => {
+                    assert_eq!(poses[i], p, "pose, configuration {i}");
+                    assert!(errs.get(i).is_none() && perrs.get(i).is_none());
+                    for k in 0..2 * np {
+                        same(
+                            "points",
+                            i,
+                            points[2 * np * i + k],
+                            rt_points[2 * np * i + k],
+                        );
+                    }
+                }
+                Err(e) => {
+                    failed += 1;
+                    assert_eq!(errs.get(i), Some(&e), "pose error, configuration {i}");
+                    assert!(perrs.get(i).is_some() && rerrs.get(i).is_some());
+                    assert!(points[2 * np * i..2 * np * (i + 1)]
+                        .iter()
+                        .all(|v| v.is_nan()));
+                    assert!(rt_points[2 * np * i..2 * np * (i + 1)]
+                        .iter()
+                        .all(|v| v.is_nan()));
+                }
+            }
+        }
+        // The points are the pose's points, in declaration order.
+        for (i, p) in poses
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| errs.get(*i).is_none())
+        {
+            let by_name = rt.pose(&[x.q[i]]).unwrap();
+            for (k, pt) in rt.model().points.iter().enumerate() {
+                let pos = by_name.point(&pt.name).unwrap().pos;
+                same("point x", i, points[2 * np * i + 2 * k], pos.x);
+                same("point y", i, points[2 * np * i + 2 * k + 1], pos.y);
+            }
+            let _ = p;
+        }
+
+        let (mut ii, mut di) = (vec![0.0; n], vec![0.0; n]);
+        let errs = m.reduced_many(&x.q, &mut ii, &mut di);
+        let (mut rii, mut rdi) = (vec![0.0; n], vec![0.0; n]);
+        let rerrs = rt.reduced_many(&x.q, &mut rii, &mut rdi);
+        for i in 0..n {
+            match m.reduced(x.q[i]) {
+                Ok(z) => {
+                    same("I*", i, ii[i], z.inertia);
+                    same("dI*/dq", i, di[i], z.inertia_derivative);
+                    same("run-time I*", i, rii[i], z.inertia);
+                    same("run-time dI*/dq", i, rdi[i], z.inertia_derivative);
+                }
+                Err(e) => {
+                    assert_eq!(errs.get(i), Some(&e), "reduced error, configuration {i}");
+                    assert!(rerrs.get(i).is_some());
+                    assert!(ii[i].is_nan() && di[i].is_nan() && rii[i].is_nan() && rdi[i].is_nan());
+                }
+            }
+        }
+
+        let mut acc = vec![0.0; n];
+        let errs = m.acceleration_many(&x.q, &x.qd, &x.driver, &loads, &mut acc);
+        let mut racc = vec![0.0; n];
+        let rerrs = rt.acceleration_many(&x.q, &x.qd, &x.driver, &rt.loads(), &mut racc);
+        for i in 0..n {
+            match m.acceleration(x.q[i], x.qd[i], x.driver[i], &loads) {
+                Ok(a) => {
+                    same("q̈", i, acc[i], a);
+                    same("run-time q̈", i, racc[i], a);
+                }
+                Err(e) => {
+                    assert_eq!(
+                        errs.get(i),
+                        Some(&e),
+                        "acceleration error, configuration {i}"
+                    );
+                    assert!(rerrs.get(i).is_some());
+                    assert!(acc[i].is_nan() && racc[i].is_nan());
+                }
+            }
+        }
+
+        let mut d = vec![0.0; n];
+        let errs = m.driver_action_many(&x.q, &x.qd, &x.qdd, &loads, &mut d);
+        let mut rd = vec![0.0; n];
+        let rerrs = rt.driver_action_many(&x.q, &x.qd, &x.qdd, &rt.loads(), &mut rd);
+        for i in 0..n {
+            let one = m
+                .kinematics(x.q[i], x.qd[i], x.qdd[i])
+                .and_then(|k| m.driver_action(&k, &loads));
+            match one {
+                Ok(t) => {
+                    same("driver action", i, d[i], t);
+                    same("run-time driver action", i, rd[i], t);
+                }
+                Err(e) => {
+                    assert_eq!(
+                        errs.get(i),
+                        Some(&e),
+                        "driver action error, configuration {i}"
+                    );
+                    assert!(rerrs.get(i).is_some());
+                    assert!(d[i].is_nan() && rd[i].is_nan());
+                }
+            }
+        }
+        (n, failed)
+    }};
+}
+
+/// `Pose::NAN` through a trait, so that the macro can name it for any struct.
+trait HasPose {
+    type P: Clone;
+    fn nan() -> Self::P;
+}
+macro_rules! has_pose {
+    ($($ty:ident => $pose:ident),*) => {$(
+        impl HasPose for $ty {
+            type P = $pose;
+            fn nan() -> $pose { $pose::NAN }
+        }
+    )*};
+}
+has_pose!(
+    FourBar => FourBarPose, SliderCrank => SliderCrankPose, PublicFourBar => PublicFourBarPose,
+    PublicSliderCrank => PublicSliderCrankPose, QuickReturn => QuickReturnPose,
+    Watt2 => Watt2Pose, Stephenson3 => Stephenson3Pose, ScotchYoke => ScotchYokePose,
+    HydraulicLever => HydraulicLeverPose
+);
+
+#[test]
+fn every_one_input_reference_mechanism_batched_equals_one_by_one() {
+    let mut total = (0, 0);
+    for (n, f) in [
+        one_input_batch!(FourBar, 400, 1),
+        one_input_batch!(SliderCrank, 400, 2),
+        one_input_batch!(PublicFourBar, 400, 3),
+        one_input_batch!(PublicSliderCrank, 400, 4),
+        one_input_batch!(QuickReturn, 400, 5),
+        one_input_batch!(Watt2, 400, 6),
+        one_input_batch!(Stephenson3, 400, 7),
+        one_input_batch!(ScotchYoke, 400, 8),
+        one_input_batch!(HydraulicLever, 400, 9),
+    ] {
+        total = (total.0 + n, total.1 + f);
+    }
+    // Every mechanism ran its 400 configurations; about one in 23 inputs is NaN and some
+    // angles do not assemble, so both kinds of failure are exercised (measured: 502 of the
+    // 3600 poses failed).
+    assert_eq!(total.0, 3600);
+    assert!(
+        total.1 >= 100,
+        "only {} failed configurations exercised",
+        total.1
+    );
+}
+
+/// The two-input five-bar: q laid out as `[f64; 2]` per configuration (generated) and as G
+/// values per configuration (run time); the motor actions two per configuration.
+#[test]
+fn two_inputs_batched_equals_one_by_one() {
+    let m = FiveBar::new();
+    let rt = Mechanism::from_rust_source(MECHANISMS, "FiveBar").unwrap();
+    let mut r = Rng(11);
+    let n = 300;
+    let q: Vec<[f64; 2]> = (0..n)
+        .map(|_| [r.input(-7.0, 7.0), r.input(-7.0, 7.0)])
+        .collect();
+    let qd: Vec<[f64; 2]> = (0..n)
+        .map(|_| [r.input(-9.0, 9.0), r.input(-9.0, 9.0)])
+        .collect();
+    let qdd: Vec<[f64; 2]> = (0..n)
+        .map(|_| [r.input(-9.0, 9.0), r.input(-9.0, 9.0)])
+        .collect();
+    let flat = |v: &[[f64; 2]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+    let loads = Default::default();
+    let mut d = vec![0.0; 2 * n];
+    let errs = m.driver_action_many(&q, &qd, &qdd, &loads, &mut d);
+    let mut rd = vec![0.0; 2 * n];
+    let rerrs = rt.driver_action_many(&flat(&q), &flat(&qd), &flat(&qdd), &rt.loads(), &mut rd);
+    let mut rt_poses = vec![rt.nan_pose(); n];
+    let perrs = rt.pose_many(&flat(&q), &mut rt_poses);
+    let (mut ok, mut failed) = (0, 0);
+    for i in 0..n {
+        match m
+            .kinematics(q[i], qd[i], qdd[i])
+            .and_then(|k| m.driver_action(&k, &loads))
+        {
+            Ok(t) => {
+                ok += 1;
+                for k in 0..2 {
+                    same("driver action", i, d[2 * i + k], t[k]);
+                    same("run-time driver action", i, rd[2 * i + k], t[k]);
+                }
+            }
+            Err(e) => {
+                failed += 1;
+                assert_eq!(errs.get(i), Some(&e));
+                assert!(rerrs.get(i).is_some());
+                assert!(d[2 * i..2 * i + 2]
+                    .iter()
+                    .chain(&rd[2 * i..2 * i + 2])
+                    .all(|v| v.is_nan()));
+            }
+        }
+        match rt.pose(&q[i]) {
+            Ok(p) => assert_eq!(rt_poses[i].points, p.points),
+            Err(e) => {
+                assert_eq!(perrs.get(i), Some(&e));
+                assert!(rt_poses[i].points.iter().all(|p| p.pos.x.is_nan()));
+            }
+        }
+    }
+    assert!(ok >= 150 && failed >= 20, "{ok} solved, {failed} failed");
+    // Zhukovski's reduction needs one input: refused, nothing written.
+    let mut a = vec![7.0; n];
+    let mut b = vec![7.0; n];
+    let e = rt.reduced_many(&flat(&q)[..n], &mut a, &mut b);
+    assert!(e
+        .refusal()
+        .unwrap()
+        .to_string()
+        .contains("needs one input, the mechanism has 2"));
+    assert!(a.iter().all(|&v| v == 7.0));
+}
+
+/// From `PARALLEL_FROM` configurations on the batch runs on rayon's pool: the same numbers
+/// and the same failures, in order, as one by one.
+#[test]
+fn a_batch_on_the_pool_equals_one_by_one() {
+    let m = FourBar::new();
+    let x = inputs(2 * PARALLEL_FROM + 3, 21);
+    let n = x.q.len();
+    let (mut ii, mut di) = (vec![0.0; n], vec![0.0; n]);
+    let errs = m.reduced_many(&x.q, &mut ii, &mut di);
+    let mut expected = Vec::new();
+    for i in 0..n {
+        match m.reduced(x.q[i]) {
+            Ok(z) => assert_eq!((ii[i], di[i]), (z.inertia, z.inertia_derivative)),
+            Err(_) => expected.push(i),
+        }
+    }
+    assert_eq!(errs.indices(), &expected[..]);
+    assert!(expected.len() > 100, "{} NaN inputs", expected.len());
+}
+
+/// Slices of the wrong length: the whole batch is refused with the numbers, nothing
+/// written; the refusal is not a configuration's failure.
+#[test]
+fn wrong_lengths_are_refused() {
+    let m = SliderCrank::new();
+    let q = [0.1, 0.2, 0.3];
+    let mut out = vec![5.0; 2];
+    let e = m.acceleration_many(&q, &[1.0; 3], &[0.0; 3], &Default::default(), &mut out);
+    assert_eq!(
+        e.refusal().unwrap().to_string(),
+        "invalid input: `out` has 2 slots for 3 configurations of 1 each: give it 3 (= 3 × 1)"
+    );
+    assert_eq!(e.len(), 0);
+    assert_eq!(out, [5.0, 5.0]);
+    let e = m.acceleration_many(&q, &[1.0; 2], &[0.0; 3], &Default::default(), &mut [0.0; 3]);
+    assert!(
+        e.refusal().unwrap().to_string().contains("`qd` has 2"),
+        "{e}"
+    );
+    let rt = Mechanism::from_rust_source(MECHANISMS, "SliderCrank").unwrap();
+    let e = rt.points_many(&q, &mut [0.0; 5]);
+    assert!(
+        e.to_string()
+            .starts_with("batch refused: invalid input: `out` has 5 slots"),
+        "{e}"
+    );
+}
