@@ -253,6 +253,11 @@ impl LoadSet {
         Ok(LoadSet { given })
     }
 
+    /// True when no load is a table: the loads are the same at every input.
+    pub fn is_constant(&self) -> bool {
+        self.given.iter().all(|(_, v)| matches!(v, Value::Constant(_)))
+    }
+
     /// The loads at input q (the first input's value for the tables).
     pub fn at(&self, m: &Mechanism, q: f64) -> mech_core::runtime::mechanism::Loads {
         let mut loads = m.loads();

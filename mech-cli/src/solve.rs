@@ -10,8 +10,9 @@ use mech_core::Mechanism;
 use rayon::prelude::*;
 use std::io::Write;
 
-/// Rows per chunk of a sweep: solved in parallel, then written in order.
-const CHUNK: usize = 4096;
+/// Rows per chunk of a sweep: solved in parallel (the batch runner cuts it for the
+/// threads), then written in order.
+const CHUNK: usize = 16384;
 
 /// Sweeps longer than this show a progress bar (on a terminal).
 const PROGRESS_FROM: usize = 20_000;
@@ -86,21 +87,38 @@ pub fn sweep(
     } else {
         None
     };
+    // One chunk of rows at a time through the batch runner (`Columns::rows_many`, on rayon's
+    // pool), then rendered in parallel and written in order.
+    let g = m.dof();
+    let width = cols.names.len();
+    let constant = loads.is_constant().then(|| loads.at(m, from));
+    let (mut q, mut buf) = (Vec::new(), Vec::new());
     for start in (0..total).step_by(CHUNK) {
         let end = (start + CHUNK).min(total);
-        let rows: Vec<Result<String, Failure>> = (start..end)
-            .into_par_iter()
-            .map(|k| {
-                let mut q = rest.to_vec();
-                q[0] = inputs(from, to, steps, k);
-                let row = cols
-                    .row(m, &q, qd, qdd, &loads.at(m, q[0]))
-                    .map_err(|e| Failure::mechanism(format!("at q = {}: {}", q[0], e)))?;
-                Ok(renderer.render(&row))
-            })
+        q.clear();
+        for k in start..end {
+            q.push(inputs(from, to, steps, k));
+            q.extend_from_slice(&rest[1..]);
+        }
+        buf.resize((end - start) * width, 0.0);
+        let at = |i: usize| match &constant {
+            Some(c) => std::borrow::Cow::Borrowed(c),
+            None => std::borrow::Cow::Owned(loads.at(m, q[i * g])),
+        };
+        let errors = cols.rows_many(m, &q, qd, qdd, &at, &mut buf);
+        if let Some(e) = errors.refusal() {
+            return Err(Failure::mechanism(e.to_string()));
+        }
+        let good = errors.indices().first().copied().unwrap_or(end - start);
+        let rows: Vec<String> = buf[..good * width]
+            .par_chunks(width)
+            .map(|row| renderer.render(row))
             .collect();
-        for r in rows {
-            w.push(&r?)?;
+        for r in &rows {
+            w.push(r)?;
+        }
+        if let Some((i, e)) = errors.iter().next() {
+            return Err(Failure::mechanism(format!("at q = {}: {}", q[i * g], e)));
         }
         if let Some(b) = &bar {
             b.set_position(end as u64);

@@ -11,6 +11,7 @@
 use crate::kernel::link_state::LinkState;
 use crate::model::JointKind;
 use crate::runtime::mechanism::{Loads, Motion};
+use crate::solvers::batch::{each_with, refuse, BatchErrors, Block};
 use crate::solvers::traits::OneDof;
 use crate::{MechError, Mechanism};
 
@@ -249,6 +250,43 @@ impl Columns {
         let row = self.full_row(m, q, qd, qdd, loads, scratch)?;
         out.copy_from_slice(&row);
         Ok(())
+    }
+
+    /// The rows of many configurations (`docs/batch.md`): configuration i's inputs are
+    /// `q[i·G..(i+1)·G]`, its rates `qd`, `qdd` (G values, the same for every row) and its
+    /// loads `loads(i)`; its row goes to `out[i·W..(i+1)·W]` (W = the number of names). One
+    /// [`RowScratch`] per chunk; a configuration that fails gets NaN and its index in the
+    /// returned [`BatchErrors`]; on rayon's pool from
+    /// [`PARALLEL_FROM`](crate::solvers::batch::PARALLEL_FROM) rows on.
+    pub fn rows_many<'l>(
+        &self,
+        m: &Mechanism,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        loads: &(dyn Fn(usize) -> std::borrow::Cow<'l, Loads> + Sync),
+        out: &mut [f64],
+    ) -> BatchErrors {
+        let g = m.dof();
+        let n = if g == 0 { 0 } else { q.len() / g };
+        let shape = if g == 0 || q.len() % g != 0 || qd.len() != g || qdd.len() != g {
+            Err(MechError::InvalidInput(format!(
+                "`q` has {} values, `qd` {} and `qdd` {}: give {g} values (the inputs) per configuration in `q`, and {g} in `qd` and `qdd`",
+                q.len(),
+                qd.len(),
+                qdd.len()
+            )))
+        } else {
+            Ok(())
+        };
+        let rows = match shape.and_then(|()| Block::new("out", out, self.names.len(), n)) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        each_with(n, rows, RowScratch::default, |i, r: &mut Block<f64>, scratch| {
+            let qi = &q[i * g..(i + 1) * g];
+            self.row_into(m, qi, qd, qdd, &loads(i), scratch, r.row(i))
+        })
     }
 
     /// Every part but positions-only: through the motion (reused from `scratch`).
