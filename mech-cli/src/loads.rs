@@ -255,7 +255,9 @@ impl LoadSet {
 
     /// True when no load is a table: the loads are the same at every input.
     pub fn is_constant(&self) -> bool {
-        self.given.iter().all(|(_, v)| matches!(v, Value::Constant(_)))
+        self.given
+            .iter()
+            .all(|(_, v)| matches!(v, Value::Constant(_)))
     }
 
     /// The loads at input q (the first input's value for the tables).

@@ -93,6 +93,7 @@ pub fn sweep(
     let width = cols.names.len();
     let constant = loads.is_constant().then(|| loads.at(m, from));
     let (mut q, mut buf) = (Vec::new(), Vec::new());
+    let (qds, qdds) = (qd.repeat(CHUNK), qdd.repeat(CHUNK));
     for start in (0..total).step_by(CHUNK) {
         let end = (start + CHUNK).min(total);
         q.clear();
@@ -100,6 +101,7 @@ pub fn sweep(
             q.push(inputs(from, to, steps, k));
             q.extend_from_slice(&rest[1..]);
         }
+        let (qd, qdd) = (&qds[..q.len()], &qdds[..q.len()]);
         buf.resize((end - start) * width, 0.0);
         let at = |i: usize| match &constant {
             Some(c) => std::borrow::Cow::Borrowed(c),

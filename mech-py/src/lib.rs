@@ -6,7 +6,8 @@
 
 use mech_core::dynamics::flywheel::Cycle;
 use mech_core::model::{JointKind, Load};
-use mech_core::runtime::columns::{Columns, Part, RowScratch};
+use mech_core::runtime::columns::{Columns, Part};
+use mech_core::solvers::batch::{each, Block};
 use mech_core::runtime::mechanism::Loads;
 use mech_core::solvers::traits::OneDof;
 use mech_core::{MechError as CoreError, Mechanism};
@@ -17,7 +18,6 @@ use pyo3::prelude::*;
 use pyo3::sync::GILOnceCell;
 use pyo3::types::{PyDict, PyTuple, PyType};
 use rayon::prelude::*;
-use std::mem::MaybeUninit;
 use std::sync::OnceLock;
 
 create_exception!(
@@ -213,10 +213,6 @@ fn row_major<'a>(a: &'a numpy::ndarray::ArrayView2<'a, f64>) -> std::borrow::Cow
     }
 }
 
-/// A row's inputs from 2-D arrays (n, G).
-fn row<'a>(a: &'a numpy::ndarray::ArrayView2<'a, f64>, k: usize) -> Vec<f64> {
-    a.row(k).to_vec()
-}
 
 /// The number of flat load values per row (force: 2, torque: 1, in declaration order).
 fn load_width(m: &Mechanism) -> usize {
@@ -383,7 +379,7 @@ impl PyMechanism {
         check_size(n, cols.names.len(), "the table")?;
         // Rows as plain slices of the (n, G) and (n, L) arrays in row-major order (copied
         // once if numpy gave another layout).
-        let (g, nl) = (q.ncols(), loads.ncols());
+        let nl = loads.ncols();
         let (q, qd, qdd, loads) = (
             row_major(&q),
             row_major(&qd),
@@ -393,58 +389,26 @@ impl PyMechanism {
         let (q, qd, qdd, loads) = (&q[..], &qd[..], &qdd[..], &loads[..]);
         let width = cols.names.len();
         let m = &self.inner;
-        // The output is written once, row by row, from a per-thread buffer: no zeroing
-        // pass over it first (a failed row is NaN).
-        let mut data: Vec<MaybeUninit<f64>> = Vec::with_capacity(n * width);
-        // SAFETY: `MaybeUninit` needs no initialisation; every element is written below.
-        unsafe { data.set_len(n * width) };
-        let mut ok = vec![true; n];
-        // The first failed row's error (lowest row index), not one string per row.
-        let first_error: std::sync::Mutex<Option<(usize, String)>> = std::sync::Mutex::new(None);
-        let has_loads = !m.model().loads.is_empty();
-        py.allow_threads(|| {
-            pool().install(|| {
-                let init = || (RowScratch::default(), m.loads(), vec![0.0; width]);
-                data.par_chunks_mut(width.max(1))
-                    .zip(ok.par_iter_mut())
-                    .enumerate()
-                    .for_each_init(init, |(scratch, l, buf), (k, (out, row_ok))| {
-                        if has_loads {
-                            set_loads(m, l, &loads[k * nl..(k + 1) * nl]);
-                        }
-                        let row = k * g..(k + 1) * g;
-                        if let Err(e) = cols.row_into(
-                            m,
-                            &q[row.clone()],
-                            &qd[row.clone()],
-                            &qdd[row],
-                            l,
-                            scratch,
-                            buf,
-                        ) {
-                            buf.fill(f64::NAN);
-                            *row_ok = false;
-                            let mut first = first_error.lock().unwrap_or_else(|p| p.into_inner());
-                            if first.as_ref().is_none_or(|(j, _)| k < *j) {
-                                *first = Some((k, e.to_string()));
-                            }
-                        }
-                        for (d, v) in out.iter_mut().zip(buf.iter()) {
-                            d.write(*v);
-                        }
-                    })
-            })
-        });
-        // SAFETY: every row (n × width elements) was written above; MaybeUninit<f64> and
-        // f64 have the same layout.
-        let data: Vec<f64> = unsafe {
-            let mut d = std::mem::ManuallyDrop::new(data);
-            Vec::from_raw_parts(d.as_mut_ptr().cast::<f64>(), d.len(), d.capacity())
+        // Through the batch runner (`Columns::rows_many`): one scratch per chunk, chunks on
+        // the package's pool; a failed row is NaN, its index and error in `errors`.
+        let mut data = vec![0.0; n * width];
+        let base = m.loads();
+        let at = |k: usize| {
+            if nl == 0 {
+                std::borrow::Cow::Borrowed(&base)
+            } else {
+                std::borrow::Cow::Owned(loads_of(m, &loads[k * nl..(k + 1) * nl]))
+            }
         };
-        let first = first_error
-            .into_inner()
-            .unwrap_or_else(|p| p.into_inner())
-            .map(|(_, e)| e);
+        let errors = py.allow_threads(|| pool().install(|| cols.rows_many(m, q, qd, qdd, &at, &mut data)));
+        if let Some(e) = errors.refusal() {
+            return Err(invalid(e.to_string()));
+        }
+        let mut ok = vec![true; n];
+        for &i in errors.indices() {
+            ok[i] = false;
+        }
+        let first = errors.iter().next().map(|(_, e)| e.to_string());
         let data = numpy::ndarray::Array2::from_shape_vec((n, width), data)
             .expect("shape")
             .into_pyarray(py);
@@ -488,27 +452,37 @@ impl PyMechanism {
             )));
         }
         let m = &self.inner;
-        let out: Vec<Result<f64, CoreError>> = py.allow_threads(|| {
+        let mut v = vec![0.0; n];
+        // Loads the same on every row (or none): `acceleration_many`; else a row's loads each.
+        let flat = loads.as_standard_layout();
+        let flat = flat.as_slice().unwrap_or(&[]);
+        let same = l == 0 || flat.chunks(l).all(|r| r == &flat[..l]);
+        let errors = py.allow_threads(|| {
             pool().install(|| {
-                (0..q.len())
-                    .into_par_iter()
-                    .map(|k| {
-                        OneDof::acceleration(
-                            m,
-                            q[k],
-                            qd[k],
-                            driver[k],
-                            &loads_of(m, &row(&loads, k)),
-                        )
+                if same {
+                    let common = loads_of(m, if n == 0 { &[] } else { &flat[..l] });
+                    m.acceleration_many(&q, &qd, &driver, &common, &mut v)
+                } else {
+                    let rows = match Block::new("out", &mut v, 1, n) {
+                        Ok(r) => r,
+                        Err(e) => return mech_core::solvers::batch::refuse(e),
+                    };
+                    each(n, rows, |k, r: &mut Block<f64>| {
+                        let lk = loads_of(m, &flat[k * l..(k + 1) * l]);
+                        *r.at(k) = OneDof::acceleration(m, q[k], qd[k], driver[k], &lk)?;
+                        Ok(())
                     })
-                    .collect()
+                }
             })
         });
-        let first = out
-            .iter()
-            .find_map(|r| r.as_ref().err().map(|e| e.to_string()));
-        let ok: Vec<bool> = out.iter().map(Result::is_ok).collect();
-        let v: Vec<f64> = out.into_iter().map(|r| r.unwrap_or(f64::NAN)).collect();
+        if let Some(e) = errors.refusal() {
+            return Err(invalid(e.to_string()));
+        }
+        let mut ok = vec![true; n];
+        for &i in errors.indices() {
+            ok[i] = false;
+        }
+        let first = errors.iter().next().map(|(_, e)| e.to_string());
         Ok((v.into_pyarray(py), ok.into_pyarray(py), first))
     }
 
@@ -546,6 +520,14 @@ impl PyMechanism {
         )?;
         let (n, width, nv) = (q.nrows(), cols.names.len(), variants.len());
         check_size(nv.saturating_mul(n), width, "the sweep")?;
+        let nl = loads.ncols();
+        let (q, qd, qdd, loads) = (
+            row_major(&q),
+            row_major(&qd),
+            row_major(&qdd),
+            row_major(&loads),
+        );
+        let (q, qd, qdd, loads) = (&q[..], &qd[..], &qdd[..], &loads[..]);
         let base = &self.inner;
         let results: Vec<(Vec<f64>, Vec<bool>)> = py.allow_threads(|| {
             pool().install(|| {
@@ -559,24 +541,14 @@ impl PyMechanism {
                         let mut data = vec![f64::NAN; n * width];
                         let mut ok = vec![false; n];
                         if built.is_ok() {
-                            let mut scratch = RowScratch::default();
-                            for k in 0..n {
-                                let out = &mut data[k * width..(k + 1) * width];
-                                if cols
-                                    .row_into(
-                                        &m,
-                                        &row(&q, k),
-                                        &row(&qd, k),
-                                        &row(&qdd, k),
-                                        &loads_of(&m, &row(&loads, k)),
-                                        &mut scratch,
-                                        out,
-                                    )
-                                    .is_ok()
-                                {
-                                    ok[k] = true;
-                                } else {
-                                    out.fill(f64::NAN);
+                            let at = |k: usize| {
+                                std::borrow::Cow::Owned(loads_of(&m, &loads[k * nl..(k + 1) * nl]))
+                            };
+                            let errors = cols.rows_many(&m, q, qd, qdd, &at, &mut data);
+                            if errors.refusal().is_none() {
+                                ok.iter_mut().for_each(|o| *o = true);
+                                for &i in errors.indices() {
+                                    ok[i] = false;
                                 }
                             }
                         }

@@ -253,8 +253,8 @@ impl Columns {
     }
 
     /// The rows of many configurations (`docs/batch.md`): configuration i's inputs are
-    /// `q[i·G..(i+1)·G]`, its rates `qd`, `qdd` (G values, the same for every row) and its
-    /// loads `loads(i)`; its row goes to `out[i·W..(i+1)·W]` (W = the number of names). One
+    /// `q[i·G..(i+1)·G]`, its rates `qd[i·G..(i+1)·G]` and `qdd[i·G..(i+1)·G]`, its loads
+    /// `loads(i)`; its row goes to `out[i·W..(i+1)·W]` (W = the number of names). One
     /// [`RowScratch`] per chunk; a configuration that fails gets NaN and its index in the
     /// returned [`BatchErrors`]; on rayon's pool from
     /// [`PARALLEL_FROM`](crate::solvers::batch::PARALLEL_FROM) rows on.
@@ -269,9 +269,9 @@ impl Columns {
     ) -> BatchErrors {
         let g = m.dof();
         let n = if g == 0 { 0 } else { q.len() / g };
-        let shape = if g == 0 || q.len() % g != 0 || qd.len() != g || qdd.len() != g {
+        let shape = if g == 0 || q.len() % g != 0 || qd.len() != q.len() || qdd.len() != q.len() {
             Err(MechError::InvalidInput(format!(
-                "`q` has {} values, `qd` {} and `qdd` {}: give {g} values (the inputs) per configuration in `q`, and {g} in `qd` and `qdd`",
+                "`q` has {} values, `qd` {} and `qdd` {}: give {g} values (the inputs) per configuration in each",
                 q.len(),
                 qd.len(),
                 qdd.len()
@@ -283,10 +283,16 @@ impl Columns {
             Ok(r) => r,
             Err(e) => return refuse(e),
         };
-        each_with(n, rows, RowScratch::default, |i, r: &mut Block<f64>, scratch| {
-            let qi = &q[i * g..(i + 1) * g];
-            self.row_into(m, qi, qd, qdd, &loads(i), scratch, r.row(i))
-        })
+        each_with(
+            n,
+            rows,
+            RowScratch::default,
+            |i, r: &mut Block<f64>, scratch| {
+                let k = i * g..(i + 1) * g;
+                let (qi, qdi, qddi) = (&q[k.clone()], &qd[k.clone()], &qdd[k]);
+                self.row_into(m, qi, qdi, qddi, &loads(i), scratch, r.row(i))
+            },
+        )
     }
 
     /// Every part but positions-only: through the motion (reused from `scratch`).
