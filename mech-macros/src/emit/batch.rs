@@ -160,9 +160,9 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
                 Err(e) => return #b::refuse(e),
             };
             #b::each(q.len(), rows, |i, (a, d)| {
-                let z = self.reduced(q[i])?;
-                *a.at(i) = z.inertia;
-                *d.at(i) = z.inertia_derivative;
+                let red = self.reduced(q[i])?;
+                *a.at(i) = red.inertia;
+                *d.at(i) = red.inertia_derivative;
                 Ok(())
             })
         }
