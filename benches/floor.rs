@@ -540,17 +540,199 @@ fn ratios(c: &mut Criterion<Interleaved>) {
     inverted_slider_crank_ops::ratios(c, &Case::inverted_slider_crank());
 }
 
+// ---------------------------------------------------------------------------------------
+// Many configurations per call (`docs/batch.md`): the generated `*_many` over BATCH
+// configurations against the hand-written scalar code called BATCH times into the same
+// kind of buffer; the time per iteration is that of BATCH configurations, the interleaved
+// ratio the per-configuration ratio.
+
+/// Configurations per batched call: below `mech::batch::PARALLEL_FROM`, on one thread.
+const BATCH: usize = 1024;
+
+/// The four-bar and the slider-crank with BATCH configurations spread over a turn and an
+/// output buffer per side.
+struct BatchCase {
+    fb: FourBarCase,
+    sc: SliderCrankCase,
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    driver: Vec<f64>,
+    out: std::cell::RefCell<Vec<f64>>,
+    out2: std::cell::RefCell<Vec<f64>>,
+}
+
+impl BatchCase {
+    fn new() -> Self {
+        // The golden-ratio sequence over a turn: every angle different, no pattern.
+        let q: Vec<f64> = (0..BATCH)
+            .map(|i| std::f64::consts::TAU * ((i as f64 * 0.618_033_988_749_895) % 1.0) - 3.0)
+            .collect();
+        BatchCase {
+            fb: FourBarCase::new(),
+            sc: SliderCrankCase::new(),
+            qd: q.iter().map(|x| QD + x).collect(),
+            driver: q.iter().map(|x| 5.0 + x).collect(),
+            q,
+            out: std::cell::RefCell::new(vec![0.0; 10 * BATCH]),
+            out2: std::cell::RefCell::new(vec![0.0; BATCH]),
+        }
+    }
+}
+
+fn batch_points_gen(c: &BatchCase) -> usize {
+    let mut out = c.out.borrow_mut();
+    black_box(&c.fb.m)
+        .points_many(black_box(&c.q), &mut out)
+        .len()
+}
+fn batch_points_hand(c: &BatchCase) -> usize {
+    let mut out = c.out.borrow_mut();
+    let h = black_box(&c.fb.h);
+    let mut failed = 0;
+    for (&q, row) in black_box(&c.q).iter().zip(out.chunks_exact_mut(10)) {
+        match h.points(q) {
+            Some(p) => {
+                for (xy, v) in row.chunks_exact_mut(2).zip(p) {
+                    xy[0] = v.x;
+                    xy[1] = v.y;
+                }
+            }
+            None => failed += 1,
+        }
+    }
+    failed
+}
+fn batch_reduced_gen(c: &BatchCase) -> usize {
+    let (mut a, mut b) = (c.out.borrow_mut(), c.out2.borrow_mut());
+    black_box(&c.fb.m)
+        .reduced_many(black_box(&c.q), &mut a[..BATCH], &mut b)
+        .len()
+}
+fn batch_reduced_hand(c: &BatchCase) -> usize {
+    let (mut a, mut b) = (c.out.borrow_mut(), c.out2.borrow_mut());
+    let h = black_box(&c.fb.h);
+    let mut failed = 0;
+    for (i, &q) in black_box(&c.q).iter().enumerate() {
+        match h.reduced(q) {
+            Some(r) => (a[i], b[i]) = (r.inertia, r.inertia_derivative),
+            None => failed += 1,
+        }
+    }
+    failed
+}
+fn batch_acceleration_gen(c: &BatchCase) -> usize {
+    let mut out = c.out2.borrow_mut();
+    black_box(&c.fb.m)
+        .acceleration_many(black_box(&c.q), &c.qd, &c.driver, &c.fb.loads, &mut out)
+        .len()
+}
+fn batch_acceleration_hand(c: &BatchCase) -> usize {
+    let mut out = c.out2.borrow_mut();
+    let h = black_box(&c.fb.h);
+    let mut failed = 0;
+    for i in 0..BATCH {
+        match h.acceleration(black_box(c.q[i]), c.qd[i], c.driver[i], &c.fb.loads) {
+            Some(a) => out[i] = a,
+            None => failed += 1,
+        }
+    }
+    failed
+}
+fn batch_sc_acceleration_gen(c: &BatchCase) -> usize {
+    let mut out = c.out2.borrow_mut();
+    black_box(&c.sc.m)
+        .acceleration_many(black_box(&c.q), &c.qd, &c.driver, &c.sc.loads, &mut out)
+        .len()
+}
+fn batch_sc_acceleration_hand(c: &BatchCase) -> usize {
+    let mut out = c.out2.borrow_mut();
+    let h = black_box(&c.sc.h);
+    let mut failed = 0;
+    for i in 0..BATCH {
+        match h.acceleration(black_box(c.q[i]), c.qd[i], c.driver[i], &c.sc.loads) {
+            Some(a) => out[i] = a,
+            None => failed += 1,
+        }
+    }
+    failed
+}
+
+fn batch(c: &mut Criterion) {
+    let k = BatchCase::new();
+    pair(
+        c,
+        "batch/four_bar/points",
+        &k,
+        batch_points_gen,
+        batch_points_hand,
+    );
+    pair(
+        c,
+        "batch/four_bar/reduced",
+        &k,
+        batch_reduced_gen,
+        batch_reduced_hand,
+    );
+    pair(
+        c,
+        "batch/four_bar/acceleration",
+        &k,
+        batch_acceleration_gen,
+        batch_acceleration_hand,
+    );
+    pair(
+        c,
+        "batch/slider_crank/acceleration",
+        &k,
+        batch_sc_acceleration_gen,
+        batch_sc_acceleration_hand,
+    );
+}
+
+fn batch_ratios(c: &mut Criterion<Interleaved>) {
+    let k = BatchCase::new();
+    ratio(
+        c,
+        "batch/four_bar/points",
+        &k,
+        batch_points_gen,
+        batch_points_hand,
+    );
+    ratio(
+        c,
+        "batch/four_bar/reduced",
+        &k,
+        batch_reduced_gen,
+        batch_reduced_hand,
+    );
+    ratio(
+        c,
+        "batch/four_bar/acceleration",
+        &k,
+        batch_acceleration_gen,
+        batch_acceleration_hand,
+    );
+    ratio(
+        c,
+        "batch/slider_crank/acceleration",
+        &k,
+        batch_sc_acceleration_gen,
+        batch_sc_acceleration_hand,
+    );
+}
+
 criterion_group!(
     benches,
     four_bar,
     slider_crank,
     quick_return,
     scotch_yoke,
-    inverted_slider_crank
+    inverted_slider_crank,
+    batch
 );
 criterion_group! {
     name = interleaved_ratios;
     config = Criterion::default().with_measurement(Interleaved);
-    targets = ratios
+    targets = ratios, batch_ratios
 }
 criterion_main!(benches, interleaved_ratios);

@@ -351,3 +351,51 @@ fn wrong_lengths_are_refused() {
         "{e}"
     );
 }
+
+/// Below `PARALLEL_FROM` configurations a batch with no failure allocates nothing (the
+/// counting allocator of the suite, `tests/common/counting.rs`, counts this thread's).
+#[test]
+fn a_batch_on_the_calling_thread_does_not_allocate() {
+    let m = FourBar::new();
+    let n = 1000;
+    let q: Vec<f64> = (0..n).map(|i| 0.0063 * i as f64).collect();
+    let (qd, driver) = (vec![3.0; n], vec![1.5; n]);
+    let loads = FourBarLoads::default();
+    let mut poses = vec![FourBarPose::NAN; n];
+    let np = FourBar::POINT_NAMES.len();
+    let (mut a, mut b, mut c) = (vec![0.0; 2 * np * n], vec![0.0; n], vec![0.0; n]);
+    let count = |f: &mut dyn FnMut() -> bool| {
+        let before = crate::counting::count();
+        assert!(f(), "a configuration failed");
+        crate::counting::count() - before
+    };
+    assert_eq!(
+        count(&mut || m.pose_many(&q, &mut poses).is_empty()),
+        0,
+        "pose_many"
+    );
+    assert_eq!(
+        count(&mut || m.points_many(&q, &mut a).is_empty()),
+        0,
+        "points_many"
+    );
+    assert_eq!(
+        count(&mut || m.reduced_many(&q, &mut b, &mut c).is_empty()),
+        0,
+        "reduced_many"
+    );
+    assert_eq!(
+        count(&mut || m
+            .acceleration_many(&q, &qd, &driver, &loads, &mut b)
+            .is_empty()),
+        0,
+        "acceleration_many"
+    );
+    assert_eq!(
+        count(&mut || m
+            .driver_action_many(&q, &qd, &driver, &loads, &mut b)
+            .is_empty()),
+        0,
+        "driver_action_many"
+    );
+}

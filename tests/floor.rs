@@ -304,8 +304,28 @@ fn four_bar_hand_matches_generated() {
             gd,
             hf.driver,
         );
+
+        // Zhukovski (the hand code's own closed form for the batched benchmarks)
+        let g = m.reduced(q).unwrap();
+        let hr = h.reduced(q).unwrap();
+        r.scalar("reduced: I*", q, g.inertia, hr.inertia);
+        r.scalar(
+            "reduced: dI*/dq",
+            q,
+            g.inertia_derivative,
+            hr.inertia_derivative,
+        );
+        r.scalar(
+            "acceleration: q̈ (gravity, loads, driver)",
+            q,
+            m.acceleration(q, QD, 5.0, &loads).unwrap(),
+            h.acceleration(q, QD, 5.0, &loads).unwrap(),
+        );
     }
     r.check(&[
+        "reduced: I*",
+        "reduced: dI*/dq",
+        "acceleration: q̈ (gravity, loads, driver)",
         "pose: link angle",
         "pose: link cg",
         "pose: point pos",

@@ -128,6 +128,9 @@ pub struct FourBarHand {
     w2: V2,
     w3: V2,
     w4: V2,
+    /// Inertias about the fixed pins, I_O2 = I₂ + m₂|G₂ − O2|², I_O4 (kg·m²).
+    io2: f64,
+    io4: f64,
 }
 
 /// Pose of one link: angle θ (rad) and cg position (m).
@@ -252,6 +255,8 @@ impl FourBarHand {
             w2: p.gravity * crank.mass,
             w3: p.gravity * coupler.mass,
             w4: p.gravity * rocker.mass,
+            io2: crank.inertia + crank.mass * (crank.cg - o2).norm_squared(),
+            io4: rocker.inertia + rocker.mass * (rocker.cg - o4).norm_squared(),
         }
     }
 
@@ -448,6 +453,93 @@ impl FourBarHand {
         let pl = loads.tool.dot(&m.p.vel) + loads.resist * m.rocker.omega;
         -(p2 + p3 + p4 + pl) / m.crank.omega
     }
+
+    /// The points alone, O2, O4, A, B, P: the loop closure and P on the coupler, no angle.
+    #[inline(always)]
+    pub fn points(&self, q: f64) -> Option<[V2; 5]> {
+        let (_, a, b) = self.close(q)?;
+        Some([self.o2, self.o4, a, b, at(a, b - a, self.p3)])
+    }
+
+    /// Zhukovski's I*(q) and dI*/dq; `None` when the loop does not close.
+    ///
+    /// The velocity coefficients (q̇ = 1, q̈ = 0 in `kinematics`): k₃ = −(a₂ × a₄)/Δ,
+    /// k₄ = −(a₂ × a₃)/Δ, and their q-derivatives k₃' = (c·a₄)/Δ, k₄' = (c·a₃)/Δ with
+    /// c = a₂ + k₃² a₃ − k₄² a₄. The coupler's cg, at r₃ from A: g_G3 = perp(a₂) + k₃ perp(r₃),
+    /// g'_G3 = −a₂ + k₃' perp(r₃) − k₃² r₃. The crank and the rocker turn about fixed pins:
+    /// I* = I_O2 + m₃|g_G3|² + I₃k₃² + I_O4 k₄², dI*/dq = 2 (m₃ g_G3·g'_G3 + I₃k₃k₃' + I_O4 k₄k₄').
+    pub fn reduced(&self, q: f64) -> Option<HandReduced> {
+        let k = self.coefficients(q)?;
+        Some(self.inertia_of(&k))
+    }
+
+    /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*, with
+    /// M* = w₂·perp(r₂) + w₃·g_G3 + w₄·k₄ perp(r₄) + F_tool·g_P + T_resist k₄.
+    pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &FourBarLoads) -> Option<f64> {
+        let k = self.coefficients(q)?;
+        let r = self.inertia_of(&k);
+        let gp = perp(k.a2) + perp(k.rp) * k.k3;
+        let moment = self.w2.dot(&perp(k.r2))
+            + self.w3.dot(&k.g3)
+            + self.w4.dot(&perp(k.r4)) * k.k4
+            + loads.tool.dot(&gp)
+            + loads.resist * k.k4;
+        Some((driver + moment - 0.5 * r.inertia_derivative * qd * qd) / r.inertia)
+    }
+
+    #[inline(always)]
+    fn coefficients(&self, q: f64) -> Option<FourBarCoefficients> {
+        let (a2, a, b) = self.close(q)?;
+        let a3 = b - a;
+        let a4 = b - self.o4;
+        let inv_det = 1.0 / cross(a3, a4);
+        let k3 = -cross(a2, a4) * inv_det;
+        let k4 = -cross(a2, a3) * inv_det;
+        let c = a2 + a3 * (k3 * k3) - a4 * (k4 * k4);
+        let (k3d, k4d) = (c.dot(&a4) * inv_det, c.dot(&a3) * inv_det);
+        let r3 = at(V2::zeros(), a3, self.g3);
+        Some(FourBarCoefficients {
+            a2,
+            k3,
+            k4,
+            k3d,
+            k4d,
+            g3: perp(a2) + perp(r3) * k3,
+            g3d: -a2 + perp(r3) * k3d - r3 * (k3 * k3),
+            r2: at(V2::zeros(), a2, self.g2),
+            r4: at(V2::zeros(), a4, self.g4),
+            rp: at(V2::zeros(), a3, self.p3),
+        })
+    }
+
+    #[inline(always)]
+    fn inertia_of(&self, k: &FourBarCoefficients) -> HandReduced {
+        let (io2, io4) = (self.io2, self.io4);
+        HandReduced {
+            inertia: io2
+                + self.m3 * k.g3.norm_squared()
+                + self.i3 * k.k3 * k.k3
+                + io4 * k.k4 * k.k4,
+            inertia_derivative: 2.0
+                * (self.m3 * k.g3.dot(&k.g3d) + self.i3 * k.k3 * k.k3d + io4 * k.k4 * k.k4d),
+        }
+    }
+}
+
+/// The four-bar's velocity coefficients at one crank angle (`FourBarHand::reduced`).
+#[derive(Clone, Copy, Debug)]
+struct FourBarCoefficients {
+    a2: V2,
+    k3: f64,
+    k4: f64,
+    k3d: f64,
+    k4d: f64,
+    g3: V2,
+    g3d: V2,
+    /// The cgs of the crank and the rocker and P, from O2, O4 and A.
+    r2: V2,
+    r4: V2,
+    rp: V2,
 }
 
 // ---------------------------------------------------------------------------------------

@@ -112,8 +112,8 @@ fn many_fns(cx: &Ctx) -> TokenStream {
         }
 
         /// The points at every configuration of `q` into `out`: x and y (m) of each point
-        /// in declaration order, configuration after configuration (`2 × POINTS` values per
-        /// configuration). A configuration that fails gets NaN and its index in the returned
+        /// in declaration order, configuration after configuration (`2 × POINT_NAMES.len()`
+        /// values per configuration). A configuration that fails gets NaN and its index in the returned
         /// `BatchErrors`.
         pub fn points_many(&self, q: &[#q_ty], out: &mut [f64]) -> #b::BatchErrors {
             let rows = match #b::Block::new("out", out, #np2, q.len()) {
