@@ -767,3 +767,243 @@ fn with_simd_gives_the_same_bits() {
         assert_eq!(a, b);
     }
 }
+
+/// The four-bar `FOUR_BAR` as the generated code solves it: its plan's kernels with the
+/// topology as constants (the joints rebuilt with their links as literals, as
+/// `JointGeom::with_links` in the generated code).
+mod four_bar {
+    use super::super::*;
+    use crate::kernel::constraints::{JointGeom, Level};
+    use crate::kernel::kinematics::{solve_chain, solve_driven};
+    use crate::kernel::screw::{Chain, Driven, JointScrew};
+    use crate::solvers::zhukovski::ZhukovskiSums;
+    use crate::MechError;
+
+    const S0: Solver = Solver::DrivenRevolute {
+        body: 1,
+        joint: 0,
+        input: 0,
+    };
+    const D0: Driven = Driven {
+        from: 0,
+        body: 1,
+        screw: JointScrew {
+            joint: 0,
+            slide: false,
+        },
+        input: 0,
+        pinned: true,
+        track: false,
+    };
+    const S1: Solver = Solver::Rrr {
+        b1: 2,
+        b2: 3,
+        ja: 1,
+        jc: 2,
+        jb: 3,
+    };
+    const C1: Chain = Chain {
+        from: 1,
+        to: 0,
+        screws: [
+            JointScrew {
+                joint: 1,
+                slide: false,
+            },
+            JointScrew {
+                joint: 2,
+                slide: false,
+            },
+            JointScrew {
+                joint: 3,
+                slide: false,
+            },
+        ],
+        links: [2, 3],
+        pivot: 1,
+    };
+
+    /// The numbers of the mechanism.
+    pub struct Numbers {
+        pub joints: [JointGeom; 4],
+        pub links: [LinkGeom; 4],
+        pub drawing: [LinkState; 4],
+        pub scale: f64,
+        pub sign: f64,
+    }
+
+    #[inline(always)]
+    fn topology(j: &[JointGeom; 4]) -> [JointGeom; 4] {
+        [
+            j[0].with_links(0, 1, [false, true]),
+            j[1].with_links(1, 2, [false, true]),
+            j[2].with_links(2, 3, [false, false]),
+            j[3].with_links(0, 3, [false, true]),
+        ]
+    }
+
+    /// `reduced(q)`: the kinematics at q̇ = 1, q̈ = 0 and the sums, one configuration.
+    #[inline(never)]
+    pub fn scalar(n: &Numbers, q: f64) -> Result<(f64, f64), MechError> {
+        let j = topology(&n.joints);
+        let mut s = n.drawing;
+        let drive = (&[q][..], &[1.0][..], &[0.0][..]);
+        solve_driven(S0, &D0, &j, &mut s, drive, Level::Acceleration)?;
+        solve_chain(
+            S1,
+            &C1,
+            &j,
+            &mut s,
+            drive,
+            n.sign,
+            n.scale,
+            Level::Acceleration,
+        )?;
+        let mut z = ZhukovskiSums::new();
+        z.inertia_about_anchor(&n.links[1], &s[1]);
+        z.inertia(&n.links[2], &s[2]);
+        z.inertia_about_anchor(&n.links[3], &s[3]);
+        Ok((z.reduced.inertia, z.reduced.inertia_derivative))
+    }
+
+    /// `reduced` of four configurations in lanes.
+    #[inline(always)]
+    fn lanes(n: &Numbers, q: L) -> (L, L, Mask) {
+        let j = topology(&n.joints);
+        let d = &n.drawing;
+        let mut s = [
+            LinkLanes::from_state(&d[0]),
+            LinkLanes::from_state(&d[1]),
+            LinkLanes::from_state(&d[2]),
+            LinkLanes::from_state(&d[3]),
+        ];
+        let (qd, qdd) = (L::splat(1.0), L::splat(0.0));
+        let m0 = solve_driven_lanes(
+            S0,
+            &D0,
+            &j,
+            &mut s,
+            &[q],
+            &[qd],
+            &[qdd],
+            Level::Acceleration,
+        );
+        let m1 = solve_chain_lanes(S1, &j, &mut s, n.sign, n.scale, Level::Acceleration);
+        let mut z = ZhukovskiLanes::new();
+        z.inertia_about_anchor(&n.links[1], &s[1]);
+        z.inertia(&n.links[2], &s[2]);
+        z.inertia_about_anchor(&n.links[3], &s[3]);
+        (z.inertia, z.inertia_derivative, or(m0, m1))
+    }
+
+    /// The batch in lanes, masked lanes by the scalar route.
+    #[inline(always)]
+    fn batch_body(n: &Numbers, q: &[f64], out: &mut [(f64, f64)]) {
+        for (qc, oc) in q.chunks_exact(LANES).zip(out.chunks_exact_mut(LANES)) {
+            let (i, d, m) = lanes(n, L([qc[0], qc[1], qc[2], qc[3]]));
+            for k in 0..LANES {
+                oc[k] = if m[k] {
+                    scalar(n, qc[k]).unwrap_or((f64::NAN, f64::NAN))
+                } else {
+                    (i.0[k], d.0[k])
+                };
+            }
+        }
+    }
+
+    /// [`batch_body`] compiled for the baseline.
+    #[inline(never)]
+    pub fn batch(n: &Numbers, q: &[f64], out: &mut [(f64, f64)]) {
+        batch_body(n, q, out)
+    }
+
+    /// [`batch_body`] with [`with_simd`].
+    #[inline(never)]
+    pub fn batch_simd(n: &Numbers, q: &[f64], out: &mut [(f64, f64)]) {
+        with_simd(
+            #[inline(always)]
+            || batch_body(n, q, out),
+        )
+    }
+
+    /// A lane function alone, for the disassembly (`vsqrtpd`, `vmulpd` on ymm registers).
+    #[inline(never)]
+    pub fn probe_simd(x: &mut [L; 2]) {
+        with_simd(
+            #[inline(always)]
+            || {
+                let (a, b) = (x[0], x[1]);
+                x[0] = (a * b + a).sqrt();
+                x[1] = sin_cos(a).0;
+            },
+        )
+    }
+}
+
+/// Nanoseconds per configuration of `reduced` (kinematics at q̇ = 1, q̈ = 0 and the inertia
+/// sums) of the four-bar over 1024 configurations: scalar kernels in a loop, lanes on the
+/// baseline, lanes with [`with_simd`]. Run with
+/// `cargo test --release -p mech-core --lib lanes -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn speed_of_the_four_bar_reduced() {
+    use std::hint::black_box;
+    use std::time::Instant;
+    let r = rig(FOUR_BAR);
+    let n = four_bar::Numbers {
+        joints: std::array::from_fn(|k| r.inst.joints[k]),
+        links: std::array::from_fn(|k| r.inst.links[k]),
+        drawing: std::array::from_fn(|k| r.inst.drawing[k]),
+        scale: r.inst.scale,
+        sign: r.branches[1],
+    };
+    let count = 1024;
+    let mut rng = Rng(3);
+    let q: Vec<f64> = (0..count).map(|_| rng.uniform(-3.14, 3.14)).collect();
+    let mut out = vec![(0.0, 0.0); count];
+    let mut x = [L::splat(0.3), L::splat(0.7)];
+    four_bar::probe_simd(black_box(&mut x));
+    // The same results by every route.
+    let reference: Vec<_> = q
+        .iter()
+        .map(|&q| four_bar::scalar(&n, q).unwrap())
+        .collect();
+    four_bar::batch(&n, &q, &mut out);
+    let mut worst = 0.0f64;
+    for (a, b) in out.iter().zip(&reference) {
+        worst = worst
+            .max((a.0 - b.0).abs() / b.0.abs())
+            .max((a.1 - b.1).abs() / b.0.abs());
+    }
+    println!("lanes against scalar: worst relative {worst:.2e}");
+    let time = |f: &mut dyn FnMut()| {
+        let mut best = f64::INFINITY;
+        for _ in 0..30 {
+            let t = Instant::now();
+            for _ in 0..50 {
+                f();
+            }
+            best = best.min(t.elapsed().as_secs_f64() / (50 * count) as f64 * 1e9);
+        }
+        best
+    };
+    let scalar = time(&mut || {
+        for (o, &q) in out.iter_mut().zip(&q) {
+            *o = four_bar::scalar(black_box(&n), q).unwrap();
+        }
+        black_box(&out);
+    });
+    let lanes = time(&mut || {
+        four_bar::batch(black_box(&n), &q, &mut out);
+        black_box(&out);
+    });
+    let simd = time(&mut || {
+        four_bar::batch_simd(black_box(&n), &q, &mut out);
+        black_box(&out);
+    });
+    println!(
+        "four-bar reduced, ns per configuration: scalar {scalar:.2}, lanes {lanes:.2} ({:.2}x), lanes with_simd {simd:.2} ({:.2}x)",
+        scalar / lanes,
+        scalar / simd
+    );
+}
