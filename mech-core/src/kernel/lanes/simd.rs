@@ -6,6 +6,12 @@
 //! Every function here is `#[inline(always)]`, so that it is compiled with the target
 //! features of the function it lands in.
 
+// The polynomial and π constants are fdlibm's, digit for digit as published (each rounds
+// to the double it names).
+#![allow(clippy::excessive_precision)]
+// Lanes are indexed side by side in several arrays at once.
+#![allow(clippy::needless_range_loop)]
+
 use crate::kernel::link_state::V2;
 use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
@@ -324,7 +330,7 @@ impl Neg for V2L {
 const ROUND: f64 = 6_755_399_441_055_744.0;
 
 /// 2/π.
-const INV_PIO2: f64 = 6.366_197_723_675_813_824_33e-1;
+const INV_PIO2: f64 = std::f64::consts::FRAC_2_PI;
 /// The first 33 bits of π/2 (fdlibm's `pio2_1`): k·PIO2_1 is exact for k < 2²⁰.
 const PIO2_1: f64 = 1.570_796_326_734_125_614_17e0;
 /// The next 33 bits of π/2 (fdlibm's `pio2_2`).
@@ -412,10 +418,7 @@ pub fn sin_cos(x: L) -> (L, L) {
 /// error below 1 ulp.
 #[inline(always)]
 fn atan_unit(t: L) -> L {
-    const HI: [f64; 2] = [
-        4.636_476_090_008_060_935_15e-1,
-        7.853_981_633_974_482_789_99e-1,
-    ];
+    const HI: [f64; 2] = [4.636_476_090_008_060_935_15e-1, std::f64::consts::FRAC_PI_4];
     const LO: [f64; 2] = [
         2.269_877_745_296_168_709_24e-17,
         3.061_616_997_868_383_017_93e-17,
@@ -460,9 +463,9 @@ fn atan_unit(t: L) -> L {
 /// where both are zero or either is not finite are computed by `f64::atan2`.
 #[inline(always)]
 pub fn atan2(y: L, x: L) -> L {
-    const PIO2_HI: f64 = 1.570_796_326_794_896_558_00e0;
+    const PIO2_HI: f64 = std::f64::consts::FRAC_PI_2;
     const PIO2_LO: f64 = 6.123_233_995_736_766_035_87e-17;
-    const PI_HI: f64 = 3.141_592_653_589_793_116_0e0;
+    const PI_HI: f64 = std::f64::consts::PI;
     const PI_LO: f64 = 1.224_646_799_147_353_177_2e-16;
     let (ax, ay) = (x.abs(), y.abs());
     let steep = ax.lt(ay);

@@ -3,6 +3,8 @@
 //! configuration at a time on random inputs, positions, rates, points, angles, Zhukovski's
 //! sums and the masks compared.
 
+#![allow(clippy::needless_range_loop)]
+
 use super::*;
 use crate::front::resolve::model_of;
 use crate::kernel::constraints::Level;
@@ -467,7 +469,7 @@ fn exercise(
         .map(|_| rig.random(rng, travel))
         .collect();
     configs.extend_from_slice(extra);
-    while configs.len() % LANES != 0 {
+    while !configs.len().is_multiple_of(LANES) {
         configs.push(rig.random(rng, travel));
     }
     for upto in [Level::Position, Level::Velocity, Level::Acceleration] {
@@ -959,7 +961,9 @@ fn speed_of_the_four_bar_reduced() {
     };
     let count = 1024;
     let mut rng = Rng(3);
-    let q: Vec<f64> = (0..count).map(|_| rng.uniform(-3.14, 3.14)).collect();
+    let q: Vec<f64> = (0..count)
+        .map(|_| rng.uniform(-std::f64::consts::PI, std::f64::consts::PI))
+        .collect();
     let mut out = vec![(0.0, 0.0); count];
     let mut x = [L::splat(0.3), L::splat(0.7)];
     four_bar::probe_simd(black_box(&mut x));
