@@ -264,7 +264,9 @@ pub fn cg_lanes(l: &LinkGeom, s: &LinkLanes) -> [L; 2] {
 /// Run `f` with the processor's 256-bit vector instructions (AVX2 and FMA) enabled when it
 /// has them (detected at run time, once per call: a cached test), plainly otherwise and on
 /// the other architectures. The lane kernels are `#[inline(always)]`, so those called in
-/// `f` are compiled for AVX2 in the first case. FMA is enabled but never contracted into
+/// `f` are compiled for AVX2 in the first case, provided `f` itself is inlined there: mark
+/// the closure `#[inline(always)]` (`with_simd(#[inline(always)] || ...)`), else LLVM may
+/// call it, compiled for the baseline, and nothing is gained. FMA is enabled but never contracted into
 /// (Rust does not fuse a multiplication and an addition unasked), so both routes give the
 /// same results bit for bit.
 #[inline(always)]
