@@ -10,6 +10,7 @@ pub(crate) mod finite;
 pub mod group;
 pub mod kinematics;
 pub mod kinetostatics;
+pub mod lanes;
 pub mod linalg;
 pub mod link_state;
 pub mod natural;
