@@ -89,5 +89,13 @@ pub mod zhukovski {
     pub use crate::solvers::zhukovski::{acceleration, Reduced, ZhukovskiSums};
 }
 pub mod batch {
-    pub use crate::solvers::batch::{each, refuse, same_len, BatchErrors, Block, Nan, NAN2};
+    pub use crate::solvers::batch::{
+        each, each_lanes, refuse, same_len, BatchErrors, Block, Nan, NAN2,
+    };
+}
+pub mod lanes {
+    pub use crate::kernel::lanes::{
+        acceleration_lanes, any, or, point_lanes, solve_chain_lanes, solve_driven_lanes, with_simd,
+        LinkLanes, Mask, ZhukovskiLanes, L, LANES, NONE,
+    };
 }

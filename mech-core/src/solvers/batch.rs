@@ -8,6 +8,7 @@
 //! nothing (unless some configuration fails); from there on, it is cut in halves recursively
 //! and the halves run on rayon's pool (`RAYON_NUM_THREADS` sets its size).
 
+use crate::kernel::lanes::{with_simd, Mask, LANES};
 use crate::kernel::link_state::{LinkPose, PointPose, V2};
 use crate::MechError;
 
@@ -249,6 +250,46 @@ pub fn each_with<R: Rows, S>(
                 errors.push(i, e);
             }
         }
+    })
+}
+
+/// [`each`] through a lane kernel: `four(i, &mut rows)` computes configurations `i..i + 4`
+/// at once ([`crate::kernel::lanes`]), writes the rows of the lanes it does not mask and
+/// returns the mask; every masked lane, and the last configurations of a chunk that do not
+/// fill four lanes, go through `one(i, &mut rows)`, the one-configuration solver, whose
+/// answer (a value or an error) is then the batch's. The chunk runs in
+/// [`crate::kernel::lanes::with_simd`].
+pub fn each_lanes<R: Rows>(
+    n: usize,
+    rows: R,
+    four: impl Fn(usize, &mut R) -> Mask + Sync,
+    one: impl Fn(usize, &mut R) -> Result<(), MechError> + Sync,
+) -> BatchErrors {
+    chunks(n, rows, &|range, rows: &mut R, errors: &mut BatchErrors| {
+        let scalar = |i: usize, rows: &mut R, errors: &mut BatchErrors| {
+            if let Err(e) = one(i, rows) {
+                rows.fail(i);
+                errors.push(i, e);
+            }
+        };
+        with_simd(
+            #[inline(always)]
+            || {
+                let mut i = range.start;
+                while i + LANES <= range.end {
+                    let mask = four(i, rows);
+                    for (k, &masked) in mask.iter().enumerate() {
+                        if masked {
+                            scalar(i + k, rows, errors);
+                        }
+                    }
+                    i += LANES;
+                }
+                for j in i..range.end {
+                    scalar(j, rows, errors);
+                }
+            },
+        )
     })
 }
 

@@ -3,10 +3,62 @@
 //! runner (`mech::__private::batch::each`) over the one-configuration solver; the `NAN`
 //! constant of the pose; `__points`, the points alone.
 
+use super::plan::solver_const;
 use super::results::{owners, Owner};
 use super::Ctx;
+use mech_core::plan::assur::Kernel;
 use proc_macro2::TokenStream;
-use quote::quote;
+use quote::{format_ident, quote};
+
+/// Whether every group has a lane kernel (`mech_core::kernel::lanes::supports`: a driven
+/// crank or slider, RRR and RRP dyads) and nothing else enters the sums (no force element,
+/// no redundant constraint): then `points_many`, `reduced_many` and `acceleration_many`
+/// take configurations four by four (`__solve_lanes`), the other solvers one by one.
+fn lanes(cx: &Ctx) -> bool {
+    !cx.has_elements()
+        && !cx.redundant()
+        && cx.plan.iter().all(|g| {
+            matches!(g.kernel, Kernel::Driven(_) | Kernel::Chain(_))
+                && mech_core::kernel::lanes::supports(g.solver)
+        })
+}
+
+/// `__solve_lanes`: four configurations through every group's lane kernel in plan order,
+/// and the mask of the lanes the one-configuration solver must redo.
+fn solve_lanes_fn(cx: &Ctx) -> TokenStream {
+    let Ctx {
+        p, n_links, dof, ..
+    } = cx;
+    let l = quote!(#p::lanes);
+    let calls = cx.plan.iter().enumerate().map(|(gi, g)| {
+        let solver = solver_const(gi);
+        match g.kernel {
+            Kernel::Driven(_) => {
+                let kn = format_ident!("__G{}_DRIVEN", gi);
+                quote!(mask = #l::or(mask, #l::solve_driven_lanes(Self::#solver, &Self::#kn, &joints, &mut s, q, qd, qdd, upto));)
+            }
+            _ => quote!(mask = #l::or(mask, #l::solve_chain_lanes(Self::#solver, &joints, &mut s, self.branches[#gi], self.scale, upto));),
+        }
+    });
+    quote! {
+        /// Four configurations at once: every group's lane kernel in plan order
+        /// (`mech::__private::lanes`), and the mask of the lanes that failed or may fail.
+        #[inline(always)]
+        fn __solve_lanes(
+            &self,
+            q: &[#l::L; #dof],
+            qd: &[#l::L; #dof],
+            qdd: &[#l::L; #dof],
+            upto: #p::kinematics::Level,
+        ) -> ([#l::LinkLanes; #n_links], #l::Mask) {
+            let mut s = [#l::LinkLanes::default(); #n_links];
+            let joints = self.__joints();
+            let mut mask = #l::NONE;
+            #(#calls)*
+            (s, mask)
+        }
+    }
+}
 
 /// The batched methods and what they need.
 pub(crate) fn emit(cx: &Ctx) -> TokenStream {
@@ -18,10 +70,16 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
     } else {
         quote!()
     };
+    let lanes = if lanes(cx) {
+        solve_lanes_fn(cx)
+    } else {
+        quote!()
+    };
     quote! {
         #nan
         impl #main {
             #points
+            #lanes
             #many
             #one_dof
         }
@@ -95,6 +153,11 @@ fn many_fns(cx: &Ctx) -> TokenStream {
         quote!(r.row(i).copy_from_slice(&d);)
     };
     let b = quote!(#p::batch);
+    let points_body = if lanes(cx) && cx.one_dof() {
+        points_lanes(cx)
+    } else {
+        quote!(#b::each(q.len(), rows, |i, r| self.__points(q[i], r.row(i))))
+    };
     quote! {
         /// `pose` at every configuration of `q` into `out` (one pose each; `vec![Pose::NAN;
         /// q.len()]` is a buffer). A configuration that fails gets `Pose::NAN` and its index
@@ -120,7 +183,7 @@ fn many_fns(cx: &Ctx) -> TokenStream {
                 Ok(r) => r,
                 Err(e) => return #b::refuse(e),
             };
-            #b::each(q.len(), rows, |i, r| self.__points(q[i], r.row(i)))
+            #points_body
         }
 
         /// `driver_action` (virtual power) at every configuration (q, q̇, q̈) with the same
@@ -148,6 +211,62 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
     let p = &cx.p;
     let loads = &cx.names.loads;
     let b = quote!(#p::batch);
+    let l = quote!(#p::lanes);
+    let red_one = quote!(|i, (a, d)| {
+        let red = self.reduced(q[i])?;
+        *a.at(i) = red.inertia;
+        *d.at(i) = red.inertia_derivative;
+        Ok(())
+    });
+    let acc_one = quote!(|i, r| {
+        *r.at(i) = self.acceleration(q[i], qd[i], driver[i], loads)?;
+        Ok(())
+    });
+    let (reduced_body, acceleration_body) = if lanes(cx) {
+        let (inertia, moment) = super::traits::zhukovski_terms(cx);
+        let solve = quote! {
+            let qv = #l::L([q[i], q[i + 1], q[i + 2], q[i + 3]]);
+            let (s, mask) = self.__solve_lanes(&[qv], &[#l::L::splat(1.0)], &[#l::L::splat(0.0)], #p::kinematics::Level::Acceleration);
+            let mut z = #l::ZhukovskiLanes::new();
+            #inertia
+        };
+        (
+            quote! {
+                #b::each_lanes(q.len(), rows, #[inline(always)] |i, (a, d): &mut (#b::Block<f64>, #b::Block<f64>)| {
+                    #solve
+                    let mask = #l::or(mask, #l::or(z.inertia.not_finite(), z.inertia_derivative.not_finite()));
+                    for k in 0..#l::LANES {
+                        if !mask[k] {
+                            *a.at(i + k) = z.inertia.0[k];
+                            *d.at(i + k) = z.inertia_derivative.0[k];
+                        }
+                    }
+                    mask
+                }, #red_one)
+            },
+            quote! {
+                #b::each_lanes(q.len(), rows, #[inline(always)] |i, r: &mut #b::Block<f64>| {
+                    #solve
+                    #moment
+                    let qdv = #l::L([qd[i], qd[i + 1], qd[i + 2], qd[i + 3]]);
+                    let dv = #l::L([driver[i], driver[i + 1], driver[i + 2], driver[i + 3]]);
+                    let (acc, failed) = #l::acceleration_lanes(&z, qdv, dv);
+                    let mask = #l::or(mask, failed);
+                    for k in 0..#l::LANES {
+                        if !mask[k] {
+                            *r.at(i + k) = acc.0[k];
+                        }
+                    }
+                    mask
+                }, #acc_one)
+            },
+        )
+    } else {
+        (
+            quote!(#b::each(q.len(), rows, #red_one)),
+            quote!(#b::each(q.len(), rows, #acc_one)),
+        )
+    };
     quote! {
         /// Zhukovski's I* (kg·m²) and dI*/dq (kg·m²/rad) at every q into `inertia` and
         /// `derivative` (one value each per configuration). A configuration that fails gets
@@ -159,12 +278,7 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
                 Ok(r) => r,
                 Err(e) => return #b::refuse(e),
             };
-            #b::each(q.len(), rows, |i, (a, d)| {
-                let red = self.reduced(q[i])?;
-                *a.at(i) = red.inertia;
-                *d.at(i) = red.inertia_derivative;
-                Ok(())
-            })
+            #reduced_body
         }
 
         /// The direct problem's q̈ (rad/s²) at every (q, q̇, driver) with the same loads into
@@ -177,10 +291,40 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
                 Ok(r) => r,
                 Err(e) => return #b::refuse(e),
             };
-            #b::each(q.len(), rows, |i, r| {
-                *r.at(i) = self.acceleration(q[i], qd[i], driver[i], loads)?;
-                Ok(())
-            })
+            #acceleration_body
         }
+    }
+}
+
+/// `points_many`'s body through the lane kernels (one input): four configurations'
+/// points at once, the masked lanes and the tail by `__points`.
+fn points_lanes(cx: &Ctx) -> TokenStream {
+    let p = &cx.p;
+    let (b, l) = (quote!(#p::batch), quote!(#p::lanes));
+    let np = cx.n_points;
+    let pts = owners(cx).into_iter().enumerate().map(|(pt, o)| match o {
+        Owner::Anchor(k) => quote!([s[#k].pos.x, s[#k].pos.y]),
+        Owner::Local(k) => quote!(#l::point_lanes(&s, #k, self.points[#pt])),
+    });
+    quote! {
+        #b::each_lanes(q.len(), rows, #[inline(always)] |i, r: &mut #b::Block<f64>| {
+            let qv = #l::L([q[i], q[i + 1], q[i + 2], q[i + 3]]);
+            let zero = #l::L::splat(0.0);
+            let (s, mut mask) = self.__solve_lanes(&[qv], &[zero], &[zero], #p::kinematics::Level::Position);
+            let pts: [[#l::L; 2]; #np] = [#(#pts),*];
+            for xy in &pts {
+                mask = #l::or(mask, #l::or(xy[0].not_finite(), xy[1].not_finite()));
+            }
+            for k in 0..#l::LANES {
+                if !mask[k] {
+                    let row = r.row(i + k);
+                    for (j, xy) in pts.iter().enumerate() {
+                        row[2 * j] = xy[0].0[k];
+                        row[2 * j + 1] = xy[1].0[k];
+                    }
+                }
+            }
+            mask
+        }, |i, r| self.__points(q[i], r.row(i)))
     }
 }

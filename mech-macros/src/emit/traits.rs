@@ -116,7 +116,7 @@ fn one_dof_impl(cx: &Ctx) -> TokenStream {
 
 /// Zhukovski's sums term by term (`mech::zhukovski::ZhukovskiSums`): the inertia of the links
 /// with inertia terms, and the moment of gravity and of every load.
-fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
+pub(crate) fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
     let p = &cx.p;
     let inertial = cx.inertial();
     let weighed = cx.weighed();
