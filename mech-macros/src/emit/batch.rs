@@ -234,11 +234,12 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
             quote! {
                 #b::each_lanes(q.len(), rows, #[inline(always)] |i, (a, d): &mut (#b::Block<f64>, #b::Block<f64>)| {
                     #solve
-                    let mask = #l::or(mask, #l::or(z.inertia.not_finite(), z.inertia_derivative.not_finite()));
+                    let #l::ZhukovskiLanes { inertia: ii, inertia_derivative: di, .. } = z;
+                    let mask = #l::or(mask, #l::or(ii.not_finite(), di.not_finite()));
                     for k in 0..#l::LANES {
                         if !mask[k] {
-                            *a.at(i + k) = z.inertia.0[k];
-                            *d.at(i + k) = z.inertia_derivative.0[k];
+                            *a.at(i + k) = ii.0[k];
+                            *d.at(i + k) = di.0[k];
                         }
                     }
                     mask
