@@ -433,3 +433,43 @@ fn a_batch_on_the_calling_thread_does_not_allocate() {
         "driver_action_many"
     );
 }
+
+#[path = "../examples/batch.rs"]
+#[allow(dead_code)]
+mod example;
+
+/// The example runs: only the configuration given NaN fails, in each of its three calls,
+/// and every other value is its one-configuration solver's.
+#[test]
+fn the_batch_example_equals_one_by_one() {
+    let m = example::FourBar::new();
+    let b = example::run(&m);
+    assert_eq!(
+        b.failed,
+        [
+            vec![example::BROKEN],
+            vec![example::BROKEN],
+            vec![example::BROKEN]
+        ]
+    );
+    let mut loads = example::FourBarLoads::default();
+    loads.tool = Vector2::new(80.0, -60.0);
+    loads.resist = 2.0;
+    let np = example::FourBar::POINT_NAMES.len();
+    for i in (0..example::N).filter(|&i| i != example::BROKEN) {
+        let r = m.reduced(b.q[i]).unwrap();
+        same("I*", i, b.inertia[i], r.inertia, top(&b.inertia));
+        same(
+            "dI*/dq",
+            i,
+            b.derivative[i],
+            r.inertia_derivative,
+            top(&b.derivative),
+        );
+        let a = m.acceleration(b.q[i], 10.0, 2.0, &loads).unwrap();
+        same("q̈", i, b.acceleration[i], a, top(&b.acceleration));
+        let p = m.pose(b.q[i]).unwrap().points.P.pos;
+        same("P x", i, b.points[2 * np * i + 8], p.x, top(&b.points));
+        same("P y", i, b.points[2 * np * i + 9], p.y, top(&b.points));
+    }
+}

@@ -217,24 +217,46 @@ def work_precision():
     return "\n".join(l for l in out.splitlines() if l.startswith("|") or l.startswith("Slider")).strip()
 
 
+# The commit before `mech sweep` went through the batch runner (`Columns::rows_many`): the
+# "before" of the sweep figure.
+SWEEP_BEFORE = "3e1cc59"
+
+
+def build_cli_at(commit):
+    """The release `mech` binary of `commit`, built in a worktree of its own under target/."""
+    tree = target_dir() / f"sweep-before-{commit}"
+    if not tree.exists():
+        sh(["git", "worktree", "add", "--detach", str(tree), commit])
+    env = {"CARGO_TARGET_DIR": str(target_dir() / "sweep-before-target")}
+    print(f"$ (in {tree}) cargo build --release -p mech-cli", file=sys.stderr)
+    subprocess.run(["cargo", "build", "--release", "-p", "mech-cli"], cwd=tree,
+                   env=dict(os.environ, **env), check=True, stdout=subprocess.DEVNULL)
+    return str(target_dir() / "sweep-before-target" / "release" / "mech")
+
+
 def sweep():
     sh(["cargo", "build", "--release", "-p", "mech-cli"])
-    exe = str(target_dir() / "release" / "mech")
-    rows = ["| `--level` | configurations | wall time (s) | configurations/s |", "|---|---:|---:|---:|"]
+    after = str(target_dir() / "release" / "mech")
+    before = build_cli_at(SWEEP_BEFORE)
+    rows = [f"| `--level` | configurations | before ({SWEEP_BEFORE}), configurations/s "
+            "| after, configurations/s | after / before |", "|---|---:|---:|---:|---:|"]
     for level in ["pose", "kinematics", "forces"]:
-        cmd = [exe, "sweep", "examples/mech/watt_ii.mech", "--from", "0", "--to", "360deg",
-               "--steps", "999999", "--level", level, "--format", "csv"]
-        best = float("inf")
-        for _ in range(3):
-            t0 = time.perf_counter()
-            subprocess.run(cmd, cwd=ROOT, stdout=subprocess.DEVNULL, check=True)
-            best = min(best, time.perf_counter() - t0)
-        rows.append(f"| {level} | 1 000 000 | {best:.2f} | {1e6 / best:,.0f} |".replace(",", " "))
+        best = {before: float("inf"), after: float("inf")}
+        for _ in range(3):  # interleaved: before, after, before, after, ...
+            for exe in (before, after):
+                cmd = [exe, "sweep", "examples/mech/watt_ii.mech", "--from", "0", "--to", "360deg",
+                       "--steps", "999999", "--level", level, "--format", "csv"]
+                t0 = time.perf_counter()
+                subprocess.run(cmd, cwd=ROOT, stdout=subprocess.DEVNULL, check=True)
+                best[exe] = min(best[exe], time.perf_counter() - t0)
+        rb, ra = 1e6 / best[before], 1e6 / best[after]
+        rows.append(f"| {level} | 1 000 000 | {rb:,.0f} | {ra:,.0f} | {ra / rb:.2f}× |".replace(",", " "))
     return "\n".join(rows)
 
 
 SWEEP_CMD = ("`mech sweep examples/mech/watt_ii.mech --from 0 --to 360deg --steps 999999 "
-             "--level L --format csv > /dev/null`, best of 3, the release build")
+             "--level L --format csv > /dev/null`, best of 3 interleaved, the release builds of "
+             f"{SWEEP_BEFORE} (before) and of this commit (after)")
 
 
 def pyslvs():
