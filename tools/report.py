@@ -31,6 +31,7 @@ import json
 import os
 import re
 import subprocess
+import tempfile
 import sys
 import time
 from pathlib import Path
@@ -141,6 +142,55 @@ def floor():
 
 
 FLOOR_CMD = "`cargo bench --bench floor`, tabulated by `tools/floor_ratios.py`"
+
+BATCH_OPS = ["four_bar/points", "four_bar/reduced", "four_bar/acceleration", "slider_crank/acceleration"]
+BATCH_SIZE = 1024  # benches/floor.rs, BATCH
+
+
+def instructions(bench_bin, name):
+    """Instructions per call of the criterion function `name` (callgrind; the recipe of the
+    header of benches/floor.rs)."""
+    out = Path(tempfile.mkdtemp()) / "cg.out"
+    subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", bench_bin,
+                    "--bench", "--profile-time", "1", f"^{re.escape(name)}$"],
+                   cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+    ann = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--tree=caller", str(out)],
+                         stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, check=True).stdout
+    n = k = None
+    for line in ann.splitlines():
+        if re.search(r"\* .*Bencher<M>::iter", line):
+            n = float(line.split()[0].replace(",", ""))
+        m = re.search(r"< .*Bencher<M>::iter \(([\d,]+)x\)", line)
+        if m:
+            k = float(m.group(1).replace(",", ""))
+    if not n or not k:
+        sys.exit(f"callgrind found no timing loop for {name}")
+    return n / k
+
+
+def batch():
+    sh(["cargo", "bench", "--bench", "floor", "--", "--warm-up-time", "1", "--measurement-time", "3",
+        "^batch/|^ratio/batch/"])
+    med = criterion_medians()
+    exe = sh(["cargo", "bench", "--bench", "floor", "--no-run", "--message-format", "json"])
+    bench_bin = next(json.loads(l)["executable"] for l in exe.splitlines()
+                     if '"executable":"' in l and json.loads(l).get("target", {}).get("name") == "floor")
+    rows = ["| operation | batched (ns per configuration) | hand-written (ns per configuration) "
+            "| interleaved ratio | batched (instructions per configuration) | hand-written (instructions per configuration) |",
+            "|---|---:|---:|---:|---:|---:|"]
+    for op in BATCH_OPS:
+        g, h, r = (med.get(f"batch/{op}/generated"), med.get(f"batch/{op}/hand"),
+                   med.get(f"ratio/batch/{op}"))
+        if g is None or h is None or r is None:
+            sys.exit(f"no result for batch/{op}")
+        ig = instructions(bench_bin, f"batch/{op}/generated") / BATCH_SIZE
+        ih = instructions(bench_bin, f"batch/{op}/hand") / BATCH_SIZE
+        rows.append(f"| `{op}` | {g / BATCH_SIZE:.1f} | {h / BATCH_SIZE:.1f} | {r:.2f}× | {ig:.0f} | {ih:.0f} |")
+    return "\n".join(rows)
+
+
+BATCH_CMD = ("`cargo bench --bench floor -- '^batch/|^ratio/batch/'`, medians over 1 024 configurations "
+             "per call on one thread, and callgrind's instruction counts of the same functions")
 
 MACHINES = [("four_bar", "four-bar"), ("slider_crank", "slider-crank"),
             ("watt2", "Watt II six-bar"), ("five_bar", "five-bar (2 DOF)")]
@@ -300,6 +350,7 @@ class Figure:
 
 FIGURES = {
     "floor": Figure(floor, FLOOR_CMD, GENERATED + ["benches/floor.rs", "benches/floor"]),
+    "batch": Figure(batch, BATCH_CMD, GENERATED + ["benches/floor.rs", "benches/floor"]),
     "runtime": Figure(runtime, RUNTIME_CMD, CORE + ["mech-oracle/src", "benches/generated_vs_generic.rs"]),
     "elements": Figure(elements, "`cargo bench --bench machine_elements`, medians",
                        CORE + ["benches/machine_elements.rs"]),
