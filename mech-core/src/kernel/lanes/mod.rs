@@ -269,16 +269,30 @@ pub fn cg_lanes(l: &LinkGeom, s: &LinkLanes) -> [L; 2] {
 /// call it, compiled for the baseline, and nothing is gained. FMA is enabled but never contracted into
 /// (Rust does not fuse a multiplication and an addition unasked), so both routes give the
 /// same results bit for bit.
+///
+/// The environment variable `MECH_SIMD=0` keeps the baseline path (read once): valgrind
+/// 3.19 does not decode some of the AVX2 encodings, so the instruction counts of
+/// `tools/report.py batch` are taken on the baseline path.
 #[inline(always)]
 pub fn with_simd<R>(f: impl FnOnce() -> R) -> R {
     #[cfg(target_arch = "x86_64")]
     {
-        if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+        if simd_allowed()
+            && std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma")
+        {
             // SAFETY: the processor has AVX2 and FMA (just detected).
             return unsafe { avx2(f) };
         }
     }
     f()
+}
+
+/// False when `MECH_SIMD=0` is set (looked up once).
+#[cfg(target_arch = "x86_64")]
+fn simd_allowed() -> bool {
+    static ALLOWED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *ALLOWED.get_or_init(|| !matches!(std::env::var_os("MECH_SIMD"), Some(v) if v == "0"))
 }
 
 /// `f` compiled with AVX2 and FMA (the closure and what it inlines).
