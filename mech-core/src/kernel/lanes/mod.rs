@@ -29,7 +29,7 @@ mod zhukovski;
 pub use driven::solve_driven_lanes;
 pub use dyad::{solve_chain_lanes, PRECISE_CONDITION};
 pub use simd::{
-    any, atan2, or, select, sin_cos, wrap, Mask, ALL, L, LANES, NONE, SIN_COS_RANGE, V2L,
+    any, atan2, or, select, sin_cos, wrap, Bits, Mask, ALL, L, LANES, NONE, SIN_COS_RANGE, V2L,
 };
 pub use zhukovski::{acceleration_lanes, ZhukovskiLanes};
 
