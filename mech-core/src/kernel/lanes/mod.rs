@@ -16,8 +16,8 @@
 //! **Layout.** A link's state for the four configurations is a [`LinkLanes`] (structure of
 //! arrays); a batch solves a mechanism's groups in plan order on one `[LinkLanes]` as the
 //! scalar code does on one `[LinkState]`. The joints' geometry, the branch signs and the
-//! length scale are shared by all lanes. [`with_simd`] runs a batch with 256-bit registers
-//! where the processor has them.
+//! length scale are shared by all lanes. [`with_simd`] runs a batch with AVX2 enabled
+//! (VEX-encoded SSE2 operations) where the processor has it.
 
 mod driven;
 mod dyad;

@@ -1,7 +1,32 @@
-//! The lane type: four `f64` values computed side by side, written as plain fixed-size
-//! arrays whose element-wise loops LLVM turns into packed instructions (two SSE2 registers
-//! per lane value on the x86-64 baseline, one AVX register inside [`super::with_simd`]),
-//! and the branch-free functions the lane kernels need: [`sin_cos`], [`atan2`], [`wrap`].
+//! The lane type: four `f64` values computed side by side, and the branch-free functions
+//! the lane kernels need: [`sin_cos`], [`atan2`], [`wrap`].
+//!
+//! **The backend.** On x86-64 an [`L`] is stored as `[f64; 4]` (the callers read and write
+//! lanes as `.0[k]`) and computed as two SSE2 registers (`__m128d`, part of the x86-64
+//! baseline, so no run-time test): every operation is one packed instruction per half,
+//! every comparison a packed compare giving a [`Bits`] mask (lanes of all ones or all
+//! zeros), [`Bits::select`] an and/andnot/or blend, "not finite" one packed compare of |x|
+//! against ∞, the quadrant of [`sin_cos`] integer operations on the rounded multiple of
+//! π/2, and a [`Mask`] for the caller one `movmskpd` per half. Inside
+//! [`super::with_simd`] LLVM encodes them with VEX (AVX2 enabled). Elsewhere the halves are
+//! plain `[f64; 2]` arrays with the same semantics.
+//!
+//! Measured on the floor benchmark's batched four-bar and slider-crank (callgrind,
+//! instructions per configuration, and the interleaved time ratio batched / hand-written
+//! scalar code), against the former plain arrays left to LLVM's auto-vectoriser (whose
+//! masks became scalar compares and branches, and whose arithmetic was vectorised partly,
+//! often across x and y rather than across lanes, with shuffles between):
+//!
+//! | operation | arrays | SSE2 halves | ratio arrays → SSE2 |
+//! |---|---|---|---|
+//! | four-bar `points_many` | 245 | 173 | 1.11× → see ARCH note below |
+//! | four-bar `reduced_many` | 300 | 215 | 0.56× → 0.40× |
+//! | four-bar `acceleration_many` | (valgrind: illegal instruction) | 268 | 0.46× → 0.35× |
+//! | slider-crank `acceleration_many` | 274 | 232 | 0.50× → 0.41× |
+//!
+//! Arithmetic as array loops (for LLVM to widen to 256-bit registers) with the packed masks
+//! kept measured worse (points 207, reduced 216, four-bar acceleration 306, slider-crank
+//! 271 instructions): the explicit halves it is.
 //!
 //! Every function here is `#[inline(always)]`, so that it is compiled with the target
 //! features of the function it lands in.
