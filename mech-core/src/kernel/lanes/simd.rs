@@ -19,10 +19,10 @@
 //!
 //! | operation | arrays | SSE2 halves | ratio arrays → SSE2 |
 //! |---|---|---|---|
-//! | four-bar `points_many` | 245 | 173 | 1.11× → see ARCH note below |
-//! | four-bar `reduced_many` | 300 | 215 | 0.56× → 0.40× |
+//! | four-bar `points_many` | 245 | 173 (one finiteness test of the points' sum) | 1.11× → 0.70× |
+//! | four-bar `reduced_many` | 300 | 215 | 0.56× → 0.395× |
 //! | four-bar `acceleration_many` | (valgrind: illegal instruction) | 268 | 0.46× → 0.35× |
-//! | slider-crank `acceleration_many` | 274 | 232 | 0.50× → 0.41× |
+//! | slider-crank `acceleration_many` | 274 | 232 | 0.50× → 0.42× |
 //!
 //! Arithmetic as array loops (for LLVM to widen to 256-bit registers) with the packed masks
 //! kept measured worse (points 207, reduced 216, four-bar acceleration 306, slider-crank
