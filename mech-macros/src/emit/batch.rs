@@ -313,9 +313,13 @@ fn points_lanes(cx: &Ctx) -> TokenStream {
             let zero = #l::L::splat(0.0);
             let (s, mut mask) = self.__solve_lanes(&[qv], &[zero], &[zero], #p::kinematics::Level::Position);
             let pts: [[#l::L; 2]; #np] = [#(#pts),*];
+            // One test for every coordinate: their sum is not finite where one is (or
+            // where it overflows, a lane the scalar path then redoes).
+            let mut sum = #l::L::splat(0.0);
             for xy in &pts {
-                mask = #l::or(mask, #l::or(xy[0].not_finite(), xy[1].not_finite()));
+                sum += xy[0] + xy[1];
             }
+            mask = #l::or(mask, sum.not_finite());
             for k in 0..#l::LANES {
                 if !mask[k] {
                     let row = r.row(i + k);

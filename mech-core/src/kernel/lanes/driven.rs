@@ -2,7 +2,7 @@
 //! [`crate::kernel::kinematics::solve_driven`] (positions as `kernel::dyad`'s
 //! `driven_revolute` and `driven_prismatic`, rates as [`crate::kernel::screw::driven_rates`]).
 
-use super::simd::{or, sin_cos, Mask, ALL, L, NONE, V2L};
+use super::simd::{sin_cos, Mask, ALL, L, V2L};
 use super::{dir_of, pin, place_by_point, point_of, LinkLanes};
 use crate::kernel::constraints::{JointGeom, Level};
 use crate::kernel::dyad::Solver;
@@ -71,7 +71,7 @@ pub fn solve_driven_lanes(
             sum += b.acc.x + b.acc.y + b.alpha;
         }
     }
-    or(NONE, sum.not_finite())
+    sum.non_finite().mask()
 }
 
 /// The pose of a link driven by its revolute joint `g` at the inputs' angles `q`.

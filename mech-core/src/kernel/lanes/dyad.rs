@@ -3,7 +3,7 @@
 //! [`crate::kernel::dyad::circle_line_along`], rates in natural coordinates as
 //! [`crate::kernel::natural::rrr_rates`] and [`crate::kernel::natural::rrp_rates`]).
 
-use super::simd::{or, Mask, ALL, L, V2L};
+use super::simd::{Bits, Mask, ALL, L, V2L};
 use super::{dir_of, pin, place_by_point, LinkLanes};
 use crate::kernel::constraints::{JointGeom, Level};
 use crate::kernel::dyad::Solver;
@@ -83,7 +83,7 @@ pub fn solve_chain_lanes(
             }
         }
     }
-    or(mask, sum.not_finite())
+    mask.or(sum.non_finite()).mask()
 }
 
 /// The solved link on the other side of joint `g` from `body`.
@@ -134,8 +134,8 @@ fn place_by_two_points(s: &mut LinkLanes, d1: V2, d2: V2, p1: V2L, p2: V2L) {
 /// The lanes that fail the condition test `norm2 < limit` (a NaN fails; see
 /// [`solve_chain_lanes`]).
 #[inline(always)]
-fn ill_conditioned(norm2: L, limit: L) -> Mask {
-    norm2.test(limit, |n, t| !(n < t))
+fn ill_conditioned(norm2: L, limit: L) -> Bits {
+    norm2.not_less(limit)
 }
 
 /// An RRR dyad: positions, then rates (`natural::rrr_rates`).
@@ -147,7 +147,7 @@ fn rrr(
     [ja, jc, jb]: [usize; 3],
     sign: f64,
     upto: Level,
-) -> Mask {
+) -> Bits {
     let (a, da) = pin(&joints[ja], s, b1);
     let (b, db) = pin(&joints[jb], s, b2);
     let gc = &joints[jc];
@@ -164,8 +164,7 @@ fn rrr(
     let k = (l2 + r1sq - r2sq) * 0.5;
     let h2 = r1sq * l2 - k * k;
     let guard = l2 * (r1sq.max(r2sq) * NO_ASSEMBLY_GUARD);
-    let mut mask = h2.test(guard, |h, g| h < g);
-    mask = or(mask, l2.test(L::splat(0.0), |l, zero| !(l > zero)));
+    let mask = h2.less(guard).or(l2.not_greater(L::splat(0.0)));
     let h2 = h2.max(L::splat(0.0));
     let c = a + (d * k + d.perp() * (h2.sqrt() * sign)) * inv;
     place_by_two_points(&mut s[b1], da, dc1, a, c);
@@ -181,7 +180,7 @@ fn rrr(
     let (m00, m01, m10, m11) = (p1.x, -p2.x, p1.y, -p2.y);
     let det = m00 * m11 - m01 * m10;
     let norm2 = (m00 * m00 + m10 * m10) + (m01 * m01 + m11 * m11);
-    mask = or(mask, ill_conditioned(norm2, det.abs() * PRECISE_CONDITION));
+    let mask = mask.or(ill_conditioned(norm2, det.abs() * PRECISE_CONDITION));
     let inv_det = 1.0 / det;
     let solve = |x: L, y: L| ((m11 * x - m01 * y) * inv_det, (m00 * y - m10 * x) * inv_det);
     let ((va, aa), (vc, ac)) = (point_rates(s, la, a), point_rates(s, lc, b));
@@ -210,7 +209,7 @@ fn rrp(
     sign: f64,
     scale: f64,
     upto: Level,
-) -> Mask {
+) -> Bits {
     let (a, da) = pin(&joints[ja], s, b1);
     let gp = &joints[jp];
     let guide = if gp.b == b2 { gp.a } else { gp.b };
@@ -233,7 +232,7 @@ fn rrp(
     let t0 = d.dot(u);
     let h = u.cross(d);
     let w2 = rsq - h * h;
-    let mut mask = w2.test(L::splat(NO_ASSEMBLY_GUARD * rsq), |w, g| w < g);
+    let mask = w2.less(L::splat(NO_ASSEMBLY_GUARD * rsq));
     let x = w2.max(L::splat(0.0)).sqrt() * sign;
     let c = p + u * (t0 + x);
     let y = -h;
@@ -251,14 +250,15 @@ fn rrp(
     let u = dir_of(s, lg, gp.axis);
     // SlideFrame::new: κ_F = (|e₁|² + L²)/|x L|.
     let e1sq = x * x + y * y;
-    mask = or(
-        mask,
-        ill_conditioned(e1sq + scale * scale, (x * scale).abs() * MASK_CONDITION),
-    );
-    mask = or(
-        mask,
-        ill_conditioned(e1sq * 4.0, x * x * (PRECISE_CONDITION * PRECISE_CONDITION)),
-    );
+    let mask = mask
+        .or(ill_conditioned(
+            e1sq + scale * scale,
+            (x * scale).abs() * MASK_CONDITION,
+        ))
+        .or(ill_conditioned(
+            e1sq * 4.0,
+            x * x * (PRECISE_CONDITION * PRECISE_CONDITION),
+        ));
     let inv_x = 1.0 / x;
     // (ω₁, ṡ) with [perp(e₁) −u] (ω₁, ṡ)ᵀ = b: ω₁ = (u × b)/x, ṡ = −(b·u + y ω₁).
     let solve = |b: V2L| {

@@ -16,8 +16,8 @@
 //! **Layout.** A link's state for the four configurations is a [`LinkLanes`] (structure of
 //! arrays); a batch solves a mechanism's groups in plan order on one `[LinkLanes]` as the
 //! scalar code does on one `[LinkState]`. The joints' geometry, the branch signs and the
-//! length scale are shared by all lanes. [`with_simd`] runs a batch with 256-bit registers
-//! where the processor has them.
+//! length scale are shared by all lanes. [`with_simd`] runs a batch with AVX2 enabled
+//! (VEX-encoded SSE2 operations) where the processor has it.
 
 mod driven;
 mod dyad;
@@ -29,7 +29,7 @@ mod zhukovski;
 pub use driven::solve_driven_lanes;
 pub use dyad::{solve_chain_lanes, PRECISE_CONDITION};
 pub use simd::{
-    any, atan2, or, select, sin_cos, wrap, Mask, ALL, L, LANES, NONE, SIN_COS_RANGE, V2L,
+    any, atan2, or, select, sin_cos, wrap, Bits, Mask, ALL, L, LANES, NONE, SIN_COS_RANGE, V2L,
 };
 pub use zhukovski::{acceleration_lanes, ZhukovskiLanes};
 

@@ -1,7 +1,32 @@
-//! The lane type: four `f64` values computed side by side, written as plain fixed-size
-//! arrays whose element-wise loops LLVM turns into packed instructions (two SSE2 registers
-//! per lane value on the x86-64 baseline, one AVX register inside [`super::with_simd`]),
-//! and the branch-free functions the lane kernels need: [`sin_cos`], [`atan2`], [`wrap`].
+//! The lane type: four `f64` values computed side by side, and the branch-free functions
+//! the lane kernels need: [`sin_cos`], [`atan2`], [`wrap`].
+//!
+//! **The backend.** On x86-64 an [`L`] is stored as `[f64; 4]` (the callers read and write
+//! lanes as `.0[k]`) and computed as two SSE2 registers (`__m128d`, part of the x86-64
+//! baseline, so no run-time test): every operation is one packed instruction per half,
+//! every comparison a packed compare giving a [`Bits`] mask (lanes of all ones or all
+//! zeros), [`Bits::select`] an and/andnot/or blend, "not finite" one packed compare of |x|
+//! against ∞, the quadrant of [`sin_cos`] integer operations on the rounded multiple of
+//! π/2, and a [`Mask`] for the caller one `movmskpd` per half. Inside
+//! [`super::with_simd`] LLVM encodes them with VEX (AVX2 enabled). Elsewhere the halves are
+//! plain `[f64; 2]` arrays with the same semantics.
+//!
+//! Measured on the floor benchmark's batched four-bar and slider-crank (callgrind,
+//! instructions per configuration, and the interleaved time ratio batched / hand-written
+//! scalar code), against the former plain arrays left to LLVM's auto-vectoriser (whose
+//! masks became scalar compares and branches, and whose arithmetic was vectorised partly,
+//! often across x and y rather than across lanes, with shuffles between):
+//!
+//! | operation | arrays | SSE2 halves | ratio arrays → SSE2 |
+//! |---|---|---|---|
+//! | four-bar `points_many` | 245 | 173 (one finiteness test of the points' sum) | 1.11× → 0.70× |
+//! | four-bar `reduced_many` | 300 | 215 | 0.56× → 0.395× |
+//! | four-bar `acceleration_many` | (valgrind: illegal instruction) | 268 | 0.46× → 0.35× |
+//! | slider-crank `acceleration_many` | 274 | 232 | 0.50× → 0.42× |
+//!
+//! Arithmetic as array loops (for LLVM to widen to 256-bit registers) with the packed masks
+//! kept measured worse (points 207, reduced 216, four-bar acceleration 306, slider-crank
+//! 271 instructions): the explicit halves it is.
 //!
 //! Every function here is `#[inline(always)]`, so that it is compiled with the target
 //! features of the function it lands in.
@@ -13,18 +38,20 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::kernel::link_state::V2;
-use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// The number of configurations computed side by side.
 pub const LANES: usize = 4;
 
 /// Four `f64` values, one per configuration (a lane), in whatever unit the quantity has.
+/// The arithmetic goes through the backend (module docs): the array is the storage the
+/// callers read and write lane by lane, the operations load it as two halves.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(transparent)]
 pub struct L(pub [f64; LANES]);
 
 /// The lanes that failed or may fail (`true`): the caller recomputes them with the scalar
-/// kernels.
+/// kernels. The kernels compute their tests as [`Bits`] and hand them over as a `Mask`.
 pub type Mask = [bool; LANES];
 
 /// No lane failed.
@@ -33,19 +60,362 @@ pub const NONE: Mask = [false; LANES];
 /// Every lane failed.
 pub const ALL: Mask = [true; LANES];
 
+/// The mask as the 4 bytes of a `u32` (lane i in byte i, 0 or 1).
+#[inline(always)]
+fn mask_word(m: Mask) -> u32 {
+    u32::from_ne_bytes([m[0] as u8, m[1] as u8, m[2] as u8, m[3] as u8])
+}
+
+/// The mask of a word of 4 bytes, each 0 or 1.
+#[inline(always)]
+fn word_mask(w: u32) -> Mask {
+    let b = w.to_ne_bytes();
+    [b[0] != 0, b[1] != 0, b[2] != 0, b[3] != 0]
+}
+
 /// Whether any lane of `m` is set.
 #[inline(always)]
 pub fn any(m: Mask) -> bool {
-    m[0] | m[1] | m[2] | m[3]
+    mask_word(m) != 0
 }
 
 /// The lanes set in `a` or in `b`.
 #[inline(always)]
 pub fn or(a: Mask, b: Mask) -> Mask {
-    [a[0] | b[0], a[1] | b[1], a[2] | b[2], a[3] | b[3]]
+    word_mask(mask_word(a) | mask_word(b))
+}
+
+/// The backend on x86-64: each half of an [`L`] (two lanes) is an SSE2 register
+/// (`__m128d`, in every x86-64 processor), every operation one packed instruction, every
+/// comparison a packed compare whose lanes are all ones (true) or all zeros (false).
+#[cfg(target_arch = "x86_64")]
+mod hw {
+    use core::arch::x86_64::*;
+
+    /// An SSE2 intrinsic called where it is always available.
+    macro_rules! sse2 {
+        ($e:expr) => {
+            // SAFETY: SSE2 is part of the x86-64 baseline, enabled in every x86-64
+            // build and present in every x86-64 processor.
+            unsafe { $e }
+        };
+    }
+
+    /// Two lanes.
+    pub type H = __m128d;
+
+    /// The two halves of four lanes.
+    #[inline(always)]
+    pub fn split(a: [f64; 4]) -> [H; 2] {
+        // SAFETY: [f64; 4] and [__m128d; 2] are both 32 bytes of f64 values in lane order
+        // (any bit pattern is valid for both).
+        unsafe { core::mem::transmute::<[f64; 4], [H; 2]>(a) }
+    }
+    /// Four lanes from their two halves.
+    #[inline(always)]
+    pub fn join(h: [H; 2]) -> [f64; 4] {
+        // SAFETY: as in `split`.
+        unsafe { core::mem::transmute::<[H; 2], [f64; 4]>(h) }
+    }
+    #[inline(always)]
+    pub fn splat(x: f64) -> H {
+        sse2!(_mm_set1_pd(x))
+    }
+    #[inline(always)]
+    pub fn add(a: H, b: H) -> H {
+        sse2!(_mm_add_pd(a, b))
+    }
+    #[inline(always)]
+    pub fn sub(a: H, b: H) -> H {
+        sse2!(_mm_sub_pd(a, b))
+    }
+    #[inline(always)]
+    pub fn mul(a: H, b: H) -> H {
+        sse2!(_mm_mul_pd(a, b))
+    }
+    #[inline(always)]
+    pub fn div(a: H, b: H) -> H {
+        sse2!(_mm_div_pd(a, b))
+    }
+    #[inline(always)]
+    pub fn sqrt(a: H) -> H {
+        sse2!(_mm_sqrt_pd(a))
+    }
+    /// a > b ? a : b (b when either is a NaN).
+    #[inline(always)]
+    pub fn max(a: H, b: H) -> H {
+        sse2!(_mm_max_pd(a, b))
+    }
+    /// a < b ? a : b (b when either is a NaN).
+    #[inline(always)]
+    pub fn min(a: H, b: H) -> H {
+        sse2!(_mm_min_pd(a, b))
+    }
+    #[inline(always)]
+    pub fn and(a: H, b: H) -> H {
+        sse2!(_mm_and_pd(a, b))
+    }
+    /// !a & b.
+    #[inline(always)]
+    pub fn andnot(a: H, b: H) -> H {
+        sse2!(_mm_andnot_pd(a, b))
+    }
+    #[inline(always)]
+    pub fn or(a: H, b: H) -> H {
+        sse2!(_mm_or_pd(a, b))
+    }
+    #[inline(always)]
+    pub fn xor(a: H, b: H) -> H {
+        sse2!(_mm_xor_pd(a, b))
+    }
+    #[inline(always)]
+    pub fn lt(a: H, b: H) -> H {
+        sse2!(_mm_cmplt_pd(a, b))
+    }
+    #[inline(always)]
+    pub fn le(a: H, b: H) -> H {
+        sse2!(_mm_cmple_pd(a, b))
+    }
+    /// !(a < b), true when either is a NaN.
+    #[inline(always)]
+    pub fn nlt(a: H, b: H) -> H {
+        sse2!(_mm_cmpnlt_pd(a, b))
+    }
+    /// !(a ≤ b).
+    #[inline(always)]
+    pub fn nle(a: H, b: H) -> H {
+        sse2!(_mm_cmpnle_pd(a, b))
+    }
+    /// !(a > b).
+    #[inline(always)]
+    pub fn ngt(a: H, b: H) -> H {
+        sse2!(_mm_cmpngt_pd(a, b))
+    }
+    /// The lanes' sign bits as bits 0 and 1.
+    #[inline(always)]
+    pub fn movemask(m: H) -> u32 {
+        sse2!(_mm_movemask_pd(m)) as u32
+    }
+    /// A mask from two booleans.
+    #[inline(always)]
+    pub fn from_bools(a: bool, b: bool) -> H {
+        sse2!(_mm_castsi128_pd(_mm_set_epi64x(-(b as i64), -(a as i64))))
+    }
+    /// For `t` = k + 1.5·2⁵² (k whole): all ones where k is odd; the sign bit where
+    /// k mod 4 ∈ {2, 3} (sin's sign flip); the sign bit where k mod 4 ∈ {1, 2} (cos's).
+    #[inline(always)]
+    pub fn quadrant(t: H) -> (H, H, H) {
+        sse2!({
+            let k = _mm_castpd_si128(t);
+            let odd_sign = _mm_slli_epi64(k, 63);
+            // The high 32 bits of each odd lane are 0x8000_0000, the low 0: spread the sign.
+            let odd = _mm_shuffle_epi32(_mm_srai_epi32(odd_sign, 31), 0b11_11_01_01);
+            let two = _mm_set1_epi64x(2);
+            let sin_sign = _mm_slli_epi64(_mm_and_si128(k, two), 62);
+            let cos_k = _mm_add_epi64(k, _mm_set1_epi64x(1));
+            let cos_sign = _mm_slli_epi64(_mm_and_si128(cos_k, two), 62);
+            (
+                _mm_castsi128_pd(odd),
+                _mm_castsi128_pd(sin_sign),
+                _mm_castsi128_pd(cos_sign),
+            )
+        })
+    }
+}
+
+/// The portable backend: each half of an [`L`] is a plain `[f64; 2]`, masks are lanes of
+/// all ones or all zeros as on x86-64.
+#[cfg(not(target_arch = "x86_64"))]
+mod hw {
+    /// Two lanes.
+    pub type H = [f64; 2];
+
+    #[inline(always)]
+    fn map2(a: H, b: H, f: impl Fn(f64, f64) -> f64) -> H {
+        [f(a[0], b[0]), f(a[1], b[1])]
+    }
+    #[inline(always)]
+    fn bits2(a: H, b: H, f: impl Fn(u64, u64) -> u64) -> H {
+        map2(a, b, |x, y| f64::from_bits(f(x.to_bits(), y.to_bits())))
+    }
+    #[inline(always)]
+    fn test2(a: H, b: H, f: impl Fn(f64, f64) -> bool) -> H {
+        map2(a, b, |x, y| f64::from_bits(if f(x, y) { !0 } else { 0 }))
+    }
+    #[inline(always)]
+    pub fn split(a: [f64; 4]) -> [H; 2] {
+        [[a[0], a[1]], [a[2], a[3]]]
+    }
+    #[inline(always)]
+    pub fn join(h: [H; 2]) -> [f64; 4] {
+        [h[0][0], h[0][1], h[1][0], h[1][1]]
+    }
+    #[inline(always)]
+    pub fn splat(x: f64) -> H {
+        [x, x]
+    }
+    #[inline(always)]
+    pub fn add(a: H, b: H) -> H {
+        map2(a, b, |x, y| x + y)
+    }
+    #[inline(always)]
+    pub fn sub(a: H, b: H) -> H {
+        map2(a, b, |x, y| x - y)
+    }
+    #[inline(always)]
+    pub fn mul(a: H, b: H) -> H {
+        map2(a, b, |x, y| x * y)
+    }
+    #[inline(always)]
+    pub fn div(a: H, b: H) -> H {
+        map2(a, b, |x, y| x / y)
+    }
+    #[inline(always)]
+    pub fn sqrt(a: H) -> H {
+        [a[0].sqrt(), a[1].sqrt()]
+    }
+    #[inline(always)]
+    pub fn max(a: H, b: H) -> H {
+        map2(a, b, |x, y| if x > y { x } else { y })
+    }
+    #[inline(always)]
+    pub fn min(a: H, b: H) -> H {
+        map2(a, b, |x, y| if x < y { x } else { y })
+    }
+    #[inline(always)]
+    pub fn and(a: H, b: H) -> H {
+        bits2(a, b, |x, y| x & y)
+    }
+    #[inline(always)]
+    pub fn andnot(a: H, b: H) -> H {
+        bits2(a, b, |x, y| !x & y)
+    }
+    #[inline(always)]
+    pub fn or(a: H, b: H) -> H {
+        bits2(a, b, |x, y| x | y)
+    }
+    #[inline(always)]
+    pub fn xor(a: H, b: H) -> H {
+        bits2(a, b, |x, y| x ^ y)
+    }
+    #[inline(always)]
+    pub fn lt(a: H, b: H) -> H {
+        test2(a, b, |x, y| x < y)
+    }
+    #[inline(always)]
+    pub fn le(a: H, b: H) -> H {
+        test2(a, b, |x, y| x <= y)
+    }
+    #[inline(always)]
+    pub fn nlt(a: H, b: H) -> H {
+        test2(a, b, |x, y| !(x < y))
+    }
+    #[inline(always)]
+    pub fn nle(a: H, b: H) -> H {
+        test2(a, b, |x, y| !(x <= y))
+    }
+    #[inline(always)]
+    pub fn ngt(a: H, b: H) -> H {
+        test2(a, b, |x, y| !(x > y))
+    }
+    #[inline(always)]
+    pub fn movemask(m: H) -> u32 {
+        (m[0].to_bits() >> 63) as u32 | ((m[1].to_bits() >> 63) as u32) << 1
+    }
+    #[inline(always)]
+    pub fn from_bools(a: bool, b: bool) -> H {
+        let m = |x: bool| f64::from_bits(if x { !0 } else { 0 });
+        [m(a), m(b)]
+    }
+    #[inline(always)]
+    pub fn quadrant(t: H) -> (H, H, H) {
+        let f = |g: fn(u64) -> u64| [f64::from_bits(g(t[0].to_bits())), f64::from_bits(g(t[1].to_bits()))];
+        (
+            f(|k| if k & 1 != 0 { !0 } else { 0 }),
+            f(|k| (k & 2) << 62),
+            f(|k| (k.wrapping_add(1) & 2) << 62),
+        )
+    }
+}
+
+use hw::H;
+
+/// The sign bit alone.
+const SIGN: f64 = -0.0;
+
+/// A lane mask in packed form, as the backend's comparisons give it: per lane all bits set
+/// (the lane is flagged) or none. [`Bits::mask`] hands it over as a [`Mask`].
+#[derive(Clone, Copy)]
+pub struct Bits([H; 2]);
+
+impl Bits {
+    /// The lanes set in `self` or in `o`.
+    #[inline(always)]
+    pub fn or(self, o: Bits) -> Bits {
+        let ([a0, a1], [b0, b1]) = (self.0, o.0);
+        Bits([hw::or(a0, b0), hw::or(a1, b1)])
+    }
+    /// Lane i's flag as bit i.
+    #[inline(always)]
+    pub fn bits(self) -> u32 {
+        hw::movemask(self.0[0]) | hw::movemask(self.0[1]) << 2
+    }
+    /// Whether any lane is set.
+    #[inline(always)]
+    pub fn any(self) -> bool {
+        self.bits() != 0
+    }
+    /// As a [`Mask`] (bit i spread to byte i by one multiplication: the partial products
+    /// land on distinct bits, so nothing carries).
+    #[inline(always)]
+    pub fn mask(self) -> Mask {
+        word_mask(self.bits().wrapping_mul(0x0020_4081) & 0x0101_0101)
+    }
+    /// From a [`Mask`].
+    #[inline(always)]
+    pub fn from_mask(m: Mask) -> Bits {
+        Bits([hw::from_bools(m[0], m[1]), hw::from_bools(m[2], m[3])])
+    }
+    /// Per lane, `a` where set, else `b`: (m ∧ a) ∨ (¬m ∧ b), no branch.
+    #[inline(always)]
+    pub fn select(self, a: L, b: L) -> L {
+        let ([m0, m1], [a0, a1], [b0, b1]) = (self.0, a.h(), b.h());
+        L::of([
+            hw::or(hw::and(m0, a0), hw::andnot(m0, b0)),
+            hw::or(hw::and(m1, a1), hw::andnot(m1, b1)),
+        ])
+    }
 }
 
 impl L {
+    /// The two halves for the backend.
+    #[inline(always)]
+    fn h(self) -> [H; 2] {
+        hw::split(self.0)
+    }
+    /// From the backend's two halves.
+    #[inline(always)]
+    fn of(h: [H; 2]) -> L {
+        L(hw::join(h))
+    }
+    /// `f` on each half.
+    #[inline(always)]
+    fn lift(self, f: impl Fn(H) -> H) -> L {
+        let [a, b] = self.h();
+        L::of([f(a), f(b)])
+    }
+    /// `f` on each pair of halves.
+    #[inline(always)]
+    fn lift2(self, o: L, f: impl Fn(H, H) -> H) -> L {
+        let ([a0, a1], [b0, b1]) = (self.h(), o.h());
+        L::of([f(a0, b0), f(a1, b1)])
+    }
+    /// The packed comparison `f` on each pair of halves.
+    #[inline(always)]
+    fn cmp(self, o: L, f: impl Fn(H, H) -> H) -> Bits {
+        let ([a0, a1], [b0, b1]) = (self.h(), o.h());
+        Bits([f(a0, b0), f(a1, b1)])
+    }
     /// The same value `x` in every lane.
     #[inline(always)]
     pub const fn splat(x: f64) -> L {
@@ -56,12 +426,12 @@ impl L {
     pub fn from_fn(f: impl FnMut(usize) -> f64) -> L {
         L(std::array::from_fn(f))
     }
-    /// `f` applied to each lane.
+    /// `f` applied to each lane (scalar code).
     #[inline(always)]
     pub fn map(self, mut f: impl FnMut(f64) -> f64) -> L {
         L([f(self.0[0]), f(self.0[1]), f(self.0[2]), f(self.0[3])])
     }
-    /// `f` applied lane by lane to `self` and `o`.
+    /// `f` applied lane by lane to `self` and `o` (scalar code).
     #[inline(always)]
     pub fn zip(self, o: L, mut f: impl FnMut(f64, f64) -> f64) -> L {
         L([
@@ -71,7 +441,8 @@ impl L {
             f(self.0[3], o.0[3]),
         ])
     }
-    /// The comparison `f` lane by lane.
+    /// The comparison `f` lane by lane (scalar code; the kernels use the packed
+    /// comparisons [`L::less`], … instead).
     #[inline(always)]
     pub fn test(self, o: L, mut f: impl FnMut(f64, f64) -> bool) -> Mask {
         [
@@ -81,105 +452,132 @@ impl L {
             f(self.0[3], o.0[3]),
         ]
     }
-    /// √x per lane (`f64::sqrt`, correctly rounded).
+    /// √x per lane (correctly rounded, as `f64::sqrt`).
     #[inline(always)]
     pub fn sqrt(self) -> L {
-        self.map(f64::sqrt)
+        self.lift(hw::sqrt)
     }
-    /// |x| per lane.
+    /// |x| per lane (the sign bit cleared).
     #[inline(always)]
     pub fn abs(self) -> L {
-        self.map(f64::abs)
+        let s = hw::splat(SIGN);
+        self.lift(|a| hw::andnot(s, a))
+    }
+    /// x with its sign flipped in the lanes set in `m`: `select(m, -x, x)`, one xor.
+    #[inline(always)]
+    pub fn flip_sign(self, m: Bits) -> L {
+        let s = hw::splat(SIGN);
+        let ([a0, a1], [m0, m1]) = (self.h(), m.0);
+        L::of([hw::xor(a0, hw::and(m0, s)), hw::xor(a1, hw::and(m1, s))])
+    }
+    /// x with its sign flipped where `y`'s sign bit is set (negative, −0, negative NaNs).
+    #[inline(always)]
+    pub fn flip_sign_by(self, y: L) -> L {
+        let s = hw::splat(SIGN);
+        self.lift2(y, |a, b| hw::xor(a, hw::and(b, s)))
     }
     /// The larger of the two per lane (`self` when either is a NaN: `x < y ? y : x`).
     #[inline(always)]
     pub fn max(self, o: L) -> L {
-        self.zip(o, |a, b| if a < b { b } else { a })
+        o.lift2(self, hw::max)
     }
     /// The smaller of the two per lane (`self` when either is a NaN: `y < x ? y : x`).
     #[inline(always)]
     pub fn min(self, o: L) -> L {
-        self.zip(o, |a, b| if b < a { b } else { a })
+        o.lift2(self, hw::min)
     }
     /// The lanes where x < y.
     #[inline(always)]
     pub fn lt(self, o: L) -> Mask {
-        self.test(o, |a, b| a < b)
+        self.less(o).mask()
     }
     /// The lanes where x is not finite (an infinity or a NaN).
     #[inline(always)]
     pub fn not_finite(self) -> Mask {
-        self.test(L::splat(f64::INFINITY), |a, inf| !(a.abs() < inf))
+        self.non_finite().mask()
+    }
+    /// The lanes where x < y, packed.
+    #[inline(always)]
+    pub fn less(self, o: L) -> Bits {
+        self.cmp(o, hw::lt)
+    }
+    /// The lanes where x ≤ y, packed.
+    #[inline(always)]
+    pub fn less_eq(self, o: L) -> Bits {
+        self.cmp(o, hw::le)
+    }
+    /// The lanes where !(x < y) (x ≥ y or either a NaN), packed.
+    #[inline(always)]
+    pub fn not_less(self, o: L) -> Bits {
+        self.cmp(o, hw::nlt)
+    }
+    /// The lanes where !(x ≤ y) (x > y or either a NaN), packed.
+    #[inline(always)]
+    pub fn not_less_eq(self, o: L) -> Bits {
+        self.cmp(o, hw::nle)
+    }
+    /// The lanes where !(x > y) (x ≤ y or either a NaN), packed.
+    #[inline(always)]
+    pub fn not_greater(self, o: L) -> Bits {
+        self.cmp(o, hw::ngt)
+    }
+    /// The lanes where x is not finite, packed: !(|x| < ∞), one and, one compare.
+    #[inline(always)]
+    pub fn non_finite(self) -> Bits {
+        self.abs().not_less(L::splat(f64::INFINITY))
     }
 }
 
-/// Per lane, `a` where `m` is set, else `b`.
+/// Per lane, `a` where `m` is set, else `b` (see [`Bits::select`] for a packed mask).
 #[inline(always)]
 pub fn select(m: Mask, a: L, b: L) -> L {
-    L([
-        if m[0] { a.0[0] } else { b.0[0] },
-        if m[1] { a.0[1] } else { b.0[1] },
-        if m[2] { a.0[2] } else { b.0[2] },
-        if m[3] { a.0[3] } else { b.0[3] },
-    ])
+    Bits::from_mask(m).select(a, b)
 }
 
 macro_rules! binary {
-    ($tr:ident, $f:ident, $op:tt, $tra:ident, $fa:ident) => {
+    ($tr:ident, $f:ident, $hw:ident, $tra:ident, $fa:ident) => {
         impl $tr for L {
             type Output = L;
             #[inline(always)]
             fn $f(self, o: L) -> L {
-                L([self.0[0] $op o.0[0], self.0[1] $op o.0[1], self.0[2] $op o.0[2], self.0[3] $op o.0[3]])
+                self.lift2(o, hw::$hw)
             }
         }
         impl $tr<f64> for L {
             type Output = L;
             #[inline(always)]
             fn $f(self, o: f64) -> L {
-                L([self.0[0] $op o, self.0[1] $op o, self.0[2] $op o, self.0[3] $op o])
+                let o = hw::splat(o);
+                self.lift(|a| hw::$hw(a, o))
             }
         }
         impl $tr<L> for f64 {
             type Output = L;
             #[inline(always)]
             fn $f(self, o: L) -> L {
-                L([self $op o.0[0], self $op o.0[1], self $op o.0[2], self $op o.0[3]])
+                let s = hw::splat(self);
+                o.lift(|b| hw::$hw(s, b))
             }
         }
         impl $tra for L {
             #[inline(always)]
             fn $fa(&mut self, o: L) {
-                *self = *self $op o;
+                *self = $tr::$f(*self, o);
             }
         }
     };
 }
-binary!(Add, add, +, AddAssign, add_assign);
-binary!(Sub, sub, -, SubAssign, sub_assign);
-binary!(Mul, mul, *, MulAssign, mul_assign);
-
-impl Div for L {
-    type Output = L;
-    #[inline(always)]
-    fn div(self, o: L) -> L {
-        self.zip(o, |a, b| a / b)
-    }
-}
-
-impl Div<L> for f64 {
-    type Output = L;
-    #[inline(always)]
-    fn div(self, o: L) -> L {
-        L::splat(self) / o
-    }
-}
+binary!(Add, add, add, AddAssign, add_assign);
+binary!(Sub, sub, sub, SubAssign, sub_assign);
+binary!(Mul, mul, mul, MulAssign, mul_assign);
+binary!(Div, div, div, DivAssign, div_assign);
 
 impl Neg for L {
     type Output = L;
     #[inline(always)]
     fn neg(self) -> L {
-        self.map(|a| -a)
+        let s = hw::splat(SIGN);
+        self.lift(|a| hw::xor(a, s))
     }
 }
 
@@ -265,6 +663,11 @@ impl V2L {
     #[inline(always)]
     pub fn not_finite(self) -> Mask {
         (self.x + self.y).not_finite()
+    }
+    /// The lanes where a component is not finite, packed.
+    #[inline(always)]
+    pub fn non_finite(self) -> Bits {
+        (self.x + self.y).non_finite()
     }
 }
 
@@ -397,13 +800,19 @@ pub fn sin_cos(x: L) -> (L, L) {
     let y0 = r - w;
     let y1 = (r - y0) - w;
     let (s, c) = (kernel_sin(y0, y1), kernel_cos(y0, y1));
-    // The quadrant: k mod 4 in the low bits of t.
-    let odd: Mask = std::array::from_fn(|i| t.0[i].to_bits() & 1 != 0);
-    let neg: Mask = std::array::from_fn(|i| t.0[i].to_bits() & 2 != 0);
-    let (s1, c1) = (select(odd, c, s), select(odd, -s, c));
-    let (mut sn, mut cs) = (select(neg, -s1, s1), select(neg, -c1, c1));
-    let out = x.abs().test(L::splat(SIN_COS_RANGE), |a, r| !(a <= r));
-    if any(out) {
+    // The quadrant: k mod 4 in the low bits of t; sin and cos swapped where k is odd, sin
+    // negated where k mod 4 ∈ {2, 3}, cos where k mod 4 ∈ {1, 2} (sign bits xored in).
+    let [t0, t1] = t.h();
+    let ((odd0, ss0, cs0), (odd1, ss1, cs1)) = (hw::quadrant(t0), hw::quadrant(t1));
+    let odd = Bits([odd0, odd1]);
+    let (s1, c1) = (odd.select(c, s), odd.select(s, c));
+    let [s10, s11] = s1.h();
+    let [c10, c11] = c1.h();
+    let mut sn = L::of([hw::xor(s10, ss0), hw::xor(s11, ss1)]);
+    let mut cs = L::of([hw::xor(c10, cs0), hw::xor(c11, cs1)]);
+    let out = x.abs().not_less_eq(L::splat(SIN_COS_RANGE));
+    if out.any() {
+        let out = out.mask();
         for i in 0..LANES {
             if out[i] {
                 (sn.0[i], cs.0[i]) = x.0[i].sin_cos();
@@ -437,21 +846,21 @@ fn atan_unit(t: L) -> L {
         1.628_582_011_536_578_236_23e-2,
     ];
     // Interval −1: t < 7/16, x = t; 0: t < 11/16, x = (2t − 1)/(2 + t); 1: x = (t − 1)/(t + 1).
-    let small = t.lt(L::splat(7.0 / 16.0));
-    let mid = t.lt(L::splat(11.0 / 16.0));
+    let small = t.less(L::splat(7.0 / 16.0));
+    let mid = t.less(L::splat(11.0 / 16.0));
     let one = L::splat(1.0);
-    let two_or_one = select(mid, L::splat(2.0), one);
-    let num = select(small, t, two_or_one * t - 1.0);
-    let den = select(small, one, t + two_or_one);
+    let two_or_one = mid.select(L::splat(2.0), one);
+    let num = small.select(t, two_or_one * t - 1.0);
+    let den = small.select(one, t + two_or_one);
     let x = num / den;
     let z = x * x;
     let w = z * z;
     let s1 = z * (w * (w * (w * (w * (w * AT[10] + AT[8]) + AT[6]) + AT[4]) + AT[2]) + AT[0]);
     let s2 = w * (w * (w * (w * (w * AT[9] + AT[7]) + AT[5]) + AT[3]) + AT[1]);
-    let hi = select(mid, L::splat(HI[0]), L::splat(HI[1]));
-    let lo = select(mid, L::splat(LO[0]), L::splat(LO[1]));
+    let hi = mid.select(L::splat(HI[0]), L::splat(HI[1]));
+    let lo = mid.select(L::splat(LO[0]), L::splat(LO[1]));
     let p = x * (s1 + s2);
-    select(small, x - p, hi - ((p - lo) - x))
+    small.select(x - p, hi - ((p - lo) - x))
 }
 
 /// atan2(y, x) per lane (rad, in (−π, π]), branch-free: atan of t = min(|x|, |y|) /
@@ -468,28 +877,29 @@ pub fn atan2(y: L, x: L) -> L {
     const PI_HI: f64 = std::f64::consts::PI;
     const PI_LO: f64 = 1.224_646_799_147_353_177_2e-16;
     let (ax, ay) = (x.abs(), y.abs());
-    let steep = ax.lt(ay);
-    let (mn, mx) = (select(steep, ax, ay), select(steep, ay, ax));
+    let steep = ax.less(ay);
+    let (mn, mx) = (steep.select(ax, ay), steep.select(ay, ax));
     let z = atan_unit(mn / mx);
-    let west = x.lt(L::splat(0.0));
+    let west = x.less(L::splat(0.0));
     // hi − (±z − lo): z; π/2 − z (steep); π − z (west); π/2 + z (steep and west).
-    let hi = select(
-        steep,
+    let hi = steep.select(
         L::splat(PIO2_HI),
-        select(west, L::splat(PI_HI), L::splat(0.0)),
+        west.select(L::splat(PI_HI), L::splat(0.0)),
     );
-    let lo = select(
-        steep,
+    let lo = steep.select(
         L::splat(PIO2_LO),
-        select(west, L::splat(PI_LO), L::splat(0.0)),
+        west.select(L::splat(PI_LO), L::splat(0.0)),
     );
-    let flip: Mask = std::array::from_fn(|i| steep[i] == west[i]);
-    let z = hi - (select(flip, -z, z) - lo);
-    let south: Mask = std::array::from_fn(|i| y.0[i].is_sign_negative());
-    let mut out = select(south, -z, z);
-    let special = mx.test(L::splat(f64::INFINITY), |m, inf| !(m > 0.0 && m < inf));
-    let special = or(special, (mn + y).not_finite());
-    if any(special) {
+    // −z where steep == west: z's sign flipped by each, then once more.
+    let z = hi - (-z.flip_sign(steep).flip_sign(west) - lo);
+    // −z where y's sign bit is set.
+    let mut out = z.flip_sign_by(y);
+    let special = mx
+        .not_greater(L::splat(0.0))
+        .or(mx.not_less(L::splat(f64::INFINITY)))
+        .or((mn + y).non_finite());
+    if special.any() {
+        let special = special.mask();
         for i in 0..LANES {
             if special[i] {
                 out.0[i] = y.0[i].atan2(x.0[i]);
@@ -506,10 +916,11 @@ pub fn atan2(y: L, x: L) -> L {
 pub fn wrap(a: L) -> L {
     use std::f64::consts::{PI, TAU};
     let r = a - ((a / L::splat(TAU) + ROUND) - ROUND) * TAU;
-    let low = r.test(L::splat(-PI), |r, p| r <= p);
-    let mut out = select(low, r + TAU, r);
-    let far = a.abs().test(L::splat(1e9), |a, lim| !(a < lim));
-    if any(far) {
+    let low = r.less_eq(L::splat(-PI));
+    let mut out = low.select(r + TAU, r);
+    let far = a.abs().not_less(L::splat(1e9));
+    if far.any() {
+        let far = far.mask();
         for i in 0..LANES {
             if far[i] {
                 out.0[i] = crate::kernel::link_state::wrap(a.0[i]);

@@ -2,7 +2,7 @@
 //! method, the same names) and of its `acceleration`, over the states of the motion with
 //! q̇ = 1, q̈ = 0 (`docs/theory.md` §6).
 
-use super::simd::{or, Mask, L, V2L};
+use super::simd::{Mask, L, V2L};
 use super::LinkLanes;
 use crate::kernel::link_state::{LinkGeom, V2};
 
@@ -140,9 +140,9 @@ fn point_velocity(s: &LinkLanes, d: V2) -> V2L {
 /// that returns `Err`: I*, dI*/dq or M* not finite, I* ≤ 0 (or a NaN), q̈ not finite.
 #[inline(always)]
 pub fn acceleration_lanes(z: &ZhukovskiLanes, qd: L, driver: L) -> (L, Mask) {
-    let sums = (z.inertia + z.inertia_derivative + z.moment).not_finite();
-    let positive = z.inertia.test(L::splat(0.0), |i, zero| !(i > zero));
+    let sums = (z.inertia + z.inertia_derivative + z.moment).non_finite();
+    let positive = z.inertia.not_greater(L::splat(0.0));
     let inv = 1.0 / z.inertia;
     let qdd = (driver + z.moment - z.inertia_derivative * (qd * qd * 0.5)) * inv;
-    (qdd, or(or(sums, positive), qdd.not_finite()))
+    (qdd, sums.or(positive).or(qdd.non_finite()).mask())
 }
