@@ -1,0 +1,160 @@
+//! The RPR dyad in its natural coordinates, the common angle and the slide ([`super`]).
+//!
+//! The guide G (the prismatic joint's first link, whose axis u turns with it) is
+//! pinned to a solved link at A, the slider S (its second link) to a solved link at B, and
+//! S slides on G: both turn together (ω_G = ω_S = ω), and S's motion relative to G is the
+//! slide ṡ u. With d = B − A, the velocity of B seen from both sides,
+//! v_B = v_A + ω perp(d) + ṡ u, and its derivative (ḋ = ω perp(d) + ṡ u, u̇ = ω perp(u)),
+//! a_B = a_A + α perp(d) − ω² d + 2 ω ṡ perp(u) + s̈ u, give
+//!
+//! [perp(d)  u] (ω, ṡ)ᵀ = v_B − v_A,
+//! [perp(d)  u] (α, s̈)ᵀ = a_B − a_A + ω² d − 2 ω ṡ perp(u)
+//!
+//! (the last term is Coriolis'). In the guide's frame (u, n), d = x u + y n with
+//! y = n₀·w the slide line's constant offset and x = ±√(|d|² − y²) straight from the
+//! position's square root ([`crate::kernel::dyad::position`]); perp(d) = x n − y u, so the
+//! n-row gives the angle's rates alone and the u-row the slide:
+//!
+//! ω = (u × b)/x,  ṡ = b·u + y ω,  α = (u × (a_B − a_A) + ω (y ω − 2 ṡ))/x
+//!
+//! (u × d = y, u × perp(u) = 1; s̈ is not needed: both links take α and move as their
+//! pins). It is [`SlideFrame`]'s system with the second column negated, so the same
+//! frame, det = −x, and condition estimate (the second column a length times L):
+//! κ_F = (|d|² + L²)/|x L|, the joint screws' (`ChainSystem`'s pivot at A gives
+//! [u perp(A − B)/L], of the same norm and |det|): `Singular` near a change point, where
+//! d ⊥ u (the slide line tangent to the circle about A through B).
+//!
+//! d'Alembert: with X the force of G on S through the prismatic joint (normal to u) and
+//! M_G(A), M_S(B) the moments of each link's applied and inertia wrench about its pin,
+//! with M_p(B) its couple about B, the moments of S about B, M_S(B) + M_p(B) = 0, and of
+//! G about A, M_G(A) − M_p(B) − d × X = 0, give d × X = M_G(A) + M_S(B), X·u = 0: the transpose
+//! [perp(d) u]ᵀ X = (M_G(A) + M_S(B), 0), so X = n (M_G(A) + M_S(B))/x (d × n = x). Then
+//! the forces on G at A and on S at B, R_A = X − F_G and R_B = −X − F_S, and the
+//! prismatic's couple about its point P on S, M_P = −M_S(B) + (B − P) × X.
+
+use super::{
+    about_point, local_in, pin_point, point_rates, push, reported, solved_link, DyadSystem,
+    SlideFrame,
+};
+use crate::kernel::constraints::{JointGeom, Level};
+use crate::kernel::kinetostatics::{Reaction, Wrench};
+use crate::kernel::link_state::{cross, perp, LinkState, V2};
+use crate::MechError;
+
+/// An RPR dyad's guide G (the prismatic `jp`'s first link) and slider S (its second), and
+/// their pins to solved links: (G, S, G's pin, S's pin), of the solver's `b1` pinned by
+/// `ja`, `b2` by `jb`.
+#[inline(always)]
+fn rpr_sides(
+    joints: &[JointGeom],
+    b1: usize,
+    ja: usize,
+    jp: usize,
+    jb: usize,
+) -> (usize, usize, usize, usize) {
+    let gp = &joints[jp];
+    if gp.a == b1 {
+        (gp.a, gp.b, ja, jb)
+    } else {
+        (gp.a, gp.b, jb, ja)
+    }
+}
+
+/// Rates of an RPR dyad (module docs): the links `b1` (pinned by `ja`) and `b2` (pinned by
+/// `jb`) slide on each other by the prismatic `jp`, placed with the guide's pin A and the
+/// slider's pin B at `points` = [A, B, (x, y)], d = B − A = x u + y n
+/// ([`crate::kernel::dyad::position`], which has x from its square root and y, the slide
+/// line's offset, before it). ω = (u × (v_B − v_A))/x (rad/s), ṡ = (v_B − v_A)·u + y ω
+/// (m/s), α = (u × (a_B − a_A) + ω (y ω − 2 ṡ))/x (rad/s²). `scale` is the length scale
+/// L (m). `Singular` near a change point (d ⊥ u, x = 0): κ_F = (|d|² + L²)/|x L|.
+/// Returns the system, kept for the reactions.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+#[allow(clippy::too_many_arguments)]
+pub fn rpr_rates(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    b1: usize,
+    ja: usize,
+    jp: usize,
+    jb: usize,
+    points: [V2; 3],
+    scale: f64,
+    upto: Level,
+) -> Result<DyadSystem, MechError> {
+    if !matches!(upto, Level::Velocity | Level::Acceleration) {
+        return Ok(DyadSystem::None);
+    }
+    let [a, b, xy] = points;
+    let (g, sl, ja, jb) = rpr_sides(joints, b1, ja, jp, jb);
+    let (ga, gb) = (&joints[ja], &joints[jb]);
+    let (la, lb) = (solved_link(ga, g), solved_link(gb, sl));
+    let u = s[g].r(joints[jp].axis);
+    let m = SlideFrame::new(u, xy.x, xy.y, xy.x * xy.x + xy.y * xy.y, scale)?;
+    let ((va, aa), (vb, ab)) = (point_rates(s, la, a), point_rates(s, lb, b));
+    let dv = vb - va;
+    let w = cross(u, dv) * m.inv_x;
+    let (da, db) = (local_in(ga, g), local_in(gb, sl));
+    s[g].set_velocity_at(da, a, va, w);
+    s[sl].set_velocity_at(db, b, vb, w);
+    if upto == Level::Acceleration {
+        let sd = dv.dot(&u) + m.y * w;
+        // (u × Δa)/x waits only for the frame; ω, the last to come, enters after it.
+        let al = cross(u, ab - aa) * m.inv_x + w * (m.y * w - 2.0 * sd) * m.inv_x;
+        s[g].set_acceleration_at(da, a, aa, al);
+        s[sl].set_acceleration_at(db, b, ab, al);
+    }
+    Ok(DyadSystem::Rpr(m))
+}
+
+/// d'Alembert for an RPR dyad placed in the states `s` (module docs' notation), `f`
+/// holding every link's applied and inertia wrench about its anchor (N, N·m). The force
+/// of the guide G on the slider S, X = n (M_G(A) + M_S(B))/x (N), normal to u; the
+/// forces on G at A and on S at B, R_A = X − F_G and R_B = −X − F_S; the prismatic's
+/// couple about its point P on S, M_P = −M_S(B) + (B − P) × X (N·m). Each is reported by
+/// the joint's first link on its second; the solved links get −R_A at A and −R_B at B.
+/// `scale` is the length scale L of the condition estimate, as in [`rpr_rates`]; `kept`,
+/// the system [`rpr_rates`] returned, if any.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+#[allow(clippy::too_many_arguments)]
+pub fn rpr_reactions(
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    b1: usize,
+    ja: usize,
+    jp: usize,
+    jb: usize,
+    scale: f64,
+    kept: &DyadSystem,
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    let (g, sl, ja, jb) = rpr_sides(joints, b1, ja, jp, jb);
+    let (ga, gp, gb) = (&joints[ja], &joints[jp], &joints[jb]);
+    let (la, lb) = (solved_link(ga, g), solved_link(gb, sl));
+    let a = pin_point(s, ga, la, g);
+    let b = pin_point(s, gb, lb, sl);
+    let m = match kept {
+        DyadSystem::Rpr(m) => *m,
+        _ => SlideFrame::of(s[g].r(gp.axis), b - a, scale)?,
+    };
+    let db = local_in(gb, sl);
+    let (fg, mg) = about_point(&f[g], s[g].pos, a, local_in(ga, g));
+    let (fs, ms) = about_point(&f[sl], s[sl].pos, b, db);
+    let x = perp(m.u) * ((mg + ms) * m.inv_x);
+    let (ra, rb) = (x - fg, -x - fs);
+    // P is the joint's point on the slider: its pin B when the local vectors agree (two
+    // literal zeros in the generated code, so the test folds).
+    let mp = if gp.db == db {
+        -ms
+    } else {
+        cross(b - s[sl].point(gp.db), x) - ms
+    };
+    out[ja] = reported(ga, g, ra, 0.0);
+    out[jp] = reported(gp, sl, x, mp);
+    out[jb] = reported(gb, sl, rb, 0.0);
+    push(f, s, la, a, -ra, 0.0);
+    push(f, s, lb, b, -rb, 0.0);
+    Ok(())
+}
