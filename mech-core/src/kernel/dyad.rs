@@ -468,13 +468,13 @@ pub fn position(
         Solver::Rrp { b1, b2, ja, jc, jp } => {
             points = rrp(joints, s, b1, b2, [ja, jc, jp], sign)?;
         }
-        Solver::Rpr { b1, ja, jp, jb, .. } => {
-            let (gp, guide, slider, pa, pb) = rpr_pins(joints, s, b1, ja, jp, jb);
-            let (dvec, w) = rpr_data(gp, pa, pb, true);
-            let (rot, x, y) = tangent_rotation(gp.axis, dvec, w, sign)?;
-            place_by_point(&mut s[guide], rot, pa.1, pa.0);
-            place_by_point(&mut s[slider], rot, pb.1, pb.0);
-            points = [pa.0, pb.0, V2::new(x, y)];
+        Solver::Rpr { b1, b2, ja, jp, jb } => {
+            // Branched once on the orientation, so that every index is a constant.
+            points = if joints[jp].a == b1 {
+                rpr(joints, s, [b1, b2], [ja, jp, jb], sign)?
+            } else {
+                rpr(joints, s, [b2, b1], [jb, jp, ja], sign)?
+            };
         }
         Solver::Prp {
             b1,
@@ -610,6 +610,26 @@ fn rrp(
     };
     s[b2].pos = c - dir_of(s, guide, dc2);
     Ok([a, c, V2::new(x, y)])
+}
+
+/// [`position`] of an RPR dyad, its guide and slider `[guide, slider]` pinned by
+/// `[jg, jp, js]` (the guide's pin, the prismatic, the slider's pin); its points
+/// [A, B, (x, y)] ([`tangent_rotation`]).
+#[inline(always)]
+fn rpr(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    [guide, slider]: [usize; 2],
+    [jg, jp, js]: [usize; 3],
+    sign: f64,
+) -> Result<[V2; 3], MechError> {
+    let gp = &joints[jp];
+    let (pa, pb) = (pin(&joints[jg], s, guide), pin(&joints[js], s, slider));
+    let (dvec, w) = rpr_data(gp, pa, pb, true);
+    let (rot, x, y) = tangent_rotation(gp.axis, dvec, w, sign)?;
+    place_by_point(&mut s[guide], rot, pa.1, pa.0);
+    place_by_point(&mut s[slider], rot, pb.1, pb.0);
+    Ok([pa.0, pb.0, V2::new(x, y)])
 }
 
 /// [`position`] of a PRP dyad, joints [jp1, jc, jp2].

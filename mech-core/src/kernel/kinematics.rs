@@ -53,8 +53,8 @@ pub fn solve_chain(
         Solver::Rrp { b1, b2, ja, jc, jp } => {
             crate::kernel::natural::rrp_rates(joints, s, b1, b2, ja, jc, jp, points, scale, upto)
         }
-        Solver::Rpr { b1, ja, jp, jb, .. } => {
-            crate::kernel::natural::rpr_rates(joints, s, b1, ja, jp, jb, points, scale, upto)
+        Solver::Rpr { b1, b2, ja, jp, jb } => {
+            crate::kernel::natural::rpr_rates(joints, s, b1, b2, ja, jp, jb, points, scale, upto)
         }
         _ => chain_rates(chain, joints, s, scale, upto).map(|()| DyadSystem::None),
     }
@@ -86,9 +86,9 @@ pub fn chain_reactions(
         Solver::Rrp { b1, b2, ja, jc, jp } => crate::kernel::natural::rrp_reactions(
             joints, s, f, b1, b2, ja, jc, jp, scale, kept, out,
         ),
-        Solver::Rpr { b1, ja, jp, jb, .. } => {
-            crate::kernel::natural::rpr_reactions(joints, s, f, b1, ja, jp, jb, scale, kept, out)
-        }
+        Solver::Rpr { b1, b2, ja, jp, jb } => crate::kernel::natural::rpr_reactions(
+            joints, s, f, b1, b2, ja, jp, jb, scale, kept, out,
+        ),
         _ => crate::kernel::screw::chain_reactions(chain, joints, s, f, scale, out),
     }
 }

@@ -41,23 +41,21 @@ use crate::kernel::kinetostatics::{Reaction, Wrench};
 use crate::kernel::link_state::{cross, perp, LinkState, V2};
 use crate::MechError;
 
-/// An RPR dyad's guide G (the prismatic `jp`'s first link) and slider S (its second), and
-/// their pins to solved links: (G, S, G's pin, S's pin), of the solver's `b1` pinned by
-/// `ja`, `b2` by `jb`.
-#[inline(always)]
-fn rpr_sides(
-    joints: &[JointGeom],
-    b1: usize,
-    ja: usize,
-    jp: usize,
-    jb: usize,
-) -> (usize, usize, usize, usize) {
-    let gp = &joints[jp];
-    if gp.a == b1 {
-        (gp.a, gp.b, ja, jb)
-    } else {
-        (gp.a, gp.b, jb, ja)
-    }
+/// The guide G, the slider S and their pins (joints) in the solver's terms: `[G, S]` and
+/// `[G's pin, S's pin]`, each of the solver's constants. Each kernel below branches on
+/// the orientation once and runs its body with constant indices, so that in the generated
+/// code the joints and states stay in registers (an index chosen at run time into them
+/// would keep them in memory, and every topology test with them).
+macro_rules! oriented {
+    ($joints:expr, $b1:expr, $b2:expr, $ja:expr, $jp:expr, $jb:expr, |$sides:ident, $pins:ident| $body:expr) => {
+        if $joints[$jp].a == $b1 {
+            let ($sides, $pins) = ([$b1, $b2], [$ja, $jb]);
+            $body
+        } else {
+            let ($sides, $pins) = ([$b2, $b1], [$jb, $ja]);
+            $body
+        }
+    };
 }
 
 /// Rates of an RPR dyad (module docs): the links `b1` (pinned by `ja`) and `b2` (pinned by
@@ -75,6 +73,7 @@ pub fn rpr_rates(
     joints: &[JointGeom],
     s: &mut [LinkState],
     b1: usize,
+    b2: usize,
     ja: usize,
     jp: usize,
     jb: usize,
@@ -85,8 +84,25 @@ pub fn rpr_rates(
     if !matches!(upto, Level::Velocity | Level::Acceleration) {
         return Ok(DyadSystem::None);
     }
+    oriented!(joints, b1, b2, ja, jp, jb, |sides, pins| rates(
+        joints, s, sides, pins, jp, points, scale, upto
+    ))
+}
+
+/// [`rpr_rates`] with the guide and the slider `[g, sl]` pinned by `[ja, jb]`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn rates(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    [g, sl]: [usize; 2],
+    [ja, jb]: [usize; 2],
+    jp: usize,
+    points: [V2; 3],
+    scale: f64,
+    upto: Level,
+) -> Result<DyadSystem, MechError> {
     let [a, b, xy] = points;
-    let (g, sl, ja, jb) = rpr_sides(joints, b1, ja, jp, jb);
     let (ga, gb) = (&joints[ja], &joints[jb]);
     let (la, lb) = (solved_link(ga, g), solved_link(gb, sl));
     let u = s[g].r(joints[jp].axis);
@@ -123,6 +139,7 @@ pub fn rpr_reactions(
     s: &[LinkState],
     f: &mut [Wrench],
     b1: usize,
+    b2: usize,
     ja: usize,
     jp: usize,
     jb: usize,
@@ -130,7 +147,25 @@ pub fn rpr_reactions(
     kept: &DyadSystem,
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
-    let (g, sl, ja, jb) = rpr_sides(joints, b1, ja, jp, jb);
+    oriented!(joints, b1, b2, ja, jp, jb, |sides, pins| reactions(
+        joints, s, f, sides, pins, jp, scale, kept, out
+    ))
+}
+
+/// [`rpr_reactions`] with the guide and the slider `[g, sl]` pinned by `[ja, jb]`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn reactions(
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    [g, sl]: [usize; 2],
+    [ja, jb]: [usize; 2],
+    jp: usize,
+    scale: f64,
+    kept: &DyadSystem,
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
     let (ga, gp, gb) = (&joints[ja], &joints[jp], &joints[jb]);
     let (la, lb) = (solved_link(ga, g), solved_link(gb, sl));
     let a = pin_point(s, ga, la, g);
