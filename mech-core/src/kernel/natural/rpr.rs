@@ -1,4 +1,4 @@
-//! The RPR dyad in its natural coordinates, the common angle and the slide ([`super`]).
+//! The RPR dyad in its natural coordinates: the common angle and the slide.
 //!
 //! The guide G (the prismatic joint's first link, whose axis u turns with it) is
 //! pinned to a solved link at A, the slider S (its second link) to a solved link at B, and

@@ -1,4 +1,4 @@
-//! The RRP dyad in its natural coordinates, the link angle and the slide ([`super`]).
+//! The RRP dyad in its natural coordinates: the link angle and the slide.
 //!
 //! Link b₁ is pinned to a solved link at A and to the slider b₂ at C; b₂ slides
 //! along the unit axis u of the guide (a solved link G, turning with it: ω₂ = ω_G). With

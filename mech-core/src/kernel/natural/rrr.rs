@@ -1,4 +1,4 @@
-//! The RRR dyad in its natural coordinates, the two link angles ([`super`]).
+//! The RRR dyad in its natural coordinates: the two link angles.
 //!
 //! Link b₁ is pinned to a solved link at A, b₂ at C, and b₁ to b₂ at B. With
 //! e₁ = B − A, e₂ = B − C, the velocity of B seen from both sides,
