@@ -5,8 +5,8 @@
 //! velocities and accelerations, its transpose that of the reactions (d'Alembert); the
 //! other closed-form groups go through the joint screws of [`crate::kernel::screw`].
 //!
-//! In each, a link's anchor then moves as the material point it is (`LinkState::set_velocity_at`,
-//! `set_acceleration_at`): v = v_P + ω perp(r),
+//! In each, a link's anchor then moves as the material point it is
+//! (`LinkState::set_velocity_at`, `set_acceleration_at`): v = v_P + ω perp(r),
 //! a = a_P + α perp(r) − ω² r, with P the dyad's point on that link and r = anchor − P.
 
 pub mod rpr;
@@ -111,7 +111,7 @@ impl SlideFrame {
 }
 
 /// What a dyad's kinematics keeps for its reactions: the 2×2 system of its rates, whose
-/// transpose gives the reactions (module docs), so that d'Alembert neither rebuilds it,
+/// transpose gives the reactions (the modules' docs), so that d'Alembert neither rebuilds it,
 /// nor estimates its condition, nor divides again. `None` below the velocity level or
 /// for a group solved by its joint screws; the reactions then build the system.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

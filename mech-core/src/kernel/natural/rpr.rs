@@ -24,13 +24,14 @@
 //! [u perp(A − B)/L], of the same norm and |det|): `Singular` near a change point, where
 //! d ⊥ u (the slide line tangent to the circle about A through B).
 //!
-//! d'Alembert: with X the force of G on S through the prismatic joint (normal to u) and
-//! M_G(A), M_S(B) the moments of each link's applied and inertia wrench about its pin,
-//! with M_p(B) its couple about B, the moments of S about B, M_S(B) + M_p(B) = 0, and of
-//! G about A, M_G(A) − M_p(B) − d × X = 0, give d × X = M_G(A) + M_S(B), X·u = 0: the transpose
-//! [perp(d) u]ᵀ X = (M_G(A) + M_S(B), 0), so X = n (M_G(A) + M_S(B))/x (d × n = x). Then
-//! the forces on G at A and on S at B, R_A = X − F_G and R_B = −X − F_S, and the
-//! prismatic's couple about its point P on S, M_P = −M_S(B) + (B − P) × X.
+//! d'Alembert: let X be the force of G on S through the prismatic joint (normal to u),
+//! M_p(B) its couple about B, and M_G(A), M_S(B) the moments of each link's applied and
+//! inertia wrench about its pin. The moments of S about B, M_S(B) + M_p(B) = 0, and of G
+//! about A, M_G(A) − M_p(B) − d × X = 0, give d × X = M_G(A) + M_S(B) with X·u = 0: the
+//! transpose [perp(d) u]ᵀ X = (M_G(A) + M_S(B), 0), so X = n (M_G(A) + M_S(B))/x
+//! (d × n = x). Then the forces on G at A and on S at B, R_A = X − F_G and
+//! R_B = −X − F_S, and the prismatic's couple about its point P on S,
+//! M_P = −M_S(B) + (B − P) × X.
 
 use super::{
     about_point, local_in, pin_point, point_rates, push, reported, solved_link, DyadSystem,
@@ -47,7 +48,8 @@ use crate::MechError;
 /// code the joints and states stay in registers (an index chosen at run time into them
 /// would keep them in memory, and every topology test with them).
 macro_rules! oriented {
-    ($joints:expr, $b1:expr, $b2:expr, $ja:expr, $jp:expr, $jb:expr, |$sides:ident, $pins:ident| $body:expr) => {
+    ($joints:expr, $b1:expr, $b2:expr, $ja:expr, $jp:expr, $jb:expr,
+     |$sides:ident, $pins:ident| $body:expr) => {
         if $joints[$jp].a == $b1 {
             let ($sides, $pins) = ([$b1, $b2], [$ja, $jb]);
             $body
