@@ -1,17 +1,86 @@
 //! Velocities, accelerations and reactions of the three commonest dyads in their natural
-//! coordinates (`docs/theory.md` §3.5): the two link angles of an RRR dyad ([`rrr`]), the
-//! link angle and the slide of an RRP dyad ([`rrp`]), the common angle and the slide of an
-//! RPR dyad ([`rpr`]). Each is one 2×2 system written out, its matrix the same for
-//! velocities and accelerations, its transpose that of the reactions (d'Alembert); the
-//! other closed-form groups go through the joint screws of [`crate::kernel::screw`].
+//! coordinates (`docs/theory.md` §3.5): the two link angles of an RRR dyad ([`rrr_rates`]),
+//! the link angle and the slide of an RRP dyad ([`rrp_rates`]), the common angle and the
+//! slide of an RPR dyad ([`rpr_rates`]); one file each (`natural/rrr.rs`, `rrp.rs`,
+//! `rpr.rs`). Each is one 2×2 system written out, its matrix the same for velocities and
+//! accelerations, its transpose that of the reactions (d'Alembert); the other closed-form
+//! groups go through the joint screws of [`crate::kernel::screw`].
+//!
+//! **RRR.** Link b₁ is pinned to a solved link at A, b₂ at C, and b₁ to b₂ at B. With
+//! e₁ = B − A, e₂ = B − C, the velocity of B seen from both sides,
+//! v_A + ω₁ perp(e₁) = v_C + ω₂ perp(e₂), gives
+//!
+//! [perp(e₁)  −perp(e₂)] (ω₁, ω₂)ᵀ = v_C − v_A,
+//!
+//! and its derivative, with the centripetal terms moved right,
+//!
+//! [perp(e₁)  −perp(e₂)] (α₁, α₂)ᵀ = a_C − a_A + ω₁² e₁ − ω₂² e₂.
+//!
+//! d'Alembert: with X the force of b₁ on b₂ at B, the moments of b₁ about A and of b₂
+//! about C, e₁ × X = M₁(A), −e₂ × X = M₂(C), are the transpose of the velocity system.
+//!
+//! **RRP.** Link b₁ is pinned to a solved link at A and to the slider b₂ at C; b₂ slides
+//! along the unit axis u of the guide (a solved link G, turning with it: ω₂ = ω_G). With
+//! e₁ = C − A, v_G and a_G the velocity and acceleration of G's material point at C and
+//! s the slide,
+//!
+//! [perp(e₁)  −u] (ω₁, ṡ)ᵀ = v_G − v_A,
+//! [perp(e₁)  −u] (α₁, s̈)ᵀ = a_G + 2 ω_G ṡ perp(u) − a_A + ω₁² e₁
+//!
+//! (the last but one term is Coriolis'). The system is solved in the guide's frame
+//! ([`SlideFrame`]): with n = perp(u) and e₁ = x u + y n, perp(e₁) = x n − y u, so its
+//! n-row gives the angular rate alone and its u-row the slide,
+//!
+//! ω₁ = (b·n)/x,  ṡ = −b·u − y ω₁,
+//!
+//! which is the 2×2 inverse written in the frame where it is triangular (det = x).
+//! The condition estimate ([`crate::kernel::linalg::Inverse2::scaled`]'s, with the second column
+//! times the length scale L so that both columns are lengths) is then
+//! κ_F = (|e₁|² + L²)/|x L|: `Singular` near a change point, where e₁ ⊥ u.
+//!
+//! **RPR.** The guide G (the prismatic joint's first link, whose axis u turns with it) is
+//! pinned to a solved link at A, the slider S (its second link) to a solved link at B, and
+//! S slides on G: both turn together (ω_G = ω_S = ω), and S's motion relative to G is the
+//! slide ṡ u. With d = B − A, the velocity of B seen from both sides,
+//! v_B = v_A + ω perp(d) + ṡ u, and its derivative (ḋ = ω perp(d) + ṡ u, u̇ = ω perp(u)),
+//! a_B = a_A + α perp(d) − ω² d + 2 ω ṡ perp(u) + s̈ u, give
+//!
+//! [perp(d)  u] (ω, ṡ)ᵀ = v_B − v_A,
+//! [perp(d)  u] (α, s̈)ᵀ = a_B − a_A + ω² d − 2 ω ṡ perp(u)
+//!
+//! (the last term is Coriolis'). In the guide's frame (u, n), d = x u + y n with
+//! y = n·d the slide line's offset from the pins, a constant of the drawing (the slide
+//! condition), and x = ±√(|d|² − y²) straight from the
+//! position's square root ([`crate::kernel::dyad::position`]); perp(d) = x n − y u, so the
+//! n-row gives the angle's rates alone and the u-row the slide:
+//!
+//! ω = (u × b)/x,  ṡ = b·u + y ω,  α = (u × (a_B − a_A) + ω (y ω − 2 ṡ))/x
+//!
+//! (u × d = y, u × perp(u) = 1; s̈ is not needed: both links take α and move as their
+//! pins). It is [`SlideFrame`]'s system with the second column negated, so the same
+//! frame, det = −x, and condition estimate (the second column a length times L):
+//! κ_F = (|d|² + L²)/|x L|, the joint screws' (`ChainSystem`'s pivot at A gives
+//! [u perp(A − B)/L], of the same norm and |det|): `Singular` near a change point, where
+//! d ⊥ u (the slide line tangent to the circle about A through B).
+//!
+//! d'Alembert: let X be the force of G on S through the prismatic joint (normal to u),
+//! M_p(B) its couple about B, and M_G(A), M_S(B) the moments of each link's applied and
+//! inertia wrench about its pin. The moments of S about B, M_S(B) + M_p(B) = 0, and of G
+//! about A, M_G(A) − M_p(B) − d × X = 0, give d × X = M_G(A) + M_S(B) with X·u = 0: the
+//! transpose [perp(d) u]ᵀ X = (M_G(A) + M_S(B), 0), so X = n (M_G(A) + M_S(B))/x
+//! (d × n = x). Then the forces on G at A and on S at B, R_A = X − F_G and
+//! R_B = −X − F_S, and the prismatic's couple about its point P on S,
+//! M_P = −M_S(B) + (B − P) × X.
 //!
 //! In each, a link's anchor then moves as the material point it is
 //! (`LinkState::set_velocity_at`, `set_acceleration_at`): v = v_P + ω perp(r),
 //! a = a_P + α perp(r) − ω² r, with P the dyad's point on that link and r = anchor − P.
 
-pub mod rpr;
-pub mod rrp;
-pub mod rrr;
+// One file per dyad, its derivation above; its kernels are public here, at the folder's
+// path.
+mod rpr;
+mod rrp;
+mod rrr;
 
 pub use rpr::{rpr_rates, rpr_reactions};
 pub use rrp::{rrp_rates, rrp_reactions};
@@ -56,7 +125,7 @@ pub(crate) fn solved_link(g: &JointGeom, body: usize) -> usize {
     }
 }
 
-/// An RRP dyad's system [perp(e₁) −u] in the guide's frame ([`rrp`]): the unit axis
+/// An RRP dyad's system [perp(e₁) −u] in the guide's frame ([`rrp_rates`]): the unit axis
 /// u, n = perp(u), and e₁ = C − A = x u + y n, with 1/x ready.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlideFrame {

@@ -1,37 +1,4 @@
-//! The RPR dyad in its natural coordinates: the common angle and the slide.
-//!
-//! The guide G (the prismatic joint's first link, whose axis u turns with it) is
-//! pinned to a solved link at A, the slider S (its second link) to a solved link at B, and
-//! S slides on G: both turn together (ω_G = ω_S = ω), and S's motion relative to G is the
-//! slide ṡ u. With d = B − A, the velocity of B seen from both sides,
-//! v_B = v_A + ω perp(d) + ṡ u, and its derivative (ḋ = ω perp(d) + ṡ u, u̇ = ω perp(u)),
-//! a_B = a_A + α perp(d) − ω² d + 2 ω ṡ perp(u) + s̈ u, give
-//!
-//! [perp(d)  u] (ω, ṡ)ᵀ = v_B − v_A,
-//! [perp(d)  u] (α, s̈)ᵀ = a_B − a_A + ω² d − 2 ω ṡ perp(u)
-//!
-//! (the last term is Coriolis'). In the guide's frame (u, n), d = x u + y n with
-//! y = n₀·w the slide line's constant offset and x = ±√(|d|² − y²) straight from the
-//! position's square root ([`crate::kernel::dyad::position`]); perp(d) = x n − y u, so the
-//! n-row gives the angle's rates alone and the u-row the slide:
-//!
-//! ω = (u × b)/x,  ṡ = b·u + y ω,  α = (u × (a_B − a_A) + ω (y ω − 2 ṡ))/x
-//!
-//! (u × d = y, u × perp(u) = 1; s̈ is not needed: both links take α and move as their
-//! pins). It is [`SlideFrame`]'s system with the second column negated, so the same
-//! frame, det = −x, and condition estimate (the second column a length times L):
-//! κ_F = (|d|² + L²)/|x L|, the joint screws' (`ChainSystem`'s pivot at A gives
-//! [u perp(A − B)/L], of the same norm and |det|): `Singular` near a change point, where
-//! d ⊥ u (the slide line tangent to the circle about A through B).
-//!
-//! d'Alembert: let X be the force of G on S through the prismatic joint (normal to u),
-//! M_p(B) its couple about B, and M_G(A), M_S(B) the moments of each link's applied and
-//! inertia wrench about its pin. The moments of S about B, M_S(B) + M_p(B) = 0, and of G
-//! about A, M_G(A) − M_p(B) − d × X = 0, give d × X = M_G(A) + M_S(B) with X·u = 0: the
-//! transpose [perp(d) u]ᵀ X = (M_G(A) + M_S(B), 0), so X = n (M_G(A) + M_S(B))/x
-//! (d × n = x). Then the forces on G at A and on S at B, R_A = X − F_G and
-//! R_B = −X − F_S, and the prismatic's couple about its point P on S,
-//! M_P = −M_S(B) + (B − P) × X.
+//! The RPR dyad's kernels (their derivation: the folder's docs, [`super`]).
 
 use super::{
     about_point, local_in, pin_point, point_rates, push, reported, solved_link, DyadSystem,

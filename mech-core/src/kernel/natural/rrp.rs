@@ -1,23 +1,4 @@
-//! The RRP dyad in its natural coordinates: the link angle and the slide.
-//!
-//! Link b₁ is pinned to a solved link at A and to the slider b₂ at C; b₂ slides
-//! along the unit axis u of the guide (a solved link G, turning with it: ω₂ = ω_G). With
-//! e₁ = C − A, v_G and a_G the velocity and acceleration of G's material point at C and
-//! s the slide,
-//!
-//! [perp(e₁)  −u] (ω₁, ṡ)ᵀ = v_G − v_A,
-//! [perp(e₁)  −u] (α₁, s̈)ᵀ = a_G + 2 ω_G ṡ perp(u) − a_A + ω₁² e₁
-//!
-//! (the last but one term is Coriolis'). The system is solved in the guide's frame
-//! ([`SlideFrame`]): with n = perp(u) and e₁ = x u + y n, perp(e₁) = x n − y u, so its
-//! n-row gives the angular rate alone and its u-row the slide,
-//!
-//! ω₁ = (b·n)/x,  ṡ = −b·u − y ω₁,
-//!
-//! which is the 2×2 inverse written in the frame where it is triangular (det = x).
-//! The condition estimate ([`crate::kernel::linalg::Inverse2::scaled`]'s, with the second column
-//! times the length scale L so that both columns are lengths) is then
-//! κ_F = (|e₁|² + L²)/|x L|: `Singular` near a change point, where e₁ ⊥ u.
+//! The RRP dyad's kernels (their derivation: the folder's docs, [`super`]).
 
 use super::{
     about, about_point, local_in, pin_point, point_rates, push, reported, solved_link, DyadSystem,

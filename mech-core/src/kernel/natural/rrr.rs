@@ -1,17 +1,4 @@
-//! The RRR dyad in its natural coordinates: the two link angles.
-//!
-//! Link b₁ is pinned to a solved link at A, b₂ at C, and b₁ to b₂ at B. With
-//! e₁ = B − A, e₂ = B − C, the velocity of B seen from both sides,
-//! v_A + ω₁ perp(e₁) = v_C + ω₂ perp(e₂), gives
-//!
-//! [perp(e₁)  −perp(e₂)] (ω₁, ω₂)ᵀ = v_C − v_A,
-//!
-//! and its derivative, with the centripetal terms moved right,
-//!
-//! [perp(e₁)  −perp(e₂)] (α₁, α₂)ᵀ = a_C − a_A + ω₁² e₁ − ω₂² e₂.
-//!
-//! d'Alembert: with X the force of b₁ on b₂ at B, the moments of b₁ about A and of b₂
-//! about C, e₁ × X = M₁(A), −e₂ × X = M₂(C), are the transpose of the velocity system.
+//! The RRR dyad's kernels (their derivation: the folder's docs, [`super`]).
 
 use super::{
     about_point, local_in, pin_point, point_rates, push, reported, solved_link, DyadSystem,
