@@ -301,8 +301,8 @@ fn slide_line(g: &JointGeom, s: &[LinkState], body: usize, rot: V2, d: V2) -> (V
 
 const TANGENT_TOL_REL: f64 = 1e-12;
 
-/// RPR / slotted lever: the unit rotation of the guide `a` (pinned at `pin_a`) such that
-/// the line of `g` (unit `axis` in the guide) passes through the slider's point, and the
+/// RPR / slotted lever: the unit rotation of the guide such that the slide line (unit
+/// `axis` in the guide) passes through the slider's point, and the
 /// coordinates (x, y) of `dvec` = slider pin − guide pin (current) in the guide's frame
 /// (u, n = perp(u)) of the turned axis u. `w` = the local vector from the guide pin to
 /// the slide point minus that from the slider's pin to its slide point; `sign` picks the
