@@ -301,28 +301,36 @@ fn slide_line(g: &JointGeom, s: &[LinkState], body: usize, rot: V2, d: V2) -> (V
 
 const TANGENT_TOL_REL: f64 = 1e-12;
 
-/// RPR / slotted lever: the unit rotation of the guide `a` (pinned at `pin_a`) such that
-/// the line of `g` passes through the slider's point. `dvec` = slider pin − guide pin
-/// (current), `w` = the local vector from the guide pin to the slide point minus that from the
-/// slider's pin to its slide point; `sign` picks the side (see [`tangent_side`]).
+/// RPR / slotted lever: the unit rotation of the guide such that the slide line (unit
+/// `axis` in the guide) passes through the slider's point, and the
+/// coordinates (x, y) of `dvec` = slider pin − guide pin (current) in the guide's frame
+/// (u, n = perp(u)) of the turned axis u. `w` = the local vector from the guide pin to
+/// the slide point minus that from the slider's pin to its slide point; `sign` picks the
+/// side (see [`tangent_side`]).
+///
+/// The slide condition n·(D − R w) = 0 reads y = D·n = n₀·w (n₀ = perp(axis)): a
+/// constant offset, so x = D·u = ±√(|D|² − y²) straight from the square root. As complex
+/// numbers D = u (x + i y), so u = D (x − i y)/|D|² and the rotation is u·conj(axis):
+/// one square root and one division.
 #[inline(always)]
-fn tangent_rotation(n0: V2, dvec: V2, w: V2, sign: f64) -> Result<V2, MechError> {
-    let len = dvec.norm();
-    if !(len > 0.0) {
+fn tangent_rotation(axis: V2, dvec: V2, w: V2, sign: f64) -> Result<(V2, f64, f64), MechError> {
+    let l2 = dvec.norm_squared();
+    if !(l2 > 0.0) {
         return Err(MechError::NoAssembly);
     }
-    let alpha = n0.dot(&w) / len;
-    let mut b2 = 1.0 - alpha * alpha;
-    if b2 < 0.0 {
-        if b2 < -TANGENT_TOL_REL {
+    let y = perp(axis).dot(&w);
+    let mut x2 = l2 - y * y;
+    if x2 < 0.0 {
+        if x2 < -TANGENT_TOL_REL * l2 {
             return Err(MechError::NoAssembly);
         }
-        b2 = 0.0;
+        x2 = 0.0;
     }
-    let e = dvec / len;
-    let m = e * alpha + perp(e) * (sign * b2.sqrt());
-    // rot = m · conj(n0)
-    Ok(V2::new(m.dot(&n0), cross(n0, m)))
+    let x = sign * x2.sqrt();
+    // (x − i y)·conj(axis), then D times it over |D|² (the division waits only for D, so
+    // it runs beside the square root).
+    let k = V2::new(x * axis.x - y * axis.y, -(x * axis.y + y * axis.x));
+    Ok((rotate(dvec, k) * (1.0 / l2), x, y))
 }
 
 /// The side of a tangent construction: with the guide's current normal `m` and `dvec`
@@ -332,12 +340,11 @@ fn tangent_side(guide: &LinkState, axis: V2, dvec: V2) -> f64 {
     -cross(rotate(guide.rot, perp(axis)), dvec)
 }
 
-/// The guide/slider data of an RPR or slotted-lever group: (n0, D, w).
+/// The guide/slider data of an RPR or slotted-lever group: (D, w).
 #[inline(always)]
-fn rpr_data(gp: &JointGeom, pin_a: (V2, V2), pin_b: (V2, V2), b_moves: bool) -> (V2, V2, V2) {
+fn rpr_data(gp: &JointGeom, pin_a: (V2, V2), pin_b: (V2, V2), b_moves: bool) -> (V2, V2) {
     // Slide condition n·(P_b − Q_a) = 0 with P_b = pin_b + R(ψ)(db − dpin_b) when the
     // slider rotates with the guide, or P_b = pin_b (a solved link's pin).
-    let n0 = perp(gp.axis);
     let dvec = pin_b.0 - pin_a.0;
     let wb = if b_moves {
         gp.db - pin_b.1
@@ -345,7 +352,7 @@ fn rpr_data(gp: &JointGeom, pin_a: (V2, V2), pin_b: (V2, V2), b_moves: bool) -> 
         V2::zeros()
     };
     let w = -(wb - (gp.da - pin_a.1));
-    (n0, dvec, w)
+    (dvec, w)
 }
 
 /// An RPR group's prismatic joint, guide and slider, and the pins of the guide and the
@@ -435,7 +442,9 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
 /// Returns the group's joint points found on the way, for the rates that follow
 /// ([`crate::kernel::natural`]): an RRR dyad's [A, B, C] (b₁'s pin, the middle pin, b₂'s pin),
 /// an RRP dyad's [A, C, (x, y)] (b₁'s pin, the slider's pin, and C − A = x u + y perp(u)
-/// in the guide's frame, x straight from the square root); zeros for the other kinds.
+/// in the guide's frame, x straight from the square root), an RPR dyad's [A, B, (x, y)]
+/// (the guide's pin, the slider's pin, and B − A = x u + y perp(u) in the frame of the
+/// guide's turned axis u, x straight from the square root); zeros for the other kinds.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn position(
@@ -459,12 +468,13 @@ pub fn position(
         Solver::Rrp { b1, b2, ja, jc, jp } => {
             points = rrp(joints, s, b1, b2, [ja, jc, jp], sign)?;
         }
-        Solver::Rpr { b1, ja, jp, jb, .. } => {
-            let (gp, guide, slider, pa, pb) = rpr_pins(joints, s, b1, ja, jp, jb);
-            let (n0, dvec, w) = rpr_data(gp, pa, pb, true);
-            let rot = tangent_rotation(n0, dvec, w, sign)?;
-            place_by_point(&mut s[guide], rot, pa.1, pa.0);
-            place_by_point(&mut s[slider], rot, pb.1, pb.0);
+        Solver::Rpr { b1, b2, ja, jp, jb } => {
+            // Branched once on the orientation, so that every index is a constant.
+            points = if joints[jp].a == b1 {
+                rpr(joints, s, [b1, b2], [ja, jp, jb], sign)?
+            } else {
+                rpr(joints, s, [b2, b1], [jb, jp, ja], sign)?
+            };
         }
         Solver::Prp {
             b1,
@@ -486,8 +496,8 @@ pub fn position(
             let g = &joints[js];
             let pa = pin(&joints[ja], s, body);
             let pb = (point_of(s, g.b, g.db), g.db);
-            let (n0, dvec, w) = rpr_data(g, pa, pb, false);
-            let rot = tangent_rotation(n0, dvec, w, sign)?;
+            let (dvec, w) = rpr_data(g, pa, pb, false);
+            let (rot, ..) = tangent_rotation(g.axis, dvec, w, sign)?;
             place_by_point(&mut s[body], rot, pa.1, pa.0);
         }
         Solver::Newton
@@ -600,6 +610,26 @@ fn rrp(
     };
     s[b2].pos = c - dir_of(s, guide, dc2);
     Ok([a, c, V2::new(x, y)])
+}
+
+/// [`position`] of an RPR dyad, its guide and slider `[guide, slider]` pinned by
+/// `[jg, jp, js]` (the guide's pin, the prismatic, the slider's pin); its points
+/// [A, B, (x, y)] ([`tangent_rotation`]).
+#[inline(always)]
+fn rpr(
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    [guide, slider]: [usize; 2],
+    [jg, jp, js]: [usize; 3],
+    sign: f64,
+) -> Result<[V2; 3], MechError> {
+    let gp = &joints[jp];
+    let (pa, pb) = (pin(&joints[jg], s, guide), pin(&joints[js], s, slider));
+    let (dvec, w) = rpr_data(gp, pa, pb, true);
+    let (rot, x, y) = tangent_rotation(gp.axis, dvec, w, sign)?;
+    place_by_point(&mut s[guide], rot, pa.1, pa.0);
+    place_by_point(&mut s[slider], rot, pb.1, pb.0);
+    Ok([pa.0, pb.0, V2::new(x, y)])
 }
 
 /// [`position`] of a PRP dyad, joints [jp1, jc, jp2].

@@ -2,7 +2,8 @@
 //! group with the topology as constants (`docs/theory.md` §3):
 //! - a driven crank or slider: [`solve_driven`],
 //! - a closed-form dyad or slot group: [`solve_chain`] (positions by [`crate::kernel::dyad`],
-//!   rates by joint screws, [`crate::kernel::screw`]),
+//!   rates in natural coordinates for the RRR, RRP and RPR dyads,
+//!   [`crate::kernel::natural`], by joint screws for the others, [`crate::kernel::screw`]),
 //! - a group with no closed form (triads, dyads with slots, redundant groups):
 //!   [`crate::kernel::group::group_solve`] and [`crate::kernel::group::group_solve_ls`] (Newton and LU).
 //!
@@ -27,8 +28,8 @@ use crate::kernel::screw::{chain_rates, driven_rates, Chain, Driven};
 use crate::MechError;
 
 /// Solve a closed-form group up to `upto`: place its links by `solver` on the drawing's
-/// branch `sign`, then its velocities and accelerations in natural coordinates for an RRR
-/// or RRP dyad ([`crate::kernel::natural`]), by the chain's joint screws for the others.
+/// branch `sign`, then its velocities and accelerations in natural coordinates for an RRR,
+/// RRP or RPR dyad ([`crate::kernel::natural`]), by the chain's joint screws for the others.
 /// `Singular` near a change point, `NoAssembly` where the group does not close. Returns
 /// what the dyad keeps for its reactions ([`DyadSystem`]).
 #[cfg_attr(debug_assertions, inline)]
@@ -52,6 +53,9 @@ pub fn solve_chain(
         Solver::Rrp { b1, b2, ja, jc, jp } => {
             crate::kernel::natural::rrp_rates(joints, s, b1, b2, ja, jc, jp, points, scale, upto)
         }
+        Solver::Rpr { b1, b2, ja, jp, jb } => {
+            crate::kernel::natural::rpr_rates(joints, s, b1, b2, ja, jp, jb, points, scale, upto)
+        }
         _ => chain_rates(chain, joints, s, scale, upto).map(|()| DyadSystem::None),
     }
 }
@@ -59,8 +63,8 @@ pub fn solve_chain(
 /// d'Alembert for a closed-form group: the reaction at each of its joints into `out`
 /// (joint order), and the reactions on the solved links it is jointed to added to their
 /// wrenches in `f` (every link's applied and inertia wrench about its anchor, plus the
-/// reactions of the groups solved before). In natural coordinates for an RRR or RRP dyad
-/// ([`crate::kernel::natural`]), by the chain's joint screws for the others. Called from the
+/// reactions of the groups solved before). In natural coordinates for an RRR, RRP or RPR
+/// dyad ([`crate::kernel::natural`]), by the chain's joint screws for the others. Called from the
 /// outermost group inward. `kept` is what [`solve_chain`] returned for the motion.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
@@ -81,6 +85,9 @@ pub fn chain_reactions(
         }
         Solver::Rrp { b1, b2, ja, jc, jp } => crate::kernel::natural::rrp_reactions(
             joints, s, f, b1, b2, ja, jc, jp, scale, kept, out,
+        ),
+        Solver::Rpr { b1, b2, ja, jp, jb } => crate::kernel::natural::rpr_reactions(
+            joints, s, f, b1, b2, ja, jp, jb, scale, kept, out,
         ),
         _ => crate::kernel::screw::chain_reactions(chain, joints, s, f, scale, out),
     }

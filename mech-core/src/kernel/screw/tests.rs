@@ -1,4 +1,4 @@
-//! The closed-form kernels (joint screws, and natural coordinates for RRR and RRP,
+//! The closed-form kernels (joint screws, and natural coordinates for RRR, RRP and RPR,
 //! through `kinematics::solve_chain` and `kinematics::chain_reactions`) against the
 //! absolute-coordinate route: the same positions, then velocities and accelerations
 //! from the group's scaled Jacobian (LU) and reactions from its transpose, for every
