@@ -52,6 +52,15 @@ pub fn solve_chain(
         Solver::Rrp { b1, b2, ja, jc, jp } => {
             crate::kernel::natural::rrp_rates(joints, s, b1, b2, ja, jc, jp, points, scale, upto)
         }
+        Solver::SlottedSlider { body, jq, js } => crate::kernel::dyad::slotted_slider_rates(
+            &joints[jq],
+            &joints[js],
+            s,
+            body,
+            points[0].x,
+            upto,
+        )
+        .map(|()| DyadSystem::None),
         _ => chain_rates(chain, joints, s, scale, upto).map(|()| DyadSystem::None),
     }
 }
@@ -82,6 +91,9 @@ pub fn chain_reactions(
         Solver::Rrp { b1, b2, ja, jc, jp } => crate::kernel::natural::rrp_reactions(
             joints, s, f, b1, b2, ja, jc, jp, scale, kept, out,
         ),
+        Solver::SlottedSlider { body, jq, js } => {
+            crate::kernel::dyad::slotted_slider_reactions(joints, s, f, body, jq, js, out)
+        }
         _ => crate::kernel::screw::chain_reactions(chain, joints, s, f, scale, out),
     }
 }
