@@ -3,6 +3,10 @@
 //! lines), RPP, and the single-link slot groups. Each keeps the assembly branch of the
 //! drawing: [`branch_quantity`] is evaluated once at the drawing and its sign passed to
 //! [`position`] at every input value.
+//!
+//! The slotted slider (a link on a guide with a slot joint, the Scotch yoke's yoke) has
+//! one unknown, its slide, with no branch; its rates and reactions in that one coordinate
+//! are here too ([`slotted_slider_rates`], [`slotted_slider_reactions`]).
 
 use crate::kernel::constraints::{Drive, JointGeom, Level};
 use crate::kernel::kinetostatics::{Reaction, Wrench};
@@ -899,9 +903,9 @@ mod tests {
     use crate::solvers::instance::{instance, Instance};
 
     /// The Scotch yoke of `tests/common/mechanisms.rs`, one with a tilted guide on a
-    /// turning arm (the axis in the yoke's frame), and one with the slider's pin in the
-    /// crank's slot.
-    const YOKES: [&str; 3] = [
+    /// turning arm (the axis in the yoke's frame), and the slider's pin in the crank's
+    /// slot, the slider on the ground and on a turning arm.
+    const YOKES: [&str; 4] = [
         "pub struct ScotchYoke { ground { O2: (0.0, 0.0) },
           link crank { points { O2, A: (0.03856725658119236, 0.045962666587138684) } },
           link yoke { points { Y: (0.2, 0.0) } },
@@ -920,7 +924,37 @@ mod tests {
           joints { O: revolute(ground, crank), radial: pin_in_slot(crank, slider) at S along (1.0, 0.75),
                    rail: prismatic(ground, slider) at S along (1.0, 0.0) },
           input: O }",
+        "pub struct MirrorTurning { ground { O: (0.0, 0.0), O4: (0.25, -0.15) },
+          link crank { points { O, T: (0.1, 0.1) } }, link arm { points { O4, E: (0.1, 0.2) } },
+          link slider { points { S: (0.08, 0.06) } },
+          joints { O: revolute(ground, crank), O4: revolute(ground, arm),
+                   radial: pin_in_slot(crank, slider) at S along (1.0, 0.75),
+                   rail: prismatic(arm, slider) at S along (1.0, 0.3) },
+          inputs: [O, O4] }",
     ];
+
+    /// The inputs' ranges about the drawing (rad) for [`YOKES`]: a full turn of the crank
+    /// where the slot keeps its angle to the guide, else short of the crank angles where
+    /// the slot runs along the guide (−0.64 rad for `Mirror`, −0.35 rad less the arm's
+    /// turn for `MirrorTurning`), where the group is singular.
+    const RANGES: [[(f64, f64); 2]; 4] = [
+        [(-3.2, 3.2), (0.0, 0.0)],
+        [(-3.2, 3.2), (-0.3, 0.3)],
+        [(-0.4, 2.2), (0.0, 0.0)],
+        [(-0.1, 1.0), (-0.1, 0.1)],
+    ];
+
+    /// How [`solve`] takes the slotted-slider group.
+    #[derive(Clone, Copy, PartialEq)]
+    enum Route {
+        /// The plan's kernels (`solve_chain`, `chain_reactions`): its natural coordinate.
+        Natural,
+        /// Newton from the drawing, rates and reactions from its Jacobian.
+        Newton,
+        /// The closed-form position, rates and reactions by its chain of joint screws (the
+        /// velocity field's route).
+        Screw,
+    }
 
     /// A small linear congruential generator: uniform in [0, 1).
     fn uniform(seed: &mut u64) -> f64 {
@@ -931,18 +965,17 @@ mod tests {
     }
 
     /// The states up to accelerations and the reactions of every joint from the same
-    /// link wrenches, by the plan's kernels (`newton` false) or with the slotted-slider
-    /// group solved by Newton from the drawing and its Jacobian (`newton` true).
+    /// link wrenches, the slotted-slider group by `route`.
     fn solve(
         inst: &Instance,
         groups: &[Group],
         branches: &[f64],
         drive: crate::kernel::constraints::Drive,
-        newton: bool,
+        route: Route,
     ) -> (Vec<LinkState>, Vec<Reaction>) {
         let mut s = inst.drawing.clone();
         for (g, &sign) in groups.iter().zip(branches) {
-            match (&g.kernel, newton) {
+            match (&g.kernel, route) {
                 (Kernel::Driven(d), _) => {
                     solve_driven(
                         g.solver,
@@ -954,7 +987,12 @@ mod tests {
                     )
                     .unwrap();
                 }
-                (Kernel::Chain(_), true) => {
+                (Kernel::Chain(c), Route::Screw) => {
+                    position(g.solver, &inst.joints, &mut s, drive, sign).unwrap();
+                    let (sc, acc) = (inst.scale, Level::Acceleration);
+                    crate::kernel::screw::chain_rates(c, &inst.joints, &mut s, sc, acc).unwrap();
+                }
+                (Kernel::Chain(_), Route::Newton) => {
                     group_solve::<3>(
                         &g.bodies,
                         &g.cons,
@@ -966,7 +1004,7 @@ mod tests {
                     )
                     .unwrap();
                 }
-                (Kernel::Chain(c), false) => {
+                (Kernel::Chain(c), Route::Natural) => {
                     let sc = inst.scale;
                     solve_chain(
                         g.solver,
@@ -990,7 +1028,7 @@ mod tests {
         let mut out = vec![Reaction::default(); inst.joints.len()];
         let mut drivers = vec![0.0; drive.0.len()];
         for g in groups.iter().rev() {
-            match (&g.kernel, newton) {
+            match (&g.kernel, route) {
                 (Kernel::Driven(d), _) => crate::kernel::screw::driven_reactions(
                     d,
                     &inst.joints,
@@ -999,7 +1037,11 @@ mod tests {
                     &mut out,
                     &mut drivers,
                 ),
-                (Kernel::Chain(_), true) => {
+                (Kernel::Chain(c), Route::Screw) => {
+                    let (j, sc) = (&inst.joints, inst.scale);
+                    crate::kernel::screw::chain_reactions(c, j, &s, &mut f, sc, &mut out).unwrap();
+                }
+                (Kernel::Chain(_), Route::Newton) => {
                     let lam = group_reactions::<3>(
                         None,
                         &g.bodies,
@@ -1019,7 +1061,7 @@ mod tests {
                         &mut drivers,
                     );
                 }
-                (Kernel::Chain(c), false) => {
+                (Kernel::Chain(c), Route::Natural) => {
                     let kept = DyadSystem::None;
                     let sc = inst.scale;
                     chain_reactions(g.solver, c, &inst.joints, &s, &mut f, sc, &kept, &mut out)
@@ -1043,7 +1085,7 @@ mod tests {
     #[test]
     fn slotted_slider_matches_newton() {
         let mut seed = 7;
-        for text in YOKES {
+        for (text, ranges) in YOKES.iter().zip(RANGES) {
             let model = model_of(text);
             let inst = instance(&model).unwrap();
             let groups = plan(&model).unwrap();
@@ -1059,12 +1101,8 @@ mod tests {
             for _ in 0..200 {
                 let q: Vec<f64> = (0..n_in)
                     .map(|i| {
-                        let turn = if i == 0 {
-                            2.0 * std::f64::consts::PI
-                        } else {
-                            0.6
-                        };
-                        inst.joints[model.inputs[i]].q_ref + turn * (uniform(&mut seed) - 0.5)
+                        let (lo, hi) = ranges[i];
+                        inst.joints[model.inputs[i]].q_ref + lo + (hi - lo) * uniform(&mut seed)
                     })
                     .collect();
                 let qd: Vec<f64> = (0..n_in)
@@ -1074,25 +1112,40 @@ mod tests {
                     .map(|_| 200.0 * uniform(&mut seed) - 100.0)
                     .collect();
                 let drive = (&q[..], &qd[..], &qdd[..]);
-                let (sa, ra) = solve(&inst, &groups, &branches, drive, false);
-                let (sb, rb) = solve(&inst, &groups, &branches, drive, true);
+                let (sa, ra) = solve(&inst, &groups, &branches, drive, Route::Natural);
+                let (sb, rb) = solve(&inst, &groups, &branches, drive, Route::Newton);
+                let (sc, rc) = solve(&inst, &groups, &branches, drive, Route::Screw);
                 let w = qd.iter().map(|x| x.abs()).fold(0.0, f64::max);
                 let a = qdd.iter().map(|x| x.abs()).fold(0.0, f64::max) + w * w;
                 for (x, y) in sa.iter().zip(&sb) {
                     let pose = |s: &LinkState| [s.pos.x, s.pos.y, s.rot.x * l, s.rot.y * l];
-                    // measured worst 2.7e-16 (yoke); 100×
-                    close("position", &pose(x), &pose(y), l, 2e-14);
+                    // measured worst 1.5e-16 (yoke); 100×
+                    close("position", &pose(x), &pose(y), l, 1.5e-14);
                     let vel = |s: &LinkState| [s.vel.x, s.vel.y, s.omega * l];
-                    // measured worst 5.7e-16 (yoke); 100×
-                    close("velocity", &vel(x), &vel(y), l * w, 5e-14);
+                    // measured worst 3.8e-16 (yoke); 100×
+                    close("velocity", &vel(x), &vel(y), l * w, 3e-14);
                     let acc = |s: &LinkState| [s.acc.x, s.acc.y, s.alpha * l];
-                    // measured worst 3.3e-15 (yoke); 100×
-                    close("acceleration", &acc(x), &acc(y), l * a, 3e-13);
+                    // measured worst 8.2e-16 (yoke); 100×
+                    close("acceleration", &acc(x), &acc(y), l * a, 8e-14);
                 }
                 for (x, y) in ra.iter().zip(&rb) {
                     let r = |r: &Reaction| [r.force.x, r.force.y, r.moment / l];
+                    // measured worst 4.6e-16 (yoke); 100×
+                    close("reaction", &r(x), &r(y), 1.0, 4e-14);
+                }
+                // The velocity field's route (joint screws) agrees with both.
+                for (x, y) in sc.iter().zip(&sb) {
+                    let vel = |s: &LinkState| [s.vel.x, s.vel.y, s.omega * l];
                     // measured worst 3.8e-16 (yoke); 100×
-                    close("reaction", &r(x), &r(y), 1.0, 3e-14);
+                    close("screw velocity", &vel(x), &vel(y), l * w, 3e-14);
+                    let acc = |s: &LinkState| [s.acc.x, s.acc.y, s.alpha * l];
+                    // measured worst 8.2e-16 (yoke); 100×
+                    close("screw acceleration", &acc(x), &acc(y), l * a, 8e-14);
+                }
+                for (x, y) in rc.iter().zip(&rb) {
+                    let r = |r: &Reaction| [r.force.x, r.force.y, r.moment / l];
+                    // measured worst 1.8e-15 (yoke); 100×
+                    close("screw reaction", &r(x), &r(y), 1.0, 1.5e-13);
                 }
             }
         }
