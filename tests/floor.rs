@@ -1263,8 +1263,8 @@ fn inverted_slider_crank_hand_independent_checks() {
 
 /// The kinds of group the floor's machines exercise, as the macro's plan solves them
 /// (`mech_core::plan::assur`, the decomposition the generated code is emitted from): what
-/// each bench group measures. The Scotch yoke's yoke (a guide and a pin in a slot) has no
-/// closed-form kernel: the generated code solves it by its fixed-size Newton fallback.
+/// each bench group measures. The Scotch yoke's yoke (a guide and a pin in a slot) is a
+/// `SlottedSlider`: one closed-form slide, its rates and reactions in that coordinate.
 #[test]
 fn floor_machines_group_kinds() {
     use mech_core::plan::assur::plan;
@@ -1286,7 +1286,7 @@ fn floor_machines_group_kinds() {
         (REFERENCE, "FourBar", ["DrivenRevolute", "Rrr"]),
         (REFERENCE, "SliderCrank", ["DrivenRevolute", "Rrp"]),
         (REFERENCE, "QuickReturn", ["DrivenRevolute", "Rpr"]),
-        (REFERENCE, "ScotchYoke", ["DrivenRevolute", "Newton"]),
+        (REFERENCE, "ScotchYoke", ["DrivenRevolute", "SlottedSlider"]),
         (FLOOR, "InvertedSliderCrank", ["DrivenRevolute", "Rpr"]),
     ] {
         assert_eq!(kinds(source, name), expected, "{name}");

@@ -20,6 +20,7 @@ pub fn group_kind(g: &Group) -> (&'static str, bool) {
         Solver::PinInFixedSlot { .. } => ("link with a pin in a slot", true),
         Solver::Newton => ("group without a closed form (Newton)", false),
         Solver::SlottedLever { .. } => ("slotted lever on a pin", true),
+        Solver::SlottedSlider { .. } => ("slider with a slot and a pin (Scotch yoke)", true),
         Solver::Mesh { .. } => ("meshing gear or rack (Willis)", true),
         Solver::Train => ("gear train (Willis, one linear system)", true),
         Solver::DrivenRolling { .. } => ("wheel driven along its track", true),

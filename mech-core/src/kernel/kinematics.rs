@@ -56,6 +56,15 @@ pub fn solve_chain(
         Solver::Rpr { b1, b2, ja, jp, jb } => {
             crate::kernel::natural::rpr_rates(joints, s, b1, b2, ja, jp, jb, points, scale, upto)
         }
+        Solver::SlottedSlider { body, jq, js } => crate::kernel::dyad::slotted_slider_rates(
+            &joints[jq],
+            &joints[js],
+            s,
+            body,
+            points[0].x,
+            upto,
+        )
+        .map(|()| DyadSystem::None),
         _ => chain_rates(chain, joints, s, scale, upto).map(|()| DyadSystem::None),
     }
 }
@@ -89,6 +98,9 @@ pub fn chain_reactions(
         Solver::Rpr { b1, b2, ja, jp, jb } => crate::kernel::natural::rpr_reactions(
             joints, s, f, b1, b2, ja, jp, jb, scale, kept, out,
         ),
+        Solver::SlottedSlider { body, jq, js } => {
+            crate::kernel::dyad::slotted_slider_reactions(joints, s, f, body, jq, js, out)
+        }
         _ => crate::kernel::screw::chain_reactions(chain, joints, s, f, scale, out),
     }
 }

@@ -135,6 +135,24 @@ pub fn kernel(model: &Model, solver: Solver) -> Kernel {
             links: [body, VIRTUAL],
             pivot: 0,
         }),
+        // A guide and a slot: the slide on the guide, then the slot's two screws in chain
+        // order (slot in `body`: its slide, then the rotation about the solved link's pin;
+        // `body`'s pin in a solved link's slot: the rotation, then the slide). Their pivot
+        // is the rotation; the 2×2 block left is [u w].
+        Solver::SlottedSlider { body, jq, js } => {
+            let screws = if model.joints[js].a == body {
+                [slide(jq), slide(js), rot(js)]
+            } else {
+                [slide(jq), rot(js), slide(js)]
+            };
+            Kernel::Chain(Chain {
+                from: other(jq, body),
+                to: other(js, body),
+                screws,
+                links: [body, VIRTUAL],
+                pivot: pivot(&screws),
+            })
+        }
         Solver::Mesh { body, joint } => mesh_kernel(model, body, joint),
         // Built from the group's constraints by `plan` (`train_kernel`).
         Solver::Train => Kernel::System,
@@ -430,7 +448,7 @@ fn classify(model: &Model, bodies: &[usize], cons: &[Con]) -> Solver {
 }
 
 /// A one-link group: driven by an input, held by a pin (or slide) and a mesh or cam, or
-/// by a pin and a slot.
+/// by a pin or a guide and a slot.
 fn classify_single(model: &Model, body: usize, cons: &[Con]) -> Solver {
     let drive = cons.iter().find(|c| {
         matches!(
@@ -476,6 +494,14 @@ fn classify_single(model: &Model, body: usize, cons: &[Con]) -> Solver {
                 ja: r.joint,
                 js: s.joint,
             }
+        };
+    }
+    let prismatic = cons.iter().find(|c| c.kind == ConKind::Prismatic);
+    if let (Some(p), Some(s), 2) = (prismatic, slot, cons.len()) {
+        return Solver::SlottedSlider {
+            body,
+            jq: p.joint,
+            js: s.joint,
         };
     }
     Solver::Newton

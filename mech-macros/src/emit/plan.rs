@@ -480,6 +480,9 @@ fn solver_tokens(s: &Solver) -> TokenStream {
         Solver::SlottedLever { body, ja, js } => {
             quote!(#p::SlottedLever { body: #body, ja: #ja, js: #js })
         }
+        Solver::SlottedSlider { body, jq, js } => {
+            quote!(#p::SlottedSlider { body: #body, jq: #jq, js: #js })
+        }
         Solver::Mesh { body, joint } => quote!(#p::Mesh { body: #body, joint: #joint }),
         Solver::Train => quote!(#p::Train),
         Solver::DrivenRolling { body, joint, input } => {

@@ -60,6 +60,26 @@ const TEXTS: &[&str] = &[
       link crank { points { O2, A: (0.07, 0.23) } }, link lever { points { O4, C: (0.2, 0.6) } },
       joints { O2: revolute(ground, crank), O4: revolute(ground, lever), slot: pin_in_slot(lever, crank) at A along (0.07, 0.23) },
       input: O2 }",
+    // guide and slot (Scotch yoke), slot in the yoke, tilted
+    "pub struct J { ground { O2: (0.0, 0.0) },
+      link crank { points { O2, A: (0.04, 0.05) } }, link yoke { points { Y: (0.2, 0.01) } },
+      joints { O2: revolute(ground, crank), guide: prismatic(ground, yoke) at Y along (1.0, 0.1),
+               slot: pin_in_slot(yoke, crank) at A along (0.2, 1.0) },
+      input: O2 }",
+    // guide and slot, the guide on a turning arm, its axis in the yoke
+    "pub struct K { ground { O2: (0.0, 0.0), O4: (0.3, -0.1) },
+      link crank { points { O2, A: (0.04, 0.05) } }, link arm { points { O4, Y: (0.2, 0.02) } },
+      link yoke { points { C: (0.25, 0.1) } },
+      joints { O2: revolute(ground, crank), O4: revolute(ground, arm),
+               guide: prismatic(yoke, arm) at Y along (1.0, -0.2),
+               slot: pin_in_slot(yoke, crank) at A along (0.3, 1.0) },
+      inputs: [O2, O4] }",
+    // guide and slot, the slider's pin in the crank's slot
+    "pub struct L { ground { O: (0.0, 0.0) },
+      link crank { points { O, T: (0.1, 0.1) } }, link slider { points { S: (0.08, 0.06) } },
+      joints { O: revolute(ground, crank), radial: pin_in_slot(crank, slider) at S along (1.0, 0.75),
+               rail: prismatic(ground, slider) at S along (1.0, 0.0) },
+      input: O }",
     // driven slider + RRR
     "pub struct I { ground { O4: (0.3, 0.0) },
       link slider { points { P: (0.0, 0.05) } }, link rod { points { P, B: (0.25, 0.2) } }, link rocker { points { O4, B } },
@@ -90,6 +110,7 @@ fn screw_rates_and_reactions_match_the_jacobian_route() {
         "Rpp",
         "PinInFixedSlot",
         "SlottedLever",
+        "SlottedSlider",
     ];
     for k in want {
         assert!(
