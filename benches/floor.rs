@@ -14,8 +14,8 @@
 //!   lever pivoted on the ground, an RPR dyad whose guide is pinned to the ground),
 //!   `quick_return/<op>`;
 //! - the Scotch yoke (`ScotchYoke`: the crank pin in the slot of a yoke guided by the
-//!   ground, a one-link group of a guide and a pin in a slot, which the generated code
-//!   solves by its fixed-size Newton fallback), `scotch_yoke/<op>`;
+//!   ground, a one-link group of a guide and a pin in a slot, the closed-form
+//!   `SlottedSlider` of `mech_core::kernel::dyad`), `scotch_yoke/<op>`;
 //! - the inverted slider-crank (`InvertedSliderCrank` of `benches/floor/machines.rs`: the
 //!   rod pinned to the crank slides through a block pivoted on the ground, its slide line
 //!   off the pin, an RPR dyad whose guide is pinned to the crank),
