@@ -35,6 +35,7 @@ mod tests {
         LinkGeom {
             anchor: V2::zeros(),
             dir_ref: V2::new(1.0, 0.0),
+            angle_ref: 0.0,
             dcg: V2::new(0.3, 0.1),
             mass: 2.0,
             inertia: 0.05,

@@ -185,6 +185,10 @@ pub struct LinkGeom {
     pub anchor: V2,
     /// (cos θ_ref, sin θ_ref): the link angle in the drawing.
     pub dir_ref: V2,
+    /// θ_ref = atan2 of [`LinkGeom::dir_ref`] (rad, in (−π, π]): the angle of a link that
+    /// never turns (one sliding on the ground, [`crate::model::Model::translates`]), which
+    /// [`LinkGeom::angle`] would recompute at every call.
+    pub angle_ref: f64,
     /// Local vector of the cg (m).
     pub dcg: V2,
     /// Mass (kg), 0 for massless.

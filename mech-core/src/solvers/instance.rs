@@ -55,9 +55,11 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
                 link.mass.unwrap_or(0.0),
                 link.rotational_inertia(),
             );
+            let dir_ref = V2::new(th.cos(), th.sin());
             LinkGeom {
                 anchor: anchor(model, l),
-                dir_ref: V2::new(th.cos(), th.sin()),
+                dir_ref,
+                angle_ref: dir_ref.y.atan2(dir_ref.x),
                 dcg,
                 mass,
                 inertia,

@@ -194,32 +194,40 @@ pub(crate) fn to_array(cx: &Ctx, v: &str) -> TokenStream {
     }
 }
 
-/// The angle of link `l` from the input, when it is a crank driven on the ground (no
-/// atan2): `crank_angle(q[k], ±1)`, or `crank_angle(q[k] + zero, ±1)` for an input
-/// declared `from zero`.
+/// The angle of link `l` when it is known without an atan2: a crank driven on the ground,
+/// `crank_angle(q[k], ±1)` (or `crank_angle(q[k] + zero, ±1)` for an input declared `from
+/// zero`); a link sliding on the ground, its drawing's angle `angle_ref`.
 fn crank_angle(cx: &Ctx, l: usize) -> Option<TokenStream> {
     let p = &cx.p;
-    cx.plan.iter().find_map(|g| match g.kernel {
-        Kernel::Driven(d) if d.body == l && d.from == 0 && !d.screw.slide => {
-            let (k, sign) = (
-                d.input,
-                if cx.model.joints[d.screw.joint].b == l {
-                    1.0f64
-                } else {
-                    -1.0
-                },
-            );
-            let sign = crate::emit::f64s(sign);
-            match cx.model.input_zero[k] {
-                0.0 => Some(quote!(#p::kinematics::crank_angle(q[#k], #sign))),
-                z => {
-                    let z = crate::emit::f64s(z);
-                    Some(quote!(#p::kinematics::crank_angle(q[#k] + #z, #sign)))
+    cx.plan
+        .iter()
+        .find_map(|g| match g.kernel {
+            Kernel::Driven(d) if d.body == l && d.from == 0 && !d.screw.slide => {
+                let (k, sign) = (
+                    d.input,
+                    if cx.model.joints[d.screw.joint].b == l {
+                        1.0f64
+                    } else {
+                        -1.0
+                    },
+                );
+                let sign = crate::emit::f64s(sign);
+                match cx.model.input_zero[k] {
+                    0.0 => Some(quote!(#p::kinematics::crank_angle(q[#k], #sign))),
+                    z => {
+                        let z = crate::emit::f64s(z);
+                        Some(quote!(#p::kinematics::crank_angle(q[#k] + #z, #sign)))
+                    }
                 }
             }
-        }
-        _ => None,
-    })
+            _ => None,
+        })
+        .or_else(|| {
+            // A link sliding on the ground never turns: its angle is the drawing's.
+            cx.model
+                .translates(l)
+                .then(|| quote!(self.links[#l].angle_ref))
+        })
 }
 
 /// `pose`: positions only.

@@ -329,7 +329,12 @@ mod hw {
     }
     #[inline(always)]
     pub fn quadrant(t: H) -> (H, H, H) {
-        let f = |g: fn(u64) -> u64| [f64::from_bits(g(t[0].to_bits())), f64::from_bits(g(t[1].to_bits()))];
+        let f = |g: fn(u64) -> u64| {
+            [
+                f64::from_bits(g(t[0].to_bits())),
+                f64::from_bits(g(t[1].to_bits())),
+            ]
+        };
         (
             f(|k| if k & 1 != 0 { !0 } else { 0 }),
             f(|k| (k & 2) << 62),
