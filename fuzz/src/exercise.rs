@@ -3,23 +3,22 @@
 //! and at hostile inputs, each call under the [`Watchdog`]. A finding is a panic (or
 //! `MechError::Internal`, a panic the loader caught), a non-finite number inside an `Ok`
 //! (every field of every result, [`crate::check`]), an `Ok` for a NaN or infinite input,
-//! or a call over [`SLOW`].
+//! or a call over [`SLOW`]. The solvers of any mechanism and the refusals of non-finite
+//! input are here; the one-input dynamics in [`crate::dynamics`], the cams, equivalent
+//! masses and parameters in [`crate::design`].
 
 use crate::check::{first_non_finite, Numbers};
 use crate::watchdog::{Watchdog, SLOW};
-use mech_core::dynamics::flywheel::Cycle;
-use mech_core::dynamics::ode::{self, Dop853, DormandPrince, Rk4, Tolerance};
 use mech_core::dynamics::{
-    equation_of_motion, kinetic_energy, lagrange_acceleration, mass_matrix, quinn_coefficients,
-    total_energy, velocity_terms, EnergyMethod,
+    kinetic_energy, lagrange_acceleration, mass_matrix, quinn_coefficients, total_energy,
+    velocity_terms,
 };
-use mech_core::model::{JointKind, Load};
+use mech_core::model::Load;
 use mech_core::runtime::columns::{Columns, Part};
 use mech_core::runtime::Loads;
 use mech_core::solvers::friction::JointFriction;
 use mech_core::solvers::traits::{Machine, OneDof};
 use mech_core::{MechError, Mechanism};
-use std::f64::consts::TAU;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::time::Duration;
 
@@ -49,7 +48,7 @@ pub const INPUTS: [(f64, f64, f64, f64); 8] = [
     (1e15, 1e10, 1e20, 1e150),
 ];
 
-/// One loaded one-input mechanism in this many gets [`dynamics`] (chosen at random).
+/// One loaded one-input mechanism in this many gets [`crate::dynamics`] (chosen at random).
 pub const DYNAMICS_EVERY: u64 = 16;
 
 /// The numbers a parameter is set to by [`Mechanism::set_param`] (the last two must be
@@ -92,7 +91,7 @@ impl<'a> Case<'a> {
 
     /// Run `f` as the call `what` under the watchdog: a panic or a run over [`SLOW`] is a
     /// finding; `None` after a panic.
-    fn call<T>(&mut self, what: &'static str, f: impl FnOnce() -> T) -> Option<T> {
+    pub fn call<T>(&mut self, what: &'static str, f: impl FnOnce() -> T) -> Option<T> {
         let start = self.dog.enter(what);
         let r = catch_unwind(AssertUnwindSafe(f));
         let dt = start.elapsed();
@@ -134,7 +133,7 @@ impl<'a> Case<'a> {
     }
 
     /// Every number of `t` is finite, or a finding.
-    fn numbers<T: Numbers + ?Sized>(&mut self, what: &'static str, t: &T) -> bool {
+    pub fn numbers<T: Numbers + ?Sized>(&mut self, what: &'static str, t: &T) -> bool {
         match first_non_finite(t) {
             None => true,
             Some(bad) => {
@@ -167,7 +166,7 @@ impl<'a> Case<'a> {
 }
 
 /// Every load of `m` of size `size`: a force (size, −2 size) N, a torque size N·m.
-fn loads(m: &Mechanism, size: f64) -> Loads {
+pub fn loads(m: &Mechanism, size: f64) -> Loads {
     let mut l = m.loads();
     for load in &m.model().loads {
         let v = [size, -2.0 * size];
@@ -182,7 +181,7 @@ fn loads(m: &Mechanism, size: f64) -> Loads {
 }
 
 /// Load `text` and call every solver on what loads; `pick` (random bits) chooses the
-/// parameter changed by `set_param` and whether the costly [`dynamics`] run. The findings,
+/// parameter changed by `set_param` and whether the costly [`crate::dynamics`] run. The findings,
 /// and whether it loaded.
 pub fn run(text: &str, pick: u64, dog: &Watchdog) -> (Vec<Finding>, bool) {
     let mut c = Case::new(dog);
@@ -203,11 +202,11 @@ pub fn run(text: &str, pick: u64, dog: &Watchdog) -> (Vec<Finding>, bool) {
     // The direct problem and the flywheel cost tens of milliseconds, a hundred times the
     // rest: one loaded mechanism in DYNAMICS_EVERY gets them.
     if g == 1 && (pick >> 40).checked_rem(DYNAMICS_EVERY) == Some(0) {
-        dynamics(&mut c, &m);
+        crate::dynamics::dynamics(&mut c, &m);
     }
-    cams(&mut c, &m);
-    equivalent_masses(&mut c, &m);
-    parameter(&mut c, &m, pick);
+    crate::design::cams(&mut c, &m);
+    crate::design::equivalent_masses(&mut c, &m);
+    crate::design::parameter(&mut c, &m, pick);
     (c.found, true)
 }
 
@@ -341,238 +340,5 @@ fn refusals(c: &mut Case, m: &Mechanism) {
                 OneDof::acceleration(m, 0.5, 1.0, bad, &l)
             });
         }
-    }
-}
-
-/// The one-input dynamics: the direct problem by three integrators and by the energy
-/// method, and (on a revolute input) the flywheel of a cycle, Wittenbauer's and the
-/// approximate, its steady state and the check by time integration.
-fn dynamics(c: &mut Case, m: &Mechanism) {
-    let l = loads(m, 1e3);
-    for (k, (q0, w0)) in [(0.3, 1.0f64), (0.3, 1e6)].into_iter().enumerate() {
-        c.at = format!(" from q = {q0}, qd = {w0}");
-        let rhs = || equation_of_motion(m, |_, _, _| (1e3, l.clone()));
-        // A step budget of 20 000 bounds each run (a stiff or runaway machine ends in
-        // the budget's error) to well under the second a call may take.
-        let tol = Tolerance {
-            max_steps: 20_000,
-            ..Tolerance::new(1e-8, 1e-10)
-        };
-        // About half a turn: the integrators' work grows with the turns simulated.
-        let t_end = (0.5 / w0).min(0.05);
-        c.solve("simulate (DOP853)", || {
-            ode::solve(
-                &mut Dop853::with(tol),
-                rhs(),
-                0.0,
-                [q0, w0],
-                t_end,
-                None,
-                None,
-            )
-        });
-        if k == 0 {
-            c.solve("simulate (Dormand-Prince)", || {
-                ode::solve(
-                    &mut DormandPrince::with(tol),
-                    rhs(),
-                    0.0,
-                    [q0, w0],
-                    t_end,
-                    None,
-                    None,
-                )
-            });
-            c.solve("simulate (RK4)", || {
-                ode::solve(
-                    &mut Rk4 { h: 1e-3 },
-                    rhs(),
-                    0.0,
-                    [q0, w0],
-                    t_end,
-                    None,
-                    None,
-                )
-            });
-            if let Some(mut e) = c.attempt("energy method", || {
-                EnergyMethod::new(m, 0.0, q0, 10.0, |_| (0.0, l.clone()), 1e-8)
-            }) {
-                c.solve("energy method advance", || e.advance_to(q0 + 0.5));
-            }
-        }
-    }
-    c.at.clear();
-    let model = m.model();
-    if model.joints[model.inputs[0]].kind != JointKind::Revolute {
-        return;
-    }
-    // The `mech flywheel` path: the cycle, balanced, sized, simulated.
-    let Some(cycle) = c.attempt("flywheel cycle", || {
-        Cycle::new(m, 0.0, TAU, &[], |_| Ok(l.clone()), |_| 0.0)
-    }) else {
-        return;
-    };
-    c.numbers(
-        "cycle works",
-        &[
-            cycle.net_work(),
-            cycle.gross_work(),
-            cycle.balancing_torque(),
-        ],
-    );
-    let Some((cycle, torque)) = c.call("balance", || cycle.balanced()) else {
-        return;
-    };
-    c.numbers("balancing torque", &torque);
-    c.attempt("check_periodic", || cycle.check_periodic());
-    c.solve("cycle sample", || cycle.sample(8));
-    c.solve("fluctuation", || cycle.fluctuation());
-    if let Some(fw) = c.solve("flywheel", || cycle.flywheel(10.0, 0.05)) {
-        c.solve("flywheel simulate", || {
-            cycle.simulate(&fw.exact.state, 1e-8)
-        });
-        c.solve("speed", || cycle.speed(&fw.exact.state, 1.0));
-    }
-    c.solve("steady_state", || cycle.steady_state(10.0, 1.0));
-    c.solve("speed_fluctuation (hostile speed)", || {
-        cycle.speed_fluctuation(1e200, 1.0)
-    });
-    c.solve("flywheel (hostile speed)", || cycle.flywheel(1e200, 0.05));
-    c.solve("flywheel (hostile irregularity)", || {
-        cycle.flywheel(10.0, 1e-300)
-    });
-    c.refuse("flywheel (NaN speed)", || cycle.flywheel(f64::NAN, 0.05));
-    c.refuse("steady_state (NaN flywheel)", || {
-        cycle.steady_state(10.0, f64::NAN)
-    });
-    c.refuse("flywheel cycle (NaN period)", || {
-        Cycle::new(m, 0.0, f64::NAN, &[], |_| Ok(l.clone()), |_| 0.0)
-    });
-}
-
-/// Every cam's profile (the `mech cam` path): its table, its design figures, its points
-/// and its law far from the drawing. Where the profile exists (`missing` is `None`)
-/// every number is finite.
-fn cams(c: &mut Case, m: &Mechanism) {
-    for (_, geom) in m.cams() {
-        let p = &geom.profile;
-        c.numbers("cam frame", &[geom.axis, geom.centre]);
-        c.numbers(
-            "cam profile numbers",
-            &[p.base_radius, p.offset, p.roller()],
-        );
-        let Some(check) = c.call("cam check", || p.check(36)) else {
-            continue;
-        };
-        c.numbers("cam check", &check);
-        for theta in [1e6, -1e15, 1e300] {
-            if let Some(s) = c.call("cam law", || p.law.eval(theta)) {
-                c.numbers("cam law far from the drawing", &s);
-            }
-        }
-        if let Some(j) = c.call("cam jumps", || p.law.jumps(1e-9)) {
-            let numbers: Vec<[f64; 3]> = j.iter().map(|j| [j.at, j.before, j.after]).collect();
-            c.numbers("cam jumps", &numbers);
-        }
-        if check.missing.is_some() {
-            continue;
-        }
-        if let Some(t) = c.call("cam table", || p.table(36)) {
-            c.numbers("cam table", &t);
-        }
-        if let Some(pts) = c.call("cam points", || p.points(12)) {
-            c.numbers("cam points", &pts);
-        }
-    }
-}
-
-/// The equivalent mass systems of every moving link with a mass: its mass and inertia
-/// shared between its cg and its first two points.
-fn equivalent_masses(c: &mut Case, m: &Mechanism) {
-    use mech_core::dynamics::equivalent_mass as eq;
-    let model = m.model();
-    for link in model.links.iter().skip(1) {
-        let (Some(mass), [a, b, ..]) = (link.mass, link.points.as_slice()) else {
-            continue;
-        };
-        let r = |p: usize| {
-            let [x, y] = model.points[p].pos;
-            (x - link.cg[0]).hypot(y - link.cg[1])
-        };
-        let i_g = link.inertia;
-        if let Some(e) = c.attempt("bar_three_masses", || {
-            eq::bar_three_masses(mass, i_g, r(*a), r(*b))
-        }) {
-            c.numbers("bar_three_masses", &[e.at_a, e.at_b, e.at_g]);
-        }
-        c.solve("bar_two_masses_static", || {
-            eq::bar_two_masses_static(mass, r(*a), r(*b))
-        });
-        c.solve("bar_two_masses_complete", || {
-            eq::bar_two_masses_complete(mass, i_g, r(*a))
-        });
-        let pts = [model.points[*a].pos, model.points[*b].pos, link.cg];
-        c.solve("planar_four_masses", || {
-            eq::planar_four_masses(mass, i_g, pts)
-        });
-    }
-}
-
-/// One parameter of the drawing changed by `set_param` (the run-time `from_params`) to
-/// a hostile number chosen by `pick`; when it is accepted, the new mechanism's pose and
-/// kinematics.
-fn parameter(c: &mut Case, m: &Mechanism, pick: u64) {
-    let model = m.model();
-    let mut paths: Vec<(String, usize)> = vec![("gravity".into(), 2)];
-    paths.extend(
-        model
-            .points
-            .iter()
-            .map(|p| (format!("points.{}", p.name), 2)),
-    );
-    for l in model.links.iter().skip(1) {
-        paths.push((format!("links.{}.cg", l.name), 2));
-        for what in ["mass", "inertia", "flywheel"] {
-            paths.push((format!("links.{}.{what}", l.name), 1));
-        }
-    }
-    for j in &model.joints {
-        if j.kind != JointKind::Revolute {
-            paths.push((format!("axes.{}", j.name), 2));
-        }
-    }
-    for e in &model.elements {
-        for what in ["stiffness", "free_length", "free_angle", "damping"] {
-            paths.push((format!("elements.{}.{what}", e.name), 1));
-        }
-    }
-    let (path, n) = &paths[(pick % paths.len() as u64) as usize];
-    let x = PARAMS[((pick >> 16) % PARAMS.len() as u64) as usize];
-    let value = [x, 0.25 * x + 0.1][..*n].to_vec();
-    c.at = format!(" after set_param({path}, {value:?})");
-    let mut changed = m.clone();
-    let Some(r) = c.call("set_param", || changed.set_param(path, &value)) else {
-        return;
-    };
-    match r {
-        Ok(()) if !x.is_finite() => c.found.push(Finding::NonFinite(format!(
-            "set_param{}: Ok for a non-finite value",
-            c.at
-        ))),
-        Ok(()) => {
-            let g = changed.dof();
-            c.solve("pose", || changed.pose(&vec![0.3; g]));
-            if let Some(mo) = c.solve("kinematics", || {
-                changed.kinematics(&vec![0.3; g], &vec![2.0; g], &vec![0.0; g])
-            }) {
-                c.solve("driver_action", || {
-                    changed.driver_action(&mo, &loads(&changed, 1e3))
-                });
-            }
-        }
-        Err(MechError::Internal(e)) => c
-            .found
-            .push(Finding::Panic(format!("set_param{}: {e}", c.at))),
-        Err(_) => {}
     }
 }

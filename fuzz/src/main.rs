@@ -18,6 +18,8 @@
 //! oracle `mech-oracle` instead of the run-time `Mechanism`.
 
 mod check;
+mod design;
+mod dynamics;
 mod exercise;
 mod mutate;
 mod oracle;
