@@ -6,10 +6,18 @@
 //! allocates a few buffers per thread, not one per configuration.
 
 use super::mechanism::{Mechanism, Scratch};
+use super::results::LoadValue;
 use super::results::{Loads, Motion, Pose};
 use crate::kernel::constraints::Level;
+use crate::kernel::lanes::{
+    acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, LinkLanes, Mask,
+    ZhukovskiLanes, L, NONE,
+};
 use crate::kernel::link_state::{point_pose, LinkState};
-use crate::solvers::batch::{each, each_with, refuse, same_len, BatchErrors, Block, Nan, NAN2};
+use crate::plan::assur::Kernel;
+use crate::solvers::batch::{
+    each, each_lanes, each_with, refuse, same_len, BatchErrors, Block, Nan, NAN2,
+};
 use crate::solvers::traits::OneDof;
 use crate::MechError;
 use smallvec::SmallVec;
@@ -20,6 +28,19 @@ impl Nan for Pose {
         self.points.iter_mut().for_each(|p| p.pos = NAN2);
     }
 }
+
+/// Four consecutive values from `x[i]` as one lane value.
+#[inline(always)]
+fn four(x: &[f64], i: usize) -> L {
+    L([x[i], x[i + 1], x[i + 2], x[i + 3]])
+}
+
+/// The lane states of a mechanism's links, on the stack up to eight links.
+type LaneStates = smallvec::SmallVec<[LinkLanes; 8]>;
+
+/// The most points the run-time `points_many` takes four configurations at once (more go
+/// one by one).
+const MAX_LANE_POINTS: usize = 16;
 
 /// The number of configurations in `q` (G values each); refused when G does not divide it.
 fn configs(q: &[f64], g: usize) -> Result<usize, MechError> {
@@ -97,6 +118,36 @@ impl Mechanism {
             Ok(r) => r,
             Err(e) => return refuse(e),
         };
+        if self.lanes && g == 1 && np <= MAX_LANE_POINTS {
+            return each_lanes(
+                rows.0,
+                rows.1,
+                #[inline(always)]
+                |i, r: &mut Block<f64>| {
+                    let zero = L::splat(0.0);
+                    let (s, mut mask) = self.solve_lanes(four(q, i), zero, zero, Level::Position);
+                    let mut sum = zero;
+                    let mut xy = [[zero; 2]; MAX_LANE_POINTS];
+                    for (k, &(o, d)) in self.inst.points.iter().enumerate() {
+                        xy[k] = point_lanes(&s, o, d);
+                        sum = sum + xy[k][0] + xy[k][1];
+                    }
+                    // A NaN or infinite coordinate makes the sum non-finite.
+                    mask = or(mask, sum.not_finite());
+                    for (lane, &masked) in mask.iter().enumerate() {
+                        if !masked {
+                            let row = r.row(i + lane);
+                            for (k, p) in xy[..np].iter().enumerate() {
+                                row[2 * k] = p[0].0[lane];
+                                row[2 * k + 1] = p[1].0[lane];
+                            }
+                        }
+                    }
+                    mask
+                },
+                |i, r: &mut Block<f64>| self.points_into(&q[i..i + 1], &mut Vec::new(), r.row(i)),
+            );
+        }
         each_with(
             rows.0,
             rows.1,
@@ -159,12 +210,35 @@ impl Mechanism {
             Ok(r) => r,
             Err(e) => return refuse(e),
         };
-        each(n, rows, |i, (a, b): &mut (Block<f64>, Block<f64>)| {
+        let one = |i: usize, (a, b): &mut (Block<f64>, Block<f64>)| {
             let z = OneDof::reduced(self, q[i])?;
             *a.at(i) = z.inertia;
             *b.at(i) = z.inertia_derivative;
             Ok(())
-        })
+        };
+        if !self.lanes {
+            return each(n, rows, one);
+        }
+        each_lanes(
+            n,
+            rows,
+            #[inline(always)]
+            |i, (a, b): &mut (Block<f64>, Block<f64>)| {
+                let (one, zero) = (L::splat(1.0), L::splat(0.0));
+                let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
+                let z = self.sums_lanes(&s, None);
+                let bad = or(z.inertia.not_finite(), z.inertia_derivative.not_finite());
+                let mask = or(mask, bad);
+                for (lane, &masked) in mask.iter().enumerate() {
+                    if !masked {
+                        *a.at(i + lane) = z.inertia.0[lane];
+                        *b.at(i + lane) = z.inertia_derivative.0[lane];
+                    }
+                }
+                mask
+            },
+            one,
+        )
     }
 
     /// The direct problem's q̈ (rad/s²) at every (q, q̇, driver) of a one-input mechanism
@@ -186,10 +260,88 @@ impl Mechanism {
             Ok(r) => r,
             Err(e) => return refuse(e),
         };
-        each(n, rows, |i, r: &mut Block<f64>| {
+        let one = |i: usize, r: &mut Block<f64>| {
             *r.at(i) = OneDof::acceleration(self, q[i], qd[i], driver[i], loads)?;
             Ok(())
-        })
+        };
+        if !self.lanes {
+            return each(n, rows, one);
+        }
+        each_lanes(
+            n,
+            rows,
+            #[inline(always)]
+            |i, r: &mut Block<f64>| {
+                let (one, zero) = (L::splat(1.0), L::splat(0.0));
+                let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
+                let z = self.sums_lanes(&s, Some(loads));
+                let (acc, failed) = acceleration_lanes(&z, four(qd, i), four(driver, i));
+                let mask = or(mask, failed);
+                for (lane, &masked) in mask.iter().enumerate() {
+                    if !masked {
+                        *r.at(i + lane) = acc.0[lane];
+                    }
+                }
+                mask
+            },
+            one,
+        )
+    }
+
+    /// Four configurations of a one-input mechanism through the lane kernels of its plan
+    /// (every group a driven crank or slider, an RRR or an RRP dyad: `Mechanism::lanes`),
+    /// and the mask of the lanes the one-configuration solver must redo.
+    #[inline(always)]
+    fn solve_lanes(&self, q: L, qd: L, qdd: L, upto: Level) -> (LaneStates, Mask) {
+        let mut s = LaneStates::from_elem(LinkLanes::default(), self.inst.links.len());
+        let joints = &self.inst.joints[..];
+        let mut mask = NONE;
+        let (q, qd, qdd) = ([q], [qd], [qdd]);
+        for (g, &sign) in self.plan.iter().zip(&self.branches) {
+            let m = match &g.kernel {
+                Kernel::Driven(d) => {
+                    solve_driven_lanes(g.solver, d, joints, &mut s, &q, &qd, &qdd, upto)
+                }
+                _ => solve_chain_lanes(g.solver, joints, &mut s, sign, self.inst.scale, upto),
+            };
+            mask = or(mask, m);
+        }
+        (s, mask)
+    }
+
+    /// Zhukovski's sums over four configurations' motion with q̇ = 1, q̈ = 0: the lane twin
+    /// of the run-time sums (no force element: `Mechanism::lanes`); M* only with `loads`.
+    #[inline(always)]
+    fn sums_lanes(&self, s: &[LinkLanes], loads: Option<&Loads>) -> ZhukovskiLanes {
+        let mut z = ZhukovskiLanes::new();
+        for (l, t) in self.terms.iter().enumerate().skip(1) {
+            let geom = &self.inst.links[l];
+            if t.inertia() {
+                if self.pinned[l] {
+                    z.inertia_about_anchor(geom, &s[l]);
+                } else if self.translates[l] {
+                    z.inertia_translating(geom, &s[l]);
+                } else {
+                    z.inertia(geom, &s[l]);
+                }
+            }
+            if loads.is_some() && t.gravity() {
+                if self.translates[l] {
+                    z.gravity_translating(geom, &s[l], self.inst.gravity);
+                } else {
+                    z.gravity(geom, &s[l], self.inst.gravity);
+                }
+            }
+        }
+        if let Some(loads) = loads {
+            for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
+                match *value {
+                    LoadValue::Force(v) => z.force(&s[load.link()], self.inst.loads[k], v),
+                    LoadValue::Torque(t) => z.torque(&s[load.link()], t),
+                }
+            }
+        }
+        z
     }
 
     fn one_input(&self) -> Result<(), MechError> {

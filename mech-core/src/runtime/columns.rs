@@ -279,6 +279,11 @@ impl Columns {
         } else {
             Ok(())
         };
+        if shape.is_ok() && self.parts == [Part::Points] {
+            // The points alone: the mechanism's own batched form (four configurations at
+            // once where its groups have lane kernels).
+            return m.points_many(q, out);
+        }
         let rows = match shape.and_then(|()| Block::new("out", out, self.names.len(), n)) {
             Ok(r) => r,
             Err(e) => return refuse(e),

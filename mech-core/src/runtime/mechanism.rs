@@ -58,6 +58,10 @@ pub struct Mechanism {
     pub(super) pinned: Vec<bool>,
     /// Per link: it slides on the ground ([`Model::translates`]).
     pub(super) translates: Vec<bool>,
+    /// Every group has a lane kernel (`crate::kernel::lanes::supports`) and the mechanism
+    /// has no force element and no redundant constraint: its `points_many`, `reduced_many`
+    /// and `acceleration_many` take four configurations at once (`runtime::batch`).
+    pub(super) lanes: bool,
     /// Some group has no closed form (Newton, started from the drawing).
     pub(super) newton: bool,
 }
@@ -136,6 +140,12 @@ impl Mechanism {
             .map(|l| model.translates(l))
             .collect();
         let newton = plan.iter().any(|g| g.kernel == Kernel::System);
+        let lanes = model.elements.is_empty()
+            && !model.allow_redundant
+            && plan.iter().all(|g| {
+                matches!(g.kernel, Kernel::Driven(_) | Kernel::Chain(_))
+                    && crate::kernel::lanes::supports(g.solver)
+            });
         Ok(Mechanism {
             model: Arc::new(model),
             inst,
@@ -144,6 +154,7 @@ impl Mechanism {
             terms,
             pinned,
             translates,
+            lanes,
             newton,
         })
     }
