@@ -259,11 +259,101 @@ fn solvers(c: &mut Case, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], load
             quinn_coefficients(m, q[0], &mut out).map(|_| out)
         });
     }
+    batch(c, m, q, qd, qdd, loads);
     match m.dof() {
         1 => lagrange::<1>(c, m, q, qd, loads),
         2 => lagrange::<2>(c, m, q, qd, loads),
         3 => lagrange::<3>(c, m, q, qd, loads),
         _ => {}
+    }
+}
+
+/// The batched forms (docs/batch.md) at seven configurations around q (the fourth NaN):
+/// a slot not listed in the returned `BatchErrors` is finite, a listed one is NaN, and each
+/// configuration fails exactly where the one-configuration solver fails, with its value
+/// otherwise (to 1e-9 of the batch's largest magnitude: the lane kernels order their
+/// operations differently).
+fn batch(c: &mut Case, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads: &Loads) {
+    let g = m.dof();
+    let n = 7;
+    let shift = |x: &[f64], i: usize| -> Vec<f64> {
+        x.iter()
+            .map(|v| if i == 3 { f64::NAN } else { v + 0.37 * i as f64 })
+            .collect()
+    };
+    let qs: Vec<f64> = (0..n).flat_map(|i| shift(q, i)).collect();
+    let (qds, qdds): (Vec<f64>, Vec<f64>) = (qd.repeat(n), qdd.repeat(n));
+    let np = m.model().points.len();
+    let mut points = vec![0.0; 2 * np * n];
+    if let Some(errors) = c.call("points_many", || m.points_many(&qs, &mut points)) {
+        check_rows(c, "points_many", &errors, &points, 2 * np, |i| {
+            let mut row = vec![0.0; 2 * np];
+            m.points_into(&qs[i * g..(i + 1) * g], &mut Vec::new(), &mut row)
+                .map(|()| row)
+        });
+    }
+    let mut actions = vec![0.0; g * n];
+    if let Some(errors) = c.call("driver_action_many", || {
+        m.driver_action_many(&qs, &qds, &qdds, loads, &mut actions)
+    }) {
+        check_rows(c, "driver_action_many", &errors, &actions, g, |i| {
+            let k = i * g..(i + 1) * g;
+            let mo = m.kinematics(&qs[k.clone()], &qds[k.clone()], &qdds[k])?;
+            m.driver_action(&mo, loads)
+        });
+    }
+    if g != 1 {
+        return;
+    }
+    let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+    if let Some(errors) = c.call("reduced_many", || m.reduced_many(&qs, &mut a, &mut b)) {
+        let both: Vec<f64> = a.iter().zip(&b).flat_map(|(x, y)| [*x, *y]).collect();
+        check_rows(c, "reduced_many", &errors, &both, 2, |i| {
+            OneDof::reduced(m, qs[i]).map(|r| vec![r.inertia, r.inertia_derivative])
+        });
+    }
+    let driver = vec![1e3; n];
+    let mut acc = vec![0.0; n];
+    if let Some(errors) = c.call("acceleration_many", || {
+        m.acceleration_many(&qs, &qds, &driver, loads, &mut acc)
+    }) {
+        check_rows(c, "acceleration_many", &errors, &acc, 1, |i| {
+            OneDof::acceleration(m, qs[i], qds[i], 1e3, loads).map(|v| vec![v])
+        });
+    }
+}
+
+/// One batched call's rows (`width` values each) against `one(i)`, the one-configuration
+/// solver's answer; a disagreement is a finding.
+fn check_rows(
+    c: &mut Case,
+    what: &'static str,
+    errors: &mech_core::solvers::batch::BatchErrors,
+    out: &[f64],
+    width: usize,
+    one: impl Fn(usize) -> Result<Vec<f64>, MechError>,
+) {
+    if let Some(e) = errors.refusal() {
+        c.found.push(Finding::NonFinite(format!("{what}{}: refused: {e}", c.at)));
+        return;
+    }
+    let scale = out.iter().filter(|v| v.is_finite()).fold(1.0f64, |s, v| s.max(v.abs()));
+    for (i, row) in out.chunks(width.max(1)).enumerate() {
+        let listed = errors.get(i).is_some();
+        let bad = match one(i) {
+            Ok(v) => {
+                listed
+                    || v.iter().zip(row).any(|(x, y)| !((x - y).abs() <= 1e-9 * scale))
+            }
+            Err(_) => !listed || !row.iter().all(|v| v.is_nan()),
+        };
+        if bad {
+            c.found.push(Finding::NonFinite(format!(
+                "{what}{}: configuration {i} disagrees with the one-configuration solver",
+                c.at
+            )));
+            return;
+        }
     }
 }
 
