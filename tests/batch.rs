@@ -123,11 +123,7 @@ macro_rules! one_input_batch {
             }
         }
         // The points are the pose's points, in declaration order.
-        for (i, p) in poses
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| errs.get(*i).is_none())
-        {
+        for i in (0..n).filter(|&i| errs.get(i).is_none()) {
             let by_name = rt.pose(&[x.q[i]]).unwrap();
             for (k, pt) in rt.model().points.iter().enumerate() {
                 let pos = by_name.point(&pt.name).unwrap().pos;
@@ -146,7 +142,6 @@ macro_rules! one_input_batch {
                     top(&points),
                 );
             }
-            let _ = p;
         }
 
         let (mut ii, mut di) = (vec![0.0; n], vec![0.0; n]);

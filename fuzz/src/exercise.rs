@@ -281,7 +281,13 @@ fn batch(c: &mut Case, m: &Mechanism, q: &[f64], qd: &[f64], qdd: &[f64], loads:
     let n = 7;
     let shift = |x: &[f64], i: usize| -> Vec<f64> {
         x.iter()
-            .map(|v| if i == 3 { f64::NAN } else { v + 0.37 * i as f64 })
+            .map(|v| {
+                if i == 3 {
+                    f64::NAN
+                } else {
+                    v + 0.37 * i as f64
+                }
+            })
             .collect()
     };
     let qs: Vec<f64> = (0..n).flat_map(|i| shift(q, i)).collect();
@@ -338,10 +344,14 @@ fn check_rows(
     one: impl Fn(usize) -> Result<Vec<f64>, MechError>,
 ) {
     if let Some(e) = errors.refusal() {
-        c.found.push(Finding::NonFinite(format!("{what}{}: refused: {e}", c.at)));
+        c.found
+            .push(Finding::NonFinite(format!("{what}{}: refused: {e}", c.at)));
         return;
     }
-    let scale = out.iter().filter(|v| v.is_finite()).fold(1.0f64, |s, v| s.max(v.abs()));
+    let scale = out
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold(1.0f64, |s, v| s.max(v.abs()));
     for (i, row) in out.chunks(width.max(1)).enumerate() {
         let listed = errors.get(i).is_some();
         let bad = match one(i) {

@@ -16,7 +16,7 @@ use crate::kernel::lanes::{
 use crate::kernel::link_state::{point_pose, LinkState};
 use crate::plan::assur::Kernel;
 use crate::solvers::batch::{
-    each, each_lanes, each_with, refuse, same_len, BatchErrors, Block, Nan, NAN2,
+    each, each_lanes, each_with, refuse, same_len, BatchErrors, Block, Nan,
 };
 use crate::solvers::traits::OneDof;
 use crate::MechError;
@@ -25,7 +25,7 @@ use smallvec::SmallVec;
 impl Nan for Pose {
     fn set_nan(&mut self) {
         self.links.iter_mut().for_each(Nan::set_nan);
-        self.points.iter_mut().for_each(|p| p.pos = NAN2);
+        self.points.iter_mut().for_each(Nan::set_nan);
     }
 }
 
