@@ -844,6 +844,40 @@ fn a_plateau_of_the_cycle_is_not_searched_panel_by_panel() {
     }
 }
 
+/// The cycle's I* table comes from one batched call (`OneDof::reduced_many`): the run-time
+/// mechanism answers through its lanes, a machine that only implements `reduced` through
+/// the trait's default, one configuration at a time. Both equal the one-configuration I*
+/// to 1e-12 relative over a turn, including the lanes' configurations 4k..4k+3 and a tail
+/// shorter than a lane; a slice of the wrong length is refused and nothing is written.
+#[test]
+fn the_cycle_table_of_inertia_is_batched_and_equals_the_one_configuration_values() {
+    let m = mech::Mechanism::load(format!(
+        "{}/examples/mech/engine.mech",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let c = Counted {
+        m: &m,
+        moments: std::cell::Cell::new(0),
+    };
+    let q: Vec<f64> = (0..723).map(|k| -1.0 + k as f64 * 0.0174).collect();
+    for machine in [&m as &dyn OneDof<Loads = mech::Loads, Motion = mech::Motion>, &c] {
+        let (mut i, mut d) = (vec![0.0; q.len()], vec![0.0; q.len()]);
+        assert!(machine.reduced_many(&q, &mut i, &mut d).is_empty());
+        for (k, &qk) in q.iter().enumerate() {
+            let one = machine.reduced(qk).unwrap();
+            let tol = 1e-12 * one.inertia.abs();
+            assert!((i[k] - one.inertia).abs() <= tol, "q {qk}: {} vs {}", i[k], one.inertia);
+            assert!((d[k] - one.inertia_derivative).abs() <= tol, "q {qk}");
+        }
+        let mut short = vec![7.0; q.len() - 1];
+        let e = machine.reduced_many(&q, &mut i, &mut short);
+        let why = e.refusal().expect("a refusal").to_string();
+        assert!(why.contains("derivative"), "{why}");
+        assert!(short.iter().all(|&v| v == 7.0));
+    }
+}
+
 /// A slider-crank whose crank and rod are both 64 m long, run through its near-toggle: M*
 /// there is the rounding noise of an ill-conditioned configuration, far above the cycle's
 /// quadrature tolerance (1e-13), and the adaptive quadrature of a panel bisected it into a

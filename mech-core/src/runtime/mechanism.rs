@@ -30,6 +30,7 @@ use crate::plan::assur::{Group, Kernel};
 use crate::solvers::instance::{instance, Instance};
 use crate::solvers::params::LinkTerms;
 use crate::solvers::traits::{Machine, OneDof};
+use crate::solvers::batch::BatchErrors;
 use crate::solvers::zhukovski::Reduced;
 use crate::MechError;
 use smallvec::SmallVec;
@@ -383,6 +384,9 @@ impl OneDof for Mechanism {
         Ok(self
             .zhukovski_sums(q, 0.0, None, Level::Acceleration)?
             .reduced)
+    }
+    fn reduced_many(&self, q: &[f64], inertia: &mut [f64], derivative: &mut [f64]) -> BatchErrors {
+        Mechanism::reduced_many(self, q, inertia, derivative)
     }
     fn reduced_moment(&self, q: f64, loads: &Loads) -> Result<f64, MechError> {
         Ok(self

@@ -234,6 +234,23 @@ pub fn each<R: Rows>(
     each_with(n, rows, || (), |i, r, _| one(i, r))
 }
 
+/// [`each`] on the calling thread for a `one` that need not be `Sync` (a trait's default
+/// method over a machine of unknown thread safety): configurations `0..n` in order.
+pub fn serial<R: Rows>(
+    n: usize,
+    mut rows: R,
+    mut one: impl FnMut(usize, &mut R) -> Result<(), MechError>,
+) -> BatchErrors {
+    let mut errors = BatchErrors::default();
+    for i in 0..n {
+        if let Err(e) = one(i, &mut rows) {
+            rows.fail(i);
+            errors.push(i, e);
+        }
+    }
+    errors
+}
+
 /// [`each`] with a scratch value made by `init` once per chunk (a buffer of link states)
 /// and handed to every configuration of the chunk.
 pub fn each_with<R: Rows, S>(

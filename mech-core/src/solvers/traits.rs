@@ -1,6 +1,7 @@
 //! The traits every generated struct implements, so the generic algorithms (dynamics,
 //! flywheel sizing, cycle sweeps, the stress suite) are written once, in mech-core.
 
+use crate::solvers::batch::{serial, BatchErrors, Block};
 use crate::solvers::zhukovski::Reduced;
 use crate::MechError;
 
@@ -34,6 +35,26 @@ pub trait Machine {
 pub trait OneDof: Machine {
     /// I*(q) and dI*/dq.
     fn reduced(&self, q: f64) -> Result<Reduced, MechError>;
+    /// I*(q_k) (kg·m²) and dI*/dq(q_k) (kg·m²/rad) for many configurations: configuration k
+    /// into `inertia[k]` and `derivative[k]`; a failed one gets NaN and its index in the
+    /// returned errors, slices of other lengths than `q` are a refusal. The default calls
+    /// [`OneDof::reduced`] configuration by configuration on the calling thread; generated
+    /// structs and the run-time mechanism answer with their batched form (`reduced_many`,
+    /// lanes of four configurations, threads above [`crate::solvers::batch::PARALLEL_FROM`]).
+    fn reduced_many(&self, q: &[f64], inertia: &mut [f64], derivative: &mut [f64]) -> BatchErrors {
+        let n = q.len();
+        let rows = match Block::new("inertia", inertia, 1, n)
+            .and_then(|a| Ok((a, Block::new("derivative", derivative, 1, n)?)))
+        {
+            Ok(rows) => rows,
+            Err(e) => return BatchErrors::refused(e),
+        };
+        serial(n, rows, |i, (a, b): &mut (Block<f64>, Block<f64>)| {
+            let z = self.reduced(q[i])?;
+            (*a.at(i), *b.at(i)) = (z.inertia, z.inertia_derivative);
+            Ok(())
+        })
+    }
     /// M*(q) (N·m), loads and gravity included.
     fn reduced_moment(&self, q: f64, loads: &Self::Loads) -> Result<f64, MechError>;
     /// q̈ from I* q̈ + ½ dI*/dq q̇² = driver + M*.

@@ -104,6 +104,9 @@ fn one_dof_impl(cx: &Ctx) -> TokenStream {
             fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
                 #main::reduced(self, q)
             }
+            fn reduced_many(&self, q: &[f64], inertia: &mut [f64], derivative: &mut [f64]) -> #p::batch::BatchErrors {
+                #main::reduced_many(self, q, inertia, derivative)
+            }
             fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
                 #main::reduced_moment(self, q, loads)
             }

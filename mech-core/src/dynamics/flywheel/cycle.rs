@@ -140,14 +140,20 @@ impl<'a, M: OneDof> Cycle<'a, M> {
                 }
             }));
         }
+        // I* at every panel end in one batched call (lanes of four configurations).
+        let (mut inertia, mut slope) = (vec![0.0; edges.len()], vec![0.0; edges.len()]);
+        let failed = self.machine.reduced_many(&edges, &mut inertia, &mut slope);
+        if let Some(e) = failed.refusal().or(failed.iter().next().map(|(_, e)| e)) {
+            return Err(e.clone());
+        }
         let mut scale = 0.0f64;
         self.nodes.clear();
-        for &q in &edges {
+        for (&q, &inertia) in edges.iter().zip(&inertia) {
             scale = scale.max(self.moment(q)?.abs());
             self.nodes.push(Node {
                 q,
                 work: 0.0,
-                inertia: self.reduced(q)?.inertia,
+                inertia,
             });
         }
         self.atol_rate = QUADRATURE_RTOL * scale.max(f64::MIN_POSITIVE);
