@@ -62,7 +62,7 @@ pub use batch::BatchErrors;
 
 // The algorithms written once over the traits, and the machine elements.
 pub use mech_core::checks::grubler;
-pub use mech_core::dynamics::{self, equivalent_mass, flywheel, ode};
+pub use mech_core::dynamics::{self, equivalent_mass, flywheel, motor, ode, regime};
 pub use mech_core::elements::cam;
 pub use mech_core::model::{self, units};
 pub use mech_core::runtime::columns;

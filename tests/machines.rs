@@ -47,6 +47,7 @@ mod large;
 mod loader_errors;
 mod params;
 mod python_package;
+mod regime;
 mod redundant;
 mod rolling;
 mod runtime_alloc;

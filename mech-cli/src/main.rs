@@ -7,7 +7,7 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    cam, check, draw, flywheel, import, limits, quantity, report, simulate, solve, source, Failure,
+    cam, check, draw, flywheel, import, limits, quantity, report, regime, simulate, solve, source, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -96,6 +96,10 @@ enum Command {
     /// The direct problem over time (one input): q(t), q̇(t), q̈(t) under a driver and
     /// loads given as constants or tables against q.
     Simulate(simulate::SimulateArgs),
+    /// The periodic steady regime under a motor (one revolute input): the mean speed, the
+    /// irregularity ε, the period in time, the motor's duty and the table q, q̇ over one
+    /// period, found directly (shooting on ω(q0 + λ) = ω(q0)).
+    Regime(regime::RegimeArgs),
     /// Draw the linkage at one input as SVG: links, pins, slider guides, ground hatching,
     /// point names.
     Draw(draw::DrawArgs),
@@ -203,6 +207,7 @@ fn run(command: Command) -> Result<(), Failure> {
         }
         Command::Flywheel(args) => flywheel::run(args, stdout),
         Command::Simulate(args) => simulate::run(args, stdout),
+        Command::Regime(args) => regime::run(args, stdout),
         Command::Draw(args) => draw::draw(args),
         Command::Animate(args) => draw::animate(args),
         Command::Report(args) => report::run(args),

@@ -6,7 +6,9 @@
 
 use crate::loads::{LoadSet, Table};
 use crate::output::{Format, Writer};
-use crate::{limits, quantity, source, Failure};
+use crate::{limits, motor, quantity, source, Failure};
+use mech_core::dynamics::motor::Motor;
+use mech_core::dynamics::regime::Drive;
 use mech_core::dynamics::equation_of_motion;
 use mech_core::dynamics::ode::{self, Dense, Dop853, DormandPrince, Method, Rk4, Tolerance};
 use mech_core::model::units::Dim;
@@ -41,8 +43,20 @@ pub struct SimulateArgs {
     #[arg(long = "t-end", allow_hyphen_values = true, value_parser = limits::positive)]
     pub t_end: f64,
     /// Driver action on the input: a constant (N·m or N) or @table.csv against q.
-    #[arg(long, default_value = "0", allow_hyphen_values = true)]
+    #[arg(long, default_value = "0", allow_hyphen_values = true, conflicts_with = "motor")]
     pub driver: String,
+    /// A motor drives the input instead (torque from speed): dc(stall_torque T,
+    /// no_load_speed W), induction(rated_power P, synchronous_speed W, rated_speed W,
+    /// breakdown_ratio K), table(FILE.csv) or constant(T).
+    #[arg(long)]
+    pub motor: Option<String>,
+    /// The motor's reduction ratio n = motor speed / input speed.
+    #[arg(long, default_value_t = 1.0, value_parser = limits::positive, requires = "motor")]
+    pub ratio: f64,
+    /// Start from rest (q̇0 = 0); with a motor, an error when it cannot start the machine
+    /// at q0.
+    #[arg(long = "from-rest", conflicts_with = "speed")]
+    pub from_rest: bool,
     /// A load: NAME=VALUE or NAME=@table.csv (as `mech solve`). Repeatable.
     #[arg(long = "load", allow_hyphen_values = true)]
     pub load: Vec<String>,
@@ -71,17 +85,19 @@ pub struct SimulateArgs {
     pub format: Format,
 }
 
-/// The driver: a constant or a table against q.
+/// The driver: a constant, a table against q, or a motor (against q̇).
 enum Driver {
     Constant(f64),
     Table(Table),
+    Motor(Motor),
 }
 
 impl Driver {
-    fn at(&self, q: f64) -> f64 {
+    fn at(&self, q: f64, qd: f64) -> f64 {
         match self {
             Driver::Constant(c) => *c,
             Driver::Table(t) => t.at(q)[0],
+            Driver::Motor(m) => m.on_input(qd),
         }
     }
 }
@@ -102,12 +118,12 @@ fn integrate<Mt: Method<2>>(
     let limit = limits::INTEGRATION_STEPS;
     let n = args.samples.max(1);
     let time = |k: usize| args.t_end * k as f64 / n as f64;
-    let qdd = |y: [f64; 2]| m.acceleration_at(y[0], y[1], driver.at(y[0]), &loads.at(m, y[0]));
+    let qdd = |y: [f64; 2]| m.acceleration_at(y[0], y[1], driver.at(y[0], y[1]), &loads.at(m, y[0]));
     w.row(&[0.0, y0[0], y0[1], qdd(y0)?])?;
     // Accepted steps and the time they reached; the budget's verdict.
     let (steps, reached) = (Cell::new(0u64), Cell::new(0.0f64));
     let over: Cell<Option<(u64, f64, f64)>> = Cell::new(None);
-    let mut eom = equation_of_motion(m, |_, q, _| (driver.at(q), loads.at(m, q)));
+    let mut eom = equation_of_motion(m, |_, q, qd| (driver.at(q, qd), loads.at(m, q)));
     let f = |t: f64, y: &[f64; 2]| {
         let (k, at) = (steps.get(), reached.get());
         // After 10³ steps, the rate so far predicts the whole run's.
@@ -208,7 +224,17 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
         quantity::parse(&args.q0, dq, "--q0")?,
         quantity::parse(&args.speed, dv, "--speed")?,
     ];
-    let driver = match args.driver.strip_prefix('@') {
+    let y0 = if args.from_rest { [y0[0], 0.0] } else { y0 };
+    let driver = match &args.motor {
+        Some(text) => {
+            let motor = motor::parse(text, args.ratio)?;
+            if args.from_rest {
+                let loads = LoadSet::parse(&args.load, m.model())?;
+                Drive::new(&m, motor.clone(), |q| Ok(loads.at(&m, q))).check_start(y0[0])?;
+            }
+            Driver::Motor(motor)
+        }
+        None => match args.driver.strip_prefix('@') {
         Some(path) => Driver::Table(Table::read(path, 1, "--driver")?),
         None => Driver::Constant(quantity::parse(
             &args.driver,
@@ -219,6 +245,7 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
             },
             "--driver",
         )?),
+        },
     };
     let loads = LoadSet::parse(&args.load, m.model())?;
     let unit = if dq == Dim::ANGLE {

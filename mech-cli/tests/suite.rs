@@ -11,6 +11,7 @@ mod cli;
 mod draw;
 mod hostile;
 mod import;
+mod regime;
 mod snapshots;
 
 /// Every `tests/*.rs` but this file is one of the modules above.

@@ -1,9 +1,12 @@
 //! Dynamics written once over the traits: the direct problem (energy method, Lagrange),
-//! the integrators, the flywheel, equivalent masses.
+//! the integrators, the flywheel, equivalent masses, motors and the regimes they drive.
 
 pub mod equivalent_mass;
 pub mod flywheel;
+pub mod motor;
+mod motor_parse;
 pub mod ode;
+pub mod regime;
 mod one_dof;
 
 pub use one_dof::*;

@@ -1,0 +1,123 @@
+//! `mech regime FILE --motor MODEL [--ratio N] [--load ..]`: the periodic steady regime
+//! ω(q) = ω(q + λ) of a one-input machine driven by a motor, found directly by shooting
+//! (`mech_core::dynamics::regime`): the mean speed, the irregularity ε, the period in
+//! time, the motor's duty, and the table `q`, `qd`, `t`, `torque` over one period.
+
+use crate::loads::LoadSet;
+use crate::output::{Format, Writer};
+use crate::{limits, motor, quantity, source, Failure};
+use mech_core::dynamics::regime::Drive;
+use mech_core::model::units::Dim;
+use std::io::Write;
+use std::path::PathBuf;
+
+/// `mech regime` arguments.
+#[derive(clap::Args, Debug)]
+pub struct RegimeArgs {
+    /// The mechanism file (`-` = standard input); one revolute input.
+    pub file: PathBuf,
+    /// The motor: dc(stall_torque T, no_load_speed W), induction(rated_power P,
+    /// synchronous_speed W, rated_speed W, breakdown_ratio K), table(FILE.csv) or constant(T).
+    #[arg(long)]
+    pub motor: String,
+    /// Reduction ratio n = motor speed / input speed.
+    #[arg(long, default_value_t = 1.0, value_parser = limits::positive)]
+    pub ratio: f64,
+    /// A load: NAME=VALUE or NAME=@table.csv (as `mech solve`). Repeatable.
+    #[arg(long = "load", allow_hyphen_values = true)]
+    pub load: Vec<String>,
+    /// A flywheel on the input shaft (kg·m², or with a unit word), the motor's rotor
+    /// included (n² J_rotor).
+    #[arg(long, default_value = "0")]
+    pub flywheel: String,
+    /// The period λ of the loads (rad): 2pi, or 4pi for a four-stroke engine.
+    #[arg(long, default_value = "2pi")]
+    pub period: String,
+    /// Where the period starts, q0 (rad or `30deg`).
+    #[arg(long, default_value = "0", allow_hyphen_values = true)]
+    pub start: String,
+    /// Rows of the table: the period in this many even steps (2 to 10⁶).
+    #[arg(long, default_value_t = 360)]
+    pub points: usize,
+    /// Output format. With `table` the summary comes first on standard output; with
+    /// `csv` or `json` standard output holds the table only and the summary goes to
+    /// standard error.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+}
+
+/// Run `mech regime`.
+pub fn run(args: RegimeArgs, mut out: impl Write) -> Result<(), Failure> {
+    let m = source::load(&args.file)?;
+    if m.dof() != 1 || quantity::input_dims(m.model(), 0).0 != Dim::ANGLE {
+        return Err(Failure::usage(
+            "`mech regime` drives a machine with one revolute input (a motor's shaft)".to_string(),
+        ));
+    }
+    if !(2..=1_000_000).contains(&args.points) {
+        return Err(Failure::usage(format!(
+            "--points {}: give 2 to 1000000 rows",
+            args.points
+        )));
+    }
+    let motor = motor::parse(&args.motor, args.ratio)?;
+    let flywheel = quantity::parse(&args.flywheel, Dim::INERTIA, "--flywheel")?;
+    let period = quantity::parse(&args.period, Dim::ANGLE, "--period")?;
+    if !(period > 0.0 && period <= limits::PERIOD) {
+        return Err(Failure::usage(format!(
+            "--period {}: give a positive period of at most {:.0} turns",
+            args.period,
+            limits::PERIOD / std::f64::consts::TAU
+        )));
+    }
+    let start = quantity::parse(&args.start, Dim::ANGLE, "--start")?;
+    let loads = LoadSet::parse(&args.load, m.model())?;
+    let drive = Drive::new(&m, motor, |q| Ok(loads.at(&m, q))).flywheel(flywheel)?;
+    let s = drive.steady(start, period, args.points)?;
+    let c = &s.check;
+    let mut summary = vec![
+        ("mean_speed", "rad/s", s.mean_speed),
+        ("mean_speed_rpm", "rpm", s.mean_speed * 30.0 / std::f64::consts::PI),
+        ("epsilon", "1", s.epsilon),
+        ("period_time", "s", s.period_time),
+        ("omega_max", "rad/s", s.qd.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
+        ("omega_min", "rad/s", s.qd.iter().copied().fold(f64::INFINITY, f64::min)),
+        ("motor_peak_torque", "N·m", c.peak_torque),
+        ("motor_rms_torque", "N·m", c.rms_torque),
+        ("motor_mean_power", "W", c.mean_power),
+    ];
+    if let Some(r) = c.rated_torque {
+        summary.push(("motor_rated_torque", "N·m", r));
+    }
+    let verdict = if c.within_rating {
+        "the motor's RMS torque is within its rating".to_string()
+    } else {
+        format!(
+            "the motor is overloaded: its RMS torque {:.4} N·m exceeds its rated torque {:.4} N·m; choose a larger motor or another ratio",
+            c.rms_torque,
+            c.rated_torque.unwrap_or(f64::NAN)
+        )
+    };
+    let lines: Vec<String> = summary
+        .iter()
+        .map(|(n, u, v)| format!("{n:<20} {v:>22.12e}  {u}"))
+        .chain([verdict])
+        .collect();
+    if args.format == Format::Table {
+        for l in &lines {
+            writeln!(out, "{l}")?;
+        }
+        writeln!(out)?;
+    } else {
+        for l in &lines {
+            eprintln!("{l}");
+        }
+    }
+    let names = ["q", "qd", "t", "torque"].map(String::from);
+    let mut w = Writer::new(out, args.format, &names, &["rad", "rad/s", "s", "N·m"])?;
+    for k in 0..s.q.len() {
+        w.row(&[s.q[k], s.qd[k], s.t[k], s.torque[k]])?;
+    }
+    w.finish()?;
+    Ok(())
+}
