@@ -11,7 +11,10 @@
 //! The consumer's constant resisting torque is the one that balances the cycle. The example
 //! prints the turning-moment table, sizes the flywheel for ω_a = 3000 rpm and ε = 1/50 by
 //! Wittenbauer's exact method and by the approximate one, checks the exact one by
-//! integrating a cycle in time, and writes the diagrams into target/mech-figures/engine/.
+//! integrating a cycle in time, runs the engine on the grid through an induction machine
+//! (`mech::motor`, `mech::regime`: the run-up and the periodic steady regime found
+//! directly, against the flywheel design), and writes the diagrams into
+//! target/mech-figures/engine/.
 
 #[path = "../tests/common/engine.rs"]
 mod engine;
@@ -27,6 +30,8 @@ use engine::{
     P_CRANKCASE, Q_TDC, X_BDC, X_TDC,
 };
 use mech::flywheel::Cycle;
+use mech::motor::Motor;
+use mech::regime::Drive;
 use mech::prelude::*;
 
 mechanism! {
@@ -70,6 +75,66 @@ pub fn gas_loads(engine: &Engine, q: f64) -> Result<EngineLoads, MechError> {
     Ok(EngineLoads {
         gas: Vector2::new(-(pressure(q, x_b) - P_CRANKCASE) * PISTON_AREA, 0.0),
     })
+}
+
+/// The engine on the grid through an induction machine (11 kW, 3000 rpm synchronous,
+/// 2940 rpm rated, breakdown 2.5 T_r; Kloss's curve) and Wittenbauer's flywheel for ε = 1/50:
+/// from 600 rpm (the starter's work done) the machine, a motor below its synchronous speed,
+/// and the firing engine bring the shaft up until the engine drives the machine above
+/// synchronous speed, a generator; the periodic steady regime it settles in, found
+/// directly, against the flywheel design.
+fn regimes(eng: &Engine, cycle: &Cycle<Engine>, dir: &Path) -> Result<PathBuf, Box<dyn Error>> {
+    let rpm = std::f64::consts::PI / 30.0;
+    let machine = Motor::induction(11000.0, 3000.0 * rpm, 2940.0 * rpm, 2.5)?;
+    let flywheel = cycle.wittenbauer(OMEGA_MEAN, IRREGULARITY)?.inertia;
+    let drive = Drive::new(eng, machine, |q| gas_loads(eng, q)).flywheel(flywheel)?;
+    println!();
+    println!("On the grid through an 11 kW induction machine (3000 rpm synchronous), flywheel {flywheel:.4} kg m^2:");
+    // Compression resists up to ~140 N·m, more than the machine's torque at rest: the
+    // starter brings the engine to 600 rpm, the ignition is on, and the run begins there.
+    println!("  the start, from 600 rpm (after the starter) at the TDC of intake:");
+    let start = drive.run(Q_TDC, 600.0 * rpm, 1.5, 6)?;
+    println!("{:>8} {:>10} {:>12}", "t s", "rpm", "machine N m");
+    for k in 0..start.t.len() {
+        println!("{:>8.2} {:>10.1} {:>12.2}", start.t[k], start.qd[k] / rpm, start.torque[k]);
+    }
+    let steady = drive.steady(Q_TDC, PERIOD, 1440)?;
+    let c = &steady.check;
+    println!(
+        "  steady regime (shooting, {} shots): mean {:.2} rpm, eps = {:.5} (flywheel design {IRREGULARITY}), cycle {:.2} ms",
+        steady.iterations,
+        steady.mean_speed / rpm,
+        steady.epsilon,
+        steady.period_time * 1e3
+    );
+    println!(
+        "  the machine as generator: mean power {:.2} kW, torque peak {:.2} N m, RMS {:.2} N m (rated {:.2} N m): {}",
+        -c.mean_power / 1e3,
+        c.peak_torque,
+        c.rms_torque,
+        c.rated_torque.unwrap_or(f64::NAN),
+        if c.within_rating { "within its rating" } else { "overloaded" }
+    );
+    let speed: Vec<(f64, f64)> = steady
+        .q
+        .iter()
+        .zip(&steady.qd)
+        .map(|(q, w)| ((q - Q_TDC).to_degrees(), w / rpm))
+        .collect();
+    std::fs::create_dir_all(dir)?;
+    let path = dir.join("steady_regime.svg");
+    plot::line_chart(
+        &path,
+        "engine on the grid: the steady regime's crank speed",
+        "crank angle from the cycle start (deg)",
+        "speed (rpm)",
+        &[plot::Series {
+            label: format!("eps = {:.4}", steady.epsilon),
+            points: speed,
+        }],
+    )?;
+    println!("  the steady regime's speed over the cycle: {}", path.display());
+    Ok(path)
 }
 
 /// Where the figures go.
@@ -132,7 +197,10 @@ pub fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
     }
     println!("(the mean of T_driver over the cycle is T; M* = gas and gravity moment + T)");
 
-    let paths = plot::report(&cycle, OMEGA_MEAN, IRREGULARITY, "engine", dir)?;
+    let regime = regimes(&eng, &cycle, dir)?;
+
+    let mut paths = plot::report(&cycle, OMEGA_MEAN, IRREGULARITY, "engine", dir)?;
+    paths.push(regime);
     println!("done in {:.2} s", started.elapsed().as_secs_f64());
     Ok(paths)
 }

@@ -97,7 +97,7 @@ fn the_engine_steady_regime_is_the_end_of_a_long_direct_integration() {
         .unwrap();
     let power = cycle.net_work() / steady.period_time;
     assert!(
-        (steady.check.mean_power + power).abs() < 1e-4 * power,
+        (steady.check.mean_power + power).abs() < 1e-8 * power,
         "generator power {} vs gas power {power}",
         steady.check.mean_power
     );

@@ -5,6 +5,8 @@
 //! turns scalars, lists and callables into those arrays and the arrays into dicts.
 
 use mech_core::dynamics::flywheel::Cycle;
+use mech_core::dynamics::motor::Motor;
+use mech_core::dynamics::regime::{Drive, Run, Steady};
 use mech_core::model::{JointKind, Load};
 use mech_core::runtime::columns::{Columns, Part};
 use mech_core::solvers::batch::{each, Block};
@@ -182,6 +184,47 @@ fn parts_of(names: &[String]) -> PyResult<Vec<Part>> {
 }
 
 /// The loads of one row: the flat values (force: 2, torque: 1, in declaration order).
+/// Keep the first exception a Python callable raised, to re-raise it as it is.
+fn keep_first(raised: &Raised, e: PyErr) {
+    let mut r = raised.borrow_mut();
+    if r.is_none() {
+        *r = Some(e);
+    }
+}
+
+/// The loads at q from a Python callable of q returning the flat loads; its exception is
+/// kept in `raised` and becomes an `InvalidInput` naming q.
+fn loads_callable<'a>(
+    py: Python<'a>,
+    m: &'a Mechanism,
+    loads: &'a PyObject,
+    raised: &'a Raised,
+) -> impl Fn(f64) -> Result<Loads, CoreError> + 'a {
+    move |q: f64| {
+        let flat: Vec<f64> = loads
+            .call1(py, (q,))
+            .and_then(|v| v.extract(py))
+            .map_err(|e| {
+                let text = format!("the loads callable at q = {q}: {e}");
+                keep_first(raised, e);
+                CoreError::InvalidInput(text)
+            })?;
+        Ok(loads_of(m, &flat))
+    }
+}
+
+/// The motor written `text` (`mech_core::dynamics::motor`), its `table(..)` given as the
+/// (speeds, torques) the Python layer read, through `ratio`.
+fn motor_of(text: &str, table: Option<(Vec<f64>, Vec<f64>)>, ratio: f64) -> Result<Motor, CoreError> {
+    let read = |_: &str| match &table {
+        Some((speed, torque)) => Motor::table(speed.clone(), torque.clone()),
+        None => Err(CoreError::InvalidInput(
+            "a table motor needs its speeds and torques".into(),
+        )),
+    };
+    Motor::parse(text, &read)?.through(ratio)
+}
+
 fn loads_of(m: &Mechanism, flat: &[f64]) -> Loads {
     let mut loads = m.loads();
     set_loads(m, &mut loads, flat);
@@ -274,6 +317,17 @@ type Table<'py> = (
     Bound<'py, PyArray1<bool>>,
     Option<String>,
 );
+
+impl PyMechanism {
+    /// The mechanism, when it has one revolute input (`what` needs it).
+    fn one_revolute_input(&self, what: &str) -> PyResult<&Mechanism> {
+        let m = &self.inner;
+        if m.dof() != 1 || m.model().joints[m.model().inputs[0]].kind != JointKind::Revolute {
+            return Err(invalid(format!("{what} needs one revolute input")));
+        }
+        Ok(m)
+    }
+}
 
 #[pymethods]
 impl PyMechanism {
@@ -588,10 +642,7 @@ impl PyMechanism {
         driver: Option<PyObject>,
         rtol: f64,
     ) -> PyResult<Vec<(String, f64)>> {
-        let m = &self.inner;
-        if m.dof() != 1 || m.model().joints[m.model().inputs[0]].kind != JointKind::Revolute {
-            return Err(invalid("flywheel sizing needs one revolute input"));
-        }
+        let m = self.one_revolute_input("flywheel sizing")?;
         if period.is_finite() && period > MAX_PERIOD {
             return Err(invalid(format!(
                 "period = {period:e} rad: {:.3e} turns, more than the limit of {:.0} turns; a cycle is the shortest span after which the loads repeat",
@@ -606,24 +657,8 @@ impl PyMechanism {
         }
         // The first exception of a callable, re-raised as it is.
         let raised = Raised::default();
-        let keep = |e: PyErr| {
-            let mut r = raised.borrow_mut();
-            if r.is_none() {
-                *r = Some(e);
-            }
-        };
-        let call_loads = |q: f64| -> Result<Loads, CoreError> {
-            let flat: Vec<f64> =
-                loads
-                    .call1(py, (q,))
-                    .and_then(|v| v.extract(py))
-                    .map_err(|e| {
-                        let text = format!("the loads callable at q = {q}: {e}");
-                        keep(e);
-                        CoreError::InvalidInput(text)
-                    })?;
-            Ok(loads_of(m, &flat))
-        };
+        let keep = |e: PyErr| keep_first(&raised, e);
+        let call_loads = loads_callable(py, m, &loads, &raised);
         let balance = driver.is_none();
         let call_driver = |q: f64| -> f64 {
             driver.as_ref().map_or(0.0, |d| {
@@ -670,6 +705,94 @@ impl PyMechanism {
             return Err(e);
         }
         out.map_err(|e| py_err(py, e))
+    }
+
+    /// The motion under a motor from (q0, qd0) over [0, t_end] at `samples` + 1 even times
+    /// (`mech_core::dynamics::regime::Drive::run`; from rest, the start is checked first):
+    /// (t, q, qd, torque on the input).
+    #[allow(clippy::too_many_arguments, clippy::type_complexity)]
+    #[pyo3(signature = (motor, table, ratio, q0, qd0, t_end, samples, loads, flywheel))]
+    fn simulate_motor(
+        &self,
+        py: Python<'_>,
+        motor: String,
+        table: Option<(Vec<f64>, Vec<f64>)>,
+        ratio: f64,
+        q0: f64,
+        qd0: f64,
+        t_end: f64,
+        samples: usize,
+        loads: PyObject,
+        flywheel: f64,
+    ) -> PyResult<(Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>)> {
+        let m = self.one_revolute_input("a motor")?;
+        let raised = Raised::default();
+        let run = || -> Result<Run, CoreError> {
+            let drive = Drive::new(m, motor_of(&motor, table, ratio)?, loads_callable(py, m, &loads, &raised))
+                .flywheel(flywheel)?;
+            if qd0 == 0.0 {
+                drive.start_up(q0, t_end, samples)
+            } else {
+                drive.run(q0, qd0, t_end, samples)
+            }
+        };
+        let out = run();
+        if let Some(e) = raised.borrow_mut().take() {
+            return Err(e);
+        }
+        let r = out.map_err(|e| py_err(py, e))?;
+        Ok((r.t, r.q, r.qd, r.torque))
+    }
+
+    /// The periodic steady regime under a motor (`Drive::steady`): (q, qd, t, torque, the
+    /// summary as (name, value) pairs).
+    #[allow(clippy::too_many_arguments, clippy::type_complexity)]
+    #[pyo3(signature = (motor, table, ratio, start, period, points, loads, flywheel))]
+    fn regime(
+        &self,
+        py: Python<'_>,
+        motor: String,
+        table: Option<(Vec<f64>, Vec<f64>)>,
+        ratio: f64,
+        start: f64,
+        period: f64,
+        points: usize,
+        loads: PyObject,
+        flywheel: f64,
+    ) -> PyResult<(Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<(String, f64)>)> {
+        let m = self.one_revolute_input("a motor")?;
+        if !(period > 0.0 && period <= MAX_PERIOD) || !(2..=1_000_000).contains(&points) {
+            return Err(invalid(format!(
+                "period = {period} rad and points = {points}: give a positive period of at most {:.0} turns and 2 to 1000000 points",
+                MAX_PERIOD / std::f64::consts::TAU
+            )));
+        }
+        let raised = Raised::default();
+        let run = || -> Result<Steady, CoreError> {
+            Drive::new(m, motor_of(&motor, table, ratio)?, loads_callable(py, m, &loads, &raised))
+                .flywheel(flywheel)?
+                .steady(start, period, points)
+        };
+        let out = run();
+        if let Some(e) = raised.borrow_mut().take() {
+            return Err(e);
+        }
+        let s = out.map_err(|e| py_err(py, e))?;
+        let c = &s.check;
+        let summary = [
+            ("mean_speed", s.mean_speed),
+            ("epsilon", s.epsilon),
+            ("period_time", s.period_time),
+            ("motor_peak_torque", c.peak_torque),
+            ("motor_rms_torque", c.rms_torque),
+            ("motor_mean_power", c.mean_power),
+            ("motor_rated_torque", c.rated_torque.unwrap_or(f64::NAN)),
+            ("within_rating", if c.within_rating { 1.0 } else { 0.0 }),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        Ok((s.q, s.qd, s.t, s.torque, summary))
     }
 
     /// A cam's profile at `points` cam angles over a turn (`mech::cam::Profile::row`):

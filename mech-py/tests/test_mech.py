@@ -128,6 +128,45 @@ def test_flywheel_from_python_matches_the_engine_reference():
     assert abs(r["irregularity_simulated"] - 0.02) <= 1e-7
 
 
+DISC = """pub struct Disc {
+    ground { O: (0.0, 0.0) },
+    link disc { points { O, A: (0.1, 0.0) }, mass: 2.0, inertia: 0.03, cg: (0.0, 0.0) },
+    joints { O: revolute(ground, disc) },
+    input: O,
+    loads { drag: torque on disc },
+}"""
+
+
+def test_a_dc_motor_starts_a_disc_on_its_exponential_and_settles_where_it_balances_the_drag(tmp_path):
+    """Start from rest: ω = ω∞ (1 − e^(−t/τ)), ω∞ = ω0/n, τ = I ω0 / (n² T_s); the steady
+    regime under a drag D: (ω0/n)(1 − D/(n T_s)), ε = 0; the same motor as a table."""
+    m = mech.Mechanism.from_dsl(DISC)
+    w0 = 3000 * math.pi / 30
+    motor = "dc(stall_torque 2 N_m, no_load_speed 3000 rpm)"
+    r = m.simulate(0.05, motor, ratio=10, samples=10)
+    w_inf, tau = w0 / 10, 0.03 * w0 / (100 * 2)
+    assert np.allclose(r["qd"], w_inf * (1 - np.exp(-r["t"] / tau)), rtol=0, atol=1e-8 * w_inf)
+    s = m.regime(motor, ratio=10, loads={"drag": -0.5}, points=12)
+    w = w_inf * (1 - 0.5 / 20)
+    assert abs(s["mean_speed"] - w) < 1e-9 * w and s["epsilon"] < 1e-9
+    assert np.allclose(s["qd"], w, rtol=1e-9, atol=0) and np.allclose(s["torque"], 0.5, atol=1e-9)
+    assert s["within_rating"] is True
+    csv = tmp_path / "motor.csv"
+    csv.write_text("speed_rpm,torque\n0,2\n3000,0\n")
+    t = m.regime("table(%s)" % csv, ratio=10, loads={"drag": -0.5}, points=12)
+    assert abs(t["mean_speed"] - w) < 1e-9 * w
+
+
+def test_a_motor_that_cannot_start_the_machine_raises_naming_the_fix():
+    m = mech.Mechanism.from_dsl(DISC)
+    with pytest.raises(mech.InvalidInput) as e:
+        m.simulate(1.0, "dc(stall_torque 2, no_load_speed 300)", ratio=10, loads={"drag": -30})
+    assert "cannot start" in str(e.value) and "reduction ratio" in str(e.value)
+    with pytest.raises(mech.InvalidInput) as e:
+        m.regime("stepper(2)")
+    assert "unknown motor" in str(e.value)
+
+
 def test_check_errors_are_exceptions_with_the_location():
     text = (ROOT / "examples" / "mech" / "engine.mech").read_text().replace("circle_line(A, l,", "circle_line(A, rod,")
     with pytest.raises(mech.InvalidMechanism) as e:

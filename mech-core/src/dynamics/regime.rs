@@ -75,7 +75,7 @@ pub struct Steady {
 /// The motor's duty over the steady regime, on its own shaft.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MotorCheck {
-    /// The largest |T| over the cycle, N·m.
+    /// The largest |T| over the table's points, N·m.
     pub peak_torque: f64,
     /// The root mean square of T over time, √(∫T² dt / t_period), N·m: the thermal load.
     pub rms_torque: f64,
@@ -150,17 +150,23 @@ impl<'a, M: OneDof> Drive<'a, M> {
     }
 
     /// The start from rest at q₀: the state at `samples` + 1 even times over [0, t_end].
-    /// An error when the motor cannot start the machine (its action at rest does not
-    /// overcome the resisting moment at q₀) or the machine stalls (comes back to rest)
-    /// before t_end.
+    /// An error when the motor cannot start the machine ([`Drive::check_start`]) or the
+    /// machine stalls (comes back to rest) before t_end.
     pub fn start_up(&self, q0: f64, t_end: f64, samples: usize) -> Result<Run, MechError> {
-        crate::error::check_finite("q0, t_end", &[q0, t_end])?;
-        if !(t_end > 0.0) || samples == 0 {
+        crate::error::check_finite("q0", &[q0])?;
+        self.check_start(q0)?;
+        self.run(q0, 0.0, t_end, samples)
+    }
+
+    /// The motion from (q₀, q̇₀ ≥ 0) under the motor: the state at `samples` + 1 even times
+    /// over [0, t_end]; an error when the machine stalls (its speed turns negative).
+    pub fn run(&self, q0: f64, qd0: f64, t_end: f64, samples: usize) -> Result<Run, MechError> {
+        crate::error::check_finite("q0, qd0, t_end", &[q0, qd0, t_end])?;
+        if !(t_end > 0.0) || samples == 0 || !(qd0 >= 0.0) {
             return Err(MechError::InvalidInput(format!(
-                "a start needs t_end > 0 and at least one sample, got t_end = {t_end} s, {samples} samples"
+                "a run needs q̇0 ≥ 0, t_end > 0 and at least one sample, got q̇0 = {qd0}, t_end = {t_end} s, {samples} samples"
             )));
         }
-        self.check_start(q0)?;
         let times: Vec<f64> = (0..=samples)
             .map(|k| t_end * k as f64 / samples as f64)
             .collect();
@@ -173,11 +179,11 @@ impl<'a, M: OneDof> Drive<'a, M> {
             Ok([y[1], self.acceleration(y[0], y[1])?])
         };
         let mut method = Dop853::new(RTOL, RTOL);
-        ode::sample(&mut method, rhs, 0.0, [q0, 0.0], &times, &mut out)?;
+        ode::sample(&mut method, rhs, 0.0, [q0, qd0], &times, &mut out)?;
         if let Some(q) = stalled.get() {
-            return Err(self.stall(q, "during the start"));
+            return Err(self.stall(q, "under the motor"));
         }
-        Ok(self.run(times, &out, |qd| self.motor.on_input(qd)))
+        Ok(self.table(times, &out, |qd| self.motor.on_input(qd)))
     }
 
     /// `Ok` when the motor's action at rest on the input, n T(0), exceeds the resisting
@@ -195,7 +201,7 @@ impl<'a, M: OneDof> Drive<'a, M> {
         )))
     }
 
-    fn run(&self, t: Vec<f64>, y: &[[f64; 2]], action: impl Fn(f64) -> f64) -> Run {
+    fn table(&self, t: Vec<f64>, y: &[[f64; 2]], action: impl Fn(f64) -> f64) -> Run {
         Run {
             q: y.iter().map(|s| s[0]).collect(),
             qd: y.iter().map(|s| s[1]).collect(),
@@ -268,30 +274,36 @@ impl<'a, M: OneDof> Drive<'a, M> {
         )))
     }
 
-    /// ω at q₀ + λ from ω₀ at q₀ (q the independent variable), and the dense samples at
+    /// The state at q₀ + λ from ω₀ at q₀, q the independent variable: y = (ω, t, ∫T_m² dt,
+    /// ∫T_m ω_m dt) with dω/dq = q̈/ω, dt/dq = 1/ω, d(∫T_m² dt)/dq = T_m²/ω and
+    /// d(∫T_m ω_m dt)/dq = n T_m (T_m = T(n ω) on the motor's shaft); the dense samples at
     /// `qs` when asked.
     fn shoot(
         &self,
         q0: f64,
         period: f64,
         w0: f64,
-        table: Option<(&[f64], &mut [[f64; 2]])>,
-    ) -> Result<[f64; 2], MechError> {
+        table: Option<(&[f64], &mut [[f64; 4]])>,
+    ) -> Result<[f64; 4], MechError> {
         let low = std::cell::Cell::new(None);
-        let rhs = |q: f64, y: &[f64; 2]| -> Result<[f64; 2], MechError> {
+        let n = self.motor.ratio();
+        let rhs = |q: f64, y: &[f64; 4]| -> Result<[f64; 4], MechError> {
             let w = y[0];
             if !(w > 0.0) {
                 low.set(Some(q));
                 return Err(MechError::NoAssembly);
             }
-            Ok([self.acceleration(q, w)? / w, 1.0 / w])
+            let tm = self.motor.torque(n * w);
+            let qdd = self.acceleration_with(q, w, n * tm)?;
+            Ok([qdd / w, 1.0 / w, tm * tm / w, n * tm])
         };
         let mut method = Dop853::new(RTOL, RTOL * w0.abs().max(1e-300));
+        let y0 = [w0, 0.0, 0.0, 0.0];
         let end = match table {
             Some((qs, out)) => {
-                ode::sample(&mut method, rhs, q0, [w0, 0.0], qs, out).map(|_| out[out.len() - 1])
+                ode::sample(&mut method, rhs, q0, y0, qs, out).map(|_| out[out.len() - 1])
             }
-            None => ode::integrate(&mut method, rhs, q0, [w0, 0.0], q0 + period).map(|o| o.y),
+            None => ode::integrate(&mut method, rhs, q0, y0, q0 + period).map(|o| o.y),
         };
         match (end, low.get()) {
             (_, Some(q)) => Err(self.stall(q, "in the steady regime")),
@@ -311,7 +323,8 @@ impl<'a, M: OneDof> Drive<'a, M> {
         }
         let mean = self.mean_moment(q0, period)?;
         let guess = self.balance_speed(mean)?;
-        let residual = |w: f64| -> Result<f64, MechError> { Ok(self.shoot(q0, period, w, None)?[0] - w) };
+        let residual =
+            |w: f64| -> Result<f64, MechError> { Ok(self.shoot(q0, period, w, None)?[0] - w) };
         let (mut a, mut b) = (guess, guess * (1.0 + 1e-3));
         let (mut fa, mut fb) = (residual(a)?, residual(b)?);
         let mut iterations = 2;
@@ -332,8 +345,8 @@ impl<'a, M: OneDof> Drive<'a, M> {
         let qs: Vec<f64> = (0..=points)
             .map(|k| q0 + period * k as f64 / points as f64)
             .collect();
-        let mut y = vec![[0.0; 2]; qs.len()];
-        self.shoot(q0, period, b, Some((&qs, &mut y)))?;
+        let mut y = vec![[0.0; 4]; qs.len()];
+        let end = self.shoot(q0, period, b, Some((&qs, &mut y)))?;
         let qd: Vec<f64> = y.iter().map(|s| s[0]).collect();
         let t: Vec<f64> = y.iter().map(|s| s[1]).collect();
         let period_time = t[points];
@@ -343,7 +356,7 @@ impl<'a, M: OneDof> Drive<'a, M> {
         });
         let average = 0.5 * (hi + lo);
         let torque: Vec<f64> = qd.iter().map(|&w| self.motor.on_input(w)).collect();
-        let check = self.check(&qs, &qd, period_time)?;
+        let check = self.check(&qd, end, period_time);
         Ok(Steady {
             epsilon: (hi - lo) / average,
             q: qs,
@@ -357,37 +370,23 @@ impl<'a, M: OneDof> Drive<'a, M> {
         })
     }
 
-    /// The motor's duty over the cycle on its shaft: dt = dq/ω, T over time by Simpson's rule
-    /// on the table (∫T² dt = ∫T²/ω dq; ∫T ω_m dt = n ∫T dq).
-    fn check(&self, q: &[f64], qd: &[f64], period_time: f64) -> Result<MotorCheck, MechError> {
+    /// The motor's duty over the cycle on its shaft from the integrals the shooting
+    /// carried (`end` = the state at q₀ + λ): RMS = √(∫T_m² dt / t_λ), mean power
+    /// ∫T_m ω_m dt / t_λ; the peak over the table `qd`.
+    fn check(&self, qd: &[f64], end: [f64; 4], period_time: f64) -> MotorCheck {
         let n = self.motor.ratio();
-        let tm: Vec<f64> = qd.iter().map(|&w| self.motor.torque(n * w)).collect();
-        let simpson = |f: &dyn Fn(usize) -> f64| -> f64 {
-            let m = q.len() - 1;
-            let h = (q[m] - q[0]) / m as f64;
-            // Composite Simpson on an even count, trapezoid on a last odd panel.
-            let even = m - m % 2;
-            let mut s = f(0) + f(even);
-            for k in 1..even {
-                s += if k % 2 == 1 { 4.0 } else { 2.0 } * f(k);
-            }
-            let mut total = s * h / 3.0;
-            if even < m {
-                total += 0.5 * h * (f(even) + f(m));
-            }
-            total
-        };
-        let rms_torque = (simpson(&|k| tm[k] * tm[k] / qd[k]) / period_time).sqrt();
-        let mean_power = n * simpson(&|k| tm[k]) / period_time;
-        let peak_torque = tm.iter().fold(0.0f64, |m, t| m.max(t.abs()));
+        let peak_torque = qd
+            .iter()
+            .fold(0.0f64, |m, &w| m.max(self.motor.torque(n * w).abs()));
+        let rms_torque = (end[2] / period_time).sqrt();
         let rated_torque = self.motor.rating().map(|(t, _)| t);
-        Ok(MotorCheck {
+        MotorCheck {
             peak_torque,
             rms_torque,
-            mean_power,
+            mean_power: end[3] / period_time,
             within_rating: rated_torque.map_or(true, |r| rms_torque <= r),
             rated_torque,
-        })
+        }
     }
 
     /// The stop from (q₀, q̇₀ > 0) with the motor off and a brake of constant torque
@@ -434,7 +433,7 @@ impl<'a, M: OneDof> Drive<'a, M> {
         ode::sample(&mut method, rhs, 0.0, [q0, qd0], &times, &mut out)?;
         let last = out.len() - 1;
         out[last] = end.y;
-        let run = self.run(times, &out, |_| -brake);
+        let run = self.table(times, &out, |_| -brake);
         Ok(Stop {
             time: end.t,
             travel: end.y[0] - q0,

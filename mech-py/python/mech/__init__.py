@@ -126,6 +126,29 @@ def _number(x, name):
     return v
 
 
+def _count(x, name):
+    """A non-negative integer count."""
+    if isinstance(x, bool) or not isinstance(x, numbers.Integral) or x < 0:
+        raise TypeError("%s = %r: give a non-negative integer" % (name, x))
+    return int(x)
+
+
+def _motor(motor):
+    """The motor's text for the core and, for ``table(FILE.csv)``, its (speeds, torques)."""
+    if not isinstance(motor, str):
+        raise TypeError("motor is %s: write it as text, e.g. \"dc(stall_torque 2, no_load_speed 300)\"" % _kind(motor))
+    text = motor.strip()
+    if not (text.startswith("table(") and text.endswith(")")):
+        return text, None
+    path = text[len("table("):-1].strip()
+    data = np.genfromtxt(path, delimiter=",", names=True)
+    names = data.dtype.names or ()
+    if "torque" not in names or not ({"speed", "speed_rpm"} & set(names)):
+        raise InvalidInput("%s: a motor table has the columns speed (rad/s) or speed_rpm, and torque (N·m); found %s" % (path, ", ".join(names)))
+    speed = data["speed"] if "speed" in names else data["speed_rpm"] * np.pi / 30.0
+    return "table()", ([float(v) for v in np.atleast_1d(speed)], [float(v) for v in np.atleast_1d(data["torque"])])
+
+
 def _check_errors(errors):
     if errors not in ("raise", "mask"):
         raise ValueError("errors=%r: give \"raise\" (the default: a row that does not solve raises) or \"mask\" (its values are NaN, out[\"ok\"] False)" % (errors,))
@@ -435,12 +458,7 @@ class Mechanism:
         breakpoints = [float(b) for b in np.atleast_1d(_floats(breakpoints, "breakpoints")).ravel()]
         if self.dof != 1:
             raise InvalidInput("flywheel sizing needs one revolute input; this mechanism has %d inputs" % self.dof)
-        if loads is not None and not isinstance(loads, Mapping):
-            raise TypeError("loads is %s: give a dict of load name -> value" % _kind(loads))
-
-        def flat(q):
-            return [float(v) for v in self._loads(loads, np.array([[q]]))[0]]
-
+        flat = self._loads_of_q(loads)
         drv = None
         if driver is not None:
             if callable(driver):
@@ -450,6 +468,50 @@ class Mechanism:
                 c = _number(driver, "driver")
                 drv = lambda q: c  # noqa: E731
         return dict(self._core.flywheel(start, period, breakpoints, speed, irregularity, flat, drv, rtol))
+
+    def _loads_of_q(self, loads):
+        """The flat loads at one q, for the Rust integrators (a dict as elsewhere)."""
+        if loads is not None and not isinstance(loads, Mapping):
+            raise TypeError("loads is %s: give a dict of load name -> value" % _kind(loads))
+
+        def flat(q):
+            return [float(v) for v in self._loads(loads, np.array([[q]]))[0]]
+
+        return flat
+
+    def simulate(self, t_end, motor, ratio=1.0, q0=0.0, speed=0.0, loads=None, flywheel=0.0, samples=100):
+        """The motion under a motor over [0, ``t_end``] s from ``q0`` (rad) at ``speed``
+        (rad/s; 0, the default, starts from rest after checking that the motor can start
+        the machine there). ``motor`` is written as on the command line:
+        ``"dc(stall_torque 2, no_load_speed 3000 rpm)"``, ``"induction(rated_power 1500,
+        synchronous_speed 1500 rpm, rated_speed 1420 rpm, breakdown_ratio 2.5)"``,
+        ``"table(FILE.csv)"`` (columns ``speed`` rad/s or ``speed_rpm``, and ``torque`` N·m),
+        ``"constant(T)"``; ``ratio`` n = motor speed / input speed; ``flywheel`` (kg·m²) on
+        the input shaft. Returns a dict of arrays ``t``, ``q``, ``qd`` and ``torque`` (the
+        motor's action on the input, N·m) at ``samples`` + 1 even times."""
+        text, table = _motor(motor)
+        t, q, qd, torque = self._core.simulate_motor(
+            text, table, _number(ratio, "ratio"), _number(q0, "q0"), _number(speed, "speed"),
+            _number(t_end, "t_end"), _count(samples, "samples"), self._loads_of_q(loads),
+            _number(flywheel, "flywheel"))
+        return {"t": np.array(t), "q": np.array(q), "qd": np.array(qd), "torque": np.array(torque)}
+
+    def regime(self, motor, ratio=1.0, loads=None, flywheel=0.0, period=2 * np.pi, start=0.0, points=360):
+        """The periodic steady regime ω(q) = ω(q + period) under a motor (written as in
+        :meth:`simulate`), found directly by shooting. Returns a dict: the arrays ``q``,
+        ``qd``, ``t`` (s from ``start``) and ``torque`` over one period at ``points`` + 1
+        positions, and the numbers ``mean_speed`` (rad/s), ``epsilon`` = (ω_max − ω_min)/ω_a,
+        ``period_time`` (s), ``motor_peak_torque``, ``motor_rms_torque`` (N·m, on the
+        motor's shaft), ``motor_mean_power`` (W), ``motor_rated_torque`` (NaN when the
+        curve states none) and ``within_rating`` (bool)."""
+        text, table = _motor(motor)
+        q, qd, t, torque, summary = self._core.regime(
+            text, table, _number(ratio, "ratio"), _number(start, "start"), _number(period, "period"),
+            _count(points, "points"), self._loads_of_q(loads), _number(flywheel, "flywheel"))
+        out = {"q": np.array(q), "qd": np.array(qd), "t": np.array(t), "torque": np.array(torque)}
+        for k, v in summary:
+            out[k] = bool(v) if k == "within_rating" else v
+        return out
 
     def cam_profile(self, name=None, points=360):
         """A cam's profile at ``points`` cam angles over a turn (``name``: the cam joint;
@@ -493,15 +555,19 @@ def sweep(mechanism, params, q, qd=0.0, qdd=0.0, loads=None, parts=None):
         if len(sizes) > 1:
             raise InvalidInput("every parameter needs the same number of variants, got %s" % sorted(sizes))
         nv = sizes.pop() if sizes else 1
-        variants = [[(k, [float(x) for x in np.atleast_1d(a[i])]) for k, a in arrays.items()] for i in range(nv)]
     elif isinstance(params, (list, tuple)) and all(isinstance(p, Mapping) for p in params):
-        variants = [[(k, [float(x) for x in np.atleast_1d(_floats(v, "params[%d][%r]" % (i, k))).ravel()]) for k, v in p.items()] for i, p in enumerate(params)]
+        nv = len(params)
     else:
         raise TypeError("params is %s: give a dict of parameter path -> V values, or a list of V such dicts" % _kind(params))
     m = mechanism
     parts = _parts(parts)
     qa = _floats(q, "q")
-    m._check_size(len(variants) * m._count(qa), parts, "the sweep (variants × rows)")
+    # The size first: a refused sweep builds nothing per variant.
+    m._check_size(nv * m._count(qa), parts, "the sweep (variants × rows)")
+    if isinstance(params, Mapping):
+        variants = [[(k, [float(x) for x in np.atleast_1d(a[i])]) for k, a in arrays.items()] for i in range(nv)]
+    else:
+        variants = [[(k, [float(x) for x in np.atleast_1d(_floats(v, "params[%d][%r]" % (i, k))).ravel()]) for k, v in p.items()] for i, p in enumerate(params)]
     qa, _ = m._rows(qa)
     n = qa.shape[0]
     qd, _ = m._rows(qd, n, "qd")

@@ -68,6 +68,10 @@ class Mechanism:
         """`moment` M* (N·m)."""
     def acceleration(self, q: ArrayLike, qd: ArrayLike, driver: Union[ArrayLike, Callable[[float], float]], loads: Optional[Mapping[str, LoadValue]] = ..., errors: str = ...) -> Columns:
         """`qdd`: the direct problem's q̈."""
+    def simulate(self, t_end: float, motor: str, ratio: float = ..., q0: float = ..., speed: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., flywheel: float = ..., samples: int = ...) -> Dict[str, np.ndarray]:
+        """The motion under a motor: ``t``, ``q``, ``qd``, ``torque``."""
+    def regime(self, motor: str, ratio: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., flywheel: float = ..., period: float = ..., start: float = ..., points: int = ...) -> Dict[str, Any]:
+        """The periodic steady regime under a motor: the table and the motor check."""
     def flywheel(self, period: float, speed: float, irregularity: float, loads: Optional[Mapping[str, LoadValue]] = ..., start: float = ..., breakpoints: Sequence[float] = ..., driver: Union[None, float, Callable[[float], float]] = ..., rtol: float = ...) -> Dict[str, float]:
         """ΔE, the approximate and the exact (Wittenbauer) flywheel inertia, the simulated speeds."""
     def cam_profile(self, name: Optional[str] = ..., points: int = ...) -> Dict[str, Any]:
