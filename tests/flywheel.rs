@@ -667,6 +667,7 @@ fn the_engine_example_runs_and_writes_well_formed_svgs() {
             ("inertia.svg", 1),
             ("wittenbauer.svg", 6),
             ("speed.svg", 2),
+            ("steady_regime.svg", 1),
         ],
     );
     assert!(secs < 60.0, "the engine example took {secs} s");
