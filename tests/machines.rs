@@ -48,6 +48,7 @@ mod loader_errors;
 mod params;
 mod python_package;
 mod regime;
+mod shapes;
 mod redundant;
 mod rolling;
 mod runtime_alloc;

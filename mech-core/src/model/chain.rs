@@ -80,6 +80,31 @@ pub struct LinkDecl<S> {
     pub inertia: Option<Num<S>>,
     /// `cg: (x, y)` in the drawing (m).
     pub cg: Option<Pair<S>>,
+    /// `shape: KIND(name value, ..)`: what the link is made of, instead of its mass.
+    pub shape: Option<ShapeDecl<S>>,
+    /// `material: NAME` or `material { .. }`.
+    pub material: Option<MaterialDecl<S>>,
+}
+
+/// A link's `shape:` as written: the keyword (`bar`, `rod`, `tube`, `disc`, `plate`) and
+/// its dimensions (m) in the order of [`crate::model::shape::Shape::dimensions`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeDecl<S> {
+    /// The keyword.
+    pub keyword: String,
+    /// The dimensions, m.
+    pub dims: Vec<f64>,
+    /// Where the keyword is.
+    pub span: S,
+}
+
+/// A link's `material:` as written, resolved to its properties.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialDecl<S> {
+    /// The material.
+    pub material: crate::model::shape::Material,
+    /// Where it is named (or the block's `material` keyword).
+    pub span: S,
 }
 
 /// The kind of a joint as written.
@@ -361,6 +386,9 @@ pub struct Link {
     pub flywheel: f64,
     /// Centre of gravity in the drawing, m.
     pub cg: [f64; 2],
+    /// The shape and material the mass, cg and inertia came from, when the link was
+    /// declared by them.
+    pub body: Option<(crate::model::shape::Shape, crate::model::shape::Material)>,
 }
 
 impl Link {

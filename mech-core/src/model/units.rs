@@ -40,6 +40,10 @@ impl Dim {
     pub const TORSIONAL_DAMPING: Dim = Dim([2, 1, -1, -1]);
     /// Angular speed, rad/s.
     pub const SPEED: Dim = Dim([0, 0, -1, 1]);
+    /// Density, kg/m³.
+    pub const DENSITY: Dim = Dim([-3, 1, 0, 0]);
+    /// Pressure and stress, Pa = N/m².
+    pub const PRESSURE: Dim = Dim([-1, 1, -2, 0]);
 
     /// The dimension of a product: exponents added.
     pub fn times(self, o: Dim) -> Dim {
@@ -61,7 +65,7 @@ impl Dim {
 
     /// What a quantity of this dimension is, in words ("a length (m)").
     pub fn describe(self) -> String {
-        const NAMED: [(Dim, &str); 13] = [
+        const NAMED: [(Dim, &str); 15] = [
             (Dim::NONE, "a plain number"),
             (Dim::LENGTH, "a length (m)"),
             (Dim::MASS, "a mass (kg)"),
@@ -75,6 +79,8 @@ impl Dim {
             (Dim::DAMPING, "a damping (N·s/m)"),
             (Dim::TORSIONAL_DAMPING, "a torsional damping (N·m·s/rad)"),
             (Dim::SPEED, "an angular speed (rad/s)"),
+            (Dim::DENSITY, "a density (kg/m³)"),
+            (Dim::PRESSURE, "a pressure or stress (Pa)"),
         ];
         match NAMED.iter().find(|(d, _)| *d == self) {
             Some((_, name)) => name.to_string(),
@@ -136,7 +142,7 @@ const fn unit(word: &'static str, factor: f64, dim: Dim) -> Unit {
 }
 
 /// Every unit word of the DSL, with its factor to SI.
-pub const UNITS: [Unit; 23] = [
+pub const UNITS: [Unit; 28] = [
     unit("m", 1.0, Dim::LENGTH),
     unit("cm", 1e-2, Dim::LENGTH),
     unit("mm", 1e-3, Dim::LENGTH),
@@ -158,6 +164,11 @@ pub const UNITS: [Unit; 23] = [
     unit("N_m_s_per_rad", 1.0, Dim::TORSIONAL_DAMPING),
     unit("rpm", std::f64::consts::PI / 30.0, Dim::SPEED),
     unit("rad_per_s", 1.0, Dim::SPEED),
+    unit("kg_per_m3", 1.0, Dim::DENSITY),
+    unit("Pa", 1.0, Dim::PRESSURE),
+    unit("kPa", 1e3, Dim::PRESSURE),
+    unit("MPa", 1e6, Dim::PRESSURE),
+    unit("GPa", 1e9, Dim::PRESSURE),
     // Accepted as Rust's own literal suffixes (`2f64`): no unit.
     unit("f64", 1.0, Dim::NONE),
     unit("f32", 1.0, Dim::NONE),

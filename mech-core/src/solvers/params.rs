@@ -89,6 +89,7 @@ mod tests {
             inertia,
             flywheel: 0.0,
             cg: [0.0, 0.0],
+            body: None,
         }
     }
 

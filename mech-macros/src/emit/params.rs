@@ -346,11 +346,11 @@ fn model_expr(cx: &Ctx) -> TokenStream {
     let links = model.links.iter().enumerate().map(|(l, lk)| {
         let (n, pts) = (&lk.name, &lk.points);
         if l == 0 {
-            return quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: None, inertia: 0.0, flywheel: 0.0, cg: [0.0, 0.0] });
+            return quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: None, inertia: 0.0, flywheel: 0.0, cg: [0.0, 0.0], body: None });
         }
         let lid = &cx.link_ids[l];
         let mass = if lk.mass.is_some() { quote!(Some(p.links.#lid.mass)) } else { quote!(None) };
-        quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: #mass, inertia: p.links.#lid.inertia, flywheel: p.links.#lid.flywheel, cg: [p.links.#lid.cg.x, p.links.#lid.cg.y] })
+        quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: #mass, inertia: p.links.#lid.inertia, flywheel: p.links.#lid.flywheel, cg: [p.links.#lid.cg.x, p.links.#lid.cg.y], body: None })
     });
     let joints = model.joints.iter().enumerate().map(|(j, jt)| {
         let (n, a, b, pt) = (&jt.name, jt.a, jt.b, jt.point);

@@ -4,10 +4,12 @@
 use super::scope::Scope;
 use super::{comma, keyword, name};
 use crate::model::units::Dim;
-use crate::model::{LinkDecl, LoadDecl, LoadDeclKind, Name};
+use crate::model::shape::{material_named, material_names, Material, Shape};
+use crate::model::{LinkDecl, LoadDecl, LoadDeclKind, MaterialDecl, Name, ShapeDecl};
 use proc_macro2::Span;
 use syn::parse::ParseStream;
-use syn::{braced, Ident, Token};
+use syn::ext::IdentExt;
+use syn::{braced, parenthesized, Ident, Token};
 
 pub(super) fn link_body(
     input: ParseStream,
@@ -24,6 +26,8 @@ pub(super) fn link_body(
         mass: None,
         inertia: None,
         cg: None,
+        shape: None,
+        material: None,
     };
     // `ground { O2: (0, 0), O4: (..) }` lists points directly.
     if ground && !content.peek2(syn::token::Brace) {
@@ -50,11 +54,18 @@ pub(super) fn link_body(
                 content.parse::<Token![:]>()?;
                 decl.cg = scope.cg(&content, index)?;
             }
+            "shape" if !ground => {
+                content.parse::<Token![:]>()?;
+                decl.shape = Some(shape(&content, scope)?);
+            }
+            "material" if !ground => {
+                decl.material = Some(material(&content, scope, key.span())?);
+            }
             other => {
                 let expected = if ground {
                     "`points`"
                 } else {
-                    "`points`, `mass`, `inertia` or `cg`"
+                    "`points`, `mass`, `inertia`, `cg`, `shape` or `material`"
                 };
                 return Err(syn::Error::new(
                     key.span(),
@@ -65,6 +76,124 @@ pub(super) fn link_body(
         comma(&content)?;
     }
     Ok(decl)
+}
+
+/// `KIND(name value, ..)`: each of the shape's dimensions once, a length.
+fn shape(input: ParseStream, scope: &Scope) -> syn::Result<ShapeDecl<Span>> {
+    let kw: Ident = input.parse()?;
+    let keyword = kw.to_string();
+    let Some(names) = Shape::dimension_names(&keyword) else {
+        return Err(syn::Error::new(
+            kw.span(),
+            format!("unknown shape `{keyword}`: expected {}", Shape::FORMS),
+        ));
+    };
+    let inner;
+    parenthesized!(inner in input);
+    let mut dims: Vec<Option<f64>> = vec![None; names.len()];
+    while !inner.is_empty() {
+        let key = Ident::parse_any(&inner)?;
+        let Some(k) = names.iter().position(|n| key == n) else {
+            return Err(syn::Error::new(
+                key.span(),
+                format!("a `{keyword}` has no dimension `{key}`: it takes {}", names.join(", ")),
+            ));
+        };
+        if dims[k].is_some() {
+            return Err(syn::Error::new(key.span(), format!("`{key}` is given twice")));
+        }
+        dims[k] = Some(scope.scalar(&inner, Dim::LENGTH, &format!("the {keyword}'s {key}"))?.value);
+        comma(&inner)?;
+    }
+    let dims = names
+        .iter()
+        .zip(&dims)
+        .map(|(n, d)| {
+            d.ok_or_else(|| {
+                syn::Error::new(
+                    kw.span(),
+                    format!("a `{keyword}` needs its `{n}`: write {keyword}({})", names.iter().map(|n| format!("{n} ..")).collect::<Vec<_>>().join(", ")),
+                )
+            })
+        })
+        .collect::<syn::Result<Vec<f64>>>()?;
+    Ok(ShapeDecl {
+        keyword,
+        dims,
+        span: kw.span(),
+    })
+}
+
+/// `material: NAME` (a named material) or `material { density .., youngs .., yield ..,
+/// ultimate .., endurance .. }`.
+fn material(input: ParseStream, scope: &Scope, at: Span) -> syn::Result<MaterialDecl<Span>> {
+    if input.peek(Token![:]) {
+        input.parse::<Token![:]>()?;
+        let id: Ident = input.parse()?;
+        return match material_named(&id.to_string()) {
+            Some(material) => Ok(MaterialDecl {
+                material,
+                span: id.span(),
+            }),
+            None => Err(syn::Error::new(
+                id.span(),
+                format!(
+                    "unknown material `{id}`: the named materials are {}, or give its properties: `material {{ density 7850 kg_per_m3, youngs 205 GPa, yield 310 MPa, ultimate 565 MPa, endurance 282 MPa }}`",
+                    material_names()
+                ),
+            )),
+        };
+    }
+    let content;
+    braced!(content in input);
+    const KEYS: [(&str, Dim); 5] = [
+        ("density", Dim::DENSITY),
+        ("youngs", Dim::PRESSURE),
+        ("yield", Dim::PRESSURE),
+        ("ultimate", Dim::PRESSURE),
+        ("endurance", Dim::PRESSURE),
+    ];
+    let mut v: [Option<f64>; 5] = [None; 5];
+    while !content.is_empty() {
+        let key = Ident::parse_any(&content)?;
+        let Some(k) = KEYS.iter().position(|(n, _)| key == n) else {
+            return Err(syn::Error::new(
+                key.span(),
+                format!("a material has no property `{key}`: give density, youngs, yield, ultimate and endurance"),
+            ));
+        };
+        if v[k].is_some() {
+            return Err(syn::Error::new(key.span(), format!("`{key}` is given twice")));
+        }
+        let value = scope.scalar(&content, KEYS[k].1, &format!("the material's {key}"))?;
+        if !(value.value > 0.0) {
+            return Err(syn::Error::new(
+                value.span,
+                format!("the material's {key} must be positive, got {}", value.value),
+            ));
+        }
+        v[k] = Some(value.value);
+        comma(&content)?;
+    }
+    let missing: Vec<&str> = KEYS.iter().zip(&v).filter(|(_, x)| x.is_none()).map(|((n, _), _)| *n).collect();
+    if !missing.is_empty() {
+        return Err(syn::Error::new(
+            at,
+            format!("the material needs its {}: a block gives density, youngs, yield, ultimate and endurance", missing.join(", ")),
+        ));
+    }
+    let [density, youngs, yield_strength, ultimate, endurance] = v.map(|x| x.unwrap_or(0.0));
+    Ok(MaterialDecl {
+        material: Material {
+            name: "custom",
+            density,
+            youngs,
+            yield_strength,
+            ultimate,
+            endurance,
+        },
+        span: at,
+    })
 }
 
 pub(super) fn loads(input: ParseStream) -> syn::Result<Vec<LoadDecl<Span>>> {

@@ -69,13 +69,13 @@ pub(super) fn links<S: Clone>(
                 )),
             }
         }
-        if let (Some(m), None) = (&l.mass, &l.cg) {
+        if let (Some(m), None, None) = (&l.mass, &l.cg, &l.shape) {
             errs.push(Diagnostic::at(
                 m.span.clone(),
                 format!("link `{}` has a mass but no `cg`: add `cg: (x, y)`, its centre of gravity in the drawing", l.name.text),
             ));
         }
-        links.push(Link {
+        let mut link = Link {
             name: l.name.text.clone(),
             points: pts,
             mass: l.mass.as_ref().map(|m| m.value),
@@ -88,9 +88,63 @@ pub(super) fn links<S: Clone>(
                     .map(|&i| points[i].pos)
                     .unwrap_or([0.0, 0.0])
             }),
-        });
+            body: None,
+        };
+        body(l, &mut link, points, errs);
+        links.push(link);
     }
     links
+}
+
+/// A link declared by `shape:` and `material:`: its mass, cg and inertia from them
+/// ([`crate::model::shape`]); `mass:`, `inertia:` or `cg:` beside a shape, a shape without
+/// a material (or the reverse) and a shape the link's points cannot carry are errors.
+fn body<S: Clone>(l: &LinkDecl<S>, link: &mut Link, points: &[Point], errs: &mut Vec<Diagnostic<S>>) {
+    let name = &l.name.text;
+    let (shape, material) = match (&l.shape, &l.material) {
+        (None, None) => return,
+        (Some(s), None) => {
+            return errs.push(Diagnostic::at(
+                s.span.clone(),
+                format!("link `{name}` has a shape but no material: add `material: NAME` (one of {}), or a `material {{ density .., youngs .., yield .., ultimate .., endurance .. }}` block", crate::model::shape::material_names()),
+            ))
+        }
+        (None, Some(m)) => {
+            return errs.push(Diagnostic::at(
+                m.span.clone(),
+                format!("link `{name}` has a material but no shape: add `shape: {}`, or remove the material and give `mass:`, `inertia:` and `cg:`", "bar(width W, thickness T)"),
+            ))
+        }
+        (Some(s), Some(m)) => (s, m),
+    };
+    let mut beside = |what: &str, span: Option<S>| {
+        if let Some(span) = span {
+            errs.push(Diagnostic::at(
+                span,
+                format!("`{what}:` beside `shape:` in link `{name}`: the shape and the material give its mass, cg and inertia; remove `{what}:`, or the shape and the material"),
+            ));
+        }
+    };
+    beside("mass", l.mass.as_ref().map(|m| m.span.clone()));
+    beside("inertia", l.inertia.as_ref().map(|m| m.span.clone()));
+    beside("cg", l.cg.as_ref().map(|c| c.span.clone()));
+    let at: Vec<[f64; 2]> = link.points.iter().map(|&i| points[i].pos).collect();
+    let props = crate::model::shape::Shape::from_dimensions(&shape.keyword, &shape.dims).and_then(|s| {
+        let p = s.mass_properties(material.material.density, &at)?;
+        Ok((s, p))
+    });
+    match props {
+        Ok((s, p)) => {
+            link.mass = Some(p.mass);
+            link.inertia = p.inertia;
+            link.cg = p.cg;
+            link.body = Some((s, material.material));
+        }
+        Err(why) => errs.push(Diagnostic::at(
+            shape.span.clone(),
+            format!("link `{name}`: {why}"),
+        )),
+    }
 }
 
 /// The points and links resolved so far, which the later sections refer to by name.

