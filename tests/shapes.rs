@@ -26,8 +26,8 @@ mechanism! {
             material { density 4430 kg_per_m3, youngs 114 GPa, yield 880 MPa, ultimate 950 MPa, endurance 510 MPa },
         },
         joints {
-            O2: revolute(ground, crank),
-            A: revolute(crank, coupler),
+            O2: revolute(ground, crank) pin 12 mm,
+            A: revolute(crank, coupler) pin 10 mm double,
             B: revolute(coupler, rocker),
             O4: revolute(ground, rocker),
         },
@@ -160,4 +160,40 @@ fn shaped_mechanisms_solve_the_same_on_both_routes() {
         let (a, b) = (g.reduced(q).unwrap().inertia, OneDof::reduced(&r, q).unwrap().inertia);
         close(b, a, "I*");
     }
+}
+
+/// A dimension changed at run time changes the mass properties, and so does a moved point
+/// of a link made of a shape; setting the mass of such a link is refused with the fix.
+#[test]
+fn a_new_width_or_a_moved_point_changes_the_mass() {
+    let source = include_str!("shapes.rs");
+    let mut m = mech::Mechanism::from_rust_source(source, "Shaped").unwrap();
+    let crank = |m: &mech::Mechanism| m.model().links[1].clone();
+    let bar = |w: f64, l: f64| 7850.0 * 0.008 * (l * w + PI * w * w / 4.0);
+    close(crank(&m).mass.unwrap(), bar(0.02, 0.1), "drawn");
+    let before = OneDof::reduced(&m, 0.7).unwrap().inertia;
+    m.set_param("links.crank.shape.width", &[0.03]).unwrap();
+    close(crank(&m).mass.unwrap(), bar(0.03, 0.1), "wider");
+    assert!(OneDof::reduced(&m, 0.7).unwrap().inertia > before);
+    m.set_param("points.A", &[0.0, 0.12]).unwrap();
+    close(crank(&m).mass.unwrap(), bar(0.03, 0.12), "longer");
+    close(crank(&m).cg[1], 0.06, "the cg follows");
+    let e = m.set_param("links.crank.mass", &[1.0]).unwrap_err().to_string();
+    assert!(e.contains("shape.<dimension>"), "{e}");
+    let e = m.set_param("links.crank.shape.width", &[-0.01]).unwrap_err().to_string();
+    assert!(e.contains("positive length"), "{e}");
+    let e = m.set_param("links.crank.shape.diameter", &[0.01]).unwrap_err().to_string();
+    assert!(e.contains("width, thickness"), "{e}");
+}
+
+/// Pins: single or double shear (the generated struct's model carries them for
+/// `from_params`; a pin wider than its link is the compile-fail case
+/// `tests/ui/shape_pin_larger_than_link.rs`).
+#[test]
+fn pins_are_read_on_both_routes() {
+    let m = mech::Mechanism::from_rust_source(include_str!("shapes.rs"), "Shaped").unwrap();
+    let pin = |name: &str| m.model().joints.iter().find(|j| j.name == name).unwrap().pin;
+    assert_eq!(pin("O2"), Some(mech::model::Pin { diameter: 0.012, double: false }));
+    assert_eq!(pin("A"), Some(mech::model::Pin { diameter: 0.010, double: true }));
+    assert_eq!(pin("B"), None);
 }

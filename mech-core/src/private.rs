@@ -65,7 +65,7 @@ pub mod magnitudes {
 }
 pub mod model {
     pub use crate::model::{
-        CamSpec, Element, ElementKind, Joint, JointKind, Link, Load, Mesh, Model, Point,
+        CamSpec, Element, ElementKind, Joint, JointKind, Link, Load, Mesh, Model, Pin, Point,
     };
 }
 pub mod params {

@@ -167,6 +167,25 @@ def test_a_motor_that_cannot_start_the_machine_raises_naming_the_fix():
     assert "unknown motor" in str(e.value)
 
 
+def test_a_link_from_its_shape_and_material_and_a_new_width():
+    """A disc crank of cast iron: I* = m R²/2 with m = ρ T π R² (no other moving mass);
+    a new radius through set_param changes it; a shape without a material is refused."""
+    text = """pub struct Wheel {
+        ground { O: (0.0, 0.0) },
+        link wheel { points { O, A: (0.05, 0.0) }, shape: disc(radius 80 mm, thickness 12 mm), material: cast_iron },
+        joints { O: revolute(ground, wheel) },
+        input: O,
+    }"""
+    m = mech.Mechanism.from_dsl(text)
+    inertia = lambda r: 7200 * 0.012 * math.pi * r**2 * r**2 / 2  # noqa: E731
+    assert abs(m.reduced(0.3)["inertia"] - inertia(0.08)) < 1e-12 * inertia(0.08)
+    m.set_param("links.wheel.shape.radius", 0.1)
+    assert abs(m.reduced(0.3)["inertia"] - inertia(0.1)) < 1e-12 * inertia(0.1)
+    with pytest.raises(mech.InvalidMechanism) as e:
+        mech.Mechanism.from_dsl(text.replace(", material: cast_iron", ""))
+    assert "no material" in str(e.value)
+
+
 def test_check_errors_are_exceptions_with_the_location():
     text = (ROOT / "examples" / "mech" / "engine.mech").read_text().replace("circle_line(A, l,", "circle_line(A, rod,")
     with pytest.raises(mech.InvalidMechanism) as e:

@@ -217,6 +217,9 @@ pub struct JointDecl<S> {
     pub around: Option<(Name<S>, bool)>,
     /// A cam's base radius, face and motion law.
     pub cam: Option<CamDecl<S>>,
+    /// A revolute joint's pin: `pin D [double]`, its diameter (m) and whether it works in
+    /// double shear.
+    pub pin: Option<(Num<S>, bool)>,
 }
 
 /// A cam as written: `base_radius R_b [roller r | flat] law [segment, ..]`.
@@ -427,6 +430,17 @@ pub struct Joint {
     pub around: Option<(usize, bool)>,
     /// A cam's data (`None` for the other joints).
     pub cam: Option<Box<CamSpec>>,
+    /// A revolute joint's pin, when declared.
+    pub pin: Option<Pin>,
+}
+
+/// The pin of a revolute joint (`pin 12 mm` or `pin 12 mm double`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pin {
+    /// Diameter d, m.
+    pub diameter: f64,
+    /// In double shear (a fork: two sections carry the load) rather than single.
+    pub double: bool,
 }
 
 /// A resolved cam (`docs/conventions.md#cams`): a translating follower sliding on the

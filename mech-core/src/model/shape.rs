@@ -200,6 +200,24 @@ impl Shape {
     }
 }
 
+/// Recompute the mass, cg and I_G of every link declared by its shape and material from
+/// the current drawing (after a point or a dimension changed at run time).
+pub fn update_bodies(links: &mut [super::Link], points: &[super::Point]) -> Result<(), String> {
+    for link in links.iter_mut() {
+        let Some((shape, material)) = link.body else {
+            continue;
+        };
+        let at: Vec<[f64; 2]> = link.points.iter().map(|&i| points[i].pos).collect();
+        let p = shape
+            .mass_properties(material.density, &at)
+            .map_err(|why| format!("link `{}`: {why}", link.name))?;
+        link.mass = Some(p.mass);
+        link.cg = p.cg;
+        link.inertia = p.inertia;
+    }
+    Ok(())
+}
+
 /// A polygon's mass, cg and I_G for mass per area σ, by the shoelace sums (see the module
 /// documentation), taken about the first vertex for accuracy.
 fn plate(sigma: f64, points: &[[f64; 2]]) -> Result<(f64, [f64; 2], f64), String> {

@@ -200,12 +200,36 @@ impl Mechanism {
                 let i = model.point_index(p).ok_or_else(|| bad("unknown point"))?;
                 model.points[i].pos = pair(value)?;
             }
+            ["links", l, "shape", dim] => {
+                let i = model
+                    .link_index(l)
+                    .filter(|&i| i > 0)
+                    .ok_or_else(|| bad("unknown moving link"))?;
+                let Some((shape, material)) = model.links[i].body else {
+                    return Err(bad("the link is not declared by a `shape:`"));
+                };
+                let mut dims = shape.dimensions();
+                let Some(d) = dims.iter_mut().find(|(n, _)| n == dim) else {
+                    let names: Vec<&str> = dims.iter().map(|(n, _)| *n).collect();
+                    return Err(bad(&format!("a `{}` has {}", shape.keyword(), names.join(", "))));
+                };
+                d.1 = one(value)?;
+                let values: Vec<f64> = dims.iter().map(|(_, v)| *v).collect();
+                let new = crate::model::shape::Shape::from_dimensions(shape.keyword(), &values)
+                    .map_err(|why| MechError::InvalidInput(format!("`{path}`: {why}")))?;
+                model.links[i].body = Some((new, material));
+            }
             ["links", l, what] => {
                 let i = model
                     .link_index(l)
                     .filter(|&i| i > 0)
                     .ok_or_else(|| bad("unknown moving link"))?;
                 let link = &mut model.links[i];
+                if link.body.is_some() && matches!(*what, "cg" | "mass" | "inertia") {
+                    return Err(MechError::InvalidInput(format!(
+                        "`{path}`: link `{l}` is declared by its shape and material, which give its {what}: change a dimension instead (`links.{l}.shape.<dimension>`)"
+                    )));
+                }
                 match *what {
                     "cg" => link.cg = pair(value)?,
                     "mass" => link.mass = Some(one(value)?),
@@ -250,10 +274,13 @@ impl Mechanism {
             }
             _ => {
                 return Err(bad(
-                    "use points.<P>, links.<l>.{cg, mass, inertia, flywheel}, axes.<joint>, elements.<e>.{stiffness, free_length, free_angle, damping} or gravity",
+                    "use points.<P>, links.<l>.{cg, mass, inertia, flywheel}, links.<l>.shape.<dimension>, axes.<joint>, elements.<e>.{stiffness, free_length, free_angle, damping} or gravity",
                 ))
             }
         }
+        // A moved point or a new dimension changes the mass of a link made of a shape.
+        crate::model::shape::update_bodies(&mut model.links, &model.points)
+            .map_err(|why| MechError::InvalidInput(format!("`{path}`: {why}")))?;
         *self = Mechanism::from_model(model)?;
         Ok(())
     }

@@ -409,7 +409,14 @@ fn model_expr(cx: &Ctx) -> TokenStream {
             }
             None => quote!(None),
         };
-        quote!(#p::model::Joint { name: #n.into(), kind: #p::model::JointKind::#kind, a: #a, b: #b, point: #pt, axis: #axis, mesh: #mesh, radius: #radius, around: #around, cam: #cam })
+        let pin = match jt.pin {
+            Some(pin) => {
+                let (d, double) = (f64s(pin.diameter), pin.double);
+                quote!(Some(#p::model::Pin { diameter: #d, double: #double }))
+            }
+            None => quote!(None),
+        };
+        quote!(#p::model::Joint { name: #n.into(), kind: #p::model::JointKind::#kind, a: #a, b: #b, point: #pt, axis: #axis, mesh: #mesh, radius: #radius, around: #around, cam: #cam, pin: #pin })
     });
     let loads = model.loads.iter().map(|l| match l {
         Load::Force { name, link, point } => {

@@ -33,6 +33,7 @@ struct Options {
     cam_law: Option<(Vec<(Segment, Span)>, Span)>,
     cam_table: Vec<[f64; 2]>,
     cam_lift: Option<(bool, Span)>,
+    pin: Option<(Num<Span>, bool)>,
 }
 
 /// One joint: `NAME: KIND(a, b) OPTIONS`.
@@ -57,6 +58,7 @@ fn joint(content: ParseStream, scope: &Scope) -> syn::Result<JointDecl<Span>> {
         cam_law: None,
         cam_table: Vec::new(),
         cam_lift: None,
+        pin: None,
     };
     while content.peek(Ident) {
         let k: Ident = content.parse()?;
@@ -72,6 +74,7 @@ fn joint(content: ParseStream, scope: &Scope) -> syn::Result<JointDecl<Span>> {
         cam_law,
         cam_table,
         cam_lift,
+        pin,
     } = o;
     let cam = if kind == JointKind::Cam {
         let (Some(base_radius), Some((segments, law_span))) = (cam_base, cam_law) else {
@@ -103,6 +106,7 @@ fn joint(content: ParseStream, scope: &Scope) -> syn::Result<JointDecl<Span>> {
         mesh,
         around,
         cam,
+        pin,
     })
 }
 
@@ -203,6 +207,14 @@ fn option(
                 format!("unexpected `{k}` in a {}: write {form}", kind.keyword()),
             ));
         }
+        "pin" if kind == JointKind::Revolute && o.pin.is_none() => {
+            let d = scope.scalar(content, Dim::LENGTH, "a pin's diameter")?;
+            let double = content.peek(Ident) && content.fork().parse::<Ident>()? == "double";
+            if double {
+                content.parse::<Ident>()?;
+            }
+            o.pin = Some((d, double));
+        }
         "at" => o.at = Some(name(&content.parse::<Ident>()?)?),
         "along" => {
             let (u, span) = scope.vector(content)?;
@@ -214,7 +226,7 @@ fn option(
         other => {
             return Err(syn::Error::new(
                 k.span(),
-                format!("unexpected `{other}`: expected `at POINT` or `along (ux, uy)`"),
+                format!("unexpected `{other}`: expected `at POINT`, `along (ux, uy)` or, on a revolute joint, `pin D [double]`"),
             ))
         }
     }

@@ -56,9 +56,57 @@ pub(super) fn joints<S: Clone>(
             },
             around,
             cam: None,
+            pin: pin(j, a, b, known, errs),
         });
     }
     (joints, reached)
+}
+
+/// A revolute joint's pin: a positive diameter, no larger than the section of a link it
+/// goes through that is declared by its shape (a bar's width, a rod's diameter, a tube's
+/// outer diameter).
+fn pin<S: Clone>(
+    j: &JointDecl<S>,
+    a: Option<usize>,
+    b: Option<usize>,
+    known: &Known,
+    errs: &mut Vec<Diagnostic<S>>,
+) -> Option<Pin> {
+    let (d, double) = j.pin.as_ref()?;
+    if !(d.value > 0.0 && d.value.is_finite()) {
+        errs.push(Diagnostic::at(
+            d.span.clone(),
+            format!("the pin of joint `{}` must have a positive diameter, got {} m", j.name.text, d.value),
+        ));
+        return None;
+    }
+    for l in [a, b].into_iter().flatten() {
+        let link = &known.links[l];
+        let section = match link.body.map(|(s, _)| s) {
+            Some(crate::model::shape::Shape::Bar { width, .. }) => Some(("width", width)),
+            Some(crate::model::shape::Shape::Rod { diameter }) => Some(("diameter", diameter)),
+            Some(crate::model::shape::Shape::Tube { outer, .. }) => Some(("outer diameter", outer)),
+            _ => None,
+        };
+        if let Some((what, size)) = section {
+            if d.value >= size {
+                errs.push(Diagnostic::at(
+                    d.span.clone(),
+                    format!(
+                        "the pin of joint `{}` ({} mm) is not smaller than the {what} of link `{}` ({} mm) it goes through: take a thinner pin or a wider link",
+                        j.name.text,
+                        d.value * 1e3,
+                        link.name,
+                        size * 1e3
+                    ),
+                ));
+            }
+        }
+    }
+    Some(Pin {
+        diameter: d.value,
+        double: *double,
+    })
 }
 
 /// The point of joint `j`: its `at`, or the point of its name; a cam's and a mesh's are
