@@ -60,8 +60,20 @@ macro_rules! agrees {
     };
 }
 
-agrees!(stephenson3_agrees_with_the_oracle, StephensonIII, "StephensonIII", P0, P1);
-agrees!(stephenson2_agrees_with_the_oracle, Stephenson2, "Stephenson2", O, E);
+agrees!(
+    stephenson3_agrees_with_the_oracle,
+    StephensonIII,
+    "StephensonIII",
+    P0,
+    P1
+);
+agrees!(
+    stephenson2_agrees_with_the_oracle,
+    Stephenson2,
+    "Stephenson2",
+    O,
+    E
+);
 
 /// A whole turn in 1° steps stays on the drawn assembly: every point moves by no more than
 /// its speed and acceleration allow over the step, and comes back to where it started
@@ -128,7 +140,10 @@ fn past_a_dead_point_no_assembly() {
                 none += 1;
             }
         }
-        assert!(m.kinematics(q, 1.0, 0.0).is_ok() == m.pose(q).is_ok(), "step {k}");
+        assert!(
+            m.kinematics(q, 1.0, 0.0).is_ok() == m.pose(q).is_ok(),
+            "step {k}"
+        );
     }
     assert!(ok > 0 && none > 0, "{ok} assembled, {none} not");
 }

@@ -156,10 +156,17 @@ mod snapshots {
     #[test]
     fn stephenson_triad_plan() {
         let parts = pretty_parts(STEPHENSON_TRIAD);
-        let plan = &parts.iter().find(|(name, _)| *name == "plan").expect("a plan part").1;
+        let plan = &parts
+            .iter()
+            .find(|(name, _)| *name == "plan")
+            .expect("a plan part")
+            .1;
         insta::assert_snapshot!("stephenson_triad_plan", plan);
         let code = flat(&parts);
-        assert!(code.contains("triad::triad_solve::<12usize,>(&Self::__G1_TRIAD"), "{plan}");
+        assert!(
+            code.contains("triad::triad_solve::<12usize,>(&Self::__G1_TRIAD"),
+            "{plan}"
+        );
     }
 
     #[test]

@@ -47,7 +47,7 @@ fn side(g: &JointGeom, body: usize) -> V2 {
     }
 }
 
-/// The group's drawing geometry: local vectors and squared lengths (m, m²).
+/// The group's drawing geometry: local vectors and lengths (m, m²).
 #[derive(Clone, Copy)]
 struct Geom {
     /// The binary links' local vectors of their outer and inner pins.
@@ -55,9 +55,14 @@ struct Geom {
     inner: [V2; 3],
     /// The ternary link's local vectors of its three pins.
     mid: [V2; 3],
-    /// The lead's span (inner − outer), local.
+    /// The lead's span (inner − outer), local, and its length.
     lead: V2,
-    /// |ternary pin 2 − pin 1|², |dyad link|², |close link|² (m²).
+    lead_len: f64,
+    /// The ternary link's A₃ − A₁ over its B − A₁ as a complex number, (m/m), and
+    /// |A₃ − A₁| (m): A₃ = A₁ + z (B − A₁).
+    z: V2,
+    arm: f64,
+    /// |ternary B − A₁|², |dyad link|², |close link|² (m²).
     r_mid: f64,
     r_dyad: f64,
     r_close: f64,
@@ -66,15 +71,23 @@ struct Geom {
 impl Geom {
     #[inline(always)]
     fn new(t: &Triad, joints: &[JointGeom]) -> Geom {
-        let outer = [0, 1, 2].map(|k| side(&joints[t.outer[k]], t.links[k]));
-        let inner = [0, 1, 2].map(|k| side(&joints[t.inner[k]], t.links[k]));
-        let mid = [0, 1, 2].map(|k| side(&joints[t.inner[k]], t.mid));
+        let [l1, l2, l3] = t.links;
+        let [go1, go2, go3] = t.outer.map(|j| &joints[j]);
+        let [gi1, gi2, gi3] = t.inner.map(|j| &joints[j]);
+        let outer = [side(go1, l1), side(go2, l2), side(go3, l3)];
+        let inner = [side(gi1, l1), side(gi2, l2), side(gi3, l3)];
+        let mid = [side(gi1, t.mid), side(gi2, t.mid), side(gi3, t.mid)];
+        let lead = inner[0] - outer[0];
+        let (e21, e31) = (mid[1] - mid[0], mid[2] - mid[0]);
         Geom {
             outer,
             inner,
             mid,
-            lead: inner[0] - outer[0],
-            r_mid: (mid[1] - mid[0]).norm_squared(),
+            lead,
+            lead_len: lead.norm(),
+            z: quotient(e31, e21),
+            arm: e31.norm(),
+            r_mid: e21.norm_squared(),
             r_dyad: (inner[1] - outer[1]).norm_squared(),
             r_close: (inner[2] - outer[2]).norm_squared(),
         }
@@ -94,37 +107,41 @@ struct Pins {
     o3: V2,
 }
 
-/// The residual and its slope at `x`: f = |A₃ − O₃|² − L₃² (m²) and f′ = df/dθ (m²/rad)
-/// with θ the lead's angle, and the dyad's p × q (m²). With Ȧ₁ = perp(A₁ − O₁) (θ̇ = 1),
-/// the dyad's rates (B fixed to both of its links) give the ternary link's
-/// ω = −(Ȧ₁·q)/(p × q), p = B − A₁, q = B − O₂; then Ȧ₃ = Ȧ₁ + ω perp(A₃ − A₁) and
-/// f′ = 2 (A₃ − O₃)·Ȧ₃. The group's Jacobian determinant is (p × q)·f′ up to a constant
-/// factor of the topology: its sign is the assembly's (the module's docs).
+/// The residual and the Newton step at `x`, with θ the lead's angle:
+/// f = |A₃ − O₃|² − L₃² (m²). With Ȧ₁ = perp(A₁ − O₁) (θ̇ = 1), the dyad's rates (B fixed
+/// to both of its links) give the ternary link's ω = −(Ȧ₁·q)/c, p = B − A₁, q = B − O₂,
+/// c = p × q; then Ȧ₃ = Ȧ₁ + ω perp(A₃ − A₁) and f′ = 2 (A₃ − O₃)·Ȧ₃ = 2n/c with
+/// n = c (w·Ȧ₁) − (Ȧ₁·q)(w·perp(A₃ − A₁)), w = A₃ − O₃. Returns (f, n, Δθ = −f c/(2n),
+/// the largest pin move of that step ≈ |Δθ| |lead| + |ω Δθ| |A₃ − A₁|, m). n is the
+/// group's Jacobian determinant up to a positive factor and a sign of the topology: its
+/// sign is the assembly's (the module's docs). One division.
 #[inline(always)]
-fn slope(x: &Pins, r_close: f64) -> (f64, f64, f64, V2) {
+fn newton_step(x: &Pins, g: &Geom) -> (f64, f64, f64, f64) {
     let (p, q) = (x.b - x.a1, x.b - x.o2);
     let c = cross(p, q);
     let da1 = perp(x.a1 - x.o1);
-    let omega = -da1.dot(&q) / c;
-    let da3 = da1 + perp(x.a3 - x.a1) * omega;
     let w = x.a3 - x.o3;
-    (w.norm_squared() - r_close, 2.0 * w.dot(&da3), c, da3)
+    let f = w.norm_squared() - g.r_close;
+    let dq = da1.dot(&q);
+    let n = c * w.dot(&da1) - dq * w.dot(&perp(x.a3 - x.a1));
+    let inv = 0.5 / n;
+    let (step, turn) = (-f * c * inv, f * dq * inv);
+    (f, n, step, step.abs() * g.lead_len + turn.abs() * g.arm)
 }
 
 /// The pins at the lead's rotation `u` (unit, from the drawing), on the dyad's side
 /// `sigma`: A₁ = O₁ + R(u) (lead's span), B on the circles (A₁, |ternary side|) and
-/// (O₂, |dyad link|), A₃ from the ternary link's rotation (B − A₁ over its local side).
+/// (O₂, |dyad link|), A₃ = A₁ + z (B − A₁).
 #[inline(always)]
 fn pins_at(g: &Geom, o: [V2; 3], u: V2, sigma: f64) -> Result<Pins, MechError> {
     let a1 = o[0] + rotate(u, g.lead);
     let b = circle_circle(a1, g.r_mid, o[1], g.r_dyad, sigma)?;
-    let rm = quotient(b - a1, g.mid[1] - g.mid[0]);
     Ok(Pins {
         a1,
         o1: o[0],
         b,
         o2: o[1],
-        a3: a1 + rotate(rm, g.mid[2] - g.mid[0]),
+        a3: a1 + rotate(g.z, b - a1),
         o3: o[2],
     })
 }
@@ -146,9 +163,7 @@ fn pins_of(t: &Triad, g: &Geom, s: &[LinkState]) -> Pins {
 /// The sign of the group's Jacobian determinant (±1, 0 at a dead point) in `s`.
 #[inline(always)]
 fn assembly(t: &Triad, g: &Geom, s: &[LinkState]) -> f64 {
-    let x = pins_of(t, g, s);
-    let (_, fp, c, _) = slope(&x, g.r_close);
-    sign0(c * fp)
+    sign0(newton_step(&pins_of(t, g, s), g).1)
 }
 
 /// −1, 0 or +1 (0 for zero and NaN).
@@ -164,10 +179,10 @@ fn sign0(x: f64) -> f64 {
 }
 
 /// The lead's rotation `u` moved, when the dyad cannot close there, to the nearest one
-/// where it closes with a margin: with d = O₁ − O₂ (unit d̂), the lead's span L₁ v (v unit)
-/// and R, R₂ the dyad's radii, |A₁ − O₂|² = |d|² + L₁² + 2 L₁ |d| (v·d̂) must lie in
-/// [(R − R₂)², (R + R₂)²], an interval [c₋, c₊] of v·d̂; v·d̂ is clamped into it less 5 % of
-/// its width at each end, on the same side of d̂. `NoAssembly` when it is empty.
+/// where it closes with a margin: with d = O₁ − O₂, the lead's span L₁ v (v unit) and R,
+/// R₂ the dyad's radii, |A₁ − O₂|² = |d|² + L₁² + 2 L₁ (v·d) must lie in
+/// [(R − R₂)², (R + R₂)²], an interval of k = L₁ (v·d); k is clamped into it less 5 % of its
+/// width at each end, on the same side of d. `NoAssembly` when it is empty.
 #[inline(always)]
 fn feasible(g: &Geom, o: [V2; 3], u: V2) -> Result<V2, MechError> {
     let l1sq = g.lead.norm_squared();
@@ -182,9 +197,12 @@ fn feasible(g: &Geom, o: [V2; 3], u: V2) -> Result<V2, MechError> {
     if x > lo && x < hi {
         return Ok(u);
     }
-    // In terms of k = v·d (m²): x = |d|² + L₁² + 2k, |k| ≤ L₁ |d|.
+    // x = |d|² + L₁² + 2k, |k| ≤ L₁ |d|.
     let span = (l1sq * dsq).sqrt();
-    let (klo, khi) = ((0.5 * (lo - dsq - l1sq)).max(-span), (0.5 * (hi - dsq - l1sq)).min(span));
+    let (klo, khi) = (
+        (0.5 * (lo - dsq - l1sq)).max(-span),
+        (0.5 * (hi - dsq - l1sq)).min(span),
+    );
     if !(klo < khi) {
         return Err(MechError::NoAssembly);
     }
@@ -203,37 +221,43 @@ const MAX_STEPS: usize = 40;
 const MAX_TURN: f64 = 0.5;
 
 /// Newton on the lead's angle from rotation `u` on the dyad's side `sigma`: the pins at
-/// the root, converged when the last step moves no pin by more than 1e-14 `scale`
-/// (m); `NoAssembly` when the dyad cannot close, the steps stall, or they do not converge.
+/// the root and its assembly's n ([`newton_step`]), converged when the next step would
+/// move no pin by more than 1e-14 `scale` (m); `NoAssembly` when the dyad cannot close,
+/// the steps stall, or they do not converge. Each step turns u by (1 − t² + 2it)/(1 + t²),
+/// t = h/2: a turn of 2 atan(h/2) = h + O(h³), unit with no square root.
 #[inline(always)]
-fn search(g: &Geom, o: [V2; 3], mut u: V2, sigma: f64, scale: f64) -> Result<(Pins, f64), MechError> {
+fn search(
+    g: &Geom,
+    o: [V2; 3],
+    mut u: V2,
+    sigma: f64,
+    scale: f64,
+) -> Result<(Pins, f64), MechError> {
     let mut x = pins_at(g, o, u, sigma)?;
-    let (mut f, mut fp, mut c, mut da3) = slope(&x, g.r_close);
-    let reach = g.lead.norm();
+    let (mut f, mut n, mut step, mut moves) = newton_step(&x, g);
+    let tol = 1e-14 * scale;
     for _ in 0..MAX_STEPS {
-        let step = -f / fp;
         if !step.is_finite() {
             return Err(MechError::NoAssembly);
         }
-        // The pins move by |Ȧ| × the step: the lead's end and the ternary's third pin.
-        if step.abs() * (reach + da3.norm()) <= 1e-14 * scale {
-            return Ok((x, c * fp));
+        if moves <= tol {
+            return Ok((x, n));
         }
         let mut h = step.clamp(-MAX_TURN, MAX_TURN);
         loop {
-            // Turn u by atan(h) (Newton in tan of the turn: the same first order, no
-            // trigonometry; the root is where f = 0 whatever the chart).
-            let v = u + perp(u) * h;
-            let v = v * (1.0 / v.norm());
+            let t = 0.5 * h;
+            let r = V2::new(1.0 - t * t, 2.0 * t) * (1.0 / (1.0 + t * t));
+            let v = rotate(u, r);
             if let Ok(y) = pins_at(g, o, v, sigma) {
-                let (fy, fpy, cy, day) = slope(&y, g.r_close);
-                if fy.abs() < f.abs() {
-                    (u, x, f, fp, c, da3) = (v, y, fy, fpy, cy, day);
+                let next = newton_step(&y, g);
+                if next.0.abs() < f.abs() {
+                    (u, x) = (v, y);
+                    (f, n, step, moves) = next;
                     break;
                 }
             }
             h *= 0.5;
-            if h.abs() * reach <= 1e-15 * scale {
+            if h.abs() * g.lead_len <= 0.1 * tol {
                 return Err(MechError::NoAssembly);
             }
         }
@@ -241,11 +265,13 @@ fn search(g: &Geom, o: [V2; 3], mut u: V2, sigma: f64, scale: f64) -> Result<(Pi
     Err(MechError::NoAssembly)
 }
 
-/// The triad's positions: Newton on the lead's angle from the predictor (the lead's inner
-/// pin of the start configuration's pins `start` projected on its circle about its current
-/// outer pin), on the dyad's side of `start`, then the other side; the root accepted when its assembly sign is `drawn`
-/// (0 accepts any). Writes the four links' states into `s` on success only.
+/// The triad's positions: Newton on the lead's angle from the predictor `u` (the lead's
+/// rotation in the start configuration, moved to where the dyad closes), on the dyad's
+/// side of the start's pins `start`, then the other side; the root accepted when its
+/// assembly sign is `drawn` (0 accepts any). Writes the four links' states into `s` on
+/// success only.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn triad_pose(
     t: &Triad,
     g: &Geom,
@@ -257,7 +283,11 @@ fn triad_pose(
     scale: f64,
 ) -> Result<(), MechError> {
     let [l1, l2, l3] = t.links;
-    let o = [0, 1, 2].map(|k| pin(&joints[t.outer[k]], s, t.links[k]).0);
+    let o = [
+        pin(&joints[t.outer[0]], s, l1).0,
+        pin(&joints[t.outer[1]], s, l2).0,
+        pin(&joints[t.outer[2]], s, l3).0,
+    ];
     let sigma = if cross(start.o2 - start.a1, start.b - start.a1) < 0.0 {
         -1.0
     } else {
@@ -282,11 +312,12 @@ fn triad_pose(
 
 /// Solve a triad ([`Triad`], its group's `bodies` and `cons`) up to `upto`: positions by
 /// Newton on the lead's angle (the module's docs), started from `start` (a previous
-/// configuration's states, every link; only the group's are read) or else from the
-/// drawing, which `s` must hold for the group's links on entry; the general Newton from
-/// the drawing when that fails, its root kept only on the drawing's assembly. Then, when
-/// asked, velocities and accelerations from the group's linear system, which is
-/// returned for the reactions (as [`crate::kernel::group::group_solve`]).
+/// configuration's states, every link; only the group's are read) or else from
+/// `drawing` (the drawing's states, every link); the general Newton from the drawing
+/// when that fails, its root kept only on the drawing's assembly. `s` holds the solved
+/// links' states on entry (the group's own are not read). Then, when asked, velocities
+/// and accelerations from the group's linear system, which is returned for the
+/// reactions (as [`crate::kernel::group::group_solve`]).
 #[inline]
 #[allow(clippy::too_many_arguments)]
 pub fn triad_solve<const N: usize>(
@@ -298,15 +329,17 @@ pub fn triad_solve<const N: usize>(
     drive: Drive,
     scale: f64,
     upto: Level,
+    drawing: &[LinkState],
     start: Option<&[LinkState]>,
 ) -> Result<Option<GroupSystem<N>>, MechError> {
     let g = Geom::new(t, joints);
-    let drawn = assembly(t, &g, s);
-    // The start's pins are read before the pose writes `s` (on success only).
-    let from = start.unwrap_or(s);
+    let drawn = assembly(t, &g, drawing);
+    let from = start.unwrap_or(drawing);
     let (pins, u) = (pins_of(t, &g, from), from[t.links[0]].rot);
-    let pose = triad_pose(t, &g, joints, s, &pins, u, drawn, scale);
-    if pose.is_err() {
+    if triad_pose(t, &g, joints, s, &pins, u, drawn, scale).is_err() {
+        for &b in bodies {
+            s[b] = drawing[b];
+        }
         group_newton::<N>(bodies, cons, joints, s, drive, scale)?;
         if drawn != 0.0 && assembly(t, &g, s) == -drawn {
             return Err(MechError::NoAssembly);
@@ -372,7 +405,10 @@ mod tests {
         let model = model_of(text);
         let inst = instance(&model).unwrap();
         let groups = plan(&model).unwrap();
-        let t = groups.iter().position(|g| g.triad.is_some()).expect("a triad");
+        let t = groups
+            .iter()
+            .position(|g| g.triad.is_some())
+            .expect("a triad");
         assert_eq!(groups[t].kernel, Kernel::System);
         (inst, groups, t)
     }
@@ -405,7 +441,18 @@ mod tests {
                         group_newton::<12>(b, c, j, &mut s, drive, l)?;
                     } else {
                         let start = (route == 1).then_some(prev);
-                        triad_solve::<12>(&t, b, c, j, &mut s, drive, l, Level::Position, start)?;
+                        triad_solve::<12>(
+                            &t,
+                            b,
+                            c,
+                            j,
+                            &mut s,
+                            drive,
+                            l,
+                            Level::Position,
+                            &inst.drawing,
+                            start,
+                        )?;
                     }
                 }
                 _ => unreachable!(),

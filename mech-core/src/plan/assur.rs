@@ -460,7 +460,9 @@ fn triad(model: &Model, bodies: &[usize], cons: &[Con]) -> Option<Triad> {
             .iter()
             .filter(|c| ends(c).0 == l || ends(c).1 == l)
             .collect();
-        let to_mid = mine.iter().find(|c| ends(c) == (l, mid) || ends(c) == (mid, l))?;
+        let to_mid = mine
+            .iter()
+            .find(|c| ends(c) == (l, mid) || ends(c) == (mid, l))?;
         let out = mine.iter().find(|c| {
             let (a, b) = ends(c);
             let other = if a == l { b } else { a };
@@ -491,7 +493,14 @@ fn triad(model: &Model, bodies: &[usize], cons: &[Con]) -> Option<Triad> {
             0.0
         }
     };
-    let orders = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
+    let orders = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
     let best = orders
         .into_iter()
         .fold((orders[0], -1.0), |(o, s), n| {

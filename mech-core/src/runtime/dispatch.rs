@@ -241,7 +241,16 @@ impl Mechanism {
             Kernel::Cam(c) => crate::elements::cam::solve_cam(c, &self.inst.cams, joints, s, upto)?,
             Kernel::System => match &g.triad {
                 Some(t) => crate::kernel::triad::triad_solve::<12>(
-                    t, &g.bodies, &g.cons, joints, s, drive, scale, upto, None,
+                    t,
+                    &g.bodies,
+                    &g.cons,
+                    joints,
+                    s,
+                    drive,
+                    scale,
+                    upto,
+                    &self.inst.drawing,
+                    None,
                 )
                 .map(|_| ())?,
                 None => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,

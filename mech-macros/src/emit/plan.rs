@@ -213,7 +213,7 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         }
         Kernel::System if g.triad.is_some() => {
             let tn = triad_const(gi);
-            quote!(let #sys = #p::triad::triad_solve::<#n>(&Self::#tn, &Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto, None)?;)
+            quote!(let #sys = #p::triad::triad_solve::<#n>(&Self::#tn, &Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto, &self.drawing, None)?;)
         }
         Kernel::System => {
             quote!(let #sys = #p::group::group_solve::<#n>(&Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto)?;)
@@ -380,8 +380,13 @@ fn solve_on(cx: &Ctx) -> TokenStream {
             })
             .collect(),
     );
-    // Newton starts from the drawing; closed forms overwrite every state they use.
-    let initial = if cx.plan.iter().any(|g| g.kernel == Kernel::System) {
+    // Newton starts from the drawing; closed forms and triads (which read the drawing
+    // from `self.drawing`) overwrite every state they use.
+    let initial = if cx
+        .plan
+        .iter()
+        .any(|g| g.kernel == Kernel::System && g.triad.is_none())
+    {
         quote!(self.drawing)
     } else {
         quote!([#p::kinematics::LinkState::default(); #n_links])
