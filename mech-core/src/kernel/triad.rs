@@ -310,11 +310,45 @@ fn triad_pose(
     Err(MechError::NoAssembly)
 }
 
+/// [`triad_pose`] with each of the two other binary links as the lead (the order turned
+/// once, then twice), each with its own assembly sign from the drawing: the second try
+/// when the plan's lead finds no root on the drawn assembly from the start (a dyad that
+/// changed side since the drawing, or a start far from the root). Off the common path.
+#[inline(never)]
+#[cold]
+fn other_leads(
+    t: &Triad,
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    drawing: &[LinkState],
+    from: &[LinkState],
+    scale: f64,
+) -> Result<(), MechError> {
+    let turn = |x: [usize; 3]| [x[1], x[2], x[0]];
+    let mut order = *t;
+    for _ in 0..2 {
+        order = Triad {
+            mid: t.mid,
+            links: turn(order.links),
+            outer: turn(order.outer),
+            inner: turn(order.inner),
+        };
+        let g = Geom::new(&order, joints);
+        let drawn = assembly(&order, &g, drawing);
+        let (pins, u) = (pins_of(&order, &g, from), from[order.links[0]].rot);
+        if triad_pose(&order, &g, joints, s, &pins, u, drawn, scale).is_ok() {
+            return Ok(());
+        }
+    }
+    Err(MechError::NoAssembly)
+}
+
 /// Solve a triad ([`Triad`], its group's `bodies` and `cons`) up to `upto`: positions by
 /// Newton on the lead's angle (the module's docs), started from `start` (a previous
 /// configuration's states, every link; only the group's are read) or else from
-/// `drawing` (the drawing's states, every link); the general Newton from the drawing
-/// when that fails, its root kept only on the drawing's assembly. `s` holds the solved
+/// `drawing` (the drawing's states, every link); with each of the other two binary links
+/// as the lead when that fails, and then the general Newton from the drawing, its root
+/// kept only on the drawing's assembly. `s` holds the solved
 /// links' states on entry (the group's own are not read). Then, when asked, velocities
 /// and accelerations from the group's linear system, which is returned for the
 /// reactions (as [`crate::kernel::group::group_solve`]).
@@ -336,7 +370,9 @@ pub fn triad_solve<const N: usize>(
     let drawn = assembly(t, &g, drawing);
     let from = start.unwrap_or(drawing);
     let (pins, u) = (pins_of(t, &g, from), from[t.links[0]].rot);
-    if triad_pose(t, &g, joints, s, &pins, u, drawn, scale).is_err() {
+    if triad_pose(t, &g, joints, s, &pins, u, drawn, scale).is_err()
+        && other_leads(t, joints, s, drawing, from, scale).is_err()
+    {
         for &b in bodies {
             s[b] = drawing[b];
         }
