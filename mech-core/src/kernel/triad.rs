@@ -5,7 +5,8 @@
 //! the ternary link's third pin; the one scalar equation left is that the third binary
 //! link reaches it, f(θ) = |A₃ − O₃|² − L₃² = 0 (m²). Newton on θ (safeguarded: the step
 //! bounded, halved until |f| decreases and the dyad closes), f′ from the dyad's rates;
-//! the general Newton ([`crate::kernel::group::group_newton`]) is the fallback.
+//! the other two binary links as the lead, then the general Newton
+//! ([`crate::kernel::group::group_newton`]), are the fallbacks.
 //!
 //! The drawn assembly: the dyad's side σ is taken from the start configuration (the
 //! drawing, or the caller's previous configuration, [`triad_solve`]'s `start`), the other
