@@ -62,6 +62,7 @@ mod public_api;
 mod reference;
 mod runtime_peer;
 mod stress;
+mod triads;
 
 /// The two binaries together are the whole of `tests/`: every `tests/*.rs` but their roots
 /// is a module of exactly one of them (`autotests = false`: a file declared in neither would

@@ -41,6 +41,9 @@ pub mod group {
         group_solve, group_solve_ls, group_velocity_field, GroupSystem, LsSystem,
     };
 }
+pub mod triad {
+    pub use crate::kernel::triad::{triad_solve, Triad};
+}
 pub mod instance {
     pub use crate::solvers::instance::{
         instance, DamperParams, LinkParams, RotaryDamperParams, SpringParams, TorsionSpringParams,

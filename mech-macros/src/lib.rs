@@ -130,6 +130,45 @@ mod snapshots {
         }
     "#;
 
+    /// pyslvs's Stephenson III: a crank, then a triad (the ternary L3 pinned to L2, L4
+    /// and L5), whose positions go through the triad kernel, its rates through the
+    /// group's linear system.
+    const STEPHENSON_TRIAD: &str = r#"
+        /// Stephenson III six-bar with a triad.
+        pub struct StephensonIII {
+            ground { P0: (0.00025, -0.000625), P4: (0.117125, 0.023375), P6: (0.138875, 0.033125) },
+            link L1 { points { P0, P1: (0.015375, 0.041125) } },
+            link L2 { points { P1, P2: (0.061375, 0.095125) } },
+            link L3 { points { P2, P3: (0.102875, 0.084375), P5: (0.134625, 0.119875) } },
+            link L4 { points { P3, P4 } },
+            link L5 { points { P5, P6 } },
+            joints {
+                J0: revolute(ground, L1) at P0, J1: revolute(L1, L2) at P1,
+                J2: revolute(L2, L3) at P2, J3: revolute(L3, L4) at P3,
+                J4: revolute(ground, L4) at P4, J5: revolute(L3, L5) at P5,
+                J6: revolute(ground, L5) at P6,
+            },
+            input: J0,
+        }
+    "#;
+
+    /// The plan part of a triad machine: its constant and the call of its kernel.
+    #[test]
+    fn stephenson_triad_plan() {
+        let parts = pretty_parts(STEPHENSON_TRIAD);
+        let plan = &parts
+            .iter()
+            .find(|(name, _)| *name == "plan")
+            .expect("a plan part")
+            .1;
+        insta::assert_snapshot!("stephenson_triad_plan", plan);
+        let code = flat(&parts);
+        assert!(
+            code.contains("triad::triad_solve::<12usize,>(&Self::__G1_TRIAD"),
+            "{plan}"
+        );
+    }
+
     #[test]
     fn geared_sprung_parts() {
         snapshot_parts("geared_sprung", GEARED_SPRUNG);

@@ -15,6 +15,7 @@ pub mod linalg;
 pub mod link_state;
 pub mod natural;
 pub mod screw;
+pub mod triad;
 
 /// The tolerance check of the tests (`within`, `MECH_MEASURE=1`: tests/README.md): the root
 /// tests' own file, so that the unit tests measure exactly as they do. At the lowest layer so

@@ -11,6 +11,7 @@ use crate::elements::gears::{MeshGroup, TrainGroup, TRAIN_MAX};
 use crate::kernel::constraints::{Con, ConKind};
 use crate::kernel::dyad::Solver;
 use crate::kernel::screw::{Chain, Driven, JointScrew, VIRTUAL};
+use crate::kernel::triad::Triad;
 use crate::model::{JointKind, Model};
 use crate::plan::geometry::joint_cons;
 
@@ -25,6 +26,9 @@ pub struct Group {
     pub solver: Solver,
     /// The rates and reactions kernel.
     pub kernel: Kernel,
+    /// A triad of revolute joints among the Newton groups: its positions by one
+    /// eliminated unknown ([`crate::kernel::triad`]); `None` for the other groups.
+    pub triad: Option<Triad>,
 }
 
 /// How a group's rates and reactions are solved.
@@ -412,15 +416,108 @@ pub fn plan(model: &Model) -> Result<Vec<Group>, Vec<usize>> {
             Solver::Train => train_kernel(model, &bodies, &cons),
             _ => kernel(model, solver),
         };
+        let triad = (solver == Solver::Newton)
+            .then(|| triad(model, &bodies, &cons))
+            .flatten();
         groups.push(Group {
             bodies,
             cons,
             solver,
             kernel,
+            triad,
         });
     }
     track_angles(n, &mut groups);
     Ok(groups)
+}
+
+/// A triad of revolute joints ([`Triad`]): four links, six revolute joints, one link (the
+/// ternary) pinned to the three others, each of which is pinned to a solved link. Of the
+/// six orders of its binary links (lead, dyad, close), the one best conditioned in the
+/// drawing: the largest product of the dyad's |sin| (between its two sides at the middle
+/// pin) and the residual's |cos| (between the close link and its pin's velocity when the
+/// lead turns), so that neither the dyad nor the residual's slope is near zero there.
+fn triad(model: &Model, bodies: &[usize], cons: &[Con]) -> Option<Triad> {
+    use crate::kernel::link_state::{cross, perp, V2};
+    if bodies.len() != 4 || cons.len() != 6 || cons.iter().any(|c| c.kind != ConKind::Revolute) {
+        return None;
+    }
+    let ends = |c: &Con| (model.joints[c.joint].a, model.joints[c.joint].b);
+    let inside = |l: usize| bodies.contains(&l);
+    let mid = *bodies.iter().find(|&&b| {
+        cons.iter()
+            .filter(|c| {
+                let (a, o) = ends(c);
+                (a == b && inside(o)) || (o == b && inside(a))
+            })
+            .count()
+            == 3
+    })?;
+    let mut links = [0; 3];
+    let (mut outer, mut inner) = ([0; 3], [0; 3]);
+    for (k, &l) in bodies.iter().filter(|&&b| b != mid).enumerate() {
+        let mine: Vec<&Con> = cons
+            .iter()
+            .filter(|c| ends(c).0 == l || ends(c).1 == l)
+            .collect();
+        let to_mid = mine
+            .iter()
+            .find(|c| ends(c) == (l, mid) || ends(c) == (mid, l))?;
+        let out = mine.iter().find(|c| {
+            let (a, b) = ends(c);
+            let other = if a == l { b } else { a };
+            !inside(other)
+        })?;
+        if mine.len() != 2 {
+            return None;
+        }
+        (links[k], inner[k], outer[k]) = (l, to_mid.joint, out.joint);
+    }
+    let at = |j: usize| {
+        let p = model.points[model.joints[j].point].pos;
+        V2::new(p[0], p[1])
+    };
+    let score = |[i, j, k]: [usize; 3]| {
+        let (a1, o1) = (at(inner[i]), at(outer[i]));
+        let (b, o2) = (at(inner[j]), at(outer[j]));
+        let (a3, o3) = (at(inner[k]), at(outer[k]));
+        let (p, q) = (b - a1, b - o2);
+        let c = cross(p, q);
+        let da1 = perp(a1 - o1);
+        let da3 = da1 + perp(a3 - a1) * (-da1.dot(&q) / c);
+        let w = a3 - o3;
+        let s = (c / (p.norm() * q.norm())).abs() * (w.dot(&da3) / (w.norm() * da3.norm())).abs();
+        if s.is_finite() {
+            s
+        } else {
+            0.0
+        }
+    };
+    let orders = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
+    let best = orders
+        .into_iter()
+        .fold((orders[0], -1.0), |(o, s), n| {
+            let sn = score(n);
+            if sn > s {
+                (n, sn)
+            } else {
+                (o, s)
+            }
+        })
+        .0;
+    Some(Triad {
+        mid,
+        links: best.map(|k| links[k]),
+        outer: best.map(|k| outer[k]),
+        inner: best.map(|k| inner[k]),
+    })
 }
 
 fn subsets(items: &[usize], k: usize) -> Vec<Vec<usize>> {

@@ -239,7 +239,22 @@ impl Mechanism {
                 r, joints, s, drive, sign, scale, upto, true,
             )?,
             Kernel::Cam(c) => crate::elements::cam::solve_cam(c, &self.inst.cams, joints, s, upto)?,
-            Kernel::System => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
+            Kernel::System => match &g.triad {
+                Some(t) => crate::kernel::triad::triad_solve::<12>(
+                    t,
+                    &g.bodies,
+                    &g.cons,
+                    joints,
+                    s,
+                    drive,
+                    scale,
+                    upto,
+                    &self.inst.drawing,
+                    None,
+                )
+                .map(|_| ())?,
+                None => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,
+            },
         }
         Ok(())
     }

@@ -84,9 +84,15 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             let (bn, cn) = system_consts(gi);
             let (nb, nc, bodies) = (g.bodies.len(), g.cons.len(), &g.bodies);
             let cons = g.cons.iter().map(con_tokens);
+            let triad = g.triad.map(|t| {
+                let (tn, mid) = (triad_const(gi), t.mid);
+                let (links, outer, inner) = (t.links, t.outer, t.inner);
+                quote!(const #tn: #p::triad::Triad = #p::triad::Triad { mid: #mid, links: [#(#links),*], outer: [#(#outer),*], inner: [#(#inner),*] };)
+            });
             quote!(
                 const #bn: [usize; #nb] = [#(#bodies),*];
                 const #cn: [#p::kinematics::Con; #nc] = [#(#cons),*];
+                #triad
             )
         }
     };
@@ -152,6 +158,11 @@ pub(crate) fn system_consts(gi: usize) -> (Ident, Ident) {
     )
 }
 
+/// The name of a triad's constant ([`mech_core::kernel::triad::Triad`]).
+fn triad_const(gi: usize) -> Ident {
+    format_ident!("__G{}_TRIAD", gi)
+}
+
 /// The position solver constant of every group, in plan order (`from_params` reads the
 /// drawing's branch of each).
 pub(crate) fn solvers(cx: &Ctx) -> Vec<TokenStream> {
@@ -199,6 +210,10 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         Kernel::System if g.redundant() => {
             let m = g.rows();
             quote!(let #sys = #p::group::group_solve_ls::<#n, #m>(&Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto)?;)
+        }
+        Kernel::System if g.triad.is_some() => {
+            let tn = triad_const(gi);
+            quote!(let #sys = #p::triad::triad_solve::<#n>(&Self::#tn, &Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto, &self.drawing, None)?;)
         }
         Kernel::System => {
             quote!(let #sys = #p::group::group_solve::<#n>(&Self::#bn, &Self::#cn, &joints, &mut s, drive, self.scale, upto)?;)
@@ -365,8 +380,13 @@ fn solve_on(cx: &Ctx) -> TokenStream {
             })
             .collect(),
     );
-    // Newton starts from the drawing; closed forms overwrite every state they use.
-    let initial = if cx.plan.iter().any(|g| g.kernel == Kernel::System) {
+    // Newton starts from the drawing; closed forms and triads (which read the drawing
+    // from `self.drawing`) overwrite every state they use.
+    let initial = if cx
+        .plan
+        .iter()
+        .any(|g| g.kernel == Kernel::System && g.triad.is_none())
+    {
         quote!(self.drawing)
     } else {
         quote!([#p::kinematics::LinkState::default(); #n_links])

@@ -1,0 +1,58 @@
+//! The pose of a triad machine against a dyad chain of as many links (issue 35): the two
+//! triad machines of `tests/common/triads.rs` — pyslvs's Stephenson III six-bar
+//! (`examples/mech/stephenson_iii.mech`, mm scaled to m: a crank, then one triad, a
+//! ternary link pinned to three binary links) and the Stephenson chain on the binary link
+//! of its two-binary path driven by a ternary crank (`Stephenson2` there: a triad again,
+//! two of its outer pins on the crank) — and the Watt II six-bar of
+//! `tests/common/mechanisms.rs` (a crank and two RRR dyads). Each call is `pose` at the
+//! next of 64 crank angles over a full turn, so that the count is the mean over a turn
+//! (a triad's Newton starts from the drawing, and its cost grows with the distance).
+//!
+//! Count instructions per call with callgrind, as in the header of `benches/floor.rs`:
+//!
+//! ```text
+//! cargo bench --bench triad --no-run
+//! BIN=$(ls -t $CARGO_TARGET_DIR/release/deps/triad-* | grep -v '\.d$' | head -1)
+//! valgrind --tool=callgrind --callgrind-out-file=cg.out $BIN --bench --profile-time 1 '^triad/pose/watt2$'
+//! ```
+
+#[path = "../tests/common/mechanisms.rs"]
+#[allow(dead_code)]
+mod mechanisms;
+
+#[path = "../tests/common/triads.rs"]
+mod triads;
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use mechanisms::Watt2;
+use triads::{Stephenson2, StephensonIII};
+
+/// 64 crank angles over a full turn.
+fn angles() -> [f64; 64] {
+    std::array::from_fn(|k| std::f64::consts::TAU * k as f64 / 64.0)
+}
+
+macro_rules! bench_pose {
+    ($g:ident, $name:literal, $ty:ident) => {{
+        let m = black_box($ty::new());
+        let qs = angles();
+        let mut k = 0;
+        $g.bench_function($name, |b| {
+            b.iter(|| {
+                k = (k + 1) & 63;
+                m.pose(black_box(qs[k])).unwrap()
+            })
+        });
+    }};
+}
+
+fn triad(c: &mut Criterion) {
+    let mut g = c.benchmark_group("triad");
+    bench_pose!(g, "pose/stephenson3", StephensonIII);
+    bench_pose!(g, "pose/stephenson2", Stephenson2);
+    bench_pose!(g, "pose/watt2", Watt2);
+    g.finish();
+}
+
+criterion_group!(benches, triad);
+criterion_main!(benches);
