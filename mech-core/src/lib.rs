@@ -37,6 +37,7 @@ pub mod model;
 pub mod plan;
 pub mod runtime;
 pub mod solvers;
+pub mod strength;
 
 pub use error::MechError;
 pub use nalgebra::Vector2;
