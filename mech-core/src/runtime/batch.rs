@@ -7,7 +7,7 @@
 
 use super::mechanism::{Mechanism, Scratch};
 use super::results::LoadValue;
-use super::results::{Loads, Motion, Pose};
+use super::results::{Forces, Loads, Motion, Pose};
 use crate::kernel::constraints::Level;
 use crate::kernel::lanes::{
     acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, LinkLanes, Mask,
@@ -16,7 +16,8 @@ use crate::kernel::lanes::{
 use crate::kernel::link_state::{point_pose, LinkState};
 use crate::plan::assur::Kernel;
 use crate::solvers::batch::{
-    each, each_lanes, each_with, refuse, same_len, BatchErrors, Block, Nan,
+    each, each_lanes, each_with, kinematics_columns, kinetostatics_columns, put_kinematics,
+    put_kinetostatics, refuse, same_len, BatchErrors, Block, Nan, Table,
 };
 use crate::solvers::traits::OneDof;
 use crate::MechError;
@@ -176,14 +177,7 @@ impl Mechanism {
             Ok(r) => r,
             Err(e) => return refuse(e),
         };
-        let motion = || Motion {
-            links: Vec::new(),
-            points: Vec::new(),
-            inputs: SmallVec::new(),
-            states: Vec::new(),
-            model: self.model.clone(),
-        };
-        each_with(rows.0, rows.1, motion, |i, r: &mut Block<f64>, m| {
+        each_with(rows.0, rows.1, || self.empty_motion(), |i, r: &mut Block<f64>, m| {
             let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
             self.kinematics_into(qi, qdi, qddi, m)?;
             r.row(i).copy_from_slice(&self.driver_action(m, loads)?);
@@ -286,6 +280,105 @@ impl Mechanism {
             },
             one,
         )
+    }
+
+    /// A table for [`Mechanism::kinematics_many`] of `n` configurations, every value NaN:
+    /// the columns of [`kinematics_columns`] (every point's `<point>.x`, `.y`, every moving
+    /// link's `<link>.angle`, the points' `.vx`, `.vy`, `.ax`, `.ay`, the links' `.omega`,
+    /// `.alpha`; SI units), made once and reused.
+    pub fn kinematics_table(&self, n: usize) -> Table {
+        Table::with_columns(|c| kinematics_columns(&self.model, c), n)
+    }
+
+    /// A table for [`Mechanism::kinetostatics_many`] of `n` configurations, every value
+    /// NaN: the columns of [`kinetostatics_columns`] (every joint's `<joint>.fx`, `.fy`, a
+    /// prismatic joint's `.moment`, then `driver` or `driver.<joint>`; SI units).
+    pub fn kinetostatics_table(&self, n: usize) -> Table {
+        Table::with_columns(|c| kinetostatics_columns(&self.model, c), n)
+    }
+
+    /// [`Mechanism::kinematics`] at every configuration (q, q̇, q̈) (G values each) into the
+    /// table `out` ([`Mechanism::kinematics_table`] of as many configurations), structure
+    /// of arrays: `out.column("B.x")` holds every configuration's x of B. A configuration
+    /// that fails gets NaN in every column and its index in the returned [`BatchErrors`];
+    /// slices of different lengths or a table of another size or mechanism are refused.
+    /// One motion buffer per chunk.
+    pub fn kinematics_many(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut Table,
+    ) -> BatchErrors {
+        let g = self.dof();
+        let rows = match configs(q, g).and_then(|n| {
+            same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len())?;
+            Ok((n, out.configurations("kinematics", |c| kinematics_columns(&self.model, c), n)?))
+        }) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        each_with(rows.0, rows.1, || self.empty_motion(), |i, r, m| {
+            let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
+            self.kinematics_into(qi, qdi, qddi, m)?;
+            put_kinematics(r, i, m.points.iter(), m.links[1..].iter());
+            Ok(())
+        })
+    }
+
+    /// [`Mechanism::kinetostatics`] (d'Alembert) at every configuration (q, q̇, q̈) (G
+    /// values each) with the same loads into the table `out`
+    /// ([`Mechanism::kinetostatics_table`]): every reaction and the motor actions, one
+    /// column each. A configuration that fails gets NaN in every column and its index in
+    /// the returned [`BatchErrors`]; a mechanism with redundant constraints (no reactions),
+    /// slices of different lengths or a table of another size or mechanism are refused.
+    pub fn kinetostatics_many(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        loads: &Loads,
+        out: &mut Table,
+    ) -> BatchErrors {
+        if self.redundant() {
+            return refuse(MechError::Redundant(
+                "this mechanism has redundant constraints (`#[allow(redundant)]`): its reactions are statically indeterminate; call `driver_action_many` (virtual power)".into(),
+            ));
+        }
+        let g = self.dof();
+        let rows = match configs(q, g).and_then(|n| {
+            same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len())?;
+            Ok((n, out.configurations("kinetostatics", |c| kinetostatics_columns(&self.model, c), n)?))
+        }) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        let scratch = || {
+            let f = Forces {
+                driver: Vec::new(),
+                joints: Vec::new(),
+                model: self.model.clone(),
+            };
+            (self.empty_motion(), f)
+        };
+        each_with(rows.0, rows.1, scratch, |i, r, (m, f)| {
+            let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
+            self.kinematics_into(qi, qdi, qddi, m)?;
+            self.kinetostatics_into(m, loads, None, f)?;
+            put_kinetostatics(r, i, f.joints.iter().map(|j| (j.force, j.moment)), &f.driver);
+            Ok(())
+        })
+    }
+
+    /// A motion with empty buffers: the scratch of a chunk.
+    fn empty_motion(&self) -> Motion {
+        Motion {
+            links: Vec::new(),
+            points: Vec::new(),
+            inputs: SmallVec::new(),
+            states: Vec::new(),
+            model: self.model.clone(),
+        }
     }
 
     /// Four configurations of a one-input mechanism through the lane kernels of its plan

@@ -75,6 +75,7 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
     } else {
         quote!()
     };
+    let tables = table_fns(cx);
     quote! {
         #nan
         impl #main {
@@ -82,6 +83,7 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
             #lanes
             #many
             #one_dof
+            #tables
         }
     }
 }
@@ -331,5 +333,125 @@ fn points_lanes(cx: &Ctx) -> TokenStream {
             }
             mask
         }, |i, r| self.__points(q[i], r.row(i)))
+    }
+}
+
+/// The names and units of a table's columns (`mech_core::solvers::batch::kinematics_columns`
+/// or `kinetostatics_columns` on this mechanism's model).
+fn columns(
+    cx: &Ctx,
+    of: fn(&mech_core::model::Model, &mut dyn FnMut(&str, &str, &'static str)),
+) -> (Vec<String>, Vec<&'static str>) {
+    let (mut names, mut units) = (Vec::new(), Vec::new());
+    of(cx.model, &mut |a, b, u| {
+        names.push(format!("{a}{b}"));
+        units.push(u);
+    });
+    (names, units)
+}
+
+/// `kinematics_many` and, without redundant constraints, `kinetostatics_many`: structure-of-
+/// arrays tables (`mech::batch::Table`) with their column constants and constructors, each
+/// configuration through the one-configuration solvers and mech-core's `put_kinematics` /
+/// `put_kinetostatics`.
+fn table_fns(cx: &Ctx) -> TokenStream {
+    let Ctx {
+        p,
+        q_ty,
+        point_ids,
+        ..
+    } = cx;
+    let b = quote!(#p::batch);
+    let loads = &cx.names.loads;
+    let (kn, ku) = columns(cx, mech_core::solvers::batch::kinematics_columns);
+    let moving = cx.moving_ids();
+    let kinematics = quote! {
+        /// The columns of `kinematics_many`'s table, in order: every point's `<point>.x`,
+        /// `.y` (m), every moving link's `<link>.angle` (rad), every point's `.vx`, `.vy`
+        /// (m/s), `.ax`, `.ay` (m/s²), every moving link's `.omega` (rad/s), `.alpha`
+        /// (rad/s²): the names of the `mech sweep` CSV.
+        pub const KINEMATICS_COLUMNS: &'static [&'static str] = &[#(#kn),*];
+        /// The SI unit of each of `KINEMATICS_COLUMNS`.
+        pub const KINEMATICS_UNITS: &'static [&'static str] = &[#(#ku),*];
+
+        /// A table for `kinematics_many` of `n` configurations (`KINEMATICS_COLUMNS`, every
+        /// value NaN), made once and reused.
+        pub fn kinematics_table(&self, n: usize) -> #b::Table {
+            #b::Table::new(Self::KINEMATICS_COLUMNS, Self::KINEMATICS_UNITS, n)
+        }
+
+        /// `kinematics` at every configuration (q, q̇, q̈) into the table `out`
+        /// (`kinematics_table(q.len())`), structure of arrays: `out.column("B.x")` holds
+        /// every configuration's x of B, one after the other. A configuration that fails
+        /// gets NaN in every column and its index in the returned `BatchErrors`; slices of
+        /// different lengths or a table of another size or mechanism are refused, nothing
+        /// written.
+        pub fn kinematics_many(&self, q: &[#q_ty], qd: &[#q_ty], qdd: &[#q_ty], out: &mut #b::Table) -> #b::BatchErrors {
+            let rows = match #b::same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len()).and_then(|()| {
+                out.configurations("kinematics", #b::named(Self::KINEMATICS_COLUMNS, Self::KINEMATICS_UNITS), q.len())
+            }) {
+                Ok(r) => r,
+                Err(e) => return #b::refuse(e),
+            };
+            #b::each(q.len(), rows, |i, r| {
+                let m = self.kinematics(q[i], qd[i], qdd[i])?;
+                #b::put_kinematics(r, i, [#(&m.points.#point_ids),*], [#(&m.links.#moving),*]);
+                Ok(())
+            })
+        }
+    };
+    if cx.redundant() {
+        return kinematics;
+    }
+    let (fn_, fu) = columns(cx, mech_core::solvers::batch::kinetostatics_columns);
+    let joints = cx.model.joints.iter().zip(&cx.joint_ids).map(|(j, jid)| {
+        if j.kind == mech_core::model::JointKind::Prismatic {
+            quote!((f.joints.#jid.force, Some(f.joints.#jid.moment)))
+        } else {
+            quote!((f.joints.#jid.force, None))
+        }
+    });
+    let driver = if cx.one_dof() {
+        quote!(&[f.driver])
+    } else {
+        quote!(&f.driver)
+    };
+    quote! {
+        #kinematics
+
+        /// The columns of `kinetostatics_many`'s table, in order: every joint's reaction
+        /// `<joint>.fx`, `.fy` (N, by its first link on its second) and, for a prismatic
+        /// joint, `<joint>.moment` (N·m); then the motor actions, `driver` (one input) or
+        /// `driver.<joint>` (N·m or N): the names of the `mech sweep` CSV.
+        pub const KINETOSTATICS_COLUMNS: &'static [&'static str] = &[#(#fn_),*];
+        /// The SI unit of each of `KINETOSTATICS_COLUMNS`.
+        pub const KINETOSTATICS_UNITS: &'static [&'static str] = &[#(#fu),*];
+
+        /// A table for `kinetostatics_many` of `n` configurations
+        /// (`KINETOSTATICS_COLUMNS`, every value NaN), made once and reused.
+        pub fn kinetostatics_table(&self, n: usize) -> #b::Table {
+            #b::Table::new(Self::KINETOSTATICS_COLUMNS, Self::KINETOSTATICS_UNITS, n)
+        }
+
+        /// `kinetostatics` (d'Alembert) at every configuration (q, q̇, q̈) with the same
+        /// loads into the table `out` (`kinetostatics_table(q.len())`), structure of
+        /// arrays: every reaction and the motor actions, one column each. A configuration
+        /// that fails gets NaN in every column and its index in the returned
+        /// `BatchErrors`; slices of different lengths or a table of another size or
+        /// mechanism are refused, nothing written.
+        pub fn kinetostatics_many(&self, q: &[#q_ty], qd: &[#q_ty], qdd: &[#q_ty], loads: &#loads, out: &mut #b::Table) -> #b::BatchErrors {
+            let rows = match #b::same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len()).and_then(|()| {
+                out.configurations("kinetostatics", #b::named(Self::KINETOSTATICS_COLUMNS, Self::KINETOSTATICS_UNITS), q.len())
+            }) {
+                Ok(r) => r,
+                Err(e) => return #b::refuse(e),
+            };
+            #b::each(q.len(), rows, |i, r| {
+                let m = self.kinematics(q[i], qd[i], qdd[i])?;
+                let f = self.kinetostatics(&m, loads)?;
+                #b::put_kinetostatics(r, i, [#(#joints),*], #driver);
+                Ok(())
+            })
+        }
     }
 }
