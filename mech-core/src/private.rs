@@ -97,6 +97,6 @@ pub mod batch {
 pub mod lanes {
     pub use crate::kernel::lanes::{
         acceleration_lanes, any, or, point_lanes, solve_chain_lanes, solve_driven_lanes, with_simd,
-        LinkLanes, Mask, ZhukovskiLanes, L, LANES, NONE,
+        Backend, Base, LinkLanes, Mask, Wide, ZhukovskiLanes, L, LANES, NONE,
     };
 }

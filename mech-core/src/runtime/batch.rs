@@ -10,8 +10,8 @@ use super::results::LoadValue;
 use super::results::{Forces, Loads, Motion, Pose};
 use crate::kernel::constraints::Level;
 use crate::kernel::lanes::{
-    acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, LinkLanes, Mask,
-    ZhukovskiLanes, L, NONE,
+    acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, Backend, Base,
+    LinkLanes, Mask, Wide, ZhukovskiLanes, L, NONE,
 };
 use crate::kernel::link_state::{point_pose, LinkState};
 use crate::plan::assur::Kernel;
@@ -32,12 +32,12 @@ impl Nan for Pose {
 
 /// Four consecutive values from `x[i]` as one lane value.
 #[inline(always)]
-fn four(x: &[f64], i: usize) -> L {
-    L([x[i], x[i + 1], x[i + 2], x[i + 3]])
+fn four<B: Backend>(x: &[f64], i: usize) -> L<B> {
+    L::new([x[i], x[i + 1], x[i + 2], x[i + 3]])
 }
 
 /// The lane states of a mechanism's links, on the stack up to eight links.
-type LaneStates = smallvec::SmallVec<[LinkLanes; 8]>;
+type LaneStates<B> = smallvec::SmallVec<[LinkLanes<B>; 8]>;
 
 /// The most points the run-time `points_many` takes four configurations at once (more go
 /// one by one).
@@ -124,28 +124,9 @@ impl Mechanism {
                 rows.0,
                 rows.1,
                 #[inline(always)]
-                |i, r: &mut Block<f64>| {
-                    let zero = L::splat(0.0);
-                    let (s, mut mask) = self.solve_lanes(four(q, i), zero, zero, Level::Position);
-                    let mut sum = zero;
-                    let mut xy = [[zero; 2]; MAX_LANE_POINTS];
-                    for (k, &(o, d)) in self.inst.points.iter().enumerate() {
-                        xy[k] = point_lanes(&s, o, d);
-                        sum = sum + xy[k][0] + xy[k][1];
-                    }
-                    // A NaN or infinite coordinate makes the sum non-finite.
-                    mask = or(mask, sum.not_finite());
-                    for (lane, &masked) in mask.iter().enumerate() {
-                        if !masked {
-                            let row = r.row(i + lane);
-                            for (k, p) in xy[..np].iter().enumerate() {
-                                row[2 * k] = p[0].0[lane];
-                                row[2 * k + 1] = p[1].0[lane];
-                            }
-                        }
-                    }
-                    mask
-                },
+                |i, r: &mut Block<f64>| self.points_four::<Base>(q, i, r),
+                #[inline(always)]
+                |i, r: &mut Block<f64>| self.points_four::<Wide>(q, i, r),
                 |i, r: &mut Block<f64>| self.points_into(&q[i..i + 1], &mut Vec::new(), r.row(i)),
             );
         }
@@ -217,20 +198,9 @@ impl Mechanism {
             n,
             rows,
             #[inline(always)]
-            |i, (a, b): &mut (Block<f64>, Block<f64>)| {
-                let (one, zero) = (L::splat(1.0), L::splat(0.0));
-                let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
-                let z = self.sums_lanes(&s, None);
-                let bad = or(z.inertia.not_finite(), z.inertia_derivative.not_finite());
-                let mask = or(mask, bad);
-                for (lane, &masked) in mask.iter().enumerate() {
-                    if !masked {
-                        *a.at(i + lane) = z.inertia.0[lane];
-                        *b.at(i + lane) = z.inertia_derivative.0[lane];
-                    }
-                }
-                mask
-            },
+            |i, r: &mut (Block<f64>, Block<f64>)| self.reduced_four::<Base>(q, i, r),
+            #[inline(always)]
+            |i, r: &mut (Block<f64>, Block<f64>)| self.reduced_four::<Wide>(q, i, r),
             one,
         )
     }
@@ -261,23 +231,14 @@ impl Mechanism {
         if !self.lanes {
             return each(n, rows, one);
         }
+        let four = (q, qd, driver, loads);
         each_lanes(
             n,
             rows,
             #[inline(always)]
-            |i, r: &mut Block<f64>| {
-                let (one, zero) = (L::splat(1.0), L::splat(0.0));
-                let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
-                let z = self.sums_lanes(&s, Some(loads));
-                let (acc, failed) = acceleration_lanes(&z, four(qd, i), four(driver, i));
-                let mask = or(mask, failed);
-                for (lane, &masked) in mask.iter().enumerate() {
-                    if !masked {
-                        *r.at(i + lane) = acc.0[lane];
-                    }
-                }
-                mask
-            },
+            |i, r: &mut Block<f64>| self.acceleration_four::<Base>(four, i, r),
+            #[inline(always)]
+            |i, r: &mut Block<f64>| self.acceleration_four::<Wide>(four, i, r),
             one,
         )
     }
@@ -381,11 +342,82 @@ impl Mechanism {
         }
     }
 
+    /// `points_many`'s four configurations from `q[i]` on backend `B`: the points of the
+    /// lanes not masked into their rows, and the mask.
+    #[inline(always)]
+    fn points_four<B: Backend>(&self, q: &[f64], i: usize, r: &mut Block<f64>) -> Mask {
+        let np = self.inst.points.len();
+        let zero = L::<B>::splat(0.0);
+        let (s, mut mask) = self.solve_lanes(four(q, i), zero, zero, Level::Position);
+        let mut sum = zero;
+        let mut xy = [[zero; 2]; MAX_LANE_POINTS];
+        for (k, &(o, d)) in self.inst.points.iter().enumerate() {
+            xy[k] = point_lanes(&s, o, d);
+            sum = sum + xy[k][0] + xy[k][1];
+        }
+        // A NaN or infinite coordinate makes the sum non-finite.
+        mask = or(mask, sum.not_finite());
+        for (lane, &masked) in mask.iter().enumerate() {
+            if !masked {
+                let row = r.row(i + lane);
+                for (k, p) in xy[..np].iter().enumerate() {
+                    row[2 * k] = p[0].0[lane];
+                    row[2 * k + 1] = p[1].0[lane];
+                }
+            }
+        }
+        mask
+    }
+
+    /// `reduced_many`'s four configurations from `q[i]` on backend `B`.
+    #[inline(always)]
+    fn reduced_four<B: Backend>(
+        &self,
+        q: &[f64],
+        i: usize,
+        (a, b): &mut (Block<f64>, Block<f64>),
+    ) -> Mask {
+        let (one, zero) = (L::<B>::splat(1.0), L::splat(0.0));
+        let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
+        let z = self.sums_lanes(&s, None);
+        let bad = or(z.inertia.not_finite(), z.inertia_derivative.not_finite());
+        let mask = or(mask, bad);
+        for (lane, &masked) in mask.iter().enumerate() {
+            if !masked {
+                *a.at(i + lane) = z.inertia.0[lane];
+                *b.at(i + lane) = z.inertia_derivative.0[lane];
+            }
+        }
+        mask
+    }
+
+    /// `acceleration_many`'s four configurations from index `i` of (q, q̇, driver) with
+    /// `loads` on backend `B`.
+    #[inline(always)]
+    fn acceleration_four<B: Backend>(
+        &self,
+        (q, qd, driver, loads): (&[f64], &[f64], &[f64], &Loads),
+        i: usize,
+        r: &mut Block<f64>,
+    ) -> Mask {
+        let (one, zero) = (L::<B>::splat(1.0), L::splat(0.0));
+        let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
+        let z = self.sums_lanes(&s, Some(loads));
+        let (acc, failed) = acceleration_lanes(&z, four(qd, i), four(driver, i));
+        let mask = or(mask, failed);
+        for (lane, &masked) in mask.iter().enumerate() {
+            if !masked {
+                *r.at(i + lane) = acc.0[lane];
+            }
+        }
+        mask
+    }
+
     /// Four configurations of a one-input mechanism through the lane kernels of its plan
     /// (every group a driven crank or slider, an RRR or an RRP dyad: `Mechanism::lanes`),
     /// and the mask of the lanes the one-configuration solver must redo.
     #[inline(always)]
-    fn solve_lanes(&self, q: L, qd: L, qdd: L, upto: Level) -> (LaneStates, Mask) {
+    fn solve_lanes<B: Backend>(&self, q: L<B>, qd: L<B>, qdd: L<B>, upto: Level) -> (LaneStates<B>, Mask) {
         let mut s = LaneStates::from_elem(LinkLanes::default(), self.inst.links.len());
         let joints = &self.inst.joints[..];
         let mut mask = NONE;
@@ -405,7 +437,7 @@ impl Mechanism {
     /// Zhukovski's sums over four configurations' motion with q̇ = 1, q̈ = 0: the lane twin
     /// of the run-time sums (no force element: `Mechanism::lanes`); M* only with `loads`.
     #[inline(always)]
-    fn sums_lanes(&self, s: &[LinkLanes], loads: Option<&Loads>) -> ZhukovskiLanes {
+    fn sums_lanes<B: Backend>(&self, s: &[LinkLanes<B>], loads: Option<&Loads>) -> ZhukovskiLanes<B> {
         let mut z = ZhukovskiLanes::new();
         for (l, t) in self.terms.iter().enumerate().skip(1) {
             let geom = &self.inst.links[l];

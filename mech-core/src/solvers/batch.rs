@@ -591,43 +591,61 @@ pub fn each_with<R: Rows, S>(
 }
 
 /// [`each`] through a lane kernel: `four(i, &mut rows)` computes configurations `i..i + 4`
-/// at once ([`crate::kernel::lanes`]), writes the rows of the lanes it does not mask and
-/// returns the mask; every masked lane, and the last configurations of a chunk that do not
-/// fill four lanes, go through `one(i, &mut rows)`, the one-configuration solver, whose
-/// answer (a value or an error) is then the batch's. The chunk runs in
-/// [`crate::kernel::lanes::with_simd`].
+/// at once ([`crate::kernel::lanes`]) on the [`Base`](crate::kernel::lanes::Base) backend,
+/// `wide` the same on the [`Wide`](crate::kernel::lanes::Wide) one (the kernel compiled
+/// twice: one generic function called as `f::<Base>` and `f::<Wide>`); each writes the rows
+/// of the lanes it does not mask and returns the mask; every masked lane, and the last
+/// configurations of a chunk that do not fill four lanes, go through `one(i, &mut rows)`,
+/// the one-configuration solver, whose answer (a value or an error) is then the batch's.
+/// A chunk runs `wide` where the processor has AVX2 and FMA
+/// ([`crate::kernel::lanes::with_simd`]), `four` otherwise.
 pub fn each_lanes<R: Rows>(
     n: usize,
     rows: R,
     four: impl Fn(usize, &mut R) -> Mask + Sync,
+    wide: impl Fn(usize, &mut R) -> Mask + Sync,
     one: impl Fn(usize, &mut R) -> Result<(), MechError> + Sync,
 ) -> BatchErrors {
     chunks(n, rows, &|range, rows: &mut R, errors: &mut BatchErrors| {
-        let scalar = |i: usize, rows: &mut R, errors: &mut BatchErrors| {
-            if let Err(e) = one(i, rows) {
-                rows.fail(i);
-                errors.push(i, e);
-            }
-        };
         with_simd(
+            (rows, errors),
             #[inline(always)]
-            || {
-                let mut i = range.start;
-                while i + LANES <= range.end {
-                    let mask = four(i, rows);
-                    for (k, &masked) in mask.iter().enumerate() {
-                        if masked {
-                            scalar(i + k, rows, errors);
-                        }
-                    }
-                    i += LANES;
-                }
-                for j in i..range.end {
-                    scalar(j, rows, errors);
-                }
-            },
+            |(rows, errors)| lanes_chunk(range.clone(), rows, errors, &four, &one),
+            #[inline(always)]
+            |(rows, errors)| lanes_chunk(range.clone(), rows, errors, &wide, &one),
         )
     })
+}
+
+/// The configurations `range` four by four through `four`, the masked lanes and the tail
+/// through `one`.
+#[inline(always)]
+fn lanes_chunk<R: Rows>(
+    range: std::ops::Range<usize>,
+    rows: &mut R,
+    errors: &mut BatchErrors,
+    four: &impl Fn(usize, &mut R) -> Mask,
+    one: &impl Fn(usize, &mut R) -> Result<(), MechError>,
+) {
+    let mut scalar = |i: usize, rows: &mut R| {
+        if let Err(e) = one(i, rows) {
+            rows.fail(i);
+            errors.push(i, e);
+        }
+    };
+    let mut i = range.start;
+    while i + LANES <= range.end {
+        let mask = four(i, rows);
+        for (k, &masked) in mask.iter().enumerate() {
+            if masked {
+                scalar(i + k, rows);
+            }
+        }
+        i += LANES;
+    }
+    for j in i..range.end {
+        scalar(j, rows);
+    }
 }
 
 /// The configurations `range` of one chunk, computed into its rows, failures recorded.

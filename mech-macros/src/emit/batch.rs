@@ -41,17 +41,18 @@ fn solve_lanes_fn(cx: &Ctx) -> TokenStream {
         }
     });
     quote! {
-        /// Four configurations at once: every group's lane kernel in plan order
-        /// (`mech::__private::lanes`), and the mask of the lanes that failed or may fail.
+        /// Four configurations at once on the lane backend `B`: every group's lane kernel
+        /// in plan order (`mech::__private::lanes`), and the mask of the lanes that failed
+        /// or may fail.
         #[inline(always)]
-        fn __solve_lanes(
+        fn __solve_lanes<B: #l::Backend>(
             &self,
-            q: &[#l::L; #dof],
-            qd: &[#l::L; #dof],
-            qdd: &[#l::L; #dof],
+            q: &[#l::L<B>; #dof],
+            qd: &[#l::L<B>; #dof],
+            qdd: &[#l::L<B>; #dof],
             upto: #p::kinematics::Level,
-        ) -> ([#l::LinkLanes; #n_links], #l::Mask) {
-            let mut s = [#l::LinkLanes::default(); #n_links];
+        ) -> ([#l::LinkLanes<B>; #n_links], #l::Mask) {
+            let mut s = [#l::LinkLanes::<B>::default(); #n_links];
             let joints = self.__joints();
             let mut mask = #l::NONE;
             #(#calls)*
@@ -70,7 +71,10 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
     } else {
         quote!()
     };
-    let lanes = if lanes(cx) {
+    let lanes = if lanes(cx) && cx.one_dof() {
+        let (solve, four) = (solve_lanes_fn(cx), four_fns(cx));
+        quote!(#solve #four)
+    } else if lanes(cx) {
         solve_lanes_fn(cx)
     } else {
         quote!()
@@ -225,43 +229,19 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
         Ok(())
     });
     let (reduced_body, acceleration_body) = if lanes(cx) {
-        let (inertia, moment) = super::traits::zhukovski_terms(cx);
-        let solve = quote! {
-            let qv = #l::L([q[i], q[i + 1], q[i + 2], q[i + 3]]);
-            let (s, mask) = self.__solve_lanes(&[qv], &[#l::L::splat(1.0)], &[#l::L::splat(0.0)], #p::kinematics::Level::Acceleration);
-            let mut z = #l::ZhukovskiLanes::new();
-            #inertia
-        };
         (
             quote! {
-                #b::each_lanes(q.len(), rows, #[inline(always)] |i, (a, d): &mut (#b::Block<f64>, #b::Block<f64>)| {
-                    #solve
-                    let #l::ZhukovskiLanes { inertia: ii, inertia_derivative: di, .. } = z;
-                    let mask = #l::or(mask, #l::or(ii.not_finite(), di.not_finite()));
-                    for k in 0..#l::LANES {
-                        if !mask[k] {
-                            *a.at(i + k) = ii.0[k];
-                            *d.at(i + k) = di.0[k];
-                        }
-                    }
-                    mask
-                }, #red_one)
+                #b::each_lanes(q.len(), rows,
+                    #[inline(always)] |i, r: &mut (#b::Block<f64>, #b::Block<f64>)| self.__reduced_four::<#l::Base>(q, i, r),
+                    #[inline(always)] |i, r: &mut (#b::Block<f64>, #b::Block<f64>)| self.__reduced_four::<#l::Wide>(q, i, r),
+                    #red_one)
             },
             quote! {
-                #b::each_lanes(q.len(), rows, #[inline(always)] |i, r: &mut #b::Block<f64>| {
-                    #solve
-                    #moment
-                    let qdv = #l::L([qd[i], qd[i + 1], qd[i + 2], qd[i + 3]]);
-                    let dv = #l::L([driver[i], driver[i + 1], driver[i + 2], driver[i + 3]]);
-                    let (acc, failed) = #l::acceleration_lanes(&z, qdv, dv);
-                    let mask = #l::or(mask, failed);
-                    for k in 0..#l::LANES {
-                        if !mask[k] {
-                            *r.at(i + k) = acc.0[k];
-                        }
-                    }
-                    mask
-                }, #acc_one)
+                let x = (q, qd, driver);
+                #b::each_lanes(q.len(), rows,
+                    #[inline(always)] |i, r: &mut #b::Block<f64>| self.__acceleration_four::<#l::Base>(x, loads, i, r),
+                    #[inline(always)] |i, r: &mut #b::Block<f64>| self.__acceleration_four::<#l::Wide>(x, loads, i, r),
+                    #acc_one)
             },
         )
     } else {
@@ -300,21 +280,47 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
 }
 
 /// `points_many`'s body through the lane kernels (one input): four configurations'
-/// points at once, the masked lanes and the tail by `__points`.
+/// points at once (`__points_four` on both lane backends), the masked lanes and the tail by
+/// `__points`.
 fn points_lanes(cx: &Ctx) -> TokenStream {
     let p = &cx.p;
     let (b, l) = (quote!(#p::batch), quote!(#p::lanes));
+    quote! {
+        #b::each_lanes(q.len(), rows,
+            #[inline(always)] |i, r: &mut #b::Block<f64>| self.__points_four::<#l::Base>(q, i, r),
+            #[inline(always)] |i, r: &mut #b::Block<f64>| self.__points_four::<#l::Wide>(q, i, r),
+            |i, r| self.__points(q[i], r.row(i)))
+    }
+}
+
+/// The four-configuration bodies of `points_many`, `reduced_many` and `acceleration_many`
+/// (one input, every group with a lane kernel), generic over the lane backend `B` so that
+/// `each_lanes` runs them on 128-bit (`Base`) or 256-bit (`Wide`) registers.
+fn four_fns(cx: &Ctx) -> TokenStream {
+    let p = &cx.p;
+    let (b, l) = (quote!(#p::batch), quote!(#p::lanes));
+    let loads = &cx.names.loads;
     let np = cx.n_points;
     let pts = owners(cx).into_iter().enumerate().map(|(pt, o)| match o {
         Owner::Anchor(k) => quote!([s[#k].pos.x, s[#k].pos.y]),
         Owner::Local(k) => quote!(#l::point_lanes(&s, #k, self.points[#pt])),
     });
+    let (inertia, moment) = super::traits::zhukovski_terms(cx);
+    let solve = quote! {
+        let qv = #l::L::<B>::new([q[i], q[i + 1], q[i + 2], q[i + 3]]);
+        let (s, mask) = self.__solve_lanes(&[qv], &[#l::L::splat(1.0)], &[#l::L::splat(0.0)], #p::kinematics::Level::Acceleration);
+        let mut z = #l::ZhukovskiLanes::<B>::new();
+        #inertia
+    };
     quote! {
-        #b::each_lanes(q.len(), rows, #[inline(always)] |i, r: &mut #b::Block<f64>| {
-            let qv = #l::L([q[i], q[i + 1], q[i + 2], q[i + 3]]);
+        /// `points_many`'s four configurations from `q[i]` on the lane backend `B`: the
+        /// points of the lanes not masked into their rows, and the mask.
+        #[inline(always)]
+        fn __points_four<B: #l::Backend>(&self, q: &[f64], i: usize, r: &mut #b::Block<f64>) -> #l::Mask {
+            let qv = #l::L::<B>::new([q[i], q[i + 1], q[i + 2], q[i + 3]]);
             let zero = #l::L::splat(0.0);
             let (s, mut mask) = self.__solve_lanes(&[qv], &[zero], &[zero], #p::kinematics::Level::Position);
-            let pts: [[#l::L; 2]; #np] = [#(#pts),*];
+            let pts: [[#l::L<B>; 2]; #np] = [#(#pts),*];
             // One test for every coordinate: their sum is not finite where one is (or
             // where it overflows, a lane the scalar path then redoes).
             let mut sum = #l::L::splat(0.0);
@@ -332,7 +338,40 @@ fn points_lanes(cx: &Ctx) -> TokenStream {
                 }
             }
             mask
-        }, |i, r| self.__points(q[i], r.row(i)))
+        }
+
+        /// `reduced_many`'s four configurations from `q[i]` on the lane backend `B`.
+        #[inline(always)]
+        fn __reduced_four<B: #l::Backend>(&self, q: &[f64], i: usize, (a, d): &mut (#b::Block<f64>, #b::Block<f64>)) -> #l::Mask {
+            #solve
+            let #l::ZhukovskiLanes { inertia: ii, inertia_derivative: di, .. } = z;
+            let mask = #l::or(mask, #l::or(ii.not_finite(), di.not_finite()));
+            for k in 0..#l::LANES {
+                if !mask[k] {
+                    *a.at(i + k) = ii.0[k];
+                    *d.at(i + k) = di.0[k];
+                }
+            }
+            mask
+        }
+
+        /// `acceleration_many`'s four configurations from index `i` of (q, q̇, driver) on
+        /// the lane backend `B`.
+        #[inline(always)]
+        fn __acceleration_four<B: #l::Backend>(&self, (q, qd, driver): (&[f64], &[f64], &[f64]), loads: &#loads, i: usize, r: &mut #b::Block<f64>) -> #l::Mask {
+            #solve
+            #moment
+            let qdv = #l::L::new([qd[i], qd[i + 1], qd[i + 2], qd[i + 3]]);
+            let dv = #l::L::new([driver[i], driver[i + 1], driver[i + 2], driver[i + 3]]);
+            let (acc, failed) = #l::acceleration_lanes(&z, qdv, dv);
+            let mask = #l::or(mask, failed);
+            for k in 0..#l::LANES {
+                if !mask[k] {
+                    *r.at(i + k) = acc.0[k];
+                }
+            }
+            mask
+        }
     }
 }
 
