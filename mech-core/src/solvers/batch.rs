@@ -174,6 +174,13 @@ impl<'a, T> Block<'a, T> {
         let k = (i - self.first) * self.width;
         &mut self.data[k..k + self.width]
     }
+    /// The rows of configurations `i..i + k`, one after the other (`k × width` slots: four
+    /// rows a lane kernel writes at once).
+    #[inline(always)]
+    pub fn rows(&mut self, i: usize, k: usize) -> &mut [T] {
+        let at = (i - self.first) * self.width;
+        &mut self.data[at..at + k * self.width]
+    }
     /// The first slot of configuration `i`'s row (a one-slot row).
     #[inline(always)]
     pub fn at(&mut self, i: usize) -> &mut T {

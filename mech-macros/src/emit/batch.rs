@@ -300,7 +300,7 @@ fn four_fns(cx: &Ctx) -> TokenStream {
     let p = &cx.p;
     let (b, l) = (quote!(#p::batch), quote!(#p::lanes));
     let loads = &cx.names.loads;
-    let np = cx.n_points;
+    let (np, np2) = (cx.n_points, 2 * cx.n_points);
     let pts = owners(cx).into_iter().enumerate().map(|(pt, o)| match o {
         Owner::Anchor(k) => quote!([s[#k].pos.x, s[#k].pos.y]),
         Owner::Local(k) => quote!(#l::point_lanes(&s, #k, self.points[#pt])),
@@ -317,9 +317,9 @@ fn four_fns(cx: &Ctx) -> TokenStream {
         /// points of the lanes not masked into their rows, and the mask.
         #[inline(always)]
         fn __points_four<B: #l::Backend>(&self, q: &[f64], i: usize, r: &mut #b::Block<f64>) -> #l::Mask {
-            let qv = #l::L::<B>::new([q[i], q[i + 1], q[i + 2], q[i + 3]]);
+            let q4: [f64; #l::LANES] = q[i..i + #l::LANES].try_into().expect("four configurations");
             let zero = #l::L::splat(0.0);
-            let (s, mut mask) = self.__solve_lanes(&[qv], &[zero], &[zero], #p::kinematics::Level::Position);
+            let (s, mut mask) = self.__solve_lanes(&[#l::L::<B>::new(q4)], &[zero], &[zero], #p::kinematics::Level::Position);
             let pts: [[#l::L<B>; 2]; #np] = [#(#pts),*];
             // One test for every coordinate: their sum is not finite where one is (or
             // where it overflows, a lane the scalar path then redoes).
@@ -328,12 +328,24 @@ fn four_fns(cx: &Ctx) -> TokenStream {
                 sum += xy[0] + xy[1];
             }
             mask = #l::or(mask, sum.not_finite());
+            // Each point's (x, y) per configuration: pairs[j][k] for point j, lane k.
+            let pairs: [[[f64; 2]; #l::LANES]; #np] = ::core::array::from_fn(|j| pts[j][0].pairs(pts[j][1]));
+            if !#l::any(mask) {
+                // The four rows at once, their slots known: no test per slot.
+                let rows: &mut [f64; #l::LANES * #np2] = r.rows(i, #l::LANES).try_into().expect("four rows");
+                for k in 0..#l::LANES {
+                    for j in 0..#np {
+                        let at = k * #np2 + 2 * j;
+                        rows[at..at + 2].copy_from_slice(&pairs[j][k]);
+                    }
+                }
+                return mask;
+            }
             for k in 0..#l::LANES {
                 if !mask[k] {
                     let row = r.row(i + k);
-                    for (j, xy) in pts.iter().enumerate() {
-                        row[2 * j] = xy[0].0[k];
-                        row[2 * j + 1] = xy[1].0[k];
+                    for j in 0..#np {
+                        row[2 * j..2 * j + 2].copy_from_slice(&pairs[j][k]);
                     }
                 }
             }

@@ -402,6 +402,13 @@ pub trait Backend: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 
     /// For `t` = k + 1.5·2⁵² (k whole): all ones where k is odd; the sign bit where
     /// k mod 4 ∈ {2, 3}; the sign bit where k mod 4 ∈ {1, 2} (the quadrant of [`sin_cos`]).
     fn quadrant(t: Self::R) -> (Self::R, Self::R, Self::R);
+    /// Lane by lane, the pairs (x, y): the rows of a structure of arrays (x, y) turned
+    /// into an array of structures.
+    #[inline(always)]
+    fn pairs(x: Self::R, y: Self::R) -> [[f64; 2]; 4] {
+        let (x, y) = (Self::store(x), Self::store(y));
+        [[x[0], y[0]], [x[1], y[1]], [x[2], y[2]], [x[3], y[3]]]
+    }
 }
 
 /// The portable backend: two SSE2 registers (`__m128d`) on x86-64, part of its baseline;
@@ -555,6 +562,14 @@ mod wide {
                 )
             })
         }
+        /// Two unpacks: (x₀ y₀ x₂ y₂) and (x₁ y₁ x₃ y₃), each pair a 128-bit half.
+        #[inline(always)]
+        fn pairs(x: __m256d, y: __m256d) -> [[f64; 2]; 4] {
+            let (lo, hi) = avx!((_mm256_unpacklo_pd(x, y), _mm256_unpackhi_pd(x, y)));
+            // SAFETY: two __m256d are 64 bytes of f64 values, as [[f64; 2]; 4].
+            let [a, b, c, d] = unsafe { core::mem::transmute::<[__m256d; 2], [[f64; 2]; 4]>([lo, hi]) };
+            [a, c, b, d]
+        }
     }
 }
 
@@ -630,6 +645,12 @@ impl<B: Backend> L<B> {
     #[inline(always)]
     fn cmp(self, o: L<B>, f: impl Fn(B::R, B::R) -> B::R) -> Bits<B> {
         Bits(f(self.r(), o.r()))
+    }
+    /// Lane by lane, the pairs (x, y) of `x` = `self` and `y` (a point's coordinates per
+    /// configuration, in the order a row of `points_many` holds them).
+    #[inline(always)]
+    pub fn pairs(self, y: L<B>) -> [[f64; 2]; LANES] {
+        B::pairs(self.r(), y.r())
     }
     /// The same value `x` in every lane.
     #[inline(always)]
