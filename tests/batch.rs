@@ -440,7 +440,11 @@ fn a_batch_on_the_calling_thread_does_not_allocate() {
         0,
         "kinetostatics_many"
     );
-    assert!(kin.values().iter().chain(kst.values()).all(|v| v.is_finite()));
+    assert!(kin
+        .values()
+        .iter()
+        .chain(kst.values())
+        .all(|v| v.is_finite()));
     // The run-time twins allocate a motion (and forces) per chunk, not per configuration:
     // as many allocations for 1000 configurations as for 10.
     let rt = Mechanism::from_rust_source(MECHANISMS, "FourBar").unwrap();
@@ -450,11 +454,17 @@ fn a_batch_on_the_calling_thread_does_not_allocate() {
         let (q, qd, qdd) = (&q[..k], &qd[..k], &driver[..k]);
         (
             count(&mut || rt.kinematics_many(q, qd, qdd, &mut kin).is_empty()),
-            count(&mut || rt.kinetostatics_many(q, qd, qdd, &rt_loads, &mut kst).is_empty()),
+            count(&mut || {
+                rt.kinetostatics_many(q, qd, qdd, &rt_loads, &mut kst)
+                    .is_empty()
+            }),
         )
     };
     let (few, many) = (runtime(10), runtime(n));
-    assert_eq!(few, many, "run-time allocations for 10 and {n} configurations");
+    assert_eq!(
+        few, many,
+        "run-time allocations for 10 and {n} configurations"
+    );
 }
 
 /// Loads set on a generated struct's and a run-time mechanism's loads alike, by name: a
@@ -525,8 +535,13 @@ macro_rules! tables_batch {
         let mut kst = m.kinetostatics_table(n);
         let ferrs = m.kinetostatics_many(&q, &qd, &qdd, &loads, &mut kst);
         let mut rt_kst = rt.kinetostatics_table(n);
-        let rt_ferrs =
-            rt.kinetostatics_many(&$flat(&q), &$flat(&qd), &$flat(&qdd), &rt_loads, &mut rt_kst);
+        let rt_ferrs = rt.kinetostatics_many(
+            &$flat(&q),
+            &$flat(&qd),
+            &$flat(&qdd),
+            &rt_loads,
+            &mut rt_kst,
+        );
         assert_eq!(rt_kst.names(), kst.names());
         // Every column once, contiguous: configuration i of column c at values[c·n + i].
         assert_eq!(kin.values().len(), n * kin.width());
@@ -544,8 +559,12 @@ macro_rules! tables_batch {
                         let pm = mo.point(&pt.name).unwrap();
                         let p = &pt.name;
                         for (c, v) in [
-                            ("x", pm.pos.x), ("y", pm.pos.y), ("vx", pm.vel.x), ("vy", pm.vel.y),
-                            ("ax", pm.acc.x), ("ay", pm.acc.y),
+                            ("x", pm.pos.x),
+                            ("y", pm.pos.y),
+                            ("vx", pm.vel.x),
+                            ("vy", pm.vel.y),
+                            ("ax", pm.acc.x),
+                            ("ay", pm.acc.y),
                         ] {
                             let name = format!("{p}.{c}");
                             let (a, b) = (col(&kin, &name), col(&rt_kin, &name));
@@ -555,7 +574,11 @@ macro_rules! tables_batch {
                     }
                     for l in rt.model().links[1..].iter() {
                         let lm = mo.link(&l.name).unwrap();
-                        for (c, v) in [("angle", lm.angle), ("omega", lm.omega), ("alpha", lm.alpha)] {
+                        for (c, v) in [
+                            ("angle", lm.angle),
+                            ("omega", lm.omega),
+                            ("alpha", lm.alpha),
+                        ] {
                             let name = format!("{}.{c}", l.name);
                             let (a, b) = (col(&kin, &name), col(&rt_kin, &name));
                             same(&name, i, a[i], v, top(&a));
@@ -594,7 +617,11 @@ macro_rules! tables_batch {
                     }
                 }
                 Err(e) => {
-                    assert_eq!(ferrs.get(i), Some(&e), "kinetostatics error, configuration {i}");
+                    assert_eq!(
+                        ferrs.get(i),
+                        Some(&e),
+                        "kinetostatics error, configuration {i}"
+                    );
                     assert!(rt_ferrs.get(i).is_some(), "{i}");
                     for c in 0..kst.width() {
                         assert!(kst.column_at(c)[i].is_nan() && rt_kst.column_at(c)[i].is_nan());
@@ -645,7 +672,9 @@ fn kinematics_and_kinetostatics_tables_equal_one_by_one() {
     // The five-bar's two inputs: `driver.<joint>` columns.
     let mut r = Rng(41);
     let mut two = |lo: f64, hi: f64| -> Vec<[f64; 2]> {
-        (0..300).map(|_| [r.input(lo, hi), r.input(lo, hi)]).collect()
+        (0..300)
+            .map(|_| [r.input(lo, hi), r.input(lo, hi)])
+            .collect()
     };
     let (q, qd, qdd) = (two(-7.0, 7.0), two(-9.0, 9.0), two(-9.0, 9.0));
     let flat = |v: &[[f64; 2]]| v.iter().flatten().copied().collect::<Vec<f64>>();
@@ -658,7 +687,10 @@ fn kinematics_and_kinetostatics_tables_equal_one_by_one() {
             .collect::<Vec<_>>()
     };
     let (ok, failed) = tables_batch!(FiveBar, q, qd, qdd, flat, drivers);
-    assert!(ok >= 100 && failed >= 20, "five-bar: {ok} solved, {failed} failed");
+    assert!(
+        ok >= 100 && failed >= 20,
+        "five-bar: {ok} solved, {failed} failed"
+    );
     total = (total.0 + ok, total.1 + failed);
     assert!(total.0 >= 2000 && total.1 >= 100, "{total:?}");
 }
@@ -670,10 +702,18 @@ fn tables_of_the_wrong_shape_are_refused() {
     let m = FourBar::new();
     let q = [0.1, 0.2, 0.3];
     let mut t = m.kinematics_table(3);
-    assert!(m.kinematics_many(&q, &[1.0; 3], &[0.0; 3], &mut t).is_empty());
+    assert!(m
+        .kinematics_many(&q, &[1.0; 3], &[0.0; 3], &mut t)
+        .is_empty());
     let before = t.clone();
     let e = m.kinematics_many(&q, &[1.0; 2], &[0.0; 3], &mut t);
-    assert!(e.refusal().unwrap().to_string().contains("`qd` has 2 configurations where `q` has 3"), "{e}");
+    assert!(
+        e.refusal()
+            .unwrap()
+            .to_string()
+            .contains("`qd` has 2 configurations where `q` has 3"),
+        "{e}"
+    );
     let e = m.kinematics_many(&q[..2], &[1.0; 2], &[0.0; 2], &mut t);
     assert_eq!(
         e.refusal().unwrap().to_string(),
@@ -681,20 +721,44 @@ fn tables_of_the_wrong_shape_are_refused() {
     );
     let mut f = m.kinetostatics_table(3);
     let e = m.kinematics_many(&q, &[1.0; 3], &[0.0; 3], &mut f);
-    assert!(e.refusal().unwrap().to_string().contains("not a table of this mechanism's kinematics"), "{e}");
+    assert!(
+        e.refusal()
+            .unwrap()
+            .to_string()
+            .contains("not a table of this mechanism's kinematics"),
+        "{e}"
+    );
     // A kinematics table of another mechanism (the slider-crank's) is refused too.
     let mut other = SliderCrank::new().kinematics_table(3);
-    assert!(m.kinematics_many(&q, &[1.0; 3], &[0.0; 3], &mut other).refusal().is_some());
+    assert!(m
+        .kinematics_many(&q, &[1.0; 3], &[0.0; 3], &mut other)
+        .refusal()
+        .is_some());
     assert_eq!(t, before);
     assert!(f.values().iter().all(|v| v.is_nan()));
     let rt = Mechanism::from_rust_source(MECHANISMS, "FourBar").unwrap();
-    let e = rt.kinetostatics_many(&q, &[1.0; 3], &[0.0; 3], &rt.loads(), &mut m.kinetostatics_table(4));
-    assert!(e.to_string().starts_with("batch refused: invalid input: `out` holds 4 configurations"), "{e}");
+    let e = rt.kinetostatics_many(
+        &q,
+        &[1.0; 3],
+        &[0.0; 3],
+        &rt.loads(),
+        &mut m.kinetostatics_table(4),
+    );
+    assert!(
+        e.to_string()
+            .starts_with("batch refused: invalid input: `out` holds 4 configurations"),
+        "{e}"
+    );
     // Resized, the table takes the batch.
     t.resize(2);
-    assert!(m.kinematics_many(&q[..2], &[1.0; 2], &[0.0; 2], &mut t).is_empty());
+    assert!(m
+        .kinematics_many(&q[..2], &[1.0; 2], &[0.0; 2], &mut t)
+        .is_empty());
     assert_eq!(t.len(), 2);
-    assert_eq!(t.get("B.x", 1), Some(m.kinematics(0.2, 1.0, 0.0).unwrap().points.B.pos.x));
+    assert_eq!(
+        t.get("B.x", 1),
+        Some(m.kinematics(0.2, 1.0, 0.0).unwrap().points.B.pos.x)
+    );
 }
 
 /// On rayon's pool (from `PARALLEL_FROM` configurations) the tables are the same as one by
@@ -716,7 +780,13 @@ fn tables_on_the_pool_equal_one_by_one() {
                 let c = t.column("B.vx").unwrap();
                 same("B.vx", i, c[i], mo.points.B.vel.x, top(c));
                 let d = f.column("driver").unwrap();
-                same("driver", i, d[i], m.kinetostatics(&mo, &loads).unwrap().driver, top(d));
+                same(
+                    "driver",
+                    i,
+                    d[i],
+                    m.kinetostatics(&mo, &loads).unwrap().driver,
+                    top(d),
+                );
             }
             Err(_) => expected.push(i),
         }

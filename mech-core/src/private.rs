@@ -90,8 +90,8 @@ pub mod zhukovski {
 }
 pub mod batch {
     pub use crate::solvers::batch::{
-        each, each_lanes, named, put_kinematics, put_kinetostatics, refuse, same_len,
-        BatchErrors, Block, Nan, Strided, Table, NAN2,
+        each, each_lanes, named, put_kinematics, put_kinetostatics, refuse, same_len, BatchErrors,
+        Block, Nan, Strided, Table, NAN2,
     };
 }
 pub mod lanes {

@@ -158,12 +158,17 @@ impl Mechanism {
             Ok(r) => r,
             Err(e) => return refuse(e),
         };
-        each_with(rows.0, rows.1, || self.empty_motion(), |i, r: &mut Block<f64>, m| {
-            let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-            self.kinematics_into(qi, qdi, qddi, m)?;
-            r.row(i).copy_from_slice(&self.driver_action(m, loads)?);
-            Ok(())
-        })
+        each_with(
+            rows.0,
+            rows.1,
+            || self.empty_motion(),
+            |i, r: &mut Block<f64>, m| {
+                let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
+                self.kinematics_into(qi, qdi, qddi, m)?;
+                r.row(i).copy_from_slice(&self.driver_action(m, loads)?);
+                Ok(())
+            },
+        )
     }
 
     /// Zhukovski's I* (kg·m²) and dI*/dq (kg·m²/rad) at every q of a one-input mechanism,
@@ -274,17 +279,25 @@ impl Mechanism {
         let g = self.dof();
         let rows = match configs(q, g).and_then(|n| {
             same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len())?;
-            Ok((n, out.configurations("kinematics", |c| kinematics_columns(&self.model, c), n)?))
+            Ok((
+                n,
+                out.configurations("kinematics", |c| kinematics_columns(&self.model, c), n)?,
+            ))
         }) {
             Ok(r) => r,
             Err(e) => return refuse(e),
         };
-        each_with(rows.0, rows.1, || self.empty_motion(), |i, r, m| {
-            let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-            self.kinematics_into(qi, qdi, qddi, m)?;
-            put_kinematics(r, i, m.points.iter(), m.links[1..].iter());
-            Ok(())
-        })
+        each_with(
+            rows.0,
+            rows.1,
+            || self.empty_motion(),
+            |i, r, m| {
+                let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
+                self.kinematics_into(qi, qdi, qddi, m)?;
+                put_kinematics(r, i, m.points.iter(), m.links[1..].iter());
+                Ok(())
+            },
+        )
     }
 
     /// [`Mechanism::kinetostatics`] (d'Alembert) at every configuration (q, q̇, q̈) (G
@@ -309,7 +322,14 @@ impl Mechanism {
         let g = self.dof();
         let rows = match configs(q, g).and_then(|n| {
             same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len())?;
-            Ok((n, out.configurations("kinetostatics", |c| kinetostatics_columns(&self.model, c), n)?))
+            Ok((
+                n,
+                out.configurations(
+                    "kinetostatics",
+                    |c| kinetostatics_columns(&self.model, c),
+                    n,
+                )?,
+            ))
         }) {
             Ok(r) => r,
             Err(e) => return refuse(e),
@@ -326,7 +346,12 @@ impl Mechanism {
             let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
             self.kinematics_into(qi, qdi, qddi, m)?;
             self.kinetostatics_into(m, loads, None, f)?;
-            put_kinetostatics(r, i, f.joints.iter().map(|j| (j.force, j.moment)), &f.driver);
+            put_kinetostatics(
+                r,
+                i,
+                f.joints.iter().map(|j| (j.force, j.moment)),
+                &f.driver,
+            );
             Ok(())
         })
     }
@@ -417,7 +442,13 @@ impl Mechanism {
     /// (every group a driven crank or slider, an RRR or an RRP dyad: `Mechanism::lanes`),
     /// and the mask of the lanes the one-configuration solver must redo.
     #[inline(always)]
-    fn solve_lanes<B: Backend>(&self, q: L<B>, qd: L<B>, qdd: L<B>, upto: Level) -> (LaneStates<B>, Mask) {
+    fn solve_lanes<B: Backend>(
+        &self,
+        q: L<B>,
+        qd: L<B>,
+        qdd: L<B>,
+        upto: Level,
+    ) -> (LaneStates<B>, Mask) {
         let mut s = LaneStates::from_elem(LinkLanes::default(), self.inst.links.len());
         let joints = &self.inst.joints[..];
         let mut mask = NONE;
@@ -437,7 +468,11 @@ impl Mechanism {
     /// Zhukovski's sums over four configurations' motion with q̇ = 1, q̈ = 0: the lane twin
     /// of the run-time sums (no force element: `Mechanism::lanes`); M* only with `loads`.
     #[inline(always)]
-    fn sums_lanes<B: Backend>(&self, s: &[LinkLanes<B>], loads: Option<&Loads>) -> ZhukovskiLanes<B> {
+    fn sums_lanes<B: Backend>(
+        &self,
+        s: &[LinkLanes<B>],
+        loads: Option<&Loads>,
+    ) -> ZhukovskiLanes<B> {
         let mut z = ZhukovskiLanes::new();
         for (l, t) in self.terms.iter().enumerate().skip(1) {
             let geom = &self.inst.links[l];

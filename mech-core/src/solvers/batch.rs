@@ -255,7 +255,10 @@ impl Table {
     /// A table of `n` configurations with the columns given by `columns` (a function that
     /// calls its argument once per column with the name in two parts and the unit, as
     /// [`kinematics_columns`]), every value NaN.
-    pub fn with_columns(columns: impl FnOnce(&mut dyn FnMut(&str, &str, &'static str)), n: usize) -> Table {
+    pub fn with_columns(
+        columns: impl FnOnce(&mut dyn FnMut(&str, &str, &'static str)),
+        n: usize,
+    ) -> Table {
         let (mut names, mut units) = (Vec::new(), Vec::new());
         columns(&mut |a, b, u| {
             names.push(format!("{a}{b}"));
@@ -328,10 +331,9 @@ impl Table {
         let mut k = 0;
         let mut same = true;
         columns(&mut |a, b, _| {
-            same &= self
-                .names
-                .get(k)
-                .is_some_and(|c| c.len() == a.len() + b.len() && c.starts_with(a) && c.ends_with(b));
+            same &= self.names.get(k).is_some_and(|c| {
+                c.len() == a.len() + b.len() && c.starts_with(a) && c.ends_with(b)
+            });
             k += 1;
         });
         if !same || k != self.names.len() {
@@ -384,7 +386,10 @@ impl Strided<'_> {
     /// Write `v` in column `c` of configuration `i` (its index in the whole batch).
     #[inline(always)]
     pub fn set(&mut self, i: usize, c: usize, v: f64) {
-        assert!(i >= self.first && i < self.end && c < self.width, "slot out of range");
+        assert!(
+            i >= self.first && i < self.end && c < self.width,
+            "slot out of range"
+        );
         // SAFETY: i < end ≤ stride and c < width, so c·stride + i < width·stride, the
         // length of the table's values; configuration i belongs to this part alone.
         unsafe { *self.ptr.add(c * self.stride + i) = v }
@@ -401,7 +406,10 @@ impl Strided<'_> {
     /// the column: what a lane kernel computes).
     #[inline(always)]
     pub fn set4(&mut self, i: usize, c: usize, v: [f64; 4]) {
-        assert!(i >= self.first && i + 4 <= self.end && c < self.width, "slot out of range");
+        assert!(
+            i >= self.first && i + 4 <= self.end && c < self.width,
+            "slot out of range"
+        );
         // SAFETY: as in `set`, for the four configurations i..i + 4 of this part.
         unsafe { std::ptr::copy_nonoverlapping(v.as_ptr(), self.ptr.add(c * self.stride + i), 4) }
     }
@@ -446,7 +454,12 @@ pub fn kinematics_columns(model: &Model, col: &mut dyn FnMut(&str, &str, &'stati
         col(&l.name, ".angle", "rad");
     }
     for p in &model.points {
-        for (s, u) in [(".vx", "m/s"), (".vy", "m/s"), (".ax", "m/s²"), (".ay", "m/s²")] {
+        for (s, u) in [
+            (".vx", "m/s"),
+            (".vy", "m/s"),
+            (".ax", "m/s²"),
+            (".ay", "m/s²"),
+        ] {
             col(&p.name, s, u);
         }
     }
@@ -476,7 +489,11 @@ pub fn kinetostatics_columns(model: &Model, col: &mut dyn FnMut(&str, &str, &'st
     let g = model.inputs.len();
     for &k in &model.inputs {
         let j = &model.joints[k];
-        let unit = if j.kind == JointKind::Revolute { "N·m" } else { "N" };
+        let unit = if j.kind == JointKind::Revolute {
+            "N·m"
+        } else {
+            "N"
+        };
         if g == 1 {
             col("driver", "", unit);
         } else {

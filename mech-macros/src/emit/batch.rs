@@ -407,10 +407,7 @@ fn columns(
 /// `put_kinetostatics`.
 fn table_fns(cx: &Ctx) -> TokenStream {
     let Ctx {
-        p,
-        q_ty,
-        point_ids,
-        ..
+        p, q_ty, point_ids, ..
     } = cx;
     let b = quote!(#p::batch);
     let loads = &cx.names.loads;

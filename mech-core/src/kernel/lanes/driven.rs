@@ -108,7 +108,14 @@ fn prismatic<B: Backend>(g: &JointGeom, s: &mut [LinkLanes<B>], body: usize, q: 
 
 /// The rates of the driven link (see [`solve_driven_lanes`]), `qd`, `qdd` its input's.
 #[inline(always)]
-fn driven_rates<B: Backend>(d: &Driven, g: &JointGeom, s: &mut [LinkLanes<B>], qd: L<B>, qdd: L<B>, upto: Level) {
+fn driven_rates<B: Backend>(
+    d: &Driven,
+    g: &JointGeom,
+    s: &mut [LinkLanes<B>],
+    qd: L<B>,
+    qdd: L<B>,
+    upto: Level,
+) {
     let sigma = if g.a == d.from { 1.0 } else { -1.0 };
     let (qd, qdd) = (qd * sigma, qdd * sigma);
     let acc = upto == Level::Acceleration;

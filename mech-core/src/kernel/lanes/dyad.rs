@@ -4,7 +4,7 @@
 //! [`crate::kernel::natural::rrr_rates`] and [`crate::kernel::natural::rrp_rates`]).
 
 use super::simd::{Backend, Bits, Mask, ALL, L, V2L};
-use super::{dir_of, pin, place_by_point, LinkLanes};
+use super::{dir_of, inlined, pin, place_by_point, LinkLanes};
 use crate::kernel::constraints::{JointGeom, Level};
 use crate::kernel::dyad::Solver;
 use crate::kernel::linalg::SINGULAR_CONDITION;
@@ -182,7 +182,10 @@ fn rrr<B: Backend>(
     let norm2 = (m00 * m00 + m10 * m10) + (m01 * m01 + m11 * m11);
     let mask = mask.or(ill_conditioned(norm2, det.abs() * PRECISE_CONDITION));
     let inv_det = 1.0 / det;
-    let solve = |x: L<B>, y: L<B>| ((m11 * x - m01 * y) * inv_det, (m00 * y - m10 * x) * inv_det);
+    let solve = inlined(
+        #[inline(always)]
+        |x: L<B>, y: L<B>| ((m11 * x - m01 * y) * inv_det, (m00 * y - m10 * x) * inv_det),
+    );
     let ((va, aa), (vc, ac)) = (point_rates(s, la, a), point_rates(s, lc, b));
     let dv = vc - va;
     let (w1, w2) = solve(dv.x, dv.y);
@@ -261,10 +264,13 @@ fn rrp<B: Backend>(
         ));
     let inv_x = 1.0 / x;
     // (ω₁, ṡ) with [perp(e₁) −u] (ω₁, ṡ)ᵀ = b: ω₁ = (u × b)/x, ṡ = −(b·u + y ω₁).
-    let solve = |b: V2L<B>| {
-        let w = u.cross(b) * inv_x;
-        (w, -(b.dot(u) + y * w))
-    };
+    let solve = inlined(
+        #[inline(always)]
+        |b: V2L<B>| {
+            let w = u.cross(b) * inv_x;
+            (w, -(b.dot(u) + y * w))
+        },
+    );
     let (da, dc) = (local_in(&joints[ja], b1), local_in(&joints[jc], b2));
     let ((va, aa), (vg, ag)) = (point_rates(s, la, a), point_rates(s, lg, c));
     let (wg, alg) = if lg == 0 {

@@ -206,6 +206,14 @@ pub(crate) fn place_by_point<B: Backend>(s: &mut LinkLanes<B>, rot: V2L<B>, d: V
     };
 }
 
+/// `f` itself: a closure marked `#[inline(always)]` where an attribute on a closure is
+/// allowed (an argument), so that it is compiled into the function it is called from (with
+/// its target features: the AVX2 path of [`with_simd`]).
+#[inline(always)]
+pub(crate) fn inlined<F>(f: F) -> F {
+    f
+}
+
 /// Whether the kind `solver` has a lane kernel: a driven crank or slider, an RRR or an RRP
 /// dyad. For the other kinds the caller solves the whole batch with the scalar kernels.
 #[inline]

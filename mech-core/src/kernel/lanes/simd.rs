@@ -567,7 +567,8 @@ mod wide {
         fn pairs(x: __m256d, y: __m256d) -> [[f64; 2]; 4] {
             let (lo, hi) = avx!((_mm256_unpacklo_pd(x, y), _mm256_unpackhi_pd(x, y)));
             // SAFETY: two __m256d are 64 bytes of f64 values, as [[f64; 2]; 4].
-            let [a, b, c, d] = unsafe { core::mem::transmute::<[__m256d; 2], [[f64; 2]; 4]>([lo, hi]) };
+            let [a, b, c, d] =
+                unsafe { core::mem::transmute::<[__m256d; 2], [[f64; 2]; 4]>([lo, hi]) };
             [a, c, b, d]
         }
     }

@@ -60,7 +60,11 @@ fn skip() -> bool {
 /// for [`Base`].
 fn run<R>(f: impl FnOnce() -> R) -> R {
     if is_wide(module_path!()) {
-        with_simd((), |()| unreachable!("the 256-bit backend without AVX2"), |()| f())
+        with_simd(
+            (),
+            |()| unreachable!("the 256-bit backend without AVX2"),
+            |()| f(),
+        )
     } else {
         f()
     }

@@ -139,7 +139,11 @@ fn point_velocity<B: Backend>(s: &LinkLanes<B>, d: V2) -> V2L<B> {
 /// force) `driver`, as `solvers::zhukovski::acceleration`. The mask holds the lanes where
 /// that returns `Err`: I*, dI*/dq or M* not finite, I* ≤ 0 (or a NaN), q̈ not finite.
 #[inline(always)]
-pub fn acceleration_lanes<B: Backend>(z: &ZhukovskiLanes<B>, qd: L<B>, driver: L<B>) -> (L<B>, Mask) {
+pub fn acceleration_lanes<B: Backend>(
+    z: &ZhukovskiLanes<B>,
+    qd: L<B>,
+    driver: L<B>,
+) -> (L<B>, Mask) {
     let sums = (z.inertia + z.inertia_derivative + z.moment).non_finite();
     let positive = z.inertia.not_greater(L::splat(0.0));
     let inv = 1.0 / z.inertia;
