@@ -8,7 +8,7 @@
 //! nothing (unless some configuration fails); from there on, it is cut in halves recursively
 //! and the halves run on rayon's pool (`RAYON_NUM_THREADS` sets its size).
 
-use crate::kernel::lanes::{with_simd, Mask, LANES};
+use crate::kernel::lanes::{any, or, with_simd, Backend, Mask, L, LANES};
 use crate::kernel::link_state::{LinkMotion, LinkPose, PointMotion, PointPose, V2};
 use crate::model::{JointKind, Model};
 use crate::MechError;
@@ -546,6 +546,61 @@ pub fn put_kinematics<'m>(
         put(r, l.omega);
         put(r, l.alpha);
     }
+}
+
+/// Write four configurations' kinematics (`i..i + 4`, computed in lanes) into their slots
+/// of a kinematics table, in the order of [`kinematics_columns`]: `points` every point's
+/// position, velocity and acceleration (each `[x, y]`), `links` every moving link's angle,
+/// ω and α. The lanes of `mask`, and those where a value is not finite (their sum is not),
+/// are left for the one-configuration solver; the mask of them is returned. Where no lane
+/// is masked, each column's four values are one run of the table.
+#[inline(always)]
+pub fn put_kinematics_lanes<B: Backend>(
+    r: &mut Strided<'_>,
+    i: usize,
+    mask: Mask,
+    points: &[[[L<B>; 2]; 3]],
+    links: &[[L<B>; 3]],
+) -> Mask {
+    let mut sum = L::<B>::splat(0.0);
+    for p in points {
+        sum += ((p[0][0] + p[0][1]) + (p[1][0] + p[1][1])) + (p[2][0] + p[2][1]);
+    }
+    for l in links {
+        sum += (l[0] + l[1]) + l[2];
+    }
+    let mask = or(mask, sum.not_finite());
+    let all = !any(mask);
+    let mut c = 0;
+    let mut put = |r: &mut Strided<'_>, v: L<B>| {
+        if all {
+            r.set4(i, c, v.0);
+        } else {
+            for (k, &masked) in mask.iter().enumerate() {
+                if !masked {
+                    r.set(i + k, c, v.0[k]);
+                }
+            }
+        }
+        c += 1;
+    };
+    for p in points {
+        put(r, p[0][0]);
+        put(r, p[0][1]);
+    }
+    for l in links {
+        put(r, l[0]);
+    }
+    for p in points {
+        for v in [p[1][0], p[1][1], p[2][0], p[2][1]] {
+            put(r, v);
+        }
+    }
+    for l in links {
+        put(r, l[1]);
+        put(r, l[2]);
+    }
+    mask
 }
 
 /// Write one configuration's kinetostatics into its slots of a kinetostatics table, in the

@@ -413,6 +413,26 @@ fn table_fns(cx: &Ctx) -> TokenStream {
     let loads = &cx.names.loads;
     let (kn, ku) = columns(cx, mech_core::solvers::batch::kinematics_columns);
     let moving = cx.moving_ids();
+    let one = quote!(|i, r: &mut #b::Strided<'_>| {
+        let m = self.kinematics(q[i], qd[i], qdd[i])?;
+        #b::put_kinematics(r, i, [#(&m.points.#point_ids),*], [#(&m.links.#moving),*]);
+        Ok(())
+    });
+    let (kinematics_body, kinematics_four) = if lanes(cx) && cx.one_dof() {
+        let l = quote!(#p::lanes);
+        (
+            quote! {
+                let x = (q, qd, qdd);
+                #b::each_lanes(q.len(), rows,
+                    #[inline(always)] |i, r: &mut #b::Strided<'_>| self.__kinematics_four::<#l::Base>(x, i, r),
+                    #[inline(always)] |i, r: &mut #b::Strided<'_>| self.__kinematics_four::<#l::Wide>(x, i, r),
+                    #one)
+            },
+            kinematics_four_fn(cx),
+        )
+    } else {
+        (quote!(#b::each(q.len(), rows, #one)), quote!())
+    };
     let kinematics = quote! {
         /// The columns of `kinematics_many`'s table, in order: every point's `<point>.x`,
         /// `.y` (m), every moving link's `<link>.angle` (rad), every point's `.vx`, `.vy`
@@ -441,12 +461,9 @@ fn table_fns(cx: &Ctx) -> TokenStream {
                 Ok(r) => r,
                 Err(e) => return #b::refuse(e),
             };
-            #b::each(q.len(), rows, |i, r| {
-                let m = self.kinematics(q[i], qd[i], qdd[i])?;
-                #b::put_kinematics(r, i, [#(&m.points.#point_ids),*], [#(&m.links.#moving),*]);
-                Ok(())
-            })
+            #kinematics_body
         }
+        #kinematics_four
     };
     if cx.redundant() {
         return kinematics;
@@ -501,5 +518,70 @@ fn table_fns(cx: &Ctx) -> TokenStream {
                 Ok(())
             })
         }
+    }
+}
+
+/// `__kinematics_four`: `kinematics_many`'s four configurations from index `i` on the lane
+/// backend `B` (one input, every group with a lane kernel): the groups' lane kernels up to
+/// accelerations, every point's motion and every moving link's angle (as `kinematics`
+/// finds it: ±q for a crank driven on the ground, the drawing's for a link sliding on the
+/// ground, else `atan2`), ω and α, written by mech-core's `put_kinematics_lanes`.
+fn kinematics_four_fn(cx: &Ctx) -> TokenStream {
+    let p = &cx.p;
+    let (b, l) = (quote!(#p::batch), quote!(#p::lanes));
+    let np = cx.n_points;
+    let nm = cx.n_links - 1;
+    let points = owners(cx).into_iter().enumerate().map(|(pt, o)| match o {
+        Owner::Anchor(k) => quote!([s[#k].pos.xy(), s[#k].vel.xy(), s[#k].acc.xy()]),
+        Owner::Local(k) => quote!(#l::point_motion_lanes(&s, #k, self.points[#pt])),
+    });
+    let links = (1..cx.n_links).map(|k| {
+        let angle = lane_angle(cx, k);
+        quote!([#angle, s[#k].omega, s[#k].alpha])
+    });
+    quote! {
+        /// `kinematics_many`'s four configurations from index `i` of (q, q̇, q̈) on the lane
+        /// backend `B`: the lanes not masked into the table, and the mask.
+        #[inline(always)]
+        fn __kinematics_four<B: #l::Backend>(&self, (q, qd, qdd): (&[f64], &[f64], &[f64]), i: usize, r: &mut #b::Strided<'_>) -> #l::Mask {
+            let four = |x: &[f64]| -> #l::L<B> { #l::L::new(x[i..i + #l::LANES].try_into().expect("four configurations")) };
+            let qv = [four(q)];
+            let (s, mask) = self.__solve_lanes(&qv, &[four(qd)], &[four(qdd)], #p::kinematics::Level::Acceleration);
+            let points: [[[#l::L<B>; 2]; 3]; #np] = [#(#points),*];
+            let links: [[#l::L<B>; 3]; #nm] = [#(#links),*];
+            #b::put_kinematics_lanes(r, i, mask, &points, &links)
+        }
+    }
+}
+
+/// The angle of moving link `k` in lanes, as `kinematics` finds it (`results::crank_angle`):
+/// a crank driven on the ground from its input (`crank_angle_lanes`, the same operations
+/// as the scalar `crank_angle`); a link sliding on the ground, its drawing's angle; else
+/// `link_angle_lanes` (atan2).
+fn lane_angle(cx: &Ctx, k: usize) -> TokenStream {
+    let p = &cx.p;
+    let l = quote!(#p::lanes);
+    let crank = cx.plan.iter().find_map(|g| match g.kernel {
+        Kernel::Driven(d) if d.body == k && d.from == 0 && !d.screw.slide => {
+            let sign = if cx.model.joints[d.screw.joint].b == k {
+                1.0f64
+            } else {
+                -1.0
+            };
+            let (input, sign) = (d.input, super::f64s(sign));
+            Some(match cx.model.input_zero[input] {
+                0.0 => quote!(#l::crank_angle_lanes(qv[#input], #sign)),
+                z => {
+                    let z = super::f64s(z);
+                    quote!(#l::crank_angle_lanes(qv[#input] + #z, #sign))
+                }
+            })
+        }
+        _ => None,
+    });
+    match crank {
+        Some(a) => a,
+        None if cx.model.translates(k) => quote!(#l::L::splat(self.links[#k].angle_ref)),
+        None => quote!(#l::link_angle_lanes(&self.links[#k], &s[#k])),
     }
 }
