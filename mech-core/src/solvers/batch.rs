@@ -242,7 +242,7 @@ pub struct Table {
 
 impl Table {
     /// A table of `n` configurations with the columns `names` (their units `units`, one
-    /// each), every value NaN.
+    /// each), every value NaN. Panics when `names` and `units` differ in length.
     pub fn new(names: &[&str], units: &[&'static str], n: usize) -> Table {
         assert_eq!(names.len(), units.len(), "one unit per column");
         Table {

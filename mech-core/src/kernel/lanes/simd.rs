@@ -474,8 +474,10 @@ impl Backend for Base {
 /// The 256-bit backend on x86-64: the four lanes in one AVX register (`__m256d`), every
 /// operation one instruction, the quadrant's integer operations AVX2. Its operations are
 /// compiled into the functions of [`super::with_simd`]'s AVX2 path and must run only
-/// there (on a processor with AVX2 and FMA, detected at run time); elsewhere, and on the
-/// other architectures, it is [`Base`].
+/// there, on a processor with AVX2 and FMA ([`super::simd_allowed`]): executing them on a
+/// processor without AVX is undefined behaviour (an illegal instruction), so a caller
+/// instantiates a kernel with `Wide` only in the `wide` closure of [`super::with_simd`].
+/// On the other architectures it is [`Base`].
 #[cfg(target_arch = "x86_64")]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Wide;
