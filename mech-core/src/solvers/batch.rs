@@ -221,6 +221,10 @@ impl<A: Rows, B: Rows> Rows for (A, B) {
     }
 }
 
+/// What a column function calls once per column of a [`Table`]: the column's name in two
+/// parts (`"B"`, `".x"`; the name is their concatenation) and its SI unit.
+pub type ColumnSink<'a> = dyn FnMut(&str, &str, &'static str) + 'a;
+
 /// A structure-of-arrays result of many configurations: the answer of `kinematics_many`
 /// and `kinetostatics_many` (`docs/batch.md#tables`). It holds `n` configurations of
 /// `width` named quantities (its columns), one contiguous run per quantity: column `c`'s
@@ -255,10 +259,7 @@ impl Table {
     /// A table of `n` configurations with the columns given by `columns` (a function that
     /// calls its argument once per column with the name in two parts and the unit, as
     /// [`kinematics_columns`]), every value NaN.
-    pub fn with_columns(
-        columns: impl FnOnce(&mut dyn FnMut(&str, &str, &'static str)),
-        n: usize,
-    ) -> Table {
+    pub fn with_columns(columns: impl FnOnce(&mut ColumnSink<'_>), n: usize) -> Table {
         let (mut names, mut units) = (Vec::new(), Vec::new());
         columns(&mut |a, b, u| {
             names.push(format!("{a}{b}"));
@@ -325,7 +326,7 @@ impl Table {
     pub fn configurations(
         &mut self,
         make: &str,
-        columns: impl FnOnce(&mut dyn FnMut(&str, &str, &'static str)),
+        columns: impl FnOnce(&mut ColumnSink<'_>),
         n: usize,
     ) -> Result<Strided<'_>, MechError> {
         let mut k = 0;
@@ -445,7 +446,7 @@ impl Rows for Strided<'_> {
 /// `.ay` (m/s²), every moving link's `<link>.omega` (rad/s), `<link>.alpha` (rad/s²):
 /// the positions and rates of `mech::columns::Part::KINEMATICS`, points and links in
 /// declaration order.
-pub fn kinematics_columns(model: &Model, col: &mut dyn FnMut(&str, &str, &'static str)) {
+pub fn kinematics_columns(model: &Model, col: &mut ColumnSink<'_>) {
     for p in &model.points {
         col(&p.name, ".x", "m");
         col(&p.name, ".y", "m");
@@ -475,7 +476,7 @@ pub fn kinematics_columns(model: &Model, col: &mut dyn FnMut(&str, &str, &'stati
 /// motor action of each input, `driver` (one input) or `driver.<joint>` (N·m for a
 /// revolute input, N for a prismatic one): the `Reactions` and `Driver` columns of
 /// `mech::columns`. None for a mechanism with redundant constraints (no reactions).
-pub fn kinetostatics_columns(model: &Model, col: &mut dyn FnMut(&str, &str, &'static str)) {
+pub fn kinetostatics_columns(model: &Model, col: &mut ColumnSink<'_>) {
     if model.allow_redundant {
         return;
     }
@@ -507,7 +508,7 @@ pub fn kinetostatics_columns(model: &Model, col: &mut dyn FnMut(&str, &str, &'st
 pub fn named<'a>(
     names: &'a [&'a str],
     units: &'a [&'static str],
-) -> impl FnOnce(&mut dyn FnMut(&str, &str, &'static str)) + 'a {
+) -> impl FnOnce(&mut ColumnSink<'_>) + 'a {
     move |col| {
         for (n, &u) in names.iter().zip(units) {
             col(n, "", u);

@@ -391,7 +391,7 @@ fn four_fns(cx: &Ctx) -> TokenStream {
 /// or `kinetostatics_columns` on this mechanism's model).
 fn columns(
     cx: &Ctx,
-    of: fn(&mech_core::model::Model, &mut dyn FnMut(&str, &str, &'static str)),
+    of: fn(&mech_core::model::Model, &mut mech_core::solvers::batch::ColumnSink<'_>),
 ) -> (Vec<String>, Vec<&'static str>) {
     let (mut names, mut units) = (Vec::new(), Vec::new());
     of(cx.model, &mut |a, b, u| {
