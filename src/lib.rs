@@ -56,7 +56,7 @@ pub use mech_core::solvers::zhukovski::Reduced;
 /// Many configurations per call (`docs/batch.md`): what the `*_many` methods return, and
 /// the size from which they run on rayon's pool.
 pub mod batch {
-    pub use mech_core::solvers::batch::{BatchErrors, CHUNK, PARALLEL_FROM};
+    pub use mech_core::solvers::batch::{BatchErrors, Table, CHUNK, PARALLEL_FROM};
 }
 pub use batch::BatchErrors;
 

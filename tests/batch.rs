@@ -398,6 +398,9 @@ fn a_batch_on_the_calling_thread_does_not_allocate() {
         assert!(f(), "a configuration failed");
         crate::counting::count() - before
     };
+    // The first lane batch of the process looks `MECH_SIMD` up once (a string where it is
+    // set): done before counting.
+    assert!(m.points_many(&q[..4], &mut a[..2 * np * 4]).is_empty());
     assert_eq!(
         count(&mut || m.pose_many(&q, &mut poses).is_empty()),
         0,
@@ -427,6 +430,373 @@ fn a_batch_on_the_calling_thread_does_not_allocate() {
         0,
         "driver_action_many"
     );
+    let (mut kin, mut kst) = (m.kinematics_table(n), m.kinetostatics_table(n));
+    assert_eq!(
+        count(&mut || m.kinematics_many(&q, &qd, &driver, &mut kin).is_empty()),
+        0,
+        "kinematics_many"
+    );
+    assert_eq!(
+        count(&mut || m
+            .kinetostatics_many(&q, &qd, &driver, &loads, &mut kst)
+            .is_empty()),
+        0,
+        "kinetostatics_many"
+    );
+    assert!(kin
+        .values()
+        .iter()
+        .chain(kst.values())
+        .all(|v| v.is_finite()));
+    // The run-time twins allocate a motion (and forces) per chunk, not per configuration:
+    // as many allocations for 1000 configurations as for 10.
+    let rt = Mechanism::from_rust_source(MECHANISMS, "FourBar").unwrap();
+    let rt_loads = rt.loads();
+    let runtime = |k: usize| {
+        let (mut kin, mut kst) = (rt.kinematics_table(k), rt.kinetostatics_table(k));
+        let (q, qd, qdd) = (&q[..k], &qd[..k], &driver[..k]);
+        (
+            count(&mut || rt.kinematics_many(q, qd, qdd, &mut kin).is_empty()),
+            count(&mut || {
+                rt.kinetostatics_many(q, qd, qdd, &rt_loads, &mut kst)
+                    .is_empty()
+            }),
+        )
+    };
+    let (few, many) = (runtime(10), runtime(n));
+    assert_eq!(
+        few, many,
+        "run-time allocations for 10 and {n} configurations"
+    );
+}
+
+/// Loads set on a generated struct's and a run-time mechanism's loads alike, by name: a
+/// force (10 + k, −5) N, a torque 1.5 N·m.
+macro_rules! some_loads {
+    ($ty:ident, $rt:expr) => {{
+        let mut loads = <$ty as HasLoads>::Loads::default();
+        let mut rt_loads = $rt.loads();
+        for (k, l) in $rt.model().loads.iter().enumerate() {
+            let v: &[f64] = match l {
+                mech::model::Load::Force { .. } => &[10.0 + k as f64, -5.0],
+                mech::model::Load::Torque { .. } => &[1.5],
+            };
+            assert!(loads.set_by_name(l.name(), v) && rt_loads.set_by_name(l.name(), v));
+        }
+        (loads, rt_loads)
+    }};
+}
+
+trait HasLoads {
+    type Loads: Default;
+}
+macro_rules! has_loads {
+    ($($ty:ident => $loads:ident),*) => {$(
+        impl HasLoads for $ty { type Loads = $loads; }
+    )*};
+}
+has_loads!(
+    FourBar => FourBarLoads, SliderCrank => SliderCrankLoads,
+    PublicFourBar => PublicFourBarLoads, PublicSliderCrank => PublicSliderCrankLoads,
+    QuickReturn => QuickReturnLoads, Watt2 => Watt2Loads, Stephenson3 => Stephenson3Loads,
+    ScotchYoke => ScotchYokeLoads, HydraulicLever => HydraulicLeverLoads,
+    FiveBar => FiveBarLoads
+);
+
+/// The tables of `kinematics_many` and `kinetostatics_many` of a generated struct `$ty` and
+/// of its run-time twin, at the configurations `$q`, `$qd`, `$qdd` (the generated struct's
+/// input type; `$flat` lays them out for the run time), checked configuration by
+/// configuration against the one-configuration solvers read by name (`Motion::point`,
+/// `link`, `Forces::reaction`, `driver`); the column names against the `mech sweep`
+/// columns. Returns (configurations solved, failed).
+macro_rules! tables_batch {
+    ($ty:ident, $q:expr, $qd:expr, $qdd:expr, $flat:expr, $drivers:expr) => {{
+        let m = $ty::new();
+        let rt = Mechanism::from_rust_source(MECHANISMS, stringify!($ty)).unwrap();
+        let (q, qd, qdd) = ($q, $qd, $qdd);
+        let n = q.len();
+        let (loads, rt_loads) = some_loads!($ty, rt);
+        let g = rt.dof();
+
+        // The column names are the CSV's, less the inputs (`q`), in the same order.
+        let csv = mech::columns::Columns::new(&rt, mech::columns::Part::KINEMATICS);
+        assert_eq!($ty::KINEMATICS_COLUMNS, &csv.names[g..]);
+        assert_eq!($ty::KINEMATICS_UNITS, &csv.units[g..]);
+        let csv = mech::columns::Columns::new(
+            &rt,
+            &[mech::columns::Part::Reactions, mech::columns::Part::Driver],
+        );
+        assert_eq!($ty::KINETOSTATICS_COLUMNS, &csv.names[..]);
+        assert_eq!($ty::KINETOSTATICS_UNITS, &csv.units[..]);
+
+        let mut kin = m.kinematics_table(n);
+        let kerrs = m.kinematics_many(&q, &qd, &qdd, &mut kin);
+        let mut rt_kin = rt.kinematics_table(n);
+        let rt_kerrs = rt.kinematics_many(&$flat(&q), &$flat(&qd), &$flat(&qdd), &mut rt_kin);
+        assert_eq!(rt_kin.names(), kin.names());
+        assert_eq!(rt_kin.units(), kin.units());
+        let mut kst = m.kinetostatics_table(n);
+        let ferrs = m.kinetostatics_many(&q, &qd, &qdd, &loads, &mut kst);
+        let mut rt_kst = rt.kinetostatics_table(n);
+        let rt_ferrs = rt.kinetostatics_many(
+            &$flat(&q),
+            &$flat(&qd),
+            &$flat(&qdd),
+            &rt_loads,
+            &mut rt_kst,
+        );
+        assert_eq!(rt_kst.names(), kst.names());
+        // Every column once, contiguous: configuration i of column c at values[c·n + i].
+        assert_eq!(kin.values().len(), n * kin.width());
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<u64>>();
+        assert_eq!(bits(kin.column_at(1)), bits(&kin.values()[n..2 * n]));
+
+        let col = |t: &mech::batch::Table, name: &str| t.column(name).unwrap().to_vec();
+        let (mut ok, mut failed) = (0, 0);
+        for i in 0..n {
+            let one = m.kinematics(q[i], qd[i], qdd[i]);
+            match &one {
+                Ok(mo) => {
+                    assert!(kerrs.get(i).is_none() && rt_kerrs.get(i).is_none(), "{i}");
+                    for pt in rt.model().points.iter() {
+                        let pm = mo.point(&pt.name).unwrap();
+                        let p = &pt.name;
+                        for (c, v) in [
+                            ("x", pm.pos.x),
+                            ("y", pm.pos.y),
+                            ("vx", pm.vel.x),
+                            ("vy", pm.vel.y),
+                            ("ax", pm.acc.x),
+                            ("ay", pm.acc.y),
+                        ] {
+                            let name = format!("{p}.{c}");
+                            let (a, b) = (col(&kin, &name), col(&rt_kin, &name));
+                            same(&name, i, a[i], v, top(&a));
+                            same(&format!("run-time {name}"), i, b[i], v, top(&a));
+                        }
+                    }
+                    for l in rt.model().links[1..].iter() {
+                        let lm = mo.link(&l.name).unwrap();
+                        for (c, v) in [
+                            ("angle", lm.angle),
+                            ("omega", lm.omega),
+                            ("alpha", lm.alpha),
+                        ] {
+                            let name = format!("{}.{c}", l.name);
+                            let (a, b) = (col(&kin, &name), col(&rt_kin, &name));
+                            same(&name, i, a[i], v, top(&a));
+                            same(&format!("run-time {name}"), i, b[i], v, top(&a));
+                        }
+                    }
+                }
+                Err(e) => {
+                    failed += 1;
+                    assert_eq!(kerrs.get(i), Some(e), "kinematics error, configuration {i}");
+                    assert!(rt_kerrs.get(i).is_some(), "{i}");
+                    for c in 0..kin.width() {
+                        assert!(kin.column_at(c)[i].is_nan() && rt_kin.column_at(c)[i].is_nan());
+                    }
+                }
+            }
+            match one.and_then(|mo| m.kinetostatics(&mo, &loads)) {
+                Ok(f) => {
+                    ok += 1;
+                    assert!(ferrs.get(i).is_none() && rt_ferrs.get(i).is_none(), "{i}");
+                    for j in rt.model().joints.iter() {
+                        let (force, moment) = f.reaction(&j.name).unwrap();
+                        let mut expected = vec![("fx", force.x), ("fy", force.y)];
+                        expected.extend(moment.map(|v| ("moment", v)));
+                        for (c, v) in expected {
+                            let name = format!("{}.{c}", j.name);
+                            let (a, b) = (col(&kst, &name), col(&rt_kst, &name));
+                            same(&name, i, a[i], v, top(&a));
+                            same(&format!("run-time {name}"), i, b[i], v, top(&a));
+                        }
+                    }
+                    for (name, v) in $drivers(&rt, &f.driver) {
+                        let (a, b) = (col(&kst, &name), col(&rt_kst, &name));
+                        same(&name, i, a[i], v, top(&a));
+                        same(&format!("run-time {name}"), i, b[i], v, top(&a));
+                    }
+                }
+                Err(e) => {
+                    assert_eq!(
+                        ferrs.get(i),
+                        Some(&e),
+                        "kinetostatics error, configuration {i}"
+                    );
+                    assert!(rt_ferrs.get(i).is_some(), "{i}");
+                    for c in 0..kst.width() {
+                        assert!(kst.column_at(c)[i].is_nan() && rt_kst.column_at(c)[i].is_nan());
+                    }
+                }
+            }
+        }
+        assert_eq!((kerrs.len(), ok + ferrs.len()), (failed, n));
+        (ok, failed)
+    }};
+}
+
+/// The motor action of the one input, named `driver`.
+fn one_driver(_: &Mechanism, d: &f64) -> Vec<(String, f64)> {
+    vec![("driver".to_string(), *d)]
+}
+
+/// Configuration i's inputs as a run-time slice (one input).
+fn same_f64(v: &[f64]) -> Vec<f64> {
+    v.to_vec()
+}
+
+/// `kinematics_many` and `kinetostatics_many` of every reference mechanism (the generated
+/// struct and the run-time twin) equal the one-configuration solvers, NaN and the error
+/// where they fail.
+#[test]
+fn kinematics_and_kinetostatics_tables_equal_one_by_one() {
+    let mut total = (0, 0);
+    macro_rules! one {
+        ($ty:ident, $seed:expr) => {{
+            let x = inputs(300, $seed);
+            tables_batch!($ty, x.q, x.qd, x.qdd, same_f64, one_driver)
+        }};
+    }
+    for (ok, failed) in [
+        one!(FourBar, 31),
+        one!(SliderCrank, 32),
+        one!(PublicFourBar, 33),
+        one!(PublicSliderCrank, 34),
+        one!(QuickReturn, 35),
+        one!(Watt2, 36),
+        one!(Stephenson3, 37),
+        one!(ScotchYoke, 38),
+        one!(HydraulicLever, 39),
+    ] {
+        total = (total.0 + ok, total.1 + failed);
+    }
+    // The five-bar's two inputs: `driver.<joint>` columns.
+    let mut r = Rng(41);
+    let mut two = |lo: f64, hi: f64| -> Vec<[f64; 2]> {
+        (0..300)
+            .map(|_| [r.input(lo, hi), r.input(lo, hi)])
+            .collect()
+    };
+    let (q, qd, qdd) = (two(-7.0, 7.0), two(-9.0, 9.0), two(-9.0, 9.0));
+    let flat = |v: &[[f64; 2]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+    let drivers = |rt: &Mechanism, d: &[f64; 2]| {
+        rt.model()
+            .inputs
+            .iter()
+            .zip(d)
+            .map(|(&j, &v)| (format!("driver.{}", rt.model().joints[j].name), v))
+            .collect::<Vec<_>>()
+    };
+    let (ok, failed) = tables_batch!(FiveBar, q, qd, qdd, flat, drivers);
+    assert!(
+        ok >= 100 && failed >= 20,
+        "five-bar: {ok} solved, {failed} failed"
+    );
+    total = (total.0 + ok, total.1 + failed);
+    assert!(total.0 >= 2000 && total.1 >= 100, "{total:?}");
+}
+
+/// A table of the wrong size, of the other kind, or slices of different lengths: refused
+/// with the numbers and the fix, nothing written; a table resized is accepted.
+#[test]
+fn tables_of_the_wrong_shape_are_refused() {
+    let m = FourBar::new();
+    let q = [0.1, 0.2, 0.3];
+    let mut t = m.kinematics_table(3);
+    assert!(m
+        .kinematics_many(&q, &[1.0; 3], &[0.0; 3], &mut t)
+        .is_empty());
+    let before = t.clone();
+    let e = m.kinematics_many(&q, &[1.0; 2], &[0.0; 3], &mut t);
+    assert!(
+        e.refusal()
+            .unwrap()
+            .to_string()
+            .contains("`qd` has 2 configurations where `q` has 3"),
+        "{e}"
+    );
+    let e = m.kinematics_many(&q[..2], &[1.0; 2], &[0.0; 2], &mut t);
+    assert_eq!(
+        e.refusal().unwrap().to_string(),
+        "invalid input: `out` holds 3 configurations where `q` has 2: call `out.resize(2)` or make it with `kinematics_table(2)`"
+    );
+    let mut f = m.kinetostatics_table(3);
+    let e = m.kinematics_many(&q, &[1.0; 3], &[0.0; 3], &mut f);
+    assert!(
+        e.refusal()
+            .unwrap()
+            .to_string()
+            .contains("not a table of this mechanism's kinematics"),
+        "{e}"
+    );
+    // A kinematics table of another mechanism (the slider-crank's) is refused too.
+    let mut other = SliderCrank::new().kinematics_table(3);
+    assert!(m
+        .kinematics_many(&q, &[1.0; 3], &[0.0; 3], &mut other)
+        .refusal()
+        .is_some());
+    assert_eq!(t, before);
+    assert!(f.values().iter().all(|v| v.is_nan()));
+    let rt = Mechanism::from_rust_source(MECHANISMS, "FourBar").unwrap();
+    let e = rt.kinetostatics_many(
+        &q,
+        &[1.0; 3],
+        &[0.0; 3],
+        &rt.loads(),
+        &mut m.kinetostatics_table(4),
+    );
+    assert!(
+        e.to_string()
+            .starts_with("batch refused: invalid input: `out` holds 4 configurations"),
+        "{e}"
+    );
+    // Resized, the table takes the batch.
+    t.resize(2);
+    assert!(m
+        .kinematics_many(&q[..2], &[1.0; 2], &[0.0; 2], &mut t)
+        .is_empty());
+    assert_eq!(t.len(), 2);
+    assert_eq!(
+        t.get("B.x", 1),
+        Some(m.kinematics(0.2, 1.0, 0.0).unwrap().points.B.pos.x)
+    );
+}
+
+/// On rayon's pool (from `PARALLEL_FROM` configurations) the tables are the same as one by
+/// one: the parts of the split write their own configurations of every column.
+#[test]
+fn tables_on_the_pool_equal_one_by_one() {
+    let m = SliderCrank::new();
+    let x = inputs(PARALLEL_FROM + 1031, 43);
+    let n = x.q.len();
+    let mut t = m.kinematics_table(n);
+    let errs = m.kinematics_many(&x.q, &x.qd, &x.qdd, &mut t);
+    let mut f = m.kinetostatics_table(n);
+    let loads = SliderCrankLoads::default();
+    let ferrs = m.kinetostatics_many(&x.q, &x.qd, &x.qdd, &loads, &mut f);
+    let mut expected = Vec::new();
+    for i in 0..n {
+        match m.kinematics(x.q[i], x.qd[i], x.qdd[i]) {
+            Ok(mo) => {
+                let c = t.column("B.vx").unwrap();
+                same("B.vx", i, c[i], mo.points.B.vel.x, top(c));
+                let d = f.column("driver").unwrap();
+                same(
+                    "driver",
+                    i,
+                    d[i],
+                    m.kinetostatics(&mo, &loads).unwrap().driver,
+                    top(d),
+                );
+            }
+            Err(_) => expected.push(i),
+        }
+    }
+    assert_eq!(errs.indices(), &expected[..]);
+    assert_eq!(ferrs.indices(), &expected[..]);
+    assert!(expected.len() > 100);
 }
 
 #[path = "../examples/batch.rs"]

@@ -147,16 +147,15 @@ BATCH_OPS = ["four_bar/points", "four_bar/reduced", "four_bar/acceleration", "sl
 BATCH_SIZE = 1024  # benches/floor.rs, BATCH
 
 
-def instructions(bench_bin, name):
+def instructions(bench_bin, name, simd="1"):
     """Instructions per call of the criterion function `name` (callgrind; the recipe of the
-    header of benches/floor.rs)."""
+    header of benches/floor.rs). `simd="0"` sets MECH_SIMD=0: the lanes' baseline path (two
+    128-bit registers per lane value) instead of the 256-bit one chosen at run time."""
     out = Path(tempfile.mkdtemp()) / "cg.out"
-    # MECH_SIMD=0: the lanes' baseline x86-64 path (valgrind 3.19 does not decode some AVX2
-    # encodings of the run-time dispatched path).
     subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", bench_bin,
                     "--bench", "--profile-time", "1", f"^{re.escape(name)}$"],
                    cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True,
-                   env=dict(os.environ, MECH_SIMD="0"))
+                   env=dict(os.environ, MECH_SIMD=simd))
     ann = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--tree=caller", str(out)],
                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, check=True).stdout
     n = k = None
@@ -179,22 +178,25 @@ def batch():
     bench_bin = next(json.loads(l)["executable"] for l in exe.splitlines()
                      if '"executable":"' in l and json.loads(l).get("target", {}).get("name") == "floor")
     rows = ["| operation | batched (ns per configuration) | hand-written (ns per configuration) "
-            "| interleaved ratio | batched (instructions per configuration) | hand-written (instructions per configuration) |",
-            "|---|---:|---:|---:|---:|---:|"]
+            "| interleaved ratio | batched (instructions per configuration) "
+            "| batched, `MECH_SIMD=0` (instructions per configuration) | hand-written (instructions per configuration) |",
+            "|---|---:|---:|---:|---:|---:|---:|"]
     for op in BATCH_OPS:
         g, h, r = (med.get(f"batch/{op}/generated"), med.get(f"batch/{op}/hand"),
                    med.get(f"ratio/batch/{op}"))
         if g is None or h is None or r is None:
             sys.exit(f"no result for batch/{op}")
         ig = instructions(bench_bin, f"batch/{op}/generated") / BATCH_SIZE
+        i0 = instructions(bench_bin, f"batch/{op}/generated", simd="0") / BATCH_SIZE
         ih = instructions(bench_bin, f"batch/{op}/hand") / BATCH_SIZE
-        rows.append(f"| `{op}` | {g / BATCH_SIZE:.1f} | {h / BATCH_SIZE:.1f} | {r:.2f}× | {ig:.0f} | {ih:.0f} |")
+        rows.append(f"| `{op}` | {g / BATCH_SIZE:.1f} | {h / BATCH_SIZE:.1f} | {r:.2f}× | {ig:.0f} | {i0:.0f} | {ih:.0f} |")
     return "\n".join(rows)
 
 
 BATCH_CMD = ("`cargo bench --bench floor -- '^batch/|^ratio/batch/'`, medians over 1 024 configurations "
-             "per call on one thread, and callgrind's instruction counts of the same functions "
-             "(`MECH_SIMD=0`: the lanes' baseline x86-64 path, which valgrind decodes)")
+             "per call on one thread, and callgrind's instruction counts of the same functions, "
+             "on the 256-bit lanes the processor's AVX2 selects and with `MECH_SIMD=0` on the "
+             "128-bit baseline)")
 
 MACHINES = [("four_bar", "four-bar"), ("slider_crank", "slider-crank"),
             ("watt2", "Watt II six-bar"), ("five_bar", "five-bar (2 DOF)")]

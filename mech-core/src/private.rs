@@ -93,12 +93,14 @@ pub mod zhukovski {
 }
 pub mod batch {
     pub use crate::solvers::batch::{
-        each, each_lanes, refuse, same_len, BatchErrors, Block, Nan, NAN2,
+        each, each_lanes, named, put_kinematics, put_kinematics_lanes, put_kinetostatics, refuse,
+        same_len, BatchErrors, Block, Nan, Strided, Table, NAN2,
     };
 }
 pub mod lanes {
     pub use crate::kernel::lanes::{
-        acceleration_lanes, any, or, point_lanes, solve_chain_lanes, solve_driven_lanes, with_simd,
-        LinkLanes, Mask, ZhukovskiLanes, L, LANES, NONE,
+        acceleration_lanes, any, crank_angle_lanes, link_angle_lanes, or, point_lanes,
+        point_motion_lanes, solve_chain_lanes, solve_driven_lanes, with_simd, Backend, Base,
+        LinkLanes, Mask, Wide, ZhukovskiLanes, L, LANES, NONE,
     };
 }

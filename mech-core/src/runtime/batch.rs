@@ -7,16 +7,17 @@
 
 use super::mechanism::{Mechanism, Scratch};
 use super::results::LoadValue;
-use super::results::{Loads, Motion, Pose};
+use super::results::{Forces, Loads, Motion, Pose};
 use crate::kernel::constraints::Level;
 use crate::kernel::lanes::{
-    acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, LinkLanes, Mask,
-    ZhukovskiLanes, L, NONE,
+    acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, Backend, Base,
+    LinkLanes, Mask, Wide, ZhukovskiLanes, L, NONE,
 };
 use crate::kernel::link_state::{point_pose, LinkState};
 use crate::plan::assur::Kernel;
 use crate::solvers::batch::{
-    each, each_lanes, each_with, refuse, same_len, BatchErrors, Block, Nan,
+    each, each_lanes, each_with, kinematics_columns, kinetostatics_columns, put_kinematics,
+    put_kinetostatics, refuse, same_len, BatchErrors, Block, Nan, Table,
 };
 use crate::solvers::traits::OneDof;
 use crate::MechError;
@@ -31,12 +32,12 @@ impl Nan for Pose {
 
 /// Four consecutive values from `x[i]` as one lane value.
 #[inline(always)]
-fn four(x: &[f64], i: usize) -> L {
-    L([x[i], x[i + 1], x[i + 2], x[i + 3]])
+fn four<B: Backend>(x: &[f64], i: usize) -> L<B> {
+    L::new([x[i], x[i + 1], x[i + 2], x[i + 3]])
 }
 
 /// The lane states of a mechanism's links, on the stack up to eight links.
-type LaneStates = smallvec::SmallVec<[LinkLanes; 8]>;
+type LaneStates<B> = smallvec::SmallVec<[LinkLanes<B>; 8]>;
 
 /// The most points the run-time `points_many` takes four configurations at once (more go
 /// one by one).
@@ -123,28 +124,9 @@ impl Mechanism {
                 rows.0,
                 rows.1,
                 #[inline(always)]
-                |i, r: &mut Block<f64>| {
-                    let zero = L::splat(0.0);
-                    let (s, mut mask) = self.solve_lanes(four(q, i), zero, zero, Level::Position);
-                    let mut sum = zero;
-                    let mut xy = [[zero; 2]; MAX_LANE_POINTS];
-                    for (k, &(o, d)) in self.inst.points.iter().enumerate() {
-                        xy[k] = point_lanes(&s, o, d);
-                        sum = sum + xy[k][0] + xy[k][1];
-                    }
-                    // A NaN or infinite coordinate makes the sum non-finite.
-                    mask = or(mask, sum.not_finite());
-                    for (lane, &masked) in mask.iter().enumerate() {
-                        if !masked {
-                            let row = r.row(i + lane);
-                            for (k, p) in xy[..np].iter().enumerate() {
-                                row[2 * k] = p[0].0[lane];
-                                row[2 * k + 1] = p[1].0[lane];
-                            }
-                        }
-                    }
-                    mask
-                },
+                |i, r: &mut Block<f64>| self.points_four::<Base>(q, i, r),
+                #[inline(always)]
+                |i, r: &mut Block<f64>| self.points_four::<Wide>(q, i, r),
                 |i, r: &mut Block<f64>| self.points_into(&q[i..i + 1], &mut Vec::new(), r.row(i)),
             );
         }
@@ -176,19 +158,17 @@ impl Mechanism {
             Ok(r) => r,
             Err(e) => return refuse(e),
         };
-        let motion = || Motion {
-            links: Vec::new(),
-            points: Vec::new(),
-            inputs: SmallVec::new(),
-            states: Vec::new(),
-            model: self.model.clone(),
-        };
-        each_with(rows.0, rows.1, motion, |i, r: &mut Block<f64>, m| {
-            let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-            self.kinematics_into(qi, qdi, qddi, m)?;
-            r.row(i).copy_from_slice(&self.driver_action(m, loads)?);
-            Ok(())
-        })
+        each_with(
+            rows.0,
+            rows.1,
+            || self.empty_motion(),
+            |i, r: &mut Block<f64>, m| {
+                let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
+                self.kinematics_into(qi, qdi, qddi, m)?;
+                r.row(i).copy_from_slice(&self.driver_action(m, loads)?);
+                Ok(())
+            },
+        )
     }
 
     /// Zhukovski's I* (kg·m²) and dI*/dq (kg·m²/rad) at every q of a one-input mechanism,
@@ -223,20 +203,9 @@ impl Mechanism {
             n,
             rows,
             #[inline(always)]
-            |i, (a, b): &mut (Block<f64>, Block<f64>)| {
-                let (one, zero) = (L::splat(1.0), L::splat(0.0));
-                let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
-                let z = self.sums_lanes(&s, None);
-                let bad = or(z.inertia.not_finite(), z.inertia_derivative.not_finite());
-                let mask = or(mask, bad);
-                for (lane, &masked) in mask.iter().enumerate() {
-                    if !masked {
-                        *a.at(i + lane) = z.inertia.0[lane];
-                        *b.at(i + lane) = z.inertia_derivative.0[lane];
-                    }
-                }
-                mask
-            },
+            |i, r: &mut (Block<f64>, Block<f64>)| self.reduced_four::<Base>(q, i, r),
+            #[inline(always)]
+            |i, r: &mut (Block<f64>, Block<f64>)| self.reduced_four::<Wide>(q, i, r),
             one,
         )
     }
@@ -267,32 +236,219 @@ impl Mechanism {
         if !self.lanes {
             return each(n, rows, one);
         }
+        let four = (q, qd, driver, loads);
         each_lanes(
             n,
             rows,
             #[inline(always)]
-            |i, r: &mut Block<f64>| {
-                let (one, zero) = (L::splat(1.0), L::splat(0.0));
-                let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
-                let z = self.sums_lanes(&s, Some(loads));
-                let (acc, failed) = acceleration_lanes(&z, four(qd, i), four(driver, i));
-                let mask = or(mask, failed);
-                for (lane, &masked) in mask.iter().enumerate() {
-                    if !masked {
-                        *r.at(i + lane) = acc.0[lane];
-                    }
-                }
-                mask
-            },
+            |i, r: &mut Block<f64>| self.acceleration_four::<Base>(four, i, r),
+            #[inline(always)]
+            |i, r: &mut Block<f64>| self.acceleration_four::<Wide>(four, i, r),
             one,
         )
+    }
+
+    /// A table for [`Mechanism::kinematics_many`] of `n` configurations, every value NaN:
+    /// the columns of [`kinematics_columns`] (every point's `<point>.x`, `.y`, every moving
+    /// link's `<link>.angle`, the points' `.vx`, `.vy`, `.ax`, `.ay`, the links' `.omega`,
+    /// `.alpha`; SI units), made once and reused.
+    pub fn kinematics_table(&self, n: usize) -> Table {
+        Table::with_columns(|c| kinematics_columns(&self.model, c), n)
+    }
+
+    /// A table for [`Mechanism::kinetostatics_many`] of `n` configurations, every value
+    /// NaN: the columns of [`kinetostatics_columns`] (every joint's `<joint>.fx`, `.fy`, a
+    /// prismatic joint's `.moment`, then `driver` or `driver.<joint>`; SI units).
+    pub fn kinetostatics_table(&self, n: usize) -> Table {
+        Table::with_columns(|c| kinetostatics_columns(&self.model, c), n)
+    }
+
+    /// [`Mechanism::kinematics`] at every configuration (q, q̇, q̈) (G values each) into the
+    /// table `out` ([`Mechanism::kinematics_table`] of as many configurations), structure
+    /// of arrays: `out.column("B.x")` holds every configuration's x of B. A configuration
+    /// that fails gets NaN in every column and its index in the returned [`BatchErrors`];
+    /// slices of different lengths or a table of another size or mechanism are refused.
+    /// One motion buffer per chunk.
+    pub fn kinematics_many(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut Table,
+    ) -> BatchErrors {
+        let g = self.dof();
+        let rows = match configs(q, g).and_then(|n| {
+            same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len())?;
+            Ok((
+                n,
+                out.configurations("kinematics", |c| kinematics_columns(&self.model, c), n)?,
+            ))
+        }) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        each_with(
+            rows.0,
+            rows.1,
+            || self.empty_motion(),
+            |i, r, m| {
+                let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
+                self.kinematics_into(qi, qdi, qddi, m)?;
+                put_kinematics(r, i, m.points.iter(), m.links[1..].iter());
+                Ok(())
+            },
+        )
+    }
+
+    /// [`Mechanism::kinetostatics`] (d'Alembert) at every configuration (q, q̇, q̈) (G
+    /// values each) with the same loads into the table `out`
+    /// ([`Mechanism::kinetostatics_table`]): every reaction and the motor actions, one
+    /// column each. A configuration that fails gets NaN in every column and its index in
+    /// the returned [`BatchErrors`]; a mechanism with redundant constraints (no reactions),
+    /// slices of different lengths or a table of another size or mechanism are refused.
+    pub fn kinetostatics_many(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        loads: &Loads,
+        out: &mut Table,
+    ) -> BatchErrors {
+        if self.redundant() {
+            return refuse(MechError::Redundant(
+                "this mechanism has redundant constraints (`#[allow(redundant)]`): its reactions are statically indeterminate; call `driver_action_many` (virtual power)".into(),
+            ));
+        }
+        let g = self.dof();
+        let rows = match configs(q, g).and_then(|n| {
+            same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len())?;
+            Ok((
+                n,
+                out.configurations(
+                    "kinetostatics",
+                    |c| kinetostatics_columns(&self.model, c),
+                    n,
+                )?,
+            ))
+        }) {
+            Ok(r) => r,
+            Err(e) => return refuse(e),
+        };
+        let scratch = || {
+            let f = Forces {
+                driver: Vec::new(),
+                joints: Vec::new(),
+                model: self.model.clone(),
+            };
+            (self.empty_motion(), f)
+        };
+        each_with(rows.0, rows.1, scratch, |i, r, (m, f)| {
+            let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
+            self.kinematics_into(qi, qdi, qddi, m)?;
+            self.kinetostatics_into(m, loads, None, f)?;
+            put_kinetostatics(
+                r,
+                i,
+                f.joints.iter().map(|j| (j.force, j.moment)),
+                &f.driver,
+            );
+            Ok(())
+        })
+    }
+
+    /// A motion with empty buffers: the scratch of a chunk.
+    fn empty_motion(&self) -> Motion {
+        Motion {
+            links: Vec::new(),
+            points: Vec::new(),
+            inputs: SmallVec::new(),
+            states: Vec::new(),
+            model: self.model.clone(),
+        }
+    }
+
+    /// `points_many`'s four configurations from `q[i]` on backend `B`: the points of the
+    /// lanes not masked into their rows, and the mask.
+    #[inline(always)]
+    fn points_four<B: Backend>(&self, q: &[f64], i: usize, r: &mut Block<f64>) -> Mask {
+        let np = self.inst.points.len();
+        let zero = L::<B>::splat(0.0);
+        let (s, mut mask) = self.solve_lanes(four(q, i), zero, zero, Level::Position);
+        let mut sum = zero;
+        let mut xy = [[zero; 2]; MAX_LANE_POINTS];
+        for (k, &(o, d)) in self.inst.points.iter().enumerate() {
+            xy[k] = point_lanes(&s, o, d);
+            sum = sum + xy[k][0] + xy[k][1];
+        }
+        // A NaN or infinite coordinate makes the sum non-finite.
+        mask = or(mask, sum.not_finite());
+        for (lane, &masked) in mask.iter().enumerate() {
+            if !masked {
+                let row = r.row(i + lane);
+                for (k, p) in xy[..np].iter().enumerate() {
+                    row[2 * k] = p[0].0[lane];
+                    row[2 * k + 1] = p[1].0[lane];
+                }
+            }
+        }
+        mask
+    }
+
+    /// `reduced_many`'s four configurations from `q[i]` on backend `B`.
+    #[inline(always)]
+    fn reduced_four<B: Backend>(
+        &self,
+        q: &[f64],
+        i: usize,
+        (a, b): &mut (Block<f64>, Block<f64>),
+    ) -> Mask {
+        let (one, zero) = (L::<B>::splat(1.0), L::splat(0.0));
+        let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
+        let z = self.sums_lanes(&s, None);
+        let bad = or(z.inertia.not_finite(), z.inertia_derivative.not_finite());
+        let mask = or(mask, bad);
+        for (lane, &masked) in mask.iter().enumerate() {
+            if !masked {
+                *a.at(i + lane) = z.inertia.0[lane];
+                *b.at(i + lane) = z.inertia_derivative.0[lane];
+            }
+        }
+        mask
+    }
+
+    /// `acceleration_many`'s four configurations from index `i` of (q, q̇, driver) with
+    /// `loads` on backend `B`.
+    #[inline(always)]
+    fn acceleration_four<B: Backend>(
+        &self,
+        (q, qd, driver, loads): (&[f64], &[f64], &[f64], &Loads),
+        i: usize,
+        r: &mut Block<f64>,
+    ) -> Mask {
+        let (one, zero) = (L::<B>::splat(1.0), L::splat(0.0));
+        let (s, mask) = self.solve_lanes(four(q, i), one, zero, Level::Acceleration);
+        let z = self.sums_lanes(&s, Some(loads));
+        let (acc, failed) = acceleration_lanes(&z, four(qd, i), four(driver, i));
+        let mask = or(mask, failed);
+        for (lane, &masked) in mask.iter().enumerate() {
+            if !masked {
+                *r.at(i + lane) = acc.0[lane];
+            }
+        }
+        mask
     }
 
     /// Four configurations of a one-input mechanism through the lane kernels of its plan
     /// (every group a driven crank or slider, an RRR or an RRP dyad: `Mechanism::lanes`),
     /// and the mask of the lanes the one-configuration solver must redo.
     #[inline(always)]
-    fn solve_lanes(&self, q: L, qd: L, qdd: L, upto: Level) -> (LaneStates, Mask) {
+    fn solve_lanes<B: Backend>(
+        &self,
+        q: L<B>,
+        qd: L<B>,
+        qdd: L<B>,
+        upto: Level,
+    ) -> (LaneStates<B>, Mask) {
         let mut s = LaneStates::from_elem(LinkLanes::default(), self.inst.links.len());
         let joints = &self.inst.joints[..];
         let mut mask = NONE;
@@ -312,7 +468,11 @@ impl Mechanism {
     /// Zhukovski's sums over four configurations' motion with q̇ = 1, q̈ = 0: the lane twin
     /// of the run-time sums (no force element: `Mechanism::lanes`); M* only with `loads`.
     #[inline(always)]
-    fn sums_lanes(&self, s: &[LinkLanes], loads: Option<&Loads>) -> ZhukovskiLanes {
+    fn sums_lanes<B: Backend>(
+        &self,
+        s: &[LinkLanes<B>],
+        loads: Option<&Loads>,
+    ) -> ZhukovskiLanes<B> {
         let mut z = ZhukovskiLanes::new();
         for (l, t) in self.terms.iter().enumerate().skip(1) {
             let geom = &self.inst.links[l];

@@ -41,17 +41,18 @@ fn solve_lanes_fn(cx: &Ctx) -> TokenStream {
         }
     });
     quote! {
-        /// Four configurations at once: every group's lane kernel in plan order
-        /// (`mech::__private::lanes`), and the mask of the lanes that failed or may fail.
+        /// Four configurations at once on the lane backend `B`: every group's lane kernel
+        /// in plan order (`mech::__private::lanes`), and the mask of the lanes that failed
+        /// or may fail.
         #[inline(always)]
-        fn __solve_lanes(
+        fn __solve_lanes<B: #l::Backend>(
             &self,
-            q: &[#l::L; #dof],
-            qd: &[#l::L; #dof],
-            qdd: &[#l::L; #dof],
+            q: &[#l::L<B>; #dof],
+            qd: &[#l::L<B>; #dof],
+            qdd: &[#l::L<B>; #dof],
             upto: #p::kinematics::Level,
-        ) -> ([#l::LinkLanes; #n_links], #l::Mask) {
-            let mut s = [#l::LinkLanes::default(); #n_links];
+        ) -> ([#l::LinkLanes<B>; #n_links], #l::Mask) {
+            let mut s = [#l::LinkLanes::<B>::default(); #n_links];
             let joints = self.__joints();
             let mut mask = #l::NONE;
             #(#calls)*
@@ -70,11 +71,15 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
     } else {
         quote!()
     };
-    let lanes = if lanes(cx) {
+    let lanes = if lanes(cx) && cx.one_dof() {
+        let (solve, four) = (solve_lanes_fn(cx), four_fns(cx));
+        quote!(#solve #four)
+    } else if lanes(cx) {
         solve_lanes_fn(cx)
     } else {
         quote!()
     };
+    let tables = table_fns(cx);
     quote! {
         #nan
         impl #main {
@@ -82,6 +87,7 @@ pub(crate) fn emit(cx: &Ctx) -> TokenStream {
             #lanes
             #many
             #one_dof
+            #tables
         }
     }
 }
@@ -223,43 +229,19 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
         Ok(())
     });
     let (reduced_body, acceleration_body) = if lanes(cx) {
-        let (inertia, moment) = super::traits::zhukovski_terms(cx);
-        let solve = quote! {
-            let qv = #l::L([q[i], q[i + 1], q[i + 2], q[i + 3]]);
-            let (s, mask) = self.__solve_lanes(&[qv], &[#l::L::splat(1.0)], &[#l::L::splat(0.0)], #p::kinematics::Level::Acceleration);
-            let mut z = #l::ZhukovskiLanes::new();
-            #inertia
-        };
         (
             quote! {
-                #b::each_lanes(q.len(), rows, #[inline(always)] |i, (a, d): &mut (#b::Block<f64>, #b::Block<f64>)| {
-                    #solve
-                    let #l::ZhukovskiLanes { inertia: ii, inertia_derivative: di, .. } = z;
-                    let mask = #l::or(mask, #l::or(ii.not_finite(), di.not_finite()));
-                    for k in 0..#l::LANES {
-                        if !mask[k] {
-                            *a.at(i + k) = ii.0[k];
-                            *d.at(i + k) = di.0[k];
-                        }
-                    }
-                    mask
-                }, #red_one)
+                #b::each_lanes(q.len(), rows,
+                    #[inline(always)] |i, r: &mut (#b::Block<f64>, #b::Block<f64>)| self.__reduced_four::<#l::Base>(q, i, r),
+                    #[inline(always)] |i, r: &mut (#b::Block<f64>, #b::Block<f64>)| self.__reduced_four::<#l::Wide>(q, i, r),
+                    #red_one)
             },
             quote! {
-                #b::each_lanes(q.len(), rows, #[inline(always)] |i, r: &mut #b::Block<f64>| {
-                    #solve
-                    #moment
-                    let qdv = #l::L([qd[i], qd[i + 1], qd[i + 2], qd[i + 3]]);
-                    let dv = #l::L([driver[i], driver[i + 1], driver[i + 2], driver[i + 3]]);
-                    let (acc, failed) = #l::acceleration_lanes(&z, qdv, dv);
-                    let mask = #l::or(mask, failed);
-                    for k in 0..#l::LANES {
-                        if !mask[k] {
-                            *r.at(i + k) = acc.0[k];
-                        }
-                    }
-                    mask
-                }, #acc_one)
+                let x = (q, qd, driver);
+                #b::each_lanes(q.len(), rows,
+                    #[inline(always)] |i, r: &mut #b::Block<f64>| self.__acceleration_four::<#l::Base>(x, loads, i, r),
+                    #[inline(always)] |i, r: &mut #b::Block<f64>| self.__acceleration_four::<#l::Wide>(x, loads, i, r),
+                    #acc_one)
             },
         )
     } else {
@@ -298,21 +280,47 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
 }
 
 /// `points_many`'s body through the lane kernels (one input): four configurations'
-/// points at once, the masked lanes and the tail by `__points`.
+/// points at once (`__points_four` on both lane backends), the masked lanes and the tail by
+/// `__points`.
 fn points_lanes(cx: &Ctx) -> TokenStream {
     let p = &cx.p;
     let (b, l) = (quote!(#p::batch), quote!(#p::lanes));
-    let np = cx.n_points;
+    quote! {
+        #b::each_lanes(q.len(), rows,
+            #[inline(always)] |i, r: &mut #b::Block<f64>| self.__points_four::<#l::Base>(q, i, r),
+            #[inline(always)] |i, r: &mut #b::Block<f64>| self.__points_four::<#l::Wide>(q, i, r),
+            |i, r| self.__points(q[i], r.row(i)))
+    }
+}
+
+/// The four-configuration bodies of `points_many`, `reduced_many` and `acceleration_many`
+/// (one input, every group with a lane kernel), generic over the lane backend `B` so that
+/// `each_lanes` runs them on 128-bit (`Base`) or 256-bit (`Wide`) registers.
+fn four_fns(cx: &Ctx) -> TokenStream {
+    let p = &cx.p;
+    let (b, l) = (quote!(#p::batch), quote!(#p::lanes));
+    let loads = &cx.names.loads;
+    let (np, np2) = (cx.n_points, 2 * cx.n_points);
     let pts = owners(cx).into_iter().enumerate().map(|(pt, o)| match o {
         Owner::Anchor(k) => quote!([s[#k].pos.x, s[#k].pos.y]),
         Owner::Local(k) => quote!(#l::point_lanes(&s, #k, self.points[#pt])),
     });
+    let (inertia, moment) = super::traits::zhukovski_terms(cx);
+    let solve = quote! {
+        let qv = #l::L::<B>::new([q[i], q[i + 1], q[i + 2], q[i + 3]]);
+        let (s, mask) = self.__solve_lanes(&[qv], &[#l::L::splat(1.0)], &[#l::L::splat(0.0)], #p::kinematics::Level::Acceleration);
+        let mut z = #l::ZhukovskiLanes::<B>::new();
+        #inertia
+    };
     quote! {
-        #b::each_lanes(q.len(), rows, #[inline(always)] |i, r: &mut #b::Block<f64>| {
-            let qv = #l::L([q[i], q[i + 1], q[i + 2], q[i + 3]]);
+        /// `points_many`'s four configurations from `q[i]` on the lane backend `B`: the
+        /// points of the lanes not masked into their rows, and the mask.
+        #[inline(always)]
+        fn __points_four<B: #l::Backend>(&self, q: &[f64], i: usize, r: &mut #b::Block<f64>) -> #l::Mask {
+            let q4: [f64; #l::LANES] = q[i..i + #l::LANES].try_into().expect("four configurations");
             let zero = #l::L::splat(0.0);
-            let (s, mut mask) = self.__solve_lanes(&[qv], &[zero], &[zero], #p::kinematics::Level::Position);
-            let pts: [[#l::L; 2]; #np] = [#(#pts),*];
+            let (s, mut mask) = self.__solve_lanes(&[#l::L::<B>::new(q4)], &[zero], &[zero], #p::kinematics::Level::Position);
+            let pts: [[#l::L<B>; 2]; #np] = [#(#pts),*];
             // One test for every coordinate: their sum is not finite where one is (or
             // where it overflows, a lane the scalar path then redoes).
             let mut sum = #l::L::splat(0.0);
@@ -320,16 +328,260 @@ fn points_lanes(cx: &Ctx) -> TokenStream {
                 sum += xy[0] + xy[1];
             }
             mask = #l::or(mask, sum.not_finite());
+            // Each point's (x, y) per configuration: pairs[j][k] for point j, lane k.
+            let pairs: [[[f64; 2]; #l::LANES]; #np] = ::core::array::from_fn(|j| pts[j][0].pairs(pts[j][1]));
+            if !#l::any(mask) {
+                // The four rows at once, their slots known: no test per slot.
+                let rows: &mut [f64; #l::LANES * #np2] = r.rows(i, #l::LANES).try_into().expect("four rows");
+                for k in 0..#l::LANES {
+                    for j in 0..#np {
+                        let at = k * #np2 + 2 * j;
+                        rows[at..at + 2].copy_from_slice(&pairs[j][k]);
+                    }
+                }
+                return mask;
+            }
             for k in 0..#l::LANES {
                 if !mask[k] {
                     let row = r.row(i + k);
-                    for (j, xy) in pts.iter().enumerate() {
-                        row[2 * j] = xy[0].0[k];
-                        row[2 * j + 1] = xy[1].0[k];
+                    for j in 0..#np {
+                        row[2 * j..2 * j + 2].copy_from_slice(&pairs[j][k]);
                     }
                 }
             }
             mask
-        }, |i, r| self.__points(q[i], r.row(i)))
+        }
+
+        /// `reduced_many`'s four configurations from `q[i]` on the lane backend `B`.
+        #[inline(always)]
+        fn __reduced_four<B: #l::Backend>(&self, q: &[f64], i: usize, (a, d): &mut (#b::Block<f64>, #b::Block<f64>)) -> #l::Mask {
+            #solve
+            let #l::ZhukovskiLanes { inertia: ii, inertia_derivative: di, .. } = z;
+            let mask = #l::or(mask, #l::or(ii.not_finite(), di.not_finite()));
+            for k in 0..#l::LANES {
+                if !mask[k] {
+                    *a.at(i + k) = ii.0[k];
+                    *d.at(i + k) = di.0[k];
+                }
+            }
+            mask
+        }
+
+        /// `acceleration_many`'s four configurations from index `i` of (q, q̇, driver) on
+        /// the lane backend `B`.
+        #[inline(always)]
+        fn __acceleration_four<B: #l::Backend>(&self, (q, qd, driver): (&[f64], &[f64], &[f64]), loads: &#loads, i: usize, r: &mut #b::Block<f64>) -> #l::Mask {
+            #solve
+            #moment
+            let qdv = #l::L::new([qd[i], qd[i + 1], qd[i + 2], qd[i + 3]]);
+            let dv = #l::L::new([driver[i], driver[i + 1], driver[i + 2], driver[i + 3]]);
+            let (acc, failed) = #l::acceleration_lanes(&z, qdv, dv);
+            let mask = #l::or(mask, failed);
+            for k in 0..#l::LANES {
+                if !mask[k] {
+                    *r.at(i + k) = acc.0[k];
+                }
+            }
+            mask
+        }
+    }
+}
+
+/// The names and units of a table's columns (`mech_core::solvers::batch::kinematics_columns`
+/// or `kinetostatics_columns` on this mechanism's model).
+fn columns(
+    cx: &Ctx,
+    of: fn(&mech_core::model::Model, &mut mech_core::solvers::batch::ColumnSink<'_>),
+) -> (Vec<String>, Vec<&'static str>) {
+    let (mut names, mut units) = (Vec::new(), Vec::new());
+    of(cx.model, &mut |a, b, u| {
+        names.push(format!("{a}{b}"));
+        units.push(u);
+    });
+    (names, units)
+}
+
+/// `kinematics_many` and, without redundant constraints, `kinetostatics_many`: structure-of-
+/// arrays tables (`mech::batch::Table`) with their column constants and constructors, each
+/// configuration through the one-configuration solvers and mech-core's `put_kinematics` /
+/// `put_kinetostatics`.
+fn table_fns(cx: &Ctx) -> TokenStream {
+    let Ctx {
+        p, q_ty, point_ids, ..
+    } = cx;
+    let b = quote!(#p::batch);
+    let loads = &cx.names.loads;
+    let (kn, ku) = columns(cx, mech_core::solvers::batch::kinematics_columns);
+    let moving = cx.moving_ids();
+    let one = quote!(|i, r: &mut #b::Strided<'_>| {
+        let m = self.kinematics(q[i], qd[i], qdd[i])?;
+        #b::put_kinematics(r, i, [#(&m.points.#point_ids),*], [#(&m.links.#moving),*]);
+        Ok(())
+    });
+    let (kinematics_body, kinematics_four) = if lanes(cx) && cx.one_dof() {
+        let l = quote!(#p::lanes);
+        (
+            quote! {
+                let x = (q, qd, qdd);
+                #b::each_lanes(q.len(), rows,
+                    #[inline(always)] |i, r: &mut #b::Strided<'_>| self.__kinematics_four::<#l::Base>(x, i, r),
+                    #[inline(always)] |i, r: &mut #b::Strided<'_>| self.__kinematics_four::<#l::Wide>(x, i, r),
+                    #one)
+            },
+            kinematics_four_fn(cx),
+        )
+    } else {
+        (quote!(#b::each(q.len(), rows, #one)), quote!())
+    };
+    let kinematics = quote! {
+        /// The columns of `kinematics_many`'s table, in order: every point's `<point>.x`,
+        /// `.y` (m), every moving link's `<link>.angle` (rad), every point's `.vx`, `.vy`
+        /// (m/s), `.ax`, `.ay` (m/s²), every moving link's `.omega` (rad/s), `.alpha`
+        /// (rad/s²): the names of the `mech sweep` CSV.
+        pub const KINEMATICS_COLUMNS: &'static [&'static str] = &[#(#kn),*];
+        /// The SI unit of each of `KINEMATICS_COLUMNS`.
+        pub const KINEMATICS_UNITS: &'static [&'static str] = &[#(#ku),*];
+
+        /// A table for `kinematics_many` of `n` configurations (`KINEMATICS_COLUMNS`, every
+        /// value NaN), made once and reused.
+        pub fn kinematics_table(&self, n: usize) -> #b::Table {
+            #b::Table::new(Self::KINEMATICS_COLUMNS, Self::KINEMATICS_UNITS, n)
+        }
+
+        /// `kinematics` at every configuration (q, q̇, q̈) into the table `out`
+        /// (`kinematics_table(q.len())`), structure of arrays: `out.column("B.x")` holds
+        /// every configuration's x of B, one after the other. A configuration that fails
+        /// gets NaN in every column and its index in the returned `BatchErrors`; slices of
+        /// different lengths or a table of another size or mechanism are refused, nothing
+        /// written.
+        pub fn kinematics_many(&self, q: &[#q_ty], qd: &[#q_ty], qdd: &[#q_ty], out: &mut #b::Table) -> #b::BatchErrors {
+            let rows = match #b::same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len()).and_then(|()| {
+                out.configurations("kinematics", #b::named(Self::KINEMATICS_COLUMNS, Self::KINEMATICS_UNITS), q.len())
+            }) {
+                Ok(r) => r,
+                Err(e) => return #b::refuse(e),
+            };
+            #kinematics_body
+        }
+        #kinematics_four
+    };
+    if cx.redundant() {
+        return kinematics;
+    }
+    let (fn_, fu) = columns(cx, mech_core::solvers::batch::kinetostatics_columns);
+    let joints = cx.model.joints.iter().zip(&cx.joint_ids).map(|(j, jid)| {
+        if j.kind == mech_core::model::JointKind::Prismatic {
+            quote!((f.joints.#jid.force, Some(f.joints.#jid.moment)))
+        } else {
+            quote!((f.joints.#jid.force, None))
+        }
+    });
+    let driver = if cx.one_dof() {
+        quote!(&[f.driver])
+    } else {
+        quote!(&f.driver)
+    };
+    quote! {
+        #kinematics
+
+        /// The columns of `kinetostatics_many`'s table, in order: every joint's reaction
+        /// `<joint>.fx`, `.fy` (N, by its first link on its second) and, for a prismatic
+        /// joint, `<joint>.moment` (N·m); then the motor actions, `driver` (one input) or
+        /// `driver.<joint>` (N·m or N): the names of the `mech sweep` CSV.
+        pub const KINETOSTATICS_COLUMNS: &'static [&'static str] = &[#(#fn_),*];
+        /// The SI unit of each of `KINETOSTATICS_COLUMNS`.
+        pub const KINETOSTATICS_UNITS: &'static [&'static str] = &[#(#fu),*];
+
+        /// A table for `kinetostatics_many` of `n` configurations
+        /// (`KINETOSTATICS_COLUMNS`, every value NaN), made once and reused.
+        pub fn kinetostatics_table(&self, n: usize) -> #b::Table {
+            #b::Table::new(Self::KINETOSTATICS_COLUMNS, Self::KINETOSTATICS_UNITS, n)
+        }
+
+        /// `kinetostatics` (d'Alembert) at every configuration (q, q̇, q̈) with the same
+        /// loads into the table `out` (`kinetostatics_table(q.len())`), structure of
+        /// arrays: every reaction and the motor actions, one column each. A configuration
+        /// that fails gets NaN in every column and its index in the returned
+        /// `BatchErrors`; slices of different lengths or a table of another size or
+        /// mechanism are refused, nothing written.
+        pub fn kinetostatics_many(&self, q: &[#q_ty], qd: &[#q_ty], qdd: &[#q_ty], loads: &#loads, out: &mut #b::Table) -> #b::BatchErrors {
+            let rows = match #b::same_len(&[("qd", qd.len()), ("qdd", qdd.len())], q.len()).and_then(|()| {
+                out.configurations("kinetostatics", #b::named(Self::KINETOSTATICS_COLUMNS, Self::KINETOSTATICS_UNITS), q.len())
+            }) {
+                Ok(r) => r,
+                Err(e) => return #b::refuse(e),
+            };
+            #b::each(q.len(), rows, |i, r| {
+                let m = self.kinematics(q[i], qd[i], qdd[i])?;
+                let f = self.kinetostatics(&m, loads)?;
+                #b::put_kinetostatics(r, i, [#(#joints),*], #driver);
+                Ok(())
+            })
+        }
+    }
+}
+
+/// `__kinematics_four`: `kinematics_many`'s four configurations from index `i` on the lane
+/// backend `B` (one input, every group with a lane kernel): the groups' lane kernels up to
+/// accelerations, every point's motion and every moving link's angle (as `kinematics`
+/// finds it: ±q for a crank driven on the ground, the drawing's for a link sliding on the
+/// ground, else `atan2`), ω and α, written by mech-core's `put_kinematics_lanes`.
+fn kinematics_four_fn(cx: &Ctx) -> TokenStream {
+    let p = &cx.p;
+    let (b, l) = (quote!(#p::batch), quote!(#p::lanes));
+    let np = cx.n_points;
+    let nm = cx.n_links - 1;
+    let points = owners(cx).into_iter().enumerate().map(|(pt, o)| match o {
+        Owner::Anchor(k) => quote!([s[#k].pos.xy(), s[#k].vel.xy(), s[#k].acc.xy()]),
+        Owner::Local(k) => quote!(#l::point_motion_lanes(&s, #k, self.points[#pt])),
+    });
+    let links = (1..cx.n_links).map(|k| {
+        let angle = lane_angle(cx, k);
+        quote!([#angle, s[#k].omega, s[#k].alpha])
+    });
+    quote! {
+        /// `kinematics_many`'s four configurations from index `i` of (q, q̇, q̈) on the lane
+        /// backend `B`: the lanes not masked into the table, and the mask.
+        #[inline(always)]
+        fn __kinematics_four<B: #l::Backend>(&self, (q, qd, qdd): (&[f64], &[f64], &[f64]), i: usize, r: &mut #b::Strided<'_>) -> #l::Mask {
+            let four = |x: &[f64]| -> #l::L<B> { #l::L::new(x[i..i + #l::LANES].try_into().expect("four configurations")) };
+            let qv = [four(q)];
+            let (s, mask) = self.__solve_lanes(&qv, &[four(qd)], &[four(qdd)], #p::kinematics::Level::Acceleration);
+            let points: [[[#l::L<B>; 2]; 3]; #np] = [#(#points),*];
+            let links: [[#l::L<B>; 3]; #nm] = [#(#links),*];
+            #b::put_kinematics_lanes(r, i, mask, &points, &links)
+        }
+    }
+}
+
+/// The angle of moving link `k` in lanes, as `kinematics` finds it (`results::crank_angle`):
+/// a crank driven on the ground from its input (`crank_angle_lanes`, the same operations
+/// as the scalar `crank_angle`); a link sliding on the ground, its drawing's angle; else
+/// `link_angle_lanes` (atan2).
+fn lane_angle(cx: &Ctx, k: usize) -> TokenStream {
+    let p = &cx.p;
+    let l = quote!(#p::lanes);
+    let crank = cx.plan.iter().find_map(|g| match g.kernel {
+        Kernel::Driven(d) if d.body == k && d.from == 0 && !d.screw.slide => {
+            let sign = if cx.model.joints[d.screw.joint].b == k {
+                1.0f64
+            } else {
+                -1.0
+            };
+            let (input, sign) = (d.input, super::f64s(sign));
+            Some(match cx.model.input_zero[input] {
+                0.0 => quote!(#l::crank_angle_lanes(qv[#input], #sign)),
+                z => {
+                    let z = super::f64s(z);
+                    quote!(#l::crank_angle_lanes(qv[#input] + #z, #sign))
+                }
+            })
+        }
+        _ => None,
+    });
+    match crank {
+        Some(a) => a,
+        None if cx.model.translates(k) => quote!(#l::L::splat(self.links[#k].angle_ref)),
+        None => quote!(#l::link_angle_lanes(&self.links[#k], &s[#k])),
     }
 }

@@ -2,7 +2,7 @@
 //! [`crate::kernel::kinematics::solve_driven`] (positions as `kernel::dyad`'s
 //! `driven_revolute` and `driven_prismatic`, rates as [`crate::kernel::screw::driven_rates`]).
 
-use super::simd::{sin_cos, Mask, ALL, L, V2L};
+use super::simd::{sin_cos, Backend, Mask, ALL, L, V2L};
 use super::{dir_of, pin, place_by_point, point_of, LinkLanes};
 use crate::kernel::constraints::{JointGeom, Level};
 use crate::kernel::dyad::Solver;
@@ -24,14 +24,14 @@ use crate::kernel::screw::Driven;
 /// and every lane for another solver kind.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub fn solve_driven_lanes(
+pub fn solve_driven_lanes<B: Backend>(
     solver: Solver,
     driven: &Driven,
     joints: &[JointGeom],
-    s: &mut [LinkLanes],
-    q: &[L],
-    qd: &[L],
-    qdd: &[L],
+    s: &mut [LinkLanes<B>],
+    q: &[L<B>],
+    qd: &[L<B>],
+    qdd: &[L<B>],
     upto: Level,
 ) -> Mask {
     let body = match solver {
@@ -76,7 +76,7 @@ pub fn solve_driven_lanes(
 
 /// The pose of a link driven by its revolute joint `g` at the inputs' angles `q`.
 #[inline(always)]
-fn revolute(g: &JointGeom, s: &mut [LinkLanes], body: usize, q: L) {
+fn revolute<B: Backend>(g: &JointGeom, s: &mut [LinkLanes<B>], body: usize, q: L<B>) {
     let (sn, cs) = sin_cos(q - g.q_ref);
     let (other, rel) = if g.b == body {
         (g.a, V2L::new(cs, sn))
@@ -94,7 +94,7 @@ fn revolute(g: &JointGeom, s: &mut [LinkLanes], body: usize, q: L) {
 
 /// The pose of a link driven by its prismatic joint `g` at the inputs' lengths `q`.
 #[inline(always)]
-fn prismatic(g: &JointGeom, s: &mut [LinkLanes], body: usize, q: L) {
+fn prismatic<B: Backend>(g: &JointGeom, s: &mut [LinkLanes<B>], body: usize, q: L<B>) {
     let q = q - g.q_ref;
     let (guide, d_guide, d_body, q) = if g.b == body {
         (g.a, g.da, g.db, q)
@@ -108,7 +108,14 @@ fn prismatic(g: &JointGeom, s: &mut [LinkLanes], body: usize, q: L) {
 
 /// The rates of the driven link (see [`solve_driven_lanes`]), `qd`, `qdd` its input's.
 #[inline(always)]
-fn driven_rates(d: &Driven, g: &JointGeom, s: &mut [LinkLanes], qd: L, qdd: L, upto: Level) {
+fn driven_rates<B: Backend>(
+    d: &Driven,
+    g: &JointGeom,
+    s: &mut [LinkLanes<B>],
+    qd: L<B>,
+    qdd: L<B>,
+    upto: Level,
+) {
     let sigma = if g.a == d.from { 1.0 } else { -1.0 };
     let (qd, qdd) = (qd * sigma, qdd * sigma);
     let acc = upto == Level::Acceleration;

@@ -3,8 +3,8 @@
 //! [`crate::kernel::dyad::circle_line_along`], rates in natural coordinates as
 //! [`crate::kernel::natural::rrr_rates`] and [`crate::kernel::natural::rrp_rates`]).
 
-use super::simd::{Bits, Mask, ALL, L, V2L};
-use super::{dir_of, pin, place_by_point, LinkLanes};
+use super::simd::{Backend, Bits, Mask, ALL, L, V2L};
+use super::{dir_of, inlined, pin, place_by_point, LinkLanes};
 use crate::kernel::constraints::{JointGeom, Level};
 use crate::kernel::dyad::Solver;
 use crate::kernel::linalg::SINGULAR_CONDITION;
@@ -54,10 +54,10 @@ pub const PRECISE_CONDITION: f64 = 30.0;
 /// - every lane for another solver kind.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub fn solve_chain_lanes(
+pub fn solve_chain_lanes<B: Backend>(
     solver: Solver,
     joints: &[JointGeom],
-    s: &mut [LinkLanes],
+    s: &mut [LinkLanes<B>],
     sign: f64,
     scale: f64,
     upto: Level,
@@ -109,7 +109,7 @@ fn local_in(g: &JointGeom, body: usize) -> V2 {
 /// The velocity and acceleration of the material point of link `l` now at `p`; zero on
 /// the ground.
 #[inline(always)]
-fn point_rates(s: &[LinkLanes], l: usize, p: V2L) -> (V2L, V2L) {
+fn point_rates<B: Backend>(s: &[LinkLanes<B>], l: usize, p: V2L<B>) -> (V2L<B>, V2L<B>) {
     if l == 0 {
         let z = V2L::splat(crate::kernel::link_state::zero());
         (z, z)
@@ -123,7 +123,7 @@ fn point_rates(s: &[LinkLanes], l: usize, p: V2L) -> (V2L, V2L) {
 /// [`crate::kernel::dyad::place_by_two_points`]: the rotation (a·b, a × b)/|a|² with
 /// a = d2 − d1 (shared, so 1/|a|² is one scalar division) and b = p2 − p1.
 #[inline(always)]
-fn place_by_two_points(s: &mut LinkLanes, d1: V2, d2: V2, p1: V2L, p2: V2L) {
+fn place_by_two_points<B: Backend>(s: &mut LinkLanes<B>, d1: V2, d2: V2, p1: V2L<B>, p2: V2L<B>) {
     let a = d2 - d1;
     let b = p2 - p1;
     let inv = 1.0 / a.norm_squared();
@@ -134,20 +134,20 @@ fn place_by_two_points(s: &mut LinkLanes, d1: V2, d2: V2, p1: V2L, p2: V2L) {
 /// The lanes that fail the condition test `norm2 < limit` (a NaN fails; see
 /// [`solve_chain_lanes`]).
 #[inline(always)]
-fn ill_conditioned(norm2: L, limit: L) -> Bits {
+fn ill_conditioned<B: Backend>(norm2: L<B>, limit: L<B>) -> Bits<B> {
     norm2.not_less(limit)
 }
 
 /// An RRR dyad: positions, then rates (`natural::rrr_rates`).
 #[inline(always)]
-fn rrr(
+fn rrr<B: Backend>(
     joints: &[JointGeom],
-    s: &mut [LinkLanes],
+    s: &mut [LinkLanes<B>],
     [b1, b2]: [usize; 2],
     [ja, jc, jb]: [usize; 3],
     sign: f64,
     upto: Level,
-) -> Bits {
+) -> Bits<B> {
     let (a, da) = pin(&joints[ja], s, b1);
     let (b, db) = pin(&joints[jb], s, b2);
     let gc = &joints[jc];
@@ -182,7 +182,10 @@ fn rrr(
     let norm2 = (m00 * m00 + m10 * m10) + (m01 * m01 + m11 * m11);
     let mask = mask.or(ill_conditioned(norm2, det.abs() * PRECISE_CONDITION));
     let inv_det = 1.0 / det;
-    let solve = |x: L, y: L| ((m11 * x - m01 * y) * inv_det, (m00 * y - m10 * x) * inv_det);
+    let solve = inlined(
+        #[inline(always)]
+        |x: L<B>, y: L<B>| ((m11 * x - m01 * y) * inv_det, (m00 * y - m10 * x) * inv_det),
+    );
     let ((va, aa), (vc, ac)) = (point_rates(s, la, a), point_rates(s, lc, b));
     let dv = vc - va;
     let (w1, w2) = solve(dv.x, dv.y);
@@ -201,15 +204,15 @@ fn rrr(
 /// An RRP dyad: positions (`dyad::rrp`), then rates (`natural::rrp_rates`).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn rrp(
+fn rrp<B: Backend>(
     joints: &[JointGeom],
-    s: &mut [LinkLanes],
+    s: &mut [LinkLanes<B>],
     [b1, b2]: [usize; 2],
     [ja, jc, jp]: [usize; 3],
     sign: f64,
     scale: f64,
     upto: Level,
-) -> Bits {
+) -> Bits<B> {
     let (a, da) = pin(&joints[ja], s, b1);
     let gp = &joints[jp];
     let guide = if gp.b == b2 { gp.a } else { gp.b };
@@ -261,10 +264,13 @@ fn rrp(
         ));
     let inv_x = 1.0 / x;
     // (ω₁, ṡ) with [perp(e₁) −u] (ω₁, ṡ)ᵀ = b: ω₁ = (u × b)/x, ṡ = −(b·u + y ω₁).
-    let solve = |b: V2L| {
-        let w = u.cross(b) * inv_x;
-        (w, -(b.dot(u) + y * w))
-    };
+    let solve = inlined(
+        #[inline(always)]
+        |b: V2L<B>| {
+            let w = u.cross(b) * inv_x;
+            (w, -(b.dot(u) + y * w))
+        },
+    );
     let (da, dc) = (local_in(&joints[ja], b1), local_in(&joints[jc], b2));
     let ((va, aa), (vg, ag)) = (point_rates(s, la, a), point_rates(s, lg, c));
     let (wg, alg) = if lg == 0 {

@@ -24,12 +24,17 @@ mod dyad;
 mod simd;
 #[cfg(test)]
 mod tests;
+/// The same tests on the 256-bit backend (skipped where the processor lacks AVX2 and FMA).
+#[cfg(test)]
+#[path = "tests.rs"]
+mod tests_wide;
 mod zhukovski;
 
 pub use driven::solve_driven_lanes;
 pub use dyad::{solve_chain_lanes, PRECISE_CONDITION};
 pub use simd::{
-    any, atan2, or, select, sin_cos, wrap, Bits, Mask, ALL, L, LANES, NONE, SIN_COS_RANGE, V2L,
+    any, atan2, or, select, sin_cos, wrap, Backend, Base, Bits, Mask, Wide, ALL, L, LANES, NONE,
+    SIN_COS_RANGE, V2L,
 };
 pub use zhukovski::{acceleration_lanes, ZhukovskiLanes};
 
@@ -42,24 +47,24 @@ use crate::kernel::link_state::{LinkGeom, LinkState, V2};
 /// acceleration, the rotation (cos φ, sin φ) since the drawing, ω, α, and φ over turns
 /// where a kernel keeps it).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LinkLanes {
+pub struct LinkLanes<B: Backend = Base> {
     /// Anchor position, m.
-    pub pos: V2L,
+    pub pos: V2L<B>,
     /// (cos φ, sin φ), φ the rotation since the drawing.
-    pub rot: V2L,
+    pub rot: V2L<B>,
     /// Anchor velocity, m/s.
-    pub vel: V2L,
+    pub vel: V2L<B>,
     /// Angular velocity ω, rad/s.
-    pub omega: L,
+    pub omega: L<B>,
     /// Anchor acceleration, m/s².
-    pub acc: V2L,
+    pub acc: V2L<B>,
     /// Angular acceleration α, rad/s².
-    pub alpha: L,
+    pub alpha: L<B>,
     /// φ over turns, rad (kept by a driven link with `Driven::track`, as the scalar kernel).
-    pub angle: L,
+    pub angle: L<B>,
 }
 
-impl Default for LinkLanes {
+impl<B: Backend> Default for LinkLanes<B> {
     /// [`LinkState::default`] in every lane: at rest, unrotated, at the origin.
     #[inline]
     fn default() -> Self {
@@ -67,7 +72,7 @@ impl Default for LinkLanes {
     }
 }
 
-impl LinkLanes {
+impl<B: Backend> LinkLanes<B> {
     /// The state `s` in every lane (the ground, the drawing a batch starts from).
     #[inline(always)]
     pub fn from_state(s: &LinkState) -> Self {
@@ -97,7 +102,7 @@ impl LinkLanes {
     /// Store the scalar state `s` as lane `i` (a lane recomputed by the scalar kernels).
     #[inline]
     pub fn set_lane(&mut self, i: usize, s: &LinkState) {
-        let put = |v: &mut V2L, w: V2| {
+        let put = |v: &mut V2L<B>, w: V2| {
             v.x.0[i] = w.x;
             v.y.0[i] = w.y;
         };
@@ -111,29 +116,29 @@ impl LinkLanes {
     }
     /// The current vector R(φ) d from the anchor to the material point of local vector `d` (m).
     #[inline(always)]
-    pub fn r(&self, d: V2) -> V2L {
+    pub fn r(&self, d: V2) -> V2L<B> {
         self.rot.rotate(d)
     }
     /// The position of the material point of local vector `d` (m): pos + R(φ) d.
     #[inline(always)]
-    pub fn point(&self, d: V2) -> V2L {
+    pub fn point(&self, d: V2) -> V2L<B> {
         self.pos + self.r(d)
     }
     /// The velocity of the material point at offset `r` from the anchor: v + ω perp(r) (m/s).
     #[inline(always)]
-    pub fn vel_at(&self, r: V2L) -> V2L {
+    pub fn vel_at(&self, r: V2L<B>) -> V2L<B> {
         self.vel + r.perp() * self.omega
     }
     /// The acceleration of the material point at offset `r`: a + α perp(r) − ω² r (m/s²).
     #[inline(always)]
-    pub fn acc_at(&self, r: V2L) -> V2L {
+    pub fn acc_at(&self, r: V2L<B>) -> V2L<B> {
         self.acc + r.perp() * self.alpha - r * (self.omega * self.omega)
     }
     /// ω and the anchor's velocity from the velocity `v_p` of the material point of local
     /// vector `d`, now at `p`: v = v_p + ω perp(pos − p), v = v_p when `d` = 0 (the anchor),
     /// as [`LinkState::set_velocity_at`].
     #[inline(always)]
-    pub fn set_velocity_at(&mut self, d: V2, p: V2L, v_p: V2L, omega: L) {
+    pub fn set_velocity_at(&mut self, d: V2, p: V2L<B>, v_p: V2L<B>, omega: L<B>) {
         self.omega = omega;
         self.vel = if d.x == 0.0 && d.y == 0.0 {
             v_p
@@ -145,7 +150,7 @@ impl LinkLanes {
     /// of local vector `d`, now at `p`, ω already set: a = a_p + α perp(r) − ω² r,
     /// r = pos − p, as [`LinkState::set_acceleration_at`].
     #[inline(always)]
-    pub fn set_acceleration_at(&mut self, d: V2, p: V2L, a_p: V2L, alpha: L) {
+    pub fn set_acceleration_at(&mut self, d: V2, p: V2L<B>, a_p: V2L<B>, alpha: L<B>) {
         self.alpha = alpha;
         self.acc = if d.x == 0.0 && d.y == 0.0 {
             a_p
@@ -159,7 +164,7 @@ impl LinkLanes {
 /// The position of the material point of local vector `d` on link `l` (the local vector
 /// itself on the ground, link 0), as [`crate::kernel::link_state::point_of`].
 #[inline(always)]
-pub(crate) fn point_of(s: &[LinkLanes], l: usize, d: V2) -> V2L {
+pub(crate) fn point_of<B: Backend>(s: &[LinkLanes<B>], l: usize, d: V2) -> V2L<B> {
     if l == 0 {
         V2L::splat(d)
     } else {
@@ -169,7 +174,7 @@ pub(crate) fn point_of(s: &[LinkLanes], l: usize, d: V2) -> V2L {
 
 /// The current direction of the local vector `d` of link `l` (unrotated on the ground).
 #[inline(always)]
-pub(crate) fn dir_of(s: &[LinkLanes], l: usize, d: V2) -> V2L {
+pub(crate) fn dir_of<B: Backend>(s: &[LinkLanes<B>], l: usize, d: V2) -> V2L<B> {
     if l == 0 {
         V2L::splat(d)
     } else {
@@ -181,7 +186,7 @@ pub(crate) fn dir_of(s: &[LinkLanes], l: usize, d: V2) -> V2L {
 /// point's current position from the solved side, and its local vector in `body`, as
 /// [`crate::kernel::dyad::pin`].
 #[inline(always)]
-pub(crate) fn pin(g: &JointGeom, s: &[LinkLanes], body: usize) -> (V2L, V2) {
+pub(crate) fn pin<B: Backend>(g: &JointGeom, s: &[LinkLanes<B>], body: usize) -> (V2L<B>, V2) {
     if g.b == body {
         (point_of(s, g.a, g.da), g.db)
     } else {
@@ -192,13 +197,21 @@ pub(crate) fn pin(g: &JointGeom, s: &[LinkLanes], body: usize) -> (V2L, V2) {
 /// Place a link from its rotation and one of its points (local `d`, now at `p`):
 /// pos = p − R d (p itself when d = 0), as [`crate::kernel::dyad::place_by_point`].
 #[inline(always)]
-pub(crate) fn place_by_point(s: &mut LinkLanes, rot: V2L, d: V2, p: V2L) {
+pub(crate) fn place_by_point<B: Backend>(s: &mut LinkLanes<B>, rot: V2L<B>, d: V2, p: V2L<B>) {
     s.rot = rot;
     s.pos = if d.x == 0.0 && d.y == 0.0 {
         p
     } else {
         p - rot.rotate(d)
     };
+}
+
+/// `f` itself: a closure marked `#[inline(always)]` where an attribute on a closure is
+/// allowed (an argument), so that it is compiled into the function it is called from (with
+/// its target features: the AVX2 path of [`with_simd`]).
+#[inline(always)]
+pub(crate) fn inlined<F>(f: F) -> F {
+    f
 }
 
 /// Whether the kind `solver` has a lane kernel: a driven crank or slider, an RRR or an RRP
@@ -218,7 +231,7 @@ pub fn supports(solver: Solver) -> bool {
 /// states `s`, as `[x, y]`: pos + R(φ) d (d itself on the ground), the twin of
 /// [`crate::kernel::link_state::point_pose`].
 #[inline(always)]
-pub fn point_lanes(s: &[LinkLanes], l: usize, d: V2) -> [L; 2] {
+pub fn point_lanes<B: Backend>(s: &[LinkLanes<B>], l: usize, d: V2) -> [L<B>; 2] {
     point_of(s, l, d).xy()
 }
 
@@ -227,7 +240,7 @@ pub fn point_lanes(s: &[LinkLanes], l: usize, d: V2) -> [L; 2] {
 /// with r = R(φ) d (at rest on the ground), the twin of
 /// [`crate::kernel::link_state::point_motion`].
 #[inline(always)]
-pub fn point_motion_lanes(s: &[LinkLanes], l: usize, d: V2) -> [[L; 2]; 3] {
+pub fn point_motion_lanes<B: Backend>(s: &[LinkLanes<B>], l: usize, d: V2) -> [[L<B>; 2]; 3] {
     if l == 0 {
         let z = L::splat(0.0);
         return [V2L::splat(d).xy(), [z, z], [z, z]];
@@ -241,7 +254,7 @@ pub fn point_motion_lanes(s: &[LinkLanes], l: usize, d: V2) -> [[L; 2]; 3] {
 /// atan2 of R(φ)·dir_ref ([`atan2`], within its stated ulps of the scalar
 /// `LinkGeom::angle`, which `LinkPose::angle` holds).
 #[inline(always)]
-pub fn link_angle_lanes(l: &LinkGeom, s: &LinkLanes) -> L {
+pub fn link_angle_lanes<B: Backend>(l: &LinkGeom, s: &LinkLanes<B>) -> L<B> {
     let d = s.rot.rotate(l.dir_ref);
     atan2(d.y, d.x)
 }
@@ -250,49 +263,64 @@ pub fn link_angle_lanes(l: &LinkGeom, s: &LinkLanes) -> L {
 /// q (rad): wrap(sign·q), the twin of [`crate::kernel::kinematics::crank_angle`] (the same
 /// operations, the same results).
 #[inline(always)]
-pub fn crank_angle_lanes(q: L, sign: f64) -> L {
+pub fn crank_angle_lanes<B: Backend>(q: L<B>, sign: f64) -> L<B> {
     wrap(q * sign)
 }
 
 /// The position of link `l`'s cg (m), as `[x, y]`: pos + R(φ) d_cg, the `cg` of the scalar
 /// `LinkPose`.
 #[inline(always)]
-pub fn cg_lanes(l: &LinkGeom, s: &LinkLanes) -> [L; 2] {
+pub fn cg_lanes<B: Backend>(l: &LinkGeom, s: &LinkLanes<B>) -> [L<B>; 2] {
     s.point(l.dcg).xy()
 }
 
-/// Run `f` with the processor's 256-bit vector instructions (AVX2 and FMA) enabled when it
-/// has them (detected at run time, once per call: a cached test), plainly otherwise and on
-/// the other architectures. The lane kernels are `#[inline(always)]`, so those called in
-/// `f` are compiled for AVX2 in the first case, provided `f` itself is inlined there: mark
-/// the closure `#[inline(always)]` (`with_simd(#[inline(always)] || ...)`), else LLVM may
-/// call it, compiled for the baseline, and nothing is gained. FMA is enabled but never contracted into
-/// (Rust does not fuse a multiplication and an addition unasked), so both routes give the
-/// same results bit for bit.
+/// Run `wide` with the processor's 256-bit vector instructions (AVX2 and FMA) enabled when
+/// it has them (detected at run time, once per call: a cached test), `base` otherwise and
+/// on the other architectures. `wide` is meant to call the lane kernels on the [`Wide`]
+/// backend (one 256-bit register per lane value), `base` the same kernels on [`Base`] (two
+/// 128-bit registers): the kernels are `#[inline(always)]`, so those called in `wide` are
+/// compiled for AVX2, provided `wide` itself is inlined there — mark the closure
+/// `#[inline(always)]`, else LLVM may call it, compiled for the baseline. FMA is enabled
+/// but never contracted into (Rust does not fuse a multiplication and an addition unasked),
+/// so both routes give the same results bit for bit.
 ///
-/// The environment variable `MECH_SIMD=0` keeps the baseline path (read once): valgrind
-/// 3.19 does not decode some of the AVX2 encodings, so the instruction counts of
-/// `tools/report.py batch` are taken on the baseline path.
+/// `state` is handed to whichever runs (the rows and errors both would borrow).
+///
+/// The environment variable `MECH_SIMD=0` keeps the baseline path (read once).
 #[inline(always)]
-pub fn with_simd<R>(f: impl FnOnce() -> R) -> R {
+pub fn with_simd<T, R>(state: T, base: impl FnOnce(T) -> R, wide: impl FnOnce(T) -> R) -> R {
     #[cfg(target_arch = "x86_64")]
     {
-        if simd_allowed()
-            && std::is_x86_feature_detected!("avx2")
-            && std::is_x86_feature_detected!("fma")
-        {
-            // SAFETY: the processor has AVX2 and FMA (just detected).
-            return unsafe { avx2(f) };
+        if simd_allowed() {
+            // SAFETY: the processor has AVX2 and FMA (`simd_allowed` detected them).
+            return unsafe {
+                avx2(
+                    #[inline(always)]
+                    move || wide(state),
+                )
+            };
         }
     }
-    f()
+    let _ = wide;
+    base(state)
 }
 
-/// False when `MECH_SIMD=0` is set (looked up once).
+/// True where the [`Wide`] backend runs: the processor has AVX2 and FMA and `MECH_SIMD=0`
+/// is not set (looked up once).
 #[cfg(target_arch = "x86_64")]
-fn simd_allowed() -> bool {
+pub fn simd_allowed() -> bool {
     static ALLOWED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *ALLOWED.get_or_init(|| !matches!(std::env::var_os("MECH_SIMD"), Some(v) if v == "0"))
+    *ALLOWED.get_or_init(|| {
+        !matches!(std::env::var_os("MECH_SIMD"), Some(v) if v == "0")
+            && std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma")
+    })
+}
+
+/// False outside x86-64: the [`Wide`] backend is [`Base`] there.
+#[cfg(not(target_arch = "x86_64"))]
+pub fn simd_allowed() -> bool {
+    false
 }
 
 /// `f` compiled with AVX2 and FMA (the closure and what it inlines).

@@ -1,15 +1,25 @@
 //! The lane type: four `f64` values computed side by side, and the branch-free functions
 //! the lane kernels need: [`sin_cos`], [`atan2`], [`wrap`].
 //!
-//! **The backend.** On x86-64 an [`L`] is stored as `[f64; 4]` (the callers read and write
-//! lanes as `.0[k]`) and computed as two SSE2 registers (`__m128d`, part of the x86-64
-//! baseline, so no run-time test): every operation is one packed instruction per half,
-//! every comparison a packed compare giving a [`Bits`] mask (lanes of all ones or all
-//! zeros), [`Bits::select`] an and/andnot/or blend, "not finite" one packed compare of |x|
-//! against ∞, the quadrant of [`sin_cos`] integer operations on the rounded multiple of
-//! π/2, and a [`Mask`] for the caller one `movmskpd` per half. Inside
-//! [`super::with_simd`] LLVM encodes them with VEX (AVX2 enabled). Elsewhere the halves are
-//! plain `[f64; 2]` arrays with the same semantics.
+//! **The backends.** An [`L`] is stored as `[f64; 4]` (the callers read and write lanes as
+//! `.0[k]`) and computed by its [`Backend`], a type parameter of every lane type and
+//! kernel, so that each kernel is compiled once per backend: [`Base`], the portable
+//! baseline, two SSE2 registers (`__m128d`, part of the x86-64 baseline, so no run-time
+//! test) with every operation one packed instruction per half, every comparison a packed
+//! compare giving a [`Bits`] mask (lanes of all ones or all zeros), [`Bits::select`] an
+//! and/andnot/or blend, "not finite" one packed compare of |x| against ∞, the quadrant of
+//! [`sin_cos`] integer operations on the rounded multiple of π/2, and a [`Mask`] for the
+//! caller one `movmskpd` per half (plain `[f64; 2]` halves with the same semantics on the
+//! other architectures); and [`Wide`], the same operations on one 256-bit AVX register
+//! (`__m256d`, the quadrant in AVX2 integer operations), run only inside
+//! [`super::with_simd`]'s AVX2 path. Both compute every lane with the same IEEE operations
+//! in the same order, so they give the same results bit for bit.
+//!
+//! With [`Wide`] (callgrind, instructions per configuration, 1 024 configurations per
+//! call): the four-bar `points_many` 89 (hand-written scalar code 190), `reduced_many` 128,
+//! `acceleration_many` 160, the slider-crank `acceleration_many` 138; on [`Base`] 189, 270,
+//! 328, 284. Before the two backends, on the 128-bit lanes VEX-encoded in the AVX2 path:
+//! 173, 215, 268, 232.
 //!
 //! Measured on the floor benchmark's batched four-bar and slider-crank (callgrind,
 //! instructions per configuration, and the interleaved time ratio batched / hand-written
@@ -38,6 +48,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::kernel::link_state::V2;
+use std::marker::PhantomData;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// The number of configurations computed side by side.
@@ -45,10 +56,10 @@ pub const LANES: usize = 4;
 
 /// Four `f64` values, one per configuration (a lane), in whatever unit the quantity has.
 /// The arithmetic goes through the backend (module docs): the array is the storage the
-/// callers read and write lane by lane, the operations load it as two halves.
+/// callers read and write lane by lane, the operations load it into the backend's registers.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(transparent)]
-pub struct L(pub [f64; LANES]);
+pub struct L<B: Backend = Base>(pub [f64; LANES], PhantomData<B>);
 
 /// The lanes that failed or may fail (`true`): the caller recomputes them with the scalar
 /// kernels. The kernels compute their tests as [`Bits`] and hand them over as a `Mask`.
@@ -343,7 +354,237 @@ mod hw {
     }
 }
 
-use hw::H;
+/// The operations of a lane backend on `R`, the register(s) holding the four lanes: the
+/// arithmetic the kernels use, packed comparisons giving lanes of all ones (true) or all
+/// zeros, and the bit operations of the masks. Two implementations: [`Base`] (two 128-bit
+/// SSE2 registers on x86-64, plain arrays elsewhere) and [`Wide`] (one 256-bit AVX
+/// register). Every kernel is generic over its backend, so each is compiled once per
+/// backend; [`super::with_simd`] runs the [`Wide`] instance where the processor has AVX2
+/// and FMA, the [`Base`] one otherwise.
+///
+/// Both backends compute every lane with the same IEEE operations in the same order (no
+/// FMA contraction), so they give the same results bit for bit.
+pub trait Backend: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static {
+    /// The four lanes in registers.
+    type R: Copy;
+    /// The lanes `a` in registers.
+    fn load(a: [f64; 4]) -> Self::R;
+    /// The lanes of `r`.
+    fn store(r: Self::R) -> [f64; 4];
+    /// `x` in every lane.
+    fn splat(x: f64) -> Self::R;
+    /// a + b.
+    fn add(a: Self::R, b: Self::R) -> Self::R;
+    /// a − b.
+    fn sub(a: Self::R, b: Self::R) -> Self::R;
+    /// a · b.
+    fn mul(a: Self::R, b: Self::R) -> Self::R;
+    /// a / b.
+    fn div(a: Self::R, b: Self::R) -> Self::R;
+    /// √a, correctly rounded.
+    fn sqrt(a: Self::R) -> Self::R;
+    /// a > b ? a : b (b when either is a NaN).
+    fn max(a: Self::R, b: Self::R) -> Self::R;
+    /// a < b ? a : b (b when either is a NaN).
+    fn min(a: Self::R, b: Self::R) -> Self::R;
+    /// a & b (bits).
+    fn and(a: Self::R, b: Self::R) -> Self::R;
+    /// !a & b (bits).
+    fn andnot(a: Self::R, b: Self::R) -> Self::R;
+    /// a | b (bits).
+    fn or(a: Self::R, b: Self::R) -> Self::R;
+    /// a ^ b (bits).
+    fn xor(a: Self::R, b: Self::R) -> Self::R;
+    /// a < b.
+    fn lt(a: Self::R, b: Self::R) -> Self::R;
+    /// a ≤ b.
+    fn le(a: Self::R, b: Self::R) -> Self::R;
+    /// !(a < b).
+    fn nlt(a: Self::R, b: Self::R) -> Self::R;
+    /// !(a ≤ b).
+    fn nle(a: Self::R, b: Self::R) -> Self::R;
+    /// !(a > b).
+    fn ngt(a: Self::R, b: Self::R) -> Self::R;
+    /// Lane i's sign bit as bit i.
+    fn movemask(m: Self::R) -> u32;
+    /// A mask from four booleans.
+    fn from_bools(m: [bool; 4]) -> Self::R;
+    /// For `t` = k + 1.5·2⁵² (k whole): all ones where k is odd; the sign bit where
+    /// k mod 4 ∈ {2, 3}; the sign bit where k mod 4 ∈ {1, 2} (the quadrant of [`sin_cos`]).
+    fn quadrant(t: Self::R) -> (Self::R, Self::R, Self::R);
+    /// Lane by lane, the pairs (x, y): the rows of a structure of arrays (x, y) turned
+    /// into an array of structures.
+    #[inline(always)]
+    fn pairs(x: Self::R, y: Self::R) -> [[f64; 2]; 4] {
+        let (x, y) = (Self::store(x), Self::store(y));
+        [[x[0], y[0]], [x[1], y[1]], [x[2], y[2]], [x[3], y[3]]]
+    }
+}
+
+/// The portable backend: two SSE2 registers (`__m128d`) on x86-64, part of its baseline;
+/// two `[f64; 2]` arrays elsewhere. Every operation one packed instruction per half.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Base;
+
+/// Each half through `hw`.
+macro_rules! halves {
+    ($($f:ident),*) => {$(
+        #[inline(always)]
+        fn $f(a: Self::R, b: Self::R) -> Self::R {
+            [hw::$f(a[0], b[0]), hw::$f(a[1], b[1])]
+        }
+    )*};
+}
+
+impl Backend for Base {
+    type R = [hw::H; 2];
+    #[inline(always)]
+    fn load(a: [f64; 4]) -> Self::R {
+        hw::split(a)
+    }
+    #[inline(always)]
+    fn store(r: Self::R) -> [f64; 4] {
+        hw::join(r)
+    }
+    #[inline(always)]
+    fn splat(x: f64) -> Self::R {
+        let h = hw::splat(x);
+        [h, h]
+    }
+    halves!(add, sub, mul, div, max, min, and, andnot, or, xor, lt, le, nlt, nle, ngt);
+    #[inline(always)]
+    fn sqrt(a: Self::R) -> Self::R {
+        [hw::sqrt(a[0]), hw::sqrt(a[1])]
+    }
+    #[inline(always)]
+    fn movemask(m: Self::R) -> u32 {
+        hw::movemask(m[0]) | hw::movemask(m[1]) << 2
+    }
+    #[inline(always)]
+    fn from_bools(m: [bool; 4]) -> Self::R {
+        [hw::from_bools(m[0], m[1]), hw::from_bools(m[2], m[3])]
+    }
+    #[inline(always)]
+    fn quadrant(t: Self::R) -> (Self::R, Self::R, Self::R) {
+        let ((o0, s0, c0), (o1, s1, c1)) = (hw::quadrant(t[0]), hw::quadrant(t[1]));
+        ([o0, o1], [s0, s1], [c0, c1])
+    }
+}
+
+/// The 256-bit backend on x86-64: the four lanes in one AVX register (`__m256d`), every
+/// operation one instruction, the quadrant's integer operations AVX2. Its operations are
+/// compiled into the functions of [`super::with_simd`]'s AVX2 path and must run only
+/// there, on a processor with AVX2 and FMA ([`super::simd_allowed`]): executing them on a
+/// processor without AVX is undefined behaviour (an illegal instruction), so a caller
+/// instantiates a kernel with `Wide` only in the `wide` closure of [`super::with_simd`].
+/// On the other architectures it is [`Base`].
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Wide;
+
+/// The 256-bit backend is the portable one outside x86-64.
+#[cfg(not(target_arch = "x86_64"))]
+pub type Wide = Base;
+
+#[cfg(target_arch = "x86_64")]
+mod wide {
+    use super::{Backend, Wide};
+    use core::arch::x86_64::*;
+
+    /// An AVX or AVX2 intrinsic of [`Wide`].
+    macro_rules! avx {
+        ($e:expr) => {
+            // SAFETY: `Wide` runs only in `with_simd`'s AVX2 path, on a processor with AVX2
+            // and FMA (detected at run time before any `Wide` kernel is called).
+            unsafe { $e }
+        };
+    }
+    macro_rules! op {
+        ($($f:ident => $i:ident),*) => {$(
+            #[inline(always)]
+            fn $f(a: __m256d, b: __m256d) -> __m256d {
+                avx!($i(a, b))
+            }
+        )*};
+    }
+    macro_rules! cmp {
+        ($($f:ident => $c:ident),*) => {$(
+            #[inline(always)]
+            fn $f(a: __m256d, b: __m256d) -> __m256d {
+                avx!(_mm256_cmp_pd::<$c>(a, b))
+            }
+        )*};
+    }
+
+    impl Backend for Wide {
+        type R = __m256d;
+        #[inline(always)]
+        fn load(a: [f64; 4]) -> __m256d {
+            // SAFETY: [f64; 4] and __m256d are both 32 bytes of f64 values in lane order.
+            unsafe { core::mem::transmute::<[f64; 4], __m256d>(a) }
+        }
+        #[inline(always)]
+        fn store(r: __m256d) -> [f64; 4] {
+            // SAFETY: as in `load`.
+            unsafe { core::mem::transmute::<__m256d, [f64; 4]>(r) }
+        }
+        #[inline(always)]
+        fn splat(x: f64) -> __m256d {
+            avx!(_mm256_set1_pd(x))
+        }
+        op!(add => _mm256_add_pd, sub => _mm256_sub_pd, mul => _mm256_mul_pd,
+            div => _mm256_div_pd, max => _mm256_max_pd, min => _mm256_min_pd,
+            and => _mm256_and_pd, andnot => _mm256_andnot_pd, or => _mm256_or_pd,
+            xor => _mm256_xor_pd);
+        cmp!(lt => _CMP_LT_OS, le => _CMP_LE_OS, nlt => _CMP_NLT_US, nle => _CMP_NLE_US,
+            ngt => _CMP_NGT_US);
+        #[inline(always)]
+        fn sqrt(a: __m256d) -> __m256d {
+            avx!(_mm256_sqrt_pd(a))
+        }
+        #[inline(always)]
+        fn movemask(m: __m256d) -> u32 {
+            avx!(_mm256_movemask_pd(m)) as u32
+        }
+        #[inline(always)]
+        fn from_bools(m: [bool; 4]) -> __m256d {
+            let b = |x: bool| -(x as i64);
+            avx!(_mm256_castsi256_pd(_mm256_set_epi64x(
+                b(m[3]),
+                b(m[2]),
+                b(m[1]),
+                b(m[0])
+            )))
+        }
+        #[inline(always)]
+        fn quadrant(t: __m256d) -> (__m256d, __m256d, __m256d) {
+            avx!({
+                let k = _mm256_castpd_si256(t);
+                let one = _mm256_set1_epi64x(1);
+                let two = _mm256_set1_epi64x(2);
+                // 0 − (k & 1): all ones where k is odd.
+                let odd = _mm256_sub_epi64(_mm256_setzero_si256(), _mm256_and_si256(k, one));
+                let sin_sign = _mm256_slli_epi64::<62>(_mm256_and_si256(k, two));
+                let cos_k = _mm256_add_epi64(k, one);
+                let cos_sign = _mm256_slli_epi64::<62>(_mm256_and_si256(cos_k, two));
+                (
+                    _mm256_castsi256_pd(odd),
+                    _mm256_castsi256_pd(sin_sign),
+                    _mm256_castsi256_pd(cos_sign),
+                )
+            })
+        }
+        /// Two unpacks: (x₀ y₀ x₂ y₂) and (x₁ y₁ x₃ y₃), each pair a 128-bit half.
+        #[inline(always)]
+        fn pairs(x: __m256d, y: __m256d) -> [[f64; 2]; 4] {
+            let (lo, hi) = avx!((_mm256_unpacklo_pd(x, y), _mm256_unpackhi_pd(x, y)));
+            // SAFETY: two __m256d are 64 bytes of f64 values, as [[f64; 2]; 4].
+            let [a, b, c, d] =
+                unsafe { core::mem::transmute::<[__m256d; 2], [[f64; 2]; 4]>([lo, hi]) };
+            [a, c, b, d]
+        }
+    }
+}
 
 /// The sign bit alone.
 const SIGN: f64 = -0.0;
@@ -351,19 +592,18 @@ const SIGN: f64 = -0.0;
 /// A lane mask in packed form, as the backend's comparisons give it: per lane all bits set
 /// (the lane is flagged) or none. [`Bits::mask`] hands it over as a [`Mask`].
 #[derive(Clone, Copy)]
-pub struct Bits([H; 2]);
+pub struct Bits<B: Backend = Base>(B::R);
 
-impl Bits {
+impl<B: Backend> Bits<B> {
     /// The lanes set in `self` or in `o`.
     #[inline(always)]
-    pub fn or(self, o: Bits) -> Bits {
-        let ([a0, a1], [b0, b1]) = (self.0, o.0);
-        Bits([hw::or(a0, b0), hw::or(a1, b1)])
+    pub fn or(self, o: Bits<B>) -> Bits<B> {
+        Bits(B::or(self.0, o.0))
     }
     /// Lane i's flag as bit i.
     #[inline(always)]
     pub fn bits(self) -> u32 {
-        hw::movemask(self.0[0]) | hw::movemask(self.0[1]) << 2
+        B::movemask(self.0)
     }
     /// Whether any lane is set.
     #[inline(always)]
@@ -378,68 +618,72 @@ impl Bits {
     }
     /// From a [`Mask`].
     #[inline(always)]
-    pub fn from_mask(m: Mask) -> Bits {
-        Bits([hw::from_bools(m[0], m[1]), hw::from_bools(m[2], m[3])])
+    pub fn from_mask(m: Mask) -> Bits<B> {
+        Bits(B::from_bools(m))
     }
     /// Per lane, `a` where set, else `b`: (m ∧ a) ∨ (¬m ∧ b), no branch.
     #[inline(always)]
-    pub fn select(self, a: L, b: L) -> L {
-        let ([m0, m1], [a0, a1], [b0, b1]) = (self.0, a.h(), b.h());
-        L::of([
-            hw::or(hw::and(m0, a0), hw::andnot(m0, b0)),
-            hw::or(hw::and(m1, a1), hw::andnot(m1, b1)),
-        ])
+    pub fn select(self, a: L<B>, b: L<B>) -> L<B> {
+        L::of(B::or(B::and(self.0, a.r()), B::andnot(self.0, b.r())))
     }
 }
 
-impl L {
-    /// The two halves for the backend.
+impl<B: Backend> L<B> {
+    /// The lanes `a`.
     #[inline(always)]
-    fn h(self) -> [H; 2] {
-        hw::split(self.0)
+    pub const fn new(a: [f64; LANES]) -> L<B> {
+        L(a, PhantomData)
     }
-    /// From the backend's two halves.
+    /// The lanes in the backend's registers.
     #[inline(always)]
-    fn of(h: [H; 2]) -> L {
-        L(hw::join(h))
+    fn r(self) -> B::R {
+        B::load(self.0)
     }
-    /// `f` on each half.
+    /// From the backend's registers.
     #[inline(always)]
-    fn lift(self, f: impl Fn(H) -> H) -> L {
-        let [a, b] = self.h();
-        L::of([f(a), f(b)])
+    fn of(r: B::R) -> L<B> {
+        L(B::store(r), PhantomData)
     }
-    /// `f` on each pair of halves.
+    /// `f` on the registers.
     #[inline(always)]
-    fn lift2(self, o: L, f: impl Fn(H, H) -> H) -> L {
-        let ([a0, a1], [b0, b1]) = (self.h(), o.h());
-        L::of([f(a0, b0), f(a1, b1)])
+    fn lift(self, f: impl Fn(B::R) -> B::R) -> L<B> {
+        L::of(f(self.r()))
     }
-    /// The packed comparison `f` on each pair of halves.
+    /// `f` on the registers of `self` and `o`.
     #[inline(always)]
-    fn cmp(self, o: L, f: impl Fn(H, H) -> H) -> Bits {
-        let ([a0, a1], [b0, b1]) = (self.h(), o.h());
-        Bits([f(a0, b0), f(a1, b1)])
+    fn lift2(self, o: L<B>, f: impl Fn(B::R, B::R) -> B::R) -> L<B> {
+        L::of(f(self.r(), o.r()))
+    }
+    /// The packed comparison `f`.
+    #[inline(always)]
+    fn cmp(self, o: L<B>, f: impl Fn(B::R, B::R) -> B::R) -> Bits<B> {
+        Bits(f(self.r(), o.r()))
+    }
+    /// Lane by lane, the pairs (x, y) of `x` = `self` and `y` (a point's coordinates per
+    /// configuration, in the order a row of `points_many` holds them).
+    #[inline(always)]
+    pub fn pairs(self, y: L<B>) -> [[f64; 2]; LANES] {
+        B::pairs(self.r(), y.r())
     }
     /// The same value `x` in every lane.
     #[inline(always)]
-    pub const fn splat(x: f64) -> L {
-        L([x; LANES])
+    pub const fn splat(x: f64) -> L<B> {
+        L([x; LANES], PhantomData)
     }
     /// The lanes `f(0)`, …, `f(3)`.
     #[inline(always)]
-    pub fn from_fn(f: impl FnMut(usize) -> f64) -> L {
-        L(std::array::from_fn(f))
+    pub fn from_fn(f: impl FnMut(usize) -> f64) -> L<B> {
+        L::new(std::array::from_fn(f))
     }
     /// `f` applied to each lane (scalar code).
     #[inline(always)]
-    pub fn map(self, mut f: impl FnMut(f64) -> f64) -> L {
-        L([f(self.0[0]), f(self.0[1]), f(self.0[2]), f(self.0[3])])
+    pub fn map(self, mut f: impl FnMut(f64) -> f64) -> L<B> {
+        L::new([f(self.0[0]), f(self.0[1]), f(self.0[2]), f(self.0[3])])
     }
     /// `f` applied lane by lane to `self` and `o` (scalar code).
     #[inline(always)]
-    pub fn zip(self, o: L, mut f: impl FnMut(f64, f64) -> f64) -> L {
-        L([
+    pub fn zip(self, o: L<B>, mut f: impl FnMut(f64, f64) -> f64) -> L<B> {
+        L::new([
             f(self.0[0], o.0[0]),
             f(self.0[1], o.0[1]),
             f(self.0[2], o.0[2]),
@@ -449,7 +693,7 @@ impl L {
     /// The comparison `f` lane by lane (scalar code; the kernels use the packed
     /// comparisons [`L::less`], … instead).
     #[inline(always)]
-    pub fn test(self, o: L, mut f: impl FnMut(f64, f64) -> bool) -> Mask {
+    pub fn test(self, o: L<B>, mut f: impl FnMut(f64, f64) -> bool) -> Mask {
         [
             f(self.0[0], o.0[0]),
             f(self.0[1], o.0[1]),
@@ -459,41 +703,40 @@ impl L {
     }
     /// √x per lane (correctly rounded, as `f64::sqrt`).
     #[inline(always)]
-    pub fn sqrt(self) -> L {
-        self.lift(hw::sqrt)
+    pub fn sqrt(self) -> L<B> {
+        self.lift(B::sqrt)
     }
     /// |x| per lane (the sign bit cleared).
     #[inline(always)]
-    pub fn abs(self) -> L {
-        let s = hw::splat(SIGN);
-        self.lift(|a| hw::andnot(s, a))
+    pub fn abs(self) -> L<B> {
+        let s = B::splat(SIGN);
+        self.lift(|a| B::andnot(s, a))
     }
     /// x with its sign flipped in the lanes set in `m`: `select(m, -x, x)`, one xor.
     #[inline(always)]
-    pub fn flip_sign(self, m: Bits) -> L {
-        let s = hw::splat(SIGN);
-        let ([a0, a1], [m0, m1]) = (self.h(), m.0);
-        L::of([hw::xor(a0, hw::and(m0, s)), hw::xor(a1, hw::and(m1, s))])
+    pub fn flip_sign(self, m: Bits<B>) -> L<B> {
+        let s = B::splat(SIGN);
+        L::of(B::xor(self.r(), B::and(m.0, s)))
     }
     /// x with its sign flipped where `y`'s sign bit is set (negative, −0, negative NaNs).
     #[inline(always)]
-    pub fn flip_sign_by(self, y: L) -> L {
-        let s = hw::splat(SIGN);
-        self.lift2(y, |a, b| hw::xor(a, hw::and(b, s)))
+    pub fn flip_sign_by(self, y: L<B>) -> L<B> {
+        let s = B::splat(SIGN);
+        self.lift2(y, |a, b| B::xor(a, B::and(b, s)))
     }
     /// The larger of the two per lane (`self` when either is a NaN: `x < y ? y : x`).
     #[inline(always)]
-    pub fn max(self, o: L) -> L {
-        o.lift2(self, hw::max)
+    pub fn max(self, o: L<B>) -> L<B> {
+        o.lift2(self, B::max)
     }
     /// The smaller of the two per lane (`self` when either is a NaN: `y < x ? y : x`).
     #[inline(always)]
-    pub fn min(self, o: L) -> L {
-        o.lift2(self, hw::min)
+    pub fn min(self, o: L<B>) -> L<B> {
+        o.lift2(self, B::min)
     }
     /// The lanes where x < y.
     #[inline(always)]
-    pub fn lt(self, o: L) -> Mask {
+    pub fn lt(self, o: L<B>) -> Mask {
         self.less(o).mask()
     }
     /// The lanes where x is not finite (an infinity or a NaN).
@@ -503,70 +746,70 @@ impl L {
     }
     /// The lanes where x < y, packed.
     #[inline(always)]
-    pub fn less(self, o: L) -> Bits {
-        self.cmp(o, hw::lt)
+    pub fn less(self, o: L<B>) -> Bits<B> {
+        self.cmp(o, B::lt)
     }
     /// The lanes where x ≤ y, packed.
     #[inline(always)]
-    pub fn less_eq(self, o: L) -> Bits {
-        self.cmp(o, hw::le)
+    pub fn less_eq(self, o: L<B>) -> Bits<B> {
+        self.cmp(o, B::le)
     }
     /// The lanes where !(x < y) (x ≥ y or either a NaN), packed.
     #[inline(always)]
-    pub fn not_less(self, o: L) -> Bits {
-        self.cmp(o, hw::nlt)
+    pub fn not_less(self, o: L<B>) -> Bits<B> {
+        self.cmp(o, B::nlt)
     }
     /// The lanes where !(x ≤ y) (x > y or either a NaN), packed.
     #[inline(always)]
-    pub fn not_less_eq(self, o: L) -> Bits {
-        self.cmp(o, hw::nle)
+    pub fn not_less_eq(self, o: L<B>) -> Bits<B> {
+        self.cmp(o, B::nle)
     }
     /// The lanes where !(x > y) (x ≤ y or either a NaN), packed.
     #[inline(always)]
-    pub fn not_greater(self, o: L) -> Bits {
-        self.cmp(o, hw::ngt)
+    pub fn not_greater(self, o: L<B>) -> Bits<B> {
+        self.cmp(o, B::ngt)
     }
     /// The lanes where x is not finite, packed: !(|x| < ∞), one and, one compare.
     #[inline(always)]
-    pub fn non_finite(self) -> Bits {
+    pub fn non_finite(self) -> Bits<B> {
         self.abs().not_less(L::splat(f64::INFINITY))
     }
 }
 
 /// Per lane, `a` where `m` is set, else `b` (see [`Bits::select`] for a packed mask).
 #[inline(always)]
-pub fn select(m: Mask, a: L, b: L) -> L {
+pub fn select<B: Backend>(m: Mask, a: L<B>, b: L<B>) -> L<B> {
     Bits::from_mask(m).select(a, b)
 }
 
 macro_rules! binary {
     ($tr:ident, $f:ident, $hw:ident, $tra:ident, $fa:ident) => {
-        impl $tr for L {
-            type Output = L;
+        impl<B: Backend> $tr for L<B> {
+            type Output = L<B>;
             #[inline(always)]
-            fn $f(self, o: L) -> L {
-                self.lift2(o, hw::$hw)
+            fn $f(self, o: L<B>) -> L<B> {
+                self.lift2(o, B::$hw)
             }
         }
-        impl $tr<f64> for L {
-            type Output = L;
+        impl<B: Backend> $tr<f64> for L<B> {
+            type Output = L<B>;
             #[inline(always)]
-            fn $f(self, o: f64) -> L {
-                let o = hw::splat(o);
-                self.lift(|a| hw::$hw(a, o))
+            fn $f(self, o: f64) -> L<B> {
+                let o = B::splat(o);
+                self.lift(|a| B::$hw(a, o))
             }
         }
-        impl $tr<L> for f64 {
-            type Output = L;
+        impl<B: Backend> $tr<L<B>> for f64 {
+            type Output = L<B>;
             #[inline(always)]
-            fn $f(self, o: L) -> L {
-                let s = hw::splat(self);
-                o.lift(|b| hw::$hw(s, b))
+            fn $f(self, o: L<B>) -> L<B> {
+                let s = B::splat(self);
+                o.lift(|b| B::$hw(s, b))
             }
         }
-        impl $tra for L {
+        impl<B: Backend> $tra for L<B> {
             #[inline(always)]
-            fn $fa(&mut self, o: L) {
+            fn $fa(&mut self, o: L<B>) {
                 *self = $tr::$f(*self, o);
             }
         }
@@ -577,28 +820,28 @@ binary!(Sub, sub, sub, SubAssign, sub_assign);
 binary!(Mul, mul, mul, MulAssign, mul_assign);
 binary!(Div, div, div, DivAssign, div_assign);
 
-impl Neg for L {
-    type Output = L;
+impl<B: Backend> Neg for L<B> {
+    type Output = L<B>;
     #[inline(always)]
-    fn neg(self) -> L {
-        let s = hw::splat(SIGN);
-        self.lift(|a| hw::xor(a, s))
+    fn neg(self) -> L<B> {
+        let s = B::splat(SIGN);
+        self.lift(|a| B::xor(a, s))
     }
 }
 
 /// A plane vector per lane (m, m/s, m/s², N): the lane twin of [`V2`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct V2L {
+pub struct V2L<B: Backend = Base> {
     /// x components.
-    pub x: L,
+    pub x: L<B>,
     /// y components.
-    pub y: L,
+    pub y: L<B>,
 }
 
-impl V2L {
+impl<B: Backend> V2L<B> {
     /// The vector `v` in every lane.
     #[inline(always)]
-    pub fn splat(v: V2) -> V2L {
+    pub fn splat(v: V2) -> V2L<B> {
         V2L {
             x: L::splat(v.x),
             y: L::splat(v.y),
@@ -606,7 +849,7 @@ impl V2L {
     }
     /// From its components.
     #[inline(always)]
-    pub fn new(x: L, y: L) -> V2L {
+    pub fn new(x: L<B>, y: L<B>) -> V2L<B> {
         V2L { x, y }
     }
     /// The vector of lane `i`.
@@ -616,32 +859,32 @@ impl V2L {
     }
     /// As `[x, y]`.
     #[inline(always)]
-    pub fn xy(self) -> [L; 2] {
+    pub fn xy(self) -> [L<B>; 2] {
         [self.x, self.y]
     }
     /// a·b.
     #[inline(always)]
-    pub fn dot(self, o: V2L) -> L {
+    pub fn dot(self, o: V2L<B>) -> L<B> {
         self.x * o.x + self.y * o.y
     }
     /// a·b with `b` the same in every lane.
     #[inline(always)]
-    pub fn dot_v(self, o: V2) -> L {
+    pub fn dot_v(self, o: V2) -> L<B> {
         self.x * o.x + self.y * o.y
     }
     /// |a|².
     #[inline(always)]
-    pub fn norm_squared(self) -> L {
+    pub fn norm_squared(self) -> L<B> {
         self.x * self.x + self.y * self.y
     }
     /// a × b = a_x b_y − a_y b_x.
     #[inline(always)]
-    pub fn cross(self, o: V2L) -> L {
+    pub fn cross(self, o: V2L<B>) -> L<B> {
         self.x * o.y - self.y * o.x
     }
     /// perp(a) = (−a_y, a_x).
     #[inline(always)]
-    pub fn perp(self) -> V2L {
+    pub fn perp(self) -> V2L<B> {
         V2L {
             x: -self.y,
             y: self.x,
@@ -650,7 +893,7 @@ impl V2L {
     /// `d` (the same in every lane) turned by the unit complex `self` = (cos φ, sin φ),
     /// as [`crate::kernel::link_state::rotate`].
     #[inline(always)]
-    pub fn rotate(self, d: V2) -> V2L {
+    pub fn rotate(self, d: V2) -> V2L<B> {
         V2L {
             x: self.x * d.x - self.y * d.y,
             y: self.y * d.x + self.x * d.y,
@@ -658,7 +901,7 @@ impl V2L {
     }
     /// `d` turned by the unit complex `self`, both per lane.
     #[inline(always)]
-    pub fn rotate_l(self, d: V2L) -> V2L {
+    pub fn rotate_l(self, d: V2L<B>) -> V2L<B> {
         V2L {
             x: self.x * d.x - self.y * d.y,
             y: self.y * d.x + self.x * d.y,
@@ -671,63 +914,63 @@ impl V2L {
     }
     /// The lanes where a component is not finite, packed.
     #[inline(always)]
-    pub fn non_finite(self) -> Bits {
+    pub fn non_finite(self) -> Bits<B> {
         (self.x + self.y).non_finite()
     }
 }
 
-impl Add for V2L {
-    type Output = V2L;
+impl<B: Backend> Add for V2L<B> {
+    type Output = V2L<B>;
     #[inline(always)]
-    fn add(self, o: V2L) -> V2L {
+    fn add(self, o: V2L<B>) -> V2L<B> {
         V2L::new(self.x + o.x, self.y + o.y)
     }
 }
 
-impl Add<V2> for V2L {
-    type Output = V2L;
+impl<B: Backend> Add<V2> for V2L<B> {
+    type Output = V2L<B>;
     #[inline(always)]
-    fn add(self, o: V2) -> V2L {
+    fn add(self, o: V2) -> V2L<B> {
         V2L::new(self.x + o.x, self.y + o.y)
     }
 }
 
-impl Sub for V2L {
-    type Output = V2L;
+impl<B: Backend> Sub for V2L<B> {
+    type Output = V2L<B>;
     #[inline(always)]
-    fn sub(self, o: V2L) -> V2L {
+    fn sub(self, o: V2L<B>) -> V2L<B> {
         V2L::new(self.x - o.x, self.y - o.y)
     }
 }
 
-impl Sub<V2> for V2L {
-    type Output = V2L;
+impl<B: Backend> Sub<V2> for V2L<B> {
+    type Output = V2L<B>;
     #[inline(always)]
-    fn sub(self, o: V2) -> V2L {
+    fn sub(self, o: V2) -> V2L<B> {
         V2L::new(self.x - o.x, self.y - o.y)
     }
 }
 
-impl Mul<L> for V2L {
-    type Output = V2L;
+impl<B: Backend> Mul<L<B>> for V2L<B> {
+    type Output = V2L<B>;
     #[inline(always)]
-    fn mul(self, k: L) -> V2L {
+    fn mul(self, k: L<B>) -> V2L<B> {
         V2L::new(self.x * k, self.y * k)
     }
 }
 
-impl Mul<f64> for V2L {
-    type Output = V2L;
+impl<B: Backend> Mul<f64> for V2L<B> {
+    type Output = V2L<B>;
     #[inline(always)]
-    fn mul(self, k: f64) -> V2L {
+    fn mul(self, k: f64) -> V2L<B> {
         V2L::new(self.x * k, self.y * k)
     }
 }
 
-impl Neg for V2L {
-    type Output = V2L;
+impl<B: Backend> Neg for V2L<B> {
+    type Output = V2L<B>;
     #[inline(always)]
-    fn neg(self) -> V2L {
+    fn neg(self) -> V2L<B> {
         V2L::new(-self.x, -self.y)
     }
 }
@@ -753,7 +996,7 @@ pub const SIN_COS_RANGE: f64 = 1.0e6;
 /// sin and cos of x + y on |x + y| ≤ π/4 (+ tiny), y a small correction of x: musl's
 /// `__sin(x, y, 1)` (fdlibm's `__kernel_sin`), error below 1 ulp.
 #[inline(always)]
-fn kernel_sin(x: L, y: L) -> L {
+fn kernel_sin<B: Backend>(x: L<B>, y: L<B>) -> L<B> {
     const S1: f64 = -1.666_666_666_666_663_243_48e-1;
     const S2: f64 = 8.333_333_333_322_489_461_24e-3;
     const S3: f64 = -1.984_126_982_985_794_931_34e-4;
@@ -770,7 +1013,7 @@ fn kernel_sin(x: L, y: L) -> L {
 /// cos of x + y on |x + y| ≤ π/4 (+ tiny): musl's `__cos(x, y)` (fdlibm's
 /// `__kernel_cos`), error below 1 ulp.
 #[inline(always)]
-fn kernel_cos(x: L, y: L) -> L {
+fn kernel_cos<B: Backend>(x: L<B>, y: L<B>) -> L<B> {
     const C1: f64 = 4.166_666_666_666_660_190_37e-2;
     const C2: f64 = -1.388_888_888_887_410_957_49e-3;
     const C3: f64 = 2.480_158_728_947_672_941_78e-5;
@@ -794,7 +1037,7 @@ fn kernel_cos(x: L, y: L) -> L {
 /// (|x| ≤ 10⁴π, |x| ≤ 1, |x| ≤ 10⁶): at most 1 ulp for both. Lanes beyond
 /// |x| ≤ [`SIN_COS_RANGE`] (and NaNs, infinities) are computed by `f64::sin_cos`.
 #[inline(always)]
-pub fn sin_cos(x: L) -> (L, L) {
+pub fn sin_cos<B: Backend>(x: L<B>) -> (L<B>, L<B>) {
     let t = x * INV_PIO2 + ROUND;
     let k = t - ROUND;
     // r = x − k π/2 as y0 + y1: k·PIO2_1 and k·PIO2_2 are exact, so is x − k·PIO2_1.
@@ -807,14 +1050,11 @@ pub fn sin_cos(x: L) -> (L, L) {
     let (s, c) = (kernel_sin(y0, y1), kernel_cos(y0, y1));
     // The quadrant: k mod 4 in the low bits of t; sin and cos swapped where k is odd, sin
     // negated where k mod 4 ∈ {2, 3}, cos where k mod 4 ∈ {1, 2} (sign bits xored in).
-    let [t0, t1] = t.h();
-    let ((odd0, ss0, cs0), (odd1, ss1, cs1)) = (hw::quadrant(t0), hw::quadrant(t1));
-    let odd = Bits([odd0, odd1]);
+    let (odd, ss, cs) = B::quadrant(t.r());
+    let odd = Bits::<B>(odd);
     let (s1, c1) = (odd.select(c, s), odd.select(s, c));
-    let [s10, s11] = s1.h();
-    let [c10, c11] = c1.h();
-    let mut sn = L::of([hw::xor(s10, ss0), hw::xor(s11, ss1)]);
-    let mut cs = L::of([hw::xor(c10, cs0), hw::xor(c11, cs1)]);
+    let mut sn = L::of(B::xor(s1.r(), ss));
+    let mut cs = L::of(B::xor(c1.r(), cs));
     let out = x.abs().not_less_eq(L::splat(SIN_COS_RANGE));
     if out.any() {
         let out = out.mask();
@@ -831,7 +1071,7 @@ pub fn sin_cos(x: L) -> (L, L) {
 /// takes the transformed argument (a t + b)/(c t + d) and the constants of its interval),
 /// error below 1 ulp.
 #[inline(always)]
-fn atan_unit(t: L) -> L {
+fn atan_unit<B: Backend>(t: L<B>) -> L<B> {
     const HI: [f64; 2] = [4.636_476_090_008_060_935_15e-1, std::f64::consts::FRAC_PI_4];
     const LO: [f64; 2] = [
         2.269_877_745_296_168_709_24e-17,
@@ -876,7 +1116,7 @@ fn atan_unit(t: L) -> L {
 /// over 10⁶ arguments (directions all around, magnitudes 10⁻³ to 10³): at most 2 ulp. Lanes
 /// where both are zero or either is not finite are computed by `f64::atan2`.
 #[inline(always)]
-pub fn atan2(y: L, x: L) -> L {
+pub fn atan2<B: Backend>(y: L<B>, x: L<B>) -> L<B> {
     const PIO2_HI: f64 = std::f64::consts::FRAC_PI_2;
     const PIO2_LO: f64 = 6.123_233_995_736_766_035_87e-17;
     const PI_HI: f64 = std::f64::consts::PI;
@@ -918,7 +1158,7 @@ pub fn atan2(y: L, x: L) -> L {
 /// [`crate::kernel::link_state::wrap`], so the same results bit for bit (lanes beyond
 /// |a| ≥ 10⁹ go through it).
 #[inline(always)]
-pub fn wrap(a: L) -> L {
+pub fn wrap<B: Backend>(a: L<B>) -> L<B> {
     use std::f64::consts::{PI, TAU};
     let r = a - ((a / L::splat(TAU) + ROUND) - ROUND) * TAU;
     let low = r.less_eq(L::splat(-PI));

@@ -15,6 +15,61 @@ use crate::solvers::instance::{instance, Instance};
 use crate::solvers::zhukovski::{acceleration, Reduced, ZhukovskiSums};
 use crate::MechError;
 
+/// The lane backend of this instance of the tests: this file is compiled twice
+/// (`lanes/mod.rs`), as `tests` on [`Base`] and as `tests_wide` on [`Wide`].
+type TB = <Pick<{ is_wide(module_path!()) }> as Backend2>::T;
+type L = super::L<TB>;
+type LinkLanes = super::LinkLanes<TB>;
+type ZhukovskiLanes = super::ZhukovskiLanes<TB>;
+
+/// Whether the module path ends in `tests_wide`.
+const fn is_wide(path: &str) -> bool {
+    let (p, w) = (path.as_bytes(), b"tests_wide".as_slice());
+    if p.len() < w.len() {
+        return false;
+    }
+    let mut k = 0;
+    while k < w.len() {
+        if p[p.len() - w.len() + k] != w[k] {
+            return false;
+        }
+        k += 1;
+    }
+    true
+}
+
+/// The backend for a module: [`Wide`] where `W`.
+pub(super) struct Pick<const W: bool>;
+pub(super) trait Backend2 {
+    type T: Backend;
+}
+impl Backend2 for Pick<false> {
+    type T = Base;
+}
+impl Backend2 for Pick<true> {
+    type T = Wide;
+}
+
+/// True when this instance cannot run: the 256-bit one on a processor without AVX2 and
+/// FMA (or with `MECH_SIMD=0`).
+fn skip() -> bool {
+    is_wide(module_path!()) && !simd_allowed()
+}
+
+/// `f` where this instance's backend runs: in [`with_simd`]'s AVX2 path for [`Wide`], plainly
+/// for [`Base`].
+fn run<R>(f: impl FnOnce() -> R) -> R {
+    if is_wide(module_path!()) {
+        with_simd(
+            (),
+            |()| unreachable!("the 256-bit backend without AVX2"),
+            |()| f(),
+        )
+    } else {
+        f()
+    }
+}
+
 /// splitmix64: a small seeded generator (no dependency).
 struct Rng(u64);
 
@@ -63,6 +118,9 @@ fn sin_cos_worst(rng: &mut Rng, n: usize, mut draw: impl FnMut(&mut Rng) -> f64)
 
 #[test]
 fn sin_cos_and_atan2_are_within_their_stated_ulps() {
+    if skip() {
+        return;
+    }
     let mut rng = Rng(0x5EED);
     let big = 1e4 * std::f64::consts::PI;
     let mut n = 0;
@@ -142,14 +200,14 @@ fn sin_cos_and_atan2_are_within_their_stated_ulps() {
             assert_eq!(w.0[i], crate::kernel::link_state::wrap(a.0[i]));
         }
     }
-    let far = L([1e9, -3e12, 2.5e300, 0.5]);
+    let far = L::new([1e9, -3e12, 2.5e300, 0.5]);
     for i in 0..LANES {
         assert_eq!(wrap(far).0[i], crate::kernel::link_state::wrap(far.0[i]));
     }
 }
 
 /// A mechanism, its numbers and its plan.
-struct Rig {
+pub(super) struct Rig {
     text: &'static str,
     inst: Instance,
     groups: Vec<Group>,
@@ -158,7 +216,7 @@ struct Rig {
     revolute: Vec<bool>,
 }
 
-fn rig(text: &'static str) -> Rig {
+pub(super) fn rig(text: &'static str) -> Rig {
     let model = model_of(text);
     let inst = instance(&model).expect("instance");
     let groups = plan(&model).expect("plan");
@@ -248,7 +306,7 @@ impl Rig {
         Ok(s)
     }
     /// The lane route for four configurations: the states and the union of the masks.
-    fn lanes(&self, c: &[Config; LANES], upto: Level) -> (Vec<LinkLanes>, Mask) {
+    pub(super) fn lanes(&self, c: &[Config; LANES], upto: Level) -> (Vec<LinkLanes>, Mask) {
         let mut s: Vec<LinkLanes> = self
             .inst
             .drawing
@@ -637,6 +695,9 @@ const CRANK_ON_CRANK: &str = "pub struct CrankOnCrank {
 
 #[test]
 fn lanes_match_the_scalar_kernels_and_mask_every_failure() {
+    if skip() {
+        return;
+    }
     let mut rng = Rng(0xC0FFEE);
     let mut total = Worst::default();
     let mut kinds = std::collections::BTreeSet::new();
@@ -702,6 +763,9 @@ fn lanes_match_the_scalar_kernels_and_mask_every_failure() {
 
 #[test]
 fn crank_angles_and_the_direct_problem_match_the_scalar_ones() {
+    if skip() {
+        return;
+    }
     let mut rng = Rng(7);
     for _ in 0..10_000 {
         let q = L::from_fn(|_| rng.uniform(-40.0, 40.0));
@@ -757,16 +821,34 @@ fn crank_angles_and_the_direct_problem_match_the_scalar_ones() {
     assert_eq!(worst, 0.0, "the same operations");
 }
 
+/// The two backends give the same bits: this instance's lanes plainly and within
+/// [`with_simd`] (the AVX2 path's encoding) on [`Base`]; on [`Wide`], the same as the
+/// [`Base`] instance's (`tests`), lane by lane, state by state.
 #[test]
 fn with_simd_gives_the_same_bits() {
+    if skip() {
+        return;
+    }
     let rig = rig(FOUR_BAR);
     let mut rng = Rng(11);
     for _ in 0..200 {
         let batch: [Config; LANES] = std::array::from_fn(|_| rig.random(&mut rng, 0.0));
-        let (a, ma) = rig.lanes(&batch, Level::Acceleration);
-        let (b, mb) = with_simd(|| rig.lanes(&batch, Level::Acceleration));
-        assert_eq!(ma, mb);
-        assert_eq!(a, b);
+        let (a, ma) = run(|| rig.lanes(&batch, Level::Acceleration));
+        if is_wide(module_path!()) {
+            let base = super::tests::rig(FOUR_BAR);
+            let (b, mb) = base.lanes(&batch, Level::Acceleration);
+            assert_eq!(ma, mb);
+            for (x, y) in a.iter().zip(&b) {
+                for k in 0..LANES {
+                    assert_eq!(x.lane(k), y.lane(k));
+                }
+            }
+        } else {
+            let lanes = || rig.lanes(&batch, Level::Acceleration);
+            let (b, mb) = with_simd((), |()| lanes(), |()| lanes());
+            assert_eq!(ma, mb);
+            assert_eq!(a, b);
+        }
     }
 }
 
@@ -870,7 +952,7 @@ mod four_bar {
 
     /// `reduced` of four configurations in lanes.
     #[inline(always)]
-    fn lanes(n: &Numbers, q: L) -> (L, L, Mask) {
+    fn lanes<B: Backend>(n: &Numbers, q: L<B>) -> (L<B>, L<B>, Mask) {
         let j = topology(&n.joints);
         let d = &n.drawing;
         let mut s = [
@@ -900,9 +982,9 @@ mod four_bar {
 
     /// The batch in lanes, masked lanes by the scalar route.
     #[inline(always)]
-    fn batch_body(n: &Numbers, q: &[f64], out: &mut [(f64, f64)]) {
+    fn batch_body<B: Backend>(n: &Numbers, q: &[f64], out: &mut [(f64, f64)]) {
         for (qc, oc) in q.chunks_exact(LANES).zip(out.chunks_exact_mut(LANES)) {
-            let (i, d, m) = lanes(n, L([qc[0], qc[1], qc[2], qc[3]]));
+            let (i, d, m) = lanes(n, L::<B>::new([qc[0], qc[1], qc[2], qc[3]]));
             for k in 0..LANES {
                 oc[k] = if m[k] {
                     scalar(n, qc[k]).unwrap_or((f64::NAN, f64::NAN))
@@ -916,27 +998,32 @@ mod four_bar {
     /// [`batch_body`] compiled for the baseline.
     #[inline(never)]
     pub fn batch(n: &Numbers, q: &[f64], out: &mut [(f64, f64)]) {
-        batch_body(n, q, out)
+        batch_body::<Base>(n, q, out)
     }
 
     /// [`batch_body`] with [`with_simd`].
     #[inline(never)]
     pub fn batch_simd(n: &Numbers, q: &[f64], out: &mut [(f64, f64)]) {
         with_simd(
+            out,
             #[inline(always)]
-            || batch_body(n, q, out),
+            |out| batch_body::<Base>(n, q, out),
+            #[inline(always)]
+            |out| batch_body::<Wide>(n, q, out),
         )
     }
 
     /// A lane function alone, for the disassembly (`vsqrtpd`, `vmulpd` on ymm registers).
     #[inline(never)]
-    pub fn probe_simd(x: &mut [L; 2]) {
+    pub fn probe_simd(x: &mut [f64; 2]) {
         with_simd(
+            x,
+            |_| unreachable!("run where the processor has AVX2"),
             #[inline(always)]
-            || {
-                let (a, b) = (x[0], x[1]);
-                x[0] = (a * b + a).sqrt();
-                x[1] = sin_cos(a).0;
+            |x| {
+                let (a, b) = (L::<Wide>::splat(x[0]), L::<Wide>::splat(x[1]));
+                x[0] = (a * b + a).sqrt().0[0];
+                x[1] = sin_cos(a).0 .0[0];
             },
         )
     }
@@ -949,6 +1036,9 @@ mod four_bar {
 #[test]
 #[ignore]
 fn speed_of_the_four_bar_reduced() {
+    if skip() {
+        return;
+    }
     use std::hint::black_box;
     use std::time::Instant;
     let r = rig(FOUR_BAR);
@@ -965,8 +1055,10 @@ fn speed_of_the_four_bar_reduced() {
         .map(|_| rng.uniform(-std::f64::consts::PI, std::f64::consts::PI))
         .collect();
     let mut out = vec![(0.0, 0.0); count];
-    let mut x = [L::splat(0.3), L::splat(0.7)];
-    four_bar::probe_simd(black_box(&mut x));
+    let mut x = [0.3, 0.7];
+    if simd_allowed() {
+        four_bar::probe_simd(black_box(&mut x));
+    }
     // The same results by every route.
     let reference: Vec<_> = q
         .iter()

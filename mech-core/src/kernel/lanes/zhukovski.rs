@@ -2,7 +2,7 @@
 //! method, the same names) and of its `acceleration`, over the states of the motion with
 //! q̇ = 1, q̈ = 0 (`docs/theory.md` §6).
 
-use super::simd::{Mask, L, V2L};
+use super::simd::{Backend, Base, Mask, L, V2L};
 use super::LinkLanes;
 use crate::kernel::link_state::{LinkGeom, V2};
 
@@ -12,16 +12,16 @@ use crate::kernel::link_state::{LinkGeom, V2};
 /// M* = Σ F·g_P + Σ M g + Σ m g·g_G (gravity), g and g' the velocities and accelerations
 /// of the states.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ZhukovskiLanes {
+pub struct ZhukovskiLanes<B: Backend = Base> {
     /// I*, kg·m² (kg for a prismatic input).
-    pub inertia: L,
+    pub inertia: L<B>,
     /// dI*/dq, kg·m²/rad (kg/m for a prismatic input).
-    pub inertia_derivative: L,
+    pub inertia_derivative: L<B>,
     /// M*, N·m (N for a prismatic input).
-    pub moment: L,
+    pub moment: L<B>,
 }
 
-impl Default for ZhukovskiLanes {
+impl<B: Backend> Default for ZhukovskiLanes<B> {
     /// [`ZhukovskiLanes::new`].
     #[inline(always)]
     fn default() -> Self {
@@ -29,7 +29,7 @@ impl Default for ZhukovskiLanes {
     }
 }
 
-impl ZhukovskiLanes {
+impl<B: Backend> ZhukovskiLanes<B> {
     /// Empty sums, started at −0 (the identity of IEEE addition), as `ZhukovskiSums::new`.
     #[inline(always)]
     pub fn new() -> Self {
@@ -43,19 +43,19 @@ impl ZhukovskiLanes {
     /// ω perp(r), I* += m |v_G|² + I_G ω², dI*/dq += 2m v_G·(a − ω² r) + (2m v_G·perp(r) +
     /// 2 I_G ω) α (kg·m², kg·m²/rad).
     #[inline(always)]
-    pub fn inertia(&mut self, l: &LinkGeom, s: &LinkLanes) {
+    pub fn inertia(&mut self, l: &LinkGeom, s: &LinkLanes<B>) {
         self.inertia_at(l, s, s.r(l.dcg));
     }
     /// [`ZhukovskiLanes::inertia`] for a link whose second point is the anchor of the link
     /// in state `next`: r = κ₁ e + κ₂ perp(e), e = next.pos − pos (`LinkGeom::cg_by_span`).
     #[inline(always)]
-    pub fn inertia_spanned(&mut self, l: &LinkGeom, s: &LinkLanes, next: &LinkLanes) {
+    pub fn inertia_spanned(&mut self, l: &LinkGeom, s: &LinkLanes<B>, next: &LinkLanes<B>) {
         let e = next.pos - s.pos;
         self.inertia_at(l, s, e * l.cg_span.x + e.perp() * l.cg_span.y);
     }
     /// [`ZhukovskiLanes::inertia`] with the cg's current offset r = G − anchor (m) given.
     #[inline(always)]
-    pub fn inertia_at(&mut self, l: &LinkGeom, s: &LinkLanes, r: V2L) {
+    pub fn inertia_at(&mut self, l: &LinkGeom, s: &LinkLanes<B>, r: V2L<B>) {
         let v = s.vel_at(r);
         let m2 = 2.0 * l.mass;
         self.inertia += v.norm_squared() * l.mass + s.omega * l.inertia * s.omega;
@@ -66,7 +66,7 @@ impl ZhukovskiLanes {
     /// Add the inertia of a link turning about its anchor, a fixed pin: I* += I_O ω²,
     /// dI*/dq += 2 I_O ω α, I_O = `l.inertia_anchor` (kg·m²).
     #[inline(always)]
-    pub fn inertia_about_anchor(&mut self, l: &LinkGeom, s: &LinkLanes) {
+    pub fn inertia_about_anchor(&mut self, l: &LinkGeom, s: &LinkLanes<B>) {
         let io = l.inertia_anchor;
         self.inertia += s.omega * io * s.omega;
         self.inertia_derivative += (s.omega * (2.0 * io)) * s.alpha;
@@ -74,59 +74,59 @@ impl ZhukovskiLanes {
     /// Add the inertia of a link that slides on the ground: I* += m |v|²,
     /// dI*/dq += 2m v·a (kg).
     #[inline(always)]
-    pub fn inertia_translating(&mut self, l: &LinkGeom, s: &LinkLanes) {
+    pub fn inertia_translating(&mut self, l: &LinkGeom, s: &LinkLanes<B>) {
         self.inertia += s.vel.norm_squared() * l.mass;
         self.inertia_derivative += s.vel.dot(s.acc) * (2.0 * l.mass);
     }
     /// Add the power of gravity `g` (m/s²) on a link that slides on the ground, m g·v, to M*.
     #[inline(always)]
-    pub fn gravity_translating(&mut self, l: &LinkGeom, s: &LinkLanes, g: V2) {
+    pub fn gravity_translating(&mut self, l: &LinkGeom, s: &LinkLanes<B>, g: V2) {
         self.moment += s.vel.dot_v(g) * l.mass;
     }
     /// Add the power of gravity `g` (m/s²) on a link, m g·v_G, to M*.
     #[inline(always)]
-    pub fn gravity(&mut self, l: &LinkGeom, s: &LinkLanes, g: V2) {
+    pub fn gravity(&mut self, l: &LinkGeom, s: &LinkLanes<B>, g: V2) {
         self.gravity_at(l, s, g, s.r(l.dcg));
     }
     /// [`ZhukovskiLanes::gravity`] for a link whose second point is the anchor of the link
     /// in state `next`, as [`ZhukovskiLanes::inertia_spanned`].
     #[inline(always)]
-    pub fn gravity_spanned(&mut self, l: &LinkGeom, s: &LinkLanes, next: &LinkLanes, g: V2) {
+    pub fn gravity_spanned(&mut self, l: &LinkGeom, s: &LinkLanes<B>, next: &LinkLanes<B>, g: V2) {
         let e = next.pos - s.pos;
         self.gravity_at(l, s, g, e * l.cg_span.x + e.perp() * l.cg_span.y);
     }
     /// [`ZhukovskiLanes::gravity`] with the cg's offset r = G − anchor (m) given.
     #[inline(always)]
-    pub fn gravity_at(&mut self, l: &LinkGeom, s: &LinkLanes, g: V2, r: V2L) {
+    pub fn gravity_at(&mut self, l: &LinkGeom, s: &LinkLanes<B>, g: V2, r: V2L<B>) {
         self.moment += s.vel_at(r).dot_v(g) * l.mass;
     }
     /// Add the power of a force `f` (N, the same in every lane) at the material point of
     /// local vector `d` (m), f·v_P, to M* (v_P the anchor's when d = 0).
     #[inline(always)]
-    pub fn force(&mut self, s: &LinkLanes, d: V2, f: V2) {
+    pub fn force(&mut self, s: &LinkLanes<B>, d: V2, f: V2) {
         self.moment += point_velocity(s, d).dot_v(f);
     }
     /// [`ZhukovskiLanes::force`] with a force `[f_x, f_y]` (N) per configuration.
     #[inline(always)]
-    pub fn force_lanes(&mut self, s: &LinkLanes, d: V2, f: [L; 2]) {
+    pub fn force_lanes(&mut self, s: &LinkLanes<B>, d: V2, f: [L<B>; 2]) {
         let v = point_velocity(s, d);
         self.moment += f[0] * v.x + f[1] * v.y;
     }
     /// Add the power of a torque `t` (N·m, the same in every lane) on a link, t ω, to M*.
     #[inline(always)]
-    pub fn torque(&mut self, s: &LinkLanes, t: f64) {
+    pub fn torque(&mut self, s: &LinkLanes<B>, t: f64) {
         self.moment += s.omega * t;
     }
     /// [`ZhukovskiLanes::torque`] with a torque `t` (N·m) per configuration.
     #[inline(always)]
-    pub fn torque_lanes(&mut self, s: &LinkLanes, t: L) {
+    pub fn torque_lanes(&mut self, s: &LinkLanes<B>, t: L<B>) {
         self.moment += t * s.omega;
     }
 }
 
 /// The velocity of the material point of local vector `d` (the anchor's when d = 0).
 #[inline(always)]
-fn point_velocity(s: &LinkLanes, d: V2) -> V2L {
+fn point_velocity<B: Backend>(s: &LinkLanes<B>, d: V2) -> V2L<B> {
     if d.x == 0.0 && d.y == 0.0 {
         s.vel
     } else {
@@ -139,7 +139,11 @@ fn point_velocity(s: &LinkLanes, d: V2) -> V2L {
 /// force) `driver`, as `solvers::zhukovski::acceleration`. The mask holds the lanes where
 /// that returns `Err`: I*, dI*/dq or M* not finite, I* ≤ 0 (or a NaN), q̈ not finite.
 #[inline(always)]
-pub fn acceleration_lanes(z: &ZhukovskiLanes, qd: L, driver: L) -> (L, Mask) {
+pub fn acceleration_lanes<B: Backend>(
+    z: &ZhukovskiLanes<B>,
+    qd: L<B>,
+    driver: L<B>,
+) -> (L<B>, Mask) {
     let sums = (z.inertia + z.inertia_derivative + z.moment).non_finite();
     let positive = z.inertia.not_greater(L::splat(0.0));
     let inv = 1.0 / z.inertia;
