@@ -61,7 +61,7 @@ pub mod kinetostatics {
     };
 }
 pub mod magnitudes {
-    pub use crate::kernel::finite::{finite_reactions, finite_result, finite_states};
+    pub use crate::kernel::finite::{finite_few, finite_reactions, finite_result, finite_states};
 }
 pub mod model {
     pub use crate::model::{

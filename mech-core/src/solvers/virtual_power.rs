@@ -33,7 +33,7 @@ pub fn driver_actions<const G: usize, V: AsRef<[LinkState]>>(
             *o = -virtual_power(f, v.as_ref());
         }
     }
-    crate::kernel::finite::finite_result("motor actions", &out)?;
+    crate::kernel::finite::finite_few("motor actions", &out)?;
     Ok(out)
 }
 
@@ -81,7 +81,7 @@ impl Power {
     #[inline(always)]
     pub fn driver(&self, qd: f64) -> Result<f64, MechError> {
         let q = (self.kinetic_rate - self.applied) / qd;
-        crate::kernel::finite::finite_result("motor actions", &[q])?;
+        crate::kernel::finite::finite_few("motor actions", &[q])?;
         Ok(q)
     }
 }
