@@ -75,7 +75,7 @@ pub fn all_finite(values: &[f64]) -> bool {
 /// for values known at a solver's entry (its inputs), whose check only gates the result,
 /// so that the chain of additions waits on nothing the solve computes.
 #[inline(always)]
-pub fn all_finite_inputs(values: &[f64]) -> bool {
+fn all_finite_inputs(values: &[f64]) -> bool {
     values.iter().fold(0.0, |sum, &v| sum + v * 0.0) == 0.0
 }
 

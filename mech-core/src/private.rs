@@ -56,8 +56,8 @@ pub mod kinematics {
 pub mod kinetostatics {
     pub use crate::kernel::kinetostatics::{
         add_force_at, add_gravity_of, add_inertia_of, add_torque, group_reactions,
-        lambda_reactions, CamReaction, MeshReaction, PrismaticReaction, Reaction, RevoluteReaction,
-        RollingReaction, SlotReaction, Wrench,
+        lambda_reactions, wrench_sum, CamReaction, MeshReaction, PrismaticReaction, Reaction,
+        RevoluteReaction, RollingReaction, SlotReaction, Wrench,
     };
 }
 pub mod magnitudes {

@@ -43,6 +43,11 @@ pub fn quotient(b: V2, a: V2) -> V2 {
 /// through (sin a, cos a), which is exact for any finite a.
 #[inline]
 pub fn wrap(a: f64) -> f64 {
+    // Already in range (a crank's q, most often): returned as the reduction below would
+    // return it (no whole turn to remove, bit for bit), two compares instead of a division.
+    if a > -std::f64::consts::PI && a <= std::f64::consts::PI {
+        return a;
+    }
     if !(a.abs() < 1e9) {
         let (s, c) = a.sin_cos();
         let r = s.atan2(c);
@@ -444,6 +449,10 @@ mod tests {
             );
         }
         assert_eq!(wrap(0.0), 0.0);
+        // In range, the angle itself (the fast path and the reduction agree bit for bit).
+        for a in [PI, -PI + 1e-15, 3.0, -3.0, 1e-300, -0.0] {
+            assert_eq!(wrap(a).to_bits(), a.to_bits(), "wrap({a})");
+        }
         assert_eq!(wrap(1e8 * TAU + 1.0).round(), 1.0);
     }
 }

@@ -51,6 +51,15 @@ pub struct Power {
 }
 
 impl Power {
+    /// Empty sums, started at −0 (the identity of IEEE addition: the first term is taken as
+    /// it is, and the compiler drops the addition).
+    #[inline(always)]
+    pub fn new() -> Self {
+        Power {
+            kinetic_rate: -0.0,
+            applied: -0.0,
+        }
+    }
     /// Add a link's dT/dt.
     #[inline(always)]
     pub fn inertia(&mut self, l: &LinkGeom, m: &LinkMotion) {

@@ -225,7 +225,9 @@ fn wrenches_fn(cx: &Ctx) -> TokenStream {
             s: &[#p::kinematics::LinkState; #n_links],
             loads: &#loads,
         ) -> [#p::kinetostatics::Wrench; #n_links] {
-            let mut f = [#p::kinetostatics::Wrench::zeros(); #n_links];
+            // Started at −0, the identity of IEEE addition: each link's first term is taken
+            // as it is (`kinetostatics::wrench_sum`).
+            let mut f = [#p::kinetostatics::wrench_sum(); #n_links];
             #(#weighed)*
             #(#load_terms)*
             #elements
@@ -501,7 +503,7 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         };
         quote! {
             if m.qd[0] != 0.0 {
-                let mut w = #p::virtual_power::Power::default();
+                let mut w = #p::virtual_power::Power::new();
                 #(#inertia)*
                 #(#gravity)*
                 #(#applied)*
