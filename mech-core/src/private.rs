@@ -59,12 +59,12 @@ pub mod kinematics {
 pub mod kinetostatics {
     pub use crate::kernel::kinetostatics::{
         add_force_at, add_gravity_of, add_inertia_of, add_torque, group_reactions,
-        lambda_reactions, CamReaction, MeshReaction, PrismaticReaction, Reaction, RevoluteReaction,
-        RollingReaction, SlotReaction, Wrench,
+        lambda_reactions, wrench_sum, CamReaction, MeshReaction, PrismaticReaction, Reaction,
+        RevoluteReaction, RollingReaction, SlotReaction, Wrench,
     };
 }
 pub mod magnitudes {
-    pub use crate::kernel::finite::{finite_reactions, finite_result, finite_states};
+    pub use crate::kernel::finite::{finite_few, finite_reactions, finite_result, finite_states};
 }
 pub mod model {
     pub use crate::model::{

@@ -5,6 +5,7 @@
 //! `checks::magnitudes`.
 
 use crate::kernel::constraints::Level;
+use crate::kernel::link_state::V2;
 use crate::MechError;
 
 /// `Ok(())` when every value of `quantity` is finite ([`crate::error::all_finite`]); else
@@ -13,6 +14,22 @@ use crate::MechError;
 #[inline]
 pub fn finite_result(quantity: &str, values: &[f64]) -> Result<(), MechError> {
     if crate::error::all_finite(values) {
+        Ok(())
+    } else {
+        overflow(quantity, values)
+    }
+}
+
+/// [`finite_result`] for the few numbers a solver returns last (I* and dI*/dq, M*, q̈):
+/// each times zero ([`zeroed`]), summed, one compare, where [`finite_result`] takes a mask,
+/// a compare and a branch per value (kept for long slices, whose sum would be a long
+/// chain of additions).
+#[inline(always)]
+pub fn finite_few(quantity: &str, values: &[f64]) -> Result<(), MechError> {
+    let sum = values
+        .iter()
+        .fold(crate::kernel::link_state::zero().x, |sum, &v| sum + v * 0.0);
+    if sum == 0.0 {
         Ok(())
     } else {
         overflow(quantity, values)
@@ -36,32 +53,47 @@ fn overflowed(what: &str) -> MechError {
     MechError::InvalidInput(format!("the {what}: the inputs, loads or driver are too large for f64 with this mechanism; reduce them"))
 }
 
+/// v·0 for both components of `v`: (±0, ±0) when `v` is finite, a NaN in each component
+/// that is an infinity or a NaN. Summed, such zeros stay zero (exact: no overflow, no
+/// false alarm) and a NaN stays a NaN, so one compare at the end tests every value: two
+/// operations for two values (a multiplication and an addition in one vector register),
+/// where a flag per value takes a mask and a compare each.
+#[inline(always)]
+fn zeroed(v: V2) -> V2 {
+    v * 0.0
+}
+
+/// Whether the sum of [`zeroed`] terms is a zero: every value behind it was finite.
+#[inline(always)]
+fn still_zero(sum: V2) -> bool {
+    sum.x + sum.y == 0.0
+}
+
 /// `Ok(())` when every moving link's state is finite up to the level `upto` solved
 /// (position and rotation; velocities from [`Level::Velocity`]; accelerations at
 /// [`Level::Acceleration`]); else an overflow error for the link motions. The ground
-/// (link 0) never moves and is skipped. [`crate::error::non_finite`] over the fields,
-/// joined by OR (a tree a few operations deep); the error path is given no values, so
-/// that the states need not be written to memory for it.
+/// (link 0) never moves and is skipped. Each field times zero ([`zeroed`]), summed per
+/// link (a tree two or three additions deep) and then over the links; the error path is
+/// given no values, so that the states need not be written to memory for it.
 #[inline(always)]
 pub fn finite_states(
     states: &[crate::kernel::link_state::LinkState],
     upto: Level,
 ) -> Result<(), MechError> {
-    use crate::error::non_finite as bad;
-    let mut any = false;
+    let mut sum = crate::kernel::link_state::zero();
     for s in states.iter().skip(1) {
-        any |= bad(s.pos.x) | bad(s.pos.y) | bad(s.rot.x) | bad(s.rot.y);
-        if upto == Level::Velocity || upto == Level::Acceleration {
-            any |= bad(s.vel.x) | bad(s.vel.y) | bad(s.omega);
-        }
+        let mut t = zeroed(s.pos) + zeroed(s.rot);
         if upto == Level::Acceleration {
-            any |= bad(s.acc.x) | bad(s.acc.y) | bad(s.alpha);
+            t += (zeroed(s.vel) + zeroed(s.acc)) + zeroed(V2::new(s.omega, s.alpha));
+        } else if upto == Level::Velocity {
+            t += zeroed(s.vel) + zeroed(V2::new(s.omega, 0.0));
         }
+        sum += t;
     }
-    if any {
-        Err(states_overflow())
-    } else {
+    if still_zero(sum) {
         Ok(())
+    } else {
+        Err(states_overflow())
     }
 }
 
@@ -96,8 +128,8 @@ fn states_overflow() -> MechError {
     overflowed("velocities or accelerations overflow")
 }
 
-/// `Ok(())` when every reaction (force, moment) and motor action is finite:
-/// [`crate::error::non_finite`] over them, joined by OR. The error path takes no values:
+/// `Ok(())` when every reaction (force, moment) and motor action is finite: each times
+/// zero ([`zeroed`]), summed. The error path takes no values:
 /// a non-inlined call given the reactions would make them live in memory on the common
 /// path too, where the solve has them in registers.
 #[inline(always)]
@@ -105,15 +137,14 @@ pub fn finite_reactions(
     reactions: &[crate::kernel::kinetostatics::Reaction],
     driver: &[f64],
 ) -> Result<(), MechError> {
-    use crate::error::non_finite as bad;
-    let mut any = false;
+    let mut sum = crate::kernel::link_state::zero();
     for r in reactions {
-        any |= bad(r.force.x) | bad(r.force.y) | bad(r.moment);
+        sum += zeroed(r.force) + zeroed(V2::new(r.moment, 0.0));
     }
     for &d in driver {
-        any |= bad(d);
+        sum += zeroed(V2::new(d, 0.0));
     }
-    if !any {
+    if still_zero(sum) {
         Ok(())
     } else {
         Err(reactions_overflow())

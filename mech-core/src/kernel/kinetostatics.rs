@@ -17,6 +17,14 @@ use nalgebra::{SVector, Vector3};
 /// A generalised force on a link: (F_x, F_y, M about the anchor), N and N·m.
 pub type Wrench = Vector3<f64>;
 
+/// The start of a sum of wrenches (N, N·m): (−0, −0, −0), the identity of IEEE addition
+/// (−0 + x = x for every x, where 0 + x is not x when x = −0), so that a link's first term
+/// is taken as it is and the compiler drops the addition.
+#[inline(always)]
+pub fn wrench_sum() -> Wrench {
+    Wrench::new(-0.0, -0.0, -0.0)
+}
+
 /// Add a force `force` (N) at the offset `r` (m) from the link's anchor: (F, r × F).
 #[inline(always)]
 fn add_force_arm(w: &mut Wrench, r: V2, force: V2) {

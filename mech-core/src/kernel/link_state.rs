@@ -43,6 +43,11 @@ pub fn quotient(b: V2, a: V2) -> V2 {
 /// through (sin a, cos a), which is exact for any finite a.
 #[inline]
 pub fn wrap(a: f64) -> f64 {
+    // Already in range (a crank's q, most often): returned as the reduction below would
+    // return it (no whole turn to remove, bit for bit), two compares instead of a division.
+    if a > -std::f64::consts::PI && a <= std::f64::consts::PI {
+        return a;
+    }
     if !(a.abs() < 1e9) {
         let (s, c) = a.sin_cos();
         let r = s.atan2(c);
@@ -266,6 +271,46 @@ impl LinkGeom {
         let d = rotate(s.rot, self.dir_ref);
         d.y.atan2(d.x)
     }
+    /// The angle θ (rad, in (−π, π]) of a link that turns with the link `other` (the same
+    /// rotation φ since the drawing: the two links of an RPR dyad, a slider and its
+    /// guide), from that link's angle θₒ: θ = θₒ − θ_ref,ₒ + θ_ref, brought into (−π, π]
+    /// by one turn at most (θₒ is in (−π, π] and each reference angle too, so the sum is
+    /// within (−3π, 3π)). No atan2.
+    #[inline(always)]
+    pub fn angle_with(&self, other: &LinkGeom, other_angle: f64) -> f64 {
+        use std::f64::consts::{PI, TAU};
+        let a = (other_angle - other.angle_ref) + self.angle_ref;
+        if a > PI {
+            a - TAU
+        } else if a <= -PI {
+            a + TAU
+        } else {
+            a
+        }
+    }
+    /// The pose of a link that slides on the ground and never turns
+    /// ([`crate::model::Model::translates`]): its angle the drawing's, its cg at its
+    /// anchor plus the drawn offset (m); nothing is rotated.
+    #[inline(always)]
+    pub fn pose_translating(&self, s: &LinkState) -> LinkPose {
+        LinkPose {
+            angle: self.angle_ref,
+            cg: s.pos + self.dcg,
+        }
+    }
+    /// The motion of a link that slides on the ground ([`LinkGeom::pose_translating`]):
+    /// ω = α = 0, its cg moving as its anchor (m/s, m/s²).
+    #[inline(always)]
+    pub fn motion_translating(&self, s: &LinkState) -> LinkMotion {
+        LinkMotion {
+            angle: self.angle_ref,
+            omega: 0.0,
+            alpha: 0.0,
+            cg: s.pos + self.dcg,
+            cg_vel: s.vel,
+            cg_acc: s.acc,
+        }
+    }
     /// The link's pose.
     #[inline]
     pub fn pose(&self, s: &LinkState) -> LinkPose {
@@ -404,6 +449,10 @@ mod tests {
             );
         }
         assert_eq!(wrap(0.0), 0.0);
+        // In range, the angle itself (the fast path and the reduction agree bit for bit).
+        for a in [PI, -PI + 1e-15, 3.0, -3.0, 1e-300, -0.0] {
+            assert_eq!(wrap(a).to_bits(), a.to_bits(), "wrap({a})");
+        }
         assert_eq!(wrap(1e8 * TAU + 1.0).round(), 1.0);
     }
 }

@@ -33,7 +33,7 @@ pub fn driver_actions<const G: usize, V: AsRef<[LinkState]>>(
             *o = -virtual_power(f, v.as_ref());
         }
     }
-    crate::kernel::finite::finite_result("motor actions", &out)?;
+    crate::kernel::finite::finite_few("motor actions", &out)?;
     Ok(out)
 }
 
@@ -51,6 +51,15 @@ pub struct Power {
 }
 
 impl Power {
+    /// Empty sums, started at −0 (the identity of IEEE addition: the first term is taken as
+    /// it is, and the compiler drops the addition).
+    #[inline(always)]
+    pub fn new() -> Self {
+        Power {
+            kinetic_rate: -0.0,
+            applied: -0.0,
+        }
+    }
     /// Add a link's dT/dt.
     #[inline(always)]
     pub fn inertia(&mut self, l: &LinkGeom, m: &LinkMotion) {
@@ -81,7 +90,7 @@ impl Power {
     #[inline(always)]
     pub fn driver(&self, qd: f64) -> Result<f64, MechError> {
         let q = (self.kinetic_rate - self.applied) / qd;
-        crate::kernel::finite::finite_result("motor actions", &[q])?;
+        crate::kernel::finite::finite_few("motor actions", &[q])?;
         Ok(q)
     }
 }

@@ -45,7 +45,7 @@ pub fn acceleration(
     qd: f64,
     driver: f64,
 ) -> Result<f64, crate::MechError> {
-    crate::kernel::finite::finite_result(
+    crate::kernel::finite::finite_few(
         "reduced inertia and moment",
         &[r.inertia, r.inertia_derivative, moment],
     )?;
@@ -58,7 +58,7 @@ pub fn acceleration(
     // (2m) v·a + (2Iω) α for the same reason: the doublings, exact, leave the chain.)
     let inv = 1.0 / r.inertia;
     let qdd = (driver + moment - r.inertia_derivative * (0.5 * qd * qd)) * inv;
-    crate::kernel::finite::finite_result("acceleration q̈ (with I*, M* and the driver)", &[qdd])?;
+    crate::kernel::finite::finite_few("acceleration q̈ (with I*, M* and the driver)", &[qdd])?;
     Ok(qdd)
 }
 

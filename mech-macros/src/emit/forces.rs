@@ -225,7 +225,9 @@ fn wrenches_fn(cx: &Ctx) -> TokenStream {
             s: &[#p::kinematics::LinkState; #n_links],
             loads: &#loads,
         ) -> [#p::kinetostatics::Wrench; #n_links] {
-            let mut f = [#p::kinetostatics::Wrench::zeros(); #n_links];
+            // Started at −0, the identity of IEEE addition: each link's first term is taken
+            // as it is (`kinetostatics::wrench_sum`).
+            let mut f = [#p::kinetostatics::wrench_sum(); #n_links];
             #(#weighed)*
             #(#load_terms)*
             #elements
@@ -250,7 +252,12 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         Kernel::Chain(_) => {
             let kn = format_ident!("__G{}_CHAIN", gi);
             let solver = plan::solver_const(gi);
-            quote!(#p::kinematics::chain_reactions(Self::#solver, &Self::#kn, &joints, s, &mut f, self.scale, &m.systems #path, &mut r)?;)
+            let kept = if plan::keeps_system(g) {
+                quote!(&m.systems #path)
+            } else {
+                quote!(&#p::kinematics::DyadSystem::None)
+            };
+            quote!(#p::kinematics::chain_reactions(Self::#solver, &Self::#kn, &joints, s, &mut f, self.scale, #kept, &mut r)?;)
         }
         Kernel::Mesh(_) => {
             let kn = plan::mesh_const(gi);
@@ -457,6 +464,14 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
     };
     let inputs = &cx.inputs_doc;
     let load_values = load_values(cx);
+    // With one input, `driver_action` is the short power balance (the fields' route is a
+    // call of its own, for q̇ = 0): inlined where it is called, it reads the caller's
+    // motion where it lies, instead of the caller copying it out to pass it by reference.
+    let inline = if cx.one_dof() {
+        quote!(#[inline])
+    } else {
+        quote!()
+    };
     // One input moving: the power balance over the motion itself (no wrench is formed).
     let by_power = if cx.one_dof() {
         let link = |l: usize| &cx.link_ids[l];
@@ -488,7 +503,7 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         };
         quote! {
             if m.qd[0] != 0.0 {
-                let mut w = #p::virtual_power::Power::default();
+                let mut w = #p::virtual_power::Power::new();
                 #(#inertia)*
                 #(#gravity)*
                 #(#applied)*
@@ -508,8 +523,17 @@ fn driver_action_fn(cx: &Ctx) -> TokenStream {
         /// gravity, `mech::virtual_power::Power`).
         ///
         #(#[doc = #inputs])*
+        #inline
         pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
             #by_power
+            self.__driver_action_by_fields(*m, loads)
+        }
+
+        /// [`Self::driver_action`] by the virtual velocity field of each input. (The
+        /// motion by value: the caller's is then only read, never given an address.)
+        #[inline(never)]
+        fn __driver_action_by_fields(&self, m: #motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
+            let m = &m;
             let s = &m.__states();
             let f = self.__wrenches(m, s, loads);
             let out = #p::virtual_power::driver_actions(&f, s, &m.qd, |qd| self.__velocity_field(m, qd))

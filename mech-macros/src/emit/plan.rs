@@ -189,7 +189,12 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         }
         Kernel::Chain(_) => {
             let kn = format_ident!("__G{}_CHAIN", gi);
-            quote!(let #sys = #p::kinematics::solve_chain(Self::#solver, &Self::#kn, &joints, &mut s, drive, branches[#gi], self.scale, upto)?;)
+            let call = quote!(#p::kinematics::solve_chain(Self::#solver, &Self::#kn, &joints, &mut s, drive, branches[#gi], self.scale, upto)?);
+            if keeps_system(g) {
+                quote!(let #sys = #call;)
+            } else {
+                quote!(#call; let #sys = ();)
+            }
         }
         Kernel::Mesh(_) => {
             let kn = mesh_const(gi);
@@ -282,8 +287,10 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
 fn system_type(cx: &Ctx, g: &Group) -> TokenStream {
     let p = &cx.p;
     let n = 3 * g.bodies.len();
-    if let Kernel::Chain(_) = g.kernel {
+    if keeps_system(g) {
         quote!(#p::kinematics::DyadSystem)
+    } else if let Kernel::Chain(_) = g.kernel {
+        quote!(())
     } else if g.kernel != Kernel::System {
         quote!(())
     } else if g.redundant() {
@@ -292,6 +299,17 @@ fn system_type(cx: &Ctx, g: &Group) -> TokenStream {
     } else {
         quote!(Option<#p::group::GroupSystem<#n>>)
     }
+}
+
+/// Whether closed-form group `g` keeps its 2×2 system in the motion (`DyadSystem`): the
+/// RRR, RRP and RPR dyads, solved in natural coordinates; the other closed forms keep
+/// nothing (their reactions are given `DyadSystem::None`), so the motion does not carry it.
+pub(crate) fn keeps_system(g: &Group) -> bool {
+    matches!(g.kernel, Kernel::Chain(_))
+        && matches!(
+            g.solver,
+            Solver::Rrr { .. } | Solver::Rrp { .. } | Solver::Rpr { .. }
+        )
 }
 
 /// The tuple of every group's [`system_type`] (the `systems` field of the motion).

@@ -2,9 +2,10 @@
 //! accessors, and the methods that make them, `pose` and `kinematics`.
 
 use super::{plan, Ctx};
+use mech_core::kernel::dyad::Solver;
 use mech_core::plan::assur::Kernel;
 use proc_macro2::TokenStream;
-use quote::quote;
+use quote::{format_ident, quote};
 use syn::Ident;
 
 /// The result types and `pose`, `kinematics`.
@@ -37,7 +38,7 @@ fn types(cx: &Ctx) -> TokenStream {
     let (pose, pose_links, pose_points) = (&n.pose, &n.pose_links, &n.pose_points);
     let (motion, motion_links, motion_points) = (&n.motion, &n.motion_links, &n.motion_points);
     let moving_ids = cx.moving_ids();
-    let n_moving = moving_ids.len();
+    let (n_rots, n_angles) = (kept_rotations(cx).len(), kept_angles(cx).len());
     let systems = plan::systems_type(cx);
     let states = states_fn(cx);
     quote! {
@@ -73,8 +74,8 @@ fn types(cx: &Ctx) -> TokenStream {
             pub links: #motion_links,
             /// Points: pos, vel, acc.
             pub points: #motion_points,
-            rots: [#p::Vector2<f64>; #n_moving],
-            angles: [f64; #n_moving],
+            rots: [#p::Vector2<f64>; #n_rots],
+            angles: [f64; #n_angles],
             qd: [f64; #dof],
             systems: #systems,
         }
@@ -94,19 +95,30 @@ fn states_fn(cx: &Ctx) -> TokenStream {
         ..
     } = cx;
     let motion = &cx.names.motion;
+    let (rots, angles) = (kept_rotations(cx), kept_angles(cx));
     let states = (1..cx.n_links).map(|l| {
         let lid = &cx.link_ids[l];
         let anchor = &point_ids[cx.model.links[l].points[0]];
-        let k = l - 1;
+        let rot = match rotation_of(cx, l) {
+            Rotation::Identity => quote!(#p::Vector2::new(1.0, 0.0)),
+            Rotation::Of(m) => {
+                let k = rots.iter().position(|&r| r == m).unwrap_or_default();
+                quote!(self.rots[#k])
+            }
+        };
+        let angle = match angles.iter().position(|&a| a == l) {
+            Some(k) => quote!(self.angles[#k]),
+            None => quote!(0.0),
+        };
         quote! {
             #p::kinematics::LinkState {
                 pos: self.points.#anchor.pos,
-                rot: self.rots[#k],
+                rot: #rot,
                 vel: self.points.#anchor.vel,
                 omega: self.links.#lid.omega,
                 acc: self.points.#anchor.acc,
                 alpha: self.links.#lid.alpha,
-                angle: self.angles[#k],
+                angle: #angle,
             },
         }
     });
@@ -119,6 +131,63 @@ fn states_fn(cx: &Ctx) -> TokenStream {
                 [#p::kinematics::LinkState::default(), #(#states)*]
             }
         }
+    }
+}
+
+/// Where the motion finds a link's rotation (`Motion::__states`).
+#[derive(Clone, Copy, PartialEq)]
+enum Rotation {
+    /// (1, 0): a link that slides on the ground, placed by a closed form.
+    Identity,
+    /// The rotation kept for this link (itself, or the link it turns with).
+    Of(usize),
+}
+
+/// [`Rotation`] of moving link `l`: unrotated when it slides on the ground and a closed
+/// form places it (an RRP dyad's slider, a slotted slider, a driven slider: their
+/// rotation is written (1, 0)); that of the link it turns with ([`rotation_partner`]),
+/// whose rotation the kernels copy; else its own.
+fn rotation_of(cx: &Ctx, l: usize) -> Rotation {
+    let closed = cx.plan.iter().any(|g| {
+        g.bodies.contains(&l)
+            && matches!(
+                g.solver,
+                Solver::Rrp { .. } | Solver::SlottedSlider { .. } | Solver::DrivenPrismatic { .. }
+            )
+    });
+    match angle_of(cx, l) {
+        Angle::Translating if closed => Rotation::Identity,
+        Angle::With(m) => rotation_of(cx, m),
+        _ => Rotation::Of(l),
+    }
+}
+
+/// The links whose rotation the motion keeps (`rots`), each once.
+fn kept_rotations(cx: &Ctx) -> Vec<usize> {
+    let mut kept = Vec::new();
+    for l in 1..cx.n_links {
+        if let Rotation::Of(m) = rotation_of(cx, l) {
+            if !kept.contains(&m) {
+                kept.push(m);
+            }
+        }
+    }
+    kept
+}
+
+/// The links whose rotation counted over turns (`LinkState::angle`) the motion keeps
+/// (`angles`): every moving link when a kernel reads it (gears, cams, rolling, a driven
+/// link that tracks its turns), none otherwise (the states then carry 0).
+fn kept_angles(cx: &Ctx) -> Vec<usize> {
+    let read = cx.plan.iter().any(|g| match g.kernel {
+        Kernel::Mesh(_) | Kernel::Train(_) | Kernel::Cam(_) | Kernel::Rolling(_) => true,
+        Kernel::Driven(d) => d.track,
+        _ => false,
+    });
+    if read {
+        (1..cx.n_links).collect()
+    } else {
+        vec![]
     }
 }
 
@@ -194,40 +263,125 @@ pub(crate) fn to_array(cx: &Ctx, v: &str) -> TokenStream {
     }
 }
 
+/// How the angle of a moving link is found.
+#[derive(Clone, Copy)]
+enum Angle {
+    /// A crank driven on the ground: `crank_angle(±q)`, no atan2.
+    Crank,
+    /// A link sliding on the ground: its drawing's angle, and its cg not rotated
+    /// (`LinkGeom::pose_translating`, `motion_translating`).
+    Translating,
+    /// A link that turns with this (earlier) link: `LinkGeom::angle_with`, no atan2.
+    With(usize),
+    /// Any other link: the atan2 of its turned reference direction.
+    Own,
+}
+
+/// How the angle of moving link `l` is found ([`Angle`]): a driven crank or a link
+/// sliding on the ground first; then a link that shares its rotation with a link placed
+/// before it (the second of an RPR dyad's two links, a slider on a moving guide, a driven
+/// slider on a moving link), which takes that link's angle plus the drawing's difference.
+fn angle_of(cx: &Ctx, l: usize) -> Angle {
+    if crank_angle(cx, l).is_some() {
+        return Angle::Crank;
+    }
+    if cx.model.translates(l) {
+        return Angle::Translating;
+    }
+    match rotation_partner(cx, l) {
+        Some(m) => Angle::With(m),
+        None => Angle::Own,
+    }
+}
+
+/// The link that link `l` turns with and whose angle is found before `l`'s, from the plan:
+/// the lower-numbered link of an RPR dyad for the other, the moving guide of an RRP dyad's
+/// slider, of a slotted slider or of a driven slider.
+fn rotation_partner(cx: &Ctx, l: usize) -> Option<usize> {
+    let other = |j: usize, b: usize| {
+        let jt = &cx.model.joints[j];
+        if jt.b == b {
+            jt.a
+        } else {
+            jt.b
+        }
+    };
+    cx.plan.iter().find_map(|g| {
+        let m = match g.solver {
+            Solver::Rpr { b1, b2, .. } if l == b1.max(b2) => b1.min(b2),
+            Solver::Rrp { b2, jp, .. } if b2 == l => other(jp, l),
+            Solver::SlottedSlider { body, jq, .. } if body == l => other(jq, l),
+            Solver::DrivenPrismatic { body, joint, .. } if body == l => other(joint, l),
+            _ => return None,
+        };
+        (m != 0).then_some(m)
+    })
+}
+
+/// The name of the binding of link `l`'s angle.
+fn angle_id(l: usize) -> Ident {
+    format_ident!("angle{}", l)
+}
+
+/// `let angle{l} = ...;` for every moving link whose angle is published (all but those
+/// sliding on the ground, unless another turns with them), in plan order so that a link
+/// turning with another comes after it.
+fn angle_lets(cx: &Ctx) -> TokenStream {
+    let mut order: Vec<usize> = Vec::new();
+    for g in cx.plan {
+        let mut bodies = g.bodies.clone();
+        bodies.sort_unstable();
+        order.extend(bodies);
+    }
+    order.extend(1..cx.n_links);
+    let mut seen = vec![false; cx.n_links];
+    order.retain(|&l| l != 0 && !std::mem::replace(&mut seen[l], true));
+    let needed = |l: usize| {
+        !matches!(angle_of(cx, l), Angle::Translating)
+            || (1..cx.n_links).any(|k| matches!(angle_of(cx, k), Angle::With(m) if m == l))
+    };
+    let lets = order.into_iter().filter(|&l| needed(l)).map(|l| {
+        let a = angle_id(l);
+        let value = match angle_of(cx, l) {
+            Angle::Crank => crank_angle(cx, l).unwrap_or_default(),
+            Angle::Translating => quote!(self.links[#l].angle_ref),
+            Angle::With(m) => {
+                let am = angle_id(m);
+                quote!(self.links[#l].angle_with(&self.links[#m], #am))
+            }
+            Angle::Own => quote!(self.links[#l].angle(&s[#l])),
+        };
+        quote!(let #a = #value;)
+    });
+    quote!(#(#lets)*)
+}
+
 /// The angle of link `l` when it is known without an atan2: a crank driven on the ground,
 /// `crank_angle(q[k], ±1)` (or `crank_angle(q[k] + zero, ±1)` for an input declared `from
-/// zero`); a link sliding on the ground, its drawing's angle `angle_ref`.
+/// zero`).
 fn crank_angle(cx: &Ctx, l: usize) -> Option<TokenStream> {
     let p = &cx.p;
-    cx.plan
-        .iter()
-        .find_map(|g| match g.kernel {
-            Kernel::Driven(d) if d.body == l && d.from == 0 && !d.screw.slide => {
-                let (k, sign) = (
-                    d.input,
-                    if cx.model.joints[d.screw.joint].b == l {
-                        1.0f64
-                    } else {
-                        -1.0
-                    },
-                );
-                let sign = crate::emit::f64s(sign);
-                match cx.model.input_zero[k] {
-                    0.0 => Some(quote!(#p::kinematics::crank_angle(q[#k], #sign))),
-                    z => {
-                        let z = crate::emit::f64s(z);
-                        Some(quote!(#p::kinematics::crank_angle(q[#k] + #z, #sign)))
-                    }
+    cx.plan.iter().find_map(|g| match g.kernel {
+        Kernel::Driven(d) if d.body == l && d.from == 0 && !d.screw.slide => {
+            let (k, sign) = (
+                d.input,
+                if cx.model.joints[d.screw.joint].b == l {
+                    1.0f64
+                } else {
+                    -1.0
+                },
+            );
+            let sign = crate::emit::f64s(sign);
+            match cx.model.input_zero[k] {
+                0.0 => Some(quote!(#p::kinematics::crank_angle(q[#k], #sign))),
+                z => {
+                    let z = crate::emit::f64s(z);
+                    Some(quote!(#p::kinematics::crank_angle(q[#k] + #z, #sign)))
                 }
             }
-            _ => None,
-        })
-        .or_else(|| {
-            // A link sliding on the ground never turns: its angle is the drawing's.
-            cx.model
-                .translates(l)
-                .then(|| quote!(self.links[#l].angle_ref))
-        })
+        }
+        _ => None,
+    })
 }
 
 /// `pose`: positions only.
@@ -242,11 +396,15 @@ fn pose_fn(cx: &Ctx) -> TokenStream {
     let n = &cx.names;
     let (pose, pose_links, pose_points) = (&n.pose, &n.pose_links, &n.pose_points);
     let owners = owners(cx);
+    let angles = angle_lets(cx);
     let links = (1..cx.n_links).map(|l| {
         let lid = &cx.link_ids[l];
-        match crank_angle(cx, l) {
-            Some(angle) => quote!(#lid: self.links[#l].pose_at(&s[#l], #angle),),
-            None => quote!(#lid: self.links[#l].pose(&s[#l]),),
+        match angle_of(cx, l) {
+            Angle::Translating => quote!(#lid: self.links[#l].pose_translating(&s[#l]),),
+            _ => {
+                let a = angle_id(l);
+                quote!(#lid: self.links[#l].pose_at(&s[#l], #a),)
+            }
         }
     });
     let points = (0..cx.n_points).map(|pt| {
@@ -269,6 +427,7 @@ fn pose_fn(cx: &Ctx) -> TokenStream {
             let (s, _) = self
                 .__solve(&q, &zero, &zero, #p::kinematics::Level::Position, true)
                 .map_err(|e| #p::error::blame("q", &q, e))?;
+            #angles
             Ok(#pose {
                 links: #pose_links { #(#links)* },
                 points: #pose_points { #(#points)* },
@@ -285,11 +444,15 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
     let n = &cx.names;
     let (motion, motion_links, motion_points) = (&n.motion, &n.motion_links, &n.motion_points);
     let owners = owners(cx);
+    let angles = angle_lets(cx);
     let links = (1..cx.n_links).map(|l| {
         let lid = &cx.link_ids[l];
-        match crank_angle(cx, l) {
-            Some(angle) => quote!(#lid: self.links[#l].motion_at(&s[#l], #angle),),
-            None => quote!(#lid: self.links[#l].motion(&s[#l]),),
+        match angle_of(cx, l) {
+            Angle::Translating => quote!(#lid: self.links[#l].motion_translating(&s[#l]),),
+            _ => {
+                let a = angle_id(l);
+                quote!(#lid: self.links[#l].motion_at(&s[#l], #a),)
+            }
         }
     });
     let points = (0..cx.n_points).map(|pt| {
@@ -303,7 +466,7 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
     });
     let (q_arr, qd_arr, qdd_arr) = (to_array(cx, "q"), to_array(cx, "qd"), to_array(cx, "qdd"));
     let inputs = &cx.inputs_doc;
-    let moving: Vec<usize> = (1..cx.n_links).collect();
+    let (rots, turns) = (kept_rotations(cx), kept_angles(cx));
     let ks: Vec<usize> = (0..cx.dof).collect();
     quote! {
         /// Position, velocity and acceleration analysis at input (q, q̇, q̈).
@@ -314,11 +477,12 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
             let (s, systems) = self
                 .__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration, true)
                 .map_err(|e| #p::error::blame("q, qd, qdd", &[#(q[#ks],)* #(qd[#ks],)* #(qdd[#ks],)*], e))?;
+            #angles
             Ok(#motion {
                 links: #motion_links { #(#links)* },
                 points: #motion_points { #(#points)* },
-                rots: [#(s[#moving].rot,)*],
-                angles: [#(s[#moving].angle,)*],
+                rots: [#(s[#rots].rot,)*],
+                angles: [#(s[#turns].angle,)*],
                 qd,
                 systems,
             })

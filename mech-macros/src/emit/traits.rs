@@ -191,7 +191,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
             let mut z = #p::zhukovski::ZhukovskiSums::new();
             #inertia
-            #p::magnitudes::finite_result("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
+            #p::magnitudes::finite_few("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
             Ok(z.reduced)
         }
         /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads, gravity and
@@ -203,7 +203,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             let mut z = #p::zhukovski::ZhukovskiSums::new();
             #moment
             #elements_at_rest
-            #p::magnitudes::finite_result("reduced moment", &[z.moment])?;
+            #p::magnitudes::finite_few("reduced moment", &[z.moment])?;
             Ok(z.moment)
         }
         /// The direct problem: q̈ (rad/s²) from I* q̈ + ½ dI*/dq q̇² = driver + M*, the
