@@ -64,7 +64,9 @@ impl Runtime {
 // The run-time side of each operation; every input through `black_box`.
 
 fn rt_pose(r: &mut Runtime) {
-    r.pose = black_box(&r.m).pose(&[black_box(Q)]).unwrap(); // BASELINE
+    black_box(&r.m)
+        .pose_into(&[black_box(Q)], &mut r.pose)
+        .unwrap();
 }
 fn rt_kin(r: &mut Runtime) {
     black_box(&r.m)

@@ -181,6 +181,7 @@ impl Mechanism {
             points: Vec::new(),
             inputs: SmallVec::new(),
             states: Vec::new(),
+            systems: Vec::new(),
             model: self.model.clone(),
         };
         each_with(rows.0, rows.1, motion, |i, r: &mut Block<f64>, m| {
