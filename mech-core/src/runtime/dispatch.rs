@@ -39,7 +39,47 @@ pub(super) const fn level(upto: u8) -> Level {
     }
 }
 
+/// The most links of a mechanism whose per-call states live in the thread's scratch
+/// ([`Mechanism::with_states`]).
+const SCRATCH_LINKS: usize = 8;
+
+std::thread_local! {
+    /// Each thread's per-call link states (no allocation: a constant initialiser and no
+    /// destructor), so that a call of `pose_into` or Zhukovski's route neither allocates
+    /// nor initialises a buffer of states.
+    static STATES: std::cell::RefCell<[LinkState; SCRATCH_LINKS]> =
+        const { std::cell::RefCell::new([LinkState::at(V2::new(0.0, 0.0)); SCRATCH_LINKS]) };
+}
+
 impl Mechanism {
+    /// Call `f` with one state per link, of any content but the drawing's where a Newton
+    /// group starts from it: the thread's scratch (mechanisms of up to
+    /// [`SCRATCH_LINKS`] links, not already in use), else a copy of the drawing.
+    #[inline(always)]
+    pub(super) fn with_states<R>(&self, f: impl FnOnce(&mut [LinkState]) -> R) -> R {
+        let n = self.inst.drawing.len();
+        let mut f = Some(f);
+        if n <= SCRATCH_LINKS {
+            let r = STATES.try_with(|c| {
+                let mut s = c.try_borrow_mut().ok()?;
+                let s = &mut s[..n];
+                if self.newton {
+                    s.copy_from_slice(&self.inst.drawing);
+                }
+                f.take().map(|f| f(s))
+            });
+            if let Ok(Some(r)) = r {
+                return r;
+            }
+        }
+        let mut s: Scratch<LinkState> = SmallVec::from_slice(&self.inst.drawing);
+        match f.take() {
+            Some(f) => f(&mut s),
+            // `f` is taken only by a call that returned.
+            None => unreachable!(),
+        }
+    }
+
     pub(super) fn check_inputs(&self, v: &[&[f64]]) -> Result<(), MechError> {
         self.check_lengths(v)?;
         for x in v {
@@ -252,21 +292,29 @@ impl Mechanism {
         } else {
             SmallVec::from_elem(0.0, g)
         };
-        let mut s: Scratch<LinkState> = if self.newton {
-            SmallVec::from_slice(&self.inst.drawing)
-        } else {
-            SmallVec::from_elem(LinkState::default(), self.inst.drawing.len())
-        };
+        self.with_states(|s| self.pose_from(q, &zero, s, out))
+    }
+
+    /// [`Mechanism::pose_into`] with the states `s` to solve into.
+    #[inline(always)]
+    fn pose_from(
+        &self,
+        q: &[f64],
+        zero: &[f64],
+        s: &mut [LinkState],
+        out: &mut Pose,
+    ) -> Result<(), MechError> {
         let solved = if self.newton || self.redundant {
             // Newton and the branch search are given finite inputs only.
-            self.check_inputs(&[q, &zero, &zero])
-                .and_then(|()| self.solve_at::<POSITION>((q, &zero, &zero), &mut s, &mut []))
+            self.check_inputs(&[q, zero, zero])
+                .and_then(|()| self.solve_at::<POSITION>((q, zero, zero), s, &mut []))
         } else {
             self.check_lengths(&[q])
-                .and_then(|()| self.solve_at::<POSITION>((q, &zero, &zero), &mut s, &mut []))
-                .map_err(|e| self.blame_inputs(&[q, &zero, &zero], e))
+                .and_then(|()| self.solve_at::<POSITION>((q, zero, zero), s, &mut []))
+                .map_err(|e| self.blame_inputs(&[q, zero, zero], e))
         };
         solved?;
+        let s = &*s;
         let p = &self.program;
         let (n, np) = (s.len(), p.owners.len());
         out.links.resize(n, Default::default());
@@ -298,7 +346,7 @@ impl Mechanism {
             };
         }
         if bad {
-            return Err(self.blame_inputs(&[q, &zero, &zero], overflow()));
+            return Err(self.blame_inputs(&[q, zero, zero], overflow()));
         }
         if !Arc::ptr_eq(&out.model, &self.model) {
             out.model = self.model.clone();

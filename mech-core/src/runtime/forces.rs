@@ -57,15 +57,18 @@ impl Mechanism {
         }
         self.check_motion(m)?;
         let s = &m.states;
-        let mut f = Scratch::new();
-        self.wrenches_of(m, loads, &mut f)?;
+        // Per-call buffers on the stack up to 8 links and joints (a `Vec` beyond).
+        let (n, nj) = (s.len(), self.inst.joints.len());
+        let (mut f_stack, mut f_heap) = ([Wrench::zeros(); 8], Vec::new());
+        let f = stack_or_heap(&mut f_stack, &mut f_heap, n, Wrench::zeros());
+        self.wrenches_of(m, loads, f)?;
         if let Some(extra) = extra {
             for (fi, e) in f.iter_mut().zip(extra) {
                 *fi += e;
             }
         }
-        let nj = self.inst.joints.len();
-        let mut r: Scratch<Reaction> = smallvec![Reaction::default(); nj];
+        let (mut r_stack, mut r_heap) = ([Reaction::default(); 8], Vec::new());
+        let r = stack_or_heap(&mut r_stack, &mut r_heap, nj, Reaction::default());
         out.driver.clear();
         out.driver.resize(self.dof(), 0.0);
         // The dyads' systems kept by the kinematics of this mechanism (a motion of another
@@ -77,12 +80,12 @@ impl Mechanism {
             } else {
                 &DyadSystem::None
             };
-            self.group_reactions_kept(g, k, s, &mut f, &mut r, &mut out.driver)?;
+            self.group_reactions_kept(g, k, s, f, r, &mut out.driver)?;
         }
-        crate::kernel::finite::finite_reactions(&r, &out.driver)
+        crate::kernel::finite::finite_reactions(r, &out.driver)
             .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         out.joints.resize(nj, JointReaction::default());
-        for ((o, r), &prismatic) in out.joints.iter_mut().zip(&r).zip(&self.program.prismatic) {
+        for ((o, r), &prismatic) in out.joints.iter_mut().zip(&*r).zip(&self.program.prismatic) {
             *o = JointReaction {
                 force: r.force,
                 moment: prismatic.then_some(r.moment),
@@ -144,19 +147,18 @@ impl Mechanism {
 
     /// The applied wrenches (gravity, loads, force elements) and d'Alembert's inertia
     /// wrenches per link about its anchor, from the motion's published cg, cg acceleration
-    /// and load points, in the generated `__wrenches`' order.
+    /// and load points, in the generated `__wrenches`' order, added to `f` (one per link,
+    /// zero).
     #[inline]
     pub(super) fn wrenches_of(
         &self,
         m: &Motion,
         loads: &Loads,
-        f: &mut Scratch<Wrench>,
+        f: &mut [Wrench],
     ) -> Result<(), MechError> {
         self.check_loads(loads)?;
         let s = &m.states;
         let links = &self.inst.links;
-        f.clear();
-        f.resize(s.len(), Wrench::zeros());
         for &(l, _) in &self.program.weighed {
             add_gravity_of(&mut f[l], s[l].pos, &m.links[l], &links[l], self.inst.gravity);
         }
@@ -283,7 +285,7 @@ impl Mechanism {
             out[0] = d.map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
             return Ok(());
         }
-        let mut f = Scratch::new();
+        let mut f: Scratch<Wrench> = smallvec![Wrench::zeros(); s.len()];
         self.wrenches_of(m, loads, &mut f)?;
         for (k, o) in out.iter_mut().enumerate() {
             let mut v: Scratch<LinkState> = SmallVec::from_slice(s);
@@ -321,17 +323,14 @@ impl Mechanism {
             )));
         }
         crate::error::check_finite("q, qd, qdd", &[q])?;
-        let mut s: Scratch<LinkState> = if self.newton {
-            SmallVec::from_slice(&self.inst.drawing)
-        } else {
-            SmallVec::from_elem(LinkState::default(), self.inst.drawing.len())
-        };
         let drive: Drive = (&[q], &[1.0], &[0.0]);
-        match upto {
-            Level::Acceleration => self.solve_at::<ACCELERATION>(drive, &mut s, &mut [])?,
-            _ => self.solve_at::<VELOCITY>(drive, &mut s, &mut [])?,
-        }
-        self.sums(&s, loads, qd, upto == Level::Acceleration)
+        self.with_states(|s| {
+            match upto {
+                Level::Acceleration => self.solve_at::<ACCELERATION>(drive, s, &mut [])?,
+                _ => self.solve_at::<VELOCITY>(drive, s, &mut [])?,
+            }
+            self.sums(s, loads, qd, upto == Level::Acceleration)
+        })
     }
 
     /// The power balance over the motion `m` (its link and point motions).
@@ -413,5 +412,21 @@ impl Mechanism {
         )
         .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         Ok(z)
+    }
+}
+
+/// `n` values `zero`: the first `n` of `stack` when they fit, else `heap` grown to them.
+#[inline(always)]
+fn stack_or_heap<'a, T: Copy, const N: usize>(
+    stack: &'a mut [T; N],
+    heap: &'a mut Vec<T>,
+    n: usize,
+    zero: T,
+) -> &'a mut [T] {
+    if n <= N {
+        &mut stack[..n]
+    } else {
+        heap.resize(n, zero);
+        heap
     }
 }
