@@ -69,7 +69,11 @@ impl Report {
     fn check(&self, machine: &str) {
         let mut failures = Vec::new();
         for (name, (scalar, rows)) in &self.0 {
-            assert!(rows.len() == STEPS, "{machine} {name}: {} samples", rows.len());
+            assert!(
+                rows.len() == STEPS,
+                "{machine} {name}: {} samples",
+                rows.len()
+            );
             let sweep_big = rows.iter().fold(0.0f64, |m, r| m.max(r.2));
             let mut worst = 0.0f64;
             for &(q, diff, big) in rows {

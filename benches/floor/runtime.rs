@@ -70,7 +70,12 @@ fn rt_pose(r: &mut Runtime) {
 }
 fn rt_kin(r: &mut Runtime) {
     black_box(&r.m)
-        .kinematics_into(&[black_box(Q)], &[black_box(QD)], &[black_box(QDD)], &mut r.motion)
+        .kinematics_into(
+            &[black_box(Q)],
+            &[black_box(QD)],
+            &[black_box(QDD)],
+            &mut r.motion,
+        )
         .unwrap();
 }
 fn rt_kinetostatics(r: &mut Runtime) {
@@ -117,7 +122,13 @@ macro_rules! runtime_machine {
             macro_rules! each_op {
                 ($f:ident, $c:expr, $k:expr, $r:expr) => {{
                     let k = $k;
-                    $f!($c, "pose", || black_box(&k.m).pose(black_box(Q)).unwrap(), rt_pose, $r);
+                    $f!(
+                        $c,
+                        "pose",
+                        || black_box(&k.m).pose(black_box(Q)).unwrap(),
+                        rt_pose,
+                        $r
+                    );
                     $f!(
                         $c,
                         "kinematics",

@@ -2,10 +2,10 @@
 //! group kind's entry point (the generated code's kernels) for positions, rates and
 //! accelerations; `pose`, `kinematics` and the caller-buffer forms.
 
+use crate::error::non_finite;
 use crate::kernel::constraints::{Drive, Level};
 use crate::kernel::kinematics;
 use crate::kernel::kinetostatics::{Reaction, Wrench};
-use crate::error::non_finite;
 use crate::kernel::link_state::{
     anchor_motion, anchor_pose, point_motion, point_pose, LinkPose, LinkState, PointMotion,
     PointPose, V2,
@@ -106,10 +106,7 @@ impl Mechanism {
             .map(|x| x.len())
             .find(|&n| n != self.dof())
             .unwrap_or(0);
-        MechError::InvalidInput(format!(
-            "expected {} input values, got {n}",
-            self.dof()
-        ))
+        MechError::InvalidInput(format!("expected {} input values, got {n}", self.dof()))
     }
 
     /// The error of a solve of the finite-checked inputs `v` that failed with `e`: the

@@ -2,8 +2,8 @@
 //! group by group (`kinetostatics`), friction, virtual power (`driver_action`), and
 //! Zhukovski's reduction, each walking the plan with the same kernels as the generated code.
 
-use crate::kernel::constraints::{Drive, Level};
 use crate::error::non_finite;
+use crate::kernel::constraints::{Drive, Level};
 use crate::kernel::kinematics::DyadSystem;
 use crate::kernel::kinetostatics::{
     add_force, add_force_at, add_gravity_of, add_inertia_of, add_torque, PrismaticReaction,
@@ -17,8 +17,8 @@ use crate::MechError;
 use smallvec::{smallvec, SmallVec};
 use std::sync::Arc;
 
-use super::mechanism::Mechanism;
 use super::dispatch::{ACCELERATION, VELOCITY};
+use super::mechanism::Mechanism;
 use super::mechanism::{Scratch, Share};
 use super::results::*;
 
@@ -160,7 +160,13 @@ impl Mechanism {
         let s = &m.states;
         let links = &self.inst.links;
         for &(l, _) in &self.program.weighed {
-            add_gravity_of(&mut f[l], s[l].pos, &m.links[l], &links[l], self.inst.gravity);
+            add_gravity_of(
+                &mut f[l],
+                s[l].pos,
+                &m.links[l],
+                &links[l],
+                self.inst.gravity,
+            );
         }
         for (load, value) in self.model.loads.iter().zip(&loads.values) {
             match (load, *value) {

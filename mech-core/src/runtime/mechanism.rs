@@ -166,8 +166,7 @@ impl Program {
                 let (owner, d) = inst.points[pt];
                 if owner == 0 {
                     Owner::Ground(d)
-                } else if let Some(l) =
-                    (1..n).find(|&l| model.links[l].points.first() == Some(&pt))
+                } else if let Some(l) = (1..n).find(|&l| model.links[l].points.first() == Some(&pt))
                 {
                     Owner::Anchor(l)
                 } else {
