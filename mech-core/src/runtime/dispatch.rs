@@ -7,8 +7,7 @@ use crate::kernel::constraints::{Drive, Level};
 use crate::kernel::kinematics;
 use crate::kernel::kinetostatics::{Reaction, Wrench};
 use crate::kernel::link_state::{
-    anchor_motion, anchor_pose, point_motion, point_pose, LinkPose, LinkState, PointMotion,
-    PointPose, V2,
+    anchor_motion, point_motion, point_pose, LinkPose, LinkState, PointMotion, V2,
 };
 use crate::kernel::screw;
 use crate::plan::assur::{Group, Kernel};
@@ -321,26 +320,20 @@ impl Mechanism {
             angle: p.ground.angle,
             cg: p.ground.cg,
         };
-        for (((o, st), geom), rule) in out.links[1..]
+        // As `positions_into`, `pose_many` and the columns (the same numbers bit for bit):
+        // every angle from the rotation, every point from its owner of the instance.
+        for ((o, st), geom) in out.links[1..]
             .iter_mut()
             .zip(&s[1..])
             .zip(&self.inst.links[1..])
-            .zip(&p.angles)
         {
             bad |= nf(st.pos) | nf(st.rot);
-            *o = geom.pose_at(st, self.angle(rule, st, geom, q));
+            *o = geom.pose(st);
             bad |= nf(o.cg);
         }
-        for (o, owner) in out.points.iter_mut().zip(&p.owners) {
-            *o = match *owner {
-                Owner::Ground(d) => PointPose { pos: d },
-                Owner::Anchor(l) => anchor_pose(&s[l]),
-                Owner::Local(l, d) => {
-                    let pp = PointPose { pos: s[l].point(d) };
-                    bad |= nf(pp.pos);
-                    pp
-                }
-            };
+        for (o, &(l, d)) in out.points.iter_mut().zip(&self.inst.points) {
+            *o = point_pose(s, l, d);
+            bad |= nf(o.pos);
         }
         if bad {
             return Err(self.blame_inputs(&[q, zero, zero], overflow()));
