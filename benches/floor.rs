@@ -92,6 +92,9 @@ mod hand;
 #[path = "floor/interleaved.rs"]
 mod interleaved;
 
+#[path = "floor/runtime.rs"]
+mod runtime;
+
 use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hand::{
@@ -728,11 +731,12 @@ criterion_group!(
     quick_return,
     scotch_yoke,
     inverted_slider_crank,
-    batch
+    batch,
+    runtime::pairs
 );
 criterion_group! {
     name = interleaved_ratios;
     config = Criterion::default().with_measurement(Interleaved);
-    targets = ratios, batch_ratios
+    targets = ratios, batch_ratios, runtime::ratios
 }
 criterion_main!(benches, interleaved_ratios);

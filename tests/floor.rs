@@ -26,7 +26,7 @@ use crate::measure::{within, within_at};
 use crate::mechanisms;
 
 #[path = "../benches/floor/machines.rs"]
-mod machines;
+pub(crate) mod machines;
 
 #[path = "../benches/floor/hand.rs"]
 mod hand;

@@ -1,5 +1,6 @@
 //! The run-time mechanism makes no heap allocation per call once its buffers have grown:
-//! `solve_into`, `kinematics_into` and `kinetostatics_into` with caller-owned buffers, and
+//! `solve_into`, `pose_into`, `kinematics_into`, `kinetostatics_into` and
+//! `Machine::driver_actions` with caller-owned buffers, and
 //! Zhukovski's route (`reduced`, `reduced_moment`, `acceleration`, the right-hand side of
 //! the direct problem), for mechanisms of up to 8 links and joints. Proved with a counting
 //! global allocator (one test in this file: the harness runs tests in threads).
@@ -43,6 +44,8 @@ fn no_allocation_per_call_with_caller_buffers() {
         let mut states: Vec<LinkState> = Vec::new();
         let mut motion = m.kinematics(&[q0], &[1.0], &[0.0]).unwrap();
         let mut forces = m.kinetostatics(&motion, &loads).unwrap();
+        let mut pose = m.pose(&[q0]).unwrap();
+        let mut driver = [0.0];
         m.solve_into(&[q0], &[1.0], &[0.0], Level::Acceleration, &mut states)
             .unwrap();
         for k in 0..8 {
@@ -58,6 +61,12 @@ fn no_allocation_per_call_with_caller_buffers() {
             r.unwrap();
             assert_eq!(n, 0, "{name}: kinetostatics_into allocated");
             assert!(forces.driver[0].is_finite());
+            let (n, r) = count(|| m.pose_into(&q, &mut pose));
+            r.unwrap();
+            assert_eq!(n, 0, "{name}: pose_into allocated");
+            let (n, r) = count(|| m.driver_actions(&motion, &loads, &mut driver));
+            r.unwrap();
+            assert_eq!(n, 0, "{name}: driver_actions allocated");
             let (n, r) = count(|| {
                 (
                     m.reduced(q[0]),

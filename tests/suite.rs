@@ -54,6 +54,7 @@ mod batch;
 mod dyads;
 mod dynamics;
 mod floor;
+mod floor_runtime;
 mod generic;
 mod hostile;
 mod kinematics;

@@ -97,34 +97,12 @@ pub fn finite_states(
     }
 }
 
-/// `Ok(())` when every point's position, velocity and acceleration and every link's cg
-/// velocity and acceleration is finite: the quantities derived from finite states after
-/// [`finite_states`] (a point far from its link's anchor at a huge speed, ω² r, can still
-/// overflow). Checked on what a run-time `kinematics` returns.
-pub fn finite_motion(
-    links: &[crate::kernel::link_state::LinkMotion],
-    points: &[crate::kernel::link_state::PointMotion],
-) -> Result<(), MechError> {
-    use crate::error::non_finite as bad;
-    let v = |v: &crate::kernel::link_state::V2| bad(v.x) | bad(v.y);
-    // Flags ORed over every value, no branch per value (as `finite_states`).
-    let mut any = false;
-    for l in links {
-        any |= v(&l.cg) | v(&l.cg_vel) | v(&l.cg_acc);
-    }
-    for p in points {
-        any |= v(&p.pos) | v(&p.vel) | v(&p.acc);
-    }
-    if any {
-        Err(states_overflow())
-    } else {
-        Ok(())
-    }
-}
-
+/// The overflow error of link motions ([`finite_states`]'s), also that of the run-time
+/// `kinematics`' check of the point and cg motions it publishes (derived from finite
+/// states, a point far from its link's anchor at a huge speed, ω² r, can still overflow).
 #[cold]
 #[inline(never)]
-fn states_overflow() -> MechError {
+pub fn states_overflow() -> MechError {
     overflowed("velocities or accelerations overflow")
 }
 

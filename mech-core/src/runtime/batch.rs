@@ -363,6 +363,7 @@ impl Mechanism {
             points: Vec::new(),
             inputs: SmallVec::new(),
             states: Vec::new(),
+            systems: Vec::new(),
             model: self.model.clone(),
         }
     }

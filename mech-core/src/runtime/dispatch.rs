@@ -2,10 +2,13 @@
 //! group kind's entry point (the generated code's kernels) for positions, rates and
 //! accelerations; `pose`, `kinematics` and the caller-buffer forms.
 
+use crate::error::non_finite;
 use crate::kernel::constraints::{Drive, Level};
 use crate::kernel::kinematics;
 use crate::kernel::kinetostatics::{Reaction, Wrench};
-use crate::kernel::link_state::{point_motion, point_pose, LinkState};
+use crate::kernel::link_state::{
+    anchor_motion, point_motion, point_pose, LinkPose, LinkState, PointMotion, V2,
+};
 use crate::kernel::screw;
 use crate::plan::assur::{Group, Kernel};
 use crate::MechError;
@@ -13,23 +16,109 @@ use smallvec::SmallVec;
 use std::sync::Arc;
 
 use super::mechanism::Mechanism;
-use super::mechanism::Scratch;
+use super::mechanism::{Angle, Owner, Scratch};
 use super::newton::system;
 use super::results::*;
 
+/// The levels as constants of the solvers' const generic (`Level` itself cannot be one):
+/// a solve specialised to its level has every `upto` test of the kernels folded.
+pub(super) const POSITION: u8 = 0;
+/// [`Level::Velocity`].
+pub(super) const VELOCITY: u8 = 1;
+/// [`Level::Acceleration`].
+pub(super) const ACCELERATION: u8 = 2;
+
+/// The [`Level`] of a level constant.
+#[inline(always)]
+pub(super) const fn level(upto: u8) -> Level {
+    match upto {
+        POSITION => Level::Position,
+        VELOCITY => Level::Velocity,
+        _ => Level::Acceleration,
+    }
+}
+
+/// The most links of a mechanism whose per-call states live in the thread's scratch
+/// ([`Mechanism::with_states`]).
+const SCRATCH_LINKS: usize = 8;
+
+std::thread_local! {
+    /// Each thread's per-call link states (no allocation: a constant initialiser and no
+    /// destructor), so that a call of `pose_into` or Zhukovski's route neither allocates
+    /// nor initialises a buffer of states.
+    static STATES: std::cell::RefCell<[LinkState; SCRATCH_LINKS]> =
+        const { std::cell::RefCell::new([LinkState::at(V2::new(0.0, 0.0)); SCRATCH_LINKS]) };
+}
+
 impl Mechanism {
-    pub(super) fn check_inputs(&self, v: &[&[f64]]) -> Result<(), MechError> {
-        for x in v {
-            if x.len() != self.dof() {
-                return Err(MechError::InvalidInput(format!(
-                    "expected {} input values, got {}",
-                    self.dof(),
-                    x.len()
-                )));
+    /// Call `f` with one state per link, of any content but the drawing's where a Newton
+    /// group starts from it: the thread's scratch (mechanisms of up to
+    /// [`SCRATCH_LINKS`] links, not already in use), else a copy of the drawing.
+    #[inline(always)]
+    pub(super) fn with_states<R>(&self, f: impl FnOnce(&mut [LinkState]) -> R) -> R {
+        let n = self.inst.drawing.len();
+        let mut f = Some(f);
+        if n <= SCRATCH_LINKS {
+            let r = STATES.try_with(|c| {
+                let mut s = c.try_borrow_mut().ok()?;
+                let s = &mut s[..n];
+                if self.newton {
+                    s.copy_from_slice(&self.inst.drawing);
+                }
+                f.take().map(|f| f(s))
+            });
+            if let Ok(Some(r)) = r {
+                return r;
             }
+        }
+        let mut s: Scratch<LinkState> = SmallVec::from_slice(&self.inst.drawing);
+        match f.take() {
+            Some(f) => f(&mut s),
+            // `f` is taken only by a call that returned.
+            None => unreachable!(),
+        }
+    }
+
+    pub(super) fn check_inputs(&self, v: &[&[f64]]) -> Result<(), MechError> {
+        self.check_lengths(v)?;
+        for x in v {
             crate::error::check_finite("q, qd, qdd", x)?;
         }
         Ok(())
+    }
+
+    /// `InvalidInput` unless every slice of `v` has one value per input.
+    #[inline]
+    pub(super) fn check_lengths(&self, v: &[&[f64]]) -> Result<(), MechError> {
+        let g = self.model.inputs.len();
+        if v.iter().all(|x| x.len() == g) {
+            return Ok(());
+        }
+        Err(self.wrong_length(v))
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn wrong_length(&self, v: &[&[f64]]) -> MechError {
+        let n = v
+            .iter()
+            .map(|x| x.len())
+            .find(|&n| n != self.dof())
+            .unwrap_or(0);
+        MechError::InvalidInput(format!("expected {} input values, got {n}", self.dof()))
+    }
+
+    /// The error of a solve of the finite-checked inputs `v` that failed with `e`: the
+    /// error [`Mechanism::check_inputs`] gives when one of them is not finite (a NaN or an
+    /// infinity among the inputs reaches every result, so a solve given one fails), else
+    /// `e`. The common path looks at the inputs only here, on failure.
+    #[cold]
+    #[inline(never)]
+    pub(super) fn blame_inputs(&self, v: &[&[f64]], e: MechError) -> MechError {
+        match self.check_inputs(v) {
+            Err(bad) => bad,
+            Ok(()) => e,
+        }
     }
 
     /// Solve the plan up to `upto` at (q, q̇, q̈) into `s` (one state per link), reusing its
@@ -58,20 +147,59 @@ impl Mechanism {
         s: &mut [LinkState],
     ) -> Result<(), MechError> {
         self.check_inputs(&[q, qd, qdd])?;
-        if self.redundant() {
+        let drive = (q, qd, qdd);
+        match upto {
+            Level::Position => self.solve_at::<POSITION>(drive, s, &mut []),
+            Level::Velocity => self.solve_at::<VELOCITY>(drive, s, &mut []),
+            Level::Acceleration => self.solve_at::<ACCELERATION>(drive, s, &mut []),
+            Level::Jacobian if self.redundant => {
+                let branches: Scratch<f64> = SmallVec::from_slice(&self.branches);
+                crate::kernel::branches::search(&branches, |b| self.solve_on(b, drive, upto, s))
+            }
+            Level::Jacobian => self.solve_on(&self.branches, drive, upto, s),
+        }
+    }
+
+    /// The plan solved at `drive` up to the level `UPTO` into `s` (one state per link, of
+    /// any content: every state a group uses is written first), on the drawing's branches
+    /// (past a change point of a redundant mechanism, the others: as the generated code);
+    /// what each closed-form dyad keeps for its reactions into `kept` (one per group, or
+    /// empty for none). No check of the inputs or of the results.
+    #[inline(always)]
+    pub(super) fn solve_at<const UPTO: u8>(
+        &self,
+        drive: Drive,
+        s: &mut [LinkState],
+        kept: &mut [kinematics::DyadSystem],
+    ) -> Result<(), MechError> {
+        if self.redundant {
             // Past a change point the drawing's branches may not close a redundant group:
             // the other combinations are tried, as the generated code does.
             let branches: Scratch<f64> = SmallVec::from_slice(&self.branches);
             return crate::kernel::branches::search(&branches, |b| {
-                self.solve_on(b, (q, qd, qdd), upto, s)
+                self.solve_on(b, drive, level(UPTO), s)
             });
         }
-        self.solve_on(&self.branches, (q, qd, qdd), upto, s)
+        // Newton starts from the drawing; closed forms overwrite every state they use
+        // (the ground's is the drawing's always).
+        if self.newton {
+            s.copy_from_slice(&self.inst.drawing);
+        } else {
+            s[0] = self.inst.drawing[0];
+        }
+        let keep = kept.len() == self.plan.len();
+        for (i, (g, &sign)) in self.plan.iter().zip(&self.branches).enumerate() {
+            let k = self.group_step::<UPTO>(g, sign, drive, s)?;
+            if keep {
+                kept[i] = k;
+            }
+        }
+        Ok(())
     }
 
     /// True when the mechanism was accepted with redundant constraints.
     pub fn redundant(&self) -> bool {
-        self.model.allow_redundant && self.plan.iter().any(|g| g.redundant())
+        self.redundant
     }
 
     pub(super) fn solve_on(
@@ -140,28 +268,102 @@ impl Mechanism {
 
     /// Positions only: every link's angle and cg, every point.
     pub fn pose(&self, q: &[f64]) -> Result<Pose, MechError> {
-        let zero = vec![0.0; self.dof()];
-        let mut s = Vec::new();
-        self.solve_into(q, &zero, &zero, Level::Position, &mut s)?;
-        crate::kernel::finite::finite_states(&s, Level::Position)?;
-        let links = self
-            .inst
-            .links
-            .iter()
-            .zip(&s)
-            .map(|(l, st)| l.pose(st))
-            .collect();
-        let points = self
-            .inst
-            .points
-            .iter()
-            .map(|&(o, d)| point_pose(&s, o, d))
-            .collect();
-        Ok(Pose {
-            links,
-            points,
+        let mut p = Pose {
+            links: Vec::new(),
+            points: Vec::new(),
             model: self.model.clone(),
-        })
+        };
+        self.pose_into(q, &mut p)?;
+        Ok(p)
+    }
+
+    /// [`Mechanism::pose`] into `out`, reusing its buffers: no allocation once they have
+    /// grown (`out` from an earlier call, on this or another mechanism), for mechanisms of
+    /// up to 8 links.
+    pub fn pose_into(&self, q: &[f64], out: &mut Pose) -> Result<(), MechError> {
+        let g = self.dof();
+        const ZEROS: [f64; 16] = [0.0; 16];
+        let zero: Scratch<f64> = if g <= ZEROS.len() {
+            SmallVec::from_slice(&ZEROS[..g])
+        } else {
+            SmallVec::from_elem(0.0, g)
+        };
+        self.with_states(|s| self.pose_from(q, &zero, s, out))
+    }
+
+    /// [`Mechanism::pose_into`] with the states `s` to solve into.
+    #[inline(always)]
+    fn pose_from(
+        &self,
+        q: &[f64],
+        zero: &[f64],
+        s: &mut [LinkState],
+        out: &mut Pose,
+    ) -> Result<(), MechError> {
+        let solved = if self.newton || self.redundant {
+            // Newton and the branch search are given finite inputs only.
+            self.check_inputs(&[q, zero, zero])
+                .and_then(|()| self.solve_at::<POSITION>((q, zero, zero), s, &mut []))
+        } else {
+            self.check_lengths(&[q])
+                .and_then(|()| self.solve_at::<POSITION>((q, zero, zero), s, &mut []))
+                .map_err(|e| self.blame_inputs(&[q, zero, zero], e))
+        };
+        solved?;
+        let s = &*s;
+        let p = &self.program;
+        let (n, np) = (s.len(), p.owners.len());
+        out.links.resize(n, Default::default());
+        out.points.resize(np, Default::default());
+        let mut bad = false;
+        out.links[0] = LinkPose {
+            angle: p.ground.angle,
+            cg: p.ground.cg,
+        };
+        // As `positions_into`, `pose_many` and the columns (the same numbers bit for bit):
+        // every angle from the rotation, every point from its owner of the instance.
+        for ((o, st), geom) in out.links[1..]
+            .iter_mut()
+            .zip(&s[1..])
+            .zip(&self.inst.links[1..])
+        {
+            bad |= nf(st.pos) | nf(st.rot);
+            *o = geom.pose(st);
+            bad |= nf(o.cg);
+        }
+        for (o, &(l, d)) in out.points.iter_mut().zip(&self.inst.points) {
+            *o = point_pose(s, l, d);
+            bad |= nf(o.pos);
+        }
+        if bad {
+            return Err(self.blame_inputs(&[q, zero, zero], overflow()));
+        }
+        if !Arc::ptr_eq(&out.model, &self.model) {
+            out.model = self.model.clone();
+        }
+        Ok(())
+    }
+
+    /// The angle of a moving link by its rule (`Program::angles`).
+    #[inline(always)]
+    fn angle(
+        &self,
+        rule: &Angle,
+        s: &LinkState,
+        geom: &crate::kernel::link_state::LinkGeom,
+        q: &[f64],
+    ) -> f64 {
+        match *rule {
+            Angle::Turned => geom.angle(s),
+            Angle::Crank { input, sign, zero } => kinematics::crank_angle(
+                match zero {
+                    None => q[input],
+                    Some(z) => q[input] + z,
+                },
+                sign,
+            ),
+            Angle::Fixed(a) => a,
+        }
     }
 
     /// Positions, velocities and accelerations at (q, q̇, q̈).
@@ -171,6 +373,7 @@ impl Mechanism {
             points: Vec::new(),
             inputs: SmallVec::new(),
             states: Vec::new(),
+            systems: Vec::new(),
             model: self.model.clone(),
         };
         self.kinematics_into(q, qd, qdd, &mut m)?;
@@ -186,24 +389,211 @@ impl Mechanism {
         qdd: &[f64],
         out: &mut Motion,
     ) -> Result<(), MechError> {
-        self.solve_into(q, qd, qdd, Level::Acceleration, &mut out.states)?;
-        crate::kernel::finite::finite_states(&out.states, Level::Acceleration)?;
-        let s = &out.states;
-        out.links.clear();
-        out.links
-            .extend(self.inst.links.iter().zip(s).map(|(l, st)| l.motion(st)));
-        out.points.clear();
-        out.points
-            .extend(self.inst.points.iter().map(|&(o, d)| point_motion(s, o, d)));
-        crate::kernel::finite::finite_motion(&out.links, &out.points)?;
-        out.inputs.clear();
-        out.inputs.extend_from_slice(q);
-        out.inputs.extend_from_slice(qd);
-        out.inputs.extend_from_slice(qdd);
+        let v: [&[f64]; 3] = [q, qd, qdd];
+        let (n, ng) = (self.inst.drawing.len(), self.plan.len());
+        out.states.resize(n, LinkState::default());
+        out.systems.resize(ng, kinematics::DyadSystem::None);
+        let solved = if self.newton || self.redundant {
+            // Newton and the branch search are given finite inputs only.
+            self.check_inputs(&v).and_then(|()| {
+                self.solve_at::<ACCELERATION>((q, qd, qdd), &mut out.states, &mut out.systems)
+            })
+        } else {
+            self.check_lengths(&v)
+                .and_then(|()| {
+                    self.solve_at::<ACCELERATION>((q, qd, qdd), &mut out.states, &mut out.systems)
+                })
+                .map_err(|e| self.blame_inputs(&v, e))
+        };
+        solved?;
+        let s = &out.states[..];
+        let p = &self.program;
+        let np = p.owners.len();
+        out.links.resize(n, Default::default());
+        out.points.resize(np, Default::default());
+        // Every state and every published value derived from them checked finite, flags
+        // joined by OR, one test at the end (the states as `finite_states`, the rest as
+        // the points and cgs derived from them; an anchor point is its link's state).
+        let mut bad = false;
+        out.links[0] = p.ground;
+        for (((o, st), geom), rule) in out.links[1..]
+            .iter_mut()
+            .zip(&s[1..])
+            .zip(&self.inst.links[1..])
+            .zip(&p.angles)
+        {
+            bad |= nf(st.pos)
+                | nf(st.rot)
+                | nf(st.vel)
+                | nf(st.acc)
+                | non_finite(st.omega)
+                | non_finite(st.alpha);
+            *o = geom.motion_at(st, self.angle(rule, st, geom, q));
+            bad |= nf(o.cg) | nf(o.cg_vel) | nf(o.cg_acc);
+        }
+        for (o, owner) in out.points.iter_mut().zip(&p.owners) {
+            *o = match *owner {
+                Owner::Ground(d) => PointMotion {
+                    pos: d,
+                    vel: V2::zeros(),
+                    acc: V2::zeros(),
+                },
+                Owner::Anchor(l) => anchor_motion(&s[l]),
+                Owner::Local(l, d) => {
+                    let pm = point_motion(s, l, d);
+                    bad |= nf(pm.pos) | nf(pm.vel) | nf(pm.acc);
+                    pm
+                }
+            };
+        }
+        if bad {
+            return Err(self.blame_inputs(&v, overflow()));
+        }
+        let g = q.len();
+        if out.inputs.len() != 3 * g {
+            out.inputs.resize(3 * g, 0.0);
+        }
+        out.inputs[..g].copy_from_slice(q);
+        out.inputs[g..2 * g].copy_from_slice(qd);
+        out.inputs[2 * g..].copy_from_slice(qdd);
         if !Arc::ptr_eq(&out.model, &self.model) {
             out.model = self.model.clone();
         }
         Ok(())
+    }
+}
+
+/// Either coordinate of `v` not finite ([`non_finite`]).
+#[inline(always)]
+fn nf(v: V2) -> bool {
+    non_finite(v.x) | non_finite(v.y)
+}
+
+/// The error of a non-finite state or published value:
+/// [`crate::kernel::finite::states_overflow`].
+#[cold]
+#[inline(never)]
+fn overflow() -> MechError {
+    crate::kernel::finite::states_overflow()
+}
+
+/// The specialised dispatch of the common closed forms: each group's solver variant
+/// matched once, the kernel called with that variant written out, so that the kernels'
+/// own `match` on the solver folds (as in the generated code, where it is a constant).
+impl Mechanism {
+    /// Solve group `g` on branch `sign` at `drive` up to the level `UPTO`; what a dyad
+    /// keeps for its reactions.
+    #[inline(always)]
+    fn group_step<const UPTO: u8>(
+        &self,
+        g: &Group,
+        sign: f64,
+        drive: Drive,
+        s: &mut [LinkState],
+    ) -> Result<kinematics::DyadSystem, MechError> {
+        use crate::kernel::dyad::Solver;
+        use kinematics::DyadSystem;
+        let (joints, scale, upto) = (&self.inst.joints[..], self.inst.scale, level(UPTO));
+        match (&g.kernel, g.solver) {
+            (Kernel::Driven(d), Solver::DrivenRevolute { body, joint, input }) => {
+                let solver = Solver::DrivenRevolute { body, joint, input };
+                kinematics::solve_driven(solver, d, joints, s, drive, upto)?;
+                Ok(DyadSystem::None)
+            }
+            (Kernel::Chain(c), Solver::Rrr { b1, b2, ja, jc, jb }) => {
+                let solver = Solver::Rrr { b1, b2, ja, jc, jb };
+                kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto)
+            }
+            (Kernel::Chain(c), Solver::Rrp { b1, b2, ja, jc, jp }) => {
+                let solver = Solver::Rrp { b1, b2, ja, jc, jp };
+                kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto)
+            }
+            (Kernel::Chain(c), Solver::Rpr { b1, b2, ja, jp, jb }) => {
+                let solver = Solver::Rpr { b1, b2, ja, jp, jb };
+                kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto)
+            }
+            (Kernel::Chain(c), Solver::SlottedSlider { body, jq, js }) => {
+                let solver = Solver::SlottedSlider { body, jq, js };
+                kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto)
+            }
+            _ => self.other_step(g, sign, drive, upto, s),
+        }
+    }
+
+    /// d'Alembert on group `g` with what its kinematics kept (`kept`, or
+    /// [`kinematics::DyadSystem::None`] to rebuild it), the common closed forms
+    /// specialised as in [`Mechanism::group_step`]; the others through
+    /// [`Mechanism::group_reactions`].
+    #[inline(always)]
+    pub(super) fn group_reactions_kept(
+        &self,
+        g: &Group,
+        kept: &kinematics::DyadSystem,
+        s: &[LinkState],
+        f: &mut [Wrench],
+        r: &mut [Reaction],
+        driver: &mut [f64],
+    ) -> Result<(), MechError> {
+        use crate::kernel::dyad::Solver;
+        let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+        match (&g.kernel, g.solver) {
+            (Kernel::Driven(k), _) => screw::driven_reactions(k, joints, s, f, r, driver),
+            (Kernel::Chain(c), Solver::Rrr { b1, b2, ja, jc, jb }) => {
+                let solver = Solver::Rrr { b1, b2, ja, jc, jb };
+                kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?
+            }
+            (Kernel::Chain(c), Solver::Rrp { b1, b2, ja, jc, jp }) => {
+                let solver = Solver::Rrp { b1, b2, ja, jc, jp };
+                kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?
+            }
+            (Kernel::Chain(c), Solver::Rpr { b1, b2, ja, jp, jb }) => {
+                let solver = Solver::Rpr { b1, b2, ja, jp, jb };
+                kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?
+            }
+            (Kernel::Chain(c), Solver::SlottedSlider { body, jq, js }) => {
+                let solver = Solver::SlottedSlider { body, jq, js };
+                kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?
+            }
+            _ => self.other_reactions(g, kept, s, f, r, driver)?,
+        }
+        Ok(())
+    }
+
+    /// [`Mechanism::group_reactions_kept`] of the other kinds, out of line.
+    #[inline(never)]
+    fn other_reactions(
+        &self,
+        g: &Group,
+        kept: &kinematics::DyadSystem,
+        s: &[LinkState],
+        f: &mut [Wrench],
+        r: &mut [Reaction],
+        driver: &mut [f64],
+    ) -> Result<(), MechError> {
+        if let Kernel::Chain(c) = &g.kernel {
+            let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+            return kinematics::chain_reactions(g.solver, c, joints, s, f, scale, kept, r);
+        }
+        self.group_reactions(g, s, f, r, driver)
+    }
+
+    /// [`Mechanism::group_step`] of the other kinds, out of line: through the plan's
+    /// dispatch.
+    #[inline(never)]
+    fn other_step(
+        &self,
+        g: &Group,
+        sign: f64,
+        drive: Drive,
+        upto: Level,
+        s: &mut [LinkState],
+    ) -> Result<kinematics::DyadSystem, MechError> {
+        if let Kernel::Chain(c) = &g.kernel {
+            let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
+            return kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto);
+        }
+        self.group_positions(g, sign, drive, upto, s)?;
+        Ok(kinematics::DyadSystem::None)
     }
 }
 

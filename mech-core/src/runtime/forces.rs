@@ -2,60 +2,27 @@
 //! group by group (`kinetostatics`), friction, virtual power (`driver_action`), and
 //! Zhukovski's reduction, each walking the plan with the same kernels as the generated code.
 
+use crate::error::non_finite;
 use crate::kernel::constraints::{Drive, Level};
+use crate::kernel::kinematics::DyadSystem;
 use crate::kernel::kinetostatics::{
-    add_force, add_gravity, add_inertia, add_torque, PrismaticReaction, Reaction, RevoluteReaction,
-    Wrench,
+    add_force, add_force_at, add_gravity_of, add_inertia_of, add_torque, PrismaticReaction,
+    Reaction, RevoluteReaction, Wrench,
 };
 use crate::kernel::link_state::{point_motion, LinkState, V2};
-use crate::model::JointKind;
+use crate::model::{JointKind, Load};
 use crate::solvers::friction::{add_joint_friction, flat_len, iterate, Flattener, JointFriction};
 use crate::solvers::zhukovski::ZhukovskiSums;
 use crate::MechError;
 use smallvec::{smallvec, SmallVec};
 use std::sync::Arc;
 
+use super::dispatch::{ACCELERATION, VELOCITY};
 use super::mechanism::Mechanism;
-use super::mechanism::Scratch;
+use super::mechanism::{Scratch, Share};
 use super::results::*;
 
 impl Mechanism {
-    /// The applied wrenches (loads, gravity) and, when `inertia`, d'Alembert's inertia
-    /// wrenches, per link, with the terms each link's declaration gives it.
-    pub(super) fn wrenches(
-        &self,
-        s: &[LinkState],
-        loads: &Loads,
-        inertia: bool,
-        f: &mut Scratch<Wrench>,
-    ) -> Result<(), MechError> {
-        f.clear();
-        f.resize(s.len(), Wrench::zeros());
-        for (l, t) in self.terms.iter().enumerate().skip(1) {
-            if t.gravity() {
-                add_gravity(&mut f[l], &s[l], &self.inst.links[l], self.inst.gravity);
-            }
-            if inertia && t.inertia() {
-                add_inertia(&mut f[l], &s[l], &self.inst.links[l]);
-            }
-        }
-        for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
-            let link = load.link();
-            match *value {
-                LoadValue::Force(v) => {
-                    crate::error::check_finite("loads", &[v.x, v.y])?;
-                    add_force(&mut f[link], &s[link], self.inst.loads[k], v)
-                }
-                LoadValue::Torque(t) => {
-                    crate::error::check_finite("loads", &[t])?;
-                    add_torque(&mut f[link], t)
-                }
-            }
-        }
-        crate::elements::springs::add_wrenches(&self.inst.elements, s, f);
-        Ok(())
-    }
-
     /// d'Alembert: the motor action of every input and the reaction at every joint, group
     /// by group from the outermost Assur group inward. `extra` adds wrenches per link
     /// (friction).
@@ -83,36 +50,142 @@ impl Mechanism {
         extra: Option<&[Wrench]>,
         out: &mut Forces,
     ) -> Result<(), MechError> {
-        if self.redundant() {
+        if self.redundant {
             return Err(MechError::Redundant(
                 "this mechanism has redundant constraints (`#[allow(redundant)]`): its reactions are statically indeterminate; the motor actions are still determined: call `driver_action` (virtual power)".into(),
             ));
         }
+        self.check_motion(m)?;
         let s = &m.states;
-        let mut f = Scratch::new();
-        self.wrenches(s, loads, true, &mut f)?;
+        // Per-call buffers on the stack up to 8 links and joints (a `Vec` beyond).
+        let (n, nj) = (s.len(), self.inst.joints.len());
+        let (mut f_stack, mut f_heap) = ([Wrench::zeros(); 8], Vec::new());
+        let f = stack_or_heap(&mut f_stack, &mut f_heap, n, Wrench::zeros());
+        self.wrenches_of(m, loads, f)?;
         if let Some(extra) = extra {
             for (fi, e) in f.iter_mut().zip(extra) {
                 *fi += e;
             }
         }
-        let (joints, _scale) = (&self.inst.joints[..], self.inst.scale);
-        let mut r: Scratch<Reaction> = smallvec![Reaction::default(); joints.len()];
+        let (mut r_stack, mut r_heap) = ([Reaction::default(); 8], Vec::new());
+        let r = stack_or_heap(&mut r_stack, &mut r_heap, nj, Reaction::default());
         out.driver.clear();
         out.driver.resize(self.dof(), 0.0);
-        for g in self.plan.iter().rev() {
-            self.group_reactions(g, s, &mut f, &mut r, &mut out.driver)?;
+        // The dyads' systems kept by the kinematics of this mechanism (a motion of another
+        // has its systems rebuilt).
+        let kept = Arc::ptr_eq(&m.model, &self.model) && m.systems.len() == self.plan.len();
+        for (i, g) in self.plan.iter().enumerate().rev() {
+            let k = if kept {
+                &m.systems[i]
+            } else {
+                &DyadSystem::None
+            };
+            self.group_reactions_kept(g, k, s, f, r, &mut out.driver)?;
         }
-        crate::kernel::finite::finite_reactions(&r, &out.driver)
+        crate::kernel::finite::finite_reactions(r, &out.driver)
             .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
-        out.joints.clear();
-        out.joints
-            .extend(self.model.joints.iter().zip(r).map(|(j, r)| JointReaction {
+        out.joints.resize(nj, JointReaction::default());
+        for ((o, r), &prismatic) in out.joints.iter_mut().zip(&*r).zip(&self.program.prismatic) {
+            *o = JointReaction {
                 force: r.force,
-                moment: (j.kind == JointKind::Prismatic).then_some(r.moment),
-            }));
+                moment: prismatic.then_some(r.moment),
+            };
+        }
         if !Arc::ptr_eq(&out.model, &self.model) {
             out.model = self.model.clone();
+        }
+        Ok(())
+    }
+
+    /// `InvalidInput` unless the motion `m` has this mechanism's sizes (its links, points
+    /// and states): a motion of another mechanism.
+    #[inline]
+    pub(super) fn check_motion(&self, m: &Motion) -> Result<(), MechError> {
+        let (n, np) = (self.inst.links.len(), self.inst.points.len());
+        if m.states.len() == n && m.links.len() == n && m.points.len() == np {
+            Ok(())
+        } else {
+            Err(MechError::InvalidInput(format!(
+                "the motion has {} links and {} points, this mechanism {n} and {np}: a motion of another mechanism",
+                m.links.len(),
+                m.points.len()
+            )))
+        }
+    }
+
+    /// `InvalidInput` naming the first load that is not finite, as [`Mechanism::wrenches`]
+    /// checks them: every value looked at, one test.
+    #[inline]
+    pub(super) fn check_loads(&self, loads: &Loads) -> Result<(), MechError> {
+        let mut bad = false;
+        for v in &loads.values {
+            bad |= match *v {
+                LoadValue::Force(v) => non_finite(v.x) | non_finite(v.y),
+                LoadValue::Torque(t) => non_finite(t),
+            };
+        }
+        if bad {
+            return Err(self.bad_loads(loads));
+        }
+        Ok(())
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn bad_loads(&self, loads: &Loads) -> MechError {
+        for v in &loads.values {
+            let r = match *v {
+                LoadValue::Force(v) => crate::error::check_finite("loads", &[v.x, v.y]),
+                LoadValue::Torque(t) => crate::error::check_finite("loads", &[t]),
+            };
+            if let Err(e) = r {
+                return e;
+            }
+        }
+        MechError::InvalidInput("loads must be finite".into())
+    }
+
+    /// The applied wrenches (gravity, loads, force elements) and d'Alembert's inertia
+    /// wrenches per link about its anchor, from the motion's published cg, cg acceleration
+    /// and load points, in the generated `__wrenches`' order, added to `f` (one per link,
+    /// zero).
+    #[inline]
+    pub(super) fn wrenches_of(
+        &self,
+        m: &Motion,
+        loads: &Loads,
+        f: &mut [Wrench],
+    ) -> Result<(), MechError> {
+        self.check_loads(loads)?;
+        let s = &m.states;
+        let links = &self.inst.links;
+        for &(l, _) in &self.program.weighed {
+            add_gravity_of(
+                &mut f[l],
+                s[l].pos,
+                &m.links[l],
+                &links[l],
+                self.inst.gravity,
+            );
+        }
+        for (load, value) in self.model.loads.iter().zip(&loads.values) {
+            match (load, *value) {
+                (&Load::Force { link, point, .. }, LoadValue::Force(v)) => {
+                    add_force_at(&mut f[link], s[link].pos, m.points[point].pos, v)
+                }
+                (&Load::Torque { link, .. }, LoadValue::Torque(t)) => add_torque(&mut f[link], t),
+                // A value of the other kind (set by hand): as `wrenches`.
+                (load, LoadValue::Force(v)) => {
+                    add_force(&mut f[load.link()], &s[load.link()], V2::zeros(), v)
+                }
+                (load, LoadValue::Torque(t)) => add_torque(&mut f[load.link()], t),
+            }
+        }
+        if !self.inst.elements.is_empty() {
+            crate::elements::springs::add_wrenches(&self.inst.elements, s, f);
+        }
+        for &(l, _) in &self.program.inertial {
+            add_inertia_of(&mut f[l], s[l].pos, &m.links[l], &links[l]);
         }
         Ok(())
     }
@@ -190,18 +263,36 @@ impl Mechanism {
     /// The motor actions by virtual power, no reaction: Q_k = −Σ (F·v + M ω) over loads,
     /// gravity and inertia in the velocity field moving input k alone at unit rate.
     pub fn driver_action(&self, m: &Motion, loads: &Loads) -> Result<Vec<f64>, MechError> {
-        let s = &m.states;
-        if self.dof() == 1 && m.qd()[0] != 0.0 {
-            let d = self.power(m, loads)?.driver(m.qd()[0]);
-            return Ok(vec![
-                d.map_err(|e| self.inst.blame_elements(&self.model, s, e))?
-            ]);
-        }
-        let mut f = Scratch::new();
-        self.wrenches(s, loads, true, &mut f)?;
+        let mut out = vec![0.0; self.dof()];
+        self.driver_action_into(m, loads, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Mechanism::driver_action`] into `out` (one value per input): no allocation, for
+    /// mechanisms of up to 8 links and inputs. One input moving (q̇ ≠ 0): the power balance
+    /// over the motion itself, as the generated code.
+    pub(super) fn driver_action_into(
+        &self,
+        m: &Motion,
+        loads: &Loads,
+        out: &mut [f64],
+    ) -> Result<(), MechError> {
+        self.check_motion(m)?;
         let g = self.dof();
-        let (_joints, _scale) = (&self.inst.joints[..], self.inst.scale);
-        let mut out = vec![0.0; g];
+        if out.len() != g {
+            return Err(MechError::InvalidInput(format!(
+                "expected {g} driver slots, got {}",
+                out.len()
+            )));
+        }
+        let s = &m.states;
+        if g == 1 && m.qd()[0] != 0.0 {
+            let d = self.power(m, loads)?.driver(m.qd()[0]);
+            out[0] = d.map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
+            return Ok(());
+        }
+        let mut f: Scratch<Wrench> = smallvec![Wrench::zeros(); s.len()];
+        self.wrenches_of(m, loads, &mut f)?;
         for (k, o) in out.iter_mut().enumerate() {
             let mut v: Scratch<LinkState> = SmallVec::from_slice(s);
             for st in v.iter_mut() {
@@ -217,13 +308,13 @@ impl Mechanism {
             }
             *o = -crate::kernel::kinetostatics::virtual_power(&f, &v);
         }
-        crate::kernel::finite::finite_result("motor actions", &out)
-            .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
-        Ok(out)
+        crate::kernel::finite::finite_result("motor actions", out)
+            .map_err(|e| self.inst.blame_elements(&self.model, s, e))
     }
 
     /// Zhukovski's sums over the motion with q̇ = 1, q̈ = 0 (one input); `qd` is the
     /// input rate the dampers' part of M* is taken at.
+    #[inline(always)]
     pub(super) fn zhukovski_sums(
         &self,
         q: f64,
@@ -237,9 +328,15 @@ impl Mechanism {
                 self.dof()
             )));
         }
-        let mut s: Scratch<LinkState> = SmallVec::from_slice(&self.inst.drawing);
-        self.solve_slice(&[q], &[1.0], &[0.0], upto, &mut s)?;
-        self.sums(&s, loads, qd, upto == Level::Acceleration)
+        crate::error::check_finite("q, qd, qdd", &[q])?;
+        let drive: Drive = (&[q], &[1.0], &[0.0]);
+        self.with_states(|s| {
+            match upto {
+                Level::Acceleration => self.solve_at::<ACCELERATION>(drive, s, &mut [])?,
+                _ => self.solve_at::<VELOCITY>(drive, s, &mut [])?,
+            }
+            self.sums(s, loads, qd, upto == Level::Acceleration)
+        })
     }
 
     /// The power balance over the motion `m` (its link and point motions).
@@ -248,30 +345,28 @@ impl Mechanism {
         m: &Motion,
         loads: &Loads,
     ) -> Result<crate::solvers::virtual_power::Power, MechError> {
+        self.check_loads(loads)?;
         let mut w = crate::solvers::virtual_power::Power::default();
-        for (l, t) in self.terms.iter().enumerate().skip(1) {
-            let (geom, lm) = (&self.inst.links[l], &m.links[l]);
-            if t.inertia() {
-                w.inertia(geom, lm);
-            }
-            if t.gravity() {
-                w.gravity(geom, lm, self.inst.gravity);
-            }
+        let links = &self.inst.links;
+        for &(l, _) in &self.program.inertial {
+            w.inertia(&links[l], &m.links[l]);
+        }
+        for &(l, _) in &self.program.weighed {
+            w.gravity(&links[l], &m.links[l], self.inst.gravity);
         }
         for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
             let link = load.link();
-            match *value {
-                LoadValue::Force(v) => {
-                    crate::error::check_finite("loads", &[v.x, v.y])?;
+            match (load, *value) {
+                (&Load::Force { point, .. }, LoadValue::Force(v)) => w.force(&m.points[point], v),
+                (_, LoadValue::Force(v)) => {
                     w.force(&point_motion(&m.states, link, self.inst.loads[k]), v)
                 }
-                LoadValue::Torque(t) => {
-                    crate::error::check_finite("loads", &[t])?;
-                    w.torque(&m.links[link], t)
-                }
+                (_, LoadValue::Torque(t)) => w.torque(&m.links[link], t),
             }
         }
-        w.elements(&self.inst.elements, &m.states);
+        if !self.inst.elements.is_empty() {
+            w.elements(&self.inst.elements, &m.states);
+        }
         Ok(w)
     }
 
@@ -286,40 +381,36 @@ impl Mechanism {
         inertia: bool,
     ) -> Result<ZhukovskiSums, MechError> {
         let mut z = ZhukovskiSums::new();
-        for (l, t) in self.terms.iter().enumerate().skip(1) {
-            let geom = &self.inst.links[l];
-            if inertia && t.inertia() {
-                if self.pinned[l] {
-                    z.inertia_about_anchor(geom, &s[l]);
-                } else if self.translates[l] {
-                    z.inertia_translating(geom, &s[l]);
-                } else {
-                    z.inertia(geom, &s[l]);
-                }
-            }
-            if loads.is_some() && t.gravity() {
-                if self.translates[l] {
-                    z.gravity_translating(geom, &s[l], self.inst.gravity);
-                } else {
-                    z.gravity(geom, &s[l], self.inst.gravity);
+        let (links, gravity) = (&self.inst.links[..], self.inst.gravity);
+        if inertia {
+            for &(l, share) in &self.program.inertial {
+                match share {
+                    Share::AboutAnchor => z.inertia_about_anchor(&links[l], &s[l]),
+                    Share::Translating => z.inertia_translating(&links[l], &s[l]),
+                    Share::Spanned(n) => z.inertia_spanned(&links[l], &s[l], &s[n]),
+                    Share::General => z.inertia(&links[l], &s[l]),
                 }
             }
         }
         if let Some(loads) = loads {
+            self.check_loads(loads)?;
+            for &(l, share) in &self.program.weighed {
+                match share {
+                    Share::Translating => z.gravity_translating(&links[l], &s[l], gravity),
+                    Share::Spanned(n) => z.gravity_spanned(&links[l], &s[l], &s[n], gravity),
+                    _ => z.gravity(&links[l], &s[l], gravity),
+                }
+            }
             for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
                 let link = load.link();
                 match *value {
-                    LoadValue::Force(v) => {
-                        crate::error::check_finite("loads", &[v.x, v.y])?;
-                        z.force(&s[link], self.inst.loads[k], v)
-                    }
-                    LoadValue::Torque(t) => {
-                        crate::error::check_finite("loads", &[t])?;
-                        z.torque(&s[link], t)
-                    }
+                    LoadValue::Force(v) => z.force(&s[link], self.inst.loads[k], v),
+                    LoadValue::Torque(t) => z.torque(&s[link], t),
                 }
             }
-            z.elements(&self.inst.elements, s, qd);
+            if !self.inst.elements.is_empty() {
+                z.elements(&self.inst.elements, s, qd);
+            }
         }
         crate::kernel::finite::finite_result(
             "reduced inertia and moment",
@@ -327,5 +418,21 @@ impl Mechanism {
         )
         .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         Ok(z)
+    }
+}
+
+/// `n` values `zero`: the first `n` of `stack` when they fit, else `heap` grown to them.
+#[inline(always)]
+fn stack_or_heap<'a, T: Copy, const N: usize>(
+    stack: &'a mut [T; N],
+    heap: &'a mut Vec<T>,
+    n: usize,
+    zero: T,
+) -> &'a mut [T] {
+    if n <= N {
+        &mut stack[..n]
+    } else {
+        heap.resize(n, zero);
+        heap
     }
 }

@@ -65,6 +65,153 @@ pub struct Mechanism {
     pub(super) lanes: bool,
     /// Some group has no closed form (Newton, started from the drawing).
     pub(super) newton: bool,
+    /// Accepted with redundant constraints and some group is redundant
+    /// ([`Mechanism::redundant`]).
+    pub(super) redundant: bool,
+    /// What the solvers read per call, resolved from the plan and the model once at loading.
+    pub(super) program: Program,
+}
+
+/// How a link's angle is published, as the generated code does (`emit/results.rs`).
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Angle {
+    /// From the link's rotation (an `atan2`).
+    Turned,
+    /// A crank driven on the ground: [`crate::kernel::kinematics::crank_angle`] of input
+    /// `input` (plus its zero, when it has one) with `sign`; no `atan2`.
+    Crank {
+        input: usize,
+        sign: f64,
+        zero: Option<f64>,
+    },
+    /// A link that never turns (sliding on the ground): its drawing's angle.
+    Fixed(f64),
+}
+
+/// How a point is published, as the generated code does (`emit/results.rs`, `owners`).
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Owner {
+    /// A point of the ground, at rest at its local vector.
+    Ground(V2),
+    /// The anchor (first point) of this moving link: its state's own motion.
+    Anchor(usize),
+    /// The material point of this moving link at this local vector.
+    Local(usize, V2),
+}
+
+/// A link's share of Zhukovski's I* or M*, by what the link does (`emit/traits.rs`).
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Share {
+    /// Turning about its anchor on a ground pin (inertia only).
+    AboutAnchor,
+    /// Sliding on the ground.
+    Translating,
+    /// Its cg from the span to this link's anchor ([`Model::span_partner`]).
+    Spanned(usize),
+    /// Any other motion.
+    General,
+}
+
+/// The plan and the model resolved once at loading into what every call reads: how each
+/// link and point is published, which links carry which terms, each joint's reaction
+/// shape.
+#[derive(Clone, Debug)]
+pub(super) struct Program {
+    /// Per moving link (link l at l − 1): how its angle is published.
+    pub(super) angles: Vec<Angle>,
+    /// Per point: how it is published.
+    pub(super) owners: Vec<Owner>,
+    /// The ground's motion (constant).
+    pub(super) ground: crate::kernel::link_state::LinkMotion,
+    /// The links with gravity terms (none without gravity), with their share of M*.
+    pub(super) weighed: Vec<(usize, Share)>,
+    /// The links with inertia terms, with their share of I*.
+    pub(super) inertial: Vec<(usize, Share)>,
+    /// Per joint: it is prismatic (its reaction has a moment).
+    pub(super) prismatic: Vec<bool>,
+}
+
+impl Program {
+    fn new(model: &Model, plan: &[Group], inst: &Instance) -> Self {
+        let n = model.links.len();
+        let angles = (1..n)
+            .map(|l| {
+                let crank = plan.iter().find_map(|g| match g.kernel {
+                    Kernel::Driven(d) if d.body == l && d.from == 0 && !d.screw.slide => {
+                        let sign = if model.joints[d.screw.joint].b == l {
+                            1.0
+                        } else {
+                            -1.0
+                        };
+                        let zero = match model.input_zero.get(d.input).copied().unwrap_or(0.0) {
+                            0.0 => None,
+                            z => Some(z),
+                        };
+                        Some(Angle::Crank {
+                            input: d.input,
+                            sign,
+                            zero,
+                        })
+                    }
+                    _ => None,
+                });
+                crank.unwrap_or(if model.translates(l) {
+                    Angle::Fixed(inst.links[l].angle_ref)
+                } else {
+                    Angle::Turned
+                })
+            })
+            .collect();
+        let owners = (0..model.points.len())
+            .map(|pt| {
+                let (owner, d) = inst.points[pt];
+                if owner == 0 {
+                    Owner::Ground(d)
+                } else if let Some(l) = (1..n).find(|&l| model.links[l].points.first() == Some(&pt))
+                {
+                    Owner::Anchor(l)
+                } else {
+                    Owner::Local(owner, d)
+                }
+            })
+            .collect();
+        let terms: Vec<LinkTerms> = model.links.iter().map(LinkTerms::of).collect();
+        let share = |l: usize, inertia: bool| {
+            if inertia && model.pinned_at_anchor(l) {
+                Share::AboutAnchor
+            } else if model.translates(l) {
+                Share::Translating
+            } else if let Some(m) = model.span_partner(l) {
+                Share::Spanned(m)
+            } else {
+                Share::General
+            }
+        };
+        let weighed = if model.gravity.is_none() {
+            Vec::new()
+        } else {
+            (1..n)
+                .filter(|&l| terms[l].gravity())
+                .map(|l| (l, share(l, false)))
+                .collect()
+        };
+        let inertial = (1..n)
+            .filter(|&l| terms[l].inertia())
+            .map(|l| (l, share(l, true)))
+            .collect();
+        Program {
+            angles,
+            owners,
+            ground: inst.links[0].motion(&inst.drawing[0]),
+            weighed,
+            inertial,
+            prismatic: model
+                .joints
+                .iter()
+                .map(|j| j.kind == JointKind::Prismatic)
+                .collect(),
+        }
+    }
 }
 
 impl Mechanism {
@@ -147,6 +294,8 @@ impl Mechanism {
                 matches!(g.kernel, Kernel::Driven(_) | Kernel::Chain(_))
                     && crate::kernel::lanes::supports(g.solver)
             });
+        let redundant = model.allow_redundant && plan.iter().any(|g| g.redundant());
+        let program = Program::new(&model, &plan, &inst);
         Ok(Mechanism {
             model: Arc::new(model),
             inst,
@@ -157,6 +306,8 @@ impl Mechanism {
             translates,
             lanes,
             newton,
+            redundant,
+            program,
         })
     }
 
@@ -367,16 +518,7 @@ impl Machine for Mechanism {
         self.kinematics(q, qd, qdd)
     }
     fn driver_actions(&self, m: &Motion, loads: &Loads, out: &mut [f64]) -> Result<(), MechError> {
-        let d = self.driver_action(m, loads)?;
-        if out.len() != d.len() {
-            return Err(MechError::InvalidInput(format!(
-                "expected {} driver slots, got {}",
-                d.len(),
-                out.len()
-            )));
-        }
-        out.copy_from_slice(&d);
-        Ok(())
+        self.driver_action_into(m, loads, out)
     }
     fn link_kinetic_energies(&self, m: &Motion, out: &mut [f64]) {
         for (l, o) in out.iter_mut().enumerate() {

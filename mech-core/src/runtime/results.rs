@@ -59,6 +59,9 @@ pub struct Motion {
     /// q, q̇ and q̈ of this motion, one after the other (G values each).
     pub(super) inputs: SmallVec<[f64; 12]>,
     pub(super) states: Vec<LinkState>,
+    /// What each group's closed form keeps for its reactions (one per group of the plan),
+    /// as the generated motion's `systems`.
+    pub(super) systems: Vec<crate::kernel::kinematics::DyadSystem>,
     pub(super) model: Arc<Model>,
 }
 
