@@ -136,12 +136,39 @@ def ns(v):
 # the figures
 
 
+FLOOR_MACHINES = "four_bar|slider_crank|quick_return|scotch_yoke|inverted_slider_crank"
+
+
 def floor():
-    sh(["cargo", "bench", "--bench", "floor"])
+    sh(["cargo", "bench", "--bench", "floor", "--", f"^({FLOOR_MACHINES})/|^ratio/({FLOOR_MACHINES})/"])
     return sh([sys.executable, "tools/floor_ratios.py"]).strip()
 
 
-FLOOR_CMD = "`cargo bench --bench floor`, tabulated by `tools/floor_ratios.py`"
+FLOOR_CMD = (f"`cargo bench --bench floor -- '^({FLOOR_MACHINES})/|^ratio/({FLOOR_MACHINES})/'`, "
+             "tabulated by `tools/floor_ratios.py`")
+
+FLOOR_OPS = ["pose", "kinematics", "kinematics+kinetostatics", "kinematics+driver_action", "reduced",
+             "acceleration"]
+
+
+def runtime_floor():
+    """The run-time mechanism against the generated struct on every operation of the floor's
+    machines, interleaved (`runtime_ratio/<machine>/<op>`, benches/floor/runtime.rs)."""
+    sh(["cargo", "bench", "--bench", "floor", "--", "^runtime_ratio/", "--warm-up-time", "1",
+        "--measurement-time", "2"])
+    med = criterion_medians()
+    rows = ["| machine | " + " | ".join(f"`{o}`" for o in FLOOR_OPS) + " |",
+            "|---|" + "---:|" * len(FLOOR_OPS)]
+    for m in FLOOR_MACHINES.split("|"):
+        vals = [med.get(f"runtime_ratio/{m}/{o}") for o in FLOOR_OPS]
+        if all(v is None for v in vals):
+            sys.exit(f"no result for runtime_ratio/{m}")
+        rows.append(f"| {m.replace('_', ' ')} | " + " | ".join("—" if v is None else f"{v:.2f}×" for v in vals) + " |")
+    return "\n".join(rows)
+
+
+RUNTIME_FLOOR_CMD = ("`cargo bench --bench floor -- '^runtime_ratio/' --warm-up-time 1 --measurement-time 2`, "
+                     "the interleaved ratio run-time / generated (medians)")
 
 BATCH_OPS = ["four_bar/points", "four_bar/reduced", "four_bar/acceleration", "slider_crank/acceleration"]
 BATCH_SIZE = 1024  # benches/floor.rs, BATCH
@@ -357,6 +384,8 @@ class Figure:
 FIGURES = {
     "floor": Figure(floor, FLOOR_CMD, GENERATED + ["benches/floor.rs", "benches/floor"]),
     "batch": Figure(batch, BATCH_CMD, GENERATED + ["benches/floor.rs", "benches/floor"]),
+    "runtime_floor": Figure(runtime_floor, RUNTIME_FLOOR_CMD, GENERATED + ["mech-core/src/runtime", "benches/floor.rs",
+                                                                          "benches/floor"]),
     "runtime": Figure(runtime, RUNTIME_CMD, CORE + ["mech-oracle/src", "benches/generated_vs_generic.rs"]),
     "elements": Figure(elements, "`cargo bench --bench machine_elements`, medians",
                        CORE + ["benches/machine_elements.rs"]),
