@@ -79,7 +79,7 @@ fn all_finite_inputs(values: &[f64]) -> bool {
     values.iter().fold(0.0, |sum, &v| sum + v * 0.0) == 0.0
 }
 
-/// `InvalidInput` unless every value is finite ([`all_finite_inputs`]).
+/// `InvalidInput` unless every value is finite (`all_finite_inputs`).
 #[inline]
 pub fn check_finite(what: &str, values: &[f64]) -> Result<(), MechError> {
     if all_finite_inputs(values) {

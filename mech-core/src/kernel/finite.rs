@@ -21,7 +21,7 @@ pub fn finite_result(quantity: &str, values: &[f64]) -> Result<(), MechError> {
 }
 
 /// [`finite_result`] for the few numbers a solver returns last (I* and dI*/dq, M*, q̈):
-/// each times zero ([`zeroed`]), summed, one compare, where [`finite_result`] takes a mask,
+/// each times zero (`zeroed`), summed, one compare, where [`finite_result`] takes a mask,
 /// a compare and a branch per value (kept for long slices, whose sum would be a long
 /// chain of additions).
 #[inline(always)]
@@ -72,7 +72,7 @@ fn still_zero(sum: V2) -> bool {
 /// `Ok(())` when every moving link's state is finite up to the level `upto` solved
 /// (position and rotation; velocities from [`Level::Velocity`]; accelerations at
 /// [`Level::Acceleration`]); else an overflow error for the link motions. The ground
-/// (link 0) never moves and is skipped. Each field times zero ([`zeroed`]), summed per
+/// (link 0) never moves and is skipped. Each field times zero (`zeroed`), summed per
 /// link (a tree two or three additions deep) and then over the links; the error path is
 /// given no values, so that the states need not be written to memory for it.
 #[inline(always)]
@@ -107,7 +107,7 @@ pub fn states_overflow() -> MechError {
 }
 
 /// `Ok(())` when every reaction (force, moment) and motor action is finite: each times
-/// zero ([`zeroed`]), summed. The error path takes no values:
+/// zero (`zeroed`), summed. The error path takes no values:
 /// a non-inlined call given the reactions would make them live in memory on the common
 /// path too, where the solve has them in registers.
 #[inline(always)]
