@@ -426,9 +426,7 @@ impl<'a, M: OneDof> Drive<'a, M> {
             times.push(end.t);
         }
         let mut out = vec![[0.0; 2]; times.len()];
-        let rhs = |_t: f64, y: &[f64; 2]| -> Result<[f64; 2], MechError> {
-            Ok([y[1], self.acceleration_with(y[0], y[1], -brake)?])
-        };
+        // The same right-hand side again (a closure of shared references: Copy), now sampled.
         let mut method = Dop853::new(RTOL, RTOL * qd0);
         ode::sample(&mut method, rhs, 0.0, [q0, qd0], &times, &mut out)?;
         let last = out.len() - 1;
