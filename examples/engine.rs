@@ -31,8 +31,8 @@ use engine::{
 };
 use mech::flywheel::Cycle;
 use mech::motor::Motor;
-use mech::regime::Drive;
 use mech::prelude::*;
+use mech::regime::Drive;
 
 mechanism! {
     /// Single-cylinder four-stroke engine: offset slider-crank, 86 mm stroke, 143 mm rod,
@@ -96,7 +96,12 @@ fn regimes(eng: &Engine, cycle: &Cycle<Engine>, dir: &Path) -> Result<PathBuf, B
     let start = drive.run(Q_TDC, 600.0 * rpm, 1.5, 6)?;
     println!("{:>8} {:>10} {:>12}", "t s", "rpm", "machine N m");
     for k in 0..start.t.len() {
-        println!("{:>8.2} {:>10.1} {:>12.2}", start.t[k], start.qd[k] / rpm, start.torque[k]);
+        println!(
+            "{:>8.2} {:>10.1} {:>12.2}",
+            start.t[k],
+            start.qd[k] / rpm,
+            start.torque[k]
+        );
     }
     let steady = drive.steady(Q_TDC, PERIOD, 1440)?;
     let c = &steady.check;
@@ -133,7 +138,10 @@ fn regimes(eng: &Engine, cycle: &Cycle<Engine>, dir: &Path) -> Result<PathBuf, B
             points: speed,
         }],
     )?;
-    println!("  the steady regime's speed over the cycle: {}", path.display());
+    println!(
+        "  the steady regime's speed over the cycle: {}",
+        path.display()
+    );
     Ok(path)
 }
 

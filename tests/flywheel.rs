@@ -862,13 +862,21 @@ fn the_cycle_table_of_inertia_is_batched_and_equals_the_one_configuration_values
         moments: std::cell::Cell::new(0),
     };
     let q: Vec<f64> = (0..723).map(|k| -1.0 + k as f64 * 0.0174).collect();
-    for machine in [&m as &dyn OneDof<Loads = mech::Loads, Motion = mech::Motion>, &c] {
+    for machine in [
+        &m as &dyn OneDof<Loads = mech::Loads, Motion = mech::Motion>,
+        &c,
+    ] {
         let (mut i, mut d) = (vec![0.0; q.len()], vec![0.0; q.len()]);
         assert!(machine.reduced_many(&q, &mut i, &mut d).is_empty());
         for (k, &qk) in q.iter().enumerate() {
             let one = machine.reduced(qk).unwrap();
             let tol = 1e-12 * one.inertia.abs();
-            assert!((i[k] - one.inertia).abs() <= tol, "q {qk}: {} vs {}", i[k], one.inertia);
+            assert!(
+                (i[k] - one.inertia).abs() <= tol,
+                "q {qk}: {} vs {}",
+                i[k],
+                one.inertia
+            );
             assert!((d[k] - one.inertia_derivative).abs() <= tol, "q {qk}");
         }
         let mut short = vec![7.0; q.len() - 1];

@@ -44,7 +44,11 @@ fn a_dc_motor_starts_a_constant_inertia_on_its_exponential() {
             let t = run.t[k];
             let w = w_inf * (1.0 - (-t / tau).exp());
             let q = 0.3 + w_inf * (t - tau * (1.0 - (-t / tau).exp()));
-            assert!((run.qd[k] - w).abs() < 1e-8 * w_inf, "n {ratio}, t {t}: {} vs {w}", run.qd[k]);
+            assert!(
+                (run.qd[k] - w).abs() < 1e-8 * w_inf,
+                "n {ratio}, t {t}: {} vs {w}",
+                run.qd[k]
+            );
             assert!((run.q[k] - q).abs() < 1e-8 * w_inf * tau, "t {t}");
             let action = ratio * ts * (1.0 - ratio * run.qd[k] / w0);
             assert!((run.torque[k] - action).abs() < 1e-12 * ratio * ts);
@@ -64,7 +68,10 @@ fn the_engine_steady_regime_is_the_end_of_a_long_direct_integration() {
         .flywheel(0.15)
         .unwrap();
     let steady = drive.steady(Q_TDC, PERIOD, 720).unwrap();
-    assert!(steady.mean_speed > OMEGA_MEAN, "a generator runs above synchronous speed");
+    assert!(
+        steady.mean_speed > OMEGA_MEAN,
+        "a generator runs above synchronous speed"
+    );
     // Periodic: the table ends where it starts.
     let last = steady.qd.len() - 1;
     assert!((steady.qd[last] - steady.qd[0]).abs() < 1e-10 * steady.qd[0]);
@@ -88,7 +95,12 @@ fn the_engine_steady_regime_is_the_end_of_a_long_direct_integration() {
     .unwrap();
     assert!(end.event);
     let err = (end.y[1] - steady.qd[0]).abs() / steady.qd[0];
-    assert!(err < 1e-8, "ω at the TDC: direct {} vs regime {} ({err:.2e})", end.y[1], steady.qd[0]);
+    assert!(
+        err < 1e-8,
+        "ω at the TDC: direct {} vs regime {} ({err:.2e})",
+        end.y[1],
+        steady.qd[0]
+    );
     // The motor check: the mean power is the gas work per cycle over the period in time.
     let cycle = Cycle::builder(&eng, PERIOD, |q| engine::gas_loads(&eng, q))
         .start(Q_TDC)
@@ -154,10 +166,21 @@ fn a_braked_stop_and_a_coast_that_never_ends() {
     let m = disc(0.05);
     let drive = Drive::new(&m, Motor::dc(1.0, 10.0).unwrap(), |_| Ok(m.loads()));
     let stop = drive.stop(0.0, 40.0, 0.5, 0.1, 100.0).unwrap();
-    assert!((stop.time - 0.05 * 40.0 / 0.5).abs() < 1e-10 * 4.0, "{}", stop.time);
-    assert!((stop.travel - 0.05 * 1600.0 / 1.0).abs() < 1e-10 * 80.0, "{}", stop.travel);
+    assert!(
+        (stop.time - 0.05 * 40.0 / 0.5).abs() < 1e-10 * 4.0,
+        "{}",
+        stop.time
+    );
+    assert!(
+        (stop.travel - 0.05 * 1600.0 / 1.0).abs() < 1e-10 * 80.0,
+        "{}",
+        stop.travel
+    );
     assert!(stop.run.qd.last().unwrap().abs() < 1e-9);
-    let e = drive.stop(0.0, 40.0, 0.0, 0.1, 5.0).unwrap_err().to_string();
+    let e = drive
+        .stop(0.0, 40.0, 0.0, 0.1, 5.0)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("still moving") && e.contains("brake"), "{e}");
 }
 
@@ -181,7 +204,10 @@ fn a_motor_that_cannot_start_the_machine_is_an_error() {
         .unwrap();
     assert!(moment(q0) < -1.0, "{}", moment(q0));
     let e = drive.start_up(q0, 1.0, 10).unwrap_err().to_string();
-    assert!(e.contains("cannot start") && e.contains("reduction ratio"), "{e}");
+    assert!(
+        e.contains("cannot start") && e.contains("reduction ratio"),
+        "{e}"
+    );
     let constant = Drive::new(&eng, Motor::constant(5.0).unwrap(), loads);
     let e = constant.steady(0.0, PERIOD, 10).unwrap_err().to_string();
     assert!(e.contains("falls with speed"), "{e}");

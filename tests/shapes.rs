@@ -114,7 +114,11 @@ fn mass_properties_of_shapes_through_the_macro_and_the_loader() {
     close(got[1].0, m, "plate mass");
     close(got[1].1[0], (a[0] + b[0] + c[0]) / 3.0, "plate cg x");
     close(got[1].1[1], (a[1] + b[1] + c[1]) / 3.0, "plate cg y");
-    close(got[1].2, m * (d2(a, b) + d2(b, c) + d2(c, a)) / 36.0, "plate I_G");
+    close(
+        got[1].2,
+        m * (d2(a, b) + d2(b, c) + d2(c, a)) / 36.0,
+        "plate I_G",
+    );
     // The tube O4 B: outer solid rod less the bore, each m (3 r² + L²)/12.
     let l2 = d2([0.3, 0.0], [0.25, 0.2]);
     let rod = |d: f64| {
@@ -126,7 +130,11 @@ fn mass_properties_of_shapes_through_the_macro_and_the_loader() {
     close(got[2].2, io - ii, "tube I_G");
     close(got[2].1[0], 0.275, "tube cg");
     // The bar: at least the rectangle and the two end discs' mass.
-    close(got[0].0, 7850.0 * 0.008 * (0.1 * 0.02 + PI * 0.01 * 0.01), "bar mass");
+    close(
+        got[0].0,
+        7850.0 * 0.008 * (0.1 * 0.02 + PI * 0.01 * 0.01),
+        "bar mass",
+    );
     close(got[0].1[1], 0.05, "bar cg");
 
     let p = DiscCrank::new().params().clone();
@@ -135,7 +143,11 @@ fn mass_properties_of_shapes_through_the_macro_and_the_loader() {
         &p,
         "DiscCrank",
         |p, l| {
-            let x = if l == "wheel" { &p.links.wheel } else { &p.links.rod };
+            let x = if l == "wheel" {
+                &p.links.wheel
+            } else {
+                &p.links.rod
+            };
             (x.mass, [x.cg.x, x.cg.y], x.inertia)
         },
         &["wheel", "rod"],
@@ -157,7 +169,10 @@ fn shaped_mechanisms_solve_the_same_on_both_routes() {
     let g = Shaped::new();
     let r = mech::Mechanism::from_rust_source(source, "Shaped").unwrap();
     for q in [0.3, 1.9, 4.0] {
-        let (a, b) = (g.reduced(q).unwrap().inertia, OneDof::reduced(&r, q).unwrap().inertia);
+        let (a, b) = (
+            g.reduced(q).unwrap().inertia,
+            OneDof::reduced(&r, q).unwrap().inertia,
+        );
         close(b, a, "I*");
     }
 }
@@ -178,11 +193,20 @@ fn a_new_width_or_a_moved_point_changes_the_mass() {
     m.set_param("points.A", &[0.0, 0.12]).unwrap();
     close(crank(&m).mass.unwrap(), bar(0.03, 0.12), "longer");
     close(crank(&m).cg[1], 0.06, "the cg follows");
-    let e = m.set_param("links.crank.mass", &[1.0]).unwrap_err().to_string();
+    let e = m
+        .set_param("links.crank.mass", &[1.0])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("shape.<dimension>"), "{e}");
-    let e = m.set_param("links.crank.shape.width", &[-0.01]).unwrap_err().to_string();
+    let e = m
+        .set_param("links.crank.shape.width", &[-0.01])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("positive length"), "{e}");
-    let e = m.set_param("links.crank.shape.diameter", &[0.01]).unwrap_err().to_string();
+    let e = m
+        .set_param("links.crank.shape.diameter", &[0.01])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("width, thickness"), "{e}");
 }
 
@@ -192,8 +216,27 @@ fn a_new_width_or_a_moved_point_changes_the_mass() {
 #[test]
 fn pins_are_read_on_both_routes() {
     let m = mech::Mechanism::from_rust_source(include_str!("shapes.rs"), "Shaped").unwrap();
-    let pin = |name: &str| m.model().joints.iter().find(|j| j.name == name).unwrap().pin;
-    assert_eq!(pin("O2"), Some(mech::model::Pin { diameter: 0.012, double: false }));
-    assert_eq!(pin("A"), Some(mech::model::Pin { diameter: 0.010, double: true }));
+    let pin = |name: &str| {
+        m.model()
+            .joints
+            .iter()
+            .find(|j| j.name == name)
+            .unwrap()
+            .pin
+    };
+    assert_eq!(
+        pin("O2"),
+        Some(mech::model::Pin {
+            diameter: 0.012,
+            double: false
+        })
+    );
+    assert_eq!(
+        pin("A"),
+        Some(mech::model::Pin {
+            diameter: 0.010,
+            double: true
+        })
+    );
     assert_eq!(pin("B"), None);
 }

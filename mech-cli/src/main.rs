@@ -7,7 +7,8 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    cam, check, draw, flywheel, import, limits, quantity, report, regime, simulate, solve, source, Failure,
+    cam, check, draw, flywheel, import, limits, quantity, regime, report, simulate, solve, source,
+    Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;

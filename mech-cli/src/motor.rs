@@ -12,7 +12,8 @@ use std::path::Path;
 /// The motor `text` through the reduction `ratio` (motor speed / input speed).
 pub fn parse(text: &str, ratio: f64) -> Result<Motor, Failure> {
     crate::limits::nesting(text, "--motor")?;
-    let motor = Motor::parse(text, &read_table).map_err(|e| Failure::usage(format!("--motor: {e}")))?;
+    let motor =
+        Motor::parse(text, &read_table).map_err(|e| Failure::usage(format!("--motor: {e}")))?;
     motor
         .through(ratio)
         .map_err(|e| Failure::usage(format!("--ratio: {e}")))
@@ -38,7 +39,9 @@ fn read_table(path: &str) -> Result<Motor, MechError> {
         }
     };
     if headers.get(1) != Some("torque") || headers.len() != 2 {
-        return Err(bad("a motor table has two columns: `speed` (or `speed_rpm`) and `torque` (N·m)".into()));
+        return Err(bad(
+            "a motor table has two columns: `speed` (or `speed_rpm`) and `torque` (N·m)".into(),
+        ));
     }
     let (mut speed, mut torque) = (Vec::new(), Vec::new());
     for (k, row) in r.records().enumerate() {
@@ -46,7 +49,13 @@ fn read_table(path: &str) -> Result<Motor, MechError> {
         let num = |i: usize| -> Result<f64, MechError> {
             row.get(i)
                 .and_then(|s| s.parse::<f64>().ok())
-                .ok_or_else(|| bad(format!("row {}: `{}` is not a number", k + 2, row.get(i).unwrap_or(""))))
+                .ok_or_else(|| {
+                    bad(format!(
+                        "row {}: `{}` is not a number",
+                        k + 2,
+                        row.get(i).unwrap_or("")
+                    ))
+                })
         };
         speed.push(num(0)? * scale);
         torque.push(num(1)?);

@@ -77,11 +77,23 @@ pub fn run(args: RegimeArgs, mut out: impl Write) -> Result<(), Failure> {
     let c = &s.check;
     let mut summary = vec![
         ("mean_speed", "rad/s", s.mean_speed),
-        ("mean_speed_rpm", "rpm", s.mean_speed * 30.0 / std::f64::consts::PI),
+        (
+            "mean_speed_rpm",
+            "rpm",
+            s.mean_speed * 30.0 / std::f64::consts::PI,
+        ),
         ("epsilon", "1", s.epsilon),
         ("period_time", "s", s.period_time),
-        ("omega_max", "rad/s", s.qd.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
-        ("omega_min", "rad/s", s.qd.iter().copied().fold(f64::INFINITY, f64::min)),
+        (
+            "omega_max",
+            "rad/s",
+            s.qd.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        ),
+        (
+            "omega_min",
+            "rad/s",
+            s.qd.iter().copied().fold(f64::INFINITY, f64::min),
+        ),
         ("motor_peak_torque", "N·m", c.peak_torque),
         ("motor_rms_torque", "N·m", c.rms_torque),
         ("motor_mean_power", "W", c.mean_power),

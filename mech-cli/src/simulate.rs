@@ -7,10 +7,10 @@
 use crate::loads::{LoadSet, Table};
 use crate::output::{Format, Writer};
 use crate::{limits, motor, quantity, source, Failure};
-use mech_core::dynamics::motor::Motor;
-use mech_core::dynamics::regime::Drive;
 use mech_core::dynamics::equation_of_motion;
+use mech_core::dynamics::motor::Motor;
 use mech_core::dynamics::ode::{self, Dense, Dop853, DormandPrince, Method, Rk4, Tolerance};
+use mech_core::dynamics::regime::Drive;
 use mech_core::model::units::Dim;
 use mech_core::Mechanism;
 use std::cell::Cell;
@@ -43,7 +43,12 @@ pub struct SimulateArgs {
     #[arg(long = "t-end", allow_hyphen_values = true, value_parser = limits::positive)]
     pub t_end: f64,
     /// Driver action on the input: a constant (N·m or N) or @table.csv against q.
-    #[arg(long, default_value = "0", allow_hyphen_values = true, conflicts_with = "motor")]
+    #[arg(
+        long,
+        default_value = "0",
+        allow_hyphen_values = true,
+        conflicts_with = "motor"
+    )]
     pub driver: String,
     /// A motor drives the input instead (torque from speed): dc(stall_torque T,
     /// no_load_speed W), induction(rated_power P, synchronous_speed W, rated_speed W,
@@ -118,7 +123,8 @@ fn integrate<Mt: Method<2>>(
     let limit = limits::INTEGRATION_STEPS;
     let n = args.samples.max(1);
     let time = |k: usize| args.t_end * k as f64 / n as f64;
-    let qdd = |y: [f64; 2]| m.acceleration_at(y[0], y[1], driver.at(y[0], y[1]), &loads.at(m, y[0]));
+    let qdd =
+        |y: [f64; 2]| m.acceleration_at(y[0], y[1], driver.at(y[0], y[1]), &loads.at(m, y[0]));
     w.row(&[0.0, y0[0], y0[1], qdd(y0)?])?;
     // Accepted steps and the time they reached; the budget's verdict.
     let (steps, reached) = (Cell::new(0u64), Cell::new(0.0f64));
@@ -235,16 +241,16 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
             Driver::Motor(motor)
         }
         None => match args.driver.strip_prefix('@') {
-        Some(path) => Driver::Table(Table::read(path, 1, "--driver")?),
-        None => Driver::Constant(quantity::parse(
-            &args.driver,
-            if dq == Dim::ANGLE {
-                Dim::TORQUE
-            } else {
-                Dim::FORCE
-            },
-            "--driver",
-        )?),
+            Some(path) => Driver::Table(Table::read(path, 1, "--driver")?),
+            None => Driver::Constant(quantity::parse(
+                &args.driver,
+                if dq == Dim::ANGLE {
+                    Dim::TORQUE
+                } else {
+                    Dim::FORCE
+                },
+                "--driver",
+            )?),
         },
     };
     let loads = LoadSet::parse(&args.load, m.model())?;

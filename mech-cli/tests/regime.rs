@@ -44,7 +44,14 @@ fn the_steady_regime_of_a_disc_is_the_balance_of_motor_and_drag() {
     let dir = tempfile::tempdir().unwrap();
     let f = disc(&dir);
     let out = mech()
-        .args(["regime", f.to_str().unwrap(), "--motor", MOTOR, "--ratio", "10"])
+        .args([
+            "regime",
+            f.to_str().unwrap(),
+            "--motor",
+            MOTOR,
+            "--ratio",
+            "10",
+        ])
         .args(["--load", "drag=-0.5", "--points", "12", "--format", "csv"])
         .assert()
         .success()
@@ -57,7 +64,10 @@ fn the_steady_regime_of_a_disc_is_the_balance_of_motor_and_drag() {
     let w = w0 / 10.0 * (1.0 - 0.5 / 20.0);
     for r in &table {
         assert!((r[1] - w).abs() < 1e-9 * w, "{r:?} vs {w}");
-        assert!((r[3] - 0.5).abs() < 1e-9, "the motor's action balances the drag: {r:?}");
+        assert!(
+            (r[3] - 0.5).abs() < 1e-9,
+            "the motor's action balances the drag: {r:?}"
+        );
         assert!((r[2] - (r[0] / w)).abs() < 1e-9 * r[0].max(1.0) / w);
     }
     let summary = String::from_utf8(out.stderr).unwrap();
@@ -67,7 +77,10 @@ fn the_steady_regime_of_a_disc_is_the_balance_of_motor_and_drag() {
     };
     assert!((value("mean_speed ") - w).abs() < 1e-9 * w, "{summary}");
     assert!(value("epsilon") < 1e-9, "{summary}");
-    assert!((value("motor_mean_power") - 0.5 * w).abs() < 1e-6, "{summary}");
+    assert!(
+        (value("motor_mean_power") - 0.5 * w).abs() < 1e-6,
+        "{summary}"
+    );
     assert!(summary.contains("within its rating"), "{summary}");
 }
 
@@ -77,8 +90,23 @@ fn simulate_with_a_motor_from_rest_is_the_exponential_start() {
     let dir = tempfile::tempdir().unwrap();
     let f = disc(&dir);
     let out = mech()
-        .args(["simulate", f.to_str().unwrap(), "--motor", MOTOR, "--ratio", "10"])
-        .args(["--from-rest", "--t-end", "0.05", "--samples", "10", "--format", "csv"])
+        .args([
+            "simulate",
+            f.to_str().unwrap(),
+            "--motor",
+            MOTOR,
+            "--ratio",
+            "10",
+        ])
+        .args([
+            "--from-rest",
+            "--t-end",
+            "0.05",
+            "--samples",
+            "10",
+            "--format",
+            "csv",
+        ])
         .assert()
         .success()
         .get_output()
@@ -100,7 +128,14 @@ fn motors_that_cannot_do_it_are_errors_that_name_the_fix() {
     let dir = tempfile::tempdir().unwrap();
     let f = disc(&dir);
     let out = mech()
-        .args(["simulate", f.to_str().unwrap(), "--motor", MOTOR, "--ratio", "10"])
+        .args([
+            "simulate",
+            f.to_str().unwrap(),
+            "--motor",
+            MOTOR,
+            "--ratio",
+            "10",
+        ])
         .args(["--load", "drag=-30", "--from-rest", "--t-end", "1"])
         .assert()
         .code(1)
@@ -108,9 +143,19 @@ fn motors_that_cannot_do_it_are_errors_that_name_the_fix() {
         .stderr
         .clone();
     let e = String::from_utf8(out).unwrap();
-    assert!(e.contains("cannot start") && e.contains("reduction ratio"), "{e}");
+    assert!(
+        e.contains("cannot start") && e.contains("reduction ratio"),
+        "{e}"
+    );
     let out = mech()
-        .args(["regime", f.to_str().unwrap(), "--motor", MOTOR, "--load", "drag=-30"])
+        .args([
+            "regime",
+            f.to_str().unwrap(),
+            "--motor",
+            MOTOR,
+            "--load",
+            "drag=-30",
+        ])
         .assert()
         .code(1)
         .get_output()
@@ -126,5 +171,8 @@ fn motors_that_cannot_do_it_are_errors_that_name_the_fix() {
         .stderr
         .clone();
     let e = String::from_utf8(out).unwrap();
-    assert!(e.contains("unknown motor") && e.contains("induction("), "{e}");
+    assert!(
+        e.contains("unknown motor") && e.contains("induction("),
+        "{e}"
+    );
 }

@@ -6,7 +6,7 @@ pub mod flywheel;
 pub mod motor;
 mod motor_parse;
 pub mod ode;
-pub mod regime;
 mod one_dof;
+pub mod regime;
 
 pub use one_dof::*;

@@ -77,7 +77,11 @@ impl Motor {
     /// A DC motor, T = T_s (1 − ω/ω₀): stall torque T_s (N·m) and no-load speed ω₀ (rad/s).
     pub fn dc(stall_torque: f64, no_load_speed: f64) -> Result<Motor, MechError> {
         positive("stall torque", stall_torque, "the torque at rest, N·m")?;
-        positive("no-load speed", no_load_speed, "the speed at zero torque, rad/s")?;
+        positive(
+            "no-load speed",
+            no_load_speed,
+            "the speed at zero torque, rad/s",
+        )?;
         Ok(Curve::Dc {
             stall_torque,
             no_load_speed,
@@ -94,9 +98,21 @@ impl Motor {
         rated_speed: f64,
         breakdown_ratio: f64,
     ) -> Result<Motor, MechError> {
-        positive("rated power", rated_power, "the output at the rated speed, W")?;
-        positive("synchronous speed", synchronous_speed, "2π f / pole pairs, rad/s")?;
-        positive("rated speed", rated_speed, "the speed at rated power, rad/s")?;
+        positive(
+            "rated power",
+            rated_power,
+            "the output at the rated speed, W",
+        )?;
+        positive(
+            "synchronous speed",
+            synchronous_speed,
+            "2π f / pole pairs, rad/s",
+        )?;
+        positive(
+            "rated speed",
+            rated_speed,
+            "the speed at rated power, rad/s",
+        )?;
         if !(rated_speed < synchronous_speed) {
             return Err(MechError::InvalidInput(format!(
                 "the motor's rated speed {rated_speed} rad/s must be below its synchronous speed {synchronous_speed} rad/s (an induction motor runs with a slip)"
@@ -297,15 +313,25 @@ mod tests {
     /// Bad parameters are errors that name the fix.
     #[test]
     fn bad_motors_are_refused() {
-        let e = Motor::induction(1e3, 100.0, 120.0, 2.0).unwrap_err().to_string();
+        let e = Motor::induction(1e3, 100.0, 120.0, 2.0)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("below its synchronous speed"), "{e}");
-        let e = Motor::induction(1e3, 100.0, 95.0, 0.8).unwrap_err().to_string();
+        let e = Motor::induction(1e3, 100.0, 95.0, 0.8)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("above 1"), "{e}");
         let e = Motor::dc(-1.0, 10.0).unwrap_err().to_string();
         assert!(e.contains("stall torque"), "{e}");
-        let e = Motor::table(vec![0.0, 0.0], vec![1.0, 2.0]).unwrap_err().to_string();
+        let e = Motor::table(vec![0.0, 0.0], vec![1.0, 2.0])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("increase strictly"), "{e}");
-        let e = Motor::dc(1.0, 10.0).unwrap().through(0.0).unwrap_err().to_string();
+        let e = Motor::dc(1.0, 10.0)
+            .unwrap()
+            .through(0.0)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("gearbox"), "{e}");
     }
 }

@@ -72,11 +72,17 @@ impl Motor {
             };
             given.push((key, value));
         }
-        if let Some((k, _)) = given.iter().find(|(k, _)| !want.iter().any(|(w, _)| w == k)) {
+        if let Some((k, _)) = given
+            .iter()
+            .find(|(k, _)| !want.iter().any(|(w, _)| w == k))
+        {
             let names: Vec<&str> = want.iter().map(|(w, _)| *w).collect();
             return Err(bad(
                 t,
-                format!("`{name}` has no parameter `{k}` (it takes {})", names.join(", ")),
+                format!(
+                    "`{name}` has no parameter `{k}` (it takes {})",
+                    names.join(", ")
+                ),
             ));
         }
         let mut v = Vec::with_capacity(want.len());
@@ -113,9 +119,17 @@ mod tests {
             &no_table,
         )
         .unwrap();
-        assert_eq!(m, Motor::induction(7500.0, 1500.0 * rpm, 1440.0 * rpm, 2.5).unwrap());
-        assert_eq!(Motor::parse("constant(-4)", &no_table).unwrap(), Motor::constant(-4.0).unwrap());
-        let e = Motor::parse("table(x.csv)", &no_table).unwrap_err().to_string();
+        assert_eq!(
+            m,
+            Motor::induction(7500.0, 1500.0 * rpm, 1440.0 * rpm, 2.5).unwrap()
+        );
+        assert_eq!(
+            Motor::parse("constant(-4)", &no_table).unwrap(),
+            Motor::constant(-4.0).unwrap()
+        );
+        let e = Motor::parse("table(x.csv)", &no_table)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("no tables here"));
     }
 
@@ -125,7 +139,10 @@ mod tests {
             ("stepper(1)", "unknown motor `stepper`"),
             ("dc(stall_torque 1)", "needs `no_load_speed`"),
             ("dc(stall_torque 1 rpm, no_load_speed 3)", "stall_torque"),
-            ("dc(stall_torque 1, no_load_speed 3, colour 2)", "no parameter `colour`"),
+            (
+                "dc(stall_torque 1, no_load_speed 3, colour 2)",
+                "no parameter `colour`",
+            ),
             ("dc", "expected NAME(ARGUMENTS)"),
         ] {
             let e = Motor::parse(text, &no_table).unwrap_err().to_string();

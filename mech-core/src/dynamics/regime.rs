@@ -351,9 +351,11 @@ impl<'a, M: OneDof> Drive<'a, M> {
         let t: Vec<f64> = y.iter().map(|s| s[1]).collect();
         let period_time = t[points];
         let mean_speed = period / period_time;
-        let (lo, hi) = qd.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &w| {
-            (l.min(w), h.max(w))
-        });
+        let (lo, hi) = qd
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &w| {
+                (l.min(w), h.max(w))
+            });
         let average = 0.5 * (hi + lo);
         let torque: Vec<f64> = qd.iter().map(|&w| self.motor.on_input(w)).collect();
         let check = self.check(&qd, end, period_time);
@@ -413,7 +415,15 @@ impl<'a, M: OneDof> Drive<'a, M> {
         let mut event = ode::Event::new(&mut g);
         event.direction = -1;
         let mut method = Dop853::new(RTOL, RTOL * qd0);
-        let end = ode::solve(&mut method, rhs, 0.0, [q0, qd0], t_max, Some(&mut event), None)?;
+        let end = ode::solve(
+            &mut method,
+            rhs,
+            0.0,
+            [q0, qd0],
+            t_max,
+            Some(&mut event),
+            None,
+        )?;
         if !end.event {
             return Err(MechError::InvalidInput(format!(
                 "the machine is still moving at t = {t_max} s (q̇ = {:.6}): give it a brake or a longer time",

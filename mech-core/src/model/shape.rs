@@ -146,7 +146,11 @@ impl Shape {
 
     /// The mass properties for density ρ (kg/m³) over the link's points (drawing, m), or
     /// what is wrong (too few points, a zero length, a degenerate polygon).
-    pub fn mass_properties(&self, density: f64, points: &[[f64; 2]]) -> Result<MassProperties, String> {
+    pub fn mass_properties(
+        &self,
+        density: f64,
+        points: &[[f64; 2]],
+    ) -> Result<MassProperties, String> {
         self.check()?;
         let pi = std::f64::consts::PI;
         let segment = || -> Result<([f64; 2], f64), String> {
@@ -162,7 +166,10 @@ impl Shape {
             };
             let l = (b[0] - a[0]).hypot(b[1] - a[1]);
             if !(l > 0.0) {
-                return Err(format!("a {} needs its first two points apart", self.keyword()));
+                return Err(format!(
+                    "a {} needs its first two points apart",
+                    self.keyword()
+                ));
             }
             Ok(([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], l))
         };
@@ -185,11 +192,17 @@ impl Shape {
             Shape::Tube { outer, inner } => {
                 let (mid, l) = segment()?;
                 let m = density * pi * (outer * outer - inner * inner) / 4.0 * l;
-                (m, mid, m * (l * l / 12.0 + (outer * outer + inner * inner) / 16.0))
+                (
+                    m,
+                    mid,
+                    m * (l * l / 12.0 + (outer * outer + inner * inner) / 16.0),
+                )
             }
             Shape::Disc { radius, thickness } => {
                 let Some(&c) = points.first() else {
-                    return Err("a disc is centred on the link's first point; this link has none".into());
+                    return Err(
+                        "a disc is centred on the link's first point; this link has none".into(),
+                    );
                 };
                 let m = density * thickness * pi * radius * radius;
                 (m, c, m * radius * radius / 2.0)
@@ -250,7 +263,11 @@ fn plate(sigma: f64, points: &[[f64; 2]]) -> Result<(f64, [f64; 2], f64), String
     let (gx, gy) = (sx / (3.0 * a2), sy / (3.0 * a2));
     let mass = sigma * area.abs();
     let io = sigma * s2 / 12.0 * area.signum();
-    Ok((mass, [o[0] + gx, o[1] + gy], io - mass * (gx * gx + gy * gy)))
+    Ok((
+        mass,
+        [o[0] + gx, o[1] + gy],
+        io - mass * (gx * gx + gy * gy),
+    ))
 }
 
 /// A material's properties, SI.
@@ -321,26 +338,43 @@ mod tests {
     const PI: f64 = std::f64::consts::PI;
 
     fn close(a: f64, b: f64, what: &str) {
-        assert!((a - b).abs() <= 1e-12 * b.abs().max(1e-300), "{what}: {a} vs {b}");
+        assert!(
+            (a - b).abs() <= 1e-12 * b.abs().max(1e-300),
+            "{what}: {a} vs {b}"
+        );
     }
 
     /// Disc, rod, tube against their textbook forms, written out independently.
     #[test]
     fn round_shapes_against_their_closed_forms() {
         let rho = 7850.0;
-        let d = Shape::Disc { radius: 0.1, thickness: 0.02 }
-            .mass_properties(rho, &[[0.3, -0.2], [1.0, 1.0]])
-            .unwrap();
+        let d = Shape::Disc {
+            radius: 0.1,
+            thickness: 0.02,
+        }
+        .mass_properties(rho, &[[0.3, -0.2], [1.0, 1.0]])
+        .unwrap();
         close(d.mass, rho * 0.02 * PI * 0.01, "disc mass");
         close(d.inertia, 0.5 * d.mass * 0.01, "disc I");
         assert_eq!(d.cg, [0.3, -0.2]);
         let pts = [[0.0, 0.0], [0.3, 0.4]];
-        let r = Shape::Rod { diameter: 0.02 }.mass_properties(rho, &pts).unwrap();
+        let r = Shape::Rod { diameter: 0.02 }
+            .mass_properties(rho, &pts)
+            .unwrap();
         let m = rho * PI * 0.0001 * 0.5;
         close(r.mass, m, "rod mass");
-        close(r.inertia, m * (3.0 * 0.0001 + 0.25) / 12.0, "rod I = m (3r² + L²)/12");
+        close(
+            r.inertia,
+            m * (3.0 * 0.0001 + 0.25) / 12.0,
+            "rod I = m (3r² + L²)/12",
+        );
         close(r.cg[0], 0.15, "rod cg");
-        let t = Shape::Tube { outer: 0.04, inner: 0.03 }.mass_properties(rho, &pts).unwrap();
+        let t = Shape::Tube {
+            outer: 0.04,
+            inner: 0.03,
+        }
+        .mass_properties(rho, &pts)
+        .unwrap();
         let (mo, mi) = (rho * PI * 0.0004 * 0.5, rho * PI * 0.000225 * 0.5);
         close(t.mass, mo - mi, "tube mass");
         let io = mo * (3.0 * 0.0004 + 0.25) / 12.0;
@@ -365,7 +399,14 @@ mod tests {
         close(p.cg[1], g[1], "y");
         close(p.inertia, i, "I");
         // An L: [0,2]×[0,1] ∪ [0,1]×[1,3].
-        let l = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 3.0], [0.0, 3.0]];
+        let l = [
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 3.0],
+            [0.0, 3.0],
+        ];
         let (m1, g1, i1) = rect(0.0, 0.0, 2.0, 1.0);
         let (m2, g2, i2) = rect(0.0, 1.0, 1.0, 2.0);
         let m = m1 + m2;
@@ -373,8 +414,14 @@ mod tests {
         let d2 = |a: [f64; 2]| (a[0] - g[0]).powi(2) + (a[1] - g[1]).powi(2);
         let i = i1 + m1 * d2(g1) + i2 + m2 * d2(g2);
         let rho = 2700.0;
-        for pts in [l.to_vec(), l.iter().rev().copied().collect(), [&l[3..], &l[..3]].concat()] {
-            let p = Shape::Plate { thickness: 0.01 }.mass_properties(rho, &pts).unwrap();
+        for pts in [
+            l.to_vec(),
+            l.iter().rev().copied().collect(),
+            [&l[3..], &l[..3]].concat(),
+        ] {
+            let p = Shape::Plate { thickness: 0.01 }
+                .mass_properties(rho, &pts)
+                .unwrap();
             close(p.mass, rho * 0.01 * m, "L mass");
             close(p.cg[0], g[0], "L x");
             close(p.cg[1], g[1], "L y");
@@ -389,9 +436,12 @@ mod tests {
     fn the_rounded_bar_is_the_limit_of_its_polygons() {
         let (l, w) = (0.25, 0.04);
         let (a, b) = ([0.1, 0.05], [0.1 + l * 0.6, 0.05 + l * 0.8]);
-        let bar = Shape::Bar { width: w, thickness: 0.01 }
-            .mass_properties(7850.0, &[a, b])
-            .unwrap();
+        let bar = Shape::Bar {
+            width: w,
+            thickness: 0.01,
+        }
+        .mass_properties(7850.0, &[a, b])
+        .unwrap();
         let polygon = |n: usize| -> MassProperties {
             // Half the vertices on each end's semicircle, the flat sides joining them.
             let (ux, uy) = (0.6, 0.8);
@@ -405,7 +455,9 @@ mod tests {
                     pts.push([c[0] + pu * ux - pv * uy, c[1] + pu * uy + pv * ux]);
                 }
             }
-            Shape::Plate { thickness: 0.01 }.mass_properties(7850.0, &pts).unwrap()
+            Shape::Plate { thickness: 0.01 }
+                .mass_properties(7850.0, &pts)
+                .unwrap()
         };
         let extrapolate = |f: &dyn Fn(&MassProperties) -> f64| -> f64 {
             let (p1, p2, p3) = (polygon(1 << 14), polygon(1 << 15), polygon(1 << 16));
@@ -423,15 +475,27 @@ mod tests {
 
     #[test]
     fn bad_shapes_say_what_is_wrong() {
-        let e = Shape::Bar { width: -0.01, thickness: 0.01 }.check().unwrap_err();
+        let e = Shape::Bar {
+            width: -0.01,
+            thickness: 0.01,
+        }
+        .check()
+        .unwrap_err();
         assert!(e.contains("`width` must be a positive length"), "{e}");
-        let e = Shape::Tube { outer: 0.02, inner: 0.03 }.check().unwrap_err();
+        let e = Shape::Tube {
+            outer: 0.02,
+            inner: 0.03,
+        }
+        .check()
+        .unwrap_err();
         assert!(e.contains("smaller than its outer"), "{e}");
         let e = Shape::Plate { thickness: 0.01 }
             .mass_properties(1.0, &[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])
             .unwrap_err();
         assert!(e.contains("enclose no area"), "{e}");
-        let e = Shape::Rod { diameter: 0.01 }.mass_properties(1.0, &[[0.0, 0.0]]).unwrap_err();
+        let e = Shape::Rod { diameter: 0.01 }
+            .mass_properties(1.0, &[[0.0, 0.0]])
+            .unwrap_err();
         assert!(e.contains("first two points"), "{e}");
         assert!(material_named("unobtainium").is_none());
         assert_eq!(material_named("steel").unwrap().density, 7850.0);

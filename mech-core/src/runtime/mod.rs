@@ -8,6 +8,7 @@ mod forces;
 pub mod mechanism;
 mod newton;
 pub mod results;
+mod strength;
 
 pub use mechanism::Mechanism;
 pub use results::{Forces, JointReaction, LoadValue, Loads, Motion, Pose};

@@ -37,7 +37,10 @@ pub fn largest_moment(shear_a: f64, w_a: f64, w_b: f64, length: f64) -> (f64, f6
     at.iter()
         .filter(|s| s.is_finite() && (0.0..=length).contains(*s))
         .map(|&s| (s, moment(shear_a, w_a, w_b, length, s)))
-        .fold((0.0, 0.0), |best, x| if x.1.abs() > best.1.abs() { x } else { best })
+        .fold(
+            (0.0, 0.0),
+            |best, x| if x.1.abs() > best.1.abs() { x } else { best },
+        )
 }
 
 #[cfg(test)]
@@ -52,7 +55,10 @@ mod tests {
         let (w, l) = (2.0e4, 0.15);
         let (s, m) = largest_moment(w * l / 6.0, 0.0, w, l);
         assert!((s - l / 3f64.sqrt()).abs() < 1e-15, "{s}");
-        assert!((m - w * l * l / (9.0 * 3f64.sqrt())).abs() < 1e-12 * m, "{m}");
+        assert!(
+            (m - w * l * l / (9.0 * 3f64.sqrt())).abs() < 1e-12 * m,
+            "{m}"
+        );
         // Pinned at B too: M(L) = 0.
         assert!(moment(w * l / 6.0, 0.0, w, l, l).abs() < 1e-12);
     }

@@ -7,7 +7,8 @@
 //! - size k_b = 1.24 d^−0.107 for 2.79 ≤ d ≤ 51 mm, 1.51 d^−0.157 for 51 < d ≤ 254 mm
 //!   (d the diameter, or a rectangle's equivalent diameter 0.808 √(W T)), 1 below 2.79 mm;
 //!   1 for axial loading;
-//! - load k_c = 1 in bending, 0.85 in axial loading;
+//! - load k_c = 1 in bending, 0.85 in axial loading, 0.59 in shear (a pin: S_se is then
+//!   the endurance in shear, against the ultimate in shear S_su = 0.67 S_u);
 //! - temperature k_d = 1 (room temperature);
 //! - reliability k_e = 0.814 (99 %).
 //!
@@ -22,6 +23,8 @@ pub enum Loading {
     Bending,
     /// Pure axial: k_c = 0.85, k_b = 1.
     Axial,
+    /// Shear (a pin): k_c = 0.59, k_b by size.
+    Shear,
 }
 
 /// Marin's factors for a machined member of ultimate strength `ultimate` (Pa) and size
@@ -31,20 +34,24 @@ pub fn marin_factors(ultimate: f64, size: f64, loading: Loading) -> [f64; 5] {
     let d = size * 1e3;
     let kb = match loading {
         Loading::Axial => 1.0,
-        Loading::Bending if d < 2.79 => 1.0,
-        Loading::Bending if d <= 51.0 => 1.24 * d.powf(-0.107),
-        Loading::Bending => 1.51 * d.powf(-0.157),
+        _ if d < 2.79 => 1.0,
+        _ if d <= 51.0 => 1.24 * d.powf(-0.107),
+        _ => 1.51 * d.powf(-0.157),
     };
     let kc = match loading {
         Loading::Bending => 1.0,
         Loading::Axial => 0.85,
+        Loading::Shear => 0.59,
     };
     [ka, kb, kc, 1.0, 0.814]
 }
 
 /// The corrected endurance limit S_e = Π k · S_e', Pa.
 pub fn endurance_limit(endurance: f64, ultimate: f64, size: f64, loading: Loading) -> f64 {
-    marin_factors(ultimate, size, loading).iter().product::<f64>() * endurance
+    marin_factors(ultimate, size, loading)
+        .iter()
+        .product::<f64>()
+        * endurance
 }
 
 /// The mean and alternating stresses of a cycle whose stress ranges over [min, max], Pa.

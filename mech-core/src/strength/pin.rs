@@ -24,8 +24,14 @@ mod tests {
     /// bearing on 8 mm: 10⁴ / (12e-3 · 8e-3) = 104.17 MPa.
     #[test]
     fn single_and_double_shear_and_bearing_by_hand() {
-        let single = Pin { diameter: 0.012, double: false };
-        let double = Pin { diameter: 0.012, double: true };
+        let single = Pin {
+            diameter: 0.012,
+            double: false,
+        };
+        let double = Pin {
+            diameter: 0.012,
+            double: true,
+        };
         let t = shear_stress(&single, -1e4);
         assert!((t - 88.419412828e6).abs() < 1.0, "{t}");
         assert!((shear_stress(&double, 1e4) - t / 2.0).abs() < 1e-6);

@@ -25,6 +25,9 @@ pub struct Section {
     /// The size that sets Marin's size factor: a round section's diameter, a rectangle's
     /// equivalent diameter d_e = 0.808 √(W T), m.
     pub size: f64,
+    /// k of the largest transverse shear stress k V/A: 3/2 for a rectangle, 4/3 for a
+    /// solid circle, 2 for a thin tube.
+    pub shear_factor: f64,
 }
 
 impl Section {
@@ -40,6 +43,7 @@ impl Section {
                 inertia_min: (thickness * width.powi(3)).min(width * thickness.powi(3)) / 12.0,
                 bearing_length: thickness,
                 size: 0.808 * (width * thickness).sqrt(),
+                shear_factor: 1.5,
             },
             Shape::Rod { diameter } => Section {
                 area: pi * diameter * diameter / 4.0,
@@ -48,6 +52,7 @@ impl Section {
                 inertia_min: pi * diameter.powi(4) / 64.0,
                 bearing_length: diameter,
                 size: diameter,
+                shear_factor: 4.0 / 3.0,
             },
             Shape::Tube { outer, inner } => {
                 let i = pi * (outer.powi(4) - inner.powi(4)) / 64.0;
@@ -58,6 +63,7 @@ impl Section {
                     inertia_min: i,
                     bearing_length: outer,
                     size: outer,
+                    shear_factor: 2.0,
                 }
             }
             Shape::Disc { .. } | Shape::Plate { .. } => return None,
@@ -96,7 +102,11 @@ mod tests {
     /// 30·10³/12 mm⁴; a crank's root under a 500 N tip load at 0.1 m: σ = 50 N·m / Z.
     #[test]
     fn a_bar_section_and_a_cranks_bending_at_its_root() {
-        let s = Section::of(&Shape::Bar { width: 0.03, thickness: 0.01 }).unwrap();
+        let s = Section::of(&Shape::Bar {
+            width: 0.03,
+            thickness: 0.01,
+        })
+        .unwrap();
         assert!((s.area - 3e-4).abs() < 1e-18);
         assert!((s.inertia - 0.01 * 0.03f64.powi(3) / 12.0).abs() < 1e-22);
         assert!((s.modulus() - 0.01 * 0.03 * 0.03 / 6.0).abs() < 1e-20);
@@ -112,8 +122,15 @@ mod tests {
         let r = Section::of(&Shape::Rod { diameter: 0.02 }).unwrap();
         assert!((r.modulus() - pi * 0.02f64.powi(3) / 32.0).abs() < 1e-18);
         assert!((r.radius_of_gyration() - 0.005).abs() < 1e-15, "r = D/4");
-        let t = Section::of(&Shape::Tube { outer: 0.02, inner: 0.016 }).unwrap();
-        assert!((t.radius_of_gyration() - (0.02f64.powi(2) + 0.016f64.powi(2)).sqrt() / 4.0).abs() < 1e-15);
+        let t = Section::of(&Shape::Tube {
+            outer: 0.02,
+            inner: 0.016,
+        })
+        .unwrap();
+        assert!(
+            (t.radius_of_gyration() - (0.02f64.powi(2) + 0.016f64.powi(2)).sqrt() / 4.0).abs()
+                < 1e-15
+        );
         assert!(Section::of(&Shape::Plate { thickness: 0.01 }).is_none());
     }
 }

@@ -3,12 +3,12 @@
 
 use super::scope::Scope;
 use super::{comma, keyword, name};
-use crate::model::units::Dim;
 use crate::model::shape::{material_named, material_names, Material, Shape};
+use crate::model::units::Dim;
 use crate::model::{LinkDecl, LoadDecl, LoadDeclKind, MaterialDecl, Name, ShapeDecl};
 use proc_macro2::Span;
-use syn::parse::ParseStream;
 use syn::ext::IdentExt;
+use syn::parse::ParseStream;
 use syn::{braced, parenthesized, Ident, Token};
 
 pub(super) fn link_body(
@@ -96,13 +96,23 @@ fn shape(input: ParseStream, scope: &Scope) -> syn::Result<ShapeDecl<Span>> {
         let Some(k) = names.iter().position(|n| key == n) else {
             return Err(syn::Error::new(
                 key.span(),
-                format!("a `{keyword}` has no dimension `{key}`: it takes {}", names.join(", ")),
+                format!(
+                    "a `{keyword}` has no dimension `{key}`: it takes {}",
+                    names.join(", ")
+                ),
             ));
         };
         if dims[k].is_some() {
-            return Err(syn::Error::new(key.span(), format!("`{key}` is given twice")));
+            return Err(syn::Error::new(
+                key.span(),
+                format!("`{key}` is given twice"),
+            ));
         }
-        dims[k] = Some(scope.scalar(&inner, Dim::LENGTH, &format!("the {keyword}'s {key}"))?.value);
+        dims[k] = Some(
+            scope
+                .scalar(&inner, Dim::LENGTH, &format!("the {keyword}'s {key}"))?
+                .value,
+        );
         comma(&inner)?;
     }
     let dims = names
@@ -112,7 +122,14 @@ fn shape(input: ParseStream, scope: &Scope) -> syn::Result<ShapeDecl<Span>> {
             d.ok_or_else(|| {
                 syn::Error::new(
                     kw.span(),
-                    format!("a `{keyword}` needs its `{n}`: write {keyword}({})", names.iter().map(|n| format!("{n} ..")).collect::<Vec<_>>().join(", ")),
+                    format!(
+                        "a `{keyword}` needs its `{n}`: write {keyword}({})",
+                        names
+                            .iter()
+                            .map(|n| format!("{n} .."))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
                 )
             })
         })
@@ -163,7 +180,10 @@ fn material(input: ParseStream, scope: &Scope, at: Span) -> syn::Result<Material
             ));
         };
         if v[k].is_some() {
-            return Err(syn::Error::new(key.span(), format!("`{key}` is given twice")));
+            return Err(syn::Error::new(
+                key.span(),
+                format!("`{key}` is given twice"),
+            ));
         }
         let value = scope.scalar(&content, KEYS[k].1, &format!("the material's {key}"))?;
         if !(value.value > 0.0) {
@@ -175,7 +195,12 @@ fn material(input: ParseStream, scope: &Scope, at: Span) -> syn::Result<Material
         v[k] = Some(value.value);
         comma(&content)?;
     }
-    let missing: Vec<&str> = KEYS.iter().zip(&v).filter(|(_, x)| x.is_none()).map(|((n, _), _)| *n).collect();
+    let missing: Vec<&str> = KEYS
+        .iter()
+        .zip(&v)
+        .filter(|(_, x)| x.is_none())
+        .map(|((n, _), _)| *n)
+        .collect();
     if !missing.is_empty() {
         return Err(syn::Error::new(
             at,

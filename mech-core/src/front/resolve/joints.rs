@@ -76,7 +76,10 @@ fn pin<S: Clone>(
     if !(d.value > 0.0 && d.value.is_finite()) {
         errs.push(Diagnostic::at(
             d.span.clone(),
-            format!("the pin of joint `{}` must have a positive diameter, got {} m", j.name.text, d.value),
+            format!(
+                "the pin of joint `{}` must have a positive diameter, got {} m",
+                j.name.text, d.value
+            ),
         ));
         return None;
     }

@@ -99,7 +99,12 @@ pub(super) fn links<S: Clone>(
 /// A link declared by `shape:` and `material:`: its mass, cg and inertia from them
 /// ([`crate::model::shape`]); `mass:`, `inertia:` or `cg:` beside a shape, a shape without
 /// a material (or the reverse) and a shape the link's points cannot carry are errors.
-fn body<S: Clone>(l: &LinkDecl<S>, link: &mut Link, points: &[Point], errs: &mut Vec<Diagnostic<S>>) {
+fn body<S: Clone>(
+    l: &LinkDecl<S>,
+    link: &mut Link,
+    points: &[Point],
+    errs: &mut Vec<Diagnostic<S>>,
+) {
     let name = &l.name.text;
     let (shape, material) = match (&l.shape, &l.material) {
         (None, None) => return,
@@ -129,10 +134,11 @@ fn body<S: Clone>(l: &LinkDecl<S>, link: &mut Link, points: &[Point], errs: &mut
     beside("inertia", l.inertia.as_ref().map(|m| m.span.clone()));
     beside("cg", l.cg.as_ref().map(|c| c.span.clone()));
     let at: Vec<[f64; 2]> = link.points.iter().map(|&i| points[i].pos).collect();
-    let props = crate::model::shape::Shape::from_dimensions(&shape.keyword, &shape.dims).and_then(|s| {
-        let p = s.mass_properties(material.material.density, &at)?;
-        Ok((s, p))
-    });
+    let props =
+        crate::model::shape::Shape::from_dimensions(&shape.keyword, &shape.dims).and_then(|s| {
+            let p = s.mass_properties(material.material.density, &at)?;
+            Ok((s, p))
+        });
     match props {
         Ok((s, p)) => {
             link.mass = Some(p.mass);
