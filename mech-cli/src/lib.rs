@@ -1,6 +1,6 @@
 //! The `mech` command-line tool (`docs/cli.md`): a mechanism file (`*.mech`, the body of a
 //! `mechanism!` invocation) checked, solved, swept, sized for a flywheel, simulated,
-//! drawn, animated, reported and imported, and a cam's profile exported, from a terminal.
+//! strength-checked, drawn, animated, reported and imported, and a cam's profile exported, from a terminal.
 //!
 //! Each subcommand is a module; they share the reading of a file ([`source`]), numbers
 //! with unit words ([`quantity`]), loads given as constants or tables ([`loads`]), the
@@ -28,6 +28,7 @@ pub mod report;
 pub mod scene;
 pub mod simulate;
 pub mod solve;
+pub mod strength;
 pub mod source;
 pub mod svg;
 

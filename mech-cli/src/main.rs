@@ -8,7 +8,7 @@ use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
     cam, check, draw, flywheel, import, limits, quantity, regime, report, simulate, solve, source,
-    Failure,
+    strength, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -101,6 +101,11 @@ enum Command {
     /// irregularity ε, the period in time, the motor's duty and the table q, q̇ over one
     /// period, found directly (shooting on ω(q0 + λ) = ω(q0)).
     Regime(regime::RegimeArgs),
+    /// The strength of every member over the cycle at a constant input speed: one row per
+    /// link (a beam `shape:` with a `material:`) or pin (`pin 12 mm`) with the criterion
+    /// that governs (axial, bending, shear, bearing, buckling, fatigue), its stresses, the
+    /// smallest factor of safety and the q where it is smallest.
+    Strength(strength::StrengthArgs),
     /// Draw the linkage at one input as SVG: links, pins, slider guides, ground hatching,
     /// point names.
     Draw(draw::DrawArgs),
@@ -209,6 +214,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Flywheel(args) => flywheel::run(args, stdout),
         Command::Simulate(args) => simulate::run(args, stdout),
         Command::Regime(args) => regime::run(args, stdout),
+        Command::Strength(args) => strength::run(args, stdout),
         Command::Draw(args) => draw::draw(args),
         Command::Animate(args) => draw::animate(args),
         Command::Report(args) => report::run(args),

@@ -43,7 +43,10 @@ impl<W: Write> Writer<W> {
                 let head: Vec<String> = names
                     .iter()
                     .zip(units)
-                    .map(|(n, u)| format!("{:>WIDTH$}", format!("{n} [{u}]")))
+                    .map(|(n, u)| match u.is_empty() {
+                        true => format!("{n:>WIDTH$}"),
+                        false => format!("{:>WIDTH$}", format!("{n} [{u}]")),
+                    })
                     .collect();
                 writeln!(out, "{}", head.join(" "))?;
             }
@@ -89,6 +92,12 @@ impl<W: Write> Writer<W> {
         self.push(&r)
     }
 
+    /// Render and write one row of text and numbers.
+    pub fn cells(&mut self, cells: &[Cell]) -> io::Result<()> {
+        let r = self.renderer.render_cells(cells);
+        self.push(&r)
+    }
+
     /// Close the output (the JSON array's bracket) and flush.
     pub fn finish(mut self) -> io::Result<()> {
         if self.renderer.format == Format::Json {
@@ -98,36 +107,63 @@ impl<W: Write> Writer<W> {
     }
 }
 
+/// One value of a row that has text columns (`mech strength`'s member and criterion).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Cell<'a> {
+    /// A name.
+    Text(&'a str),
+    /// A number.
+    Num(f64),
+}
+
 impl Renderer {
-    /// One row as text (as many values as names): numbers in shortest round-trip form
-    /// for CSV and JSON, 10 significant digits in the table.
-    pub fn render(&self, values: &[f64]) -> String {
+    /// One row of text and numbers as text: numbers in shortest round-trip form for CSV
+    /// and JSON, 10 significant digits in the table; text as is (quoted in CSV when it
+    /// holds a comma, a quote or a line break).
+    pub fn render_cells(&self, cells: &[Cell]) -> String {
         match self.format {
-            Format::Csv => values
+            Format::Csv => cells
                 .iter()
-                .map(f64::to_string)
+                .map(|c| match c {
+                    Cell::Text(t) if t.contains([',', '"', '\n', '\r']) => {
+                        format!("\"{}\"", t.replace('"', "\"\""))
+                    }
+                    Cell::Text(t) => t.to_string(),
+                    Cell::Num(v) => v.to_string(),
+                })
                 .collect::<Vec<_>>()
                 .join(","),
-            Format::Table => values
+            Format::Table => cells
                 .iter()
-                .map(|v| format!("{:>WIDTH$}", format!("{v:.9e}")))
+                .map(|c| match c {
+                    Cell::Text(t) => format!("{t:>WIDTH$}"),
+                    Cell::Num(v) => format!("{:>WIDTH$}", format!("{v:.9e}")),
+                })
                 .collect::<Vec<_>>()
                 .join(" "),
             Format::Json => {
                 let obj: serde_json::Map<String, serde_json::Value> = self
                     .names
                     .iter()
-                    .zip(values)
-                    .map(|(n, v)| {
-                        (
-                            n.clone(),
-                            serde_json::Number::from_f64(*v)
+                    .zip(cells)
+                    .map(|(n, c)| {
+                        let v = match c {
+                            Cell::Text(t) => serde_json::Value::String(t.to_string()),
+                            Cell::Num(v) => serde_json::Number::from_f64(*v)
                                 .map_or(serde_json::Value::Null, serde_json::Value::Number),
-                        )
+                        };
+                        (n.clone(), v)
                     })
                     .collect();
                 serde_json::Value::Object(obj).to_string()
             }
         }
+    }
+
+    /// One row as text (as many values as names): numbers in shortest round-trip form
+    /// for CSV and JSON, 10 significant digits in the table.
+    pub fn render(&self, values: &[f64]) -> String {
+        let cells: Vec<Cell> = values.iter().map(|&v| Cell::Num(v)).collect();
+        self.render_cells(&cells)
     }
 }

@@ -13,6 +13,7 @@ mod hostile;
 mod import;
 mod regime;
 mod snapshots;
+mod strength;
 
 /// Every `tests/*.rs` but this file is one of the modules above.
 #[cfg(test)]
