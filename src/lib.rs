@@ -67,7 +67,7 @@ pub use mech_core::elements::cam;
 pub use mech_core::model::{self, units};
 pub use mech_core::runtime::columns;
 pub use mech_core::solvers::friction;
-pub use mech_core::strength;
+pub use mech_core::{design, strength};
 
 /// The paths the generated code uses (`mech_core::__private`). Not part of the public API.
 #[doc(hidden)]

@@ -223,3 +223,127 @@ fn bad_input_is_an_error_naming_the_fix() {
         .unwrap_err();
     assert!(e.to_string().contains("steps"), "{e}");
 }
+
+/// Sizing (`mech::design::sizing`): the free dimensions of a running slider-crank and of a
+/// four-bar reach a fixed point; the sized text re-loads and re-checks with every factor
+/// ≥ S; and each single free dimension is the lightest on its grid (one step less fails).
+mod sizing {
+    use super::*;
+    use mech::design::sizing::{free_dimensions, grid_step, size, write_sized, Requirement};
+
+    const SLIDER_CRANK: &str = "pub struct Press {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0) },
+        link crank { points { O, A: (60 mm, 0.0) }, shape: bar(width free(30 mm..80 mm), thickness 20 mm), material: steel },
+        link rod { points { A, B: (0.0, -800 mm) }, shape: rod(diameter free(12 mm..60 mm)), material: steel },
+        link ram { points { B }, mass: 12.0, cg: B },
+        joints {
+            O: revolute(ground, crank) pin 25 mm,
+            A: revolute(crank, rod) pin 11 mm double,
+            B: revolute(rod, ram) pin 11 mm double,
+            guide: prismatic(ground, ram) at B along (0.0, 1.0),
+        },
+        input: O,
+        loads { work: force on ram at B },
+    }";
+
+    const FOUR_BAR: &str = "pub struct Linkage {
+        ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
+        link crank { points { O2, A: (0.0, 0.1) }, shape: bar(width free(20 mm..60 mm), thickness 10 mm), material: steel },
+        link coupler { points { A, B: (0.25, 0.2) }, shape: bar(width free(20 mm..60 mm), thickness 8 mm), material: aluminium },
+        link rocker { points { O4, B }, shape: tube(outer free(20 mm..60 mm), inner 14 mm), material: steel },
+        joints {
+            O2: revolute(ground, crank) pin 12 mm,
+            A: revolute(crank, coupler) pin 10 mm double,
+            B: revolute(coupler, rocker) pin 10 mm,
+            O4: revolute(ground, rocker) pin 12 mm,
+        },
+        input: O2,
+        loads { tool: torque on rocker },
+    }";
+
+    /// Size `text` under the load `load` = value; check the fixed point, the re-check and
+    /// the minimality; return the number of passes.
+    fn sized(text: &str, load: (&str, &[f64]), speed: f64, s: f64) -> usize {
+        let m = Mechanism::from_dsl(text).unwrap();
+        let free = free_dimensions(text, None).unwrap();
+        let loads_of = |m: &Mechanism| {
+            let mut l = m.loads();
+            assert!(l.set_by_name(load.0, load.1));
+            l
+        };
+        let req = Requirement {
+            safety: s,
+            speed,
+            period: 2.0 * PI,
+            steps: 90,
+            irregularity: Some(0.05),
+        };
+        let out = size(&m, &free, req, |_| Ok(loads_of(&m))).unwrap();
+        assert!(out.converged, "{:?}", out.iterations);
+        assert!(out.unmet.is_empty(), "{:?}", out.unmet);
+        let n = out.iterations.len();
+        assert!(n >= 2, "the last pass repeats the one before: {:?}", out.iterations);
+        let lows: Vec<f64> = free.iter().map(|f| f.lo).collect();
+        assert!(out.dims.iter().zip(&lows).filter(|(d, lo)| d > lo).count() >= 2, "sized: {:?}", out.dims);
+        assert_eq!(out.iterations[n - 1].dims, out.iterations[n - 2].dims);
+        let it = &out.iterations[n - 1];
+        assert!(it.total_mass > 0.0 && it.peak_torque > 0.0 && it.flywheel.unwrap() > 0.0);
+        assert!(it.worst >= s, "{it:?}");
+        // The sized file re-loads, and every member meets S.
+        let written = write_sized(text, &free, &out.dims);
+        assert!(!written.contains("free("), "{written}");
+        let again = Mechanism::from_dsl(&written).unwrap();
+        let check = again.strength(speed, 2.0 * PI, 90, |_| Ok(loads_of(&again))).unwrap();
+        for member in &check.members {
+            let c = member.governing().unwrap();
+            // The written value is the sized one to its grid: the same machine.
+            assert!(c.safety >= s * (1.0 - 1e-9), "{}: {c:?}", member.name);
+        }
+        // Lightest on the grid: one step less of a link's only free dimension fails S.
+        for (k, f) in free.iter().enumerate() {
+            let alone = free.iter().filter(|g| g.link == f.link).count() == 1;
+            let step = grid_step(f.lo, f.hi);
+            if !alone || out.dims[k] - step < f.lo {
+                continue;
+            }
+            let mut less = out.mechanism.clone();
+            less.set_param(&format!("links.{}.shape.{}", f.link, f.name), &[out.dims[k] - step])
+                .unwrap();
+            let weak = less.strength(speed, 2.0 * PI, 90, |_| Ok(loads_of(&less))).unwrap();
+            let own = weak.member(&f.link).unwrap().governing().unwrap().safety;
+            let bearing = weak
+                .members
+                .iter()
+                .filter(|m| m.name.ends_with(".pin"))
+                .filter_map(|m| m.check(Criterion::Bearing))
+                .map(|c| c.safety)
+                .fold(f64::INFINITY, f64::min);
+            assert!(own.min(bearing) < s, "{}.{}: one step less still meets S", f.link, f.name);
+        }
+        n
+    }
+
+    #[test]
+    fn a_slider_crank_press_reaches_a_fixed_point() {
+        sized(SLIDER_CRANK, ("work", &[0.0, 8e3]), 2.0 * PI, 2.0);
+    }
+
+    #[test]
+    fn a_four_bar_reaches_a_fixed_point() {
+        sized(FOUR_BAR, ("tool", &[-400.0]), 40.0, 2.0);
+    }
+
+    /// Nothing free, or S ≤ 0: an error naming the fix.
+    #[test]
+    fn nothing_to_size_is_an_error() {
+        let text = SLIDER_CRANK.replace("free(30 mm..80 mm)", "40 mm").replace("free(12 mm..60 mm)", "30 mm");
+        let m = Mechanism::from_dsl(&text).unwrap();
+        let req = Requirement { safety: 2.0, speed: 1.0, period: 2.0 * PI, steps: 10, irregularity: None };
+        let e = size(&m, &[], req, |_| Ok(m.loads())).unwrap_err().to_string();
+        assert!(e.contains("free(10 mm..40 mm)"), "{e}");
+        let free = free_dimensions(SLIDER_CRANK, None).unwrap();
+        let e = size(&m, &free, Requirement { safety: 0.0, ..req }, |_| Ok(m.loads())).unwrap_err();
+        assert!(e.to_string().contains("above 0"), "{e}");
+    }
+}

@@ -27,6 +27,7 @@ pub mod regime;
 pub mod report;
 pub mod scene;
 pub mod simulate;
+pub mod size;
 pub mod solve;
 pub mod strength;
 pub mod source;

@@ -8,7 +8,7 @@ use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
     cam, check, draw, flywheel, import, limits, quantity, regime, report, simulate, solve, source,
-    strength, Failure,
+    size, strength, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -106,6 +106,11 @@ enum Command {
     /// that governs (axial, bending, shear, bearing, buckling, fatigue), its stresses, the
     /// smallest factor of safety and the q where it is smallest.
     Strength(strength::StrengthArgs),
+    /// Size the dimensions written `free(LO..HI)` so that every member's factor of safety
+    /// is at least S, re-running the dynamics with each change until a fixed point; print
+    /// the passes (total mass, peak driver torque, flywheel, worst factor) and write the
+    /// sized file.
+    Size(size::SizeArgs),
     /// Draw the linkage at one input as SVG: links, pins, slider guides, ground hatching,
     /// point names.
     Draw(draw::DrawArgs),
@@ -215,6 +220,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Simulate(args) => simulate::run(args, stdout),
         Command::Regime(args) => regime::run(args, stdout),
         Command::Strength(args) => strength::run(args, stdout),
+        Command::Size(args) => size::run(args, stdout),
         Command::Draw(args) => draw::draw(args),
         Command::Animate(args) => draw::animate(args),
         Command::Report(args) => report::run(args),

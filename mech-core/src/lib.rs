@@ -28,6 +28,7 @@
 #![deny(missing_docs)]
 
 pub mod checks;
+pub mod design;
 pub mod dynamics;
 pub mod elements;
 pub mod error;

@@ -17,12 +17,31 @@ pub fn mechanism(input: TokenStream) -> TokenStream {
         Ok(p) => p.0,
         Err(e) => return e.to_compile_error().into(),
     };
+    if let Some(e) = free_dimension(&desc) {
+        return e.to_compile_error().into();
+    }
     match mech_core::checks::load::check(&desc) {
         Ok((model, plan)) => emit::mechanism(&desc, &model, &plan).into(),
         Err(rejected) => {
             emit::outline(&desc, rejected.model.as_ref(), &rejected.diagnostics).into()
         }
     }
+}
+
+/// A dimension written `free(LO..HI)`: `mech size` chooses it in a file; the macro needs
+/// the number.
+fn free_dimension(desc: &mech_core::model::Description<proc_macro2::Span>) -> Option<syn::Error> {
+    desc.links.iter().find_map(|l| {
+        let shape = l.shape.as_ref()?;
+        let f = shape.free.iter().flatten().next()?;
+        Some(syn::Error::new(
+            f.span,
+            format!(
+                "link `{}`: a dimension written `free({} m..{} m)` is chosen by `mech size FILE --safety S -o OUT.mech`; the macro needs its number: write the sized value from OUT.mech here",
+                l.name.text, f.lo, f.hi
+            ),
+        ))
+    })
 }
 
 /// The whole pipeline on text, for the snapshot tests: parse → resolve → validate →

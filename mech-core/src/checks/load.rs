@@ -214,6 +214,49 @@ pub fn parse_model(text: &str, origin: Option<&str>) -> Result<Model, MechError>
     })
 }
 
+/// A dimension written `free(LO..HI)` in a mechanism's text (`mech size` chooses it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FreeDimension {
+    /// The link whose shape it is a dimension of.
+    pub link: String,
+    /// The dimension's name (`width`, `thickness`, `diameter`, `outer`, `inner`, `radius`).
+    pub name: String,
+    /// LO, m.
+    pub lo: f64,
+    /// HI, m.
+    pub hi: f64,
+    /// The bytes of `free(LO..HI)` in the text.
+    pub range: std::ops::Range<usize>,
+}
+
+/// The dimensions written `free(LO..HI)` in DSL text, in the order written; a syntax
+/// error as [`parse_model`]'s.
+pub fn free_dimensions(text: &str, origin: Option<&str>) -> Result<Vec<FreeDimension>, MechError> {
+    check_text(text, origin)?;
+    on_own_thread(|| {
+        let desc = parse_str(text).map_err(|e| syntax(text, origin, e))?;
+        let mut out = Vec::new();
+        for link in &desc.links {
+            let Some(shape) = &link.shape else { continue };
+            let names = crate::model::shape::Shape::dimension_names(&shape.keyword).unwrap_or_default();
+            for (free, name) in shape.free.iter().zip(names) {
+                if let Some(f) = free {
+                    let start = crate::front::report::offset(text, f.span.start());
+                    let end = crate::front::report::offset(text, f.end.end());
+                    out.push(FreeDimension {
+                        link: link.name.text.clone(),
+                        name: name.to_string(),
+                        lo: f.lo,
+                        hi: f.hi,
+                        range: start..end,
+                    });
+                }
+            }
+        }
+        Ok(out)
+    })
+}
+
 /// The checked model of the mechanism `name` declared in Rust source text.
 pub fn rust_source_model(source: &str, name: &str) -> Result<Model, MechError> {
     check_text(source, None)?;

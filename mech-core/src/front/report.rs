@@ -12,7 +12,7 @@ use proc_macro2::{LineColumn, Span};
 use std::ops::Range;
 
 /// The byte offset in `source` of a line and column (1-based line, 0-based column in chars).
-fn offset(source: &str, lc: LineColumn) -> usize {
+pub(crate) fn offset(source: &str, lc: LineColumn) -> usize {
     let mut at = 0;
     for (i, line) in source.split_inclusive('\n').enumerate() {
         if i + 1 == lc.line {

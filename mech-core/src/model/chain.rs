@@ -92,10 +92,27 @@ pub struct LinkDecl<S> {
 pub struct ShapeDecl<S> {
     /// The keyword.
     pub keyword: String,
-    /// The dimensions, m.
+    /// The dimensions, m (a free one's lower bound).
     pub dims: Vec<f64>,
+    /// Each dimension written `free(LO..HI)` (`mech size` chooses it), in the order of
+    /// `dims`.
+    pub free: Vec<Option<FreeDecl<S>>>,
     /// Where the keyword is.
     pub span: S,
+}
+
+/// A dimension written `free(LO..HI)`: to be chosen by `mech size` within [LO, HI] (m);
+/// until then it is LO.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FreeDecl<S> {
+    /// LO, m.
+    pub lo: f64,
+    /// HI, m.
+    pub hi: f64,
+    /// Where `free` is.
+    pub span: S,
+    /// Where its closing parenthesis is.
+    pub end: S,
 }
 
 /// A link's `material:` as written, resolved to its properties.

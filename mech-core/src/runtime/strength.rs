@@ -75,11 +75,13 @@ impl Mechanism {
                 "no member to check: give a link a `shape: bar(..)`, `rod(..)` or `tube(..)` with a `material:`, or a revolute joint a `pin 12 mm`".into(),
             ));
         }
+        let mut driver_peak = 0.0f64;
         for k in 0..steps {
             let q = period * k as f64 / steps as f64;
             let motion = self.kinematics(&[q], &[qd], &[0.0])?;
             let loads = loads(q)?;
             let forces = self.kinetostatics(&motion, &loads)?;
+            driver_peak = driver_peak.max(forces.driver[0].abs());
             for (l, track) in &mut links {
                 track.add(q, &self.diagram(*l, &motion, &forces, &loads));
             }
@@ -93,7 +95,10 @@ impl Mechanism {
             .map(|(_, t)| t.finish())
             .chain(pins.iter().map(|(_, t)| t.finish()))
             .collect();
-        Ok(Strength { members })
+        Ok(Strength {
+            members,
+            driver_peak,
+        })
     }
 
     /// The diagram (N, V, M along the link) of every link with a beam section at the

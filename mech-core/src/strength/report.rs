@@ -86,6 +86,8 @@ pub struct Strength {
     /// The members: the links with a beam section (`bar`, `rod`, `tube`) in declaration
     /// order, then the joints with a pin.
     pub members: Vec<Member>,
+    /// The largest magnitude of the motor's action on the input over the cycle, N·m.
+    pub driver_peak: f64,
 }
 
 impl Strength {

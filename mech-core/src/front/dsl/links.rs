@@ -5,7 +5,7 @@ use super::scope::Scope;
 use super::{comma, keyword, name};
 use crate::model::shape::{material_named, material_names, Material, Shape};
 use crate::model::units::Dim;
-use crate::model::{LinkDecl, LoadDecl, LoadDeclKind, MaterialDecl, Name, ShapeDecl};
+use crate::model::{FreeDecl, LinkDecl, LoadDecl, LoadDeclKind, MaterialDecl, Name, ShapeDecl};
 use proc_macro2::Span;
 use syn::ext::IdentExt;
 use syn::parse::ParseStream;
@@ -91,6 +91,7 @@ fn shape(input: ParseStream, scope: &Scope) -> syn::Result<ShapeDecl<Span>> {
     let inner;
     parenthesized!(inner in input);
     let mut dims: Vec<Option<f64>> = vec![None; names.len()];
+    let mut free = vec![None; names.len()];
     while !inner.is_empty() {
         let key = Ident::parse_any(&inner)?;
         let Some(k) = names.iter().position(|n| key == n) else {
@@ -108,11 +109,16 @@ fn shape(input: ParseStream, scope: &Scope) -> syn::Result<ShapeDecl<Span>> {
                 format!("`{key}` is given twice"),
             ));
         }
-        dims[k] = Some(
-            scope
-                .scalar(&inner, Dim::LENGTH, &format!("the {keyword}'s {key}"))?
-                .value,
-        );
+        let what = format!("the {keyword}'s {key}");
+        let free_kw = inner.fork().parse::<Ident>().is_ok_and(|i| i == "free");
+        dims[k] = Some(if free_kw && inner.peek2(syn::token::Paren) {
+            let f = free_range(&inner, scope, &what)?;
+            let lo = f.lo;
+            free[k] = Some(f);
+            lo
+        } else {
+            scope.scalar(&inner, Dim::LENGTH, &what)?.value
+        });
         comma(&inner)?;
     }
     let dims = names
@@ -137,7 +143,35 @@ fn shape(input: ParseStream, scope: &Scope) -> syn::Result<ShapeDecl<Span>> {
     Ok(ShapeDecl {
         keyword,
         dims,
+        free,
         span: kw.span(),
+    })
+}
+
+/// `free(LO..HI)`: a dimension `mech size` chooses, 0 < LO < HI, lengths.
+fn free_range(input: ParseStream, scope: &Scope, what: &str) -> syn::Result<FreeDecl<Span>> {
+    let kw: Ident = input.parse()?;
+    let range;
+    let paren = parenthesized!(range in input);
+    let lo = scope.scalar(&range, Dim::LENGTH, what)?;
+    range.parse::<Token![..]>().map_err(|e| {
+        syn::Error::new(e.span(), format!("{what}: write its range as `free(LO..HI)`, e.g. `free(10 mm..40 mm)`"))
+    })?;
+    let hi = scope.scalar(&range, Dim::LENGTH, what)?;
+    if !(lo.value > 0.0 && hi.value > lo.value && hi.value.is_finite()) {
+        return Err(syn::Error::new(
+            lo.span,
+            format!(
+                "{what}: `free(LO..HI)` needs 0 < LO < HI, got LO = {} m, HI = {} m",
+                lo.value, hi.value
+            ),
+        ));
+    }
+    Ok(FreeDecl {
+        lo: lo.value,
+        hi: hi.value,
+        span: kw.span(),
+        end: paren.span.close(),
     })
 }
 
