@@ -53,7 +53,12 @@ fn every_ui_mistake_loaded_as_text_gets_the_same_message_and_place() {
         if expected.is_empty() {
             continue; // not a check of the mechanism (a type error in the user's code)
         }
-        if path.file_name().unwrap().to_string_lossy().starts_with("macro_only_") {
+        if path
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .starts_with("macro_only_")
+        {
             continue; // what the loader takes on purpose (`free(LO..HI)`: `mech size`'s input)
         }
         let source = std::fs::read_to_string(path).unwrap();

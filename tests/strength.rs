@@ -283,9 +283,17 @@ mod sizing {
         assert!(out.converged, "{:?}", out.iterations);
         assert!(out.unmet.is_empty(), "{:?}", out.unmet);
         let n = out.iterations.len();
-        assert!(n >= 2, "the last pass repeats the one before: {:?}", out.iterations);
+        assert!(
+            n >= 2,
+            "the last pass repeats the one before: {:?}",
+            out.iterations
+        );
         let lows: Vec<f64> = free.iter().map(|f| f.lo).collect();
-        assert!(out.dims.iter().zip(&lows).filter(|(d, lo)| d > lo).count() >= 2, "sized: {:?}", out.dims);
+        assert!(
+            out.dims.iter().zip(&lows).filter(|(d, lo)| d > lo).count() >= 2,
+            "sized: {:?}",
+            out.dims
+        );
         assert_eq!(out.iterations[n - 1].dims, out.iterations[n - 2].dims);
         let it = &out.iterations[n - 1];
         assert!(it.total_mass > 0.0 && it.peak_torque > 0.0 && it.flywheel.unwrap() > 0.0);
@@ -294,7 +302,9 @@ mod sizing {
         let written = write_sized(text, &free, &out.dims);
         assert!(!written.contains("free("), "{written}");
         let again = Mechanism::from_dsl(&written).unwrap();
-        let check = again.strength(speed, 2.0 * PI, 90, |_| Ok(loads_of(&again))).unwrap();
+        let check = again
+            .strength(speed, 2.0 * PI, 90, |_| Ok(loads_of(&again)))
+            .unwrap();
         for member in &check.members {
             let c = member.governing().unwrap();
             // The written value is the sized one to its grid: the same machine.
@@ -308,9 +318,14 @@ mod sizing {
                 continue;
             }
             let mut less = out.mechanism.clone();
-            less.set_param(&format!("links.{}.shape.{}", f.link, f.name), &[out.dims[k] - step])
+            less.set_param(
+                &format!("links.{}.shape.{}", f.link, f.name),
+                &[out.dims[k] - step],
+            )
+            .unwrap();
+            let weak = less
+                .strength(speed, 2.0 * PI, 90, |_| Ok(loads_of(&less)))
                 .unwrap();
-            let weak = less.strength(speed, 2.0 * PI, 90, |_| Ok(loads_of(&less))).unwrap();
             let own = weak.member(&f.link).unwrap().governing().unwrap().safety;
             let bearing = weak
                 .members
@@ -319,7 +334,12 @@ mod sizing {
                 .filter_map(|m| m.check(Criterion::Bearing))
                 .map(|c| c.safety)
                 .fold(f64::INFINITY, f64::min);
-            assert!(own.min(bearing) < s, "{}.{}: one step less still meets S", f.link, f.name);
+            assert!(
+                own.min(bearing) < s,
+                "{}.{}: one step less still meets S",
+                f.link,
+                f.name
+            );
         }
         n
     }
@@ -337,13 +357,26 @@ mod sizing {
     /// Nothing free, or S ≤ 0: an error naming the fix.
     #[test]
     fn nothing_to_size_is_an_error() {
-        let text = SLIDER_CRANK.replace("free(30 mm..80 mm)", "40 mm").replace("free(12 mm..60 mm)", "30 mm");
+        let text = SLIDER_CRANK
+            .replace("free(30 mm..80 mm)", "40 mm")
+            .replace("free(12 mm..60 mm)", "30 mm");
         let m = Mechanism::from_dsl(&text).unwrap();
-        let req = Requirement { safety: 2.0, speed: 1.0, period: 2.0 * PI, steps: 10, irregularity: None };
-        let e = size(&m, &[], req, |_| Ok(m.loads())).unwrap_err().to_string();
+        let req = Requirement {
+            safety: 2.0,
+            speed: 1.0,
+            period: 2.0 * PI,
+            steps: 10,
+            irregularity: None,
+        };
+        let e = size(&m, &[], req, |_| Ok(m.loads()))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("free(10 mm..40 mm)"), "{e}");
         let free = free_dimensions(SLIDER_CRANK, None).unwrap();
-        let e = size(&m, &free, Requirement { safety: 0.0, ..req }, |_| Ok(m.loads())).unwrap_err();
+        let e = size(&m, &free, Requirement { safety: 0.0, ..req }, |_| {
+            Ok(m.loads())
+        })
+        .unwrap_err();
         assert!(e.to_string().contains("above 0"), "{e}");
     }
 }

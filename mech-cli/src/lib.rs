@@ -29,8 +29,8 @@ pub mod scene;
 pub mod simulate;
 pub mod size;
 pub mod solve;
-pub mod strength;
 pub mod source;
+pub mod strength;
 pub mod svg;
 
 /// An error of the tool: the message for standard error, and the exit status.

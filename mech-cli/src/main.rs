@@ -7,8 +7,8 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    cam, check, draw, flywheel, import, limits, quantity, regime, report, simulate, solve, source,
-    size, strength, Failure,
+    cam, check, draw, flywheel, import, limits, quantity, regime, report, simulate, size, solve,
+    source, strength, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;

@@ -86,7 +86,16 @@ pub fn run(args: SizeArgs, out: impl Write) -> Result<(), Failure> {
     let mut summary: Vec<String> = free
         .iter()
         .zip(&sized.dims)
-        .map(|(f, v)| format!("{}.{} = {:.4} mm (free {:.4}..{:.4} mm)", f.link, f.name, v * 1e3, f.lo * 1e3, f.hi * 1e3))
+        .map(|(f, v)| {
+            format!(
+                "{}.{} = {:.4} mm (free {:.4}..{:.4} mm)",
+                f.link,
+                f.name,
+                v * 1e3,
+                f.lo * 1e3,
+                f.hi * 1e3
+            )
+        })
         .collect();
     if !sized.converged {
         summary.push(format!(
@@ -100,7 +109,12 @@ pub fn run(args: SizeArgs, out: impl Write) -> Result<(), Failure> {
     for line in &summary {
         eprintln!("{line}");
     }
-    limits::write_file(&args.output, &sizing::write_sized(&text, &free, &sized.dims), "-o", "mech")?;
+    limits::write_file(
+        &args.output,
+        &sizing::write_sized(&text, &free, &sized.dims),
+        "-o",
+        "mech",
+    )?;
     if sized.unmet.is_empty() {
         Ok(())
     } else {

@@ -74,7 +74,9 @@ pub fn cycle(speed: &str, period: &str, steps: usize) -> Result<(f64, f64), Fail
         )));
     }
     if !(2..=1_000_000).contains(&steps) {
-        return Err(Failure::usage(format!("--steps {steps}: give 2 to 1000000 instants")));
+        return Err(Failure::usage(format!(
+            "--steps {steps}: give 2 to 1000000 instants"
+        )));
     }
     Ok((qd, period))
 }

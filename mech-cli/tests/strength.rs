@@ -45,7 +45,11 @@ fn rows(out: &[u8]) -> Vec<(String, String, Vec<f64>)> {
     lines
         .map(|l| {
             let f: Vec<&str> = l.split(',').collect();
-            (f[0].to_string(), f[1].to_string(), f[2..].iter().map(|v| v.parse().unwrap()).collect())
+            (
+                f[0].to_string(),
+                f[1].to_string(),
+                f[2..].iter().map(|v| v.parse().unwrap()).collect(),
+            )
         })
         .collect()
 }
@@ -55,7 +59,9 @@ fn a_slider_crank_at_rest_against_the_hand_calculation() {
     let dir = tempfile::tempdir().unwrap();
     let f = write(&dir, SLIDER_CRANK);
     let out = mech()
-        .args(["strength", &f, "--load", "P=-2kN,0", "--steps", "12", "--all", "--format", "csv"])
+        .args([
+            "strength", &f, "--load", "P=-2kN,0", "--steps", "12", "--all", "--format", "csv",
+        ])
         .assert()
         .success();
     let rows = rows(&out.get_output().stdout);
@@ -75,21 +81,35 @@ fn a_slider_crank_at_rest_against_the_hand_calculation() {
     };
     let area = PI * 0.016f64.powi(2) / 4.0;
     let axial = find("rod", "axial");
-    assert!((axial[0] - rod_max / area).abs() < 1e-9 * axial[0], "{axial:?}");
-    assert!((axial[3] - 276e6 / (rod_max / area)).abs() < 1e-9 * axial[3], "aluminium's S_y");
+    assert!(
+        (axial[0] - rod_max / area).abs() < 1e-9 * axial[0],
+        "{axial:?}"
+    );
+    assert!(
+        (axial[3] - 276e6 / (rod_max / area)).abs() < 1e-9 * axial[3],
+        "aluminium's S_y"
+    );
     let shear = find("A.pin", "shear");
     assert!((shear[0] - rod_max / (2.0 * PI * 0.01f64.powi(2) / 4.0)).abs() < 1e-9 * shear[0]);
     // B has no pin, the piston no section: four members, each with its checks.
-    assert!(rows.iter().all(|r| ["crank", "rod", "O.pin", "A.pin"].contains(&r.0.as_str())));
+    assert!(rows
+        .iter()
+        .all(|r| ["crank", "rod", "O.pin", "A.pin"].contains(&r.0.as_str())));
     // Without --all: one row per member, the smallest factor of its checks.
     let out = mech()
-        .args(["strength", &f, "--load", "P=-2kN,0", "--steps", "12", "--format", "csv"])
+        .args([
+            "strength", &f, "--load", "P=-2kN,0", "--steps", "12", "--format", "csv",
+        ])
         .assert()
         .success();
     let governing = self::rows(&out.get_output().stdout);
     assert_eq!(governing.len(), 4);
     for g in &governing {
-        let least = rows.iter().filter(|r| r.0 == g.0).map(|r| r.2[3]).fold(f64::INFINITY, f64::min);
+        let least = rows
+            .iter()
+            .filter(|r| r.0 == g.0)
+            .map(|r| r.2[3])
+            .fold(f64::INFINITY, f64::min);
         assert_eq!(g.2[3], least, "{g:?}");
     }
     let stderr = String::from_utf8(out.get_output().stderr.clone()).unwrap();
@@ -101,18 +121,31 @@ fn json_and_table_carry_the_same_members() {
     let dir = tempfile::tempdir().unwrap();
     let f = write(&dir, SLIDER_CRANK);
     let out = mech()
-        .args(["strength", &f, "--speed", "300rpm", "--load", "P=-2kN,0", "--steps", "36", "--format", "json"])
+        .args([
+            "strength", &f, "--speed", "300rpm", "--load", "P=-2kN,0", "--steps", "36", "--format",
+            "json",
+        ])
         .assert()
         .success();
     let v: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
-    let names: Vec<&str> = v.as_array().unwrap().iter().map(|r| r["member"].as_str().unwrap()).collect();
+    let names: Vec<&str> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["member"].as_str().unwrap())
+        .collect();
     assert_eq!(names, ["crank", "rod", "O.pin", "A.pin"]);
     let table = mech()
-        .args(["strength", &f, "--speed", "300rpm", "--load", "P=-2kN,0", "--steps", "36"])
+        .args([
+            "strength", &f, "--speed", "300rpm", "--load", "P=-2kN,0", "--steps", "36",
+        ])
         .assert()
         .success();
     let text = String::from_utf8(table.get_output().stdout.clone()).unwrap();
-    assert!(text.lines().next().unwrap().contains("stress_max [Pa]"), "{text}");
+    assert!(
+        text.lines().next().unwrap().contains("stress_max [Pa]"),
+        "{text}"
+    );
     assert!(text.contains("worst: "), "{text}");
 }
 
@@ -130,9 +163,105 @@ fn errors_name_the_fix() {
     );
     let out = mech().args(["strength", &bare]).assert().failure();
     let e = String::from_utf8(out.get_output().stderr.clone()).unwrap();
-    assert!(e.contains("no member to check") && e.contains("pin 12 mm"), "{e}");
+    assert!(
+        e.contains("no member to check") && e.contains("pin 12 mm"),
+        "{e}"
+    );
     let f = write(&dir, SLIDER_CRANK);
-    let out = mech().args(["strength", &f, "--steps", "1"]).assert().failure();
+    let out = mech()
+        .args(["strength", &f, "--steps", "1"])
+        .assert()
+        .failure();
     let e = String::from_utf8(out.get_output().stderr.clone()).unwrap();
     assert!(e.contains("--steps 1"), "{e}");
+}
+
+/// `mech size`: the crank's width free; the table of passes ends on a repeated pass, the
+/// written file has the number in place of `free(..)` and re-checks with every factor ≥ S.
+#[test]
+fn size_writes_a_file_that_meets_the_factor() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = write(
+        &dir,
+        &SLIDER_CRANK.replace("bar(width 20 mm,", "bar(width free(15 mm..60 mm),"),
+    );
+    let out_file = dir.path().join("sized.mech");
+    let out = mech()
+        .args([
+            "size",
+            &f,
+            "--safety",
+            "2.5",
+            "--speed",
+            "30",
+            "--load",
+            "P=-3kN,0",
+            "--steps",
+            "72",
+            "--irregularity",
+            "0.05",
+            "--format",
+            "csv",
+            "-o",
+            out_file.to_str().unwrap(),
+        ])
+        .assert()
+        .success();
+    let text = String::from_utf8(out.get_output().stdout.clone()).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "iteration,total_mass,peak_torque,flywheel,worst"
+    );
+    let passes: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(passes.len() >= 2, "{text}");
+    let (a, b) = (&passes[passes.len() - 2], &passes[passes.len() - 1]);
+    assert_eq!(
+        a[1..],
+        b[1..],
+        "the fixed point: the last pass changes nothing"
+    );
+    assert!(b[4] >= 2.5, "{b:?}");
+    let stderr = String::from_utf8(out.get_output().stderr.clone()).unwrap();
+    assert!(stderr.contains("crank.width = "), "{stderr}");
+    let sized = std::fs::read_to_string(&out_file).unwrap();
+    assert!(
+        !sized.contains("free(") && sized.contains("bar(width "),
+        "{sized}"
+    );
+    let check = mech()
+        .args([
+            "strength",
+            out_file.to_str().unwrap(),
+            "--speed",
+            "30",
+            "--load",
+            "P=-3kN,0",
+            "--steps",
+            "72",
+            "--format",
+            "csv",
+        ])
+        .assert()
+        .success();
+    for (m, c, v) in rows(&check.get_output().stdout) {
+        assert!(v[3] >= 2.5 * (1.0 - 1e-9), "{m} {c}: {v:?}");
+    }
+    // Nothing free: an error naming the form.
+    let plain = write(&dir, SLIDER_CRANK);
+    let out = mech()
+        .args([
+            "size",
+            &plain,
+            "--safety",
+            "2",
+            "-o",
+            out_file.to_str().unwrap(),
+        ])
+        .assert()
+        .failure();
+    let e = String::from_utf8(out.get_output().stderr.clone()).unwrap();
+    assert!(e.contains("free(10 mm..40 mm)"), "{e}");
 }

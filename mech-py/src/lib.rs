@@ -795,6 +795,91 @@ impl PyMechanism {
         Ok((s.q, s.qd, s.t, s.torque, summary))
     }
 
+    /// The strength of every member over one period at the constant speed `qd`
+    /// (`Mechanism::strength`): one row per member (its governing criterion), or one per
+    /// criterion with `all`: (members, criteria, rows of stress_max, stress_mean,
+    /// stress_alt, safety, q).
+    #[allow(clippy::type_complexity)]
+    #[pyo3(signature = (qd, period, steps, loads, all))]
+    fn strength(
+        &self,
+        py: Python<'_>,
+        qd: f64,
+        period: f64,
+        steps: usize,
+        loads: PyObject,
+        all: bool,
+    ) -> PyResult<(Vec<String>, Vec<String>, Vec<[f64; 5]>)> {
+        let m = self.one_revolute_input("a strength analysis")?;
+        let raised = Raised::default();
+        let out = m.strength(qd, period, steps, loads_callable(py, m, &loads, &raised));
+        if let Some(e) = raised.borrow_mut().take() {
+            return Err(e);
+        }
+        let s = out.map_err(|e| py_err(py, e))?;
+        let (mut members, mut criteria, mut rows) = (Vec::new(), Vec::new(), Vec::new());
+        for member in &s.members {
+            let checks: Vec<&mech_core::strength::Check> = if all {
+                member.checks.iter().collect()
+            } else {
+                member.governing().into_iter().collect()
+            };
+            for c in checks {
+                members.push(member.name.clone());
+                criteria.push(c.criterion.name().to_string());
+                rows.push([c.stress_max, c.stress_mean, c.stress_alt, c.safety, c.q]);
+            }
+        }
+        Ok((members, criteria, rows))
+    }
+
+    /// Size the dimensions written `free(LO..HI)` in `text` (`mech_core::design::sizing`):
+    /// (the passes as rows of total_mass, peak_torque, flywheel (NaN without an
+    /// irregularity), worst; the free dimensions as (link, name, value); the sized text;
+    /// converged; the unmet members).
+    #[allow(clippy::type_complexity, clippy::too_many_arguments)]
+    #[pyo3(signature = (text, safety, qd, period, steps, irregularity, loads))]
+    fn size(
+        &self,
+        py: Python<'_>,
+        text: &str,
+        safety: f64,
+        qd: f64,
+        period: f64,
+        steps: usize,
+        irregularity: Option<f64>,
+        loads: PyObject,
+    ) -> PyResult<(Vec<[f64; 4]>, Vec<(String, String, f64)>, String, bool, Vec<String>)> {
+        use mech_core::design::sizing;
+        let m = self.one_revolute_input("sizing")?;
+        let free = sizing::free_dimensions(text, None).map_err(|e| py_err(py, e))?;
+        let req = sizing::Requirement {
+            safety,
+            speed: qd,
+            period,
+            steps,
+            irregularity,
+        };
+        let raised = Raised::default();
+        let out = sizing::size(m, &free, req, loads_callable(py, m, &loads, &raised));
+        if let Some(e) = raised.borrow_mut().take() {
+            return Err(e);
+        }
+        let sized = out.map_err(|e| py_err(py, e))?;
+        let rows = sized
+            .iterations
+            .iter()
+            .map(|it| [it.total_mass, it.peak_torque, it.flywheel.unwrap_or(f64::NAN), it.worst])
+            .collect();
+        let dims = free
+            .iter()
+            .zip(&sized.dims)
+            .map(|(f, v)| (f.link.clone(), f.name.clone(), *v))
+            .collect();
+        let written = sizing::write_sized(text, &free, &sized.dims);
+        Ok((rows, dims, written, sized.converged, sized.unmet))
+    }
+
     /// A cam's profile at `points` cam angles over a turn (`mech::cam::Profile::row`):
     /// (the cam's name, the column names, the rows (points, 10), and the design figures:
     /// the largest pressure angle and where, the smallest convex radius and where, rad and

@@ -186,6 +186,59 @@ def test_a_link_from_its_shape_and_material_and_a_new_width():
     assert "no material" in str(e.value)
 
 
+SLIDER_CRANK = """pub struct SliderCrank {
+    ground { O: (0.0, 0.0) },
+    link crank { points { O, A: (50 mm, 0.0) }, shape: bar(width 20 mm, thickness 10 mm), material: steel },
+    link rod { points { A, B: (250 mm, 0.0) }, shape: rod(diameter 16 mm), material: steel },
+    link piston { points { B }, mass: 0.5, cg: B },
+    joints {
+        O: revolute(ground, crank) pin 12 mm,
+        A: revolute(crank, rod) pin 10 mm double,
+        B: revolute(rod, piston),
+        slide: prismatic(ground, piston) at B along (1.0, 0.0),
+    },
+    input: O,
+    loads { P: force on piston at B },
+}"""
+
+
+def test_strength_of_a_slider_crank_at_rest_against_the_hand_calculation():
+    """At rest against a piston force P the rod is a two-force member: its largest stress is
+    max P/(A cos φ), sin φ = r sin θ / l, over the instants; A's pin in double shear."""
+    m = mech.Mechanism.from_dsl(SLIDER_CRANK)
+    s = m.strength(qd=0.0, loads={"P": (-2000.0, 0.0)}, steps=12, all=True)
+    theta = 2 * np.pi * np.arange(12) / 12
+    n_max = np.max(2000.0 / np.cos(np.arcsin(0.05 * np.sin(theta) / 0.2)))
+    rows = {(a, b): k for k, (a, b) in enumerate(zip(s["member"], s["criterion"]))}
+    k = rows[("rod", "axial")]
+    area = math.pi * 0.016**2 / 4
+    assert abs(s["stress_max"][k] - n_max / area) < 1e-9 * n_max / area
+    assert abs(s["safety"][k] - 310e6 / (n_max / area)) < 1e-9 * s["safety"][k]
+    k = rows[("A.pin", "shear")]
+    assert abs(s["stress_max"][k] - n_max / (2 * math.pi * 0.01**2 / 4)) < 1e-6
+    g = m.strength(qd=0.0, loads={"P": (-2000.0, 0.0)}, steps=12)
+    assert list(g["member"]) == ["crank", "rod", "O.pin", "A.pin"]
+    for name, safety in zip(g["member"], g["safety"]):
+        assert safety == min(s["safety"][k] for k in range(len(s["member"])) if s["member"][k] == name)
+    with pytest.raises(mech.InvalidInput) as e:
+        m.strength(qd=float("nan"))
+    assert "qd = nan: not a finite number" in str(e.value)
+
+
+def test_sizing_reaches_a_fixed_point_and_the_sized_text_meets_the_factor():
+    text = SLIDER_CRANK.replace("bar(width 20 mm,", "bar(width free(15 mm..60 mm),")
+    m = mech.Mechanism.from_dsl(text)
+    r = m.size(2.5, qd=30.0, loads={"P": (-3000.0, 0.0)}, steps=72, irregularity=0.05)
+    assert r["converged"] and r["unmet"] == []
+    assert len(r["worst"]) >= 2 and r["worst"][-1] >= 2.5
+    assert np.all(r["flywheel"] > 0) and "free(" not in r["text"]
+    width = r["dims"]["crank.width"]
+    assert 0.015 < width < 0.06
+    sized = mech.Mechanism.from_dsl(r["text"])
+    again = sized.strength(qd=30.0, loads={"P": (-3000.0, 0.0)}, steps=72)
+    assert np.all(again["safety"] >= 2.5 * (1 - 1e-9))
+
+
 def test_check_errors_are_exceptions_with_the_location():
     text = (ROOT / "examples" / "mech" / "engine.mech").read_text().replace("circle_line(A, l,", "circle_line(A, rod,")
     with pytest.raises(mech.InvalidMechanism) as e:

@@ -238,7 +238,8 @@ pub fn free_dimensions(text: &str, origin: Option<&str>) -> Result<Vec<FreeDimen
         let mut out = Vec::new();
         for link in &desc.links {
             let Some(shape) = &link.shape else { continue };
-            let names = crate::model::shape::Shape::dimension_names(&shape.keyword).unwrap_or_default();
+            let names =
+                crate::model::shape::Shape::dimension_names(&shape.keyword).unwrap_or_default();
             for (free, name) in shape.free.iter().zip(names) {
                 if let Some(f) = free {
                     let start = crate::front::report::offset(text, f.span.start());

@@ -98,12 +98,14 @@ struct Sizer<'a, F> {
 
 impl<F: Fn(f64) -> Result<Loads, MechError>> Sizer<'_, F> {
     fn analyse(&mut self) -> Result<Strength, MechError> {
-        self.m.strength(self.req.speed, self.req.period, self.req.steps, &self.loads)
+        self.m
+            .strength(self.req.speed, self.req.period, self.req.steps, &self.loads)
     }
 
     fn set(&mut self, k: usize, value: f64) -> Result<(), MechError> {
         let f = &self.free[k];
-        self.m.set_param(&format!("links.{}.shape.{}", f.link, f.name), &[value])
+        self.m
+            .set_param(&format!("links.{}.shape.{}", f.link, f.name), &[value])
     }
 
     /// The smallest factor of the members a link's dimensions act on: its own checks and
@@ -121,7 +123,10 @@ impl<F: Fn(f64) -> Result<Loads, MechError>> Sizer<'_, F> {
             })
             .map(|j| format!("{}.pin", j.name))
             .collect();
-        let own = s.member(link).and_then(|m| m.governing()).map_or(f64::INFINITY, |c| c.safety);
+        let own = s
+            .member(link)
+            .and_then(|m| m.governing())
+            .map_or(f64::INFINITY, |c| c.safety);
         let bearing = pins
             .iter()
             .filter_map(|p| s.member(p)?.check(crate::strength::Criterion::Bearing))
@@ -132,7 +137,12 @@ impl<F: Fn(f64) -> Result<Loads, MechError>> Sizer<'_, F> {
 
     fn mass_of(&self, link: &str) -> f64 {
         let model = self.m.model();
-        model.links.iter().find(|l| l.name == link).and_then(|l| l.mass).unwrap_or(0.0)
+        model
+            .links
+            .iter()
+            .find(|l| l.name == link)
+            .and_then(|l| l.mass)
+            .unwrap_or(0.0)
     }
 
     /// The smallest value of free dimension `k` (others held) that meets S, on the grid;
@@ -214,9 +224,9 @@ impl<F: Fn(f64) -> Result<Loads, MechError>> Sizer<'_, F> {
     fn row(&mut self, dims: &[f64], s: &Strength) -> Result<Iteration, MechError> {
         let model = self.m.model();
         let total_mass = model.links.iter().skip(1).filter_map(|l| l.mass).sum();
-        let (worst_member, worst) = s
-            .worst()
-            .map_or((String::new(), f64::INFINITY), |(m, c)| (m.name.clone(), c.safety));
+        let (worst_member, worst) = s.worst().map_or((String::new(), f64::INFINITY), |(m, c)| {
+            (m.name.clone(), c.safety)
+        });
         let flywheel = match self.req.irregularity {
             Some(eps) => {
                 let cycle = Cycle::new(&self.m, 0.0, self.req.period, &[], &self.loads, |_| 0.0)?;
@@ -332,7 +342,10 @@ pub fn write_sized(text: &str, free: &[FreeDimension], dims: &[f64]) -> String {
         let f = &free[k];
         let step_mm = grid_step(f.lo, f.hi) * 1e3;
         let decimals = (-step_mm.log10()).ceil().max(0.0) as usize;
-        out.replace_range(f.range.clone(), &format!("{:.*} mm", decimals, dims[k] * 1e3));
+        out.replace_range(
+            f.range.clone(),
+            &format!("{:.*} mm", decimals, dims[k] * 1e3),
+        );
     }
     out
 }
@@ -346,7 +359,10 @@ mod tests {
         assert!((grid_step(0.010, 0.040) - 1e-4).abs() < 1e-18);
         assert!((grid_step(0.002, 0.005) - 1e-5).abs() < 1e-18);
         assert!((on_grid(0.02341, 1e-4, 0.01, 0.04) - 0.0235).abs() < 1e-15);
-        assert!((on_grid(0.0235, 1e-4, 0.01, 0.04) - 0.0235).abs() < 1e-15, "on the grid: kept");
+        assert!(
+            (on_grid(0.0235, 1e-4, 0.01, 0.04) - 0.0235).abs() < 1e-15,
+            "on the grid: kept"
+        );
         assert_eq!(on_grid(0.05, 1e-4, 0.01, 0.04), 0.04);
     }
 }

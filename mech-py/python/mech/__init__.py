@@ -513,6 +513,46 @@ class Mechanism:
             out[k] = bool(v) if k == "within_rating" else v
         return out
 
+    def strength(self, qd=0.0, loads=None, steps=360, period=2 * np.pi, all=False):
+        """The strength of every member over one period at the constant input speed ``qd``
+        (rad/s; 0 checks the loads and gravity alone), from the reactions at ``steps``
+        instants. A member is a link declared by a beam ``shape:`` with a ``material:``,
+        or a joint declared with a ``pin``. Returns a dict of arrays, one entry per member
+        (its governing criterion; with ``all=True`` one per criterion): ``member``
+        (``<link>`` or ``<joint>.pin``), ``criterion`` (``axial``, ``bending``, ``shear``,
+        ``bearing``, ``buckling``, ``fatigue``), ``stress_max``, ``stress_mean``,
+        ``stress_alt`` (Pa), ``safety`` (the smallest factor over the cycle) and ``q`` (rad,
+        where it is smallest)."""
+        members, criteria, rows = self._core.strength(
+            _number(qd, "qd"), _number(period, "period"), _count(steps, "steps"),
+            self._loads_of_q(loads), bool(all))
+        rows = np.array(rows, dtype=float).reshape(-1, 5)
+        out = {"member": np.array(members, dtype=object), "criterion": np.array(criteria, dtype=object)}
+        for k, name in enumerate(("stress_max", "stress_mean", "stress_alt", "safety", "q")):
+            out[name] = rows[:, k]
+        return out
+
+    def size(self, safety, qd=0.0, loads=None, steps=180, period=2 * np.pi, irregularity=None):
+        """Size the dimensions written ``free(LO..HI)`` in the mechanism's text so that every
+        member's factor of safety is at least ``safety``, re-running the dynamics with each
+        change until a fixed point (as ``mech size``). Returns a dict: the passes as arrays
+        ``total_mass`` (kg), ``peak_torque`` (N·m), ``flywheel`` (kg·m² for the
+        ``irregularity`` ε at the mean speed ``qd``; NaN without one) and ``worst``; ``dims``,
+        a dict ``"link.dimension"`` -> the sized value (m); ``text``, the sized DSL text (load
+        it with ``Mechanism(text)``); ``converged``; and ``unmet``, the members that cannot
+        meet the factor."""
+        eps = None if irregularity is None else _number(irregularity, "irregularity")
+        rows, dims, text, converged, unmet = self._core.size(
+            self._text, _number(safety, "safety"), _number(qd, "qd"), _number(period, "period"),
+            _count(steps, "steps"), eps, self._loads_of_q(loads))
+        rows = np.array(rows, dtype=float).reshape(-1, 4)
+        out = {name: rows[:, k] for k, name in enumerate(("total_mass", "peak_torque", "flywheel", "worst"))}
+        out["dims"] = {"%s.%s" % (link, name): value for link, name, value in dims}
+        out["text"] = text
+        out["converged"] = converged
+        out["unmet"] = list(unmet)
+        return out
+
     def cam_profile(self, name=None, points=360):
         """A cam's profile at ``points`` cam angles over a turn (``name``: the cam joint;
         omitted, the mechanism's only cam), for drawing and manufacturing. Returns a dict

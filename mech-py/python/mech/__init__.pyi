@@ -72,6 +72,10 @@ class Mechanism:
         """The motion under a motor: ``t``, ``q``, ``qd``, ``torque``."""
     def regime(self, motor: str, ratio: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., flywheel: float = ..., period: float = ..., start: float = ..., points: int = ...) -> Dict[str, Any]:
         """The periodic steady regime under a motor: the table and the motor check."""
+    def strength(self, qd: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., steps: int = ..., period: float = ..., all: bool = ...) -> Dict[str, np.ndarray]:
+        """The strength of every member over the cycle: member, criterion, stresses, safety, q."""
+    def size(self, safety: float, qd: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., steps: int = ..., period: float = ..., irregularity: Optional[float] = ...) -> Dict[str, Any]:
+        """Size the free(LO..HI) dimensions: the passes, the dims, the sized text."""
     def flywheel(self, period: float, speed: float, irregularity: float, loads: Optional[Mapping[str, LoadValue]] = ..., start: float = ..., breakpoints: Sequence[float] = ..., driver: Union[None, float, Callable[[float], float]] = ..., rtol: float = ...) -> Dict[str, float]:
         """ΔE, the approximate and the exact (Wittenbauer) flywheel inertia, the simulated speeds."""
     def cam_profile(self, name: Optional[str] = ..., points: int = ...) -> Dict[str, Any]:

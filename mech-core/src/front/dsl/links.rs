@@ -155,7 +155,10 @@ fn free_range(input: ParseStream, scope: &Scope, what: &str) -> syn::Result<Free
     let paren = parenthesized!(range in input);
     let lo = scope.scalar(&range, Dim::LENGTH, what)?;
     range.parse::<Token![..]>().map_err(|e| {
-        syn::Error::new(e.span(), format!("{what}: write its range as `free(LO..HI)`, e.g. `free(10 mm..40 mm)`"))
+        syn::Error::new(
+            e.span(),
+            format!("{what}: write its range as `free(LO..HI)`, e.g. `free(10 mm..40 mm)`"),
+        )
     })?;
     let hi = scope.scalar(&range, Dim::LENGTH, what)?;
     if !(lo.value > 0.0 && hi.value > lo.value && hi.value.is_finite()) {
