@@ -1,5 +1,7 @@
 //! Design: the machine's numbers chosen rather than checked. [`sizing`]: the dimensions
 //! written `free(LO..HI)` chosen so that every member meets a factor of safety, the
-//! dynamics re-run with each change (the design cycle of `docs/theory.md`).
+//! dynamics re-run with each change (the design cycle of `docs/theory.md`); [`synthesis`]:
+//! four-bars from the motion they must make.
 
 pub mod sizing;
+pub mod synthesis;

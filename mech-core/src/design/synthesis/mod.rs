@@ -1,0 +1,8 @@
+//! Dimensional synthesis of four-bars: from targets (a path, pairs of input and output
+//! angles, poses of the coupler) to a [`four_bar::FourBar`] that writes itself as a
+//! mechanism file, and the [`error`] a path is met with (SPEC §3f).
+
+pub mod error;
+pub mod four_bar;
+
+pub use four_bar::{FourBar, FourBarPose};
