@@ -20,6 +20,7 @@ pub mod import;
 pub mod limits;
 pub mod loads;
 pub mod motor;
+pub mod optimize;
 pub mod output;
 pub mod pmks;
 pub mod quantity;

@@ -7,7 +7,7 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    cam, check, draw, flywheel, import, limits, quantity, regime, report, simulate, size, solve,
+    cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, simulate, size, solve,
     source, strength, Failure,
 };
 use std::io::Write;
@@ -111,6 +111,10 @@ enum Command {
     /// the passes (total mass, peak driver torque, flywheel, worst factor) and write the
     /// sized file.
     Size(size::SizeArgs),
+    /// Vary named numbers of the file (constants, link masses) within bounds to minimise
+    /// an objective of its dynamics (peak or RMS driver torque, flywheel, a peak reaction,
+    /// the shaking force, a path) under constraints; print the history, write the file.
+    Optimize(optimize::OptimizeArgs),
     /// Draw the linkage at one input as SVG: links, pins, slider guides, ground hatching,
     /// point names.
     Draw(draw::DrawArgs),
@@ -221,6 +225,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Regime(args) => regime::run(args, stdout),
         Command::Strength(args) => strength::run(args, stdout),
         Command::Size(args) => size::run(args, stdout),
+        Command::Optimize(args) => optimize::run(args, stdout),
         Command::Draw(args) => draw::draw(args),
         Command::Animate(args) => draw::animate(args),
         Command::Report(args) => report::run(args),

@@ -1,7 +1,10 @@
 //! Design: the machine's numbers chosen rather than checked. [`sizing`]: the dimensions
 //! written `free(LO..HI)` chosen so that every member meets a factor of safety, the
 //! dynamics re-run with each change (the design cycle of `docs/theory.md`); [`synthesis`]:
-//! four-bars from the motion they must make.
+//! four-bars from the motion they must make; [`optimize`]: any mechanism's named numbers
+//! varied against an objective of its dynamics, written back by [`rewrite`].
 
+pub mod optimize;
+pub mod rewrite;
 pub mod sizing;
 pub mod synthesis;

@@ -1,0 +1,170 @@
+//! A number of a mechanism's text found by name and written anew, so that a design tool
+//! (`mech optimize`) can hand back an ordinary mechanism file.
+//!
+//! Names: a constant of the `consts { .. }` block (`l`, or `consts.l`), and a link's
+//! `mass` or `inertia` (`links.crank.mass`). The value's text runs from after its `:` to
+//! the next `,` or closing brace at the same depth (brackets and parentheses nest;
+//! comments are skipped).
+
+use std::ops::Range;
+
+/// Calls `f` with each byte offset and character of `text[range]` outside `//` comments
+/// and the nesting depth there relative to the range's start (an opening bracket counts
+/// at the outer depth, a closing one at the outer depth too); stops when `f` says false.
+fn scan(text: &str, range: Range<usize>, mut f: impl FnMut(usize, char, i32) -> bool) {
+    let bytes = &text[range.clone()];
+    let mut depth = 0;
+    let mut it = bytes.char_indices().peekable();
+    while let Some((i, c)) = it.next() {
+        if c == '/' && it.peek().is_some_and(|&(_, n)| n == '/') {
+            for (_, n) in it.by_ref() {
+                if n == '\n' {
+                    break;
+                }
+            }
+            continue;
+        }
+        let before = depth;
+        match c {
+            '(' | '[' | '{' => depth += 1,
+            ')' | ']' | '}' => depth -= 1,
+            _ => {}
+        }
+        if !f(range.start + i, c, before.min(depth)) {
+            return;
+        }
+    }
+}
+
+/// Whether `text[at..]` starts the word `word` (not inside a longer identifier).
+fn word_at(text: &str, at: usize, word: &str) -> bool {
+    let ident = |c: char| c.is_alphanumeric() || c == '_';
+    text[at..].starts_with(word)
+        && !text[..at].chars().next_back().is_some_and(ident)
+        && !text[at + word.len()..].chars().next().is_some_and(ident)
+}
+
+/// The body (inside the braces) of the first block of `range` that follows the words
+/// `head` (`consts`, `link crank`), outside comments.
+fn block(text: &str, range: Range<usize>, head: &[&str]) -> Option<Range<usize>> {
+    let mut found = None;
+    scan(text, range.clone(), |i, _, _| {
+        if word_at(text, i, head[0]) {
+            // The remaining words, then `{`.
+            let mut at = i + head[0].len();
+            for w in &head[1..] {
+                let skip = text[at..].len() - text[at..].trim_start().len();
+                at += skip;
+                if !word_at(text, at, w) {
+                    return true;
+                }
+                at += w.len();
+            }
+            let skip = text[at..].len() - text[at..].trim_start().len();
+            if text[at + skip..].starts_with('{') {
+                found = Some(at + skip + 1);
+                return false;
+            }
+        }
+        true
+    });
+    let start = found?;
+    let mut end = None;
+    scan(text, start..range.end, |i, c, depth| {
+        if c == '}' && depth < 0 {
+            end = Some(i);
+            return false;
+        }
+        true
+    });
+    Some(start..end?)
+}
+
+/// The value of the entry `key:` at depth 0 of the block body `body`.
+fn entry(text: &str, body: Range<usize>, key: &str) -> Option<Range<usize>> {
+    let mut start = None;
+    scan(text, body.clone(), |i, _, depth| {
+        if depth == 0 && word_at(text, i, key) {
+            let after = i + key.len();
+            let skip = text[after..].len() - text[after..].trim_start().len();
+            if text[after + skip..].starts_with(':') {
+                start = Some(after + skip + 1);
+                return false;
+            }
+        }
+        true
+    });
+    let start = start?;
+    let mut end = body.end;
+    scan(text, start..body.end, |i, c, depth| {
+        if depth == 0 && c == ',' {
+            end = i;
+            return false;
+        }
+        true
+    });
+    // Trim the value's own surrounding white space.
+    let value = &text[start..end];
+    let lead = value.len() - value.trim_start().len();
+    Some(start + lead..start + value.trim_end().len())
+}
+
+/// The bytes of the value named `name` in `text` (a constant, or `links.<l>.mass` /
+/// `links.<l>.inertia`), if it is written there.
+pub fn find(text: &str, name: &str) -> Option<Range<usize>> {
+    let whole = 0..text.len();
+    let parts: Vec<&str> = name.split('.').collect();
+    match parts.as_slice() {
+        ["links", link, key @ ("mass" | "inertia")] => {
+            let body = block(text, whole, &["link", link])?;
+            entry(text, body, key)
+        }
+        ["consts", c] | [c] => {
+            let body = block(text, whole, &["consts"])?;
+            entry(text, body, c)
+        }
+        _ => None,
+    }
+}
+
+/// `text` with each (range, replacement) written in (ranges from [`find`], disjoint).
+pub fn replace(text: &str, edits: &[(Range<usize>, String)]) -> String {
+    let mut order: Vec<&(Range<usize>, String)> = edits.iter().collect();
+    order.sort_by_key(|e| std::cmp::Reverse(e.0.start));
+    let mut out = text.to_string();
+    for (r, s) in order {
+        out.replace_range(r.clone(), s);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TEXT: &str = "pub struct E {
+    consts { stroke: 86 mm, r: stroke / 2, l: 143 mm, e: 6 mm },
+    ground { O2: (0.0, 0.0) },
+    link crank {
+        points { O2, A: O2 + polar(r, 30 deg) },
+        // the cg 5 mm behind: mass: 9
+        mass: 3.6 kg, inertia: 6.8e-3 kg_m2, cg: along(-5 mm),
+    },
+    link crank2 { points { A }, mass: 1.0 },
+}";
+
+    #[test]
+    fn constants_and_link_values_are_found_by_name() {
+        let at = |n: &str| find(TEXT, n).map(|r| &TEXT[r]);
+        assert_eq!(at("l"), Some("143 mm"));
+        assert_eq!(at("consts.r"), Some("stroke / 2"));
+        assert_eq!(at("e"), Some("6 mm"));
+        assert_eq!(at("links.crank.mass"), Some("3.6 kg"));
+        assert_eq!(at("links.crank.inertia"), Some("6.8e-3 kg_m2"));
+        assert_eq!(at("links.crank2.mass"), Some("1.0"));
+        assert_eq!(at("links.rod.mass"), None);
+        assert_eq!(at("stroke2"), None);
+        let out = replace(TEXT, &[(find(TEXT, "l").unwrap(), "150 mm".into()), (find(TEXT, "links.crank.mass").unwrap(), "4 kg".into())]);
+        assert!(out.contains("l: 150 mm, e: 6 mm") && out.contains("mass: 4 kg, inertia"), "{out}");
+    }
+}
