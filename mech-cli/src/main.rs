@@ -98,7 +98,8 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// The periodic steady regime under a motor (one revolute input): the mean speed, the
     /// irregularity ε, the period in time, the motor's duty and the table q, q̇ over one
-    /// period, found directly (shooting on ω(q0 + λ) = ω(q0)).
+    /// period, found directly (shooting on ω(q0 + λ) = ω(q0)); with --stop, the coast or
+    /// braked stop from it: the time to rest, the angle turned, the table t, q, q̇.
     Regime(regime::RegimeArgs),
     /// Draw the linkage at one input as SVG: links, pins, slider guides, ground hatching,
     /// point names.
