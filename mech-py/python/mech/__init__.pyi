@@ -72,6 +72,8 @@ class Mechanism:
         """The motion under a motor: ``t``, ``q``, ``qd``, ``torque``."""
     def regime(self, motor: str, ratio: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., flywheel: float = ..., period: float = ..., start: float = ..., points: int = ...) -> Dict[str, Any]:
         """The periodic steady regime under a motor: the table and the motor check."""
+    def stop(self, qd0: float, brake: float = ..., q0: float = ..., dt: Optional[float] = ..., t_max: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., flywheel: float = ..., points: int = ...) -> Dict[str, Any]:
+        """The coast or braked stop with the motor off: t, q, qd, torque, stop_time, stop_angle."""
     def flywheel(self, period: float, speed: float, irregularity: float, loads: Optional[Mapping[str, LoadValue]] = ..., start: float = ..., breakpoints: Sequence[float] = ..., driver: Union[None, float, Callable[[float], float]] = ..., rtol: float = ...) -> Dict[str, float]:
         """ΔE, the approximate and the exact (Wittenbauer) flywheel inertia, the simulated speeds."""
     def cam_profile(self, name: Optional[str] = ..., points: int = ...) -> Dict[str, Any]:
