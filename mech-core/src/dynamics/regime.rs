@@ -483,8 +483,10 @@ impl<'a, M: OneDof> Drive<'a, M> {
         // The same right-hand side again (a closure of shared references: Copy), now sampled.
         let mut method = Dop853::new(RTOL, RTOL * qd0);
         ode::sample(&mut method, rhs, 0.0, [q0, qd0], &times, &mut out)?;
+        // The last row is the event itself: at rest (q̇ = 0 there, not its located root's
+        // rounding, a few ulps either side).
         let last = out.len() - 1;
-        out[last] = end.y;
+        out[last] = [end.y[0], 0.0];
         let run = self.table(times, &out, |_| -brake);
         Ok(Stop {
             time: end.t,
