@@ -48,7 +48,7 @@ pub use mech_core::kernel::kinetostatics::{
 };
 pub use mech_core::kernel::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
 pub use mech_core::solvers::instance::{
-    DamperParams, LinkParams, RotaryDamperParams, SpringParams, TorsionSpringParams,
+    DamperParams, LinkParams, RotaryDamperParams, ShapeParams, SpringParams, TorsionSpringParams,
 };
 pub use mech_core::solvers::traits::{DeterminateReactions, Machine, OneDof};
 pub use mech_core::solvers::zhukovski::Reduced;

@@ -184,6 +184,59 @@ fn a_braked_stop_and_a_coast_that_never_ends() {
     assert!(e.contains("still moving") && e.contains("brake"), "{e}");
 }
 
+/// The stop in even steps of its own length (`Drive::stop_steps`, what `mech regime --stop`
+/// and Python's `Mechanism.stop` tabulate): under a brake B a constant inertia I decelerates
+/// uniformly, q̇ = ω₀ − (B/I) t and q = ω₀ t − (B/(2I)) t², at every row (to 1e-10 of ω₀ and
+/// of the travel); the motor is off, whichever it is.
+#[test]
+fn a_stop_in_even_steps_follows_the_uniform_deceleration() {
+    let m = disc(0.05);
+    let (w0, brake, inertia) = (40.0, 0.5, 0.05);
+    let drive = Drive::new(&m, Motor::constant(0.0).unwrap(), |_| Ok(m.loads()));
+    let stop = drive.stop_steps(0.3, w0, brake, 8, 100.0).unwrap();
+    let ts = inertia * w0 / brake;
+    assert!((stop.time - ts).abs() < 1e-10 * ts, "{}", stop.time);
+    assert_eq!(stop.run.t.len(), 9);
+    for k in 0..=8 {
+        let t = ts * k as f64 / 8.0;
+        assert!(
+            (stop.run.t[k] - t).abs() < 1e-10 * ts,
+            "t[{k}] = {}",
+            stop.run.t[k]
+        );
+        let (qd, q) = (
+            w0 - brake / inertia * t,
+            w0 * t - brake / (2.0 * inertia) * t * t,
+        );
+        assert!(
+            (stop.run.qd[k] - qd).abs() < 1e-10 * w0,
+            "q̇ at {t}: {} vs {qd}",
+            stop.run.qd[k]
+        );
+        assert!(
+            (stop.run.q[k] - 0.3 - q).abs() < 1e-10 * 80.0,
+            "q at {t}: {} vs {q}",
+            stop.run.q[k]
+        );
+        assert_eq!(stop.run.torque[k], -brake);
+    }
+    // A DC motor in the drive changes nothing: it is off.
+    let dc = Drive::new(&m, Motor::dc(1.0, 10.0).unwrap(), |_| Ok(m.loads()));
+    assert_eq!(dc.stop_steps(0.3, w0, brake, 8, 100.0).unwrap(), stop);
+    for (steps, t_max, says) in [(0, 100.0, "1 to"), (8, -1.0, "t_max > 0")] {
+        let e = drive
+            .stop_steps(0.3, w0, brake, steps, t_max)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(says), "{e}");
+    }
+    let e = drive
+        .stop(0.0, w0, brake, 1e-9, 100.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("give a larger dt"), "{e}");
+}
+
 /// A motor too weak to start a machine is an error that names the numbers and the fix; a
 /// constant torque has no steady regime.
 #[test]

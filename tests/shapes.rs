@@ -240,3 +240,178 @@ fn pins_are_read_on_both_routes() {
     );
     assert_eq!(pin("B"), None);
 }
+
+/// The stadium bar of thickness T and width W = 2r over a length L, by parts written out
+/// here: the rectangle L × W about its centre, each half disc about its own centroid
+/// (e = 4r/(3π) out from its flat side, I = m r²/2 − m e²) moved out to L/2 + e by the
+/// parallel axes: (m, I_G) = (ρ T (W L + π W²/4), ...).
+fn stadium(rho: f64, t: f64, w: f64, l: f64) -> (f64, f64) {
+    let r = w / 2.0;
+    let (m_rect, m_half) = (rho * t * w * l, rho * t * PI * r * r / 2.0);
+    let e = 4.0 * r / (3.0 * PI);
+    let half = m_half * (r * r / 2.0 - e * e) + m_half * (l / 2.0 + e).powi(2);
+    (
+        m_rect + 2.0 * m_half,
+        m_rect * (l * l + w * w) / 12.0 + 2.0 * half,
+    )
+}
+
+/// The generated struct and the run-time mechanism after the same change agree on every
+/// link's mass, I_G and cg and on the motor torque by d'Alembert at a few angles; returns
+/// the crank's (mass, I_G, cg) and the torque at q = 0.7.
+fn same_on_both_routes(g: &Shaped, r: &mech::Mechanism) -> (f64, f64, [f64; 2], f64) {
+    let p = g.params();
+    for (name, x) in [
+        ("crank", &p.links.crank),
+        ("coupler", &p.links.coupler),
+        ("rocker", &p.links.rocker),
+    ] {
+        let k = r.model().links.iter().position(|l| l.name == name).unwrap();
+        let l = &r.model().links[k];
+        close(x.mass, l.mass.unwrap(), &format!("{name} mass"));
+        close(x.inertia, l.inertia, &format!("{name} I_G"));
+        for (a, b) in [(x.cg.x, l.cg[0]), (x.cg.y, l.cg[1])] {
+            assert!(
+                (a - b).abs() <= 1e-12 * l.cg[0].hypot(l.cg[1]),
+                "{name} cg: {a} vs {b}"
+            );
+        }
+    }
+    let mut at = 0.0;
+    for q in [0.7, 2.1, 4.4] {
+        let d = g
+            .kinetostatics(
+                &g.kinematics(q, 12.0, -3.0).unwrap(),
+                &ShapedLoads::default(),
+            )
+            .unwrap()
+            .driver;
+        let motion = r.kinematics(&[q], &[12.0], &[-3.0]).unwrap();
+        let rd = r.kinetostatics(&motion, &r.loads()).unwrap().driver[0];
+        close(d, rd, &format!("driver torque at q = {q}"));
+        if q == 0.7 {
+            at = d;
+        }
+    }
+    let c = &p.links.crank;
+    (c.mass, c.inertia, [c.cg.x, c.cg.y], at)
+}
+
+/// A shaped link's dimensions through the generated `Params` (`shapes`): a new bar width,
+/// then a moved point, then another density go through `from_params`, which recomputes the
+/// mass, I_G and cg with `mech_core`'s function; each equals the run-time
+/// `Mechanism::set_param` of the same change and the closed form of the stadium (to 1e-12),
+/// and the motor torque by d'Alembert follows.
+#[test]
+fn from_params_recomputes_the_mass_of_a_shaped_link() {
+    let source = include_str!("shapes.rs");
+    let mut r = mech::Mechanism::from_rust_source(source, "Shaped").unwrap();
+    let drawn = same_on_both_routes(&Shaped::new(), &r);
+    let (m, i) = stadium(7850.0, 0.008, 0.02, 0.1);
+    close(drawn.0, m, "drawn mass");
+    close(drawn.1, i, "drawn I_G");
+
+    // A wider bar: the mass, I_G and the torque change, the cg stays at the middle.
+    let mut p = Shaped::new().params().clone();
+    p.shapes.crank.set_dimension("width", 0.03).unwrap();
+    let g = Shaped::from_params(p).unwrap();
+    r.set_param("links.crank.shape.width", &[0.03]).unwrap();
+    let wider = same_on_both_routes(&g, &r);
+    let (m, i) = stadium(7850.0, 0.008, 0.03, 0.1);
+    close(wider.0, m, "wider mass");
+    close(wider.1, i, "wider I_G");
+    assert_eq!(wider.2, [0.0, 0.05], "the cg at the middle of O2 A");
+    assert!(
+        (wider.3 - drawn.3).abs() > 1e-3 * drawn.3.abs(),
+        "{} vs {}",
+        wider.3,
+        drawn.3
+    );
+
+    // A moved crank pin: the bar is longer, its cg moves with it; the coupler plate
+    // (A, B, P) changes too.
+    let mut p = g.params().clone();
+    p.points.A = Vector2::new(0.0, 0.12);
+    let g = Shaped::from_params(p).unwrap();
+    r.set_param("points.A", &[0.0, 0.12]).unwrap();
+    let longer = same_on_both_routes(&g, &r);
+    let (m, i) = stadium(7850.0, 0.008, 0.03, 0.12);
+    close(longer.0, m, "longer mass");
+    close(longer.1, i, "longer I_G");
+    close(longer.2[1], 0.06, "the cg follows");
+
+    // Another material: the mass and I_G scale with ρ (the run-time route has no
+    // parameter for the density: the closed form alone).
+    let mut p = g.params().clone();
+    p.shapes.crank.material = mech::model::shape::material_named("aluminium").unwrap();
+    let g = Shaped::from_params(p).unwrap();
+    let (m, i) = stadium(2700.0, 0.008, 0.03, 0.12);
+    close(g.params().links.crank.mass, m, "aluminium mass");
+    close(g.params().links.crank.inertia, i, "aluminium I_G");
+}
+
+/// What `from_params` refuses on a shaped link, each with the fix: a mass written by hand
+/// (the shape gives it), a non-positive dimension, a dimension the shape does not have, a
+/// density that is not positive, points that cannot carry the shape.
+#[test]
+fn from_params_refuses_numbers_the_shape_gives() {
+    let p = Shaped::new().params().clone();
+    let mut bad = p.clone();
+    bad.links.crank.mass = 1.0;
+    let e = Shaped::from_params(bad).unwrap_err().to_string();
+    assert!(
+        e.contains("link `crank` is declared by its shape") && e.contains("`shapes.crank`"),
+        "{e}"
+    );
+    let mut bad = p.clone();
+    bad.links.coupler.cg.x += 1e-3;
+    let e = Shaped::from_params(bad).unwrap_err().to_string();
+    assert!(e.contains("link `coupler`"), "{e}");
+    // The flywheel of a shaped link stays a parameter.
+    let mut fly = p.clone();
+    fly.links.crank.flywheel = 0.01;
+    assert!(Shaped::from_params(fly).is_ok());
+
+    let mut bad = p.clone();
+    let e = bad
+        .shapes
+        .crank
+        .set_dimension("width", -0.01)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("positive length"), "{e}");
+    assert_eq!(bad.shapes.crank, p.shapes.crank, "unchanged on error");
+    let e = bad
+        .shapes
+        .crank
+        .set_dimension("diameter", 0.01)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("a `bar` has width, thickness"), "{e}");
+    bad.shapes.crank.shape = mech::model::shape::Shape::Bar {
+        width: 0.0,
+        thickness: 0.008,
+    };
+    let e = Shaped::from_params(bad).unwrap_err().to_string();
+    assert!(
+        e.contains("link `crank`") && e.contains("positive length"),
+        "{e}"
+    );
+
+    let mut bad = p.clone();
+    bad.shapes.rocker.material.density = -4430.0;
+    let e = Shaped::from_params(bad).unwrap_err().to_string();
+    assert!(
+        e.contains("link `rocker`") && e.contains("shapes.rocker.material.density"),
+        "{e}"
+    );
+
+    // A plate is a polygon: the crank's two points enclose no area.
+    let mut bad = p.clone();
+    bad.shapes.crank.shape = mech::model::shape::Shape::Plate { thickness: 0.008 };
+    let e = Shaped::from_params(bad).unwrap_err().to_string();
+    assert!(
+        e.contains("link `crank`") && e.contains("at least three"),
+        "{e}"
+    );
+}

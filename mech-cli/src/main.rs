@@ -7,8 +7,8 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, simulate, size, solve,
-    source, strength, Failure,
+    cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, simulate, size,
+    solve, source, strength, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -99,7 +99,8 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// The periodic steady regime under a motor (one revolute input): the mean speed, the
     /// irregularity ε, the period in time, the motor's duty and the table q, q̇ over one
-    /// period, found directly (shooting on ω(q0 + λ) = ω(q0)).
+    /// period, found directly (shooting on ω(q0 + λ) = ω(q0)); with --stop, the coast or
+    /// braked stop from it: the time to rest, the angle turned, the table t, q, q̇.
     Regime(regime::RegimeArgs),
     /// The strength of every member over the cycle at a constant input speed: one row per
     /// link (a beam `shape:` with a `material:`) or pin (`pin 12 mm`) with the criterion

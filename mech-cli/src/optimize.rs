@@ -66,28 +66,31 @@ fn variable(text: &str) -> Result<Variable, Failure> {
     };
     let (name, range) = text.split_once('=').ok_or_else(bad)?;
     let (lo, hi) = range.split_once("..").ok_or_else(bad)?;
-    let number = |s: &str| -> Result<(f64, Option<&'static mech_core::model::units::Unit>), Failure> {
-        let s = s.trim();
-        let split = s
-            .find(|c: char| c.is_alphabetic() && c != 'e' && c != 'E')
-            .unwrap_or(s.len());
-        let x: f64 = s[..split].trim().parse().map_err(|_| bad())?;
-        match s[split..].trim() {
-            "" => Ok((x, None)),
-            w => {
-                let u = mech_core::model::units::lookup(w).ok_or_else(|| {
-                    Failure::usage(format!(
-                        "--vary {text}: unknown unit `{w}`; the words are {}",
-                        mech_core::model::units::all_words()
-                    ))
-                })?;
-                Ok((x * u.factor, Some(u)))
+    let number =
+        |s: &str| -> Result<(f64, Option<&'static mech_core::model::units::Unit>), Failure> {
+            let s = s.trim();
+            let split = s
+                .find(|c: char| c.is_alphabetic() && c != 'e' && c != 'E')
+                .unwrap_or(s.len());
+            let x: f64 = s[..split].trim().parse().map_err(|_| bad())?;
+            match s[split..].trim() {
+                "" => Ok((x, None)),
+                w => {
+                    let u = mech_core::model::units::lookup(w).ok_or_else(|| {
+                        Failure::usage(format!(
+                            "--vary {text}: unknown unit `{w}`; the words are {}",
+                            mech_core::model::units::all_words()
+                        ))
+                    })?;
+                    Ok((x * u.factor, Some(u)))
+                }
             }
-        }
-    };
+        };
     let ((lo, u1), (hi, u2)) = (number(lo)?, number(hi)?);
     if u1.map(|u| u.dim) != u2.map(|u| u.dim) && u1.is_some() && u2.is_some() {
-        return Err(Failure::usage(format!("--vary {text}: the bounds have different units")));
+        return Err(Failure::usage(format!(
+            "--vary {text}: the bounds have different units"
+        )));
     }
     Ok(Variable {
         name: name.trim().to_string(),
@@ -101,18 +104,26 @@ fn variable(text: &str) -> Result<Variable, Failure> {
 fn targets(path: &str) -> Result<Vec<[f64; 2]>, MechError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| MechError::InvalidInput(format!("path({path}, ..): cannot read it: {e}")))?;
-    let mut r = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
+    let mut r = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
     let mut out = Vec::new();
     for row in r.records() {
         let row = row.map_err(|e| MechError::InvalidInput(format!("{path}: {e}")))?;
         let v: Vec<f64> = row.iter().take(2).filter_map(|x| x.parse().ok()).collect();
         match v.as_slice() {
             [x, y] if x.is_finite() && y.is_finite() => out.push([*x, *y]),
-            _ => return Err(MechError::InvalidInput(format!("{path}: each row is x,y in metres (finite numbers)"))),
+            _ => {
+                return Err(MechError::InvalidInput(format!(
+                    "{path}: each row is x,y in metres (finite numbers)"
+                )))
+            }
         }
     }
     if out.is_empty() {
-        return Err(MechError::InvalidInput(format!("{path}: no target; give a header x,y and one row per target")));
+        return Err(MechError::InvalidInput(format!(
+            "{path}: no target; give a header x,y and one row per target"
+        )));
     }
     Ok(out)
 }
@@ -122,7 +133,11 @@ pub fn run(args: OptimizeArgs, out: impl Write) -> Result<(), Failure> {
     let m = source::load(&args.file)?;
     let (text, _) = source::read(&args.file)?;
     limits::writable(&args.output, "-o", "mech")?;
-    let vars = args.vary.iter().map(|v| variable(v)).collect::<Result<Vec<_>, _>>()?;
+    let vars = args
+        .vary
+        .iter()
+        .map(|v| variable(v))
+        .collect::<Result<Vec<_>, _>>()?;
     let objective = Objective::parse(&args.minimize, args.irregularity, targets)?;
     let constraints = args
         .subject_to
@@ -139,7 +154,9 @@ pub fn run(args: OptimizeArgs, out: impl Write) -> Result<(), Failure> {
         seed: args.seed,
     };
     let started = std::time::Instant::now();
-    let best = optimize(&text, &vars, &objective, &constraints, settings, |m, q| Ok(loads.at(m, q)))?;
+    let best = optimize(&text, &vars, &objective, &constraints, settings, |m, q| {
+        Ok(loads.at(m, q))
+    })?;
     let names = ["evaluations", "objective"].map(String::from);
     let mut w = Writer::new(out, args.format, &names, &["1", ""])?;
     for (n, f) in &best.history {
@@ -156,7 +173,9 @@ pub fn run(args: OptimizeArgs, out: impl Write) -> Result<(), Failure> {
         best.evaluations as f64 / started.elapsed().as_secs_f64().max(1e-9)
     );
     for (v, x) in vars.iter().zip(&best.values) {
-        let shown = v.unit.map_or(format!("{x}"), |u| format!("{} {}", x / u.factor, u.word));
+        let shown = v
+            .unit
+            .map_or(format!("{x}"), |u| format!("{} {}", x / u.factor, u.word));
         eprintln!("  {} = {shown}", v.name);
     }
     limits::write_file(&args.output, &best.text, "-o", "mech")

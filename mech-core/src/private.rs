@@ -46,7 +46,8 @@ pub mod triad {
 }
 pub mod instance {
     pub use crate::solvers::instance::{
-        instance, DamperParams, LinkParams, RotaryDamperParams, SpringParams, TorsionSpringParams,
+        instance, update_shape, DamperParams, LinkParams, RotaryDamperParams, ShapeParams,
+        SpringParams, TorsionSpringParams,
     };
 }
 pub mod kinematics {
@@ -70,6 +71,9 @@ pub mod model {
     pub use crate::model::{
         CamSpec, Element, ElementKind, Joint, JointKind, Link, Load, Mesh, Model, Pin, Point,
     };
+}
+pub mod shape {
+    pub use crate::model::shape::{MassProperties, Material, Shape};
 }
 pub mod params {
     pub use crate::solvers::params::LinkTerms;

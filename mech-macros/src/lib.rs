@@ -171,6 +171,53 @@ mod snapshots {
         }
     "#;
 
+    /// A slider-crank whose crank is a steel bar and whose rod is a brass rod: the
+    /// `shapes` field of `Params` and `from_params` computing their mass properties with
+    /// `mech_core`'s function (`update_shape`), the bodies carried into the model.
+    const SHAPED_CRANK: &str = r#"
+        /// A slider-crank built from stock.
+        pub struct ShapedCrank {
+            ground { O: (0.0, 0.0) },
+            link crank { points { O, A: (0.05, 0.0) }, shape: bar(width 20 mm, thickness 8 mm), material: steel },
+            link rod { points { A, B: (0.25, 0.0) }, shape: rod(diameter 10 mm), material: brass },
+            link slider { points { B }, mass: 0.2, cg: B },
+            joints {
+                O: revolute(ground, crank),
+                A: revolute(crank, rod),
+                B: revolute(rod, slider),
+                guide: prismatic(ground, slider) at B along (1.0, 0.0),
+            },
+            input: O,
+        }
+    "#;
+
+    /// The params part of a machine with links declared by their shapes: each one's
+    /// mass properties computed in `from_params` by one call into `mech_core`, none by a
+    /// formula written in the expansion.
+    #[test]
+    fn shaped_crank_params() {
+        let parts = pretty_parts(SHAPED_CRANK);
+        let params = &parts
+            .iter()
+            .find(|(name, _)| *name == "params")
+            .expect("a params part")
+            .1;
+        insta::assert_snapshot!("shaped_crank_params", params);
+        let code = flat(&parts);
+        for call in [
+            "instance::update_shape(\"crank\",&mutp.links.crank,&mutp.shapes.crank,&[[p.points.O.x,p.points.O.y],[p.points.A.x,p.points.A.y]],)?;",
+            "instance::update_shape(\"rod\",&mutp.links.rod,&mutp.shapes.rod,&[[p.points.A.x,p.points.A.y],[p.points.B.x,p.points.B.y]],)?;",
+            "body:Some((p.shapes.crank.shape,p.shapes.crank.material))",
+        ] {
+            assert!(code.contains(call), "{call} in {params}");
+        }
+        assert!(!code.contains("update_shape(\"slider\""), "{params}");
+        assert!(
+            !code.contains("PI") && !code.contains("3.14159"),
+            "{params}"
+        );
+    }
+
     /// The plan part of a triad machine: its constant and the call of its kernel.
     #[test]
     fn stephenson_triad_plan() {

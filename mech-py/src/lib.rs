@@ -880,6 +880,43 @@ impl PyMechanism {
         Ok((rows, dims, written, sized.converged, sized.unmet))
     }
 
+    /// The stop from (q0, qd0 > 0) with the motor off and a constant brake torque against
+    /// the motion (`Drive::stop` every `dt` seconds, or `Drive::stop_steps` at `points` + 1
+    /// even times when `dt` is None): (t, q, qd, torque on the input, the time to rest, the
+    /// angle turned).
+    #[allow(clippy::too_many_arguments, clippy::type_complexity)]
+    #[pyo3(signature = (q0, qd0, brake, dt, points, t_max, loads, flywheel))]
+    fn stop(
+        &self,
+        py: Python<'_>,
+        q0: f64,
+        qd0: f64,
+        brake: f64,
+        dt: Option<f64>,
+        points: usize,
+        t_max: f64,
+        loads: PyObject,
+        flywheel: f64,
+    ) -> PyResult<(Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, f64, f64)> {
+        let m = self.one_revolute_input("a stop")?;
+        let raised = Raised::default();
+        let run = || -> Result<mech_core::dynamics::regime::Stop, CoreError> {
+            // The motor is off during a stop: the drive never asks it for a torque.
+            let drive = Drive::new(m, Motor::constant(0.0)?, loads_callable(py, m, &loads, &raised))
+                .flywheel(flywheel)?;
+            match dt {
+                Some(dt) => drive.stop(q0, qd0, brake, dt, t_max),
+                None => drive.stop_steps(q0, qd0, brake, points, t_max),
+            }
+        };
+        let out = run();
+        if let Some(e) = raised.borrow_mut().take() {
+            return Err(e);
+        }
+        let s = out.map_err(|e| py_err(py, e))?;
+        Ok((s.run.t, s.run.q, s.run.qd, s.run.torque, s.time, s.travel))
+    }
+
     /// A cam's profile at `points` cam angles over a turn (`mech::cam::Profile::row`):
     /// (the cam's name, the column names, the rows (points, 10), and the design figures:
     /// the largest pressure angle and where, the smallest convex radius and where, rad and

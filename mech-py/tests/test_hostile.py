@@ -580,3 +580,39 @@ def test_sweep_arguments():
     assert one["inertia"].shape == (1, 12) and np.array_equal(one["inertia"][0], m.reduced(Q)["inertia"])
     out = mech.sweep(m, [{"links.rod.mass": math.nan}, {"links.rod.mass": -1.0}, {"nope": 1.0}, {"links.rod.mass": 0.58}], Q)
     assert not out["ok"][:3].any() and out["ok"][3].all() and np.isnan(out["driver"][:3]).all()
+
+
+def test_stop_arguments():
+    """`Mechanism.stop`: bad numbers, counts and types are clear errors, a stop of too many
+    rows is refused before it is attempted, and a machine of two inputs has no stop."""
+    wheel = mech.Mechanism.from_dsl("""pub struct Wheel {
+        ground { O: (0.0, 0.0) },
+        link wheel { points { O, A: (0.1, 0.0) }, mass: 2.0, inertia: 0.03, cg: (0.0, 0.0) },
+        joints { O: revolute(ground, wheel) },
+        input: O,
+    }""")
+    for kwargs, phrase in [
+        ({"qd0": float("nan")}, "not a finite number"),
+        ({"qd0": 10.0, "brake": float("inf")}, "not a finite number"),
+        ({"qd0": -10.0, "brake": 1.0}, "q̇0 > 0"),
+        ({"qd0": 10.0, "brake": 1.0, "points": 0}, "1 to"),
+        ({"qd0": 10.0, "brake": 1.0, "points": 10**8}, "1 to"),
+        ({"qd0": 10.0, "brake": 1.0, "dt": 0.0}, "0 < dt < t_max"),
+        ({"qd0": 10.0, "brake": 1.0, "t_max": -1.0}, "t_max > 0"),
+    ]:
+        start = time.time()
+        with pytest.raises(mech.InvalidInput) as e:
+            wheel.stop(**kwargs)
+        assert phrase in str(e.value), (kwargs, str(e.value))
+        assert time.time() - start < QUICK
+    start = time.time()
+    with pytest.raises(mech.InvalidInput) as e:
+        wheel.stop(qd0=10.0, brake=1.0, dt=1e-12)
+    assert "give a larger dt" in str(e.value) and time.time() - start < QUICK
+    with pytest.raises(TypeError):
+        wheel.stop(qd0="fast")
+    with pytest.raises(TypeError):
+        wheel.stop(qd0=10.0, brake=1.0, points=2.5)
+    with pytest.raises(mech.InvalidInput) as e:
+        five_bar().stop(qd0=10.0, brake=1.0)
+    assert "one revolute input" in str(e.value)

@@ -167,6 +167,41 @@ def test_a_motor_that_cannot_start_the_machine_raises_naming_the_fix():
     assert "unknown motor" in str(e.value)
 
 
+WHEEL = """pub struct Wheel {
+    ground { O: (0.0, 0.0) },
+    link wheel { points { O, A: (0.1, 0.0) }, shape: disc(radius 100 mm, thickness 20 mm), material: steel },
+    joints { O: revolute(ground, wheel) },
+    input: O,
+}"""
+
+
+def test_a_braked_disc_stops_after_j_omega_over_the_brake():
+    """A lone crank that is a steel disc, no gravity: a constant inertia J = ρ T π R⁴ / 2
+    braked by B from ω0 stops after J ω0 / B having turned J ω0² / (2B), q̇ falling
+    linearly; coasting with no loss never stops (an error naming the brake)."""
+    m = mech.Mechanism.from_dsl(WHEEL)
+    j = 7850 * 0.020 * math.pi * 0.1 ** 4 / 2
+    w0, brake = 100.0, 0.5
+    s = m.stop(qd0=w0, brake=brake, q0=0.2, points=8)
+    t_stop, angle = j * w0 / brake, j * w0 ** 2 / (2 * brake)
+    assert abs(s["stop_time"] - t_stop) < 1e-10 * t_stop
+    assert abs(s["stop_angle"] - angle) < 1e-10 * angle
+    t = t_stop * np.arange(9) / 8
+    assert np.allclose(s["t"], t, rtol=0, atol=1e-10 * t_stop)
+    assert np.allclose(s["qd"], w0 - brake / j * t, rtol=0, atol=1e-10 * w0)
+    assert np.allclose(s["q"], 0.2 + w0 * t - brake / (2 * j) * t ** 2, rtol=0, atol=1e-10 * angle)
+    assert np.all(s["torque"] == -brake)
+    every = m.stop(qd0=w0, brake=brake, dt=0.5, t_max=60.0)
+    assert len(every["t"]) == 11 and every["t"][1] == 0.5 and every["t"][-1] == every["stop_time"]
+    assert abs(every["stop_time"] - t_stop) < 1e-10 * t_stop
+    with pytest.raises(mech.InvalidInput) as e:
+        m.stop(qd0=w0, t_max=5.0)
+    assert "still moving" in str(e.value) and "brake" in str(e.value)
+    with pytest.raises(mech.InvalidInput) as e:
+        m.stop(qd0=w0, brake=-1.0)
+    assert "brake" in str(e.value)
+
+
 def test_a_link_from_its_shape_and_material_and_a_new_width():
     """A disc crank of cast iron: I* = m R²/2 with m = ρ T π R² (no other moving mass);
     a new radius through set_param changes it; a shape without a material is refused."""

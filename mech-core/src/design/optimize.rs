@@ -138,7 +138,10 @@ impl Constraint {
             "grashof" => return Ok(Constraint::Grashof),
             _ => {}
         }
-        if let Some(rest) = t.strip_prefix("transmission").and_then(|r| r.trim().strip_prefix(">=")) {
+        if let Some(rest) = t
+            .strip_prefix("transmission")
+            .and_then(|r| r.trim().strip_prefix(">="))
+        {
             let r = rest.trim();
             let (num, scale) = match r.strip_suffix("deg") {
                 Some(n) => (n.trim(), std::f64::consts::PI / 180.0),
@@ -254,7 +257,8 @@ impl<F: Fn(&Mechanism, f64) -> Result<Loads, MechError>> Problem<'_, F> {
         let model = m.model();
         for c in self.constraints {
             if *c == Constraint::Grashof {
-                let d = four_bar_lengths(m).ok_or("grashof applies to a four-bar (four links, four revolute joints)")?;
+                let d = four_bar_lengths(m)
+                    .ok_or("grashof applies to a four-bar (four links, four revolute joints)")?;
                 let mut r = d;
                 r.sort_by(f64::total_cmp);
                 if r[0] + r[3] > r[1] + r[2] {
@@ -271,17 +275,27 @@ impl<F: Fn(&Mechanism, f64) -> Result<Loads, MechError>> Problem<'_, F> {
             return Err("transmission: no revolute joint pins a moving link to a rocker pinned to the ground".into());
         }
         let joint = match self.objective {
-            Objective::PeakReaction(j) => Some(model.joint_index(j).ok_or_else(|| format!("peak_reaction: no joint `{j}`"))?),
+            Objective::PeakReaction(j) => Some(
+                model
+                    .joint_index(j)
+                    .ok_or_else(|| format!("peak_reaction: no joint `{j}`"))?,
+            ),
             _ => None,
         };
         let point = match self.objective {
-            Objective::Path { point, .. } => Some(model.point_index(point).ok_or_else(|| format!("path: no point `{point}`"))?),
+            Objective::Path { point, .. } => Some(
+                model
+                    .point_index(point)
+                    .ok_or_else(|| format!("path: no point `{point}`"))?,
+            ),
             _ => None,
         };
         let (mut peak, mut sum2, mut curve) = (0.0f64, 0.0f64, Vec::new());
         for k in 0..s.steps {
             let q = s.period * k as f64 / s.steps as f64;
-            let motion = m.kinematics(&[q], &[s.speed], &[0.0]).map_err(|_| "assembles".to_string())?;
+            let motion = m
+                .kinematics(&[q], &[s.speed], &[0.0])
+                .map_err(|_| "assembles".to_string())?;
             if let (Some(min), Some(outs)) = (transmission, &outputs) {
                 for &(j, l1, l2) in outs {
                     let mu = line_angle(m, &motion, j, l1, l2);
@@ -293,7 +307,9 @@ impl<F: Fn(&Mechanism, f64) -> Result<Loads, MechError>> Problem<'_, F> {
             match self.objective {
                 Objective::PeakDriver | Objective::RmsDriver | Objective::PeakReaction(_) => {
                     let loads = (self.loads)(m, q).map_err(|e| e.to_string())?;
-                    let f = m.kinetostatics(&motion, &loads).map_err(|e| e.to_string())?;
+                    let f = m
+                        .kinetostatics(&motion, &loads)
+                        .map_err(|e| e.to_string())?;
                     let v = match joint {
                         Some(j) => f.joints[j].force.norm(),
                         None => f.driver[0],
@@ -328,9 +344,13 @@ impl<F: Fn(&Mechanism, f64) -> Result<Loads, MechError>> Problem<'_, F> {
                 })
                 .sum(),
             Objective::Flywheel { irregularity } => {
-                let cycle = Cycle::new(m, 0.0, s.period, &[], |q| (self.loads)(m, q), |_| 0.0).map_err(|e| e.to_string())?;
+                let cycle = Cycle::new(m, 0.0, s.period, &[], |q| (self.loads)(m, q), |_| 0.0)
+                    .map_err(|e| e.to_string())?;
                 let (cycle, _) = cycle.balanced();
-                cycle.wittenbauer(s.speed, *irregularity).map_err(|e| e.to_string())?.inertia
+                cycle
+                    .wittenbauer(s.speed, *irregularity)
+                    .map_err(|e| e.to_string())?
+                    .inertia
             }
         })
     }
@@ -339,12 +359,17 @@ impl<F: Fn(&Mechanism, f64) -> Result<Loads, MechError>> Problem<'_, F> {
 /// A four-bar's joint distances (frame, crank, coupler, rocker), `None` for another machine.
 fn four_bar_lengths(m: &Mechanism) -> Option<[f64; 4]> {
     let model = m.model();
-    if model.links.len() != 4 || model.joints.len() != 4 || model.joints.iter().any(|j| j.kind != JointKind::Revolute) {
+    if model.links.len() != 4
+        || model.joints.len() != 4
+        || model.joints.iter().any(|j| j.kind != JointKind::Revolute)
+    {
         return None;
     }
     let at = |j: usize| V2::from(model.points[model.joints[j].point].pos);
     let link_len = |l: usize| {
-        let js: Vec<usize> = (0..4).filter(|&j| model.joints[j].a == l || model.joints[j].b == l).collect();
+        let js: Vec<usize> = (0..4)
+            .filter(|&j| model.joints[j].a == l || model.joints[j].b == l)
+            .collect();
         (js.len() == 2).then(|| (at(js[0]) - at(js[1])).norm())
     };
     Some([link_len(0)?, link_len(1)?, link_len(2)?, link_len(3)?])
@@ -356,7 +381,11 @@ fn output_joints(m: &Mechanism) -> Vec<(usize, usize, usize)> {
     let model = m.model();
     let input_link = model.joints[model.inputs[0]].b;
     let grounded = |l: usize| {
-        l != 0 && l != input_link && model.joints.iter().any(|j| j.kind == JointKind::Revolute && (j.a == 0 || j.b == 0) && (j.a == l || j.b == l))
+        l != 0
+            && l != input_link
+            && model.joints.iter().any(|j| {
+                j.kind == JointKind::Revolute && (j.a == 0 || j.b == 0) && (j.a == l || j.b == l)
+            })
     };
     model
         .joints
@@ -373,7 +402,13 @@ fn output_joints(m: &Mechanism) -> Vec<(usize, usize, usize)> {
 
 /// The angle (rad, folded into [0, π/2]) at joint `j` between the lines of links `l1`
 /// and `l2`: each from the joint to the link's other joint.
-fn line_angle(m: &Mechanism, motion: &crate::runtime::Motion, j: usize, l1: usize, l2: usize) -> f64 {
+fn line_angle(
+    m: &Mechanism,
+    motion: &crate::runtime::Motion,
+    j: usize,
+    l1: usize,
+    l2: usize,
+) -> f64 {
     let model = m.model();
     let p = motion.points[model.joints[j].point].pos;
     let other = |l: usize| {
@@ -386,7 +421,9 @@ fn line_angle(m: &Mechanism, motion: &crate::runtime::Motion, j: usize, l1: usiz
             .unwrap_or_else(V2::zeros)
     };
     let (u, w) = (other(l1), other(l2));
-    let mu = crate::kernel::link_state::cross(u, w).abs().atan2(u.dot(&w));
+    let mu = crate::kernel::link_state::cross(u, w)
+        .abs()
+        .atan2(u.dot(&w));
     mu.min(std::f64::consts::PI - mu)
 }
 
@@ -410,7 +447,10 @@ pub fn optimize(
     let mut ranges = Vec::new();
     for v in vars {
         if !(v.lo.is_finite() && v.hi.is_finite() && v.lo < v.hi) {
-            return Err(MechError::InvalidInput(format!("--vary {}: give finite bounds LO < HI, got {}..{}", v.name, v.lo, v.hi)));
+            return Err(MechError::InvalidInput(format!(
+                "--vary {}: give finite bounds LO < HI, got {}..{}",
+                v.name, v.lo, v.hi
+            )));
         }
         ranges.push(rewrite::find(text, &v.name).ok_or_else(|| {
             MechError::InvalidInput(format!(
@@ -422,11 +462,17 @@ pub fn optimize(
     let m0 = Mechanism::from_dsl(text)?;
     let model = m0.model();
     if model.inputs.len() != 1 || model.joints[model.inputs[0]].kind != JointKind::Revolute {
-        return Err(MechError::InvalidInput("optimisation turns one revolute input through its cycle".into()));
+        return Err(MechError::InvalidInput(
+            "optimisation turns one revolute input through its cycle".into(),
+        ));
     }
     let d = vars.len();
     let initial_samples = 8 + 4 * d;
-    if settings.evaluations < initial_samples + d + 1 || settings.steps < 2 || !(settings.period > 0.0) || !settings.speed.is_finite() {
+    if settings.evaluations < initial_samples + d + 1
+        || settings.steps < 2
+        || !(settings.period > 0.0)
+        || !settings.speed.is_finite()
+    {
         return Err(MechError::InvalidInput(format!(
             "an optimisation of {d} variable(s) needs at least {} evaluations, 2 steps, a period > 0 and a finite speed",
             initial_samples + d + 1
@@ -443,7 +489,12 @@ pub fn optimize(
         evaluations: 0,
         failures: Vec::new(),
     };
-    let scale = |u: &[f64]| -> Vec<f64> { u.iter().zip(vars).map(|(t, v)| v.lo + t * (v.hi - v.lo)).collect() };
+    let scale = |u: &[f64]| -> Vec<f64> {
+        u.iter()
+            .zip(vars)
+            .map(|(t, v)| v.lo + t * (v.hi - v.lo))
+            .collect()
+    };
     // The file's own values (clamped into the bounds; the middle for an expression) first.
     let own: Vec<f64> = p
         .ranges
@@ -463,10 +514,14 @@ pub fn optimize(
     if initial.is_finite() {
         history.push((p.evaluations, initial));
     }
-    let primes = [2u64, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53];
+    let primes = [
+        2u64, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53,
+    ];
     for k in 0..initial_samples {
         let idx = settings.seed + 1 + k as u64;
-        let u: Vec<f64> = (0..d).map(|i| halton(idx, primes[i % primes.len()])).collect();
+        let u: Vec<f64> = (0..d)
+            .map(|i| halton(idx, primes[i % primes.len()]))
+            .collect();
         let f = p.value(&scale(&u));
         if f < history.last().map_or(f64::INFINITY, |h: &(usize, f64)| h.1) {
             history.push((p.evaluations, f));
@@ -475,7 +530,12 @@ pub fn optimize(
     }
     pool.sort_by(|a, b| a.1.total_cmp(&b.1));
     if !pool[0].1.is_finite() {
-        let (why, n) = p.failures.iter().max_by_key(|f| f.1).cloned().unwrap_or_default();
+        let (why, n) = p
+            .failures
+            .iter()
+            .max_by_key(|f| f.1)
+            .cloned()
+            .unwrap_or_default();
         return Err(MechError::InvalidInput(format!(
             "no candidate of {} meets the constraints: `{why}` failed {n} times; widen the bounds or relax the constraint",
             p.evaluations
@@ -486,13 +546,30 @@ pub fn optimize(
     let clamp = |x: Vec<f64>| -> Vec<f64> { x.into_iter().map(|t| t.clamp(0.0, 1.0)).collect() };
     while p.evaluations + 2 <= settings.evaluations {
         simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let size = simplex.iter().skip(1).map(|s| s.0.iter().zip(&simplex[0].0).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)).fold(0.0, f64::max);
+        let size = simplex
+            .iter()
+            .skip(1)
+            .map(|s| {
+                s.0.iter()
+                    .zip(&simplex[0].0)
+                    .map(|(a, b)| (a - b).abs())
+                    .fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
         if size < 1e-9 {
             break;
         }
         let worst = simplex[d].clone();
-        let centre: Vec<f64> = (0..d).map(|i| simplex[..d].iter().map(|s| s.0[i]).sum::<f64>() / d as f64).collect();
-        let towards = |t: f64| -> Vec<f64> { centre.iter().zip(&worst.0).map(|(c, w)| c + t * (c - w)).collect() };
+        let centre: Vec<f64> = (0..d)
+            .map(|i| simplex[..d].iter().map(|s| s.0[i]).sum::<f64>() / d as f64)
+            .collect();
+        let towards = |t: f64| -> Vec<f64> {
+            centre
+                .iter()
+                .zip(&worst.0)
+                .map(|(c, w)| c + t * (c - w))
+                .collect()
+        };
         let xr = clamp(towards(1.0));
         let fr = p.value(&scale(&xr));
         let (best, second) = (simplex[0].1, simplex[d - 1].1);
@@ -550,7 +627,9 @@ fn halton(mut i: u64, b: u64) -> f64 {
 /// expression.
 fn value_of(written: &str) -> Option<f64> {
     let w = written.trim();
-    let split = w.find(|c: char| c.is_alphabetic() && c != 'e' && c != 'E').unwrap_or(w.len());
+    let split = w
+        .find(|c: char| c.is_alphabetic() && c != 'e' && c != 'E')
+        .unwrap_or(w.len());
     let (num, unit) = (w[..split].trim(), w[split..].trim());
     let x: f64 = num.parse().ok()?;
     match unit {
@@ -571,11 +650,21 @@ mod tests {
         assert_eq!(halton(1, 2), 0.5);
         assert_eq!(halton(3, 2), 0.75);
         assert!((halton(4, 3) - 4.0 / 9.0).abs() < 1e-15);
-        assert!(matches!(Constraint::parse("transmission >= 40 deg"), Ok(Constraint::Transmission(a)) if (a - 40f64.to_radians()).abs() < 1e-15));
+        assert!(
+            matches!(Constraint::parse("transmission >= 40 deg"), Ok(Constraint::Transmission(a)) if (a - 40f64.to_radians()).abs() < 1e-15)
+        );
         assert!(Constraint::parse("transmission >= 100 deg").is_err());
-        let no_file = |_: &str| -> Result<Vec<[f64; 2]>, MechError> { Err(MechError::InvalidInput("no".into())) };
-        assert_eq!(Objective::parse("peak_reaction(O4)", None, no_file).unwrap(), Objective::PeakReaction("O4".into()));
+        let no_file = |_: &str| -> Result<Vec<[f64; 2]>, MechError> {
+            Err(MechError::InvalidInput("no".into()))
+        };
+        assert_eq!(
+            Objective::parse("peak_reaction(O4)", None, no_file).unwrap(),
+            Objective::PeakReaction("O4".into())
+        );
         assert!(Objective::parse("flywheel", None, no_file).is_err());
-        assert!(Objective::parse("speed", None, no_file).unwrap_err().to_string().contains("unknown objective"));
+        assert!(Objective::parse("speed", None, no_file)
+            .unwrap_err()
+            .to_string()
+            .contains("unknown objective"));
     }
 }

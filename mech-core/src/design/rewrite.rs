@@ -164,7 +164,16 @@ mod tests {
         assert_eq!(at("links.crank2.mass"), Some("1.0"));
         assert_eq!(at("links.rod.mass"), None);
         assert_eq!(at("stroke2"), None);
-        let out = replace(TEXT, &[(find(TEXT, "l").unwrap(), "150 mm".into()), (find(TEXT, "links.crank.mass").unwrap(), "4 kg".into())]);
-        assert!(out.contains("l: 150 mm, e: 6 mm") && out.contains("mass: 4 kg, inertia"), "{out}");
+        let out = replace(
+            TEXT,
+            &[
+                (find(TEXT, "l").unwrap(), "150 mm".into()),
+                (find(TEXT, "links.crank.mass").unwrap(), "4 kg".into()),
+            ],
+        );
+        assert!(
+            out.contains("l: 150 mm, e: 6 mm") && out.contains("mass: 4 kg, inertia"),
+            "{out}"
+        );
     }
 }

@@ -10,9 +10,6 @@ use crate::model::units::Dim;
 use crate::MechError;
 use syn::parse::{ParseStream, Parser};
 
-/// Power, W = kg·m²/s³.
-const POWER: Dim = Dim([2, 1, -3, 0]);
-
 /// The forms, for messages.
 const FORMS: &str = "dc(stall_torque T, no_load_speed W), induction(rated_power P, synchronous_speed W, rated_speed W, breakdown_ratio K), table(FILE.csv) or constant(T)";
 
@@ -56,7 +53,7 @@ impl Motor {
             "constant" => &[("torque", Dim::TORQUE)],
             "dc" => &[("stall_torque", Dim::TORQUE), ("no_load_speed", Dim::SPEED)],
             "induction" => &[
-                ("rated_power", POWER),
+                ("rated_power", Dim::POWER),
                 ("synchronous_speed", Dim::SPEED),
                 ("rated_speed", Dim::SPEED),
                 ("breakdown_ratio", Dim::NONE),
@@ -66,6 +63,8 @@ impl Motor {
         let mut given: Vec<(&str, &str)> = Vec::new();
         for arg in args.split(',').map(str::trim).filter(|a| !a.is_empty()) {
             let (key, value) = match arg.split_once(char::is_whitespace) {
+                // `constant(T)`: the value alone, spaced unit word and all (`2 N_m`).
+                Some((k, _)) if name == "constant" && k != "torque" => ("torque", arg),
                 Some((k, v)) => (k, v.trim()),
                 None if name == "constant" => ("torque", arg),
                 None => return Err(bad(t, format!("`{arg}` has no value: write `name value`"))),
@@ -127,10 +126,62 @@ mod tests {
             Motor::parse("constant(-4)", &no_table).unwrap(),
             Motor::constant(-4.0).unwrap()
         );
+        for t in [
+            "constant(3 N_m)",
+            "constant(3N_m)",
+            "constant(torque 3 N_m)",
+            "constant(1.5 * 2)",
+        ] {
+            assert_eq!(
+                Motor::parse(t, &no_table).unwrap(),
+                Motor::constant(3.0).unwrap(),
+                "{t}"
+            );
+        }
         let e = Motor::parse("table(x.csv)", &no_table)
             .unwrap_err()
             .to_string();
         assert!(e.contains("no tables here"));
+    }
+
+    /// A rated power in `kW` or `W` (`model::units`): `1.5 kW`, `1.5kW`, `(1 + 0.5) kW` and
+    /// `1500 W` are the motor of 1500 (SI); a power where a torque goes, or a torque where
+    /// the power goes, is refused naming the dimensions and the words.
+    #[test]
+    fn rated_power_in_watts_and_kilowatts() {
+        let rpm = std::f64::consts::PI / 30.0;
+        let si = Motor::induction(1500.0, 1500.0 * rpm, 1420.0 * rpm, 2.5).unwrap();
+        for p in [
+            "1.5 kW",
+            "1.5kW",
+            "(1 + 0.5) kW",
+            "1500 W",
+            "1500W",
+            "0.5 kW * 3",
+            "1500",
+        ] {
+            let text = format!(
+                "induction(rated_power {p}, synchronous_speed 1500 rpm, rated_speed 1420 rpm, breakdown_ratio 2.5)"
+            );
+            assert_eq!(Motor::parse(&text, &no_table).unwrap(), si, "{p}");
+        }
+        let e = Motor::parse("constant(2 kW)", &no_table)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("a torque (N·m)") && e.contains("a power (W)"),
+            "{e}"
+        );
+        let e = Motor::parse(
+            "induction(rated_power 12 N_m, synchronous_speed 1500 rpm, rated_speed 1420 rpm, breakdown_ratio 2.5)",
+            &no_table,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("rated_power") && e.contains("`W` or `kW`"),
+            "{e}"
+        );
     }
 
     #[test]

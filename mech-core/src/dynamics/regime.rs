@@ -27,6 +27,9 @@ type LoadsFn<'a, M> =
 /// Relative tolerance of the integrations.
 const RTOL: f64 = 1e-12;
 
+/// The most rows of a stop's table.
+const MAX_SAMPLES: usize = 10_000_000;
+
 /// A one-DOF machine, its motor, its loads (functions of q) and a flywheel on the input.
 pub struct Drive<'a, M: OneDof> {
     machine: &'a M,
@@ -393,7 +396,8 @@ impl<'a, M: OneDof> Drive<'a, M> {
 
     /// The stop from (q₀, q̇₀ > 0) with the motor off and a brake of constant torque
     /// `brake` (N·m ≥ 0, 0 to coast) against the motion, sampled every `dt` seconds until the
-    /// machine is at rest; an error when it is not at rest by `t_max`.
+    /// machine is at rest (the last sample at the time to rest); an error when it is not at
+    /// rest by `t_max`, or when that would be more than 10⁷ samples.
     pub fn stop(
         &self,
         q0: f64,
@@ -402,10 +406,66 @@ impl<'a, M: OneDof> Drive<'a, M> {
         dt: f64,
         t_max: f64,
     ) -> Result<Stop, MechError> {
-        crate::error::check_finite("q0, qd0, brake, dt, t_max", &[q0, qd0, brake, dt, t_max])?;
-        if !(qd0 > 0.0 && brake >= 0.0 && dt > 0.0 && t_max > dt) {
+        crate::error::check_finite("dt", &[dt])?;
+        if !(dt > 0.0 && t_max > dt) {
             return Err(MechError::InvalidInput(format!(
-                "a stop needs q̇0 > 0, a brake ≥ 0 and 0 < dt < t_max, got q̇0 = {qd0}, brake = {brake} N·m, dt = {dt} s, t_max = {t_max} s"
+                "a stop sampled every dt needs 0 < dt < t_max, got dt = {dt} s, t_max = {t_max} s"
+            )));
+        }
+        self.stop_sampled(q0, qd0, brake, t_max, |time| {
+            let steps = (time / dt).floor();
+            if steps >= MAX_SAMPLES as f64 {
+                return Err(MechError::InvalidInput(format!(
+                    "the machine comes to rest after {time} s: sampled every {dt} s, more than {MAX_SAMPLES} rows; give a larger dt"
+                )));
+            }
+            let mut times: Vec<f64> = (0..=steps as usize).map(|k| k as f64 * dt).collect();
+            if times.last() != Some(&time) {
+                times.push(time);
+            }
+            Ok(times)
+        })
+    }
+
+    /// The stop of [`Drive::stop`], sampled at `steps` + 1 even times over [0, t_s], t_s the
+    /// time to rest (1 ≤ `steps` ≤ 10⁷): the table of a stop whose length is not known
+    /// beforehand.
+    pub fn stop_steps(
+        &self,
+        q0: f64,
+        qd0: f64,
+        brake: f64,
+        steps: usize,
+        t_max: f64,
+    ) -> Result<Stop, MechError> {
+        if !(1..=MAX_SAMPLES).contains(&steps) {
+            return Err(MechError::InvalidInput(format!(
+                "a stop in {steps} even steps: give 1 to {MAX_SAMPLES}"
+            )));
+        }
+        self.stop_sampled(q0, qd0, brake, t_max, |time| {
+            let mut times: Vec<f64> = (0..=steps)
+                .map(|k| time * k as f64 / steps as f64)
+                .collect();
+            times[steps] = time;
+            Ok(times)
+        })
+    }
+
+    /// The stop: the time to rest t_s by the event q̇ = 0, then the state at `times(t_s)`
+    /// (increasing from 0, the last t_s) by the same right-hand side.
+    fn stop_sampled(
+        &self,
+        q0: f64,
+        qd0: f64,
+        brake: f64,
+        t_max: f64,
+        times: impl FnOnce(f64) -> Result<Vec<f64>, MechError>,
+    ) -> Result<Stop, MechError> {
+        crate::error::check_finite("q0, qd0, brake, t_max", &[q0, qd0, brake, t_max])?;
+        if !(qd0 > 0.0 && brake >= 0.0 && t_max > 0.0) {
+            return Err(MechError::InvalidInput(format!(
+                "a stop needs q̇0 > 0, a brake ≥ 0 and t_max > 0, got q̇0 = {qd0}, brake = {brake} N·m, t_max = {t_max} s"
             )));
         }
         let rhs = |_t: f64, y: &[f64; 2]| -> Result<[f64; 2], MechError> {
@@ -430,17 +490,15 @@ impl<'a, M: OneDof> Drive<'a, M> {
                 end.y[1]
             )));
         }
-        let steps = (end.t / dt).floor() as usize;
-        let mut times: Vec<f64> = (0..=steps).map(|k| k as f64 * dt).collect();
-        if times.last() != Some(&end.t) {
-            times.push(end.t);
-        }
+        let times = times(end.t)?;
         let mut out = vec![[0.0; 2]; times.len()];
         // The same right-hand side again (a closure of shared references: Copy), now sampled.
         let mut method = Dop853::new(RTOL, RTOL * qd0);
         ode::sample(&mut method, rhs, 0.0, [q0, qd0], &times, &mut out)?;
+        // The last row is the event itself: at rest (q̇ = 0 there, not its located root's
+        // rounding, a few ulps either side).
         let last = out.len() - 1;
-        out[last] = end.y;
+        out[last] = [end.y[0], 0.0];
         let run = self.table(times, &out, |_| -brake);
         Ok(Stop {
             time: end.t,

@@ -124,6 +124,24 @@ impl Shape {
         Ok(s)
     }
 
+    /// This shape with its dimension `name` (one of [`Shape::dimensions`]'s names) set to
+    /// `value`, m, checked ([`Shape::check`]); or what is wrong, naming the dimensions the
+    /// shape has.
+    pub fn with_dimension(&self, name: &str, value: f64) -> Result<Shape, String> {
+        let mut dims = self.dimensions();
+        let Some(d) = dims.iter_mut().find(|(n, _)| *n == name) else {
+            let names: Vec<&str> = dims.iter().map(|(n, _)| *n).collect();
+            return Err(format!(
+                "no dimension `{name}`: a `{}` has {}",
+                self.keyword(),
+                names.join(", ")
+            ));
+        };
+        d.1 = value;
+        let values: Vec<f64> = dims.iter().map(|(_, v)| *v).collect();
+        Shape::from_dimensions(self.keyword(), &values)
+    }
+
     /// Every dimension positive and finite, a tube's bore inside its outer diameter.
     pub fn check(&self) -> Result<(), String> {
         for (name, v) in self.dimensions() {
@@ -482,6 +500,31 @@ mod tests {
         .check()
         .unwrap_err();
         assert!(e.contains("`width` must be a positive length"), "{e}");
+        let bar = Shape::Bar {
+            width: 0.02,
+            thickness: 0.01,
+        };
+        assert_eq!(
+            bar.with_dimension("width", 0.03),
+            Ok(Shape::Bar {
+                width: 0.03,
+                thickness: 0.01
+            })
+        );
+        let e = bar.with_dimension("diameter", 0.03).unwrap_err();
+        assert!(
+            e.contains("no dimension `diameter`: a `bar` has width, thickness"),
+            "{e}"
+        );
+        let e = bar.with_dimension("thickness", 0.0).unwrap_err();
+        assert!(e.contains("`thickness` must be a positive length"), "{e}");
+        let e = Shape::Tube {
+            outer: 0.04,
+            inner: 0.03,
+        }
+        .with_dimension("outer", 0.02)
+        .unwrap_err();
+        assert!(e.contains("smaller than its outer"), "{e}");
         let e = Shape::Tube {
             outer: 0.02,
             inner: 0.03,

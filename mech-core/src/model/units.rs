@@ -44,6 +44,8 @@ impl Dim {
     pub const DENSITY: Dim = Dim([-3, 1, 0, 0]);
     /// Pressure and stress, Pa = N/m².
     pub const PRESSURE: Dim = Dim([-1, 1, -2, 0]);
+    /// Power, W = N·m/s = kg·m²/s³ (a motor's rated power).
+    pub const POWER: Dim = Dim([2, 1, -3, 0]);
 
     /// The dimension of a product: exponents added.
     pub fn times(self, o: Dim) -> Dim {
@@ -65,7 +67,7 @@ impl Dim {
 
     /// What a quantity of this dimension is, in words ("a length (m)").
     pub fn describe(self) -> String {
-        const NAMED: [(Dim, &str); 15] = [
+        const NAMED: [(Dim, &str); 16] = [
             (Dim::NONE, "a plain number"),
             (Dim::LENGTH, "a length (m)"),
             (Dim::MASS, "a mass (kg)"),
@@ -81,6 +83,7 @@ impl Dim {
             (Dim::SPEED, "an angular speed (rad/s)"),
             (Dim::DENSITY, "a density (kg/m³)"),
             (Dim::PRESSURE, "a pressure or stress (Pa)"),
+            (Dim::POWER, "a power (W)"),
         ];
         match NAMED.iter().find(|(d, _)| *d == self) {
             Some((_, name)) => name.to_string(),
@@ -142,7 +145,7 @@ const fn unit(word: &'static str, factor: f64, dim: Dim) -> Unit {
 }
 
 /// Every unit word of the DSL, with its factor to SI.
-pub const UNITS: [Unit; 28] = [
+pub const UNITS: [Unit; 30] = [
     unit("m", 1.0, Dim::LENGTH),
     unit("cm", 1e-2, Dim::LENGTH),
     unit("mm", 1e-3, Dim::LENGTH),
@@ -169,6 +172,8 @@ pub const UNITS: [Unit; 28] = [
     unit("kPa", 1e3, Dim::PRESSURE),
     unit("MPa", 1e6, Dim::PRESSURE),
     unit("GPa", 1e9, Dim::PRESSURE),
+    unit("W", 1.0, Dim::POWER),
+    unit("kW", 1e3, Dim::POWER),
     // Accepted as Rust's own literal suffixes (`2f64`): no unit.
     unit("f64", 1.0, Dim::NONE),
     unit("f32", 1.0, Dim::NONE),
@@ -212,6 +217,27 @@ mod tests {
             1e-15
         ));
         assert_eq!(lookup("furlong"), None);
+    }
+
+    /// `W` and `kW` are powers (N·m/s): a torque times an angular speed, a force times a
+    /// velocity (their use in an expression: `dynamics::motor_parse`'s tests).
+    #[test]
+    fn watts_are_torque_times_speed() {
+        assert_eq!(Dim::TORQUE.per(Dim::ANGLE).times(Dim::SPEED), Dim::POWER);
+        assert_eq!(
+            Dim::FORCE.times(Dim::LENGTH).per(Dim([0, 0, 1, 0])),
+            Dim::POWER
+        );
+        assert_eq!(
+            lookup("W").map(|u| (u.factor, u.dim)),
+            Some((1.0, Dim::POWER))
+        );
+        assert_eq!(
+            lookup("kW").map(|u| (u.factor, u.dim)),
+            Some((1e3, Dim::POWER))
+        );
+        assert_eq!(Dim::POWER.describe(), "a power (W)");
+        assert_eq!(Dim::POWER.words(), "`W` or `kW`");
     }
 
     #[test]

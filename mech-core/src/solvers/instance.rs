@@ -5,6 +5,7 @@ use crate::elements::springs::ElementGeom;
 use crate::kernel::constraints::JointGeom;
 use crate::kernel::dyad::{branch, branch_quantity, Solver};
 use crate::kernel::link_state::{quotient, LinkGeom, LinkState, V2};
+use crate::model::shape::{MassProperties, Material, Shape};
 use crate::model::{Load, Model};
 use crate::plan::geometry::{anchor, drawing_states, joint_geoms, local};
 use crate::MechError;
@@ -262,4 +263,98 @@ pub struct TorsionSpringParams {
 pub struct RotaryDamperParams {
     /// c, N·m·s/rad, ≥ 0.
     pub damping: f64,
+}
+
+/// A link declared by its shape and material (`shape:`, `material:`) as a run-time
+/// parameter: the `shapes.<link>` field of a generated `<Name>Params`.
+///
+/// Its mass m (kg), I_G (kg·m²) and cg (m) are not parameters of their own: `from_params`
+/// computes them from the shape's dimensions, the material's density ρ and the link's
+/// points ([`Shape::mass_properties`], the formulas of [`crate::model::shape`]; the same
+/// function as the loader's and `Mechanism::set_param("links.<l>.shape.<dimension>", ..)`)
+/// and writes them into the link's [`LinkParams`], where `params()` shows them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShapeParams {
+    /// The section and its dimensions, m (a change of kind, a `bar` made a `rod`, is
+    /// allowed when the link's points can carry the new kind).
+    pub shape: Shape,
+    /// The material; its density ρ (kg/m³, > 0) gives the mass.
+    pub material: Material,
+    /// The mass properties the link's `LinkParams` hold from the last computation, to tell
+    /// them from numbers written there by hand.
+    held: Option<MassProperties>,
+}
+
+impl ShapeParams {
+    /// `shape` of `material`. `held`: the mass, I_G and cg the link's [`LinkParams`] hold
+    /// now, as last computed from a shape (`Default` and `from_params` keep them so), so
+    /// that `from_params` refuses other numbers written there; `None` lets `from_params`
+    /// replace whatever they hold.
+    pub fn new(shape: Shape, material: Material, held: Option<MassProperties>) -> Self {
+        ShapeParams {
+            shape,
+            material,
+            held,
+        }
+    }
+
+    /// Set the dimension `name` (`width`, `thickness`, `diameter`, `outer`, `inner`,
+    /// `radius`: the names of [`Shape::dimensions`] and of
+    /// `Mechanism::set_param("links.<l>.shape.<name>", ..)`) to `value`, m; an
+    /// `InvalidInput` naming the shape's dimensions, or the bound broken (a positive
+    /// length, a tube's bore inside its outer diameter), leaves the shape unchanged.
+    pub fn set_dimension(&mut self, name: &str, value: f64) -> Result<(), MechError> {
+        self.shape = self
+            .shape
+            .with_dimension(name, value)
+            .map_err(MechError::InvalidInput)?;
+        Ok(())
+    }
+
+    /// The mass properties last computed from the shape (what the link's `LinkParams`
+    /// should hold), if any.
+    pub fn held(&self) -> Option<MassProperties> {
+        self.held
+    }
+}
+
+/// Compute the mass m, I_G and cg of the link `name`, declared by `shape`, over its points
+/// `points` (the drawing's coordinates, m, in the link's order) with
+/// [`Shape::mass_properties`] at the material's density, and write them into `link`
+/// (`from_params` calls this once per link declared by a shape). `InvalidInput`, naming
+/// the link and the fix: a mass, inertia or cg written into `link` by hand (they differ
+/// from what `shape` last held), a density that is not a positive number, a bad
+/// dimension, points that cannot carry the shape.
+pub fn update_shape(
+    name: &str,
+    link: &mut LinkParams,
+    shape: &mut ShapeParams,
+    points: &[[f64; 2]],
+) -> Result<(), MechError> {
+    if let Some(h) = shape.held {
+        if link.mass != h.mass || link.inertia != h.inertia || [link.cg.x, link.cg.y] != h.cg {
+            return Err(MechError::InvalidInput(format!(
+                "link `{name}` is declared by its shape and material, which give its mass ({} kg), inertia ({} kg·m²) and cg ({}, {}) m, \
+                 but the parameters give it mass {} kg, inertia {} kg·m² and cg ({}, {}) m: change its dimensions or material \
+                 (`shapes.{name}`, e.g. `shapes.{name}.set_dimension(..)`) instead, and leave `links.{name}.mass`, `.inertia` and `.cg` as `params()` gave them",
+                h.mass, h.inertia, h.cg[0], h.cg[1], link.mass, link.inertia, link.cg.x, link.cg.y
+            )));
+        }
+    }
+    let density = shape.material.density;
+    if !(density.is_finite() && density > 0.0) {
+        return Err(MechError::InvalidInput(format!(
+            "link `{name}`: the density of its material `{}` must be a positive number of kg/m³, got {density}: set `shapes.{name}.material.density`",
+            shape.material.name
+        )));
+    }
+    let p = shape
+        .shape
+        .mass_properties(density, points)
+        .map_err(|why| MechError::InvalidInput(format!("link `{name}`: {why}")))?;
+    link.mass = p.mass;
+    link.inertia = p.inertia;
+    link.cg = V2::new(p.cg[0], p.cg[1]);
+    shape.held = Some(p);
+    Ok(())
 }

@@ -144,6 +144,11 @@ impl<'a> Ctx<'a> {
         self.model.joints.iter().filter(|j| j.kind.mesh()).count()
     }
 
+    /// The moving links declared by their shape and material (`shape:`), in order.
+    pub fn shaped(&self) -> impl Iterator<Item = usize> + '_ {
+        (1..self.n_links).filter(|&l| self.model.links[l].body.is_some())
+    }
+
     /// The moving links' identifiers.
     pub fn moving_ids(&self) -> &[Ident] {
         &self.link_ids[1..]

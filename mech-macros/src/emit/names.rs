@@ -1,6 +1,7 @@
 //! The names of the generated types: `<Name>`, `<Name>Params`, `<Name>Loads`,
 //! `<Name>Pose`, `<Name>Motion`, `<Name>Forces` (public API) and their field structs
-//! (`<Name>ParamsElements` only for a mechanism with force elements).
+//! (`<Name>ParamsElements` only for a mechanism with force elements, `<Name>ParamsShapes`
+//! only for one with links declared by their shapes).
 
 use mech_core::model::Description;
 use proc_macro2::Span;
@@ -15,6 +16,7 @@ pub(crate) struct Names {
     pub params_links: Ident,
     pub params_axes: Ident,
     pub params_elements: Ident,
+    pub params_shapes: Ident,
     pub loads: Ident,
     pub pose: Ident,
     pub pose_links: Ident,
@@ -37,6 +39,7 @@ impl Names {
             params_links: format_ident!("{}ParamsLinks", n),
             params_axes: format_ident!("{}ParamsAxes", n),
             params_elements: format_ident!("{}ParamsElements", n),
+            params_shapes: format_ident!("{}ParamsShapes", n),
             loads: format_ident!("{}Loads", n),
             pose: format_ident!("{}Pose", n),
             pose_links: format_ident!("{}PoseLinks", n),

@@ -3,6 +3,7 @@
 //! `params`, and the model rebuilt from the parameters for the run-time checks.
 
 use super::{f64s, plan, vec2, Ctx};
+use mech_core::model::shape::Shape;
 use mech_core::model::{ElementKind, JointKind, Load};
 use mech_core::solvers::params::LinkTerms;
 use proc_macro2::TokenStream;
@@ -133,7 +134,10 @@ fn constants(cx: &Ctx) -> TokenStream {
 }
 
 /// What a link's parameters may be, from its declared terms (the `ParamsLinks` field docs).
-fn link_doc(name: &str, terms: LinkTerms) -> String {
+fn link_doc(name: &str, terms: LinkTerms, shaped: bool) -> String {
+    if shaped {
+        return format!("`{name}`, declared by its shape and material: its mass (kg), inertia (kg·m²) and cg (m) are computed by `from_params` from `shapes.{name}` and the link's points (`params()` shows them; change the shape, not these); its flywheel may vary.");
+    }
     match terms {
         LinkTerms::Massive => format!("`{name}`, declared with `mass`: its mass (kg), inertia (kg·m²) and cg (m) may take any value ≥ 0."),
         LinkTerms::InertiaOnly => format!(
@@ -154,7 +158,13 @@ fn params_types(cx: &Ctx) -> TokenStream {
     let (point_ids, moving_ids) = (&cx.point_ids, cx.moving_ids());
     let sliding = cx.sliding();
     let sliding_ids: Vec<_> = sliding.iter().map(|&j| &cx.joint_ids[j]).collect();
-    let link_docs = (1..cx.n_links).map(|l| link_doc(&model.links[l].name, cx.terms[l]));
+    let link_docs = (1..cx.n_links).map(|l| {
+        link_doc(
+            &model.links[l].name,
+            cx.terms[l],
+            model.links[l].body.is_some(),
+        )
+    });
     let point_defaults = model.points.iter().map(|pt| vec2(pt.pos));
     let link_defaults = (1..cx.n_links).map(|l| {
         let lk = &model.links[l];
@@ -174,8 +184,10 @@ fn params_types(cx: &Ctx) -> TokenStream {
         None => (quote!(), quote!()),
     };
     let (elements_type, elements_field, elements_default) = element_params(cx);
+    let (shapes_type, shapes_field, shapes_default) = shape_params(cx);
     quote! {
         #elements_type
+        #shapes_type
         /// Reference coordinates of every point (m).
         #[allow(non_snake_case)]
         #[derive(Clone, Debug, PartialEq)]
@@ -203,7 +215,11 @@ fn params_types(cx: &Ctx) -> TokenStream {
         ///   `from_params` refuses a non-zero mass or inertia (`MechError::InvalidInput`);
         ///   declare `mass: 0.0` on it to vary them at run time;
         /// - a link declared with `inertia` but no `mass` has the inertia moment and the
-        ///   rotational energy only: its inertia may vary, its mass must stay 0.
+        ///   rotational energy only: its inertia may vary, its mass must stay 0;
+        /// - a link declared by its `shape:` and `material:` has every term, with the mass,
+        ///   inertia and cg that `from_params` computes from its dimensions and density
+        ///   (`shapes`) and its points: a moved point or a new dimension changes them, and
+        ///   numbers written into its `links` entry by hand are refused.
         #[derive(Clone, Debug, PartialEq)]
         pub struct #params {
             /// Points, m.
@@ -213,6 +229,7 @@ fn params_types(cx: &Ctx) -> TokenStream {
             /// Sliding axes.
             pub axes: #axes,
             #elements_field
+            #shapes_field
             #gravity_field
         }
         impl Default for #params {
@@ -222,6 +239,7 @@ fn params_types(cx: &Ctx) -> TokenStream {
                     links: #links { #(#moving_ids: #link_defaults,)* },
                     axes: #axes { #(#sliding_ids: #axis_defaults,)* },
                     #elements_default
+                    #shapes_default
                     #gravity_default
                 }
             }
@@ -251,6 +269,24 @@ fn constructors(cx: &Ctx) -> TokenStream {
             quote!(#p::params::LinkTerms::#terms.check(#name, &p.links.#lid)?;)
         });
     let solvers = plan::solvers(cx);
+    let shaped: Vec<usize> = cx.shaped().collect();
+    let shape_updates = if shaped.is_empty() {
+        quote!()
+    } else {
+        let updates = shaped.iter().map(|&l| {
+            let lk = &cx.model.links[l];
+            let (name, lid) = (&lk.name, &cx.link_ids[l]);
+            let at = lk.points.iter().map(|&pt| {
+                let pid = &cx.point_ids[pt];
+                quote!([p.points.#pid.x, p.points.#pid.y])
+            });
+            quote!(#p::instance::update_shape(#name, &mut p.links.#lid, &mut p.shapes.#lid, &[#(#at),*])?;)
+        });
+        quote! {
+            let mut p = p;
+            #(#updates)*
+        }
+    };
     let joints = (0..n_joints).map(|j| quote!(inst.joints[#j]));
     let links = (0..n_links).map(|l| quote!(inst.links[#l]));
     let drawing = (0..n_links).map(|l| quote!(inst.drawing[#l]));
@@ -299,9 +335,11 @@ fn constructors(cx: &Ctx) -> TokenStream {
             }
 
             /// The mechanism with other numbers; re-runs the drawing, rank and determinacy
-            /// checks of the macro at run time, and refuses a mass or inertia on a link
-            /// whose declaration has no term for it (see the `Params` docs).
+            /// checks of the macro at run time, refuses a mass or inertia on a link
+            /// whose declaration has no term for it, and computes the mass, inertia and cg
+            /// of every link declared by its shape (see the `Params` docs).
             pub fn from_params(p: #params) -> Result<Self, #p::MechError> {
+                #shape_updates
                 #(#term_checks)*
                 let model = Self::__model(&p);
                 let inst = #p::instance::instance(&model)?;
@@ -350,7 +388,8 @@ fn model_expr(cx: &Ctx) -> TokenStream {
         }
         let lid = &cx.link_ids[l];
         let mass = if lk.mass.is_some() { quote!(Some(p.links.#lid.mass)) } else { quote!(None) };
-        quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: #mass, inertia: p.links.#lid.inertia, flywheel: p.links.#lid.flywheel, cg: [p.links.#lid.cg.x, p.links.#lid.cg.y], body: None })
+        let body = if lk.body.is_some() { quote!(Some((p.shapes.#lid.shape, p.shapes.#lid.material))) } else { quote!(None) };
+        quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: #mass, inertia: p.links.#lid.inertia, flywheel: p.links.#lid.flywheel, cg: [p.links.#lid.cg.x, p.links.#lid.cg.y], body: #body })
     });
     let joints = model.joints.iter().enumerate().map(|(j, jt)| {
         let (n, a, b, pt) = (&jt.name, jt.a, jt.b, jt.point);
@@ -530,4 +569,99 @@ fn element_params(cx: &Ctx) -> (TokenStream, TokenStream, TokenStream) {
                pub elements: #ty,),
         quote!(elements: #ty { #(#ids: #defaults,)* },),
     )
+}
+
+/// `<Name>ParamsShapes` (one `mech::ShapeParams` per link declared by its shape: the shape
+/// with its dimensions and the material), the `shapes` field of `Params` and its default
+/// (the declaration, holding the mass properties the macro computed); nothing for a
+/// mechanism without such links.
+fn shape_params(cx: &Ctx) -> (TokenStream, TokenStream, TokenStream) {
+    let shaped: Vec<usize> = cx.shaped().collect();
+    if shaped.is_empty() {
+        return (quote!(), quote!(), quote!());
+    }
+    let p = &cx.p;
+    let ty = &cx.names.params_shapes;
+    let ids: Vec<_> = shaped.iter().map(|&l| &cx.link_ids[l]).collect();
+    let docs = shaped.iter().map(|&l| {
+        let lk = &cx.model.links[l];
+        let (shape, material) = lk.body.expect("a shaped link");
+        let dims: Vec<String> = shape
+            .dimensions()
+            .iter()
+            .map(|(n, v)| format!("{n} {v} m"))
+            .collect();
+        format!(
+            "Link `{}`: declared `{}({})` of `{}` (ρ = {} kg/m³).",
+            lk.name,
+            shape.keyword(),
+            dims.join(", "),
+            material.name,
+            material.density
+        )
+    });
+    let defaults = shaped.iter().map(|&l| {
+        let lk = &cx.model.links[l];
+        let (shape, material) = lk.body.expect("a shaped link");
+        let shape = shape_literal(p, &shape);
+        let mt = &material;
+        let (name, rho, e, sy, su, se) = (
+            mt.name,
+            f64s(mt.density),
+            f64s(mt.youngs),
+            f64s(mt.yield_strength),
+            f64s(mt.ultimate),
+            f64s(mt.endurance),
+        );
+        let (m, i, [gx, gy]) = (
+            f64s(lk.mass.unwrap_or(0.0)),
+            f64s(lk.inertia),
+            lk.cg.map(f64s),
+        );
+        quote!(#p::instance::ShapeParams::new(
+            #shape,
+            #p::shape::Material { name: #name, density: #rho, youngs: #e, yield_strength: #sy, ultimate: #su, endurance: #se },
+            Some(#p::shape::MassProperties { mass: #m, cg: [#gx, #gy], inertia: #i }),
+        ))
+    });
+    (
+        quote! {
+            /// The links declared by their shapes: each one's section with its dimensions
+            /// (m) and its material (density, kg/m³), from which `from_params` computes its
+            /// mass, inertia and cg.
+            #[allow(non_snake_case)]
+            #[derive(Clone, Debug, PartialEq)]
+            pub struct #ty { #(#[doc = #docs] pub #ids: #p::instance::ShapeParams,)* }
+        },
+        quote!(/// The shapes and materials of the links declared by them.
+               pub shapes: #ty,),
+        quote!(shapes: #ty { #(#ids: #defaults,)* },),
+    )
+}
+
+/// A `mech::model::shape::Shape` literal.
+fn shape_literal(p: &TokenStream, shape: &Shape) -> TokenStream {
+    let s = quote!(#p::shape::Shape);
+    match *shape {
+        Shape::Bar { width, thickness } => {
+            let (w, t) = (f64s(width), f64s(thickness));
+            quote!(#s::Bar { width: #w, thickness: #t })
+        }
+        Shape::Rod { diameter } => {
+            let d = f64s(diameter);
+            quote!(#s::Rod { diameter: #d })
+        }
+        Shape::Tube { outer, inner } => {
+            let (o, i) = (f64s(outer), f64s(inner));
+            quote!(#s::Tube { outer: #o, inner: #i })
+        }
+        Shape::Disc { radius, thickness } => {
+            let (r, t) = (f64s(radius), f64s(thickness));
+            quote!(#s::Disc { radius: #r, thickness: #t })
+        }
+        Shape::Plate { thickness } => {
+            let t = f64s(thickness);
+            quote!(#s::Plate { thickness: #t })
+        }
+    }
 }

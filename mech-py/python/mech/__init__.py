@@ -552,6 +552,25 @@ class Mechanism:
         out["converged"] = converged
         out["unmet"] = list(unmet)
         return out
+    def stop(self, qd0, brake=0.0, q0=0.0, dt=None, t_max=600.0, loads=None, flywheel=0.0, points=100):
+        """The stop with the motor switched off at ``q0`` (rad) and the input turning at
+        ``qd0`` > 0 (rad/s): coasting (``brake`` = 0, the loads, gravity and the elements
+        stop it) or braked by a constant torque ``brake`` (N·m ≥ 0) against the motion, until
+        the machine is at rest; ``loads`` a dict as in :meth:`simulate`, ``flywheel`` (kg·m²)
+        on the input shaft. Sampled every ``dt`` seconds (the last sample at rest), or, with
+        ``dt`` None, at ``points`` + 1 even times from 0 to rest. Returns a dict: the arrays
+        ``t`` (s), ``q`` (rad), ``qd`` (rad/s) and ``torque`` (the brake's action on the input,
+        N·m), and the numbers ``stop_time`` (s) and ``stop_angle`` (rad, the angle turned).
+        ``InvalidInput`` when the machine still moves at ``t_max`` seconds (coasting with no
+        loss never stops: give a brake)."""
+        if dt is not None:
+            dt = _number(dt, "dt")
+        t, q, qd, torque, time, travel = self._core.stop(
+            _number(q0, "q0"), _number(qd0, "qd0"), _number(brake, "brake"), dt,
+            _count(points, "points"), _number(t_max, "t_max"), self._loads_of_q(loads),
+            _number(flywheel, "flywheel"))
+        return {"t": np.array(t), "q": np.array(q), "qd": np.array(qd), "torque": np.array(torque),
+                "stop_time": time, "stop_angle": travel}
 
     def cam_profile(self, name=None, points=360):
         """A cam's profile at ``points`` cam angles over a turn (``name``: the cam joint;

@@ -76,6 +76,8 @@ class Mechanism:
         """The strength of every member over the cycle: member, criterion, stresses, safety, q."""
     def size(self, safety: float, qd: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., steps: int = ..., period: float = ..., irregularity: Optional[float] = ...) -> Dict[str, Any]:
         """Size the free(LO..HI) dimensions: the passes, the dims, the sized text."""
+    def stop(self, qd0: float, brake: float = ..., q0: float = ..., dt: Optional[float] = ..., t_max: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., flywheel: float = ..., points: int = ...) -> Dict[str, Any]:
+        """The coast or braked stop with the motor off: t, q, qd, torque, stop_time, stop_angle."""
     def flywheel(self, period: float, speed: float, irregularity: float, loads: Optional[Mapping[str, LoadValue]] = ..., start: float = ..., breakpoints: Sequence[float] = ..., driver: Union[None, float, Callable[[float], float]] = ..., rtol: float = ...) -> Dict[str, float]:
         """ΔE, the approximate and the exact (Wittenbauer) flywheel inertia, the simulated speeds."""
     def cam_profile(self, name: Optional[str] = ..., points: int = ...) -> Dict[str, Any]:
