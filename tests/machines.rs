@@ -45,6 +45,7 @@ mod friction;
 mod gears;
 mod large;
 mod loader_errors;
+mod optimize;
 mod params;
 mod python_package;
 mod redundant;

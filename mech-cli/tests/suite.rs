@@ -11,6 +11,7 @@ mod cli;
 mod draw;
 mod hostile;
 mod import;
+mod optimize;
 mod regime;
 mod snapshots;
 mod strength;
