@@ -24,7 +24,13 @@ const FOUR_BAR: &str = "pub struct Linkage {
 }";
 
 fn settings(evaluations: usize) -> Settings {
-    Settings { speed: 10.0, period: 2.0 * PI, steps: 36, evaluations, seed: 0 }
+    Settings {
+        speed: 10.0,
+        period: 2.0 * PI,
+        steps: 36,
+        evaluations,
+        seed: 0,
+    }
 }
 
 /// P's positions at the 36 instants of the drawn four-bar are the targets: the search,
@@ -41,15 +47,43 @@ fn a_crank_length_is_recovered_from_its_own_path() {
         })
         .collect();
     let text = FOUR_BAR.replace("r: 0.1", "r: 0.14");
-    let vars = [Variable { name: "r".into(), lo: 0.06, hi: 0.16, unit: None }];
-    let goal = Objective::Path { targets, point: "P".into() };
-    let best = optimize(&text, &vars, &goal, &[Constraint::Grashof], settings(120), |m, _| Ok(m.loads())).unwrap();
+    let vars = [Variable {
+        name: "r".into(),
+        lo: 0.06,
+        hi: 0.16,
+        unit: None,
+    }];
+    let goal = Objective::Path {
+        targets,
+        point: "P".into(),
+    };
+    let best = optimize(
+        &text,
+        &vars,
+        &goal,
+        &[Constraint::Grashof],
+        settings(120),
+        |m, _| Ok(m.loads()),
+    )
+    .unwrap();
     assert!(best.initial > 1e-4, "{}", best.initial);
     assert!(best.objective < 1e-12, "{best:?}");
     assert!((best.values[0] - 0.1).abs() < 1e-6, "{:?}", best.values);
-    assert!(best.history.windows(2).all(|w| w[1].1 < w[0].1), "the history improves: {:?}", best.history);
+    assert!(
+        best.history.windows(2).all(|w| w[1].1 < w[0].1),
+        "the history improves: {:?}",
+        best.history
+    );
     // The same seed, the same run.
-    let again = optimize(&text, &vars, &goal, &[Constraint::Grashof], settings(120), |m, _| Ok(m.loads())).unwrap();
+    let again = optimize(
+        &text,
+        &vars,
+        &goal,
+        &[Constraint::Grashof],
+        settings(120),
+        |m, _| Ok(m.loads()),
+    )
+    .unwrap();
     assert_eq!(again, best);
 }
 
@@ -58,15 +92,43 @@ fn a_crank_length_is_recovered_from_its_own_path() {
 /// reported optimum.
 #[test]
 fn the_engines_peak_driver_torque_is_lowered() {
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/mech/engine.mech")).unwrap();
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/mech/engine.mech"
+    ))
+    .unwrap();
     let mm = mech::units::lookup("mm");
     let vars = [
-        Variable { name: "l".into(), lo: 0.12, hi: 0.18, unit: mm },
-        Variable { name: "e".into(), lo: -0.01, hi: 0.01, unit: mm },
+        Variable {
+            name: "l".into(),
+            lo: 0.12,
+            hi: 0.18,
+            unit: mm,
+        },
+        Variable {
+            name: "e".into(),
+            lo: -0.01,
+            hi: 0.01,
+            unit: mm,
+        },
     ];
-    let s = Settings { speed: 3000.0 * PI / 30.0, period: 4.0 * PI, steps: 72, evaluations: 80, seed: 3 };
-    let best = optimize(&text, &vars, &Objective::PeakDriver, &[], s, |m, _| Ok(m.loads())).unwrap();
-    assert!(best.objective < 0.99 * best.initial, "{} → {}", best.initial, best.objective);
+    let s = Settings {
+        speed: 3000.0 * PI / 30.0,
+        period: 4.0 * PI,
+        steps: 72,
+        evaluations: 80,
+        seed: 3,
+    };
+    let best = optimize(&text, &vars, &Objective::PeakDriver, &[], s, |m, _| {
+        Ok(m.loads())
+    })
+    .unwrap();
+    assert!(
+        best.objective < 0.99 * best.initial,
+        "{} → {}",
+        best.initial,
+        best.objective
+    );
     let m = Mechanism::from_dsl(&best.text).unwrap();
     let peak = (0..72)
         .map(|k| {
@@ -75,20 +137,52 @@ fn the_engines_peak_driver_torque_is_lowered() {
             m.kinetostatics(&motion, &m.loads()).unwrap().driver[0].abs()
         })
         .fold(0.0, f64::max);
-    assert!((peak - best.objective).abs() < 1e-9 * peak, "{peak} vs {}", best.objective);
-    assert!(best.text.contains("l: ") && best.text.contains(" mm,"), "written with the unit");
+    assert!(
+        (peak - best.objective).abs() < 1e-9 * peak,
+        "{peak} vs {}",
+        best.objective
+    );
+    assert!(
+        best.text.contains("l: ") && best.text.contains(" mm,"),
+        "written with the unit"
+    );
 }
 
 #[test]
 fn bad_input_and_a_binding_constraint_are_named() {
-    let vars = |name: &str, lo: f64, hi: f64| vec![Variable { name: name.into(), lo, hi, unit: None }];
-    let run = |v: &[Variable], c: &[Constraint]| optimize(FOUR_BAR, v, &Objective::RmsShaking, c, settings(40), |m, _| Ok(m.loads()));
+    let vars = |name: &str, lo: f64, hi: f64| {
+        vec![Variable {
+            name: name.into(),
+            lo,
+            hi,
+            unit: None,
+        }]
+    };
+    let run = |v: &[Variable], c: &[Constraint]| {
+        optimize(
+            FOUR_BAR,
+            v,
+            &Objective::RmsShaking,
+            c,
+            settings(40),
+            |m, _| Ok(m.loads()),
+        )
+    };
     let e = run(&vars("q", 0.0, 1.0), &[]).unwrap_err().to_string();
     assert!(e.contains("--vary q: no such number"), "{e}");
     let e = run(&vars("r", 0.2, 0.1), &[]).unwrap_err().to_string();
     assert!(e.contains("LO < HI"), "{e}");
-    let e = run(&vars("r", 0.06, 0.12), &[Constraint::Transmission(89.9f64.to_radians())]).unwrap_err().to_string();
+    let e = run(
+        &vars("r", 0.06, 0.12),
+        &[Constraint::Transmission(89.9f64.to_radians())],
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("transmission >= 89.9"), "{e}");
     let ok = run(&vars("links.coupler.mass", 0.2, 2.0), &[]).unwrap();
-    assert!((ok.values[0] - 0.2).abs() < 1e-6, "the lightest coupler shakes least: {:?}", ok.values);
+    assert!(
+        (ok.values[0] - 0.2).abs() < 1e-6,
+        "the lightest coupler shakes least: {:?}",
+        ok.values
+    );
 }

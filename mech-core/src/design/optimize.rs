@@ -23,8 +23,9 @@
 //!
 //! The search, in the unit cube of the bounds: the file's own values and a Halton sequence
 //! (starting at index `seed`) of 8 + 4d points, then Nelder–Mead from the best feasible
-//! one, its points clamped to the cube, until the evaluation budget or a simplex smaller
-//! than 10⁻⁹ of the range. Deterministic: the same seed gives the same run. Infeasible
+//! one, its points clamped to the cube; when its simplex collapses below 10⁻⁹ of the range
+//! it restarts from the next best sample (then from the best point so far, a simplex of a
+//! tenth of the range), until the evaluation budget is spent. Deterministic: the same seed gives the same run. Infeasible
 //! candidates rank last; when no candidate is feasible, the error names the constraint
 //! that failed most often.
 
@@ -541,11 +542,24 @@ pub fn optimize(
             p.evaluations
         )));
     }
-    // Nelder–Mead from the best point, a simplex of the d + 1 best distinct points.
-    let mut simplex: Vec<(Vec<f64>, f64)> = pool.iter().take(d + 1).cloned().collect();
+    // Nelder–Mead from the best point, a simplex of the d + 1 best distinct points; when
+    // it collapses with budget left, again from the next start (the next best sample not
+    // yet used, then the best so far with a simplex of a tenth of the range).
     let clamp = |x: Vec<f64>| -> Vec<f64> { x.into_iter().map(|t| t.clamp(0.0, 1.0)).collect() };
+    let mut simplex: Vec<(Vec<f64>, f64)> = pool.iter().take(d + 1).cloned().collect();
+    let mut starts = pool
+        .iter()
+        .skip(1)
+        .filter(|s| s.1.is_finite())
+        .cloned()
+        .collect::<Vec<_>>()
+        .into_iter();
+    let mut best_seen = pool[0].clone();
     while p.evaluations + 2 <= settings.evaluations {
         simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+        if simplex[0].1 < best_seen.1 {
+            best_seen = simplex[0].clone();
+        }
         let size = simplex
             .iter()
             .skip(1)
@@ -557,7 +571,18 @@ pub fn optimize(
             })
             .fold(0.0, f64::max);
         if size < 1e-9 {
-            break;
+            if p.evaluations + d + 3 > settings.evaluations {
+                break;
+            }
+            let centre = starts.next().unwrap_or_else(|| best_seen.clone());
+            simplex = vec![centre.clone()];
+            for i in 0..d {
+                let mut x = centre.0.clone();
+                x[i] = if x[i] > 0.5 { x[i] - 0.1 } else { x[i] + 0.1 };
+                let f = p.value(&scale(&x));
+                simplex.push((x, f));
+            }
+            continue;
         }
         let worst = simplex[d].clone();
         let centre: Vec<f64> = (0..d)
@@ -600,7 +625,10 @@ pub fn optimize(
         }
     }
     simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
-    let (u, f) = simplex.swap_remove(0);
+    if simplex[0].1 < best_seen.1 {
+        best_seen = simplex[0].clone();
+    }
+    let (u, f) = best_seen;
     let values = scale(&u);
     Ok(Optimum {
         text: p.text_at(&values),
