@@ -970,10 +970,79 @@ impl PyMechanism {
 }
 
 /// The native module `mech._mech`.
+/// Optimise the mechanism `text` (`mech_core::design::optimize`): the variables as (name,
+/// lo, hi, unit word or None), the objective by name (`path` with `targets` and `point`),
+/// the constraints written as on the command line; `loads` a callable of q returning the
+/// flat loads. Returns (values, objective, initial, history as (evaluations, best), the
+/// optimised text, evaluations).
+#[pyfunction]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+#[pyo3(signature = (text, vary, minimize, targets, point, irregularity, subject_to, qd, period, steps, evaluations, seed, loads))]
+fn optimize(
+    py: Python<'_>,
+    text: &str,
+    vary: Vec<(String, f64, f64, Option<String>)>,
+    minimize: String,
+    targets: Option<Vec<[f64; 2]>>,
+    point: Option<String>,
+    irregularity: Option<f64>,
+    subject_to: Vec<String>,
+    qd: f64,
+    period: f64,
+    steps: usize,
+    evaluations: usize,
+    seed: u64,
+    loads: PyObject,
+) -> PyResult<(Vec<f64>, f64, f64, Vec<(usize, f64)>, String, usize)> {
+    use mech_core::design::optimize::{Constraint, Objective, Settings, Variable};
+    check_text(text, "the text")?;
+    let mut vars = Vec::new();
+    for (name, lo, hi, unit) in vary {
+        let unit = match unit {
+            None => None,
+            Some(w) => Some(mech_core::model::units::lookup(&w).ok_or_else(|| {
+                invalid(format!("vary {name}: unknown unit `{w}`; the words are {}", mech_core::model::units::all_words()))
+            })?),
+        };
+        let f = unit.map_or(1.0, |u| u.factor);
+        vars.push(Variable { name, lo: lo * f, hi: hi * f, unit });
+    }
+    let objective = if minimize == "path" {
+        match (targets, point) {
+            (Some(targets), Some(point)) => Objective::Path { targets, point },
+            _ => return Err(invalid("minimize=\"path\" needs targets (an array of x, y) and point (the point's name)")),
+        }
+    } else {
+        Objective::parse(&minimize, irregularity, |_| Err(CoreError::InvalidInput("give a path's targets as an array".into())))
+            .map_err(|e| py_err(py, e))?
+    };
+    let constraints = subject_to
+        .iter()
+        .map(|c| Constraint::parse(c))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| py_err(py, e))?;
+    let settings = Settings { speed: qd, period, steps, evaluations, seed };
+    let raised = Raised::default();
+    let out = mech_core::design::optimize::optimize(text, &vars, &objective, &constraints, settings, |m, q| {
+        let flat: Vec<f64> = loads.call1(py, (q,)).and_then(|v| v.extract(py)).map_err(|e| {
+            let text = format!("the loads callable at q = {q}: {e}");
+            keep_first(&raised, e);
+            CoreError::InvalidInput(text)
+        })?;
+        Ok(loads_of(m, &flat))
+    });
+    if let Some(e) = raised.borrow_mut().take() {
+        return Err(e);
+    }
+    let o = out.map_err(|e| py_err(py, e))?;
+    Ok((o.values, o.objective, o.initial, o.history, o.text, o.evaluations))
+}
+
 #[pymodule]
 fn _mech(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMechanism>()?;
     m.add_function(wrap_pyfunction!(num_threads, m)?)?;
+    m.add_function(wrap_pyfunction!(optimize, m)?)?;
     let py = m.py();
     // The module they are found in, for pickle (a worker's exception travels back to
     // the client): `mech._mech`, not the `_mech` the macro names.

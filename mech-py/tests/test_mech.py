@@ -392,3 +392,19 @@ def test_cam_profile_of_the_rocker():
     assert not p["undercut"]
     with pytest.raises(mech.InvalidInput):
         engine().cam_profile()
+
+
+def test_optimize_lowers_the_engines_peak_driver_torque_and_writes_a_file_that_loads():
+    m = mech.Mechanism.load(ROOT / "examples" / "mech" / "engine.mech")
+    r = mech.optimize(m, vary={"l": (120, 180, "mm"), "e": (-10, 10, "mm")}, minimize="peak_driver",
+                      qd=3000 * math.pi / 30, period=4 * math.pi, steps=72, evaluations=80, seed=3)
+    assert r["objective"] < 0.99 * r["initial"]
+    assert 0.12 <= r["values"]["l"] <= 0.18 and -0.01 <= r["values"]["e"] <= 0.01
+    opt = r["mechanism"]
+    q = 4 * math.pi * np.arange(72) / 72
+    torque = np.abs(opt.kinetostatics(q, 3000 * math.pi / 30, 0.0)["driver"])
+    assert abs(torque.max() - r["objective"]) < 1e-9 * r["objective"]
+    assert np.all(np.diff(r["history"][:, 1]) < 0)
+    with pytest.raises(mech.InvalidInput) as e:
+        mech.optimize(m, vary={"nope": (1, 2)}, minimize="peak_driver", qd=10.0)
+    assert "no such number" in str(e.value)

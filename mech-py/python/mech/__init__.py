@@ -52,6 +52,7 @@ from ._mech import InvalidInput, InvalidMechanism, MechError, NoAssembly, Singul
 __all__ = [
     "Mechanism",
     "sweep",
+    "optimize",
     "num_threads",
     "MechError",
     "InvalidMechanism",
@@ -595,6 +596,42 @@ class Mechanism:
         out["min_convex_radius"] = (rho, rho_at)
         out["undercut"] = undercut
         return out
+
+
+def optimize(mechanism, vary, minimize, subject_to=(), qd=0.0, loads=None, steps=180, period=2 * np.pi,
+             irregularity=None, targets=None, point=None, evaluations=300, seed=0):
+    """Vary named numbers of ``mechanism``'s text within bounds to minimise an objective of
+    its dynamics (as ``mech optimize``). ``vary``: a dict name -> (lo, hi) in SI, or
+    (lo, hi, unit) with the unit word the file writes (``{"l": (120, 180, "mm")}``); a name
+    is a constant of ``consts { .. }`` or ``links.<l>.mass`` / ``links.<l>.inertia``.
+    ``minimize``: ``"peak_driver"``, ``"rms_driver"``, ``"flywheel"`` (with
+    ``irregularity``), ``"peak_reaction(J)"``, ``"rms_shaking"`` or ``"path"`` (with
+    ``targets``, an (n, 2) array in m, and ``point``, the point's name). ``subject_to``:
+    constraints written as on the command line (``"grashof"``, ``"transmission >= 40
+    deg"``). Over one period at the constant speed ``qd`` (rad/s) at ``steps`` instants;
+    ``loads`` a dict as in :meth:`Mechanism.simulate`. Returns a dict: ``mechanism`` (the
+    optimised Mechanism), ``text``, ``values`` (name -> SI), ``objective``, ``initial``
+    (the objective as given), ``history`` (an (k, 2) array of evaluations and best
+    objective) and ``evaluations``."""
+    if not isinstance(mechanism, Mechanism):
+        raise TypeError("mechanism is %s: give a mech.Mechanism" % _kind(mechanism))
+    if not isinstance(vary, Mapping) or not vary:
+        raise TypeError("vary is %s: give a dict name -> (lo, hi) or (lo, hi, unit)" % _kind(vary))
+    spec = []
+    for name, b in vary.items():
+        if not isinstance(b, (tuple, list)) or len(b) not in (2, 3):
+            raise TypeError("vary[%r] is %s: give (lo, hi) or (lo, hi, unit)" % (name, _kind(b)))
+        unit = b[2] if len(b) == 3 else None
+        spec.append((str(name), _number(b[0], "lo"), _number(b[1], "hi"), unit))
+    t = None if targets is None else [[float(x), float(y)] for x, y in np.asarray(targets, dtype=float).reshape(-1, 2)]
+    eps = None if irregularity is None else _number(irregularity, "irregularity")
+    values, obj, initial, history, text, n = _mech.optimize(
+        mechanism.text, spec, str(minimize), t, point, eps, [str(c) for c in subject_to],
+        _number(qd, "qd"), _number(period, "period"), _count(steps, "steps"),
+        _count(evaluations, "evaluations"), _count(seed, "seed"), mechanism._loads_of_q(loads))
+    return {"mechanism": Mechanism(text), "text": text, "values": dict(zip([s[0] for s in spec], values)),
+            "objective": obj, "initial": initial, "history": np.array(history, dtype=float).reshape(-1, 2),
+            "evaluations": n}
 
 
 def sweep(mechanism, params, q, qd=0.0, qdd=0.0, loads=None, parts=None):

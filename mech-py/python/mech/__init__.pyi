@@ -83,5 +83,7 @@ class Mechanism:
     def cam_profile(self, name: Optional[str] = ..., points: int = ...) -> Dict[str, Any]:
         """A cam's profile over a turn: lift, pitch and contact points, pressure angle, curvature; the design figures."""
 
+def optimize(mechanism: Mechanism, vary: Mapping[str, Sequence[Any]], minimize: str, subject_to: Sequence[str] = ..., qd: float = ..., loads: Optional[Mapping[str, LoadValue]] = ..., steps: int = ..., period: float = ..., irregularity: Optional[float] = ..., targets: Optional[ArrayLike] = ..., point: Optional[str] = ..., evaluations: int = ..., seed: int = ...) -> Dict[str, Any]:
+    """Vary named numbers of the mechanism's text to minimise an objective of its dynamics."""
 def sweep(mechanism: Mechanism, params: Union[Mapping[str, ArrayLike], Sequence[Mapping[str, ArrayLike]]], q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., loads: Optional[Mapping[str, LoadValue]] = ..., parts: Optional[Sequence[str]] = ...) -> Dict[str, np.ndarray]:
     """Columns over parameter variants × inputs, shape (V, n), with the mask `ok`."""
