@@ -359,14 +359,8 @@ impl Mechanism {
                 let Some((shape, material)) = model.links[i].body else {
                     return Err(bad("the link is not declared by a `shape:`"));
                 };
-                let mut dims = shape.dimensions();
-                let Some(d) = dims.iter_mut().find(|(n, _)| n == dim) else {
-                    let names: Vec<&str> = dims.iter().map(|(n, _)| *n).collect();
-                    return Err(bad(&format!("a `{}` has {}", shape.keyword(), names.join(", "))));
-                };
-                d.1 = one(value)?;
-                let values: Vec<f64> = dims.iter().map(|(_, v)| *v).collect();
-                let new = crate::model::shape::Shape::from_dimensions(shape.keyword(), &values)
+                let new = shape
+                    .with_dimension(dim, one(value)?)
                     .map_err(|why| MechError::InvalidInput(format!("`{path}`: {why}")))?;
                 model.links[i].body = Some((new, material));
             }
