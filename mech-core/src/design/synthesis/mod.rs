@@ -2,7 +2,10 @@
 //! angles, poses of the coupler) to a [`four_bar::FourBar`] that writes itself as a
 //! mechanism file, and the [`error`] a path is met with (SPEC §3f).
 
+pub mod burmester;
 pub mod error;
 pub mod four_bar;
+pub mod freudenstein;
+pub mod three_point;
 
 pub use four_bar::{FourBar, FourBarPose};
