@@ -8,7 +8,7 @@ use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
     cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, simulate, size,
-    solve, source, strength, Failure,
+    solve, source, strength, synth_exact, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -130,6 +130,23 @@ enum Command {
     /// A mechanism from pyslvs's PMKS expression (`M[J[R, P[x, y], L[ground, L1]], ...]`)
     /// written as a `.mech` file.
     Import(import::ImportArgs),
+    /// Dimensional synthesis: a four-bar (O2, O4, A, B, P, input O2) from what it must do,
+    /// written as a `.mech` file.
+    #[command(subcommand)]
+    Synth(Synth),
+}
+
+/// The synthesis methods of `mech synth`.
+#[derive(Subcommand, Debug)]
+enum Synth {
+    /// Function generation: the output angle (O4 → B) at given input angles (O2 → A), from
+    /// a CSV of `input`, `output` (rad): Freudenstein's equation, three pairs exactly, more
+    /// by least squares.
+    Function(synth_exact::FunctionArgs),
+    /// Motion generation: the coupler through given poses, from a CSV of `x`, `y` (P, m)
+    /// and `angle` (A → B, rad): Burmester theory, three to five poses exactly, more by
+    /// least squares.
+    Motion(synth_exact::MotionArgs),
 }
 
 fn main() -> ExitCode {
@@ -232,5 +249,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Report(args) => report::run(args),
         Command::Import(args) => import::run(args, stdout),
         Command::Cam(args) => cam::run(args, stdout),
+        Command::Synth(Synth::Function(args)) => synth_exact::function(args, stdout),
+        Command::Synth(Synth::Motion(args)) => synth_exact::motion(args, stdout),
     }
 }

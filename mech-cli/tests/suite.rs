@@ -15,6 +15,7 @@ mod optimize;
 mod regime;
 mod snapshots;
 mod strength;
+mod synth_exact;
 
 /// Every `tests/*.rs` but this file is one of the modules above.
 #[cfg(test)]

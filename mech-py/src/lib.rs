@@ -969,6 +969,64 @@ impl PyMechanism {
     }
 }
 
+/// The most targets a synthesis takes (the CLI's limit).
+const MAX_TARGETS: usize = 10_000;
+
+fn check_targets(n: usize, what: &str) -> PyResult<()> {
+    if n > MAX_TARGETS {
+        return Err(invalid(format!(
+            "{n} {what}: more than the limit of {MAX_TARGETS}; synthesis needs three to a few dozen, thin them"
+        )));
+    }
+    Ok(())
+}
+
+/// Function generation by Freudenstein's equation
+/// (`mech_core::design::synthesis::freudenstein::function`): the four-bar through `pairs`
+/// (input θ₂, output θ₄, rad from the frame line) with frame length `frame` (m), as (its
+/// mechanism file's text, the error Σ (θ₄(θ₂ᵢ) − θ₄ᵢ)² in rad²).
+#[pyfunction]
+#[pyo3(signature = (pairs, frame))]
+fn synthesize_function(py: Python<'_>, pairs: Vec<[f64; 2]>, frame: f64) -> PyResult<(String, f64)> {
+    use mech_core::design::synthesis::freudenstein;
+    check_targets(pairs.len(), "pairs")?;
+    let s = freudenstein::function(&pairs, frame).map_err(|e| py_err(py, e))?;
+    let doc = format!(
+        "Function generator through {} (input, output) pairs: Freudenstein's equation{} (mech.synthesize_function).",
+        pairs.len(),
+        if s.exact { "" } else { ", least squares" }
+    );
+    Ok((s.four_bar.to_mech("FunctionGenerator", &doc), s.error))
+}
+
+/// Motion generation by Burmester theory
+/// (`mech_core::design::synthesis::burmester::motion`): the four-bar through `poses`
+/// (x, y in m, angle in rad), `circle_points` the circle points of A and B in the moving
+/// frame (m) for three poses, as (its mechanism file's text, the error in m², the offset γ
+/// in rad of A → B from the poses' angles, the crank's angle q at each pose in rad).
+#[pyfunction]
+#[pyo3(signature = (poses, circle_points))]
+fn synthesize_motion(
+    py: Python<'_>,
+    poses: Vec<[f64; 3]>,
+    circle_points: Option<[[f64; 2]; 2]>,
+) -> PyResult<(String, f64, f64, Vec<f64>)> {
+    use mech_core::design::synthesis::burmester;
+    check_targets(poses.len(), "poses")?;
+    let s = burmester::motion(&poses, circle_points).map_err(|e| py_err(py, e))?;
+    let doc = format!(
+        "Motion generator through {} poses: Burmester theory{} (mech.synthesize_motion).",
+        poses.len(),
+        if s.exact { "" } else { ", least squares" }
+    );
+    Ok((
+        s.four_bar.to_mech("MotionGenerator", &doc),
+        s.error,
+        s.offset,
+        s.crank_angles,
+    ))
+}
+
 /// The native module `mech._mech`.
 /// Optimise the mechanism `text` (`mech_core::design::optimize`): the variables as (name,
 /// lo, hi, unit word or None), the objective by name (`path` with `targets` and `point`),
@@ -1043,6 +1101,8 @@ fn _mech(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMechanism>()?;
     m.add_function(wrap_pyfunction!(num_threads, m)?)?;
     m.add_function(wrap_pyfunction!(optimize, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesize_function, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesize_motion, m)?)?;
     let py = m.py();
     // The module they are found in, for pickle (a worker's exception travels back to
     // the client): `mech._mech`, not the `_mech` the macro names.

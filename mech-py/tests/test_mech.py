@@ -408,3 +408,66 @@ def test_optimize_lowers_the_engines_peak_driver_torque_and_writes_a_file_that_l
     with pytest.raises(mech.InvalidInput) as e:
         mech.optimize(m, vary={"nope": (1, 2)}, minimize="peak_driver", qd=10.0)
     assert "no such number" in str(e.value)
+
+
+def _hand_pairs():
+    """The crank-rocker a = 1, b = 3, c = 2, d = 3 worked by hand (mech-core's freudenstein
+    tests): its output angles at the inputs 0, π/2, π."""
+    x2 = (45 + math.sqrt(135)) / 20
+    y2 = 3 * x2 - 6.5
+    return [
+        [0.0, math.atan2(math.sqrt(63) / 4, 13 / 4 - 3)],
+        [math.pi / 2, math.atan2(y2, x2 - 3)],
+        [math.pi, math.atan2(math.sqrt(135) / 8, 13 / 8 - 3)],
+    ]
+
+
+def test_synthesize_function_meets_the_pairs():
+    pairs = _hand_pairs()
+    m, error = mech.synthesize_function(pairs, frame=3.0)
+    assert error < 1e-24
+    assert m.name == "FunctionGenerator"
+    out = m.pose(np.array([p[0] for p in pairs]))
+    for k, (_, psi) in enumerate(pairs):
+        got = math.atan2(out["B.y"][k] - out["O4.y"][k], out["B.x"][k] - out["O4.x"][k])
+        assert abs(math.remainder(got - psi, 2 * math.pi)) < TOL
+    assert abs(out["O4.x"][0] - 3.0) < TOL
+    # Seven pairs of the same linkage, as an ndarray: least squares finds it again.
+    q = np.linspace(0.1, 3.0, 7)
+    o = m.pose(q)
+    more = np.stack([q, np.arctan2(o["B.y"] - o["O4.y"], o["B.x"] - o["O4.x"])], axis=1)
+    m7, error = mech.synthesize_function(more, frame=3.0)
+    assert error < 1e-20
+    assert "least squares" in m7.text
+
+
+def test_synthesize_motion_meets_the_poses():
+    poses = [[0.0, 0.0, 0.0], [1.0, 1.0, math.pi / 2], [2.0, 0.0, math.pi]]
+    m, error, info = mech.synthesize_motion(poses, circle_points=[[-1, 2], [1, 2]], full=True)
+    assert error < 1e-24 and info["offset"] == 0.0
+    out = m.pose(info["q"])
+    for k, (x, y, angle) in enumerate(poses):
+        assert abs(out["P.x"][k] - x) < TOL and abs(out["P.y"][k] - y) < TOL
+        assert abs(math.remainder(out["coupler.angle"][k] - angle, 2 * math.pi)) < TOL
+    assert abs(out["O2.x"][0] - 2.0) < TOL and abs(out["O2.y"][0] - 1.0) < TOL
+    m2, error = mech.synthesize_motion(poses)
+    assert isinstance(m2, mech.Mechanism) and error < 1e-24
+    # The four-bar pickles as any mechanism.
+    assert pickle.loads(pickle.dumps(m)).text == m.text
+
+
+def test_synthesis_refuses_bad_targets():
+    with pytest.raises(mech.InvalidInput, match="at least 3"):
+        mech.synthesize_function([[0.1, 0.2], [0.3, 0.4]])
+    with pytest.raises(mech.InvalidInput, match="not finite"):
+        mech.synthesize_function([[0.1, 0.2], [0.3, float("nan")], [0.5, 0.6]])
+    with pytest.raises(mech.InvalidInput, match="singular"):
+        mech.synthesize_function([[0.1, 0.7], [0.3, 0.7], [0.5, 0.7]])
+    with pytest.raises(mech.InvalidInput, match="shape"):
+        mech.synthesize_function([0.1, 0.2, 0.3])
+    with pytest.raises(mech.InvalidInput, match="coincide"):
+        mech.synthesize_motion([[0, 0, 0], [1, 1, 0.5], [0, 0, 0]])
+    with pytest.raises(mech.InvalidInput, match="three poses only"):
+        mech.synthesize_motion([[0, 0, 0], [1, 1, 0.5], [2, 0, 1], [3, 1, 1.5]], circle_points=[[0, 1], [1, 1]])
+    with pytest.raises(TypeError):
+        mech.synthesize_motion("poses")

@@ -53,6 +53,8 @@ __all__ = [
     "Mechanism",
     "sweep",
     "optimize",
+    "synthesize_function",
+    "synthesize_motion",
     "num_threads",
     "MechError",
     "InvalidMechanism",
@@ -673,3 +675,66 @@ def sweep(mechanism, params, q, qd=0.0, qdd=0.0, loads=None, parts=None):
     out = {name: data[:, :, k] for k, name in enumerate(names)}
     out["ok"] = ok
     return out
+
+
+def _targets(x, name, width, what):
+    """``x`` as a list of rows of ``width`` finite floats (an array-like of shape
+    ``(n, width)``)."""
+    a = _floats(x, name)
+    if a.ndim != 2 or a.shape[1] != width:
+        raise InvalidInput("%s of shape %s: give an array of shape (n, %d), one row of %s per target" % (name, a.shape, width, what))
+    if not np.all(np.isfinite(a)):
+        i = int(np.argwhere(~np.isfinite(a))[0][0])
+        raise InvalidInput("%s row %d %s is not finite: give finite numbers" % (name, i + 1, list(a[i])))
+    return a.tolist()
+
+
+def synthesize_function(pairs, frame=1.0):
+    """A four-bar function generator: the output angle (O4 → B) at given input angles
+    (O2 → A), both rad counter-clockwise from the frame line O2 → O4 (SPEC §3f).
+
+    ``pairs`` is an array-like of shape ``(n, 2)``: (input, output) rows. Three pairs are
+    met exactly (Freudenstein's equation K₁ cos θ₄ − K₂ cos θ₂ + K₃ = cos(θ₂ − θ₄),
+    K₁ = d/a, K₂ = d/c, K₃ = (a² − b² + c² + d²)/(2ac)); more by least squares on K.
+    ``frame`` is the frame length d (m): O2 at the origin, O4 at (d, 0), so the run-time
+    input q is the input angle itself.
+
+    Returns ``(Mechanism, error)``: the four-bar (points ``O2``, ``O4``, ``A``, ``B``,
+    ``P``, input ``O2``) and error = Σ (θ₄(θ₂ᵢ) − θ₄ᵢ)² (rad²). Bad pairs (fewer than
+    three, not finite, two with one input, a singular system, no four-bar) raise
+    ``mech.InvalidInput`` naming the fix."""
+    rows = _targets(pairs, "pairs", 2, "(input, output)")
+    text, error = _mech.synthesize_function(rows, _number(frame, "frame"))
+    return Mechanism.from_dsl(text), error
+
+
+def synthesize_motion(poses, circle_points=None, full=False):
+    """A four-bar motion generator: the coupler through given poses (SPEC §3f).
+
+    ``poses`` is an array-like of shape ``(n, 3)``: (x, y, angle) rows, P's position (m)
+    and the coupler's direction A → B (rad). Three to five poses are met exactly (Burmester
+    theory: circumcentres for three, the circle-point curve for four, the Burmester points
+    for five), more by least squares. ``circle_points`` (three poses only) is
+    ``((xA, yA), (xB, yB))``, the circle points of A and B in the moving frame (m; origin
+    P, x along the pose's angle); by default the best pair on one line along the pose's
+    angle (so that A → B points along it).
+
+    Returns ``(Mechanism, error)``: the four-bar (points ``O2``, ``O4``, ``A``, ``B``,
+    ``P``, input ``O2`` whose q is the crank's absolute angle) and error = Σ |P(θᵢ) − Pᵢ|² +
+    L² |e(φᵢ − γ) − e(angleᵢ)|² (m²; φᵢ the direction of A → B at the pose's crank angle θᵢ,
+    L = |AB|). The coupler's direction A → B is angleᵢ + γ at every pose: γ = 0 unless the
+    Burmester points of five poses force it. With ``full=True``, ``(Mechanism, error,
+    {"offset": γ, "q": the crank angle θᵢ of each pose})``. Bad poses raise
+    ``mech.InvalidInput`` naming the fix."""
+    rows = _targets(poses, "poses", 3, "(x, y, angle)")
+    cp = None
+    if circle_points is not None:
+        c = _floats(circle_points, "circle_points")
+        if c.shape != (2, 2):
+            raise InvalidInput("circle_points of shape %s: give ((xA, yA), (xB, yB)), m in the moving frame" % (c.shape,))
+        cp = c.tolist()
+    text, error, offset, q = _mech.synthesize_motion(rows, cp)
+    m = Mechanism.from_dsl(text)
+    if full:
+        return m, error, {"offset": offset, "q": np.array(q)}
+    return m, error

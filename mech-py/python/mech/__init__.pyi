@@ -87,3 +87,9 @@ def optimize(mechanism: Mechanism, vary: Mapping[str, Sequence[Any]], minimize: 
     """Vary named numbers of the mechanism's text to minimise an objective of its dynamics."""
 def sweep(mechanism: Mechanism, params: Union[Mapping[str, ArrayLike], Sequence[Mapping[str, ArrayLike]]], q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., loads: Optional[Mapping[str, LoadValue]] = ..., parts: Optional[Sequence[str]] = ...) -> Dict[str, np.ndarray]:
     """Columns over parameter variants × inputs, shape (V, n), with the mask `ok`."""
+
+def synthesize_function(pairs: ArrayLike, frame: float = ...) -> Tuple[Mechanism, float]:
+    """A four-bar through (input, output) angle pairs, rad: Freudenstein (3 exact, more least squares); (Mechanism, error rad²)."""
+
+def synthesize_motion(poses: ArrayLike, circle_points: Optional[ArrayLike] = ..., full: bool = ...) -> Tuple[Any, ...]:
+    """A four-bar through (x, y, angle) poses: Burmester (3 to 5 exact, more least squares); (Mechanism, error m²) [, {"offset", "q"}]."""

@@ -12,9 +12,10 @@
 //!
 //! - **Three poses**: every point is a circle point; its centre is the circumcentre of
 //!   its three positions (one 2×2 linear system). The family is the choice of two circle
-//!   points (4 numbers, `--circle-points`); by default both on the line through P along
-//!   the pose's direction, at u ∈ {−2, −1, −½, ½, 1, 2}·ℓ (ℓ the poses' extent, the
-//!   largest |Pᵢ − P₁|), A before B, the best pair by [the ranking](#the-ranking).
+//!   points (4 numbers, `--circle-points`); by default both on one line along the pose's
+//!   direction, (u, k) with k ∈ {0, ±½, ±1}·ℓ and u ∈ {−2, −1, −½, ½, 1, 2}·ℓ (ℓ the
+//!   poses' extent, the largest |Pᵢ − P₁|), A before B, the best pair by
+//!   [the ranking](#the-ranking).
 //! - **Four poses**: z is a circle point when the three equations
 //!   2(Zᵢ − Z₁)·(c − Z₁) = |Zᵢ − Z₁|², i = 2, 3, 4, have a common solution c: the
 //!   determinant of their rows [2(Zᵢ − Z₁), −(Zᵢ − Z₁)·(Zᵢ + Z₁)], each affine in z, is
@@ -465,7 +466,13 @@ fn finish(t: &Task, c: Candidate, exact: bool) -> MotionSynthesis {
         o4: t.denormalise(v(fb.o4)),
         a: t.denormalise(v(fb.a)),
         b: t.denormalise(v(fb.b)),
-        p: t.denormalise(v(fb.p)),
+        // An exact four-bar is drawn at the first pose: P there is the pose's own point
+        // (the construction's round-off, ~1e-16 of ℓ, left out of the file).
+        p: if exact {
+            arr(t.origin)
+        } else {
+            t.denormalise(v(fb.p))
+        },
     };
     let dyad = |f: Fit| Dyad {
         circle: arr(f.z * s),
@@ -544,12 +551,20 @@ pub fn three_poses(
         };
     }
     let us = [-2.0, -1.0, -0.5, 0.5, 1.0, 2.0];
-    let fits: Vec<Option<Fit>> = us.iter().map(|&u| t.dyad(V2::new(u, 0.0), 1e-9)).collect();
-    let pairs = (0..us.len()).flat_map(|i| (i + 1..us.len()).map(move |j| (i, j)));
-    let cands = pairs.filter_map(|(i, j)| Some((fits[i]?, fits[j]?)));
+    let mut cands = Vec::new();
+    for k in [0.0, 0.5, -0.5, 1.0, -1.0] {
+        let fits: Vec<Option<Fit>> = us.iter().map(|&u| t.dyad(V2::new(u, k), 1e-9)).collect();
+        for i in 0..us.len() {
+            for j in i + 1..us.len() {
+                if let (Some(a), Some(b)) = (fits[i], fits[j]) {
+                    cands.push((a, b));
+                }
+            }
+        }
+    }
     best_exact(&t, cands).map(|c| finish(&t, c, true)).ok_or_else(|| {
         MechError::InvalidInput(
-            "no default pair of circle points (on the pose's direction through P, at ±½, ±1, ±2 times the poses' extent) gives a four-bar that reaches the three poses on one branch; give two circle points (--circle-points XA,YA,XB,YB, m in the moving frame)".into(),
+            "no default pair of circle points (on lines along the pose's direction at 0, ±½, ±1 times the poses' extent from P, at ±½, ±1, ±2 times it along them) gives a four-bar that reaches the three poses on one branch; give two circle points (--circle-points XA,YA,XB,YB, m in the moving frame)".into(),
         )
     })
 }
