@@ -17,18 +17,19 @@
 //!   poses' extent, the largest |Pᵢ − P₁|), A before B, the best pair by
 //!   [the ranking](#the-ranking).
 //! - **Four poses**: z is a circle point when the three equations
-//!   2(Zᵢ − Z₁)·(c − Z₁) = |Zᵢ − Z₁|², i = 2, 3, 4, have a common solution c: the
-//!   determinant of their rows [2(Zᵢ − Z₁), −(Zᵢ − Z₁)·(Zᵢ + Z₁)], each affine in z, is
-//!   zero, a cubic in z: the circle-point curve, whose centres make the centre-point curve
-//!   (also a cubic). It is sampled along lines of the moving frame y = k, where it is a
+//!   2(Zᵢ − Z₁)·c = |Zᵢ|² − |Z₁|², i = 2, 3, 4, have a common solution c: the determinant
+//!   of their rows [2(Zᵢ − Z₁), −(Zᵢ − Z₁)·(Zᵢ + Z₁)] (the coefficients of c and of 1),
+//!   each affine in z (|z|² cancels), is zero, a cubic in z: the circle-point curve, whose
+//!   centres make the centre-point curve (also a cubic). It is sampled along lines of the moving frame y = k, where it is a
 //!   cubic in x (roots by the companion matrix, polished by Newton on the determinant);
 //!   two circle points on one such line make A → B lie along the pose's direction, so the
 //!   angle of A → B meets each pose's angle exactly; those pairs are preferred, then any
 //!   two samples.
 //! - **Five poses**: the Burmester points, circle points of both curves of poses 1234 and
 //!   1235 (up to four real ones), found by Newton on the two determinants from seeds on
-//!   the first curve (its points on lines across the reach in four directions), the poles (P₁₂, P₁₃, P₂₃, common to both curves) discarded by
-//!   requiring the five positions to be concyclic; four-bars from pairs of them.
+//!   the first curve (its points on lines across the reach in four directions), the poles
+//!   (P₁₂, P₁₃, P₂₃, common to both curves) discarded by requiring the five positions to be
+//!   concyclic; four-bars from pairs of them.
 //! - **Six poses or more**: least squares: circle points minimising
 //!   Σᵢ (|Zᵢ − c| − ρ)² over (z, c, ρ) (Levenberg–Marquardt from the local minima of a grid
 //!   of z, each with the algebraic circle fit), four-bars from pairs of them, the smallest
