@@ -204,6 +204,17 @@ fn usage(e: mech_core::MechError) -> Failure {
     Failure::usage(e.to_string())
 }
 
+/// Write the four-bar's file once it passes the loader's checks (a drawing at a dead
+/// point, say, would not): status 1 with the check's message otherwise.
+fn write(path: &Path, text: &str) -> Result<(), Failure> {
+    if let Err(e) = mech_core::Mechanism::from_dsl(text) {
+        return Err(Failure::mechanism(format!(
+            "the four-bar found does not pass the checks of a mechanism file, not written: {e}"
+        )));
+    }
+    limits::write_file(path, text, "-o", "mech")
+}
+
 /// Run `mech synth function`.
 pub fn function(args: FunctionArgs, out: impl Write) -> Result<(), Failure> {
     limits::writable(&args.output, "-o", "mech")?;
@@ -245,12 +256,7 @@ pub fn function(args: FunctionArgs, out: impl Write) -> Result<(), Failure> {
         pairs.len(),
         if s.exact { "" } else { ", least squares" }
     );
-    limits::write_file(
-        &args.output,
-        &s.four_bar.to_mech("FunctionGenerator", &doc),
-        "-o",
-        "mech",
-    )
+    write(&args.output, &s.four_bar.to_mech("FunctionGenerator", &doc))
 }
 
 /// The four numbers of `--circle-points`, m.
@@ -325,10 +331,5 @@ pub fn motion(args: MotionArgs, out: impl Write) -> Result<(), Failure> {
         poses.len(),
         if s.exact { "" } else { ", least squares" }
     );
-    limits::write_file(
-        &args.output,
-        &s.four_bar.to_mech("MotionGenerator", &doc),
-        "-o",
-        "mech",
-    )
+    write(&args.output, &s.four_bar.to_mech("MotionGenerator", &doc))
 }

@@ -373,7 +373,17 @@ struct Candidate {
 fn build(t: &Task, ca: Fit, cb: Fit) -> Option<Candidate> {
     let (za, zb) = (ca.z, cb.z);
     let lc = (zb - za).norm();
-    if !(lc > 1e-9 && ca.rho > 1e-9 && cb.rho > 1e-9 && (ca.c - cb.c).norm() > 1e-9) {
+    // Every link of positive length, and A and B apart from P (a link's points are
+    // distinct in a mechanism file).
+    let apart = [
+        lc,
+        ca.rho,
+        cb.rho,
+        (ca.c - cb.c).norm(),
+        za.norm(),
+        zb.norm(),
+    ];
+    if !apart.iter().all(|&d| d > 1e-9) {
         return None;
     }
     let (ta, tb) = (t.place(0, za), t.place(0, zb));
@@ -535,6 +545,12 @@ pub fn three_poses(
             )));
         }
         let fit = |p: [f64; 2], name: &str| {
+            if !(v(p).norm() > 1e-9 * t.scale) {
+                return Err(MechError::InvalidInput(format!(
+                    "circle point {name} ({}, {}) is P itself: the coupler's points must be distinct; choose another circle point",
+                    p[0], p[1]
+                )));
+            }
             t.dyad(v(p) / t.scale, 1e-9).ok_or_else(|| {
                 MechError::InvalidInput(format!(
                     "circle point {name} ({}, {}): its three positions are collinear or coincide (the centre at infinity, a slider), or its centre is beyond {REACH} times the poses' extent; choose another circle point",
@@ -1093,6 +1109,7 @@ mod tests {
         ))
         .contains("only turns about P"));
         assert!(msg(three_poses(&good, Some([[-1.0, 0.0], [1.0, 1.0]]))).contains("circle point A"));
+        assert!(msg(three_poses(&good, Some([[0.0, 0.0], [1.0, 2.0]]))).contains("is P itself"));
         let four = poses_of(&known(), &[0.2, 0.9, 1.6, 2.4], 0.0);
         assert!(msg(motion(&four, Some([[0.0, 1.0], [1.0, 1.0]]))).contains("three poses only"));
     }

@@ -148,6 +148,19 @@ fn solve(ts: &[V2; 3], angles: &[f64], alpha: [f64; 2], d: f64) -> Option<FourBa
     if pts.iter().any(|x| !(x.norm() <= REACH)) {
         return None;
     }
+    // Every link of positive length, and A and B apart from P (a link's points are
+    // distinct in a mechanism file).
+    let apart = [
+        (a - o2).norm(),
+        (b - a).norm(),
+        (b - o4).norm(),
+        d,
+        (a - ts[0]).norm(),
+        (b - ts[0]).norm(),
+    ];
+    if !apart.iter().all(|&x| x > 1e-9) {
+        return None;
+    }
     Some(FourBar {
         o2: [o2.x, o2.y],
         o4: [o4.x, o4.y],
