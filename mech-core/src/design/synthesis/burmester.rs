@@ -20,20 +20,22 @@
 //!   2(Zᵢ − Z₁)·c = |Zᵢ|² − |Z₁|², i = 2, 3, 4, have a common solution c: the determinant
 //!   of their rows [2(Zᵢ − Z₁), −(Zᵢ − Z₁)·(Zᵢ + Z₁)] (the coefficients of c and of 1),
 //!   each affine in z (|z|² cancels), is zero, a cubic in z: the circle-point curve, whose
-//!   centres make the centre-point curve (also a cubic). It is sampled along lines of the moving frame y = k, where it is a
-//!   cubic in x (roots by the companion matrix, polished by Newton on the determinant);
-//!   two circle points on one such line make A → B lie along the pose's direction, so the
-//!   angle of A → B meets each pose's angle exactly; those pairs are preferred, then any
-//!   two samples.
+//!   centres make the centre-point curve (also a cubic). It is sampled along lines of the
+//!   moving frame (along the pose's direction, across it and the diagonals, out to
+//!   [`REACH`]), on each a cubic in the line's parameter (roots by the companion matrix,
+//!   polished by Newton on the determinant); two circle points on one line along the
+//!   pose's direction make A → B lie along it, so the angle of A → B meets each pose's
+//!   angle exactly; those pairs are preferred, then any two samples.
 //! - **Five poses**: the Burmester points, circle points of both curves of poses 1234 and
 //!   1235 (up to four real ones), found by Newton on the two determinants from seeds on
 //!   the first curve (its points on lines across the reach in four directions), the poles
 //!   (P₁₂, P₁₃, P₂₃, common to both curves) discarded by requiring the five positions to be
 //!   concyclic; four-bars from pairs of them.
 //! - **Six poses or more**: least squares: circle points minimising
-//!   Σᵢ (|Zᵢ − c| − ρ)² over (z, c, ρ) (Levenberg–Marquardt from the local minima of a grid
-//!   of z, each with the algebraic circle fit), four-bars from pairs of them, the smallest
-//!   [`motion_error`] kept.
+//!   Σᵢ (|Zᵢ − c| − ρ)² over (z, c, ρ) (Levenberg–Marquardt from the Burmester points of
+//!   five poses spread over the set, and from the twelve lowest local minima of a grid of
+//!   z out to 10ℓ, each with the algebraic circle fit), four-bars from pairs of them, the
+//!   smallest [`motion_error`] kept.
 //!
 //! **The offset γ.** SPEC §3f reads a pose's angle as the direction of A → B. The
 //! coupler's direction A → B is angleᵢ + γ at every pose, γ the direction of z_B − z_A in
@@ -586,9 +588,21 @@ pub fn three_poses(
     })
 }
 
-/// The lines y = k of the moving frame the four-pose curve is sampled on (normalised).
-fn sample_lines() -> Vec<f64> {
-    (0..=80).map(|k| -2.0 + 0.05 * k as f64).collect()
+/// The offsets of the lines the circle-point curves are sampled on (normalised): every
+/// 0.2 from −4 to 4, then out to [`REACH`].
+fn line_offsets() -> Vec<f64> {
+    let mut ks: Vec<f64> = (0..=40).map(|k| -4.0 + 0.2 * k as f64).collect();
+    for k in [5.0, 6.5, 8.0, 10.0, 13.0, 16.0, 20.0] {
+        ks.extend([k, -k]);
+    }
+    ks
+}
+
+/// The directions of the sampling lines: along the pose's direction (x), across it, and
+/// the two diagonals. Every branch of a curve within the reach crosses some of the lines.
+fn line_directions() -> [V2; 4] {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    [V2::x(), V2::y(), V2::new(h, h), V2::new(h, -h)]
 }
 
 /// The centre-point curve of four poses, sampled: the circle points on `lines` lines of
@@ -614,29 +628,38 @@ pub fn centre_point_curve(poses: &[Pose], lines: usize) -> Result<Vec<Dyad>, Mec
         .collect())
 }
 
-/// Four poses: the circle-point curve sampled on lines y = k ([`sample_lines`]); pairs
-/// on one line first (γ = 0), else any two samples.
+/// Four poses: the circle-point curve sampled on the lines of [`line_offsets`] and
+/// [`line_directions`]; pairs on one line along the pose's direction first (γ = 0), else
+/// any two samples.
 fn four_poses(t: &Task) -> Result<MotionSynthesis, MechError> {
-    let lines: Vec<Vec<Fit>> = sample_lines()
-        .into_iter()
-        .map(|k| {
-            let mut f: Vec<Fit> = t
-                .on_line([1, 2, 3], V2::new(0.0, k), V2::x())
+    let dirs = line_directions();
+    // lines[d][k]: the circle points on the line of direction d at offset k, in order.
+    let lines: Vec<Vec<Vec<Fit>>> = dirs
+        .iter()
+        .map(|&d| {
+            line_offsets()
                 .into_iter()
-                .filter_map(|z| t.dyad(z, 1e-9))
-                .collect();
-            f.sort_by(|a, b| a.z.x.total_cmp(&b.z.x));
-            f
+                .map(|k| {
+                    let mut f: Vec<Fit> = t
+                        .on_line([1, 2, 3], perp(d) * k, d)
+                        .into_iter()
+                        .filter_map(|z| t.dyad(z, 1e-9))
+                        .collect();
+                    f.sort_by(|a, b| a.z.dot(&d).total_cmp(&b.z.dot(&d)));
+                    f
+                })
+                .collect()
         })
         .collect();
-    let same = lines
+    // Pairs on one line along the pose's direction, A before B: γ = 0.
+    let same = lines[0]
         .iter()
         .flat_map(|l| (0..l.len()).flat_map(move |i| (i + 1..l.len()).map(move |j| (l[i], l[j]))));
     if let Some(c) = best_exact(t, same) {
         return Ok(finish(t, c, true));
     }
-    let all: Vec<Fit> = lines.into_iter().flatten().collect();
-    let step = all.len().div_ceil(200).max(1);
+    let all: Vec<Fit> = lines.into_iter().flatten().flatten().collect();
+    let step = all.len().div_ceil(240).max(1);
     let some: Vec<Fit> = all.into_iter().step_by(step).collect();
     let any = (0..some.len())
         .flat_map(|i| {
@@ -676,18 +699,7 @@ pub fn burmester_points(poses: &[Pose]) -> Result<Vec<Dyad>, MechError> {
 /// distances up to [`REACH`] from P in four directions.
 fn burmester(t: &Task) -> Vec<Fit> {
     let (c1, c2) = ([1, 2, 3], [1, 2, 4]);
-    // Lines across the whole reach in four directions: every branch of the curve within
-    // it crosses some of them.
-    let mut ks: Vec<f64> = (0..=40).map(|k| -4.0 + 0.2 * k as f64).collect();
-    for k in [5.0, 6.5, 8.0, 10.0, 13.0, 16.0, 20.0] {
-        ks.extend([k, -k]);
-    }
-    let dirs = [
-        V2::x(),
-        V2::y(),
-        V2::new(1.0, 1.0) / 2f64.sqrt(),
-        V2::new(1.0, -1.0) / 2f64.sqrt(),
-    ];
+    let (ks, dirs) = (line_offsets(), line_directions());
     let seeds = ks.iter().flat_map(|&k| {
         dirs.iter()
             .flat_map(|&d| t.on_line(c1, perp(d) * k, d))
@@ -822,7 +834,14 @@ fn refine(t: &Task, mut f: Fit) -> Option<Fit> {
 }
 
 fn least_squares(t: &Task) -> Result<MotionSynthesis, MechError> {
-    let grid: Vec<f64> = (0..=20).map(|k| -2.5 + 0.25 * k as f64).collect();
+    let grid: Vec<f64> = {
+        let mut g: Vec<f64> = line_offsets()
+            .into_iter()
+            .filter(|k| k.abs() <= 10.0)
+            .collect();
+        g.sort_by(f64::total_cmp);
+        g
+    };
     let g = grid.len();
     let fit_at = |z: V2| {
         let pts: Vec<V2> = (0..t.n()).map(|i| t.place(i, z)).collect();
@@ -856,8 +875,31 @@ fn least_squares(t: &Task) -> Result<MotionSynthesis, MechError> {
         }
     }
     minima.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Seeds: the Burmester points of five poses spread over the set (exact when the poses
+    // are consistent), then the grid's lowest minima.
+    let n = t.n();
+    let five: Vec<Pose> = [0, n / 4, n / 2, 3 * n / 4, n - 1]
+        .iter()
+        .map(|&i| {
+            let (p, r) = t.poses[i];
+            [p.x, p.y, r.y.atan2(r.x)]
+        })
+        .collect();
+    let mut seeds: Vec<Fit> = Task::new(&five, 5)
+        .map(|sub| {
+            burmester(&sub)
+                .into_iter()
+                .map(|f| Fit {
+                    z: f.z * sub.scale,
+                    c: sub.origin + f.c * sub.scale,
+                    rho: f.rho * sub.scale,
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    seeds.extend(minima.into_iter().take(12).map(|(_, f)| f));
     let mut fits: Vec<Fit> = Vec::new();
-    for (_, f) in minima.into_iter().take(8) {
+    for f in seeds {
         if let Some(r) = refine(t, f) {
             if !fits.iter().any(|x| (x.z - r.z).norm() <= 1e-6) {
                 fits.push(r);
@@ -1112,5 +1154,67 @@ mod tests {
         assert!(msg(three_poses(&good, Some([[0.0, 0.0], [1.0, 2.0]]))).contains("is P itself"));
         let four = poses_of(&known(), &[0.2, 0.9, 1.6, 2.4], 0.0);
         assert!(msg(motion(&four, Some([[0.0, 1.0], [1.0, 1.0]]))).contains("three poses only"));
+    }
+
+    /// Robustness: the poses of 60 pseudo-random four-bars (their coupler frames turned by
+    /// 0.4 rad from A → B) at four, five and seven crank angles: a four-bar that meets
+    /// every pose (to 1e-9 of P's position) is found for each, the given one being one
+    /// answer.
+    #[test]
+    fn the_poses_of_random_four_bars_are_met() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut rnd = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut tried = 0;
+        for _ in 0..60 {
+            let (o4, a, p) = (
+                [0.5 + rnd(), 0.0],
+                [0.1 + 0.4 * rnd(), 0.0],
+                [rnd() - 0.5, rnd()],
+            );
+            let (r3, r4) = (0.5 + rnd(), 0.3 + rnd());
+            let Ok(b) = circle_circle(v(a), r3 * r3, v(o4), r4 * r4, 1.0) else {
+                continue;
+            };
+            let fb = FourBar {
+                o2: [0.0, 0.0],
+                o4,
+                a,
+                b: arr(b),
+                p,
+            };
+            for n in [4usize, 5, 7] {
+                let th: Vec<f64> = (0..n).map(|k| 0.2 + 0.5 * k as f64 + 0.1 * rnd()).collect();
+                let Some(poses) = th
+                    .iter()
+                    .map(|&t| {
+                        fb.pose(t).map(|q| {
+                            [
+                                q.p[0],
+                                q.p[1],
+                                (q.b[1] - q.a[1]).atan2(q.b[0] - q.a[0]) + 0.4,
+                            ]
+                        })
+                    })
+                    .collect::<Option<Vec<Pose>>>()
+                else {
+                    continue;
+                };
+                tried += 1;
+                let s = motion(&poses, None).unwrap_or_else(|e| panic!("{n} poses {poses:?}: {e}"));
+                for (p, &t) in poses.iter().zip(&s.crank_angles) {
+                    let q = s.four_bar.pose(t).unwrap();
+                    assert!(
+                        (q.p[0] - p[0]).hypot(q.p[1] - p[1]) < 1e-9,
+                        "{n} poses {poses:?}"
+                    );
+                }
+            }
+        }
+        assert!(tried > 100, "{tried}");
     }
 }
