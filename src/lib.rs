@@ -46,6 +46,7 @@ pub use mech_core::{MechError, Mechanism, Vector2};
 pub use mech_core::kernel::kinetostatics::{
     CamReaction, MeshReaction, PrismaticReaction, RevoluteReaction, RollingReaction, SlotReaction,
 };
+pub use mech_core::kernel::energy::Shaking;
 pub use mech_core::kernel::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
 pub use mech_core::solvers::instance::{
     DamperParams, LinkParams, RotaryDamperParams, ShapeParams, SpringParams, TorsionSpringParams,
@@ -81,7 +82,7 @@ pub mod prelude {
         mechanism, BatchErrors, CamReaction, DamperParams, DeterminateReactions, LinkMotion,
         LinkPose, Machine, MechError, Mechanism, MeshReaction, OneDof, PointMotion, PointPose,
         PrismaticReaction, Reduced, RevoluteReaction, RollingReaction, RotaryDamperParams,
-        SlotReaction, SpringParams, TorsionSpringParams, Vector2,
+        Shaking, SlotReaction, SpringParams, TorsionSpringParams, Vector2,
     };
 }
 

@@ -27,6 +27,7 @@ pub mod quantity;
 pub mod regime;
 pub mod report;
 pub mod scene;
+pub mod shaking;
 pub mod simulate;
 pub mod size;
 pub mod solve;

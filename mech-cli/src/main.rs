@@ -8,7 +8,7 @@ use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
     cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, simulate, size,
-    solve, source, strength, Failure,
+    shaking, solve, source, strength, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -130,6 +130,10 @@ enum Command {
     /// A mechanism from pyslvs's PMKS expression (`M[J[R, P[x, y], L[ground, L1]], ...]`)
     /// written as a `.mech` file.
     Import(import::ImportArgs),
+    /// The shaking force and moment on the frame over a cycle at a constant speed (no loads,
+    /// no gravity): one row per input value, peaks, RMS and the primary and secondary
+    /// harmonics on standard error, a polar diagram of the force with --svg.
+    Shaking(shaking::ShakingArgs),
 }
 
 fn main() -> ExitCode {
@@ -232,5 +236,6 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Report(args) => report::run(args),
         Command::Import(args) => import::run(args, stdout),
         Command::Cam(args) => cam::run(args, stdout),
+        Command::Shaking(args) => shaking::run(args, stdout),
     }
 }

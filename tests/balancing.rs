@@ -1,0 +1,158 @@
+//! Balancing (SPEC 3g, issue 31): the shaking force and moment of a single-cylinder engine
+//! against a closed form written here and against −Σ of the ground's reactions from the
+//! kinetostatics; counterweights and `design::balance`.
+
+use crate::measure::within;
+use mech::prelude::*;
+
+const PI: f64 = std::f64::consts::PI;
+
+// A centred slider-crank drawn at θ = 0 (q = θ): crank r, rod l, the crank's cg at a along
+// the crank, the rod's at b from A along AB, the piston's at B.
+const R: f64 = 0.05;
+const L: f64 = 0.18;
+const A_CG: f64 = 0.012;
+const B_CG: f64 = 0.055;
+const M2: f64 = 1.4;
+const I2: f64 = 3.1e-3;
+const M3: f64 = 0.9;
+const I3: f64 = 4.4e-3;
+const M4: f64 = 0.7;
+
+mechanism! {
+    /// The slider-crank of the closed form (constants above, written out).
+    pub struct Single {
+        ground { O: (0.0, 0.0) },
+        link crank { points { O, A: (0.05, 0.0) }, mass: 1.4, inertia: 3.1e-3, cg: (0.012, 0.0) },
+        link rod { points { A, B: (0.23, 0.0) }, mass: 0.9, inertia: 4.4e-3, cg: (0.105, 0.0) },
+        link piston { points { B }, mass: 0.7, cg: (0.23, 0.0) },
+        joints {
+            O: revolute(ground, crank),
+            A: revolute(crank, rod),
+            B: revolute(rod, piston),
+            guide: prismatic(ground, piston) at B along (1.0, 0.0),
+        },
+        input: O,
+    }
+}
+
+/// The same text for the run-time mechanism.
+const SINGLE: &str = "pub struct Single {
+    ground { O: (0.0, 0.0) },
+    link crank { points { O, A: (0.05, 0.0) }, mass: 1.4, inertia: 3.1e-3, cg: (0.012, 0.0) },
+    link rod { points { A, B: (0.23, 0.0) }, mass: 0.9, inertia: 4.4e-3, cg: (0.105, 0.0) },
+    link piston { points { B }, mass: 0.7, cg: (0.23, 0.0) },
+    joints {
+        O: revolute(ground, crank),
+        A: revolute(crank, rod),
+        B: revolute(rod, piston),
+        guide: prismatic(ground, piston) at B along (1.0, 0.0),
+    },
+    input: O,
+}";
+
+/// The closed form at crank angle θ, rate ω, acceleration α: (Fx, Fy, M).
+/// x_B = r cos θ + D, D = √(l² − r² sin² θ), differentiated twice by hand:
+/// x' = −r s − r² s c / D, x'' = −r c − r² (c² − s²)/D − r⁴ s² c²/D³; the rod's angle
+/// sin φ = −(r/l) sin θ: φ' = −r c/D, φ'' = r s/D − r³ s c²/D³.
+fn closed_form(th: f64, w: f64, al: f64) -> [f64; 3] {
+    let (s, c) = th.sin_cos();
+    let d = (L * L - R * R * s * s).sqrt();
+    let x1 = -R * s - R * R * s * c / d;
+    let x2 = -R * c - R * R * (c * c - s * s) / d - R.powi(4) * s * s * c * c / d.powi(3);
+    let xdd = x2 * w * w + x1 * al;
+    let p1 = -R * c / d;
+    let p2 = R * s / d - R.powi(3) * s * c * c / d.powi(3);
+    let phidd = p2 * w * w + p1 * al;
+    // Accelerations of a point at radius ρ on the crank.
+    let on_crank = |rho: f64| [rho * (-s * al - c * w * w), rho * (c * al - s * w * w)];
+    let a_a = on_crank(R);
+    let a2 = on_crank(A_CG);
+    let k = B_CG / L;
+    let a3 = [(1.0 - k) * a_a[0] + k * xdd, (1.0 - k) * a_a[1]];
+    let a4 = [xdd, 0.0];
+    let g2 = [A_CG * c, A_CG * s];
+    let (ax, ay) = (R * c, R * s);
+    let xb = R * c + d;
+    let g3 = [(1.0 - k) * ax + k * xb, (1.0 - k) * ay];
+    let g4 = [xb, 0.0];
+    let fx = -(M2 * a2[0] + M3 * a3[0] + M4 * a4[0]);
+    let fy = -(M2 * a2[1] + M3 * a3[1] + M4 * a4[1]);
+    let cr = |g: [f64; 2], m: f64, a: [f64; 2]| m * (g[0] * a[1] - g[1] * a[0]);
+    let mo = -(cr(g2, M2, a2) + cr(g3, M3, a3) + cr(g4, M4, a4) + I2 * al + I3 * phidd);
+    [fx, fy, mo]
+}
+
+/// The generated `shaking` and the run-time one against the closed form over a turn, at
+/// a steady speed and while accelerating, to 1e-9 of the peaks.
+#[test]
+fn single_cylinder_shaking_against_its_closed_form() {
+    let g = Single::new();
+    let rt = mech::Mechanism::from_dsl(SINGLE).unwrap();
+    for (w, al) in [(300.0, 0.0), (120.0, 2500.0)] {
+        let rows: Vec<([f64; 3], [f64; 3], [f64; 3])> = (0..72)
+            .map(|k| {
+                let th = 2.0 * PI * k as f64 / 72.0;
+                let mg = g.motion(&[th], &[w], &[al]).unwrap();
+                let sg = g.shaking(&mg);
+                let mr = rt.motion(&[th], &[w], &[al]).unwrap();
+                let sr = rt.shaking(&mr);
+                (
+                    closed_form(th, w, al),
+                    [sg.force.x, sg.force.y, sg.moment],
+                    [sr.force.x, sr.force.y, sr.moment],
+                )
+            })
+            .collect();
+        for i in 0..3 {
+            let peak = rows.iter().map(|r| r.0[i].abs()).fold(0.0, f64::max);
+            assert!(peak > 1.0);
+            for (want, gen, run) in &rows {
+                assert!(within((gen[i] - want[i]).abs(), 1e-9 * peak), "{i}: {gen:?} vs {want:?}");
+                assert!(within((run[i] - want[i]).abs(), 1e-9 * peak), "{i}: {run:?} vs {want:?}");
+            }
+        }
+    }
+}
+
+/// F = −Σ of the forces the ground puts on the links (the reactions at its joints, by the
+/// ground on the crank and on the piston), M = −(their moments about the origin + the
+/// guide's moment + the driver's torque, whose reaction is on the stator): the
+/// kinetostatics with no loads and no gravity, for the engine of `examples/mech` too.
+#[test]
+fn shaking_is_minus_the_ground_reactions() {
+    let engine = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/mech/engine.mech"
+    ))
+    .unwrap()
+    .replace("gravity: (0.0, -9.81),", "");
+    for text in [SINGLE, engine.as_str()] {
+        let m = mech::Mechanism::from_dsl(text).unwrap();
+        let model = m.model();
+        let loads = m.loads();
+        for k in 0..36 {
+            let q = 2.0 * PI * k as f64 / 36.0;
+            let motion = m.motion(&[q], &[250.0], &[-800.0]).unwrap();
+            let s = m.shaking(&motion);
+            let f = m.kinetostatics(&motion, &loads).unwrap();
+            let (mut force, mut moment) = (Vector2::zeros(), f.driver[0]);
+            for (j, joint) in model.joints.iter().enumerate() {
+                let r = f.joints[j];
+                // By the ground on the link: the reaction itself when the ground is a,
+                // its negative when it is b.
+                let sign = match (joint.a, joint.b) {
+                    (0, _) => 1.0,
+                    (_, 0) => -1.0,
+                    _ => continue,
+                };
+                let at = motion.points[joint.point].pos;
+                force += r.force * sign;
+                moment += sign * (at.x * r.force.y - at.y * r.force.x + r.moment.unwrap_or(0.0));
+            }
+            let scale = 1.0 + s.force.norm();
+            assert!(within((s.force + force).norm(), 1e-9 * scale), "{q}: {:?} vs {force:?}", s.force);
+            assert!(within((s.moment + moment).abs(), 1e-9 * scale), "{q}: {} vs {moment}", s.moment);
+        }
+    }
+}
