@@ -156,3 +156,118 @@ fn shaking_is_minus_the_ground_reactions() {
         }
     }
 }
+
+const FOUR_BAR: &str = "pub struct Linkage {
+    ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
+    link crank { points { O2, A: (0.0, 0.1) }, mass: 0.5, inertia: 4e-4, cg: (0.01, 0.05) },
+    link coupler { points { A, B: (0.25, 0.2), P: (0.1, 0.3) }, mass: 1.0, inertia: 6e-3, cg: (0.12, 0.22) },
+    link rocker { points { O4, B }, mass: 0.8, inertia: 3e-3, cg: (0.28, 0.1) },
+    joints {
+        O2: revolute(ground, crank),
+        A: revolute(crank, coupler),
+        B: revolute(coupler, rocker),
+        O4: revolute(ground, rocker),
+    },
+    input: O2,
+}";
+
+/// The four-bar with the two counterweights of `force_balance` written into its file: its
+/// shaking force over a turn (at a speed and an acceleration) stays below 1e-9 of the
+/// unbalanced one's peak, sample by sample.
+#[test]
+fn a_force_balanced_four_bar_shakes_no_more() {
+    use mech::design::balance::{force_balance, write_counterweights};
+    let before = mech::Mechanism::from_dsl(FOUR_BAR).unwrap();
+    let weights = force_balance(before.model(), 0.0, None).unwrap();
+    assert_eq!(weights.len(), 2);
+    assert!(weights.iter().all(|w| w.mass > 0.0));
+    let text = write_counterweights(FOUR_BAR, &weights).unwrap();
+    assert_eq!(text.matches("counterweight:").count(), 2);
+    let after = mech::Mechanism::from_dsl(&text).unwrap();
+    let force = |m: &mech::Mechanism, q: f64| {
+        let motion = m.motion(&[q], &[40.0], &[300.0]).unwrap();
+        m.shaking(&motion).force.norm()
+    };
+    let qs: Vec<f64> = (0..90).map(|k| 2.0 * PI * k as f64 / 90.0).collect();
+    let peak = qs.iter().map(|&q| force(&before, q)).fold(0.0, f64::max);
+    assert!(peak > 10.0, "{peak}");
+    for &q in &qs {
+        let f = force(&after, q);
+        assert!(within(f, 1e-9 * peak), "at {q}: {f} N against {peak} N unbalanced");
+    }
+}
+
+/// A counterweight is a point mass fixed to the link: the resolved link's mass, cg and I_G
+/// are the two bodies combined, by the parallel-axis theorem written out here.
+#[test]
+fn a_counterweight_adds_a_point_mass_to_its_link() {
+    let text = SINGLE.replace(
+        "cg: (0.012, 0.0) },",
+        "cg: (0.012, 0.0), counterweight: (2.0 kg, at (-0.03, 0.01)) },",
+    );
+    let m = mech::Mechanism::from_dsl(&text).unwrap();
+    let crank = &m.model().links[1];
+    let (m1, g1, m2, g2) = (M2, [A_CG, 0.0], 2.0, [-0.03, 0.01]);
+    let mt = m1 + m2;
+    let g = [(m1 * g1[0] + m2 * g2[0]) / mt, (m1 * g1[1] + m2 * g2[1]) / mt];
+    let d2 = |p: [f64; 2]| (p[0] - g[0]).powi(2) + (p[1] - g[1]).powi(2);
+    let i = I2 + m1 * d2(g1) + m2 * d2(g2);
+    assert!(within((crank.mass.unwrap() - mt).abs(), 1e-15 * mt));
+    assert!(within((crank.cg[0] - g[0]).abs() + (crank.cg[1] - g[1]).abs(), 1e-15));
+    assert!(within((crank.inertia - i).abs(), 1e-15 * i));
+    // A massless link with a counterweight: its mass and cg are the counterweight's.
+    let rod = SINGLE.replace(
+        "mass: 0.9, inertia: 4.4e-3, cg: (0.105, 0.0) },",
+        "counterweight: (0.3, at (0.1, 0.02)) },",
+    );
+    let m = mech::Mechanism::from_dsl(&rod).unwrap();
+    let l = &m.model().links[2];
+    assert_eq!((l.mass, l.cg, l.inertia), (Some(0.3), [0.1, 0.02], 0.0));
+}
+
+/// Khurmi & Gupta, *Theory of Machines*, Example 22.1: a single-cylinder engine at 240 rpm,
+/// stroke 300 mm (r = 150 mm), reciprocating parts 50 kg, revolving parts 37 kg at the crank
+/// radius; all the revolving and two thirds of the reciprocating parts balanced by a mass at
+/// 400 mm: B = (37 + ⅔·50)·0.15/0.4 = 26.375 kg ("26.38 kg"); the residual unbalanced force
+/// 60° from top dead centre m ω² r √((1 − c)² cos² θ + c² sin² θ) = 2.847 kN ("2.85 kN") at
+/// tan⁻¹(c sin θ/((1 − c) cos θ)) = 73.9° to the line of stroke. Here the revolving parts
+/// are the crank's mass at the pin, the reciprocating the piston's, the rod (600 mm) massless:
+/// the exact motion's primary harmonic is the textbook's force (the piston's order-1 term is
+/// exactly −r ω² cos θ, a massless rod adds none).
+#[test]
+fn the_textbook_single_cylinder_counterweight() {
+    use mech::design::balance::{force_balance, shaking_cycle, write_counterweights};
+    let text = "pub struct Khurmi {
+        ground { O: (0.0, 0.0) },
+        link crank { points { O, A: (150 mm, 0.0) }, mass: 37 kg, cg: A },
+        link rod { points { A, B: (750 mm, 0.0) } },
+        link piston { points { B }, mass: 50 kg, cg: B },
+        joints {
+            O: revolute(ground, crank),
+            A: revolute(crank, rod),
+            B: revolute(rod, piston),
+            guide: prismatic(ground, piston) at B along (1.0, 0.0),
+        },
+        input: O,
+    }";
+    let m = mech::Mechanism::from_dsl(text).unwrap();
+    let w = force_balance(m.model(), 2.0 / 3.0, Some(0.4)).unwrap();
+    assert_eq!(w.len(), 1);
+    // The hand number, and the book's rounding of it.
+    assert!(within((w[0].mass - 26.375).abs(), 1e-12 * 26.375), "{w:?}");
+    assert!((w[0].mass - 26.38).abs() < 0.0051);
+    assert!(within((w[0].at[0] + 0.4).abs() + w[0].at[1].abs(), 1e-15), "{w:?}");
+    let balanced = mech::Mechanism::from_dsl(&write_counterweights(text, &w).unwrap()).unwrap();
+    let omega = 240.0 * 2.0 * PI / 60.0;
+    let cycle = shaking_cycle(&balanced, (0.0, 2.0 * PI, 360), &[0.0], &[omega]).unwrap();
+    let h = cycle.summary().harmonics[0];
+    let th = 60f64.to_radians();
+    let (s, c) = th.sin_cos();
+    let primary = Vector2::new(h.fx[0] * c + h.fx[1] * s, h.fy[0] * c + h.fy[1] * s);
+    let hand = 50.0 * omega * omega * 0.15
+        * (((1.0f64 / 3.0) * c).powi(2) + ((2.0f64 / 3.0) * s).powi(2)).sqrt();
+    assert!(within((primary.norm() - hand).abs(), 1e-9 * hand), "{primary:?} vs {hand}");
+    assert!((primary.norm() - 2847.0).abs() < 1.0, "{}", primary.norm());
+    let angle = primary.y.abs().atan2(primary.x.abs()).to_degrees();
+    assert!((angle - 73.9).abs() < 0.05, "{angle}");
+}

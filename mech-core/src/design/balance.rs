@@ -8,6 +8,7 @@
 use crate::kernel::energy::Shaking;
 use crate::runtime::mechanism::Mechanism;
 use crate::solvers::traits::Machine;
+use crate::model::Model;
 use crate::MechError;
 
 /// The shaking over a grid of the first input at a constant speed (the other inputs at
@@ -119,4 +120,260 @@ impl ShakingCycle {
             harmonics: [harmonic(1), harmonic(2)],
         }
     }
+}
+
+/// A counterweight to add: a point mass (kg) fixed to link `link` (an index into
+/// [`crate::model::Model::links`]) at `at`, a point of the drawing (m).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Counterweight {
+    /// The link's index.
+    pub link: usize,
+    /// The link's name.
+    pub name: String,
+    /// Mass, kg.
+    pub mass: f64,
+    /// Where, in the drawing, m.
+    pub at: [f64; 2],
+}
+
+/// Complex numbers of the plane as `[re, im]`: the product and the quotient.
+fn cmul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
+}
+fn cdiv(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    let n = b[0] * b[0] + b[1] * b[1];
+    [(a[0] * b[0] + a[1] * b[1]) / n, (a[1] * b[0] - a[0] * b[1]) / n]
+}
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+/// The mechanisms [`force_balance`] knows, with their links and points.
+enum Topology {
+    /// Ground pivots O2, O4; crank O2–A, coupler A–B, rocker O4–B.
+    FourBar {
+        crank: usize,
+        coupler: usize,
+        rocker: usize,
+        o2: [f64; 2],
+        a: [f64; 2],
+        b: [f64; 2],
+        o4: [f64; 2],
+    },
+    /// Crank O2–A, rod A–B, piston at B on a ground guide.
+    SliderCrank {
+        crank: usize,
+        rod: usize,
+        piston: usize,
+        o2: [f64; 2],
+        a: [f64; 2],
+        b: [f64; 2],
+    },
+}
+
+/// Recognise a four-bar (four links, four revolute joints) or a single slider-crank (three
+/// revolutes and a prismatic joint of the ground and the piston).
+fn topology(model: &Model) -> Result<Topology, MechError> {
+    use crate::model::JointKind::{Prismatic, Revolute};
+    let refuse = || {
+        MechError::InvalidInput(
+            "force balance knows a four-bar (four revolute joints) and a single slider-crank (crank, rod, piston on a ground guide); use the optimal method for this mechanism".into(),
+        )
+    };
+    if model.links.len() != 4 || model.joints.len() != 4 {
+        return Err(refuse());
+    }
+    let pos = |j: &crate::model::Joint| model.points[j.point].pos;
+    let other = |j: &crate::model::Joint, l: usize| if j.a == l { j.b } else { j.a };
+    let grounded: Vec<&crate::model::Joint> = model
+        .joints
+        .iter()
+        .filter(|j| j.a == 0 || j.b == 0)
+        .collect();
+    let revolutes = model.joints.iter().filter(|j| j.kind == Revolute).count();
+    let prismatic = model.joints.iter().filter(|j| j.kind == Prismatic).count();
+    let between = |l1: usize, l2: usize| {
+        model
+            .joints
+            .iter()
+            .find(|j| (j.a == l1 && j.b == l2) || (j.a == l2 && j.b == l1))
+    };
+    match (revolutes, prismatic, grounded.as_slice()) {
+        (4, 0, [g1, g2]) => {
+            let (crank, rocker) = (other(g1, 0), other(g2, 0));
+            let coupler = (1..4).find(|&l| l != crank && l != rocker).ok_or_else(refuse)?;
+            let (ja, jb) = (
+                between(crank, coupler).ok_or_else(refuse)?,
+                between(rocker, coupler).ok_or_else(refuse)?,
+            );
+            Ok(Topology::FourBar {
+                crank,
+                coupler,
+                rocker,
+                o2: pos(g1),
+                a: pos(ja),
+                b: pos(jb),
+                o4: pos(g2),
+            })
+        }
+        (3, 1, [g1, g2]) => {
+            let (rev, pri) = if g1.kind == Revolute { (g1, g2) } else { (g2, g1) };
+            if rev.kind != Revolute || pri.kind != Prismatic {
+                return Err(refuse());
+            }
+            let (crank, piston) = (other(rev, 0), other(pri, 0));
+            let rod = (1..4).find(|&l| l != crank && l != piston).ok_or_else(refuse)?;
+            let (ja, jb) = (
+                between(crank, rod).ok_or_else(refuse)?,
+                between(rod, piston).ok_or_else(refuse)?,
+            );
+            if ja.kind != Revolute || jb.kind != Revolute {
+                return Err(refuse());
+            }
+            Ok(Topology::SliderCrank {
+                crank,
+                rod,
+                piston,
+                o2: pos(rev),
+                a: pos(ja),
+                b: pos(jb),
+            })
+        }
+        _ => Err(refuse()),
+    }
+}
+
+/// The counterweight of first moment `need` (kg·m, a vector) about the pivot `o` on link
+/// `link`, at distance `radius` (m) from it, opposite to `need`: mass |need|/radius.
+fn opposite(model: &Model, link: usize, o: [f64; 2], need: [f64; 2], radius: f64) -> Counterweight {
+    let n = need[0].hypot(need[1]);
+    let at = if n > 0.0 {
+        [o[0] - radius * need[0] / n, o[1] - radius * need[1] / n]
+    } else {
+        o
+    };
+    Counterweight {
+        link,
+        name: model.links[link].name.clone(),
+        mass: n / radius,
+        at,
+    }
+}
+
+/// Force balance (SPEC 3g, `docs/theory.md` §15).
+///
+/// A four-bar O2–A–B–O4 by the method of linearly independent vectors: with the coupler's
+/// cg G3 = A + k (B − A), k the complex ratio (G3 − A)/(B − A), the total cg is
+/// stationary when the first moments about the pivots vanish,
+/// m₂(G₂ − O₂) + m₃(1 − k)(A − O₂) + m_c2 (P₂ − O₂) = 0 and
+/// m₄(G₄ − O₄) + m₃ k (B − O₄) + m_c4 (P₄ − O₄) = 0 (complex products); the counterweights
+/// m_c2 at P₂, m_c4 at P₄ are placed at `radius` from their pivots (default: the link's
+/// length O₂A, O₄B).
+///
+/// A single slider-crank: the rod replaced by masses m₃(1 − k) at A (rotating) and m₃ k at
+/// B (reciprocating, with the piston's m₄; k the projection of G₃ − A on B − A over
+/// |B − A|²); the crank's counterweight takes the crank's own unbalance, the rotating mass
+/// and the fraction C = `fraction` of the reciprocating one at A:
+/// m_c (P − O₂) = −[m₂(G₂ − O₂) + (m₃(1 − k) + C (m₄ + m₃ k))(A − O₂)], at `radius` from O₂
+/// (default |O₂A|). Masses in kg, lengths in m.
+pub fn force_balance(
+    model: &Model,
+    fraction: f64,
+    radius: Option<f64>,
+) -> Result<Vec<Counterweight>, MechError> {
+    if !(0.0..=1.0).contains(&fraction) {
+        return Err(MechError::InvalidInput(format!(
+            "fraction {fraction}: give the share of the reciprocating mass to balance, 0 to 1"
+        )));
+    }
+    if let Some(r) = radius {
+        if !(r > 0.0 && r.is_finite()) {
+            return Err(MechError::InvalidInput(format!(
+                "radius {r}: give a positive distance from the pivot, m"
+            )));
+        }
+    }
+    let first = |l: usize, o: [f64; 2]| {
+        let link = &model.links[l];
+        let m = link.mass.unwrap_or(0.0);
+        [m * (link.cg[0] - o[0]), m * (link.cg[1] - o[1])]
+    };
+    let mass = |l: usize| model.links[l].mass.unwrap_or(0.0);
+    let dist = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+    Ok(match topology(model)? {
+        Topology::FourBar {
+            crank,
+            coupler,
+            rocker,
+            o2,
+            a,
+            b,
+            o4,
+        } => {
+            let k = cdiv(sub(model.links[coupler].cg, a), sub(b, a));
+            let m3 = mass(coupler);
+            let s2 = first(crank, o2);
+            let t2 = cmul([m3 * (1.0 - k[0]), -m3 * k[1]], sub(a, o2));
+            let s4 = first(rocker, o4);
+            let t4 = cmul([m3 * k[0], m3 * k[1]], sub(b, o4));
+            vec![
+                opposite(model, crank, o2, [s2[0] + t2[0], s2[1] + t2[1]], radius.unwrap_or(dist(a, o2))),
+                opposite(model, rocker, o4, [s4[0] + t4[0], s4[1] + t4[1]], radius.unwrap_or(dist(b, o4))),
+            ]
+        }
+        Topology::SliderCrank {
+            crank,
+            rod,
+            piston,
+            o2,
+            a,
+            b,
+        } => {
+            let ab = sub(b, a);
+            let g3 = sub(model.links[rod].cg, a);
+            let k = (g3[0] * ab[0] + g3[1] * ab[1]) / (ab[0] * ab[0] + ab[1] * ab[1]);
+            let m3 = mass(rod);
+            let at_a = m3 * (1.0 - k) + fraction * (mass(piston) + m3 * k);
+            let s2 = first(crank, o2);
+            let need = [s2[0] + at_a * (a[0] - o2[0]), s2[1] + at_a * (a[1] - o2[1])];
+            vec![opposite(model, crank, o2, need, radius.unwrap_or(dist(a, o2)))]
+        }
+    })
+}
+
+/// `text` (a mechanism file) with a `counterweight: (MASS kg, at (x, y))` line written at
+/// the start of each counterweight's `link NAME {` block; an error when a link's block is
+/// not found.
+pub fn write_counterweights(text: &str, weights: &[Counterweight]) -> Result<String, MechError> {
+    let mut out = text.to_string();
+    for w in weights {
+        let start = find_link_block(&out, &w.name).ok_or_else(|| {
+            MechError::InvalidInput(format!("no `link {} {{` block in the file", w.name))
+        })?;
+        let line = format!(
+            "\n        counterweight: ({:.12e} kg, at ({:.12e}, {:.12e})),",
+            w.mass, w.at[0], w.at[1]
+        );
+        out.insert_str(start, &line);
+    }
+    Ok(out)
+}
+
+/// The byte index just after the `{` of `link NAME {`.
+fn find_link_block(text: &str, name: &str) -> Option<usize> {
+    let mut from = 0;
+    while let Some(i) = text[from..].find("link") {
+        let at = from + i;
+        from = at + 4;
+        let before_ok = at == 0 || !text[..at].ends_with(|c: char| c.is_alphanumeric() || c == '_');
+        let rest = &text[from..];
+        let trimmed = rest.trim_start();
+        if before_ok && rest.len() > trimmed.len() && trimmed.starts_with(name) {
+            let after = trimmed[name.len()..].trim_start();
+            if after.starts_with('{') {
+                return Some(text.len() - after.len() + 1);
+            }
+        }
+    }
+    None
 }
