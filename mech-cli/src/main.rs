@@ -7,7 +7,7 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, simulate, size,
+    balance, cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, simulate, size,
     shaking, solve, source, strength, Failure,
 };
 use std::io::Write;
@@ -134,6 +134,10 @@ enum Command {
     /// no gravity): one row per input value, peaks, RMS and the primary and secondary
     /// harmonics on standard error, a polar diagram of the force with --svg.
     Shaking(shaking::ShakingArgs),
+    /// Write counterweights that balance the shaking force (a four-bar exactly, a
+    /// slider-crank's crank for its rotating masses and a fraction of the reciprocating
+    /// ones) into a copy of the file; print the shaking force before and after.
+    Balance(balance::BalanceArgs),
 }
 
 fn main() -> ExitCode {
@@ -237,5 +241,6 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Import(args) => import::run(args, stdout),
         Command::Cam(args) => cam::run(args, stdout),
         Command::Shaking(args) => shaking::run(args, stdout),
+        Command::Balance(args) => balance::run(args, stdout),
     }
 }

@@ -87,3 +87,62 @@ fn shaking_refuses_a_file_that_does_not_load() {
         .assert()
         .failure();
 }
+
+/// The four-bar of `tests/balancing.rs` balanced by `mech balance`: the written file has two
+/// counterweights, checks, and `mech shaking` of it gives a force below 1e-9 of the
+/// unbalanced one's peak at every row.
+#[test]
+fn balance_writes_a_four_bar_that_no_longer_shakes() {
+    let text = "pub struct Linkage {
+    ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
+    link crank { points { O2, A: (0.0, 0.1) }, mass: 0.5, inertia: 4e-4, cg: (0.01, 0.05) },
+    link coupler { points { A, B: (0.25, 0.2) }, mass: 1.0, inertia: 6e-3, cg: (0.12, 0.22) },
+    link rocker { points { O4, B }, mass: 0.8, inertia: 3e-3, cg: (0.28, 0.1) },
+    joints {
+        O2: revolute(ground, crank),
+        A: revolute(crank, coupler),
+        B: revolute(coupler, rocker),
+        O4: revolute(ground, rocker),
+    },
+    input: O2,
+}";
+    let dir = tempfile::tempdir().unwrap();
+    let (file, out_file) = (dir.path().join("fb.mech"), dir.path().join("fb_bal.mech"));
+    std::fs::write(&file, text).unwrap();
+    let out = mech()
+        .args(["balance", file.to_str().unwrap(), "--speed", "300rpm", "-o"])
+        .arg(&out_file)
+        .assert()
+        .success();
+    let stdout = String::from_utf8(out.get_output().stdout.clone()).unwrap();
+    assert_eq!(stdout.matches("counterweight on").count(), 2, "{stdout}");
+    let written = std::fs::read_to_string(&out_file).unwrap();
+    assert_eq!(written.matches("counterweight:").count(), 2);
+    mech().arg("check").arg(&out_file).assert().success();
+    let rows = |f: &std::path::Path| -> Vec<f64> {
+        let o = mech()
+            .args(["shaking", f.to_str().unwrap(), "--speed", "300rpm", "--steps", "72", "--format", "csv"])
+            .assert()
+            .success();
+        String::from_utf8(o.get_output().stdout.clone())
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                v[1].hypot(v[2])
+            })
+            .collect()
+    };
+    let peak = rows(&file).into_iter().fold(0.0, f64::max);
+    assert!(peak > 1.0);
+    for f in rows(&out_file) {
+        assert!(f < 1e-9 * peak, "{f} against {peak}");
+    }
+    // A fraction outside 0..1 is refused.
+    mech()
+        .args(["balance", file.to_str().unwrap(), "--speed", "10", "--fraction", "1.5", "-o"])
+        .arg(&out_file)
+        .assert()
+        .failure();
+}
