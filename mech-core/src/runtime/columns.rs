@@ -117,6 +117,7 @@ impl Columns {
             has(Part::Zhukovski),
         );
         let points = has(Part::Points);
+        let shaking = has(Part::Shaking);
         let input_unit = |k: usize| {
             if model.joints[model.inputs[k]].kind == JointKind::Revolute {
                 ("rad", "N·m")
@@ -188,7 +189,7 @@ impl Columns {
             c.push("inertia_derivative".into(), d_unit);
             c.push("moment".into(), m_unit);
         }
-        if has(Part::Shaking) {
+        if shaking {
             c.push("shaking.fx".into(), "N");
             c.push("shaking.fy".into(), "N");
             c.push("shaking.moment".into(), "N·m");
