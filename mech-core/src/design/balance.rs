@@ -1,4 +1,4 @@
-//! Balancing (SPEC 3g, `docs/theory.md` §15): the shaking force and moment over a cycle
+//! Balancing (SPEC 3g, `docs/theory.md` §14): the shaking force and moment over a cycle
 //! and their summary (peaks, RMS, the primary and secondary harmonics).
 //!
 //! The shaking of one configuration is [`Machine::shaking`] (the formula is
@@ -260,7 +260,7 @@ fn opposite(model: &Model, link: usize, o: [f64; 2], need: [f64; 2], radius: f64
     }
 }
 
-/// Force balance (SPEC 3g, `docs/theory.md` §15).
+/// Force balance (SPEC 3g, `docs/theory.md` §14).
 ///
 /// A four-bar O2–A–B–O4 by the method of linearly independent vectors: with the coupler's
 /// cg G3 = A + k (B − A), k the complex ratio (G3 − A)/(B − A), the total cg is

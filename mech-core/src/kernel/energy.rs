@@ -26,7 +26,7 @@ pub fn potential(l: &LinkGeom, m: &LinkMotion, g: V2) -> f64 {
     -(l.mass * g.dot(&m.cg))
 }
 
-/// The shaking force and moment of a machine on its frame (`docs/theory.md` §15,
+/// The shaking force and moment of a machine on its frame (`docs/theory.md` §14,
 /// SPEC 3g): what the moving links and the motor's stator put on the frame by the links'
 /// inertia, with no loads and no gravity, F = −Σ m a_G (N) and, about the origin of the
 /// global frame, M = −Σ (r_G × m a_G + I_G α) (N·m, counter-clockwise positive).

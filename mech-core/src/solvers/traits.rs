@@ -31,7 +31,7 @@ pub trait Machine {
     /// Potential energy of gravity Σ −m g·r_G (J); 0 without gravity.
     fn potential_energy(&self, m: &Self::Motion) -> f64;
     /// The shaking force and moment on the frame at this motion (SPEC 3g, `docs/theory.md`
-    /// §15): F = −Σ m a_G (N), M = −Σ (r_G × m a_G + I_G α) about the origin (N·m), summed
+    /// §14): F = −Σ m a_G (N), M = −Σ (r_G × m a_G + I_G α) about the origin (N·m), summed
     /// over the links with inertia terms by [`Shaking::add`]; loads and gravity play no part.
     fn shaking(&self, m: &Self::Motion) -> Shaking;
 }
