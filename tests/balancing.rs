@@ -237,19 +237,7 @@ fn a_counterweight_adds_a_point_mass_to_its_link() {
 #[test]
 fn the_textbook_single_cylinder_counterweight() {
     use mech::design::balance::{force_balance, shaking_cycle, write_counterweights};
-    let text = "pub struct Khurmi {
-        ground { O: (0.0, 0.0) },
-        link crank { points { O, A: (150 mm, 0.0) }, mass: 37 kg, cg: A },
-        link rod { points { A, B: (750 mm, 0.0) } },
-        link piston { points { B }, mass: 50 kg, cg: B },
-        joints {
-            O: revolute(ground, crank),
-            A: revolute(crank, rod),
-            B: revolute(rod, piston),
-            guide: prismatic(ground, piston) at B along (1.0, 0.0),
-        },
-        input: O,
-    }";
+    let text = KHURMI;
     let m = mech::Mechanism::from_dsl(text).unwrap();
     let w = force_balance(m.model(), 2.0 / 3.0, Some(0.4)).unwrap();
     assert_eq!(w.len(), 1);
@@ -270,4 +258,34 @@ fn the_textbook_single_cylinder_counterweight() {
     assert!((primary.norm() - 2847.0).abs() < 1.0, "{}", primary.norm());
     let angle = primary.y.abs().atan2(primary.x.abs()).to_degrees();
     assert!((angle - 73.9).abs() < 0.05, "{angle}");
+}
+
+/// Khurmi's engine of the test above (a massless 600 mm rod).
+const KHURMI: &str = "pub struct Khurmi {
+        ground { O: (0.0, 0.0) },
+        link crank { points { O, A: (150 mm, 0.0) }, mass: 37 kg, cg: A },
+        link rod { points { A, B: (750 mm, 0.0) } },
+        link piston { points { B }, mass: 50 kg, cg: B },
+        joints {
+            O: revolute(ground, crank),
+            A: revolute(crank, rod),
+            B: revolute(rod, piston),
+            guide: prismatic(ground, piston) at B along (1.0, 0.0),
+        },
+        input: O,
+    }";
+
+/// `optimal_balance` with the shaking force's RMS alone: the primary residual's mean square
+/// is m² r² ω⁴ ((1 − C)² + C²)/2 (the secondary, orthogonal over the cycle, untouched), least
+/// at C = ½ — the counterweight (37 + ½·50) kg · 0.15 m / 0.4 m = 23.25 kg opposite the
+/// crank.
+#[test]
+fn optimal_counterweight_of_the_textbook_engine() {
+    use mech::design::balance::{optimal_balance, BalanceWeights};
+    let omega = 240.0 * 2.0 * PI / 60.0;
+    let force_only = BalanceWeights { force: 1.0, moment: 0.0, driver: 0.0 };
+    let w = optimal_balance(KHURMI, omega, force_only, Some(0.4)).unwrap();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!((w[0].mass - 23.25).abs() < 1e-6 * 23.25, "{w:?}");
+    assert!((w[0].at[0] + 0.4).abs() + w[0].at[1].abs() < 1e-6, "{w:?}");
 }

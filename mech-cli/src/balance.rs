@@ -1,9 +1,12 @@
-//! `mech balance FILE --speed QD [--method force] [--fraction C] [--radius R] -o OUT.mech`:
-//! the counterweights of `mech_core::design::balance::force_balance` written into the file;
+//! `mech balance FILE --speed QD [--method force|optimal] [--fraction C] [--radius R]
+//! [--weights F,M,T] -o OUT.mech`: the counterweights of `mech_core::design::balance`
+//! (`force_balance`, `optimal_balance`) written into the file;
 //! the shaking force's RMS and peak over a turn before and after on standard output.
 
 use crate::{quantity, source, Failure};
-use mech_core::design::balance::{force_balance, shaking_cycle, write_counterweights};
+use mech_core::design::balance::{
+    force_balance, optimal_balance, shaking_cycle, write_counterweights, BalanceWeights,
+};
 use mech_core::model::units::Dim;
 use std::io::Write;
 use std::path::PathBuf;
@@ -15,6 +18,9 @@ pub enum Method {
     /// (the total cg stationary); a slider-crank's crank counterweight taking the rotating
     /// masses and the fraction C of the reciprocating ones.
     Force,
+    /// Counterweights on the ground-pinned links minimising the weighted RMS of shaking
+    /// force, shaking moment and driver torque (`--weights`), by a compass search.
+    Optimal,
 }
 
 /// `mech balance` arguments.
@@ -36,6 +42,10 @@ pub struct BalanceArgs {
     /// link's length.
     #[arg(long)]
     pub radius: Option<String>,
+    /// The weights of the optimal method: shaking force, shaking moment, driver torque
+    /// (each RMS relative to the unbalanced machine's).
+    #[arg(long, value_delimiter = ',', default_values_t = [1.0, 1.0, 1.0])]
+    pub weights: Vec<f64>,
     /// Where to write the balanced file.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
@@ -54,8 +64,17 @@ pub fn run(args: BalanceArgs, mut out: impl Write) -> Result<(), Failure> {
         Some(r) => Some(quantity::parse(r, Dim::LENGTH, "--radius")?),
         None => None,
     };
-    let weights = force_balance(m.model(), args.fraction, radius)
-        .map_err(|e| Failure::usage(e.to_string()))?;
+    let weights = match args.method {
+        Method::Force => force_balance(m.model(), args.fraction, radius),
+        Method::Optimal => {
+            let [f, mo, t] = args.weights[..] else {
+                return Err(Failure::usage("--weights: give three numbers, force,moment,driver"));
+            };
+            let w = BalanceWeights { force: f, moment: mo, driver: t };
+            optimal_balance(&text, qd, w, radius)
+        }
+    }
+    .map_err(|e| Failure::usage(e.to_string()))?;
     let balanced = write_counterweights(&text, &weights).map_err(|e| Failure::usage(e.to_string()))?;
     let after = mech_core::Mechanism::from_dsl(&balanced)
         .map_err(|e| Failure::mechanism(format!("the balanced file: {e}")))?;
