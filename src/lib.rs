@@ -43,10 +43,10 @@ pub use mech_core::runtime::{Forces, JointReaction, LoadValue, Loads, Motion, Po
 pub use mech_core::{MechError, Mechanism, Vector2};
 
 // What a solver returns and takes, by concept.
+pub use mech_core::kernel::energy::Shaking;
 pub use mech_core::kernel::kinetostatics::{
     CamReaction, MeshReaction, PrismaticReaction, RevoluteReaction, RollingReaction, SlotReaction,
 };
-pub use mech_core::kernel::energy::Shaking;
 pub use mech_core::kernel::link_state::{LinkMotion, LinkPose, PointMotion, PointPose};
 pub use mech_core::solvers::instance::{
     DamperParams, LinkParams, RotaryDamperParams, ShapeParams, SpringParams, TorsionSpringParams,
@@ -81,8 +81,8 @@ pub mod prelude {
     pub use crate::{
         mechanism, BatchErrors, CamReaction, DamperParams, DeterminateReactions, LinkMotion,
         LinkPose, Machine, MechError, Mechanism, MeshReaction, OneDof, PointMotion, PointPose,
-        PrismaticReaction, Reduced, RevoluteReaction, RollingReaction, RotaryDamperParams,
-        Shaking, SlotReaction, SpringParams, TorsionSpringParams, Vector2,
+        PrismaticReaction, Reduced, RevoluteReaction, RollingReaction, RotaryDamperParams, Shaking,
+        SlotReaction, SpringParams, TorsionSpringParams, Vector2,
     };
 }
 

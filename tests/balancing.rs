@@ -108,8 +108,14 @@ fn single_cylinder_shaking_against_its_closed_form() {
             let peak = rows.iter().map(|r| r.0[i].abs()).fold(0.0, f64::max);
             assert!(peak > 1.0);
             for (want, gen, run) in &rows {
-                assert!(within((gen[i] - want[i]).abs(), 1e-9 * peak), "{i}: {gen:?} vs {want:?}");
-                assert!(within((run[i] - want[i]).abs(), 1e-9 * peak), "{i}: {run:?} vs {want:?}");
+                assert!(
+                    within((gen[i] - want[i]).abs(), 1e-9 * peak),
+                    "{i}: {gen:?} vs {want:?}"
+                );
+                assert!(
+                    within((run[i] - want[i]).abs(), 1e-9 * peak),
+                    "{i}: {run:?} vs {want:?}"
+                );
             }
         }
     }
@@ -151,8 +157,16 @@ fn shaking_is_minus_the_ground_reactions() {
                 moment += sign * (at.x * r.force.y - at.y * r.force.x + r.moment.unwrap_or(0.0));
             }
             let scale = 1.0 + s.force.norm();
-            assert!(within((s.force + force).norm(), 1e-9 * scale), "{q}: {:?} vs {force:?}", s.force);
-            assert!(within((s.moment + moment).abs(), 1e-9 * scale), "{q}: {} vs {moment}", s.moment);
+            assert!(
+                within((s.force + force).norm(), 1e-9 * scale),
+                "{q}: {:?} vs {force:?}",
+                s.force
+            );
+            assert!(
+                within((s.moment + moment).abs(), 1e-9 * scale),
+                "{q}: {} vs {moment}",
+                s.moment
+            );
         }
     }
 }
@@ -193,7 +207,10 @@ fn a_force_balanced_four_bar_shakes_no_more() {
     assert!(peak > 10.0, "{peak}");
     for &q in &qs {
         let f = force(&after, q);
-        assert!(within(f, 1e-9 * peak), "at {q}: {f} N against {peak} N unbalanced");
+        assert!(
+            within(f, 1e-9 * peak),
+            "at {q}: {f} N against {peak} N unbalanced"
+        );
     }
 }
 
@@ -209,11 +226,17 @@ fn a_counterweight_adds_a_point_mass_to_its_link() {
     let crank = &m.model().links[1];
     let (m1, g1, m2, g2) = (M2, [A_CG, 0.0], 2.0, [-0.03, 0.01]);
     let mt = m1 + m2;
-    let g = [(m1 * g1[0] + m2 * g2[0]) / mt, (m1 * g1[1] + m2 * g2[1]) / mt];
+    let g = [
+        (m1 * g1[0] + m2 * g2[0]) / mt,
+        (m1 * g1[1] + m2 * g2[1]) / mt,
+    ];
     let d2 = |p: [f64; 2]| (p[0] - g[0]).powi(2) + (p[1] - g[1]).powi(2);
     let i = I2 + m1 * d2(g1) + m2 * d2(g2);
     assert!(within((crank.mass.unwrap() - mt).abs(), 1e-15 * mt));
-    assert!(within((crank.cg[0] - g[0]).abs() + (crank.cg[1] - g[1]).abs(), 1e-15));
+    assert!(within(
+        (crank.cg[0] - g[0]).abs() + (crank.cg[1] - g[1]).abs(),
+        1e-15
+    ));
     assert!(within((crank.inertia - i).abs(), 1e-15 * i));
     // A massless link with a counterweight: its mass and cg are the counterweight's.
     let rod = SINGLE.replace(
@@ -244,7 +267,10 @@ fn the_textbook_single_cylinder_counterweight() {
     // The hand number, and the book's rounding of it.
     assert!(within((w[0].mass - 26.375).abs(), 1e-12 * 26.375), "{w:?}");
     assert!((w[0].mass - 26.38).abs() < 0.0051);
-    assert!(within((w[0].at[0] + 0.4).abs() + w[0].at[1].abs(), 1e-15), "{w:?}");
+    assert!(
+        within((w[0].at[0] + 0.4).abs() + w[0].at[1].abs(), 1e-15),
+        "{w:?}"
+    );
     let balanced = mech::Mechanism::from_dsl(&write_counterweights(text, &w).unwrap()).unwrap();
     let omega = 240.0 * 2.0 * PI / 60.0;
     let cycle = shaking_cycle(&balanced, (0.0, 2.0 * PI, 360), &[0.0], &[omega]).unwrap();
@@ -252,9 +278,15 @@ fn the_textbook_single_cylinder_counterweight() {
     let th = 60f64.to_radians();
     let (s, c) = th.sin_cos();
     let primary = Vector2::new(h.fx[0] * c + h.fx[1] * s, h.fy[0] * c + h.fy[1] * s);
-    let hand = 50.0 * omega * omega * 0.15
+    let hand = 50.0
+        * omega
+        * omega
+        * 0.15
         * (((1.0f64 / 3.0) * c).powi(2) + ((2.0f64 / 3.0) * s).powi(2)).sqrt();
-    assert!(within((primary.norm() - hand).abs(), 1e-9 * hand), "{primary:?} vs {hand}");
+    assert!(
+        within((primary.norm() - hand).abs(), 1e-9 * hand),
+        "{primary:?} vs {hand}"
+    );
     assert!((primary.norm() - 2847.0).abs() < 1.0, "{}", primary.norm());
     let angle = primary.y.abs().atan2(primary.x.abs()).to_degrees();
     assert!((angle - 73.9).abs() < 0.05, "{angle}");
@@ -283,7 +315,11 @@ const KHURMI: &str = "pub struct Khurmi {
 fn optimal_counterweight_of_the_textbook_engine() {
     use mech::design::balance::{optimal_balance, BalanceWeights};
     let omega = 240.0 * 2.0 * PI / 60.0;
-    let force_only = BalanceWeights { force: 1.0, moment: 0.0, driver: 0.0 };
+    let force_only = BalanceWeights {
+        force: 1.0,
+        moment: 0.0,
+        driver: 0.0,
+    };
     let w = optimal_balance(KHURMI, omega, force_only, Some(0.4)).unwrap();
     assert_eq!(w.len(), 1, "{w:?}");
     assert!((w[0].mass - 23.25).abs() < 1e-6 * 23.25, "{w:?}");

@@ -57,7 +57,9 @@ pub fn run(args: BalanceArgs, mut out: impl Write) -> Result<(), Failure> {
     let m = mech_core::Mechanism::from_dsl_named(&text, &origin)
         .map_err(|e| Failure::mechanism(e.to_string()))?;
     if m.dof() != 1 {
-        return Err(Failure::usage("mech balance takes a mechanism with one input"));
+        return Err(Failure::usage(
+            "mech balance takes a mechanism with one input",
+        ));
     }
     let qd = quantity::parse(&args.speed, Dim::SPEED, "--speed")?;
     let radius = match &args.radius {
@@ -68,14 +70,21 @@ pub fn run(args: BalanceArgs, mut out: impl Write) -> Result<(), Failure> {
         Method::Force => force_balance(m.model(), args.fraction, radius),
         Method::Optimal => {
             let [f, mo, t] = args.weights[..] else {
-                return Err(Failure::usage("--weights: give three numbers, force,moment,driver"));
+                return Err(Failure::usage(
+                    "--weights: give three numbers, force,moment,driver",
+                ));
             };
-            let w = BalanceWeights { force: f, moment: mo, driver: t };
+            let w = BalanceWeights {
+                force: f,
+                moment: mo,
+                driver: t,
+            };
             optimal_balance(&text, qd, w, radius)
         }
     }
     .map_err(|e| Failure::usage(e.to_string()))?;
-    let balanced = write_counterweights(&text, &weights).map_err(|e| Failure::usage(e.to_string()))?;
+    let balanced =
+        write_counterweights(&text, &weights).map_err(|e| Failure::usage(e.to_string()))?;
     let after = mech_core::Mechanism::from_dsl(&balanced)
         .map_err(|e| Failure::mechanism(format!("the balanced file: {e}")))?;
     let grid = (0.0, std::f64::consts::TAU, 360);
@@ -95,8 +104,16 @@ pub fn run(args: BalanceArgs, mut out: impl Write) -> Result<(), Failure> {
         )?;
     }
     writeln!(out, "shaking force   rms [N]           peak [N]")?;
-    writeln!(out, "before          {:<16.9e}  {:.9e}", b.rms_force, b.peak_force)?;
-    writeln!(out, "after           {:<16.9e}  {:.9e}", a.rms_force, a.peak_force)?;
+    writeln!(
+        out,
+        "before          {:<16.9e}  {:.9e}",
+        b.rms_force, b.peak_force
+    )?;
+    writeln!(
+        out,
+        "after           {:<16.9e}  {:.9e}",
+        a.rms_force, a.peak_force
+    )?;
     out.flush()?;
     Ok(())
 }

@@ -15,7 +15,12 @@ pub struct ShakingArgs {
     /// The mechanism file (`-` = standard input).
     pub file: PathBuf,
     /// Input speeds q̇, one per input (rad/s, or `3000rpm`), constant over the cycle.
-    #[arg(long = "speed", required = true, value_delimiter = ',', allow_hyphen_values = true)]
+    #[arg(
+        long = "speed",
+        required = true,
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
     pub speed: Vec<String>,
     /// First value of the first input.
     #[arg(long, default_value = "0", allow_hyphen_values = true)]
@@ -58,7 +63,11 @@ pub fn run(args: ShakingArgs, out: impl Write) -> Result<(), Failure> {
         .iter()
         .map(|s| s.to_string())
         .collect();
-    let unit_q = if d == mech_core::model::units::Dim::ANGLE { "rad" } else { "m" };
+    let unit_q = if d == mech_core::model::units::Dim::ANGLE {
+        "rad"
+    } else {
+        "m"
+    };
     let mut w = Writer::new(out, args.format, &names, &[unit_q, "N", "N", "N·m"])?;
     for (q, s) in cycle.q.iter().zip(&cycle.shaking) {
         w.row(&[*q, s.force.x, s.force.y, s.moment])?;

@@ -41,13 +41,23 @@ fn shaking_harmonics_of_a_piston_against_the_exact_slider_motion() {
     std::fs::write(&file, PISTON_ONLY).unwrap();
     let svg = dir.path().join("polar.svg");
     let out = mech()
-        .args(["shaking", file.to_str().unwrap(), "--speed", "100", "--steps", "360"])
+        .args([
+            "shaking",
+            file.to_str().unwrap(),
+            "--speed",
+            "100",
+            "--steps",
+            "360",
+        ])
         .args(["--format", "csv", "--svg", svg.to_str().unwrap()])
         .assert()
         .success();
     let stdout = String::from_utf8(out.get_output().stdout.clone()).unwrap();
     let stderr = String::from_utf8(out.get_output().stderr.clone()).unwrap();
-    assert!(stdout.starts_with("q,shaking.fx,shaking.fy,shaking.moment"), "{stdout}");
+    assert!(
+        stdout.starts_with("q,shaking.fx,shaking.fy,shaking.moment"),
+        "{stdout}"
+    );
     assert_eq!(stdout.lines().count(), 362);
     let (r, l, m, w) = (0.05f64, 0.2f64, 1.5, 100.0);
     let n = 4096;
@@ -64,10 +74,20 @@ fn shaking_harmonics_of_a_piston_against_the_exact_slider_motion() {
     let secondary = numbers_after(&stderr, "secondary");
     // [a_x, b_x, a_y, b_y]
     assert!((primary[0] - m * w * w * r).abs() < 1e-9 * peak, "{stderr}");
-    assert!((secondary[0] - 4.0 * m * w * w * c2).abs() < 1e-9 * peak, "{stderr}");
+    assert!(
+        (secondary[0] - 4.0 * m * w * w * c2).abs() < 1e-9 * peak,
+        "{stderr}"
+    );
     // The textbook's first order: the secondary m r ω² (r/l), within (r/l)² of it.
     assert!((secondary[0] / (m * r * w * w * r / l) - 1.0).abs() < 0.1);
-    for v in [primary[1], primary[2], primary[3], secondary[1], secondary[2], secondary[3]] {
+    for v in [
+        primary[1],
+        primary[2],
+        primary[3],
+        secondary[1],
+        secondary[2],
+        secondary[3],
+    ] {
         assert!(v.abs() < 1e-9 * peak, "{stderr}");
     }
     let picture = std::fs::read_to_string(&svg).unwrap();
@@ -121,7 +141,16 @@ fn balance_writes_a_four_bar_that_no_longer_shakes() {
     mech().arg("check").arg(&out_file).assert().success();
     let rows = |f: &std::path::Path| -> Vec<f64> {
         let o = mech()
-            .args(["shaking", f.to_str().unwrap(), "--speed", "300rpm", "--steps", "72", "--format", "csv"])
+            .args([
+                "shaking",
+                f.to_str().unwrap(),
+                "--speed",
+                "300rpm",
+                "--steps",
+                "72",
+                "--format",
+                "csv",
+            ])
             .assert()
             .success();
         String::from_utf8(o.get_output().stdout.clone())
@@ -141,7 +170,15 @@ fn balance_writes_a_four_bar_that_no_longer_shakes() {
     }
     // A fraction outside 0..1 is refused.
     mech()
-        .args(["balance", file.to_str().unwrap(), "--speed", "10", "--fraction", "1.5", "-o"])
+        .args([
+            "balance",
+            file.to_str().unwrap(),
+            "--speed",
+            "10",
+            "--fraction",
+            "1.5",
+            "-o",
+        ])
         .arg(&out_file)
         .assert()
         .failure();
@@ -168,7 +205,14 @@ fn optimal_balance_of_the_four_bar_finds_the_force_balance() {
     let (file, out_file) = (dir.path().join("fb.mech"), dir.path().join("fb_opt.mech"));
     std::fs::write(&file, text).unwrap();
     let out = mech()
-        .args(["balance", file.to_str().unwrap(), "--speed", "30", "--method", "optimal"])
+        .args([
+            "balance",
+            file.to_str().unwrap(),
+            "--speed",
+            "30",
+            "--method",
+            "optimal",
+        ])
         .args(["--weights", "1,0,0", "-o"])
         .arg(&out_file)
         .assert()

@@ -6,9 +6,9 @@
 //! first input at a constant speed and sums it up.
 
 use crate::kernel::energy::Shaking;
+use crate::model::Model;
 use crate::runtime::mechanism::Mechanism;
 use crate::solvers::traits::Machine;
-use crate::model::Model;
 use crate::MechError;
 
 /// The shaking over a grid of the first input at a constant speed (the other inputs at
@@ -88,15 +88,24 @@ impl ShakingCycle {
     /// there are at least two; the peaks take them all.
     pub fn summary(&self) -> ShakingSummary {
         let all = &self.shaking;
-        let n = if all.len() > 1 { all.len() - 1 } else { all.len() };
+        let n = if all.len() > 1 {
+            all.len() - 1
+        } else {
+            all.len()
+        };
         let body = &all[..n];
         let nf = n.max(1) as f64;
-        let mean2 = |f: &dyn Fn(&Shaking) -> f64| body.iter().map(|s| f(s).powi(2)).sum::<f64>() / nf;
+        let mean2 =
+            |f: &dyn Fn(&Shaking) -> f64| body.iter().map(|s| f(s).powi(2)).sum::<f64>() / nf;
         let (from, to) = (
             self.q.first().copied().unwrap_or(0.0),
             self.q.last().copied().unwrap_or(0.0),
         );
-        let span = if to != from { to - from } else { std::f64::consts::TAU };
+        let span = if to != from {
+            to - from
+        } else {
+            std::f64::consts::TAU
+        };
         let harmonic = |order: usize| {
             let mut h = Harmonic {
                 order,
@@ -142,7 +151,10 @@ fn cmul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 }
 fn cdiv(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     let n = b[0] * b[0] + b[1] * b[1];
-    [(a[0] * b[0] + a[1] * b[1]) / n, (a[1] * b[0] - a[0] * b[1]) / n]
+    [
+        (a[0] * b[0] + a[1] * b[1]) / n,
+        (a[1] * b[0] - a[0] * b[1]) / n,
+    ]
 }
 fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
@@ -201,7 +213,9 @@ fn topology(model: &Model) -> Result<Topology, MechError> {
     match (revolutes, prismatic, grounded.as_slice()) {
         (4, 0, [g1, g2]) => {
             let (crank, rocker) = (other(g1, 0), other(g2, 0));
-            let coupler = (1..4).find(|&l| l != crank && l != rocker).ok_or_else(refuse)?;
+            let coupler = (1..4)
+                .find(|&l| l != crank && l != rocker)
+                .ok_or_else(refuse)?;
             let (ja, jb) = (
                 between(crank, coupler).ok_or_else(refuse)?,
                 between(rocker, coupler).ok_or_else(refuse)?,
@@ -217,12 +231,18 @@ fn topology(model: &Model) -> Result<Topology, MechError> {
             })
         }
         (3, 1, [g1, g2]) => {
-            let (rev, pri) = if g1.kind == Revolute { (g1, g2) } else { (g2, g1) };
+            let (rev, pri) = if g1.kind == Revolute {
+                (g1, g2)
+            } else {
+                (g2, g1)
+            };
             if rev.kind != Revolute || pri.kind != Prismatic {
                 return Err(refuse());
             }
             let (crank, piston) = (other(rev, 0), other(pri, 0));
-            let rod = (1..4).find(|&l| l != crank && l != piston).ok_or_else(refuse)?;
+            let rod = (1..4)
+                .find(|&l| l != crank && l != piston)
+                .ok_or_else(refuse)?;
             let (ja, jb) = (
                 between(crank, rod).ok_or_else(refuse)?,
                 between(rod, piston).ok_or_else(refuse)?,
@@ -317,8 +337,20 @@ pub fn force_balance(
             let s4 = first(rocker, o4);
             let t4 = cmul([m3 * k[0], m3 * k[1]], sub(b, o4));
             vec![
-                opposite(model, crank, o2, [s2[0] + t2[0], s2[1] + t2[1]], radius.unwrap_or(dist(a, o2))),
-                opposite(model, rocker, o4, [s4[0] + t4[0], s4[1] + t4[1]], radius.unwrap_or(dist(b, o4))),
+                opposite(
+                    model,
+                    crank,
+                    o2,
+                    [s2[0] + t2[0], s2[1] + t2[1]],
+                    radius.unwrap_or(dist(a, o2)),
+                ),
+                opposite(
+                    model,
+                    rocker,
+                    o4,
+                    [s4[0] + t4[0], s4[1] + t4[1]],
+                    radius.unwrap_or(dist(b, o4)),
+                ),
             ]
         }
         Topology::SliderCrank {
@@ -336,7 +368,13 @@ pub fn force_balance(
             let at_a = m3 * (1.0 - k) + fraction * (mass(piston) + m3 * k);
             let s2 = first(crank, o2);
             let need = [s2[0] + at_a * (a[0] - o2[0]), s2[1] + at_a * (a[1] - o2[1])];
-            vec![opposite(model, crank, o2, need, radius.unwrap_or(dist(a, o2)))]
+            vec![opposite(
+                model,
+                crank,
+                o2,
+                need,
+                radius.unwrap_or(dist(a, o2)),
+            )]
         }
     })
 }
@@ -424,7 +462,9 @@ pub fn optimal_balance(
     let m0 = Mechanism::from_dsl(text)?;
     let model = m0.model().clone();
     if m0.dof() != 1 {
-        return Err(MechError::InvalidInput("optimal balance takes one input".into()));
+        return Err(MechError::InvalidInput(
+            "optimal balance takes one input".into(),
+        ));
     }
     let pivots: Vec<(usize, [f64; 2], f64)> = model
         .joints
@@ -471,7 +511,11 @@ pub fn optimal_balance(
     let scale: f64 = model.links[1..]
         .iter()
         .map(|l| {
-            let o = l.points.first().map(|&p| model.points[p].pos).unwrap_or(l.cg);
+            let o = l
+                .points
+                .first()
+                .map(|&p| model.points[p].pos)
+                .unwrap_or(l.cg);
             l.mass.unwrap_or(0.0) * (1e-3 + (l.cg[0] - o[0]).hypot(l.cg[1] - o[1]))
         })
         .sum::<f64>()
