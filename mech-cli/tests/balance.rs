@@ -26,7 +26,7 @@ const PISTON_ONLY: &str = "pub struct Piston {
 /// The summary's numbers after `label` (the first two: a and b of F_x).
 fn numbers_after(text: &str, label: &str) -> Vec<f64> {
     let line = text.lines().find(|l| l.starts_with(label)).unwrap();
-    line.split(|c: char| c == ' ' || c == ',')
+    line.split([' ', ','])
         .filter_map(|w| w.parse::<f64>().ok())
         .collect()
 }

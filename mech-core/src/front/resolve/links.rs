@@ -170,8 +170,7 @@ fn counterweights<S: Clone>(l: &LinkDecl<S>, link: &mut Link, errs: &mut Vec<Dia
             ));
             continue;
         }
-        if let Some(shape) = &l.shape {
-            let _ = shape;
+        if l.shape.is_some() {
             errs.push(Diagnostic::at(
                 span.clone(),
                 format!("a counterweight beside `shape:` on link `{}`: declare the link by `mass:`, `inertia:` and `cg:` to add counterweights", l.name.text),
