@@ -43,6 +43,7 @@ pub use mech_core::runtime::{Forces, JointReaction, LoadValue, Loads, Motion, Po
 pub use mech_core::{MechError, Mechanism, Vector2};
 
 // What a solver returns and takes, by concept.
+pub use mech_core::kernel::energy::Shaking;
 pub use mech_core::kernel::kinetostatics::{
     CamReaction, MeshReaction, PrismaticReaction, RevoluteReaction, RollingReaction, SlotReaction,
 };
@@ -80,7 +81,7 @@ pub mod prelude {
     pub use crate::{
         mechanism, BatchErrors, CamReaction, DamperParams, DeterminateReactions, LinkMotion,
         LinkPose, Machine, MechError, Mechanism, MeshReaction, OneDof, PointMotion, PointPose,
-        PrismaticReaction, Reduced, RevoluteReaction, RollingReaction, RotaryDamperParams,
+        PrismaticReaction, Reduced, RevoluteReaction, RollingReaction, RotaryDamperParams, Shaking,
         SlotReaction, SpringParams, TorsionSpringParams, Vector2,
     };
 }

@@ -793,6 +793,9 @@ impl Machine for Counted<'_> {
     fn potential_energy(&self, m: &mech::Motion) -> f64 {
         self.m.potential_energy(m)
     }
+    fn shaking(&self, m: &mech::Motion) -> mech::Shaking {
+        self.m.shaking(m)
+    }
 }
 
 impl OneDof for Counted<'_> {
@@ -964,6 +967,9 @@ impl Machine for Buzzing {
     }
     fn potential_energy(&self, _: &()) -> f64 {
         0.0
+    }
+    fn shaking(&self, _: &()) -> mech::Shaking {
+        mech::Shaking::default()
     }
 }
 

@@ -31,6 +31,7 @@ static ALLOC: counting::Counting = counting::Counting;
 // ---------------------------------------------------------------------------------------
 // The test modules, one for each file tests/<name>.rs.
 
+mod balancing;
 mod cam_laws;
 mod cam_rockers;
 mod cams;

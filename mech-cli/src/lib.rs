@@ -11,6 +11,7 @@
 // Limits are tested as `!(x > limit)` on purpose: true for a NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod balance;
 pub mod cam;
 pub mod check;
 pub mod columns;
@@ -27,6 +28,7 @@ pub mod quantity;
 pub mod regime;
 pub mod report;
 pub mod scene;
+pub mod shaking;
 pub mod simulate;
 pub mod size;
 pub mod solve;

@@ -7,8 +7,8 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, simulate, size,
-    solve, source, strength, synth_exact, Failure,
+    balance, cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report,
+    shaking, simulate, size, solve, source, strength, synth_exact, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -130,6 +130,14 @@ enum Command {
     /// A mechanism from pyslvs's PMKS expression (`M[J[R, P[x, y], L[ground, L1]], ...]`)
     /// written as a `.mech` file.
     Import(import::ImportArgs),
+    /// The shaking force and moment on the frame over a cycle at a constant speed (no loads,
+    /// no gravity): one row per input value, peaks, RMS and the primary and secondary
+    /// harmonics on standard error, a polar diagram of the force with --svg.
+    Shaking(shaking::ShakingArgs),
+    /// Write counterweights that balance the shaking force (a four-bar exactly, a
+    /// slider-crank's crank for its rotating masses and a fraction of the reciprocating
+    /// ones) into a copy of the file; print the shaking force before and after.
+    Balance(balance::BalanceArgs),
     /// Dimensional synthesis: a four-bar (O2, O4, A, B, P, input O2) from what it must do,
     /// written as a `.mech` file.
     #[command(subcommand)]
@@ -249,6 +257,8 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Report(args) => report::run(args),
         Command::Import(args) => import::run(args, stdout),
         Command::Cam(args) => cam::run(args, stdout),
+        Command::Shaking(args) => shaking::run(args, stdout),
+        Command::Balance(args) => balance::run(args, stdout),
         Command::Synth(Synth::Function(args)) => synth_exact::function(args, stdout),
         Command::Synth(Synth::Motion(args)) => synth_exact::motion(args, stdout),
     }

@@ -7,6 +7,7 @@
 //! insta names a snapshot after its module path: the snapshots of `snapshots` are
 //! `tests/snapshots/suite__snapshots__<name>.snap`.
 
+mod balance;
 mod cli;
 mod draw;
 mod hostile;

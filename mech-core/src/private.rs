@@ -21,7 +21,7 @@ pub mod elements {
     pub use crate::elements::springs::{add_wrenches, potential, ElementGeom};
 }
 pub mod energy {
-    pub use crate::kernel::energy::{kinetic, potential};
+    pub use crate::kernel::energy::{kinetic, potential, Shaking};
 }
 pub mod error {
     pub use crate::error::{blame, check_finite};

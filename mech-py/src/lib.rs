@@ -176,8 +176,9 @@ fn parts_of(names: &[String]) -> PyResult<Vec<Part>> {
             "driver" => Ok(Part::Driver),
             "virtual_power" => Ok(Part::VirtualPower),
             "zhukovski" => Ok(Part::Zhukovski),
+            "shaking" => Ok(Part::Shaking),
             other => Err(invalid(format!(
-                "unknown part `{other}`: the parts are inputs, positions, points, rates, reactions, driver, virtual_power, zhukovski"
+                "unknown part `{other}`: the parts are inputs, positions, points, rates, reactions, driver, virtual_power, zhukovski, shaking"
             ))),
         })
         .collect()

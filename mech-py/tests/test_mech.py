@@ -471,3 +471,22 @@ def test_synthesis_refuses_bad_targets():
         mech.synthesize_motion([[0, 0, 0], [1, 1, 0.5], [2, 0, 1], [3, 1, 1.5]], circle_points=[[0, 1], [1, 1]])
     with pytest.raises(TypeError):
         mech.synthesize_motion("poses")
+def test_shaking_is_minus_the_ground_reactions():
+    """Mechanism.shaking against the kinetostatics without gravity or loads: the force on
+    the frame is −(O2's reaction + the guide's), the moment −(r_B × guide + the guide's
+    moment + the driver's torque), to 1e-9 of the peak."""
+    text = (ROOT / "examples" / "mech" / "engine.mech").read_text().replace("gravity: (0.0, -9.81),", "")
+    m = mech.Mechanism.from_dsl(text)
+    q = np.linspace(0.0, 2 * math.pi, 49)
+    s = m.shaking(q, 300.0, -500.0)
+    assert np.array_equal(s["q"], q)
+    k = m.kinetostatics(q, 300.0, -500.0)
+    x = m.kinematics(q, 300.0, -500.0)
+    fx = -(k["O2.fx"] + k["guide.fx"])
+    fy = -(k["O2.fy"] + k["guide.fy"])
+    mo = -(x["B.x"] * k["guide.fy"] - x["B.y"] * k["guide.fx"] + k["guide.moment"] + k["driver"])
+    peak = np.max(np.hypot(fx, fy))
+    assert peak > 100.0
+    assert np.max(np.abs(s["shaking.fx"] - fx)) <= 1e-9 * peak
+    assert np.max(np.abs(s["shaking.fy"] - fy)) <= 1e-9 * peak
+    assert np.max(np.abs(s["shaking.moment"] - mo)) <= 1e-9 * peak

@@ -319,13 +319,7 @@ impl<F: Fn(&Mechanism, f64) -> Result<Loads, MechError>> Problem<'_, F> {
                     sum2 += v * v;
                 }
                 Objective::RmsShaking => {
-                    let f: V2 = model
-                        .links
-                        .iter()
-                        .zip(&motion.links)
-                        .skip(1)
-                        .map(|(l, lm)| -lm.cg_acc * l.mass.unwrap_or(0.0))
-                        .sum();
+                    let f = crate::solvers::traits::Machine::shaking(m, &motion).force;
                     sum2 += f.norm_squared();
                 }
                 Objective::Path { .. } => curve.push(motion.points[point.unwrap_or(0)].pos),

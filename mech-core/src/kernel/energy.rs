@@ -3,7 +3,7 @@
 //! `potential_energy` call these once per link whose declaration has the term (see
 //! [`crate::solvers::params::LinkTerms`]), with the run-time mass and inertia; units SI.
 
-use crate::kernel::link_state::{LinkGeom, LinkMotion, V2};
+use crate::kernel::link_state::{cross, LinkGeom, LinkMotion, V2};
 
 /// Kinetic energy of a link, T = ½ (m |v_G|² + I_G ω²) (J), with m (kg), I_G (kg·m²)
 /// from `l` and the cg velocity v_G (m/s) and angular velocity ω (rad/s) from `m`.
@@ -24,6 +24,31 @@ pub fn kinetic_rate(l: &LinkGeom, m: &LinkMotion) -> f64 {
 #[inline]
 pub fn potential(l: &LinkGeom, m: &LinkMotion, g: V2) -> f64 {
     -(l.mass * g.dot(&m.cg))
+}
+
+/// The shaking force and moment of a machine on its frame (`docs/theory.md` §14,
+/// SPEC 3g): what the moving links and the motor's stator put on the frame by the links'
+/// inertia, with no loads and no gravity, F = −Σ m a_G (N) and, about the origin of the
+/// global frame, M = −Σ (r_G × m a_G + I_G α) (N·m, counter-clockwise positive).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Shaking {
+    /// F = −Σ m a_G, N.
+    pub force: V2,
+    /// M = −Σ (r_G × m a_G + I_G α) about the origin, N·m.
+    pub moment: f64,
+}
+
+impl Shaking {
+    /// Add one link's share: −m a_G to the force and −(r_G × m a_G + I_G α) to the
+    /// moment, with m (kg), I_G (kg·m²) from `l` and r_G (m), a_G (m/s²), α (rad/s²) from
+    /// `m`. The generated `shaking` and the run-time one call this once per link with
+    /// inertia terms.
+    #[inline]
+    pub fn add(&mut self, l: &LinkGeom, m: &LinkMotion) {
+        let f = m.cg_acc * l.mass;
+        self.force -= f;
+        self.moment -= cross(m.cg, f) + l.inertia * m.alpha;
+    }
 }
 
 #[cfg(test)]
@@ -60,5 +85,11 @@ mod tests {
         close(kinetic(&l, &m), 0.5 * (2.0 * 2.5 + 0.05 * 9.0));
         close(kinetic_rate(&l, &m), 2.0 * (2.0 - 1.5) - 0.05 * 6.0);
         close(potential(&l, &m, V2::new(0.0, -9.81)), 2.0 * 9.81 * 2.0);
+        let mut s = Shaking::default();
+        s.add(&l, &m);
+        // −m a = (−8, −2); −(r × m a + I α) = −((1·2 − 2·8) − 0.1) = 14.1
+        close(s.force.x, -8.0);
+        close(s.force.y, -2.0);
+        close(s.moment, 14.1);
     }
 }

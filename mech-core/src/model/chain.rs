@@ -84,6 +84,9 @@ pub struct LinkDecl<S> {
     pub shape: Option<ShapeDecl<S>>,
     /// `material: NAME` or `material { .. }`.
     pub material: Option<MaterialDecl<S>>,
+    /// Each `counterweight: (MASS, at (x, y))`: a point mass (kg) fixed to the link at a
+    /// point of the drawing (m), in declaration order, with where it was written.
+    pub counterweights: Vec<(Num<S>, Pair<S>, S)>,
 }
 
 /// A link's `shape:` as written: the keyword (`bar`, `rod`, `tube`, `disc`, `plate`) and

@@ -70,6 +70,35 @@ pub struct MassProperties {
     pub inertia: f64,
 }
 
+impl MassProperties {
+    /// Two bodies fixed together (a link and a counterweight): m = m₁ + m₂,
+    /// G = (m₁ G₁ + m₂ G₂)/m, and by the parallel-axis theorem
+    /// I_G = I₁ + m₁ |G₁ − G|² + I₂ + m₂ |G₂ − G|² (kg, m, kg·m²). Two massless bodies
+    /// give m = 0 at G₁.
+    pub fn combine(self, other: MassProperties) -> MassProperties {
+        let mass = self.mass + other.mass;
+        if mass == 0.0 {
+            return MassProperties {
+                inertia: self.inertia + other.inertia,
+                ..self
+            };
+        }
+        let cg = [
+            (self.mass * self.cg[0] + other.mass * other.cg[0]) / mass,
+            (self.mass * self.cg[1] + other.mass * other.cg[1]) / mass,
+        ];
+        let d2 = |p: [f64; 2]| (p[0] - cg[0]).powi(2) + (p[1] - cg[1]).powi(2);
+        MassProperties {
+            mass,
+            cg,
+            inertia: self.inertia
+                + self.mass * d2(self.cg)
+                + other.inertia
+                + other.mass * d2(other.cg),
+        }
+    }
+}
+
 impl Shape {
     /// The shape's keyword in the DSL.
     pub fn keyword(&self) -> &'static str {

@@ -34,6 +34,9 @@ pub enum Part {
     VirtualPower,
     /// `inertia`, `inertia_derivative`, `moment`: Zhukovski's I*, dI*/dq, M* (one input).
     Zhukovski,
+    /// `shaking.fx`, `shaking.fy` (N), `shaking.moment` (N·m): the shaking force and moment
+    /// on the frame ([`crate::solvers::traits::Machine::shaking`]); not in [`Part::ALL`].
+    Shaking,
 }
 
 impl Part {
@@ -84,7 +87,7 @@ impl Columns {
         let mut parts: Vec<Part> = Part::ALL
             .iter()
             .copied()
-            .chain([Part::Points])
+            .chain([Part::Points, Part::Shaking])
             .filter(|&p| has(p))
             .collect();
         if parts.contains(&Part::Positions) {
@@ -114,6 +117,7 @@ impl Columns {
             has(Part::Zhukovski),
         );
         let points = has(Part::Points);
+        let shaking = has(Part::Shaking);
         let input_unit = |k: usize| {
             if model.joints[model.inputs[k]].kind == JointKind::Revolute {
                 ("rad", "N·m")
@@ -185,6 +189,11 @@ impl Columns {
             c.push("inertia_derivative".into(), d_unit);
             c.push("moment".into(), m_unit);
         }
+        if shaking {
+            c.push("shaking.fx".into(), "N");
+            c.push("shaking.fy".into(), "N");
+            c.push("shaking.moment".into(), "N·m");
+        }
         c
     }
 
@@ -231,7 +240,8 @@ impl Columns {
         let needs_motion = self.has(Part::Rates)
             || self.has(Part::Reactions)
             || self.has(Part::Driver)
-            || self.has(Part::VirtualPower);
+            || self.has(Part::VirtualPower)
+            || self.has(Part::Shaking);
         if !needs_motion && !self.has(Part::Zhukovski) {
             let mut at = 0;
             if self.has(Part::Inputs) {
@@ -317,7 +327,8 @@ impl Columns {
         let needs_motion = self.has(Part::Rates)
             || self.has(Part::Reactions)
             || self.has(Part::Driver)
-            || self.has(Part::VirtualPower);
+            || self.has(Part::VirtualPower)
+            || self.has(Part::Shaking);
         if !needs_motion {
             if self.has(Part::Positions) || self.has(Part::Points) {
                 let p = m.pose(q)?;
@@ -364,6 +375,11 @@ impl Columns {
                 row.extend(m.driver_action(mo, loads)?);
             }
         }
+        let shaking = scratch
+            .motion
+            .as_ref()
+            .filter(|_| self.has(Part::Shaking))
+            .map(|mo| crate::solvers::traits::Machine::shaking(m, mo));
         if self.has(Part::Zhukovski) {
             let z = OneDof::reduced(m, q[0])?;
             row.extend([
@@ -371,6 +387,9 @@ impl Columns {
                 z.inertia_derivative,
                 OneDof::reduced_moment(m, q[0], loads)?,
             ]);
+        }
+        if let Some(sh) = shaking {
+            row.extend([sh.force.x, sh.force.y, sh.moment]);
         }
         debug_assert_eq!(row.len(), self.names.len());
         Ok(row)

@@ -540,6 +540,15 @@ impl Machine for Mechanism {
             .sum::<f64>()
             + crate::elements::springs::potential(&self.inst.elements, &m.states)
     }
+    fn shaking(&self, m: &Motion) -> crate::kernel::energy::Shaking {
+        let mut s = crate::kernel::energy::Shaking::default();
+        for (l, t) in self.terms.iter().enumerate().skip(1) {
+            if let (true, Some(lm)) = (t.inertia(), m.links.get(l)) {
+                s.add(&self.inst.links[l], lm);
+            }
+        }
+        s
+    }
 }
 
 impl OneDof for Mechanism {

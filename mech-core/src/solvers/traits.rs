@@ -1,6 +1,7 @@
 //! The traits every generated struct implements, so the generic algorithms (dynamics,
 //! flywheel sizing, cycle sweeps, the stress suite) are written once, in mech-core.
 
+use crate::kernel::energy::Shaking;
 use crate::solvers::batch::{serial, BatchErrors, Block};
 use crate::solvers::zhukovski::Reduced;
 use crate::MechError;
@@ -29,6 +30,10 @@ pub trait Machine {
     fn link_kinetic_energies(&self, m: &Self::Motion, out: &mut [f64]);
     /// Potential energy of gravity Σ −m g·r_G (J); 0 without gravity.
     fn potential_energy(&self, m: &Self::Motion) -> f64;
+    /// The shaking force and moment on the frame at this motion (SPEC 3g, `docs/theory.md`
+    /// §14): F = −Σ m a_G (N), M = −Σ (r_G × m a_G + I_G α) about the origin (N·m), summed
+    /// over the links with inertia terms by [`Shaking::add`]; loads and gravity play no part.
+    fn shaking(&self, m: &Self::Motion) -> Shaking;
 }
 
 /// A generated one-DOF mechanism: Zhukovski's reduction and the direct problem.

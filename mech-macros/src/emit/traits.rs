@@ -55,6 +55,10 @@ fn machine_impl(cx: &Ctx) -> TokenStream {
         let lid = &cx.link_ids[l];
         quote!(+ #p::energy::potential(&self.links[#l], &m.links.#lid, self.gravity))
     });
+    let shaking = cx.inertial().into_iter().map(|l| {
+        let lid = &cx.link_ids[l];
+        quote!(s.add(&self.links[#l], &m.links.#lid);)
+    });
     let springs = if cx.has_elements() {
         quote!(+ #p::elements::potential(&self.elements, &m.__states()))
     } else {
@@ -90,6 +94,13 @@ fn machine_impl(cx: &Ctx) -> TokenStream {
             fn potential_energy(&self, m: &#motion) -> f64 {
                 let _ = m;
                 0.0 #(#potential)* #springs
+            }
+            fn shaking(&self, m: &#motion) -> #p::energy::Shaking {
+                let _ = m;
+                #[allow(unused_mut)]
+                let mut s = #p::energy::Shaking::default();
+                #(#shaking)*
+                s
             }
         }
     }

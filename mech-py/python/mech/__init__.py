@@ -411,6 +411,12 @@ class Mechanism:
         the motor applies."""
         return self._table(["reactions", "driver"], q, qd, qdd, loads, errors)
 
+    def shaking(self, q, qd=0.0, qdd=0.0, errors="raise"):
+        """The shaking force and moment on the frame (no loads, no gravity): ``shaking.fx``,
+        ``shaking.fy`` = −Σ m a_G (N) and ``shaking.moment`` = −Σ (r_G × m a_G + I_G α)
+        about the origin (N·m), with ``q``."""
+        return self._table(["inputs", "shaking"], q, qd, qdd, None, errors)
+
     def driver_action(self, q, qd=0.0, qdd=0.0, loads=None, errors="raise"):
         """The motor actions by virtual power, no reaction computed: ``driver``
         (``driver.<joint>``)."""

@@ -28,6 +28,7 @@ pub(super) fn link_body(
         cg: None,
         shape: None,
         material: None,
+        counterweights: Vec::new(),
     };
     // `ground { O2: (0, 0), O4: (..) }` lists points directly.
     if ground && !content.peek2(syn::token::Brace) {
@@ -58,6 +59,32 @@ pub(super) fn link_body(
                 content.parse::<Token![:]>()?;
                 decl.shape = Some(shape(&content, scope)?);
             }
+            "counterweight" if ground => {
+                return Err(syn::Error::new(
+                    key.span(),
+                    "a counterweight on the ground balances nothing: the ground does not move; put it on a moving link (`link crank { .., counterweight: (MASS, at (x, y)) }`)",
+                ));
+            }
+            "counterweight" => {
+                content.parse::<Token![:]>()?;
+                let inner;
+                parenthesized!(inner in content);
+                let mass = scope.scalar(&inner, Dim::MASS, "a counterweight's mass")?;
+                inner.parse::<Token![,]>()?;
+                let at: Ident = inner.parse()?;
+                if at != "at" {
+                    return Err(syn::Error::new(
+                        at.span(),
+                        "expected `at`: write `counterweight: (MASS, at (x, y))`",
+                    ));
+                }
+                let pos = scope.point_expr(&inner)?;
+                let _: Option<Token![,]> = inner.parse()?;
+                if !inner.is_empty() {
+                    return Err(inner.error("expected `(MASS, at (x, y))`"));
+                }
+                decl.counterweights.push((mass, pos, key.span()));
+            }
             "material" if !ground => {
                 decl.material = Some(material(&content, scope, key.span())?);
             }
@@ -65,7 +92,7 @@ pub(super) fn link_body(
                 let expected = if ground {
                     "`points`"
                 } else {
-                    "`points`, `mass`, `inertia`, `cg`, `shape` or `material`"
+                    "`points`, `mass`, `inertia`, `cg`, `shape`, `material` or `counterweight`"
                 };
                 return Err(syn::Error::new(
                     key.span(),

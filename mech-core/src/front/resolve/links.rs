@@ -2,6 +2,7 @@
 //! each link's points, mass and cg; and [`Known`], what the later sections look names up in.
 
 use super::{list, Diagnostic};
+use crate::model::shape::MassProperties;
 use crate::model::*;
 use std::collections::HashMap;
 
@@ -91,6 +92,7 @@ pub(super) fn links<S: Clone>(
             body: None,
         };
         body(l, &mut link, points, errs);
+        counterweights(l, &mut link, errs);
         links.push(link);
     }
     links
@@ -150,6 +152,44 @@ fn body<S: Clone>(
             shape.span.clone(),
             format!("link `{name}`: {why}"),
         )),
+    }
+}
+
+/// Each `counterweight: (MASS, at (x, y))` of `l` added to `link` as a point mass fixed
+/// to it ([`MassProperties::combine`]); a negative mass, and a counterweight beside
+/// `shape:`, are errors.
+fn counterweights<S: Clone>(l: &LinkDecl<S>, link: &mut Link, errs: &mut Vec<Diagnostic<S>>) {
+    for (mass, at, span) in &l.counterweights {
+        if !(mass.value >= 0.0) {
+            errs.push(Diagnostic::at(
+                mass.span.clone(),
+                format!(
+                    "a counterweight of negative mass ({} kg) on link `{}`: give its mass, 0 or more, and put it on the side opposite to the unbalance",
+                    mass.value, l.name.text
+                ),
+            ));
+            continue;
+        }
+        if l.shape.is_some() {
+            errs.push(Diagnostic::at(
+                span.clone(),
+                format!("a counterweight beside `shape:` on link `{}`: declare the link by `mass:`, `inertia:` and `cg:` to add counterweights", l.name.text),
+            ));
+            continue;
+        }
+        let own = MassProperties {
+            mass: link.mass.unwrap_or(0.0),
+            cg: link.cg,
+            inertia: link.inertia,
+        };
+        let both = own.combine(MassProperties {
+            mass: mass.value,
+            cg: at.value,
+            inertia: 0.0,
+        });
+        link.mass = Some(both.mass);
+        link.cg = both.cg;
+        link.inertia = both.inertia;
     }
 }
 

@@ -1,0 +1,30 @@
+// Mistake (balancing): a counterweight on the ground, which does not move.
+use mech::prelude::*;
+
+mechanism! {
+    /// A slider-crank.
+    pub struct Engine {
+        ground { points { O2: (0.0, 0.0) }, counterweight: (1.0, at (0.0, 0.1)) },
+        link crank {
+            points { O2, A: (0.05, 0.0) },
+            mass: 1.2, inertia: 2.1e-3, cg: (0.01, 0.0),
+        },
+        link rod {
+            points { A, B: (0.25, 0.0) },
+            mass: 0.9, inertia: 4.4e-3, cg: (0.1, 0.0),
+        },
+        link piston {
+            points { B },
+            mass: 0.7, cg: B,
+        },
+        joints {
+            O2: revolute(ground, crank),
+            A: revolute(crank, rod),
+            B: revolute(rod, piston),
+            guide: prismatic(ground, piston) at B along (1.0, 0.0),
+        },
+        input: O2,
+    }
+}
+
+fn main() {}
