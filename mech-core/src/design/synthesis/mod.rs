@@ -4,5 +4,7 @@
 
 pub mod error;
 pub mod four_bar;
+pub mod optimiser;
+pub mod path;
 
 pub use four_bar::{FourBar, FourBarPose};
