@@ -53,3 +53,4 @@ mod rolling;
 mod runtime_alloc;
 mod shapes;
 mod strength;
+mod synthesis;

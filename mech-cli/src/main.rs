@@ -8,7 +8,7 @@ use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
     cam, check, draw, flywheel, import, limits, quantity, regime, report, simulate, size, solve,
-    source, strength, Failure,
+    source, strength, synth, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -122,9 +122,21 @@ enum Command {
     /// A cam's profile over a turn: lift, pitch and contact points (the cam's frame),
     /// pressure angle, radius of curvature; the design figures; the surface as SVG.
     Cam(cam::CamArgs),
+    /// Dimensional synthesis: a mechanism file from the motion it must make (SPEC §3f).
+    #[command(subcommand)]
+    Synth(Synth),
     /// A mechanism from pyslvs's PMKS expression (`M[J[R, P[x, y], L[ground, L1]], ...]`)
     /// written as a `.mech` file.
     Import(import::ImportArgs),
+}
+
+/// The kinds of `mech synth`, each writing a four-bar with the names O2, O4, A, B, P.
+#[derive(Subcommand, Debug)]
+enum Synth {
+    /// A four-bar whose coupler point P passes nearest to target points (free or
+    /// prescribed timing, closed or open path): differential evolution, then a
+    /// Levenberg–Marquardt polish; prints the error E = Σ (distance to the curve)².
+    Path(synth::PathArgs),
 }
 
 fn main() -> ExitCode {
@@ -226,5 +238,6 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Report(args) => report::run(args),
         Command::Import(args) => import::run(args, stdout),
         Command::Cam(args) => cam::run(args, stdout),
+        Command::Synth(Synth::Path(args)) => synth::run_path(args, stdout),
     }
 }

@@ -14,6 +14,7 @@ mod import;
 mod regime;
 mod snapshots;
 mod strength;
+mod synth;
 
 /// Every `tests/*.rs` but this file is one of the modules above.
 #[cfg(test)]

@@ -932,11 +932,69 @@ impl PyMechanism {
     }
 }
 
+/// Path synthesis of a four-bar (`mech_core::design::synthesis::path::synthesize`):
+/// `targets` an (n, 2) array of points (m), `angles` their crank angles (rad, from the
+/// frame line) for prescribed timing. Returns the four-bar's mechanism text (the SPEC names
+/// O2, O4, A, B, P, input O2), its error E (m², SPEC §3f) and a dict of how it was found.
+/// The search runs in the package's thread pool with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (targets, angles, closed, seed, evaluations, transmission, ratio))]
+#[allow(clippy::too_many_arguments)]
+fn synthesize_path<'py>(
+    py: Python<'py>,
+    targets: PyReadonlyArray2<'py, f64>,
+    angles: Option<Vec<f64>>,
+    closed: bool,
+    seed: u64,
+    evaluations: usize,
+    transmission: f64,
+    ratio: f64,
+) -> PyResult<(String, f64, Bound<'py, PyDict>)> {
+    use mech_core::design::synthesis::path::{synthesize, PathError, PathOptions, PathProblem};
+    let a = targets.as_array();
+    if a.ncols() != 2 {
+        return Err(invalid(format!(
+            "points of shape {:?}: give n points as an (n, 2) array of x, y (m)",
+            a.shape()
+        )));
+    }
+    let problem = PathProblem {
+        targets: a.rows().into_iter().map(|r| [r[0], r[1]]).collect(),
+        angles,
+        closed,
+    };
+    let options = PathOptions {
+        seed,
+        evaluations,
+        transmission: transmission.to_radians(),
+        ratio,
+    };
+    let s = py
+        .allow_threads(|| pool().install(|| synthesize(&problem, &options, |_| {})))
+        .map_err(|e| match e {
+            PathError::Infeasible { .. } => MechError::new_err(e.to_string()),
+            other => invalid(other.to_string()),
+        })?;
+    let info = PyDict::new(py);
+    info.set_item("transmission", s.transmission)?;
+    info.set_item("ratio", s.ratio)?;
+    info.set_item("evaluations", s.evaluations)?;
+    info.set_item("evaluations_per_second", s.evaluations as f64 / s.search_seconds)?;
+    info.set_item("crank_range", s.crank_range)?;
+    let doc = format!(
+        "Four-bar from mech.synthesize_path (seed {seed}): E = {:e} m² over {} targets.",
+        s.error,
+        problem.targets.len()
+    );
+    Ok((s.four_bar.to_mech("PathGenerator", &doc), s.error, info))
+}
+
 /// The native module `mech._mech`.
 #[pymodule]
 fn _mech(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMechanism>()?;
     m.add_function(wrap_pyfunction!(num_threads, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesize_path, m)?)?;
     let py = m.py();
     // The module they are found in, for pickle (a worker's exception travels back to
     // the client): `mech._mech`, not the `_mech` the macro names.

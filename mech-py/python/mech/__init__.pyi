@@ -83,3 +83,7 @@ class Mechanism:
 
 def sweep(mechanism: Mechanism, params: Union[Mapping[str, ArrayLike], Sequence[Mapping[str, ArrayLike]]], q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., loads: Optional[Mapping[str, LoadValue]] = ..., parts: Optional[Sequence[str]] = ...) -> Dict[str, np.ndarray]:
     """Columns over parameter variants × inputs, shape (V, n), with the mask `ok`."""
+
+def synthesize_path(points: ArrayLike, closed: bool = ..., seed: int = ..., evaluations: int = ..., angles: Optional[ArrayLike] = ..., transmission: float = ..., ratio: float = ...) -> Tuple[Mechanism, float]:
+    """A four-bar whose coupler point passes nearest to the points (SPEC 3f), and its error E (m²)."""
+    ...

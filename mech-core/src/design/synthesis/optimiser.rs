@@ -20,13 +20,14 @@
 //! number of threads.
 //!
 //! **Why this variant, and why hand-written.** Measured on the 18-point closed path of
-//! `tests/data/synthesis` (seed 1–8, 100 000 evaluations each, release build, before the
-//! polish; `cargo test --release -p mech-core de_variants -- --ignored --nocapture`),
-//! DE/current-to-pbest/1 reached a median E of 0.0089 against 0.0163 for DE/rand/1/bin
-//! with the same dither and CR, and 0.0405 for the same budget of uniform random samples.
-//! Of the crates on crates.io, `fcmaes-core` (DE and CMA-ES) needs Rust 1.88 where this
-//! workspace promises 1.80, and none applies feasibility rules to a constraint
-//! violation; the loop above is some eighty lines.
+//! `tests/data/synthesis/kunjur18.csv` (seeds 1–8, 100 000 evaluations each, the search
+//! objective before the polish; `cargo test --release -p mech-core de_variants --
+//! --ignored --nocapture`, commit a9b5a8a + this comparison): the median E was
+//! 3.20e-3 m² for DE/current-to-pbest/1 (worst 5.2e-3), 5.49e-3 for DE/rand/1/bin with
+//! the same dither and CR (worst 1.4e-2), and 0.187 for as many uniform random samples
+//! ([`Strategy`] selects each). Of the crates on crates.io, `fcmaes-core` (DE and
+//! CMA-ES) needs Rust 1.88 where this workspace promises 1.80, and none applies
+//! feasibility rules to a constraint violation; the loop below is some eighty lines.
 //!
 //! **Levenberg–Marquardt** (Marquardt 1963, with Fletcher's scaling by diag(JᵀJ)): the
 //! Jacobian of the residual vector r(x) by forward differences,
@@ -85,9 +86,24 @@ impl Evaluation {
     }
 }
 
+/// How [`differential_evolution`] makes a trial vector from member xᵢ.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Strategy {
+    /// DE/current-to-pbest/1/bin: vᵢ = xᵢ + F (x_pbest − xᵢ) + F (x_r1 − x_r2), the
+    /// default (the module's docs).
+    #[default]
+    CurrentToPBest,
+    /// DE/rand/1/bin: vᵢ = x_r0 + F (x_r1 − x_r2), r0, r1, r2 and i distinct.
+    Rand,
+    /// No evolution: every trial uniform in the box (the baseline of the comparison).
+    Random,
+}
+
 /// The settings of [`differential_evolution`].
 #[derive(Clone, Copy, Debug)]
 pub struct DeSettings {
+    /// How trial vectors are made.
+    pub strategy: Strategy,
     /// NP, the number of vectors (≥ 5).
     pub population: usize,
     /// The budget: evaluations of the objective, the initial population included.
@@ -171,6 +187,11 @@ where
         let scale = 0.5 + 0.5 * uniform(&mut rng);
         let trials: Vec<Vec<f64>> = (0..np)
             .map(|i| {
+                if settings.strategy == Strategy::Random {
+                    return (0..d)
+                        .map(|j| lo[j] + (hi[j] - lo[j]) * uniform(&mut rng))
+                        .collect();
+                }
                 let best = order[index(&mut rng, pbest)];
                 let mut r1 = index(&mut rng, np);
                 while r1 == i {
@@ -180,6 +201,10 @@ where
                 while r2 == i || r2 == r1 {
                     r2 = index(&mut rng, np);
                 }
+                let mut r0 = index(&mut rng, np);
+                while settings.strategy == Strategy::Rand && (r0 == i || r0 == r1 || r0 == r2) {
+                    r0 = index(&mut rng, np);
+                }
                 let keep = index(&mut rng, d);
                 let x = &pop[i].0;
                 (0..d)
@@ -188,9 +213,11 @@ where
                         if !cross {
                             return x[j];
                         }
-                        let v = x[j]
-                            + scale * (pop[best].0[j] - x[j])
-                            + scale * (pop[r1].0[j] - pop[r2].0[j]);
+                        let diff = scale * (pop[r1].0[j] - pop[r2].0[j]);
+                        let v = match settings.strategy {
+                            Strategy::Rand => pop[r0].0[j] + diff,
+                            _ => x[j] + scale * (pop[best].0[j] - x[j]) + diff,
+                        };
                         if v < lo[j] {
                             0.5 * (lo[j] + x[j])
                         } else if v > hi[j] {
@@ -368,6 +395,7 @@ mod tests {
             }
         };
         let s = DeSettings {
+            strategy: Strategy::default(),
             population: 20,
             evaluations: 4000,
             seed: 7,
