@@ -76,12 +76,7 @@ pub struct PathArgs {
 }
 
 fn evaluations(text: &str) -> Result<usize, String> {
-    limits::count(
-        text,
-        path::POPULATION,
-        MAX_EVALUATIONS,
-        "evaluations",
-    )
+    limits::count(text, path::POPULATION, MAX_EVALUATIONS, "evaluations")
 }
 
 fn transmission(text: &str) -> Result<f64, String> {
@@ -92,9 +87,12 @@ fn ratio(text: &str) -> Result<f64, String> {
     limits::number(text, 1.0, 1e6, "the ratio")
 }
 
+/// The targets of a file: (x, y) in m, and their crank angles in rad if it has them.
+pub type Targets = (Vec<[f64; 2]>, Option<Vec<f64>>);
+
 /// The targets of a CSV text (`origin` names it in messages): (x, y) in m, and the
 /// angles in rad when the file has an `angle` (rad) or `angle_deg` column.
-pub fn read_targets(text: &str, origin: &str) -> Result<(Vec<[f64; 2]>, Option<Vec<f64>>), Failure> {
+pub fn read_targets(text: &str, origin: &str) -> Result<Targets, Failure> {
     let bad = |m: String| Failure::usage(format!("{origin}: {m}"));
     let mut r = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
@@ -139,7 +137,8 @@ pub fn read_targets(text: &str, origin: &str) -> Result<(Vec<[f64; 2]>, Option<V
         }
         if targets.len() >= path::MAX_TARGETS {
             return Err(bad(format!(
-                "more than {path::MAX_TARGETS} targets; thin the path out"
+                "more than {} targets; thin the path out",
+                path::MAX_TARGETS
             )));
         }
         let num = |i: usize| -> Result<f64, Failure> {
@@ -226,7 +225,12 @@ pub fn run_path(args: PathArgs, out: impl Write) -> Result<(), Failure> {
         .map(|s| s.to_string())
         .collect();
     let mut w = Writer::new(out, args.format, &names, &["m²", "m", "rad", "1"])?;
-    w.row(&[s.error, (s.error / n as f64).sqrt(), s.transmission, s.ratio])?;
+    w.row(&[
+        s.error,
+        (s.error / n as f64).sqrt(),
+        s.transmission,
+        s.ratio,
+    ])?;
     w.finish()?;
     let [r1, r2, r3, r4] = s.four_bar.lengths();
     eprintln!(

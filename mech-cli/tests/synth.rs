@@ -30,11 +30,29 @@ const KNOWN: &str = "pub struct Known {
 /// P of `file` at `steps` + 1 inputs from `from` to `to` (rad), by `mech sweep`.
 fn p_of(file: &str, from: f64, to: f64, steps: usize) -> Vec<[f64; 2]> {
     let out = mech()
-        .args(["sweep", file, "--from", &from.to_string(), "--to", &to.to_string()])
-        .args(["--steps", &steps.to_string(), "--level", "positions", "--format", "csv"])
+        .args([
+            "sweep",
+            file,
+            "--from",
+            &from.to_string(),
+            "--to",
+            &to.to_string(),
+        ])
+        .args([
+            "--steps",
+            &steps.to_string(),
+            "--level",
+            "positions",
+            "--format",
+            "csv",
+        ])
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8(out.stdout).unwrap();
     let mut lines = text.lines();
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();
@@ -78,7 +96,14 @@ fn error_of(stdout: &[u8]) -> f64 {
     let text = String::from_utf8(stdout.to_vec()).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next().unwrap(), "error,rms,transmission,ratio");
-    lines.next().unwrap().split(',').next().unwrap().parse().unwrap()
+    lines
+        .next()
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap()
 }
 
 #[test]
@@ -87,7 +112,16 @@ fn a_path_on_a_four_bars_curve_gives_a_file_check_solve_and_draw_take() {
     let (csv, pts) = targets(&dir);
     let out_file = dir.path().join("synth.mech");
     let out = mech()
-        .args(["synth", "path", &csv, "--evaluations", "60000", "--format", "csv", "-o"])
+        .args([
+            "synth",
+            "path",
+            &csv,
+            "--evaluations",
+            "60000",
+            "--format",
+            "csv",
+            "-o",
+        ])
         .arg(&out_file)
         .output()
         .unwrap();
@@ -99,15 +133,32 @@ fn a_path_on_a_four_bars_curve_gives_a_file_check_solve_and_draw_take() {
     assert!(stderr.contains("the angle column is not used"), "{stderr}");
     let file = out_file.to_str().unwrap();
     let check = mech().args(["check", file]).output().unwrap();
-    assert!(check.status.success(), "{}", String::from_utf8_lossy(&check.stdout));
+    assert!(
+        check.status.success(),
+        "{}",
+        String::from_utf8_lossy(&check.stdout)
+    );
     let text = std::fs::read_to_string(file).unwrap();
     for name in ["O2:", "O4:", "A:", "B:", "P:", "input: O2"] {
         assert!(text.contains(name), "{name} in {text}");
     }
-    assert!(mech().args(["solve", file, "--at", "0.3"]).output().unwrap().status.success());
+    assert!(mech()
+        .args(["solve", file, "--at", "0.3"])
+        .output()
+        .unwrap()
+        .status
+        .success());
     let svg = dir.path().join("synth.svg");
-    let draw = mech().args(["draw", file, "--at", "0", "--path", "P", "-o"]).arg(&svg).output().unwrap();
-    assert!(draw.status.success(), "{}", String::from_utf8_lossy(&draw.stderr));
+    let draw = mech()
+        .args(["draw", file, "--at", "0", "--path", "P", "-o"])
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(
+        draw.status.success(),
+        "{}",
+        String::from_utf8_lossy(&draw.stderr)
+    );
     // Every target within reach of the file's coupler curve (sampled every 0.1°: half a
     // step of this curve is under 2e-4 m).
     let curve = p_of(file, 0.0, std::f64::consts::TAU, 3600);
@@ -127,11 +178,24 @@ fn the_same_seed_writes_the_same_file() {
     let run = |seed: &str, name: &str| {
         let f = dir.path().join(name);
         let out = mech()
-            .args(["synth", "path", &csv, "--evaluations", "2000", "--seed", seed, "-o"])
+            .args([
+                "synth",
+                "path",
+                &csv,
+                "--evaluations",
+                "2000",
+                "--seed",
+                seed,
+                "-o",
+            ])
             .arg(&f)
             .output()
             .unwrap();
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         std::fs::read_to_string(f).unwrap()
     };
     let (a, b, c) = (run("5", "a.mech"), run("5", "b.mech"), run("6", "c.mech"));
@@ -144,12 +208,24 @@ fn prescribed_timing_reads_the_angle_column() {
     let dir = tempfile::tempdir().unwrap();
     let (csv, _) = targets(&dir);
     let out = mech()
-        .args(["synth", "path", &csv, "--timing", "prescribed", "--evaluations", "60000"])
+        .args([
+            "synth",
+            "path",
+            &csv,
+            "--timing",
+            "prescribed",
+            "--evaluations",
+            "60000",
+        ])
         .args(["--format", "csv", "-o"])
         .arg(dir.path().join("p.mech"))
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let e = error_of(&out.stdout);
     assert!(e < 1e-10, "E = {e}");
 }
@@ -166,19 +242,32 @@ fn refused(text: &str, extra: &[&str]) -> (i32, String) {
         .output()
         .unwrap();
     assert!(!dir.path().join("o.mech").exists());
-    (out.status.code().unwrap(), String::from_utf8_lossy(&out.stderr).to_string())
+    (
+        out.status.code().unwrap(),
+        String::from_utf8_lossy(&out.stderr).to_string(),
+    )
 }
 
 #[test]
 fn bad_input_is_refused_with_what_to_change() {
     let three = "x,y\n0,0\n1,0\n0,1\n";
     for (text, extra, status, says) in [
-        ("x,y\n0,0\n1,0\n", &[][..], 2, "2 target(s): a path needs at least 3"),
+        (
+            "x,y\n0,0\n1,0\n",
+            &[][..],
+            2,
+            "2 target(s): a path needs at least 3",
+        ),
         ("x,y\n0,0\n1,0\n0,0\n", &[], 2, "coincide at (0, 0) m"),
         ("x,y\n0,0\n1,nan\n0,1\n", &[], 2, "not a finite number"),
         ("x,y\n0,0\n1,zero\n0,1\n", &[], 2, "not a number"),
         ("a,b\n0,0\n1,0\n0,1\n", &[], 2, "the columns `x` and `y`"),
-        (three, &["--timing", "prescribed"], 2, "needs the crank angle of each target"),
+        (
+            three,
+            &["--timing", "prescribed"],
+            2,
+            "needs the crank angle of each target",
+        ),
         (three, &["--topology", "six-bar"], 2, "not yet"),
         (three, &["--transmission", "95"], 2, "out of range"),
         (three, &["--ratio", "0.5"], 2, "out of range"),
@@ -186,6 +275,9 @@ fn bad_input_is_refused_with_what_to_change() {
     ] {
         let (code, stderr) = refused(text, extra);
         assert_eq!(code, status, "{extra:?}: {stderr}");
-        assert!(stderr.contains(says), "{extra:?}: `{says}` not in: {stderr}");
+        assert!(
+            stderr.contains(says),
+            "{extra:?}: `{says}` not in: {stderr}"
+        );
     }
 }

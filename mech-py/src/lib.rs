@@ -9,8 +9,8 @@ use mech_core::dynamics::motor::Motor;
 use mech_core::dynamics::regime::{Drive, Run, Steady};
 use mech_core::model::{JointKind, Load};
 use mech_core::runtime::columns::{Columns, Part};
-use mech_core::solvers::batch::{each, Block};
 use mech_core::runtime::mechanism::Loads;
+use mech_core::solvers::batch::{each, Block};
 use mech_core::solvers::traits::OneDof;
 use mech_core::{MechError as CoreError, Mechanism};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
@@ -215,7 +215,11 @@ fn loads_callable<'a>(
 
 /// The motor written `text` (`mech_core::dynamics::motor`), its `table(..)` given as the
 /// (speeds, torques) the Python layer read, through `ratio`.
-fn motor_of(text: &str, table: Option<(Vec<f64>, Vec<f64>)>, ratio: f64) -> Result<Motor, CoreError> {
+fn motor_of(
+    text: &str,
+    table: Option<(Vec<f64>, Vec<f64>)>,
+    ratio: f64,
+) -> Result<Motor, CoreError> {
     let read = |_: &str| match &table {
         Some((speed, torque)) => Motor::table(speed.clone(), torque.clone()),
         None => Err(CoreError::InvalidInput(
@@ -255,7 +259,6 @@ fn row_major<'a>(a: &'a numpy::ndarray::ArrayView2<'a, f64>) -> std::borrow::Cow
         None => std::borrow::Cow::Owned(a.iter().copied().collect()),
     }
 }
-
 
 /// The number of flat load values per row (force: 2, torque: 1, in declaration order).
 fn load_width(m: &Mechanism) -> usize {
@@ -454,7 +457,8 @@ impl PyMechanism {
                 std::borrow::Cow::Owned(loads_of(m, &loads[k * nl..(k + 1) * nl]))
             }
         };
-        let errors = py.allow_threads(|| pool().install(|| cols.rows_many(m, q, qd, qdd, &at, &mut data)));
+        let errors =
+            py.allow_threads(|| pool().install(|| cols.rows_many(m, q, qd, qdd, &at, &mut data)));
         if let Some(e) = errors.refusal() {
             return Err(invalid(e.to_string()));
         }
@@ -728,8 +732,12 @@ impl PyMechanism {
         let m = self.one_revolute_input("a motor")?;
         let raised = Raised::default();
         let run = || -> Result<Run, CoreError> {
-            let drive = Drive::new(m, motor_of(&motor, table, ratio)?, loads_callable(py, m, &loads, &raised))
-                .flywheel(flywheel)?;
+            let drive = Drive::new(
+                m,
+                motor_of(&motor, table, ratio)?,
+                loads_callable(py, m, &loads, &raised),
+            )
+            .flywheel(flywheel)?;
             if qd0 == 0.0 {
                 drive.start_up(q0, t_end, samples)
             } else {
@@ -769,9 +777,13 @@ impl PyMechanism {
         }
         let raised = Raised::default();
         let run = || -> Result<Steady, CoreError> {
-            Drive::new(m, motor_of(&motor, table, ratio)?, loads_callable(py, m, &loads, &raised))
-                .flywheel(flywheel)?
-                .steady(start, period, points)
+            Drive::new(
+                m,
+                motor_of(&motor, table, ratio)?,
+                loads_callable(py, m, &loads, &raised),
+            )
+            .flywheel(flywheel)?
+            .steady(start, period, points)
         };
         let out = run();
         if let Some(e) = raised.borrow_mut().take() {
@@ -849,7 +861,13 @@ impl PyMechanism {
         steps: usize,
         irregularity: Option<f64>,
         loads: PyObject,
-    ) -> PyResult<(Vec<[f64; 4]>, Vec<(String, String, f64)>, String, bool, Vec<String>)> {
+    ) -> PyResult<(
+        Vec<[f64; 4]>,
+        Vec<(String, String, f64)>,
+        String,
+        bool,
+        Vec<String>,
+    )> {
         use mech_core::design::sizing;
         let m = self.one_revolute_input("sizing")?;
         let free = sizing::free_dimensions(text, None).map_err(|e| py_err(py, e))?;
@@ -869,7 +887,14 @@ impl PyMechanism {
         let rows = sized
             .iterations
             .iter()
-            .map(|it| [it.total_mass, it.peak_torque, it.flywheel.unwrap_or(f64::NAN), it.worst])
+            .map(|it| {
+                [
+                    it.total_mass,
+                    it.peak_torque,
+                    it.flywheel.unwrap_or(f64::NAN),
+                    it.worst,
+                ]
+            })
             .collect();
         let dims = free
             .iter()
@@ -979,7 +1004,10 @@ fn synthesize_path<'py>(
     info.set_item("transmission", s.transmission)?;
     info.set_item("ratio", s.ratio)?;
     info.set_item("evaluations", s.evaluations)?;
-    info.set_item("evaluations_per_second", s.evaluations as f64 / s.search_seconds)?;
+    info.set_item(
+        "evaluations_per_second",
+        s.evaluations as f64 / s.search_seconds,
+    )?;
     info.set_item("crank_range", s.crank_range)?;
     let doc = format!(
         "Four-bar from mech.synthesize_path (seed {seed}): E = {:e} m² over {} targets.",

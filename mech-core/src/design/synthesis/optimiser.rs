@@ -131,7 +131,7 @@ fn uniform(rng: &mut ChaCha8Rng) -> f64 {
 
 /// An index in 0..n (n ≥ 1), by Lemire's multiply-shift (bias below 2⁻³²·n).
 fn index(rng: &mut ChaCha8Rng, n: usize) -> usize {
-    ((rng.next_u64() >> 32) * n as u64 >> 32) as usize
+    (((rng.next_u64() >> 32) * n as u64) >> 32) as usize
 }
 
 /// Sorts a population best first by Deb's rules, stably (ties keep index order).
@@ -164,7 +164,11 @@ where
     let np = settings.population.max(5);
     let mut rng = ChaCha8Rng::seed_from_u64(settings.seed);
     let init: Vec<Vec<f64>> = (0..np)
-        .map(|_| (0..d).map(|j| lo[j] + (hi[j] - lo[j]) * uniform(&mut rng)).collect())
+        .map(|_| {
+            (0..d)
+                .map(|j| lo[j] + (hi[j] - lo[j]) * uniform(&mut rng))
+                .collect()
+        })
         .collect();
     let evals: Vec<Evaluation> = init.par_iter().map(|x| f(x)).collect();
     let mut pop: Vec<(Vec<f64>, Evaluation)> = init.into_iter().zip(evals).collect();
@@ -403,8 +407,14 @@ mod tests {
         let r = differential_evolution(&[-5.0, -5.0], &[5.0, 5.0], s, f, |_| {});
         let (x, e) = &r.population[0];
         assert!(e.is_feasible());
-        assert!((x[0] - 1.0).abs() < 1e-3 && (x[1] - 1.0).abs() < 1e-3, "{x:?}");
-        let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        assert!(
+            (x[0] - 1.0).abs() < 1e-3 && (x[1] - 1.0).abs() < 1e-3,
+            "{x:?}"
+        );
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
         let r1 = one.install(|| differential_evolution(&[-5.0, -5.0], &[5.0, 5.0], s, f, |_| {}));
         assert_eq!(r.population[0].0, r1.population[0].0);
         assert_eq!(r.evaluations, 4000);
