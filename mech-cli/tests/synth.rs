@@ -42,7 +42,7 @@ fn p_of(file: &str, from: f64, to: f64, steps: usize) -> Vec<[f64; 2]> {
             "--steps",
             &steps.to_string(),
             "--level",
-            "positions",
+            "pose",
             "--format",
             "csv",
         ])
