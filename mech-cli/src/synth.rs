@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 /// The largest budget of `--evaluations`.
 pub const MAX_EVALUATIONS: usize = 1_000_000_000;
 
-/// Closed or open path.
+/// How the targets are timed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum Timing {
     /// Each target meets the nearest point of the coupler curve (SPEC §3f).
