@@ -31,7 +31,10 @@ fn on_the_curve(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
         .map(|k| 0.1 + std::f64::consts::TAU * k as f64 / n as f64)
         .collect();
     let pts = angles.iter().map(|&t| fb.pose(t).unwrap().p).collect();
-    (pts, angles.iter().map(|t| t - error::frame_angle(&fb)).collect())
+    (
+        pts,
+        angles.iter().map(|t| t - error::frame_angle(&fb)).collect(),
+    )
 }
 
 /// Seed 3 and a budget of `evaluations`: at 60 000 the search finds the known curve

@@ -33,7 +33,8 @@
 //!
 //! The global search is [`optimiser::differential_evolution`] under Deb's feasibility
 //! rules on the sum of the violations, run as [`ISLANDS`] independent populations of
-//! [`POPULATION`] vectors sharing the budget (seeds derived from the one given); its
+//! [`POPULATION`] vectors sharing the budget (seeds derived from the one given), side by
+//! side on the thread pool; its
 //! objective is E on the coupler curve sampled at [`SEARCH_SAMPLES`] crank angles (free
 //! timing: each target's distance to the polyline through the samples, the two segments
 //! beside its nearest sample). On targets sampled from a known crank-rocker's curve, a
@@ -70,6 +71,7 @@ use rayon::prelude::*;
 use std::cell::RefCell;
 use std::f64::consts::{PI, TAU};
 use std::fmt;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The crank angles at which the global search samples each candidate's coupler curve
 /// over a full turn (an open path's arc gets a share in proportion to its length, at least
@@ -748,44 +750,54 @@ fn polyline_distance2(pts: &[V2], t: V2, wrap: bool) -> f64 {
 }
 
 /// Synthesises a four-bar whose coupler point meets the targets (the module's docs).
-/// `progress(evaluations)` is called on the calling thread as the global search proceeds
-/// (at most `options.evaluations`).
+/// `progress(evaluations)` is called, from the pool's threads, with the evaluations made
+/// so far as the global search proceeds (at most `options.evaluations`).
 pub fn synthesize(
     problem: &PathProblem,
     options: &PathOptions,
-    mut progress: impl FnMut(usize),
+    progress: impl Fn(usize) + Sync,
 ) -> Result<PathSynthesis, PathError> {
     let p = prepare(problem, options)?;
     let (lo, hi) = p.bounds();
     let start = std::time::Instant::now();
-    // Independent populations, one after the other, each on its share of the budget (at
-    // least ten generations each): a basin that captures one seldom captures them all.
+    // Independent populations, each on its share of the budget (at least ten generations
+    // each): a basin that captures one seldom captures them all. They run side by side on
+    // the pool (each also evaluates its trials in parallel), so the threads meet once per
+    // population rather than once per generation; each depends on its own seed alone.
     let islands = ISLANDS.min(options.evaluations / (10 * POPULATION)).max(1);
-    let (mut used, mut generations) = (0, 0);
-    let mut populations = Vec::with_capacity(islands);
-    for i in 0..islands {
-        let budget = if i + 1 == islands {
-            options.evaluations - used
-        } else {
-            options.evaluations / islands
-        };
-        let base = used;
-        let de = differential_evolution(
-            &lo,
-            &hi,
-            DeSettings {
-                strategy: Strategy::CurrentToPBest,
-                population: POPULATION,
-                evaluations: budget,
-                seed: options.seed ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15),
-            },
-            |x| p.evaluate(x),
-            |n| progress(base + n),
-        );
-        used += de.evaluations;
-        generations += de.generations;
-        populations.push(de.population);
-    }
+    let done = AtomicUsize::new(0);
+    let runs: Vec<(Vec<(Vec<f64>, Evaluation)>, usize, usize)> = (0..islands)
+        .into_par_iter()
+        .map(|i| {
+            let share = options.evaluations / islands;
+            let budget = if i + 1 == islands {
+                options.evaluations - share * (islands - 1)
+            } else {
+                share
+            };
+            let mut last = 0;
+            let de = differential_evolution(
+                &lo,
+                &hi,
+                DeSettings {
+                    strategy: Strategy::CurrentToPBest,
+                    population: POPULATION,
+                    evaluations: budget,
+                    seed: options.seed ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15),
+                },
+                |x| p.evaluate(x),
+                |n| {
+                    let total = done.fetch_add(n - last, Ordering::Relaxed) + n - last;
+                    last = n;
+                    progress(total);
+                },
+            );
+            (de.population, de.evaluations, de.generations)
+        })
+        .collect();
+    let used: usize = runs.iter().map(|r| r.1).sum();
+    let generations: usize = runs.iter().map(|r| r.2).sum();
+    let populations: Vec<Vec<(Vec<f64>, Evaluation)>> = runs.into_iter().map(|r| r.0).collect();
     let search_seconds = start.elapsed().as_secs_f64();
     let best_of = |a: &(Vec<f64>, Evaluation), b: &(Vec<f64>, Evaluation)| {
         b.1.better(&a.1) && !a.1.better(&b.1)
