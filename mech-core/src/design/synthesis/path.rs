@@ -58,7 +58,8 @@
 //! `the_hoisted_curve_is_the_four_bars_pose` holds it to [`FourBar::pose`] to 1e-15; it
 //! takes 27–34 ns an angle where calling [`FourBar::pose`] takes 36–42 ns (1.1–1.5×,
 //! three runs of 360 angles × 20 000 on the shared two-core machine, release build).
-//! Nothing is allocated per angle: a candidate's samples live in a buffer of the thread.
+//! Nothing is allocated to evaluate a candidate: its samples live in a buffer of the
+//! thread, its arcs on the stack.
 
 use super::error;
 use super::four_bar::FourBar;
@@ -318,16 +319,16 @@ impl Design {
     }
 
     /// The arcs of the usable set as [ψ_a, ψ_b] with ψ_a < ψ_b (a full turn: one arc of
-    /// length 2π).
-    fn arcs(&self, mu: f64) -> Vec<(f64, f64)> {
+    /// length 2π), on the stack.
+    fn arcs(&self, mu: f64) -> Arcs {
         let (c_lo, c_hi) = self.usable(mu);
         let a_lo = c_hi.clamp(-1.0, 1.0).acos();
         let a_hi = c_lo.clamp(-1.0, 1.0).acos();
         match (c_hi >= 1.0, c_lo <= -1.0) {
-            (true, true) => vec![(0.0, TAU)],
-            (true, false) => vec![(-a_hi, a_hi)],
-            (false, true) => vec![(a_lo, TAU - a_lo)],
-            (false, false) => vec![(a_lo, a_hi), (-a_hi, -a_lo)],
+            (true, true) => Arcs([(0.0, TAU); 2], 1),
+            (true, false) => Arcs([(-a_hi, a_hi); 2], 1),
+            (false, true) => Arcs([(a_lo, TAU - a_lo); 2], 1),
+            (false, false) => Arcs([(a_lo, a_hi), (-a_hi, -a_lo)], 2),
         }
     }
 
@@ -342,6 +343,16 @@ impl Design {
             b: arr(b),
             p: arr(p),
         })
+    }
+}
+
+/// One or two arcs of crank angles ψ (rad, from the frame line): the first `.1` of `.0`.
+#[derive(Clone, Copy, Debug)]
+struct Arcs([(f64, f64); 2], usize);
+
+impl Arcs {
+    fn as_slice(&self) -> &[(f64, f64)] {
+        &self.0[..self.1]
     }
 }
 
@@ -501,7 +512,8 @@ impl Prepared {
                                 (p - (arc.1 - arc.0)).min(TAU - p)
                             }
                         };
-                        arcs.iter()
+                        arcs.as_slice()
+                            .iter()
                             .map(|arc| a.iter().map(|&psi| miss(arc, psi)).sum::<f64>() / PI)
                             .fold(f64::INFINITY, f64::min)
                     }
@@ -535,7 +547,7 @@ impl Prepared {
                 .sum();
         }
         let mut best = f64::INFINITY;
-        for (a, b) in d.arcs(self.mu) {
+        for &(a, b) in d.arcs(self.mu).as_slice() {
             let full = self.closed || b - a >= TAU;
             let n = if full {
                 SEARCH_SAMPLES
@@ -636,12 +648,13 @@ impl Prepared {
     /// angles, or the arc with the smallest free-timing error.
     fn arc(&self, d: &Design) -> Option<(f64, f64)> {
         let arcs = d.arcs(self.mu);
+        let arcs = arcs.as_slice();
         if self.closed || arcs.len() == 1 {
             return arcs.first().copied();
         }
         let o4 = d.o4();
-        arcs.into_iter()
-            .map(|arc| {
+        arcs.iter()
+            .map(|&arc| {
                 let e: f64 = match &self.angles {
                     Some(a) => a
                         .iter()
