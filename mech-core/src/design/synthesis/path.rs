@@ -31,19 +31,19 @@
 //!   one arc (violation: the angular distance of the others to it, over π).
 //! - *Link-length ratio*: max rₖ / min rₖ ≤ R, violation (max/min / R − 1)⁺.
 //!
-//! The global search is [`optimiser::differential_evolution`] under Deb's feasibility
+//! The global search is [`differential_evolution`] under Deb's feasibility
 //! rules on the sum of the violations, run as [`ISLANDS`] independent populations of
 //! [`POPULATION`] vectors sharing the budget (seeds derived from the one given), side by
 //! side on the thread pool; its
 //! objective is E on the coupler curve sampled at [`SEARCH_SAMPLES`] crank angles (free
 //! timing: each target's distance to the polyline through the samples, the two segments
-//! beside its nearest sample). On targets sampled from a known crank-rocker's curve, a
-//! local optimum on the transmission bound (E ≈ 2e-6 m² for a linkage of 0.3 m) captures
-//! many single populations; four populations found the exact curve for six seeds of eight
-//! at 200 000 evaluations, against four of eight for one population (release build, seeds
-//! 1–8), and on the 18-point path of `tests/data/synthesis` gave E within 1.2 % of the best
+//! beside its nearest sample). On ten targets sampled from a known crank-rocker's curve
+//! (`tests/synthesis.rs`'s, at crank angles π/2 + 0.1 + 2πk/10), a local optimum on the
+//! transmission bound (E ≈ 2e-6 m² for a linkage of 0.3 m) captures many single
+//! populations; four populations found the exact curve for six seeds of eight at 200 000
+//! evaluations, against four of eight for one population (seeds 1–8), and on the 18-point path of `tests/data/synthesis` gave E within 1.2 % of the best
 //! for all eight seeds (one population: within 66 %). The polish is
-//! [`optimiser::levenberg_marquardt`] on the nine continuous variables (the branch kept)
+//! [`levenberg_marquardt`] on the nine continuous variables (the branch kept)
 //! from the best [`POLISH_STARTS`] distinct designs of each population, in parallel (the
 //! results taken in order); its residuals are each
 //! target's signed distance to the curve, n̂ · (Tᵢ − P(θᵢ)) with θᵢ re-found at each
