@@ -108,6 +108,31 @@ fn targets_on_a_four_bars_curve_are_met_with_prescribed_timing() {
     assert!(within((e - s.error).abs(), 1e-20)); // the same function; exact
 }
 
+/// An open path: six points of the curve over a fifth of the crank's turn are met with
+/// E < 1e-10 m² (the crank of the result may rock or turn: the points fix neither).
+#[test]
+fn an_open_path_is_met() {
+    let fb = known();
+    let targets: Vec<[f64; 2]> = (0..6)
+        .map(|k| fb.pose(0.1 + 1.4 * k as f64 / 5.0).unwrap().p)
+        .collect();
+    let s = synthesize(
+        &PathProblem {
+            targets: targets.clone(),
+            angles: None,
+            closed: false,
+        },
+        &options(60_000),
+        |_| {},
+    )
+    .unwrap();
+    assert!(s.error < 1e-10, "E = {:e}", s.error);
+    assert!(within(
+        (error::free_timing(&s.four_bar, &targets) - s.error).abs(),
+        1e-20
+    )); // the same function; exact
+}
+
 /// A fixed seed repeats the run bit for bit, whatever the number of threads.
 #[test]
 fn a_seed_repeats_the_run_on_any_number_of_threads() {

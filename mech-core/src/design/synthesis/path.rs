@@ -1005,6 +1005,44 @@ mod tests {
         assert!(problem(mu_min + 1e-4).violation(&d) > 0.0);
     }
 
+    /// An open path's arcs: for a triple rocker (no link turns fully), the crank angles
+    /// inside the arcs are exactly those where the linkage assembles with μ_b ≤ μ ≤ π − μ_b
+    /// (sampled every 0.1°, away from the arcs' ends by a step).
+    #[test]
+    fn the_arcs_are_where_the_linkage_assembles_within_the_bound() {
+        let d = Design {
+            r: [0.3, 0.25, 0.12, 0.2],
+            ..design()
+        };
+        let mu = 20f64.to_radians();
+        let arcs = d.arcs(mu);
+        assert_eq!(arcs.as_slice().len(), 2, "{arcs:?}");
+        let fb = d.four_bar(0.5 * (arcs.0[0].0 + arcs.0[0].1)).unwrap();
+        let h = TAU / 3600.0;
+        let (mut inside, mut outside) = (0, 0);
+        for k in 0..3600 {
+            let psi = -PI + h * k as f64;
+            let near = |a: f64| ((psi - a + PI).rem_euclid(TAU) - PI).abs() < h;
+            if arcs.as_slice().iter().any(|&(a, b)| near(a) || near(b)) {
+                continue;
+            }
+            let within = arcs.as_slice().iter().any(|&(a, b)| {
+                let p = (psi - a).rem_euclid(TAU);
+                p <= b - a
+            });
+            let ok = fb
+                .transmission_angle(d.phi + psi)
+                .is_some_and(|m| m >= mu && m <= PI - mu);
+            assert_eq!(within, ok, "ψ = {psi}");
+            if within {
+                inside += 1;
+            } else {
+                outside += 1;
+            }
+        }
+        assert!(inside > 100 && outside > 100, "{inside} {outside}");
+    }
+
     /// Bad input: each is refused with its own error.
     #[test]
     fn bad_targets_are_refused() {
