@@ -31,26 +31,27 @@
 //!   one arc (violation: the angular distance of the others to it, over π).
 //! - *Link-length ratio*: max rₖ / min rₖ ≤ R, violation (max/min / R − 1)⁺.
 //!
-//! The global search is [`differential_evolution`] under Deb's feasibility
-//! rules on the sum of the violations, run as [`ISLANDS`] independent populations of
-//! [`POPULATION`] vectors sharing the budget (seeds derived from the one given), side by
-//! side on the thread pool; its
-//! objective is E on the coupler curve sampled at [`SEARCH_SAMPLES`] crank angles (free
-//! timing: each target's distance to the polyline through the samples, the two segments
-//! beside its nearest sample). On ten targets sampled from a known crank-rocker's curve
-//! (`tests/synthesis.rs`'s, at crank angles π/2 + 0.1 + 2πk/10), a local optimum on the
-//! transmission bound (E ≈ 2e-6 m² for a linkage of 0.3 m) captures many single
+//! The global search is [`differential_evolution`] under Deb's feasibility rules on the
+//! sum of the violations, run as [`ISLANDS`] independent populations of [`POPULATION`]
+//! vectors sharing the budget (seeds derived from the one given), side by side on the
+//! thread pool. Its objective is E on the coupler curve sampled at [`SEARCH_SAMPLES`] crank
+//! angles (free timing: each target's distance to the polyline through the samples, the
+//! two segments beside its nearest sample). Why four populations: on ten targets sampled
+//! from a known crank-rocker's curve (at crank angles π/2 + 0.1 + 2πk/10), a local optimum
+//! on the transmission bound (E ≈ 2e-6 m² for a linkage of 0.3 m) captures many single
 //! populations; four populations found the exact curve for six seeds of eight at 200 000
-//! evaluations, against four of eight for one population (seeds 1–8), and on the 18-point path of `tests/data/synthesis` gave E within 1.2 % of the best
-//! for all eight seeds (one population: within 66 %). The polish is
-//! [`levenberg_marquardt`] on the nine continuous variables (the branch kept)
-//! from the best [`POLISH_STARTS`] distinct designs of each population, in parallel (the
-//! results taken in order); its residuals are each
-//! target's signed distance to the curve, n̂ · (Tᵢ − P(θᵢ)) with θᵢ re-found at each
-//! evaluation (sampled at [`error::SAMPLES`] angles, then a golden-section search) and n̂
-//! the curve's unit normal there (prescribed timing: the two components of P(φ + αᵢ) − Tᵢ);
-//! a step that breaks a constraint is refused. The reported error is SPEC §3f's, computed
-//! by [`error`] on the result.
+//! evaluations, against four of eight for one population (seeds 1–8); on the 18-point path
+//! of `tests/data/synthesis`, E was within 1.2 % of the best for all eight seeds (one
+//! population: within 66 %).
+//!
+//! The polish is [`levenberg_marquardt`] on the nine continuous variables (the branch
+//! kept) from the best [`POLISH_STARTS`] distinct designs of each population, in parallel
+//! (the results taken in order). Its residuals are each target's signed distance to the
+//! curve, n̂ · (Tᵢ − P(θᵢ)), with θᵢ re-found at each evaluation (sampled at
+//! [`error::SAMPLES`] angles, then a golden-section search) and n̂ the curve's unit normal
+//! there (prescribed timing: the two components of P(φ + αᵢ) − Tᵢ); a step that breaks a
+//! constraint is refused. The reported error is SPEC §3f's, computed by [`error`] on the
+//! result.
 //!
 //! **The curve of a candidate** is [`FourBar::pose`]'s closed form with the candidate's
 //! constants (the lengths, r₃², r₄², the coupler frame, O4) computed once instead of at
@@ -716,16 +717,30 @@ impl Prepared {
             let Some((psi, p)) = self.nearest(&d, o4, arc, t) else {
                 return false;
             };
+            // The normal component of T − P (smooth through 0); at an end of an open arc,
+            // where T may lie beyond the curve, the whole distance with that sign.
+            let full = self.closed || arc.1 - arc.0 >= TAU;
             let dp = 1e-6;
-            let (Some(p1), Some(p0)) = (d.point(o4, psi + dp), d.point(o4, psi - dp)) else {
+            let (lo, hi) = if full {
+                (psi - dp, psi + dp)
+            } else {
+                ((psi - dp).max(arc.0), (psi + dp).min(arc.1))
+            };
+            let (Some(p1), Some(p0)) = (d.point(o4, hi), d.point(o4, lo)) else {
                 return false;
             };
             let tan = p1 - p0;
             let n = tan.norm();
-            r[i] = if n > 0.0 {
+            let normal = if n > 0.0 {
                 cross(tan, t - p) / n
             } else {
                 (t - p).norm()
+            };
+            let at_end = !full && (psi - arc.0 <= 1e-9 || arc.1 - psi <= 1e-9);
+            r[i] = if at_end {
+                (t - p).norm().copysign(normal)
+            } else {
+                normal
             };
         }
         true
