@@ -281,3 +281,47 @@ fn bad_input_is_refused_with_what_to_change() {
         );
     }
 }
+
+#[test]
+fn hostile_target_files_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let bytes = |name: &str, b: &[u8]| {
+        let p = d.join(name);
+        std::fs::write(&p, b).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let many = {
+        let mut t = String::from("x,y\n");
+        for k in 0..10_001 {
+            t += &format!("{k},{}\n", k % 7);
+        }
+        t
+    };
+    for (file, says) in [
+        (
+            bytes("latin1.csv", b"x,y\n0,0\ncaf\xe9,1\n"),
+            "is not UTF-8 text",
+        ),
+        (bytes("nul.csv", &[0u8; 64]), "is a binary file"),
+        (bytes("empty.csv", b""), "the columns `x` and `y`"),
+        (
+            bytes("many.csv", many.as_bytes()),
+            "more than 10000 targets",
+        ),
+        (d.to_str().unwrap().to_string(), "is a directory"),
+        (
+            d.join("missing.csv").to_str().unwrap().to_string(),
+            "cannot read",
+        ),
+    ] {
+        let out = mech()
+            .args(["synth", "path", &file, "-o"])
+            .arg(d.join("o.mech"))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{file}: {stderr}");
+        assert!(stderr.contains(says), "{file}: `{says}` not in {stderr}");
+    }
+}
