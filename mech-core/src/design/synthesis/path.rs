@@ -347,6 +347,9 @@ impl Design {
     }
 }
 
+/// A final population: (design vector, its evaluation), best first.
+type Population = Vec<(Vec<f64>, Evaluation)>;
+
 /// One or two arcs of crank angles ψ (rad, from the frame line): the first `.1` of `.0`.
 #[derive(Clone, Copy, Debug)]
 struct Arcs([(f64, f64); 2], usize);
@@ -794,7 +797,7 @@ pub fn synthesize(
     // population rather than once per generation; each depends on its own seed alone.
     let islands = ISLANDS.min(options.evaluations / (10 * POPULATION)).max(1);
     let done = AtomicUsize::new(0);
-    let runs: Vec<(Vec<(Vec<f64>, Evaluation)>, usize, usize)> = (0..islands)
+    let runs: Vec<(Population, usize, usize)> = (0..islands)
         .into_par_iter()
         .map(|i| {
             let share = options.evaluations / islands;
@@ -825,7 +828,7 @@ pub fn synthesize(
         .collect();
     let used: usize = runs.iter().map(|r| r.1).sum();
     let generations: usize = runs.iter().map(|r| r.2).sum();
-    let populations: Vec<Vec<(Vec<f64>, Evaluation)>> = runs.into_iter().map(|r| r.0).collect();
+    let populations: Vec<Population> = runs.into_iter().map(|r| r.0).collect();
     let search_seconds = start.elapsed().as_secs_f64();
     let best_of = |a: &(Vec<f64>, Evaluation), b: &(Vec<f64>, Evaluation)| {
         b.1.better(&a.1) && !a.1.better(&b.1)
