@@ -843,24 +843,30 @@ pub fn synthesize(
     if !best_eval.is_feasible() {
         let d = Design::decode(best);
         let (g, g0, r) = p.violations(&d);
-        let (binding, miss) = if r > 0.0 && r >= g {
+        // The constraint the best design misses most: the ratio, the full turn (or the
+        // assembly) without the transmission bound, or what the bound adds to it.
+        let transmission = (g - g0).max(0.0);
+        let (binding, miss) = if r >= g0 && r >= transmission {
             (
                 Constraint::Ratio,
                 format!("a ratio of {:.3} for at most {}", d.ratio(), p.ratio),
             )
-        } else if g0 > 0.0 {
+        } else if g0 >= transmission {
             (
                 if p.closed {
                     Constraint::CrankTurns
                 } else {
                     Constraint::Assembly
                 },
-                format!("{g0:.3e} in cos ψ"),
+                format!("{g0:.3e} in the cosine of the crank angle"),
             )
         } else {
             (
                 Constraint::Transmission,
-                format!("{g:.3e} in cos ψ at the bound {:.1}°", p.mu.to_degrees()),
+                format!(
+                    "{transmission:.3e} in the cosine of the crank angle at the bound {:.1}°",
+                    p.mu.to_degrees()
+                ),
             )
         };
         return Err(PathError::Infeasible {
