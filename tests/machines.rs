@@ -55,3 +55,4 @@ mod rolling;
 mod runtime_alloc;
 mod shapes;
 mod strength;
+mod synthesis;

@@ -376,6 +376,56 @@ def macro_cost():
     return sh(["bash", "tools/macro_cost.sh", "3"]).strip()
 
 
+SYNTH_CASES = [
+    # (file, what, extra arguments)
+    ("tests/data/synthesis/kunjur18.csv", "18-point closed path (Kunjur & Krishnamurty 1997)", []),
+]
+
+
+def synthesis():
+    """`mech synth path` on each benchmark path, seed 1, the default budget: E, the
+    search's evaluations per second (its own report on standard error) on one thread and
+    on every core, and the wall time on every core; best of 5 for the times, the runs
+    interleaved (E is the same every run: one seed, one result)."""
+    sh(["cargo", "build", "--release", "-p", "mech-cli"])
+    exe = str(target_dir() / "release" / "mech")
+    cores = os.cpu_count()
+    rows = ["| path | targets | E (m², seed 1) | evaluations | evaluations/s, 1 thread "
+            f"| evaluations/s, {cores} threads | wall time, {cores} threads (s) |",
+            "|---|---:|---:|---:|---:|---:|---:|"]
+    for file, what, extra in SYNTH_CASES:
+        n = sum(1 for l in (ROOT / file).read_text().splitlines()
+                if l.strip() and not l.startswith("#")) - 1
+        rate, wall, error = {1: 0.0, cores: 0.0}, float("inf"), None
+        for _ in range(5):
+            for threads in (1, cores):
+                with tempfile.TemporaryDirectory() as tmp:
+                    cmd = [exe, "synth", "path", file, "--seed", "1", "--format", "csv",
+                           "-o", str(Path(tmp) / "out.mech")] + extra
+                    t0 = time.perf_counter()
+                    r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True,
+                                       env=dict(os.environ, RAYON_NUM_THREADS=str(threads)))
+                    t = time.perf_counter() - t0
+                if r.returncode:
+                    sys.exit(f"`{' '.join(cmd)}` failed: {r.stderr}")
+                e = float(r.stdout.splitlines()[1].split(",")[0])
+                if error is not None and e != error:
+                    sys.exit(f"{file}: E changed between runs of one seed ({error} then {e})")
+                error = e
+                rate[threads] = max(rate[threads],
+                                    float(re.search(r"([0-9.]+) evaluations/s", r.stderr).group(1)))
+                evaluations = re.search(r"search: ([0-9]+) evaluations", r.stderr).group(1)
+                if threads == cores:
+                    wall = min(wall, t)
+        rows.append(f"| {what} | {n} | {error:.6e} | {evaluations} | {rate[1]:,.0f} | {rate[cores]:,.0f} "
+                    f"| {wall:.2f} |".replace(",", " "))
+    return "\n".join(rows)
+
+
+SYNTH_CMD = ("`mech synth path FILE --seed 1` (200 000 evaluations, μ ≥ 30°, ratio ≤ 10) with "
+             "RAYON_NUM_THREADS=1 and on every core, best of 5 interleaved")
+
+
 class Figure:
     def __init__(self, run, command, paths):
         self.run, self.command, self.paths = run, command, paths
@@ -407,6 +457,7 @@ FIGURES = {
     "fuzz": Figure(fuzz, "`cargo run --release -p mech-fuzz -- --cases 1000000`",
                    CORE + ["fuzz/src"]),
     "macro_cost": Figure(macro_cost, "`tools/macro_cost.sh 3`", CORE + ["tools/macro_cost.sh"]),
+    "synthesis": Figure(synthesis, SYNTH_CMD, CORE + ["mech-cli/src", "tests/data/synthesis"]),
 }
 
 

@@ -1,6 +1,7 @@
 //! The `mech` command-line tool (`docs/cli.md`): a mechanism file (`*.mech`, the body of a
 //! `mechanism!` invocation) checked, solved, swept, sized for a flywheel, simulated,
-//! strength-checked, drawn, animated, reported and imported, and a cam's profile exported, from a terminal.
+//! strength-checked, drawn, animated, reported and imported, a cam's profile exported, and
+//! four-bars synthesised from paths, from a terminal.
 //!
 //! Each subcommand is a module; they share the reading of a file ([`source`]), numbers
 //! with unit words ([`quantity`]), loads given as constants or tables ([`loads`]), the
@@ -36,6 +37,7 @@ pub mod source;
 pub mod strength;
 pub mod svg;
 pub mod synth_exact;
+pub mod synth;
 
 /// An error of the tool: the message for standard error, and the exit status.
 #[derive(Debug)]

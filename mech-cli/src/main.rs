@@ -8,7 +8,7 @@ use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
     balance, cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report,
-    shaking, simulate, size, solve, source, strength, synth_exact, Failure,
+    shaking, simulate, size, solve, source, strength, synth, synth_exact, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -155,6 +155,10 @@ enum Synth {
     /// and `angle` (A → B, rad): Burmester theory, three to five poses exactly, more by
     /// least squares.
     Motion(synth_exact::MotionArgs),
+    /// A four-bar whose coupler point P passes nearest to target points (free or
+    /// prescribed timing, closed or open path): differential evolution, then a
+    /// Levenberg–Marquardt polish; prints the error E = Σ (distance to the curve)².
+    Path(synth::PathArgs),
 }
 
 fn main() -> ExitCode {
@@ -261,5 +265,6 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Balance(args) => balance::run(args, stdout),
         Command::Synth(Synth::Function(args)) => synth_exact::function(args, stdout),
         Command::Synth(Synth::Motion(args)) => synth_exact::motion(args, stdout),
+        Command::Synth(Synth::Path(args)) => synth::run_path(args, stdout),
     }
 }

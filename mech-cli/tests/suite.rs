@@ -17,6 +17,7 @@ mod regime;
 mod snapshots;
 mod strength;
 mod synth_exact;
+mod synth;
 
 /// Every `tests/*.rs` but this file is one of the modules above.
 #[cfg(test)]

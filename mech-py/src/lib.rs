@@ -9,8 +9,8 @@ use mech_core::dynamics::motor::Motor;
 use mech_core::dynamics::regime::{Drive, Run, Steady};
 use mech_core::model::{JointKind, Load};
 use mech_core::runtime::columns::{Columns, Part};
-use mech_core::solvers::batch::{each, Block};
 use mech_core::runtime::mechanism::Loads;
+use mech_core::solvers::batch::{each, Block};
 use mech_core::solvers::traits::OneDof;
 use mech_core::{MechError as CoreError, Mechanism};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
@@ -216,7 +216,11 @@ fn loads_callable<'a>(
 
 /// The motor written `text` (`mech_core::dynamics::motor`), its `table(..)` given as the
 /// (speeds, torques) the Python layer read, through `ratio`.
-fn motor_of(text: &str, table: Option<(Vec<f64>, Vec<f64>)>, ratio: f64) -> Result<Motor, CoreError> {
+fn motor_of(
+    text: &str,
+    table: Option<(Vec<f64>, Vec<f64>)>,
+    ratio: f64,
+) -> Result<Motor, CoreError> {
     let read = |_: &str| match &table {
         Some((speed, torque)) => Motor::table(speed.clone(), torque.clone()),
         None => Err(CoreError::InvalidInput(
@@ -256,7 +260,6 @@ fn row_major<'a>(a: &'a numpy::ndarray::ArrayView2<'a, f64>) -> std::borrow::Cow
         None => std::borrow::Cow::Owned(a.iter().copied().collect()),
     }
 }
-
 
 /// The number of flat load values per row (force: 2, torque: 1, in declaration order).
 fn load_width(m: &Mechanism) -> usize {
@@ -455,7 +458,8 @@ impl PyMechanism {
                 std::borrow::Cow::Owned(loads_of(m, &loads[k * nl..(k + 1) * nl]))
             }
         };
-        let errors = py.allow_threads(|| pool().install(|| cols.rows_many(m, q, qd, qdd, &at, &mut data)));
+        let errors =
+            py.allow_threads(|| pool().install(|| cols.rows_many(m, q, qd, qdd, &at, &mut data)));
         if let Some(e) = errors.refusal() {
             return Err(invalid(e.to_string()));
         }
@@ -729,8 +733,12 @@ impl PyMechanism {
         let m = self.one_revolute_input("a motor")?;
         let raised = Raised::default();
         let run = || -> Result<Run, CoreError> {
-            let drive = Drive::new(m, motor_of(&motor, table, ratio)?, loads_callable(py, m, &loads, &raised))
-                .flywheel(flywheel)?;
+            let drive = Drive::new(
+                m,
+                motor_of(&motor, table, ratio)?,
+                loads_callable(py, m, &loads, &raised),
+            )
+            .flywheel(flywheel)?;
             if qd0 == 0.0 {
                 drive.start_up(q0, t_end, samples)
             } else {
@@ -770,9 +778,13 @@ impl PyMechanism {
         }
         let raised = Raised::default();
         let run = || -> Result<Steady, CoreError> {
-            Drive::new(m, motor_of(&motor, table, ratio)?, loads_callable(py, m, &loads, &raised))
-                .flywheel(flywheel)?
-                .steady(start, period, points)
+            Drive::new(
+                m,
+                motor_of(&motor, table, ratio)?,
+                loads_callable(py, m, &loads, &raised),
+            )
+            .flywheel(flywheel)?
+            .steady(start, period, points)
         };
         let out = run();
         if let Some(e) = raised.borrow_mut().take() {
@@ -850,7 +862,13 @@ impl PyMechanism {
         steps: usize,
         irregularity: Option<f64>,
         loads: PyObject,
-    ) -> PyResult<(Vec<[f64; 4]>, Vec<(String, String, f64)>, String, bool, Vec<String>)> {
+    ) -> PyResult<(
+        Vec<[f64; 4]>,
+        Vec<(String, String, f64)>,
+        String,
+        bool,
+        Vec<String>,
+    )> {
         use mech_core::design::sizing;
         let m = self.one_revolute_input("sizing")?;
         let free = sizing::free_dimensions(text, None).map_err(|e| py_err(py, e))?;
@@ -870,7 +888,14 @@ impl PyMechanism {
         let rows = sized
             .iterations
             .iter()
-            .map(|it| [it.total_mass, it.peak_torque, it.flywheel.unwrap_or(f64::NAN), it.worst])
+            .map(|it| {
+                [
+                    it.total_mass,
+                    it.peak_torque,
+                    it.flywheel.unwrap_or(f64::NAN),
+                    it.worst,
+                ]
+            })
             .collect();
         let dims = free
             .iter()
@@ -1026,6 +1051,64 @@ fn synthesize_motion(
         s.offset,
         s.crank_angles,
     ))
+/// Path synthesis of a four-bar (`mech_core::design::synthesis::path::synthesize`):
+/// `targets` an (n, 2) array of points (m), `angles` their crank angles (rad, from the
+/// frame line) for prescribed timing. Returns the four-bar's mechanism text (the SPEC names
+/// O2, O4, A, B, P, input O2), its error E (m², SPEC §3f) and a dict of how it was found.
+/// The search runs in the package's thread pool with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (targets, angles, closed, seed, evaluations, transmission, ratio))]
+#[allow(clippy::too_many_arguments)]
+fn synthesize_path<'py>(
+    py: Python<'py>,
+    targets: PyReadonlyArray2<'py, f64>,
+    angles: Option<Vec<f64>>,
+    closed: bool,
+    seed: u64,
+    evaluations: usize,
+    transmission: f64,
+    ratio: f64,
+) -> PyResult<(String, f64, Bound<'py, PyDict>)> {
+    use mech_core::design::synthesis::path::{synthesize, PathError, PathOptions, PathProblem};
+    let a = targets.as_array();
+    if a.ncols() != 2 {
+        return Err(invalid(format!(
+            "points of shape {:?}: give n points as an (n, 2) array of x, y (m)",
+            a.shape()
+        )));
+    }
+    let problem = PathProblem {
+        targets: a.rows().into_iter().map(|r| [r[0], r[1]]).collect(),
+        angles,
+        closed,
+    };
+    let options = PathOptions {
+        seed,
+        evaluations,
+        transmission: transmission.to_radians(),
+        ratio,
+    };
+    let s = py
+        .allow_threads(|| pool().install(|| synthesize(&problem, &options, |_| {})))
+        .map_err(|e| match e {
+            PathError::Infeasible { .. } => MechError::new_err(e.to_string()),
+            other => invalid(other.to_string()),
+        })?;
+    let info = PyDict::new(py);
+    info.set_item("transmission", s.transmission)?;
+    info.set_item("ratio", s.ratio)?;
+    info.set_item("evaluations", s.evaluations)?;
+    info.set_item(
+        "evaluations_per_second",
+        s.evaluations as f64 / s.search_seconds,
+    )?;
+    info.set_item("crank_range", s.crank_range)?;
+    let doc = format!(
+        "Four-bar from mech.synthesize_path (seed {seed}): E = {:e} m² over {} targets.",
+        s.error,
+        problem.targets.len()
+    );
+    Ok((s.four_bar.to_mech("PathGenerator", &doc), s.error, info))
 }
 
 /// The native module `mech._mech`.
@@ -1104,6 +1187,7 @@ fn _mech(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(optimize, m)?)?;
     m.add_function(wrap_pyfunction!(synthesize_function, m)?)?;
     m.add_function(wrap_pyfunction!(synthesize_motion, m)?)?;
+    m.add_function(wrap_pyfunction!(synthesize_path, m)?)?;
     let py = m.py();
     // The module they are found in, for pickle (a worker's exception travels back to
     // the client): `mech._mech`, not the `_mech` the macro names.

@@ -55,6 +55,7 @@ __all__ = [
     "optimize",
     "synthesize_function",
     "synthesize_motion",
+    "synthesize_path",
     "num_threads",
     "MechError",
     "InvalidMechanism",
@@ -744,3 +745,33 @@ def synthesize_motion(poses, circle_points=None, full=False):
     if full:
         return m, error, {"offset": offset, "q": np.array(q)}
     return m, error
+def synthesize_path(points, closed=True, seed=1, evaluations=200000, angles=None,
+                    transmission=30.0, ratio=10.0):
+    """A four-bar whose coupler point P passes nearest to ``points`` (an (n, 2) array of
+    x, y in m, n >= 3): SPEC 3f's path synthesis, as ``mech synth path`` does it
+    (docs/cli.md). ``closed``: the crank turns fully (else it rocks within one arc);
+    ``angles``: the crank angle O2 -> A of each point (rad, from the frame line O2 -> O4)
+    for prescribed timing, ``None`` for free timing; ``seed``: one seed, one result;
+    ``evaluations``: the global search's budget; ``transmission``: the smallest
+    transmission angle allowed, degrees; ``ratio``: the longest link over the shortest.
+
+    Returns ``(mechanism, error)``: a :class:`Mechanism` with the points O2, O4, A, B, P
+    and input O2, and E = sum of the squared distances of the points to its coupler curve
+    (m^2; with prescribed timing, to P at their angles). ``InvalidInput`` for bad points
+    (too few, coincident, not finite, the wrong shape); ``MechError`` naming the binding
+    constraint when no four-bar meets the constraints.
+    """
+    pts = _floats(points, "points")
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise InvalidInput("points of shape %s: give n points as an (n, 2) array of x, y (m)" % (pts.shape,))
+    if angles is not None:
+        angles = [float(v) for v in np.atleast_1d(_floats(angles, "angles")).ravel()]
+    if not isinstance(closed, (bool, np.bool_)):
+        raise TypeError("closed = %r: give True or False" % (closed,))
+    seed = _count(seed, "seed")
+    evaluations = _count(evaluations, "evaluations")
+    transmission = _number(transmission, "transmission")
+    ratio = _number(ratio, "ratio")
+    text, error, _info = _mech.synthesize_path(
+        np.ascontiguousarray(pts), angles, bool(closed), seed, evaluations, transmission, ratio)
+    return Mechanism.from_dsl(text), error

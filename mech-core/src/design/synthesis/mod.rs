@@ -7,5 +7,7 @@ pub mod error;
 pub mod four_bar;
 pub mod freudenstein;
 pub mod three_point;
+pub mod optimiser;
+pub mod path;
 
 pub use four_bar::{FourBar, FourBarPose};
