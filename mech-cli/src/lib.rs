@@ -36,8 +36,8 @@ pub mod solve;
 pub mod source;
 pub mod strength;
 pub mod svg;
-pub mod synth_exact;
 pub mod synth;
+pub mod synth_exact;
 
 /// An error of the tool: the message for standard error, and the exit status.
 #[derive(Debug)]

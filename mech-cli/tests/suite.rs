@@ -16,8 +16,8 @@ mod optimize;
 mod regime;
 mod snapshots;
 mod strength;
-mod synth_exact;
 mod synth;
+mod synth_exact;
 
 /// Every `tests/*.rs` but this file is one of the modules above.
 #[cfg(test)]

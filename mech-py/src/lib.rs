@@ -1051,6 +1051,8 @@ fn synthesize_motion(
         s.offset,
         s.crank_angles,
     ))
+}
+
 /// Path synthesis of a four-bar (`mech_core::design::synthesis::path::synthesize`):
 /// `targets` an (n, 2) array of points (m), `angles` their crank angles (rad, from the
 /// frame line) for prescribed timing. Returns the four-bar's mechanism text (the SPEC names
@@ -1111,7 +1113,6 @@ fn synthesize_path<'py>(
     Ok((s.four_bar.to_mech("PathGenerator", &doc), s.error, info))
 }
 
-/// The native module `mech._mech`.
 /// Optimise the mechanism `text` (`mech_core::design::optimize`): the variables as (name,
 /// lo, hi, unit word or None), the objective by name (`path` with `targets` and `point`),
 /// the constraints written as on the command line; `loads` a callable of q returning the
@@ -1180,6 +1181,7 @@ fn optimize(
     Ok((o.values, o.objective, o.initial, o.history, o.text, o.evaluations))
 }
 
+/// The native module `mech._mech`.
 #[pymodule]
 fn _mech(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMechanism>()?;

@@ -6,8 +6,8 @@ pub mod burmester;
 pub mod error;
 pub mod four_bar;
 pub mod freudenstein;
-pub mod three_point;
 pub mod optimiser;
 pub mod path;
+pub mod three_point;
 
 pub use four_bar::{FourBar, FourBarPose};
