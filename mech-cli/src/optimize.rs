@@ -66,26 +66,12 @@ fn variable(text: &str) -> Result<Variable, Failure> {
     };
     let (name, range) = text.split_once('=').ok_or_else(bad)?;
     let (lo, hi) = range.split_once("..").ok_or_else(bad)?;
-    let number =
-        |s: &str| -> Result<(f64, Option<&'static mech_core::model::units::Unit>), Failure> {
-            let s = s.trim();
-            let split = s
-                .find(|c: char| c.is_alphabetic() && c != 'e' && c != 'E')
-                .unwrap_or(s.len());
-            let x: f64 = s[..split].trim().parse().map_err(|_| bad())?;
-            match s[split..].trim() {
-                "" => Ok((x, None)),
-                w => {
-                    let u = mech_core::model::units::lookup(w).ok_or_else(|| {
-                        Failure::usage(format!(
-                            "--vary {text}: unknown unit `{w}`; the words are {}",
-                            mech_core::model::units::all_words()
-                        ))
-                    })?;
-                    Ok((x * u.factor, Some(u)))
-                }
-            }
-        };
+    let number = |s: &str| {
+        mech_core::design::rewrite::number(s).map_err(|why| match why.starts_with("unknown unit") {
+            true => Failure::usage(format!("--vary {text}: {why}")),
+            false => bad(),
+        })
+    };
     let ((lo, u1), (hi, u2)) = (number(lo)?, number(hi)?);
     if u1.map(|u| u.dim) != u2.map(|u| u.dim) && u1.is_some() && u2.is_some() {
         return Err(Failure::usage(format!(

@@ -496,7 +496,7 @@ pub fn optimize(
         .iter()
         .zip(vars)
         .map(|(r, v)| {
-            let si = value_of(&text[r.clone()]).unwrap_or(0.5 * (v.lo + v.hi));
+            let si = rewrite::number(&text[r.clone()]).map_or(0.5 * (v.lo + v.hi), |n| n.0);
             ((si - v.lo) / (v.hi - v.lo)).clamp(0.0, 1.0)
         })
         .collect();
@@ -645,30 +645,19 @@ fn halton(mut i: u64, b: u64) -> f64 {
     r
 }
 
-/// A written number with an optional unit word, SI (`143 mm` → 0.143); `None` for an
-/// expression.
-fn value_of(written: &str) -> Option<f64> {
-    let w = written.trim();
-    let split = w
-        .find(|c: char| c.is_alphabetic() && c != 'e' && c != 'E')
-        .unwrap_or(w.len());
-    let (num, unit) = (w[..split].trim(), w[split..].trim());
-    let x: f64 = num.parse().ok()?;
-    match unit {
-        "" => Some(x),
-        u => crate::model::units::lookup(u).map(|u| x * u.factor),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn written_numbers_and_the_sequence() {
-        assert!((value_of("143 mm").unwrap() - 0.143).abs() < 1e-16);
-        assert_eq!(value_of("6.8e-3 kg_m2"), Some(6.8e-3));
-        assert_eq!(value_of("stroke / 2"), None);
+        let n = |w: &str| rewrite::number(w).map(|x| x.0);
+        assert!((n("143 mm").unwrap() - 0.143).abs() < 1e-16);
+        assert_eq!(n("6.8e-3 kg_m2"), Ok(6.8e-3));
+        assert!(n("stroke / 2").is_err());
+        assert!(n("3 furlongs")
+            .unwrap_err()
+            .contains("unknown unit `furlongs`"));
         assert_eq!(halton(1, 2), 0.5);
         assert_eq!(halton(3, 2), 0.75);
         assert!((halton(4, 3) - 4.0 / 9.0).abs() < 1e-15);

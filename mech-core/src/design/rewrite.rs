@@ -6,6 +6,7 @@
 //! the next `,` or closing brace at the same depth (brackets and parentheses nest;
 //! comments are skipped).
 
+use crate::model::units::{all_words, lookup, Unit};
 use std::ops::Range;
 
 /// Calls `f` with each byte offset and character of `text[range]` outside `//` comments
@@ -124,6 +125,26 @@ pub fn find(text: &str, name: &str) -> Option<Range<usize>> {
             entry(text, body, c)
         }
         _ => None,
+    }
+}
+
+/// A number as a mechanism's text writes it, with an optional unit word (`143 mm`, `0.5`,
+/// `6.8e-3 kg_m2`): its value in SI and the unit word. Errors: not a number (an
+/// expression, say), or a word that is no unit (naming the words).
+pub fn number(written: &str) -> Result<(f64, Option<&'static Unit>), String> {
+    let w = written.trim();
+    let split = w
+        .find(|c: char| c.is_alphabetic() && c != 'e' && c != 'E')
+        .unwrap_or(w.len());
+    let x: f64 = w[..split]
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{w}` is not a number with an optional unit word"))?;
+    match w[split..].trim() {
+        "" => Ok((x, None)),
+        word => lookup(word)
+            .map(|u| (x * u.factor, Some(u)))
+            .ok_or_else(|| format!("unknown unit `{word}`; the words are {}", all_words())),
     }
 }
 
