@@ -5,6 +5,7 @@ use super::results::{LoadValue, Loads, Motion};
 use super::{Forces, Mechanism};
 use crate::error::MechError;
 use crate::kernel::link_state::V2;
+use crate::model::shape::Material;
 use crate::model::{JointKind, Load};
 use crate::strength::diagram::Diagram;
 use crate::strength::section::Section;
@@ -47,17 +48,16 @@ impl Mechanism {
                 "a strength analysis needs a finite speed, a finite period > 0 and 2 to {MAX_STEPS} steps; got q̇ = {qd} rad/s, period = {period} rad, {steps} steps"
             )));
         }
-        let mut links: Vec<(usize, LinkTrack)> = Vec::new();
-        for (l, link) in model.links.iter().enumerate().skip(1) {
-            let Some((shape, material)) = link.body else {
-                continue;
-            };
-            let (Some(section), [p, q, ..]) = (Section::of(&shape), link.points.as_slice()) else {
-                continue;
-            };
-            let d = V2::from(model.points[*q].pos) - V2::from(model.points[*p].pos);
-            links.push((l, LinkTrack::new(&link.name, section, material, d.norm())));
-        }
+        let mut links: Vec<(usize, LinkTrack)> = self
+            .beams()
+            .into_iter()
+            .map(|(l, section, material, length)| {
+                (
+                    l,
+                    LinkTrack::new(&model.links[l].name, section, material, length),
+                )
+            })
+            .collect();
         let mut pins: Vec<(usize, PinTrack)> = Vec::new();
         for (j, joint) in model.joints.iter().enumerate() {
             let Some(pin) = joint.pin else { continue };
@@ -113,15 +113,32 @@ impl Mechanism {
         let motion = self.kinematics(&[q], &[qd], &[0.0])?;
         let forces = self.kinetostatics(&motion, loads)?;
         Ok(self
-            .model
-            .links
-            .iter()
-            .enumerate()
-            .filter(|(_, l)| {
-                l.body.is_some_and(|(s, _)| Section::of(&s).is_some()) && l.points.len() >= 2
+            .beams()
+            .into_iter()
+            .map(|(l, ..)| {
+                let name = self.model.links[l].name.clone();
+                (name, self.diagram(l, &motion, &forces, loads))
             })
-            .map(|(l, link)| (link.name.clone(), self.diagram(l, &motion, &forces, loads)))
             .collect())
+    }
+
+    /// The links the strength analysis treats as beams: declared by a `bar`, `rod` or
+    /// `tube` with a material, on at least two points; with their section, material and
+    /// the length L (m) between their first two points.
+    fn beams(&self) -> Vec<(usize, Section, Material, f64)> {
+        let model = &self.model;
+        let mut out = Vec::new();
+        for (l, link) in model.links.iter().enumerate().skip(1) {
+            let Some((shape, material)) = link.body else {
+                continue;
+            };
+            let (Some(section), [p, q, ..]) = (Section::of(&shape), link.points.as_slice()) else {
+                continue;
+            };
+            let d = V2::from(model.points[*q].pos) - V2::from(model.points[*p].pos);
+            out.push((l, section, material, d.norm()));
+        }
+        out
     }
 
     /// Every action on link `l` at one instant: the joints' reactions (and the motor's
