@@ -422,6 +422,10 @@ def synthesis():
     return "\n".join(rows)
 
 
+def synthesis_rates():
+    return sh([sys.executable, "tools/synthesis_vs_others.py", "--table"]).strip()
+
+
 SYNTH_CMD = ("`mech synth path FILE --seed 1` (200 000 evaluations, μ ≥ 30°, ratio ≤ 10) with "
              "RAYON_NUM_THREADS=1 and on every core, best of 5 interleaved")
 
@@ -458,6 +462,9 @@ FIGURES = {
                    CORE + ["fuzz/src"]),
     "macro_cost": Figure(macro_cost, "`tools/macro_cost.sh 3`", CORE + ["tools/macro_cost.sh"]),
     "synthesis": Figure(synthesis, SYNTH_CMD, CORE + ["mech-cli/src", "tests/data/synthesis"]),
+    "synthesis_rates": Figure(synthesis_rates, "`python3 tools/synthesis_vs_others.py --table` (needs pyslvs and "
+                              "pylinkage installed), one thread each",
+                              CORE + ["mech-cli/src", "tests/data/synthesis", "tools/synthesis_vs_others.py"]),
 }
 
 

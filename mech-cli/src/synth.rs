@@ -1,14 +1,17 @@
-//! `mech synth path TARGETS.csv [--closed|--open] [--timing free|prescribed] [--seed N]
-//! [--evaluations N] [--transmission DEG] [--ratio R] -o OUT.mech` (SPEC §3f,
-//! `docs/cli.md#synth-path`): the four-bar whose coupler point P passes nearest to the
-//! targets, by `mech_core::design::synthesis::path` (differential evolution, then a
-//! Levenberg–Marquardt polish). Prints one row (`error`, `rms`, `transmission`, `ratio`),
-//! writes OUT.mech (the SPEC names O2, O4, A, B, P, input O2), and reports the search's
-//! evaluations per second on standard error.
+//! `mech synth path TARGETS.csv [--closed|--open] [--timing free|prescribed]
+//! [--topology four-bar|six-bar] [--seed N] [--evaluations N] [--transmission DEG]
+//! [--ratio R] -o OUT.mech` (SPEC §3f, `docs/cli.md#synth-path`): the four-bar whose
+//! coupler point P passes nearest to the targets, by `mech_core::design::synthesis::path`
+//! (differential evolution, then a Levenberg–Marquardt polish), or the Stephenson III
+//! six-bar of `mech_core::design::synthesis::six_bar`. Prints one row (`error`, `rms`,
+//! `transmission`, `ratio`), writes OUT.mech (the SPEC names O2, O4, A, B, P, input O2;
+//! a six-bar adds C, D and O6), and reports the search's evaluations per second on
+//! standard error.
 
 use crate::output::{Format, Writer};
 use crate::{limits, Failure};
 use mech_core::design::synthesis::path::{self, PathOptions, PathProblem};
+use mech_core::design::synthesis::six_bar;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -31,7 +34,8 @@ pub enum Topology {
     /// A four-bar with a coupler point.
     #[default]
     FourBar,
-    /// A six-bar (not yet).
+    /// A Stephenson III six-bar: the four-bar's coupler point C drives a second dyad
+    /// C D O6, the tracer P on the link C D (closed paths).
     SixBar,
 }
 
@@ -55,7 +59,7 @@ pub struct PathArgs {
     /// column).
     #[arg(long, value_enum, default_value_t = Timing::Free)]
     pub timing: Timing,
-    /// The linkage: four-bar (six-bar is not yet available).
+    /// The linkage: a four-bar, or a Stephenson III six-bar (closed paths).
     #[arg(long, value_enum, default_value_t = Topology::FourBar)]
     pub topology: Topology,
     /// The seed of the search: one seed, one result, whatever the number of threads.
@@ -168,13 +172,6 @@ pub fn read_targets(text: &str, origin: &str) -> Result<Targets, Failure> {
 
 /// Run `mech synth path`.
 pub fn run_path(args: PathArgs, out: impl Write) -> Result<(), Failure> {
-    if args.topology == Topology::SixBar {
-        return Err(Failure::usage(
-            "--topology six-bar: not yet; `mech synth path` synthesises four-bars \
-             (--topology four-bar, the default): ground pivots O2 and O4, crank O2A, coupler \
-             ABP, rocker O4B",
-        ));
-    }
     limits::writable(&args.output, "-o", "mech")?;
     let origin = args.targets.display().to_string();
     let text = limits::read_text(&args.targets, limits::TABLE_BYTES, "the targets file")?;
@@ -212,12 +209,17 @@ pub fn run_path(args: PathArgs, out: impl Write) -> Result<(), Failure> {
         .expect("template"),
     );
     let start = std::time::Instant::now();
-    let result = path::synthesize(&problem, &options, |n| bar.set_position(n as u64));
+    let progress = |n: usize| bar.set_position(n as u64);
+    let result = match args.topology {
+        Topology::FourBar => path::synthesize(&problem, &options, progress).map(Found::Four),
+        Topology::SixBar => six_bar::synthesize(&problem, &options, progress).map(Found::Six),
+    };
     bar.finish_and_clear();
-    let s = result.map_err(|e| match e {
+    let found = result.map_err(|e| match e {
         path::PathError::Infeasible { .. } => Failure::mechanism(format!("{origin}: {e}")),
         _ => Failure::usage(format!("{origin}: {e}")),
     })?;
+    let s = found.summary();
     let wall = start.elapsed().as_secs_f64();
     let n = problem.targets.len();
     let names: Vec<String> = ["error", "rms", "transmission", "ratio"]
@@ -232,13 +234,24 @@ pub fn run_path(args: PathArgs, out: impl Write) -> Result<(), Failure> {
         s.ratio,
     ])?;
     w.finish()?;
-    let [r1, r2, r3, r4] = s.four_bar.lengths();
+    let [r1, r2, r3, r4] = s.lengths[..4] else {
+        unreachable!("a four-bar's lengths come first")
+    };
     eprintln!(
-        "four-bar: frame {} m, crank {} m, coupler {} m, rocker {} m; {}",
+        "{}: frame {} m, crank {} m, coupler {} m, rocker {} m{}; {}",
+        found.name(),
         limits::show(r1),
         limits::show(r2),
         limits::show(r3),
         limits::show(r4),
+        match s.lengths[4..] {
+            [r5, r6] => format!(
+                ", C to D {} m, second rocker O6 to D {} m",
+                limits::show(r5),
+                limits::show(r6)
+            ),
+            _ => String::new(),
+        },
         match s.crank_range {
             None => "the crank turns fully".to_string(),
             Some((a, b)) => format!(
@@ -258,19 +271,86 @@ pub fn run_path(args: PathArgs, out: impl Write) -> Result<(), Failure> {
         wall
     );
     let doc = format!(
-        "Four-bar from `mech synth path {} --seed {}`: E = {:e} m² over {n} targets ({} timing, {} path).",
+        "{} from `mech synth path {}{} --seed {}`: E = {:e} m² over {n} targets ({} timing, {} path).",
+        found.title(),
         Path::new(&args.targets)
             .file_name()
             .map_or(origin.clone(), |f| f.to_string_lossy().into_owned()),
+        if args.topology == Topology::SixBar {
+            " --topology six-bar"
+        } else {
+            ""
+        },
         args.seed,
         s.error,
         if problem.angles.is_some() { "prescribed" } else { "free" },
         if problem.closed { "closed" } else { "open" },
     );
-    limits::write_file(
-        &args.output,
-        &s.four_bar.to_mech("PathGenerator", &doc),
-        "-o",
-        "mech",
-    )
+    limits::write_file(&args.output, &found.to_mech(&doc), "-o", "mech")
+}
+
+/// What a path synthesis found: a four-bar or a six-bar.
+enum Found {
+    Four(path::PathSynthesis),
+    Six(six_bar::SixBarSynthesis),
+}
+
+/// The figures `mech synth path` prints, whatever the linkage.
+struct Summary {
+    error: f64,
+    transmission: f64,
+    ratio: f64,
+    lengths: Vec<f64>,
+    crank_range: Option<(f64, f64)>,
+    evaluations: usize,
+    search_seconds: f64,
+    polish_evaluations: usize,
+}
+
+impl Found {
+    fn summary(&self) -> Summary {
+        match self {
+            Found::Four(s) => Summary {
+                error: s.error,
+                transmission: s.transmission,
+                ratio: s.ratio,
+                lengths: s.four_bar.lengths().to_vec(),
+                crank_range: s.crank_range,
+                evaluations: s.evaluations,
+                search_seconds: s.search_seconds,
+                polish_evaluations: s.polish_evaluations,
+            },
+            Found::Six(s) => Summary {
+                error: s.error,
+                transmission: s.transmission,
+                ratio: s.ratio,
+                lengths: s.six_bar.lengths().to_vec(),
+                crank_range: None,
+                evaluations: s.evaluations,
+                search_seconds: s.search_seconds,
+                polish_evaluations: s.polish_evaluations,
+            },
+        }
+    }
+
+    fn name(&self) -> &'static str {
+        match self {
+            Found::Four(_) => "four-bar",
+            Found::Six(_) => "six-bar (Stephenson III)",
+        }
+    }
+
+    fn title(&self) -> &'static str {
+        match self {
+            Found::Four(_) => "Four-bar",
+            Found::Six(_) => "Stephenson III six-bar",
+        }
+    }
+
+    fn to_mech(&self, doc: &str) -> String {
+        match self {
+            Found::Four(s) => s.four_bar.to_mech("PathGenerator", doc),
+            Found::Six(s) => s.six_bar.to_mech("PathGenerator", doc),
+        }
+    }
 }

@@ -1053,13 +1053,15 @@ fn synthesize_motion(
     ))
 }
 
-/// Path synthesis of a four-bar (`mech_core::design::synthesis::path::synthesize`):
+/// Path synthesis of a four-bar (`mech_core::design::synthesis::path::synthesize`) or,
+/// with `six_bar`, of a Stephenson III six-bar (`..::six_bar::synthesize`, closed paths):
 /// `targets` an (n, 2) array of points (m), `angles` their crank angles (rad, from the
-/// frame line) for prescribed timing. Returns the four-bar's mechanism text (the SPEC names
-/// O2, O4, A, B, P, input O2), its error E (m², SPEC §3f) and a dict of how it was found.
-/// The search runs in the package's thread pool with the GIL released.
+/// frame line) for prescribed timing. Returns the linkage's mechanism text (the SPEC names
+/// O2, O4, A, B, P, input O2; a six-bar adds C, D, O6), its error E (m², SPEC §3f) and a
+/// dict of how it was found. The search runs in the package's thread pool with the GIL
+/// released.
 #[pyfunction]
-#[pyo3(signature = (targets, angles, closed, seed, evaluations, transmission, ratio))]
+#[pyo3(signature = (targets, angles, closed, seed, evaluations, transmission, ratio, six_bar=false))]
 #[allow(clippy::too_many_arguments)]
 fn synthesize_path<'py>(
     py: Python<'py>,
@@ -1070,6 +1072,7 @@ fn synthesize_path<'py>(
     evaluations: usize,
     transmission: f64,
     ratio: f64,
+    six_bar: bool,
 ) -> PyResult<(String, f64, Bound<'py, PyDict>)> {
     use mech_core::design::synthesis::path::{synthesize, PathError, PathOptions, PathProblem};
     let a = targets.as_array();
@@ -1090,27 +1093,45 @@ fn synthesize_path<'py>(
         transmission: transmission.to_radians(),
         ratio,
     };
-    let s = py
-        .allow_threads(|| pool().install(|| synthesize(&problem, &options, |_| {})))
-        .map_err(|e| match e {
-            PathError::Infeasible { .. } => MechError::new_err(e.to_string()),
-            other => invalid(other.to_string()),
-        })?;
+    let refused = |e: PathError| match e {
+        PathError::Infeasible { .. } => MechError::new_err(e.to_string()),
+        other => invalid(other.to_string()),
+    };
+    let n = problem.targets.len();
     let info = PyDict::new(py);
-    info.set_item("transmission", s.transmission)?;
-    info.set_item("ratio", s.ratio)?;
-    info.set_item("evaluations", s.evaluations)?;
-    info.set_item(
-        "evaluations_per_second",
-        s.evaluations as f64 / s.search_seconds,
-    )?;
-    info.set_item("crank_range", s.crank_range)?;
-    let doc = format!(
-        "Four-bar from mech.synthesize_path (seed {seed}): E = {:e} m² over {} targets.",
-        s.error,
-        problem.targets.len()
-    );
-    Ok((s.four_bar.to_mech("PathGenerator", &doc), s.error, info))
+    let (text, error, evaluations, seconds) = if six_bar {
+        let s = py
+            .allow_threads(|| {
+                pool().install(|| {
+                    mech_core::design::synthesis::six_bar::synthesize(&problem, &options, |_| {})
+                })
+            })
+            .map_err(refused)?;
+        info.set_item("transmission", s.transmission)?;
+        info.set_item("ratio", s.ratio)?;
+        let doc = format!(
+            "Stephenson III six-bar from mech.synthesize_path (seed {seed}): E = {:e} m² over {n} targets.",
+            s.error
+        );
+        let text = s.six_bar.to_mech("PathGenerator", &doc);
+        (text, s.error, s.evaluations, s.search_seconds)
+    } else {
+        let s = py
+            .allow_threads(|| pool().install(|| synthesize(&problem, &options, |_| {})))
+            .map_err(refused)?;
+        info.set_item("transmission", s.transmission)?;
+        info.set_item("ratio", s.ratio)?;
+        info.set_item("crank_range", s.crank_range)?;
+        let doc = format!(
+            "Four-bar from mech.synthesize_path (seed {seed}): E = {:e} m² over {n} targets.",
+            s.error
+        );
+        let text = s.four_bar.to_mech("PathGenerator", &doc);
+        (text, s.error, s.evaluations, s.search_seconds)
+    };
+    info.set_item("evaluations", evaluations)?;
+    info.set_item("evaluations_per_second", evaluations as f64 / seconds)?;
+    Ok((text, error, info))
 }
 
 /// Optimise the mechanism `text` (`mech_core::design::optimize`): the variables as (name,

@@ -526,6 +526,28 @@ def test_synthesize_path_meets_points_of_a_four_bars_curve():
     assert e2 == e and m2.text == m.text
 
 
+def test_synthesize_path_six_bar():
+    """topology="six-bar": points of a crank-rocker's coupler curve (which a Stephenson III
+    six-bar's tracer can follow too) give a six-bar with the points C, D, O6, whose own
+    curve passes near every point (its E: the sum of the squared nearest distances on a
+    dense sweep, at least E and within a sampling step of it); an open path or an unknown
+    topology is refused by name."""
+    pts, _ = _known_curve(10)
+    m, e = mech.synthesize_path(pts, seed=3, evaluations=40000, ratio=20.0, topology="six-bar")
+    assert e < 1e-6
+    assert all(name in m.text for name in ("C:", "D:", "O6:", "P:"))
+    curve = m.pose(np.linspace(0.0, 2 * math.pi, 3601))
+    assert "C.x" in curve and "D.x" in curve
+    c = np.column_stack([curve["P.x"], curve["P.y"]])
+    d2 = np.min((c[:, None, 0] - pts[None, :, 0]) ** 2 + (c[:, None, 1] - pts[None, :, 1]) ** 2, axis=0)
+    assert d2.sum() >= e * (1 - 1e-9) - 1e-18
+    assert np.all(np.sqrt(d2) < 1e-3)
+    with pytest.raises(mech.InvalidInput, match="closed paths"):
+        mech.synthesize_path(pts, closed=False, evaluations=2000, topology="six-bar")
+    with pytest.raises(mech.InvalidInput, match="topology"):
+        mech.synthesize_path(pts, topology="eight-bar")
+
+
 def test_synthesize_path_prescribed_timing_and_bad_input():
     """Prescribed timing: the points with their crank angles are met with E < 1e-10 m^2.
     Bad input is refused by name: too few points, coincident points, a NaN, the wrong

@@ -746,17 +746,19 @@ def synthesize_motion(poses, circle_points=None, full=False):
         return m, error, {"offset": offset, "q": np.array(q)}
     return m, error
 def synthesize_path(points, closed=True, seed=1, evaluations=200000, angles=None,
-                    transmission=30.0, ratio=10.0):
+                    transmission=30.0, ratio=10.0, topology="four-bar"):
     """A four-bar whose coupler point P passes nearest to ``points`` (an (n, 2) array of
     x, y in m, n >= 3): SPEC 3f's path synthesis, as ``mech synth path`` does it
     (docs/cli.md). ``closed``: the crank turns fully (else it rocks within one arc);
     ``angles``: the crank angle O2 -> A of each point (rad, from the frame line O2 -> O4)
     for prescribed timing, ``None`` for free timing; ``seed``: one seed, one result;
     ``evaluations``: the global search's budget; ``transmission``: the smallest
-    transmission angle allowed, degrees; ``ratio``: the longest link over the shortest.
+    transmission angle allowed, degrees; ``ratio``: the longest link over the shortest;
+    ``topology``: ``"four-bar"`` or ``"six-bar"`` (a Stephenson III six-bar: the four-bar's
+    coupler point C drives a second dyad C D O6 and P is on the link C D; closed paths).
 
     Returns ``(mechanism, error)``: a :class:`Mechanism` with the points O2, O4, A, B, P
-    and input O2, and E = sum of the squared distances of the points to its coupler curve
+    (a six-bar adds C, D, O6) and input O2, and E = sum of the squared distances of the points to its coupler curve
     (m^2; with prescribed timing, to P at their angles). ``InvalidInput`` for bad points
     (too few, coincident, not finite, the wrong shape); ``MechError`` naming the binding
     constraint when no four-bar meets the constraints.
@@ -772,6 +774,9 @@ def synthesize_path(points, closed=True, seed=1, evaluations=200000, angles=None
     evaluations = _count(evaluations, "evaluations")
     transmission = _number(transmission, "transmission")
     ratio = _number(ratio, "ratio")
+    if topology not in ("four-bar", "six-bar"):
+        raise InvalidInput("topology = %r: give \"four-bar\" or \"six-bar\"" % (topology,))
     text, error, _info = _mech.synthesize_path(
-        np.ascontiguousarray(pts), angles, bool(closed), seed, evaluations, transmission, ratio)
+        np.ascontiguousarray(pts), angles, bool(closed), seed, evaluations, transmission, ratio,
+        topology == "six-bar")
     return Mechanism.from_dsl(text), error

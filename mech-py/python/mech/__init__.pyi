@@ -93,6 +93,6 @@ def synthesize_function(pairs: ArrayLike, frame: float = ...) -> Tuple[Mechanism
 
 def synthesize_motion(poses: ArrayLike, circle_points: Optional[ArrayLike] = ..., full: bool = ...) -> Tuple[Any, ...]:
     """A four-bar through (x, y, angle) poses: Burmester (3 to 5 exact, more least squares); (Mechanism, error m²) [, {"offset", "q"}]."""
-def synthesize_path(points: ArrayLike, closed: bool = ..., seed: int = ..., evaluations: int = ..., angles: Optional[ArrayLike] = ..., transmission: float = ..., ratio: float = ...) -> Tuple[Mechanism, float]:
+def synthesize_path(points: ArrayLike, closed: bool = ..., seed: int = ..., evaluations: int = ..., angles: Optional[ArrayLike] = ..., transmission: float = ..., ratio: float = ..., topology: str = ...) -> Tuple[Mechanism, float]:
     """A four-bar whose coupler point passes nearest to the points (SPEC 3f), and its error E (m²)."""
     ...

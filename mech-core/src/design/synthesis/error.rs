@@ -28,10 +28,19 @@ pub fn frame_angle(fb: &FourBar) -> f64 {
 /// min over θ of |P(θ) − t|² and the θ (rad, absolute) where it is; infinite when the
 /// linkage assembles nowhere.
 pub fn nearest(fb: &FourBar, t: [f64; 2]) -> (f64, f64) {
+    nearest_on(|theta| fb.pose(theta).map(|p| p.p), fb.drawn_angle(), t)
+}
+
+/// min over a full turn θ ∈ [θ₀, θ₀ + 2π) of |P(θ) − t|² for any curve `point(θ)` (`None`
+/// where the linkage does not assemble), and the θ where it is (the module's method:
+/// [`SAMPLES`] samples, then a golden-section search beside the nearest).
+pub fn nearest_on(point: impl Fn(f64) -> Option<[f64; 2]>, t0: f64, t: [f64; 2]) -> (f64, f64) {
+    let dist2 = |theta: f64| {
+        point(theta).map_or(f64::INFINITY, |p| (p[0] - t[0]).powi(2) + (p[1] - t[1]).powi(2))
+    };
     let h = std::f64::consts::TAU / SAMPLES as f64;
-    let t0 = fb.drawn_angle();
     let (k, best) = (0..SAMPLES)
-        .map(|k| (k, dist2(fb, t0 + h * k as f64, t)))
+        .map(|k| (k, dist2(t0 + h * k as f64)))
         .fold((0, f64::INFINITY), |b, x| if x.1 < b.1 { x } else { b });
     if !best.is_finite() {
         return (f64::INFINITY, f64::NAN);
@@ -40,7 +49,7 @@ pub fn nearest(fb: &FourBar, t: [f64; 2]) -> (f64, f64) {
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let (mut a, mut b) = (t0 + h * (k as f64 - 1.0), t0 + h * (k as f64 + 1.0));
     let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
-    let (mut fc, mut fd) = (dist2(fb, c, t), dist2(fb, d, t));
+    let (mut fc, mut fd) = (dist2(c), dist2(d));
     for _ in 0..80 {
         if (b - a).abs() <= 1e-15 * (1.0 + b.abs()) {
             break;
@@ -48,11 +57,11 @@ pub fn nearest(fb: &FourBar, t: [f64; 2]) -> (f64, f64) {
         if fc < fd {
             (b, d, fd) = (d, c, fc);
             c = b - g * (b - a);
-            fc = dist2(fb, c, t);
+            fc = dist2(c);
         } else {
             (a, c, fc) = (c, d, fd);
             d = a + g * (b - a);
-            fd = dist2(fb, d, t);
+            fd = dist2(d);
         }
     }
     let (theta, f) = if fc < fd { (c, fc) } else { (d, fd) };

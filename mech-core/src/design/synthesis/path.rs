@@ -348,7 +348,7 @@ impl Design {
 }
 
 /// A final population: (design vector, its evaluation), best first.
-type Population = Vec<(Vec<f64>, Evaluation)>;
+pub(super) type Population = Vec<(Vec<f64>, Evaluation)>;
 
 /// One or two arcs of crank angles ψ (rad, from the frame line): the first `.1` of `.0`.
 #[derive(Clone, Copy, Debug)]
@@ -361,17 +361,19 @@ impl Arcs {
 }
 
 /// The validated problem with its scale.
-struct Prepared {
-    targets: Vec<V2>,
-    angles: Option<Vec<f64>>,
-    closed: bool,
-    centre: V2,
-    size: f64,
-    mu: f64,
-    ratio: f64,
+pub(super) struct Prepared {
+    pub(super) targets: Vec<V2>,
+    pub(super) angles: Option<Vec<f64>>,
+    pub(super) closed: bool,
+    pub(super) centre: V2,
+    pub(super) size: f64,
+    pub(super) mu: f64,
+    pub(super) ratio: f64,
 }
 
-fn prepare(problem: &PathProblem, options: &PathOptions) -> Result<Prepared, PathError> {
+/// The problem validated (targets, angles, options: [`PathError`]) with its scale: the
+/// targets' bounding box's centre and larger side.
+pub(super) fn prepare(problem: &PathProblem, options: &PathOptions) -> Result<Prepared, PathError> {
     let n = problem.targets.len();
     for (i, t) in problem.targets.iter().enumerate() {
         for (k, what) in [(0, "x"), (1, "y")] {
@@ -752,7 +754,7 @@ impl Prepared {
 
 /// The squared distance from `t` to the polyline through `pts` (closed when `wrap`): the
 /// nearest vertex, then the two segments beside it.
-fn polyline_distance2(pts: &[V2], t: V2, wrap: bool) -> f64 {
+pub(super) fn polyline_distance2(pts: &[V2], t: V2, wrap: bool) -> f64 {
     let n = pts.len();
     let (mut k, mut best) = (0, f64::INFINITY);
     for (i, p) in pts.iter().enumerate() {
@@ -780,21 +782,46 @@ fn polyline_distance2(pts: &[V2], t: V2, wrap: bool) -> f64 {
     best
 }
 
-/// Synthesises a four-bar whose coupler point meets the targets (the module's docs).
-/// `progress(evaluations)` is called, from the pool's threads, with the evaluations made
-/// so far as the global search proceeds (at most `options.evaluations`).
-pub fn synthesize(
-    problem: &PathProblem,
+/// The global search's result: the final populations (best first each), the evaluations
+/// and generations they took, and the wall time, s.
+pub(super) struct Islands {
+    pub(super) populations: Vec<Population>,
+    pub(super) evaluations: usize,
+    pub(super) generations: usize,
+    pub(super) seconds: f64,
+}
+
+impl Islands {
+    /// The best design of all the populations (Deb's rules; the first on a tie).
+    pub(super) fn best(&self) -> &(Vec<f64>, Evaluation) {
+        let best_of = |a: &(Vec<f64>, Evaluation), b: &(Vec<f64>, Evaluation)| {
+            b.1.better(&a.1) && !a.1.better(&b.1)
+        };
+        let mut overall = &self.populations[0][0];
+        for pop in &self.populations[1..] {
+            if best_of(overall, &pop[0]) {
+                overall = &pop[0];
+            }
+        }
+        overall
+    }
+}
+
+/// The global search of the module's docs over the box [lo, hi]: [`ISLANDS`] populations
+/// of [`POPULATION`] vectors under Deb's rules, each on its share of the budget (at least
+/// ten generations each), side by side on the pool, each depending on its own seed alone.
+/// `progress(evaluations)` as for [`synthesize`].
+pub(super) fn islands(
+    lo: &[f64],
+    hi: &[f64],
     options: &PathOptions,
+    evaluate: impl Fn(&[f64]) -> Evaluation + Sync,
     progress: impl Fn(usize) + Sync,
-) -> Result<PathSynthesis, PathError> {
-    let p = prepare(problem, options)?;
-    let (lo, hi) = p.bounds();
+) -> Islands {
     let start = std::time::Instant::now();
-    // Independent populations, each on its share of the budget (at least ten generations
-    // each): a basin that captures one seldom captures them all. They run side by side on
-    // the pool (each also evaluates its trials in parallel), so the threads meet once per
-    // population rather than once per generation; each depends on its own seed alone.
+    // A basin that captures one population seldom captures them all; they run side by
+    // side on the pool (each also evaluates its trials in parallel), so the threads meet
+    // once per population rather than once per generation.
     let islands = ISLANDS.min(options.evaluations / (10 * POPULATION)).max(1);
     let done = AtomicUsize::new(0);
     let runs: Vec<(Population, usize, usize)> = (0..islands)
@@ -808,15 +835,15 @@ pub fn synthesize(
             };
             let mut last = 0;
             let de = differential_evolution(
-                &lo,
-                &hi,
+                lo,
+                hi,
                 DeSettings {
                     strategy: Strategy::CurrentToPBest,
                     population: POPULATION,
                     evaluations: budget,
                     seed: options.seed ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15),
                 },
-                |x| p.evaluate(x),
+                &evaluate,
                 |n| {
                     let total = done.fetch_add(n - last, Ordering::Relaxed) + n - last;
                     last = n;
@@ -826,19 +853,92 @@ pub fn synthesize(
             (de.population, de.evaluations, de.generations)
         })
         .collect();
-    let used: usize = runs.iter().map(|r| r.1).sum();
-    let generations: usize = runs.iter().map(|r| r.2).sum();
-    let populations: Vec<Population> = runs.into_iter().map(|r| r.0).collect();
-    let search_seconds = start.elapsed().as_secs_f64();
-    let best_of = |a: &(Vec<f64>, Evaluation), b: &(Vec<f64>, Evaluation)| {
-        b.1.better(&a.1) && !a.1.better(&b.1)
-    };
-    let mut overall = &populations[0][0];
-    for pop in &populations[1..] {
-        if best_of(overall, &pop[0]) {
-            overall = &pop[0];
+    Islands {
+        evaluations: runs.iter().map(|r| r.1).sum(),
+        generations: runs.iter().map(|r| r.2).sum(),
+        populations: runs.into_iter().map(|r| r.0).collect(),
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// The polish of the module's docs: [`levenberg_marquardt`] on the continuous variables
+/// (all but the last `branches`, which are kept) from the best [`POLISH_STARTS`] distinct
+/// feasible designs of each population, in parallel, `m` residuals filled by
+/// `residuals(continuous, branches, r)`. The best polished design (`None` when no polish
+/// has a finite cost) and the residual evaluations made.
+pub(super) fn polish(
+    populations: &[Population],
+    m: usize,
+    size: f64,
+    branches: usize,
+    residuals: impl Fn(&[f64], &[f64], &mut [f64]) -> bool + Sync,
+) -> (Option<Vec<f64>>, usize) {
+    let mut starts: Vec<&Vec<f64>> = Vec::new();
+    for pop in populations {
+        let mut taken = 0;
+        for (x, e) in pop {
+            if !e.is_feasible() || taken >= POLISH_STARTS {
+                break;
+            }
+            if starts.iter().all(|s| {
+                s.iter()
+                    .zip(x)
+                    .any(|(a, b)| (a - b).abs() > 1e-9 * size.max(1.0))
+            }) {
+                starts.push(x);
+                taken += 1;
+            }
         }
     }
+    // The polishes in parallel, their results in the order of the starts.
+    let polished: Vec<(Vec<f64>, f64, usize)> = starts
+        .par_iter()
+        .map(|x| {
+            let split = x.len() - branches;
+            let branch = &x[split..];
+            let lm = levenberg_marquardt(
+                &x[..split],
+                m,
+                LmSettings {
+                    iterations: 300,
+                    scale: size,
+                },
+                |y, r| residuals(y, branch, r),
+            );
+            let mut full = lm.x;
+            full.extend_from_slice(branch);
+            (full, lm.cost, lm.evaluations)
+        })
+        .collect();
+    let evaluations = polished.iter().map(|c| c.2).sum();
+    let mut chosen: Option<(Vec<f64>, f64)> = None;
+    for (x, cost, _) in polished {
+        let better = match &chosen {
+            None => true,
+            Some(c) => cost < c.1,
+        };
+        if cost.is_finite() && better {
+            chosen = Some((x, cost));
+        }
+    }
+    (chosen.map(|c| c.0), evaluations)
+}
+
+/// Synthesises a four-bar whose coupler point meets the targets (the module's docs).
+/// `progress(evaluations)` is called, from the pool's threads, with the evaluations made
+/// so far as the global search proceeds (at most `options.evaluations`).
+pub fn synthesize(
+    problem: &PathProblem,
+    options: &PathOptions,
+    progress: impl Fn(usize) + Sync,
+) -> Result<PathSynthesis, PathError> {
+    let p = prepare(problem, options)?;
+    let (lo, hi) = p.bounds();
+    let search = islands(&lo, &hi, options, |x| p.evaluate(x), progress);
+    let (used, generations, search_seconds) =
+        (search.evaluations, search.generations, search.seconds);
+    let populations = &search.populations;
+    let overall = search.best();
     let (best, best_eval) = overall;
     if !best_eval.is_feasible() {
         let d = Design::decode(best);
@@ -881,54 +981,10 @@ pub fn synthesize(
     } else {
         p.targets.len()
     };
-    let mut starts: Vec<&Vec<f64>> = Vec::new();
-    for pop in &populations {
-        let mut taken = 0;
-        for (x, e) in pop {
-            if !e.is_feasible() || taken >= POLISH_STARTS {
-                break;
-            }
-            if starts.iter().all(|s| {
-                s.iter()
-                    .zip(x)
-                    .any(|(a, b)| (a - b).abs() > 1e-9 * p.size.max(1.0))
-            }) {
-                starts.push(x);
-                taken += 1;
-            }
-        }
-    }
-    // The polishes in parallel, their results in the order of the starts.
-    let polished: Vec<(Vec<f64>, f64, usize)> = starts
-        .par_iter()
-        .map(|x| {
-            let branch = x[DIM - 1];
-            let lm = levenberg_marquardt(
-                &x[..DIM - 1],
-                m,
-                LmSettings {
-                    iterations: 300,
-                    scale: p.size,
-                },
-                |y, r| p.residuals(y, branch, r),
-            );
-            let mut full = lm.x;
-            full.push(branch);
-            (full, lm.cost, lm.evaluations)
-        })
-        .collect();
-    let polish_evaluations = polished.iter().map(|c| c.2).sum();
-    let mut chosen: Option<(Vec<f64>, f64)> = None;
-    for (x, cost, _) in polished {
-        let better = match &chosen {
-            None => true,
-            Some(c) => cost < c.1,
-        };
-        if cost.is_finite() && better {
-            chosen = Some((x, cost));
-        }
-    }
-    let x = chosen.map(|c| c.0).unwrap_or_else(|| best.clone());
+    let (chosen, polish_evaluations) = polish(populations, m, p.size, 1, |y, branch, r| {
+        p.residuals(y, branch[0], r)
+    });
+    let x = chosen.unwrap_or_else(|| best.clone());
     let d = Design::decode(&x);
     let arc = p.arc(&d).unwrap_or((0.0, TAU));
     let o4 = d.o4();
