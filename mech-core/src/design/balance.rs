@@ -5,6 +5,7 @@
 //! [`crate::kernel::energy::Shaking::add`]); this module samples it over a grid of the
 //! first input at a constant speed and sums it up.
 
+use super::nelder_mead::nelder_mead;
 use crate::kernel::energy::Shaking;
 use crate::model::Model;
 use crate::runtime::mechanism::Mechanism;
@@ -449,9 +450,11 @@ fn rms_triple(m: &Mechanism, speed: f64, steps: usize) -> Result<[f64; 3], MechE
 /// joint, at `radius` from its pivot (default the link's first two points' distance), its
 /// first moment (kg·m, two components each) chosen to minimise
 /// w_F rms(F)/rms₀(F) + w_M rms(M)/rms₀(M) + w_T rms(T)/rms₀(T) over a turn at `speed`
-/// (rad/s, 72 instants), rms₀ the machine's without counterweights. The search is a
-/// deterministic compass search: from zero, each coordinate tried ± a step, the step halved
-/// when none improves, until it is 1e-9 of the links' first moments or 4000 evaluations.
+/// (rad/s, 72 instants), rms₀ the machine's without counterweights. The search is
+/// Nelder–Mead ([`super::nelder_mead`], shared with [`super::optimize`]) over each first
+/// moment's components within ±4 S (S = Σ m |cg − first point| of the moving links, plus
+/// 1 mm per kg), from no counterweight and a simplex of a tenth of that range per axis,
+/// 300 evaluations per variable.
 /// `text` is the file the counterweights are written into for each evaluation.
 pub fn optimal_balance(
     text: &str,
@@ -520,27 +523,27 @@ pub fn optimal_balance(
         })
         .sum::<f64>()
         .max(1e-12);
-    let mut x = vec![0.0; 2 * pivots.len()];
-    let mut best = cost(&x);
-    let (mut step, mut evaluations) = (scale, 1usize);
-    while step > 1e-9 * scale && evaluations < 4000 {
-        let mut improved = false;
-        for i in 0..x.len() {
-            for sign in [1.0, -1.0] {
-                let mut y = x.clone();
-                y[i] += sign * step;
-                let c = cost(&y);
-                evaluations += 1;
-                if c < best {
-                    (x, best, improved) = (y, c, true);
-                    break;
-                }
-            }
-        }
-        if !improved {
-            step *= 0.5;
-        }
+    // The unit cube's u ↦ x = 4 S (2u − 1): no counterweight at u = ½.
+    let n = 2 * pivots.len();
+    let to_x = |u: &[f64]| -> Vec<f64> { u.iter().map(|t| 4.0 * scale * (2.0 * t - 1.0)).collect() };
+    let cost_u = |u: &[f64]| cost(&to_x(u));
+    let centre = vec![0.5; n];
+    let mut simplex = vec![(centre.clone(), cost_u(&centre))];
+    for i in 0..n {
+        let mut u = centre.clone();
+        u[i] += 0.1;
+        let c = cost_u(&u);
+        simplex.push((u, c));
     }
+    let (u, _, _) = nelder_mead(
+        simplex,
+        std::iter::empty(),
+        n + 1,
+        300 * n,
+        cost_u,
+        |_, _| {},
+    );
+    let x = to_x(&u);
     Ok(weights_of(&x)
         .into_iter()
         .filter(|c| c.mass > 0.0)

@@ -29,6 +29,7 @@
 //! candidates rank last; when no candidate is feasible, the error names the constraint
 //! that failed most often.
 
+use super::nelder_mead::nelder_mead;
 use super::rewrite;
 use crate::dynamics::flywheel::Cycle;
 use crate::error::MechError;
@@ -536,93 +537,24 @@ pub fn optimize(
             p.evaluations
         )));
     }
-    // Nelder–Mead from the best point, a simplex of the d + 1 best distinct points; when
-    // it collapses with budget left, again from the next start (the next best sample not
-    // yet used, then the best so far with a simplex of a tenth of the range).
-    let clamp = |x: Vec<f64>| -> Vec<f64> { x.into_iter().map(|t| t.clamp(0.0, 1.0)).collect() };
-    let mut simplex: Vec<(Vec<f64>, f64)> = pool.iter().take(d + 1).cloned().collect();
-    let mut starts = pool
-        .iter()
-        .skip(1)
-        .filter(|s| s.1.is_finite())
-        .cloned()
-        .collect::<Vec<_>>()
-        .into_iter();
-    let mut best_seen = pool[0].clone();
-    while p.evaluations + 2 <= settings.evaluations {
-        simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
-        if simplex[0].1 < best_seen.1 {
-            best_seen = simplex[0].clone();
-        }
-        let size = simplex
-            .iter()
-            .skip(1)
-            .map(|s| {
-                s.0.iter()
-                    .zip(&simplex[0].0)
-                    .map(|(a, b)| (a - b).abs())
-                    .fold(0.0, f64::max)
-            })
-            .fold(0.0, f64::max);
-        if size < 1e-9 {
-            if p.evaluations + d + 3 > settings.evaluations {
-                break;
+    // Nelder–Mead from the best point, a simplex of the d + 1 best points; when it
+    // collapses with budget left, again from the next start (the next best sample not yet
+    // used, then the best so far with a simplex of a tenth of the range).
+    let simplex: Vec<(Vec<f64>, f64)> = pool.iter().take(d + 1).cloned().collect();
+    let starts = pool.iter().skip(1).filter(|s| s.1.is_finite()).cloned();
+    let used = p.evaluations;
+    let (u, f, _) = nelder_mead(
+        simplex,
+        starts,
+        used,
+        settings.evaluations,
+        |u| p.value(&scale(u)),
+        |n, now| {
+            if now < history.last().map_or(f64::INFINITY, |h| h.1) {
+                history.push((n, now));
             }
-            let centre = starts.next().unwrap_or_else(|| best_seen.clone());
-            simplex = vec![centre.clone()];
-            for i in 0..d {
-                let mut x = centre.0.clone();
-                x[i] = if x[i] > 0.5 { x[i] - 0.1 } else { x[i] + 0.1 };
-                let f = p.value(&scale(&x));
-                simplex.push((x, f));
-            }
-            continue;
-        }
-        let worst = simplex[d].clone();
-        let centre: Vec<f64> = (0..d)
-            .map(|i| simplex[..d].iter().map(|s| s.0[i]).sum::<f64>() / d as f64)
-            .collect();
-        let towards = |t: f64| -> Vec<f64> {
-            centre
-                .iter()
-                .zip(&worst.0)
-                .map(|(c, w)| c + t * (c - w))
-                .collect()
-        };
-        let xr = clamp(towards(1.0));
-        let fr = p.value(&scale(&xr));
-        let (best, second) = (simplex[0].1, simplex[d - 1].1);
-        if fr < best {
-            let xe = clamp(towards(2.0));
-            let fe = p.value(&scale(&xe));
-            simplex[d] = if fe < fr { (xe, fe) } else { (xr, fr) };
-        } else if fr < second {
-            simplex[d] = (xr, fr);
-        } else {
-            let xc = clamp(towards(if fr < worst.1 { 0.5 } else { -0.5 }));
-            let fc = p.value(&scale(&xc));
-            if fc < fr.min(worst.1) {
-                simplex[d] = (xc, fc);
-            } else {
-                // Shrink towards the best.
-                let b = simplex[0].0.clone();
-                for s in simplex.iter_mut().skip(1) {
-                    let x: Vec<f64> = s.0.iter().zip(&b).map(|(x, b)| b + 0.5 * (x - b)).collect();
-                    let f = p.value(&scale(&x));
-                    *s = (x, f);
-                }
-            }
-        }
-        let now = simplex.iter().map(|s| s.1).fold(f64::INFINITY, f64::min);
-        if now < history.last().map_or(f64::INFINITY, |h| h.1) {
-            history.push((p.evaluations, now));
-        }
-    }
-    simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
-    if simplex[0].1 < best_seen.1 {
-        best_seen = simplex[0].clone();
-    }
-    let (u, f) = best_seen;
+        },
+    );
     let values = scale(&u);
     Ok(Optimum {
         text: p.text_at(&values),
