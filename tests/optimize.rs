@@ -1,7 +1,8 @@
 //! Optimisation (`mech::design::optimize`): a four-bar's crank length recovered from its own
 //! coupler path; the engine's peak driver torque lowered, the written file re-loaded and its
-//! objective recomputed here from the kinetostatics; the same seed, the same run; bad input
-//! and a constraint that cannot be met named.
+//! objective recomputed here from the kinetostatics; the `flywheel` objective under a load
+//! table with a kink every degree against the cycle at the full quadrature tolerance; the
+//! same seed, the same run; bad input and a constraint that cannot be met named.
 
 use mech::design::optimize::{optimize, Constraint, Objective, Settings, Variable};
 use mech::Mechanism;
@@ -146,6 +147,68 @@ fn the_engines_peak_driver_torque_is_lowered() {
         best.text.contains("l: ") && best.text.contains(" mm,"),
         "written with the unit"
     );
+}
+
+/// The `flywheel` objective of the engine under a gas force interpolated linearly in a
+/// table with a row every degree of its 4π cycle (a kink at each row): its value for the
+/// file as given equals Wittenbauer's inertia of a cycle tabulated at the default 1e-13
+/// tolerance to 1e-6 of itself (the objective's quadratures run at `FLYWHEEL_RTOL`), and
+/// the search does not end above it.
+#[test]
+fn the_flywheel_objective_is_the_cycles_inertia() {
+    use mech::dynamics::flywheel::Cycle;
+    use mech::design::optimize::FLYWHEEL_RTOL;
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/mech/engine.mech"
+    ))
+    .unwrap();
+    // A compression-then-expansion pressure shape, sampled every degree.
+    let rows: Vec<f64> = (0..=720)
+        .map(|k| {
+            let t = k as f64 * PI / 180.0;
+            -4000.0 * (-((t - 2.0 * PI) / 0.6).powi(2)).exp() - 300.0 * (t / 2.0).cos()
+        })
+        .collect();
+    let gas = move |q: f64| {
+        let x = q.rem_euclid(4.0 * PI) * 180.0 / PI;
+        let k = (x.floor() as usize).min(719);
+        let f = x - k as f64;
+        rows[k] * (1.0 - f) + rows[k + 1] * f
+    };
+    let loads = |m: &Mechanism, q: f64| {
+        let mut l = m.loads();
+        assert!(l.set_by_name("gas", &[gas(q), 0.0]), "the engine has a load `gas`");
+        Ok(l)
+    };
+    let speed = 3000.0 * PI / 30.0;
+    let vars = [Variable {
+        name: "l".into(),
+        lo: 0.12,
+        hi: 0.18,
+        unit: mech::units::lookup("mm"),
+    }];
+    let s = Settings {
+        speed,
+        period: 4.0 * PI,
+        steps: 72,
+        evaluations: 20,
+        seed: 1,
+    };
+    let goal = Objective::Flywheel { irregularity: 0.02 };
+    let best = optimize(&text, &vars, &goal, &[], s, loads).unwrap();
+    let m = Mechanism::from_dsl(&text).unwrap();
+    let (cycle, _) = Cycle::of(&m, 4.0 * PI, |q| loads(&m, q))
+        .unwrap()
+        .balanced();
+    let exact = cycle.wittenbauer(speed, 0.02).unwrap().inertia;
+    assert!(FLYWHEEL_RTOL > 1e-13);
+    assert!(
+        (best.initial - exact).abs() < 1e-6 * exact,
+        "{} vs {exact}",
+        best.initial
+    );
+    assert!(best.objective <= best.initial, "{} → {}", best.initial, best.objective);
 }
 
 #[test]

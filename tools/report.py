@@ -377,30 +377,33 @@ def macro_cost():
 
 
 SYNTH_CASES = [
-    # (file, what, extra arguments)
-    ("tests/data/synthesis/kunjur18.csv", "18-point closed path (Kunjur & Krishnamurty 1997)", []),
+    # (file, what, seed, extra arguments)
+    ("tests/data/synthesis/kunjur18.csv", "18-point closed path (Kunjur & Krishnamurty 1997), four-bar",
+     1, []),
+    ("tests/data/synthesis/kunjur18.csv", "the same path, Stephenson III six-bar, 10⁶ evaluations",
+     4, ["--topology", "six-bar", "--evaluations", "1000000"]),
 ]
 
 
 def synthesis():
-    """`mech synth path` on each benchmark path, seed 1, the default budget: E, the
+    """`mech synth path` on each case of SYNTH_CASES (its seed and budget): E, the
     search's evaluations per second (its own report on standard error) on one thread and
     on every core, and the wall time on every core; best of 5 for the times, the runs
     interleaved (E is the same every run: one seed, one result)."""
     sh(["cargo", "build", "--release", "-p", "mech-cli"])
     exe = str(target_dir() / "release" / "mech")
     cores = os.cpu_count()
-    rows = ["| path | targets | E (m², seed 1) | evaluations | evaluations/s, 1 thread "
+    rows = ["| path | targets | seed | E (m²) | evaluations | evaluations/s, 1 thread "
             f"| evaluations/s, {cores} threads | wall time, {cores} threads (s) |",
-            "|---|---:|---:|---:|---:|---:|---:|"]
-    for file, what, extra in SYNTH_CASES:
+            "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for file, what, seed, extra in SYNTH_CASES:
         n = sum(1 for l in (ROOT / file).read_text().splitlines()
                 if l.strip() and not l.startswith("#")) - 1
         rate, wall, error = {1: 0.0, cores: 0.0}, float("inf"), None
         for _ in range(5):
             for threads in (1, cores):
                 with tempfile.TemporaryDirectory() as tmp:
-                    cmd = [exe, "synth", "path", file, "--seed", "1", "--format", "csv",
+                    cmd = [exe, "synth", "path", file, "--seed", str(seed), "--format", "csv",
                            "-o", str(Path(tmp) / "out.mech")] + extra
                     t0 = time.perf_counter()
                     r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True,
@@ -417,8 +420,9 @@ def synthesis():
                 evaluations = re.search(r"search: ([0-9]+) evaluations", r.stderr).group(1)
                 if threads == cores:
                     wall = min(wall, t)
-        rows.append(f"| {what} | {n} | {error:.6e} | {evaluations} | {rate[1]:,.0f} | {rate[cores]:,.0f} "
-                    f"| {wall:.2f} |".replace(",", " "))
+        thousands = lambda x: f"{x:,.0f}".replace(",", " ")  # noqa: E731
+        rows.append(f"| {what} | {n} | {seed} | {error:.6e} | {evaluations} | {thousands(rate[1])} "
+                    f"| {thousands(rate[cores])} | {wall:.2f} |")
     return "\n".join(rows)
 
 
@@ -426,8 +430,8 @@ def synthesis_rates():
     return sh([sys.executable, "tools/synthesis_vs_others.py", "--table"]).strip()
 
 
-SYNTH_CMD = ("`mech synth path FILE --seed 1` (200 000 evaluations, μ ≥ 30°, ratio ≤ 10) with "
-             "RAYON_NUM_THREADS=1 and on every core, best of 5 interleaved")
+SYNTH_CMD = ("`mech synth path FILE --seed S` (200 000 evaluations unless the row says, μ ≥ 30°, "
+             "ratio ≤ 10) with RAYON_NUM_THREADS=1 and on every core, best of 5 interleaved")
 
 
 class Figure:

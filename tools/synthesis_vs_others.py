@@ -148,8 +148,8 @@ def main():
               "| positions/s | `mech`'s evaluations/s over this |")
         print("|---|---:|---:|---:|---:|---:|")
         for name, count, rate, per in rows:
-            print(f"| {name} | {count} | {rate:,.0f} | {per} | {rate * per:,.0f} "
-                  f"| {mech_rate / rate:.1f}× |".replace(",", " "))
+            thousands = f"{rate:,.0f} | {per} | {rate * per:,.0f}".replace(",", " ")
+            print(f"| {name} | {count} | {thousands} | {mech_rate / rate:.1f}× |")
     else:
         for name, count, rate, per in rows:
             print(f"{name}: {count} evaluations, {rate:.0f}/s, {rate * per:.0f} positions/s")

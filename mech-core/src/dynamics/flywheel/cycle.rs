@@ -43,6 +43,9 @@ pub struct Cycle<'a, M: OneDof> {
     atol_rate: f64,
     /// Σ over the panels of |∫ M* dq|, J.
     gross_work: f64,
+    /// Relative tolerance of the quadratures ([`QUADRATURE_RTOL`] unless the builder's
+    /// [`CycleBuilder::tolerance`] says).
+    rtol: f64,
 }
 
 impl<'a, M: OneDof> Cycle<'a, M> {
@@ -59,6 +62,27 @@ impl<'a, M: OneDof> Cycle<'a, M> {
         breakpoints: &[f64],
         loads: impl Fn(f64) -> Result<M::Loads, MechError> + 'a,
         driver: impl Fn(f64) -> f64 + 'a,
+    ) -> Result<Self, MechError> {
+        Self::with_tolerance(
+            machine,
+            start,
+            period,
+            breakpoints,
+            loads,
+            driver,
+            QUADRATURE_RTOL,
+        )
+    }
+
+    /// [`Cycle::new`] with the quadratures' relative tolerance `rtol`.
+    fn with_tolerance(
+        machine: &'a M,
+        start: f64,
+        period: f64,
+        breakpoints: &[f64],
+        loads: impl Fn(f64) -> Result<M::Loads, MechError> + 'a,
+        driver: impl Fn(f64) -> f64 + 'a,
+        rtol: f64,
     ) -> Result<Self, MechError> {
         crate::error::check_finite("cycle start and period", &[start, period])?;
         crate::error::check_finite("breakpoints", breakpoints)?;
@@ -86,6 +110,7 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             nodes: Vec::new(),
             atol_rate: 0.0,
             gross_work: 0.0,
+            rtol,
         };
         me.tabulate()?;
         Ok(me)
@@ -116,6 +141,7 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             start: 0.0,
             breakpoints: Vec::new(),
             driver: Box::new(|_| 0.0),
+            rtol: QUADRATURE_RTOL,
         }
     }
 
@@ -156,7 +182,7 @@ impl<'a, M: OneDof> Cycle<'a, M> {
                 inertia,
             });
         }
-        self.atol_rate = QUADRATURE_RTOL * scale.max(f64::MIN_POSITIVE);
+        self.atol_rate = self.rtol * scale.max(f64::MIN_POSITIVE);
         let (mut s, mut gross) = (0.0, 0.0);
         for k in 1..self.nodes.len() {
             let w = self.integral(self.nodes[k - 1].q, self.nodes[k].q)?;
@@ -174,7 +200,7 @@ impl<'a, M: OneDof> Cycle<'a, M> {
             |q| self.moment(q),
             a,
             b,
-            QUADRATURE_RTOL,
+            self.rtol,
             self.atol_rate * (b - a).abs(),
         )
     }
@@ -311,6 +337,7 @@ pub struct CycleBuilder<'a, M: OneDof, L> {
     start: f64,
     breakpoints: Vec<f64>,
     driver: Box<dyn Fn(f64) -> f64 + 'a>,
+    rtol: f64,
 }
 
 impl<'a, M: OneDof, L: Fn(f64) -> Result<M::Loads, MechError> + 'a> CycleBuilder<'a, M, L> {
@@ -332,16 +359,33 @@ impl<'a, M: OneDof, L: Fn(f64) -> Result<M::Loads, MechError> + 'a> CycleBuilder
         self
     }
 
-    /// The cycle and its table of S(q) ([`Cycle::new`]'s errors).
+    /// The quadratures' relative tolerance (default [`QUADRATURE_RTOL`], 1e-13): a looser
+    /// one, 1e-8 say, tabulates a cycle whose loads come from a table with a kink at every
+    /// row (a gas-pressure table) many times faster, for a search that compares designs
+    /// (`design::optimize`'s `flywheel`). From 1e-15 to 1e-3.
+    pub fn tolerance(mut self, rtol: f64) -> Self {
+        self.rtol = rtol;
+        self
+    }
+
+    /// The cycle and its table of S(q) ([`Cycle::new`]'s errors; a tolerance outside
+    /// [1e-15, 1e-3]).
     pub fn build(self) -> Result<Cycle<'a, M>, MechError> {
+        if !(1e-15..=1e-3).contains(&self.rtol) {
+            return Err(MechError::InvalidInput(format!(
+                "the cycle's quadrature tolerance {} is outside [1e-15, 1e-3]",
+                self.rtol
+            )));
+        }
         let driver = self.driver;
-        Cycle::new(
+        Cycle::with_tolerance(
             self.machine,
             self.start,
             self.period,
             &self.breakpoints,
             self.loads,
             driver,
+            self.rtol,
         )
     }
 }
