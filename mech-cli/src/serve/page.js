@@ -149,6 +149,7 @@ function drawChart() {
   const cur = s.xname === 'q' ? q[0] : null;
   const i = hover != null ? hover : cur != null ? nearest(s.x, cur) : 0;
   add('line', { id: 'cursor', x1: px(s.x[i]), x2: px(s.x[i]), y1: T, y2: H - B, stroke: '#000', 'stroke-dasharray': '3 3' });
+  svg.dataset.speed = C.speed[0];
   const out = $('readout'), v = s.y[i];
   out.dataset.index = i; out.dataset.x = s.x[i]; out.dataset.value = v == null ? '' : v;
   out.textContent = $('chart').selectedOptions[0].textContent + ' = ' + (v == null ? '(does not assemble)' : v.toPrecision(8) + ' ' + s.unit) + ' at ' + s.xname + ' = ' + s.x[i].toFixed(5);
