@@ -217,7 +217,7 @@ fn the_frame_is_mech_solve_at_the_sliders_value() {
                 compared += 1;
             }
         }
-        assert_eq!(compared, 2 * 6, "every point's x and y at q = {q}");
+        assert_eq!(compared, 2 * 5, "every point's x and y at q = {q}");
         // Every shape has its placing attributes, and the pins are where the points are.
         assert!(f["attrs"].as_array().unwrap().len() > 10);
         let view = &s.model()["view"];

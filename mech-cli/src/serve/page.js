@@ -17,7 +17,7 @@ function showError(e) {
   box.hidden = !e;
   box.textContent = e ? (e.line ? 'line ' + e.line + ': ' : '') + e.message : '';
   box.dataset.line = e && e.line ? e.line : '';
-  $('status').textContent = e ? 'FILE is wrong: the last good drawing is shown' : 'ok (version ' + version + ')';
+  if (e) $('status').textContent = 'FILE is wrong: the last good drawing is shown';
 }
 
 async function loadModel() {
@@ -88,6 +88,7 @@ async function showFrame() {
       $('drawing').dataset.q = f.q.join(',');
       syncSliders();
       if (!M.error) $('status').textContent = 'ok (version ' + version + ')';
+      else $('status').textContent = 'FILE is wrong: the last good drawing is shown';
     } while (again);
   } catch (e) { $('status').textContent = 'q = ' + q.join(', ') + ': ' + e.message; }
   busy = false;

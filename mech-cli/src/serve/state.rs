@@ -104,11 +104,9 @@ impl Workbench {
     /// file sets the error and keeps the last good mechanism. True when something changed.
     pub fn refresh(&self) -> bool {
         let read = source::read(&self.path).map_err(|f| f.message);
-        {
-            let state = lock(&self.state);
-            if state.1.as_ref() == Some(&read) {
-                return false;
-            }
+        let key = read.as_ref().map(|(t, _)| t.clone()).map_err(|e| e.clone());
+        if lock(&self.state).1.as_ref() == Some(&key) {
+            return false;
         }
         let outcome = match &read {
             Ok((text, origin)) => source::parse(text, origin)
@@ -121,7 +119,7 @@ impl Workbench {
         };
         let mut state = lock(&self.state);
         let (snapshot, last) = &mut *state;
-        *last = Some(read.map(|(text, _)| text));
+        *last = Some(key);
         snapshot.version += 1;
         match outcome {
             Ok(g) => {
