@@ -155,6 +155,7 @@ class Check:
         page.click("#home")
         page.wait_for_timeout(300)
         v0 = self.version(page)
+        v = self.api("/api/model")["view"]  # the view the drag is made in
         before = open(self.file).read()
         h = page.locator('#handles circle[data-point="A"]').bounding_box()
         cx, cy = h["x"] + h["width"] / 2, h["y"] + h["height"] / 2
@@ -170,7 +171,6 @@ class Check:
         assert new, after
         assert after == before[:old.start()] + new.group(0) + before[old.end():], "more than A's numbers changed"
         # Where the pointer was released, in the drawing's coordinates.
-        v = self.api("/api/model")["view"]
         svg = page.locator("#drawing svg").bounding_box()
         px, py = cx + 30 - svg["x"], cy - 20 - svg["y"]
         want = ((px - v["pad"]) / v["k"] + v["x_min"], v["y_max"] - (py - v["pad"]) / v["k"])
