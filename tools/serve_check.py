@@ -99,22 +99,23 @@ class Check:
     def chart(self, page):
         page.fill("#speed", "10")
         page.dispatch_event("#speed", "change")
-        page.wait_for_function("document.getElementById('plot').dataset.speed == '10'")
+        page.wait_for_function("document.getElementById('charts').dataset.speed == '10'")
         sweep = csv_columns(self.mech("sweep", self.file, "--from", "0", "--to", repr(2 * math.pi), "--steps", "360",
                                       "--speed", "10", "--format", "csv"))
-        box = page.locator("#plot").bounding_box()
+        page.select_option("#joint", "A")
         out = []
-        for option, expected in (("driver", lambda i: sweep["driver"][i]),
-                                 ("|R A|", lambda i: math.hypot(sweep["A.fx"][i], sweep["A.fy"][i]))):
-            page.select_option("#chart", option)
-            page.mouse.move(box["x"] + 70 + 0.37 * (560 - 82), box["y"] + 150)
-            r = page.eval_on_selector("#readout", "e => ({i: +e.dataset.index, x: +e.dataset.x, v: +e.dataset.value, t: e.textContent})")
+        for chart, label, expected in (("driver", "driver", lambda i: sweep["driver"][i]),
+                                       ("reaction", "|R A|", lambda i: math.hypot(sweep["A.fx"][i], sweep["A.fy"][i])),
+                                       ("inertia", "I*", lambda i: sweep["inertia"][i])):
+            box = page.locator("#plot-" + chart).bounding_box()
+            page.mouse.move(box["x"] + 54 + 0.37 * (290 - 62), box["y"] + 60)
+            r = page.eval_on_selector("#readout-" + chart, "e => ({i: +e.dataset.index, x: +e.dataset.x, v: +e.dataset.value})")
             i = r["i"]
-            assert 0 < i < 360, r
+            assert 100 < i < 260, r
             assert r["x"] == sweep["q"][i], (r, sweep["q"][i])
             want = expected(i)
-            assert abs(r["v"] - want) <= 1e-12 * max(1.0, abs(want)), "%s at row %d: page %r, mech sweep %r" % (option, i, r["v"], want)
-            out.append("%s row %d = %.6g" % (option, i, want))
+            assert abs(r["v"] - want) <= 1e-12 * max(1.0, abs(want)), "%s at row %d: page %r, mech sweep %r" % (label, i, r["v"], want)
+            out.append("%s row %d = %.6g" % (label, i, want))
         return ", ".join(out) + " as mech sweep"
 
     def version(self, page):
@@ -194,7 +195,7 @@ def main():
             browser = p.chromium.launch(executable_path=args.chromium, headless=True, args=CHROMIUM_ARGS)
             page = browser.new_page(viewport={"width": 1280, "height": 820})
             page.goto(c.url)
-            page.wait_for_function("document.getElementById('drawing').dataset.q && document.getElementById('plot').dataset.speed !== undefined", timeout=15000)
+            page.wait_for_function("document.getElementById('drawing').dataset.q && document.getElementById('charts').dataset.speed !== undefined", timeout=15000)
             for name, check in (("slider", c.slider), ("chart", c.chart), ("edit", c.edit), ("error", c.error), ("drag", c.drag)):
                 try:
                     print("PASS %s: %s" % (name, check(page)), flush=True)

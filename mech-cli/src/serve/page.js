@@ -92,68 +92,95 @@ async function showFrame() {
     } while (again);
   } catch (e) { $('status').textContent = 'q = ' + q.join(', ') + ': ' + e.message; }
   busy = false;
-  drawChart();
+  if (hover == null) drawCharts();
 }
 
-// The charts: the columns of `mech sweep` (and the shaking force, a cam's pressure angle).
+// The charts: the columns of `mech sweep` (and the shaking force, a cam's pressure angle),
+// one panel each, a shared cursor: the slider's q, or the q under the pointer.
+const CHARTS = [['driver', 'driver torque'], ['inertia', 'I* reduced inertia'], ['moment', 'M* reduced moment'],
+  ['reaction', 'reaction'], ['shaking', 'shaking force'], ['pressure', "cam's pressure angle"]];
+const W = 290, H = 150, L = 54, R = 8, T = 10, B = 22, COLORS = ['#3b6ea8', '#d2691e', '#2a7', '#a3a'];
+
 function buildChartList() {
-  const sel = $('chart'), keep = sel.value;
-  const opts = [['driver', "driver torque (d'Alembert)"], ['virtual_power', 'driver torque (virtual power)'],
-    ['inertia', 'I* reduced inertia'], ['moment', 'M* reduced moment']];
-  for (const j of M.joints) opts.push(['|R ' + j + '|', 'reaction |R ' + j + '|']);
-  opts.push(['|shaking|', 'shaking force |F|'], ['shaking.fx', 'shaking force Fx'], ['shaking.fy', 'shaking force Fy'], ['pressure_angle', "cam's pressure angle"]);
+  const box = $('charts');
+  if (!box.children.length) {
+    for (const [id, title] of CHARTS) {
+      const d = document.createElement('div'); d.className = 'chart'; d.id = 'chart-' + id;
+      d.innerHTML = '<div class="title">' + title + (id === 'reaction' ? ' at <select id="joint"></select>' : '') + '</div>' +
+        '<svg id="plot-' + id + '" width="' + W + '" height="' + H + '"></svg><div class="readout" id="readout-' + id + '"></div>';
+      box.appendChild(d);
+      const svg = d.querySelector('svg');
+      svg.addEventListener('mousemove', e => {
+        const r = svg.getBoundingClientRect(), n = C ? C.x.length : 1;
+        hover = Math.max(0, Math.min(1, (e.clientX - r.left - L) / (W - L - R)));
+        drawCharts();
+      });
+      svg.addEventListener('mouseleave', () => { hover = null; drawCharts(); });
+    }
+    $('joint').addEventListener('change', drawCharts);
+  }
+  const sel = $('joint'), keep = sel.value;
   sel.innerHTML = '';
-  for (const [v, t] of opts) { const o = document.createElement('option'); o.value = v; o.textContent = t; sel.appendChild(o); }
-  if (keep && opts.some(o => o[0] === keep)) sel.value = keep;
+  for (const j of M.joints) { const o = document.createElement('option'); o.value = j; o.textContent = j; sel.appendChild(o); }
+  if (M.joints.includes(keep)) sel.value = keep;
 }
 
-function series(key) {
-  if (!C) return null;
-  const c = C.columns;
+function chartSeries(id) {
+  const c = C.columns, u = C.units;
   const hyp = (a, b) => a && b ? a.map((v, i) => v == null || b[i] == null ? null : Math.hypot(v, b[i])) : null;
-  if (key === 'pressure_angle') return C.cam ? { x: C.cam.theta, y: C.cam.pressure_angle, unit: 'rad', xname: 'cam angle' } : null;
-  let y, unit;
-  if (key.startsWith('|R ')) { const j = key.slice(3, -1); y = hyp(c[j + '.fx'], c[j + '.fy']); unit = 'N'; }
-  else if (key === '|shaking|') { y = hyp(c['shaking.fx'], c['shaking.fy']); unit = 'N'; }
-  else if (c[key]) { y = c[key]; unit = C.units[key]; }
-  else { const k = Object.keys(c).find(n => n.startsWith(key + '.')); if (k) { y = c[k]; unit = C.units[k]; } }
-  return y ? { x: C.x, y, unit, xname: 'q' } : null;
+  const pick = pre => Object.keys(c).filter(n => n === pre || n.startsWith(pre + '.')).map(n => ({ label: n, y: c[n], unit: u[n] }));
+  if (id === 'driver') return [...pick('driver'), ...pick('virtual_power')];
+  if (id === 'inertia' || id === 'moment') return pick(id);
+  if (id === 'reaction') { const j = $('joint').value; return c[j + '.fx'] ? [{ label: '|R ' + j + '|', y: hyp(c[j + '.fx'], c[j + '.fy']), unit: 'N' }] : []; }
+  if (id === 'shaking') return c['shaking.fx'] ? [{ label: '|F|', y: hyp(c['shaking.fx'], c['shaking.fy']), unit: 'N' },
+    { label: 'Fx', y: c['shaking.fx'], unit: 'N' }, { label: 'Fy', y: c['shaking.fy'], unit: 'N' }] : [];
+  if (id === 'pressure') return C.cam ? [{ label: 'pressure angle (' + C.cam.name + ')', y: C.cam.pressure_angle, unit: 'rad', x: C.cam.theta }] : [];
+  return [];
 }
 
 async function loadCharts() {
   try {
     C = await getJSON('/api/charts?rest=' + q.join(',') + '&speed=' + (+$('speed').value || 0));
-  } catch (e) { C = null; $('readout').textContent = e.message; }
-  drawChart();
+    $('charts').dataset.speed = C.speed[0];
+  } catch (e) { C = null; $('status').textContent = 'charts: ' + e.message; }
+  drawCharts();
 }
 
-function drawChart() {
-  const svg = $('plot'), W = 560, H = 320, L = 70, R = 12, T = 14, B = 30;
+function drawCharts() {
+  if (!C) return;
+  for (const [id] of CHARTS) drawChart(id);
+}
+
+function drawChart(id) {
+  const svg = $('plot-' + id), out = $('readout-' + id), ser = chartSeries(id);
   svg.innerHTML = '';
-  const s = series($('chart').value);
-  if (!s) { $('readout').textContent = 'no such chart for this mechanism'; return; }
-  const ys = s.y.filter(v => v != null);
-  let lo = Math.min(...ys), hi = Math.max(...ys);
-  if (!(hi > lo)) { lo -= 1e-9 + Math.abs(lo) * 0.1; hi += 1e-9 + Math.abs(hi) * 0.1; }
-  const x0 = s.x[0], x1 = s.x[s.x.length - 1];
+  $('chart-' + id).hidden = !ser.length;
+  if (!ser.length) return;
+  const xs = ser[0].x || C.x;
+  const all = ser.flatMap(s => s.y).filter(v => v != null);
+  let lo = Math.min(...all), hi = Math.max(...all);
+  if (!(hi > lo)) { const d = 1e-9 + Math.abs(hi) * 0.1; lo -= d; hi += d; }
+  const x0 = xs[0], x1 = xs[xs.length - 1];
   const px = x => L + (x - x0) / (x1 - x0) * (W - L - R), py = y => T + (hi - y) / (hi - lo) * (H - T - B);
   const add = (tag, attrs, text) => { const e = document.createElementNS(NS, tag); for (const k in attrs) e.setAttribute(k, attrs[k]); if (text) e.textContent = text; svg.appendChild(e); return e; };
-  add('rect', { x: L, y: T, width: W - L - R, height: H - T - B, fill: 'none', stroke: '#aaa' });
-  add('text', { x: 4, y: T + 10, 'font-size': 11 }, hi.toPrecision(4));
-  add('text', { x: 4, y: H - B, 'font-size': 11 }, lo.toPrecision(4));
-  add('text', { x: L, y: H - 8, 'font-size': 11 }, s.xname + ' ' + x0.toFixed(3));
-  add('text', { x: W - R - 60, y: H - 8, 'font-size': 11 }, x1.toFixed(3) + ' ' + (s.xname === 'q' ? C.unit : 'rad'));
-  if (lo < 0 && hi > 0) add('line', { x1: L, x2: W - R, y1: py(0), y2: py(0), stroke: '#ccc' });
-  let d = '', pen = false;
-  s.y.forEach((v, i) => { if (v == null) { pen = false; return; } d += (pen ? 'L' : 'M') + px(s.x[i]).toFixed(2) + ',' + py(v).toFixed(2); pen = true; });
-  add('path', { d, fill: 'none', stroke: '#3b6ea8', 'stroke-width': 1.6, id: 'series' });
-  const cur = s.xname === 'q' ? q[0] : null;
-  const i = hover != null ? hover : cur != null ? nearest(s.x, cur) : 0;
-  add('line', { id: 'cursor', x1: px(s.x[i]), x2: px(s.x[i]), y1: T, y2: H - B, stroke: '#000', 'stroke-dasharray': '3 3' });
-  svg.dataset.speed = C.speed[0];
-  const out = $('readout'), v = s.y[i];
-  out.dataset.index = i; out.dataset.x = s.x[i]; out.dataset.value = v == null ? '' : v;
-  out.textContent = $('chart').selectedOptions[0].textContent + ' = ' + (v == null ? '(does not assemble)' : v.toPrecision(8) + ' ' + s.unit) + ' at ' + s.xname + ' = ' + s.x[i].toFixed(5);
+  add('rect', { x: L, y: T, width: W - L - R, height: H - T - B, fill: 'none', stroke: '#bbb' });
+  add('text', { x: 2, y: T + 9, 'font-size': 10 }, hi.toPrecision(4));
+  add('text', { x: 2, y: H - B, 'font-size': 10 }, lo.toPrecision(4));
+  add('text', { x: L, y: H - 6, 'font-size': 10 }, x0.toFixed(2));
+  add('text', { x: W - R - 70, y: H - 6, 'font-size': 10 }, x1.toFixed(2) + (ser[0].x ? ' rad (cam)' : ' ' + C.unit));
+  if (lo < 0 && hi > 0) add('line', { x1: L, x2: W - R, y1: py(0), y2: py(0), stroke: '#ddd' });
+  ser.forEach((s, k) => {
+    let d = '', pen = false;
+    s.y.forEach((v, i) => { if (v == null) { pen = false; return; } d += (pen ? 'L' : 'M') + px(xs[i]).toFixed(1) + ',' + py(v).toFixed(1); pen = true; });
+    add('path', { d, fill: 'none', stroke: COLORS[k % COLORS.length], 'stroke-width': k ? 1.2 : 1.8, 'stroke-dasharray': k ? '5 3' : '' });
+  });
+  const i = hover != null ? Math.round(hover * (xs.length - 1)) : ser[0].x ? 0 : nearest(xs, q[0]);
+  add('line', { x1: px(xs[i]), x2: px(xs[i]), y1: T, y2: H - B, stroke: '#000', 'stroke-dasharray': '3 3' });
+  const v = ser[0].y[i];
+  out.dataset.index = i; out.dataset.x = xs[i]; out.dataset.value = v == null ? '' : v;
+  out.innerHTML = ser.map((s, k) => '<span style="color:' + COLORS[k % COLORS.length] + '">' + s.label + ' = ' +
+    (s.y[i] == null ? '(does not assemble)' : s.y[i].toPrecision(6) + ' ' + s.unit) + '</span>').join('<br>') +
+    '<br>at ' + (ser[0].x ? 'cam angle' : 'q') + ' = ' + xs[i].toFixed(4);
 }
 
 function nearest(xs, x) {
@@ -162,14 +189,6 @@ function nearest(xs, x) {
   return best;
 }
 
-$('plot').addEventListener('mousemove', e => {
-  const s = series($('chart').value); if (!s) return;
-  const r = $('plot').getBoundingClientRect(), f = (e.clientX - r.left - 70) / (560 - 70 - 12);
-  hover = Math.max(0, Math.min(s.x.length - 1, Math.round(f * (s.x.length - 1))));
-  drawChart();
-});
-$('plot').addEventListener('mouseleave', () => { hover = null; drawChart(); });
-$('chart').addEventListener('change', drawChart);
 $('speed').addEventListener('change', loadCharts);
 
 // Play: the first input advances at the speed; the frames come from the server.

@@ -9,9 +9,9 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 
 /// The width of the drawing, px.
-pub const WIDTH: f64 = 640.0;
+pub const WIDTH: f64 = 560.0;
 /// The smallest height of the drawing, px.
-pub const HEIGHT: f64 = 360.0;
+pub const HEIGHT: f64 = 320.0;
 
 /// One input of the mechanism, for its slider.
 #[derive(Clone, Debug)]
