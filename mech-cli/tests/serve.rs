@@ -195,6 +195,25 @@ fn it_listens_on_loopback_only_and_refuses_other_paths() {
         assert!(!body.contains("root:"), "{path}");
     }
     assert_eq!(s.request("POST", "/api/model", "").0, 405);
+    // Another host name (DNS rebinding), a drag that is not JSON or from another origin.
+    let raw = |head: &str, body: &str| {
+        let mut c = TcpStream::connect(("127.0.0.1", s.port)).unwrap();
+        write!(c, "{head}Content-Length: {}\r\n\r\n{body}", body.len()).unwrap();
+        let mut out = String::new();
+        c.read_to_string(&mut out).unwrap();
+        out.split_whitespace().nth(1).unwrap().parse::<u16>().unwrap()
+    };
+    assert_eq!(raw("GET /api/model HTTP/1.0\r\nHost: evil.example:80\r\n", ""), 403);
+    assert_eq!(raw("GET /api/model HTTP/1.0\r\n", ""), 403);
+    let drag = r#"{"point": "A", "x": 0.05, "y": 0.07}"#;
+    let host = format!("Host: 127.0.0.1:{}\r\n", s.port);
+    assert_eq!(raw(&format!("POST /api/drag HTTP/1.0\r\n{host}Content-Type: text/plain\r\n"), drag), 415);
+    assert_eq!(
+        raw(&format!("POST /api/drag HTTP/1.0\r\n{host}Content-Type: application/json\r\nOrigin: http://evil.example\r\n"), drag),
+        403
+    );
+    assert_eq!(std::fs::read_to_string(&s.file).unwrap(), FOUR_BAR, "FILE untouched");
+    assert_eq!(raw(&format!("GET /api/model HTTP/1.0\r\nHost: localhost:{}\r\n", s.port), ""), 200);
 }
 
 #[test]
@@ -414,4 +433,44 @@ fn the_page_in_headless_chromium() {
         .find(|l| l.starts_with("serve_check:"))
         .unwrap_or_else(|| panic!("no summary:\n{stdout}\n{stderr}"));
     assert!(summary.contains(" 5 passed, 0 failed"), "{summary}\n{stdout}");
+}
+
+/// What cannot be served is refused at the start with a message and status 2: standard
+/// input, a file that is missing, a directory or binary, a port already taken.
+#[test]
+fn what_cannot_be_served_is_refused_at_the_start() {
+    let dir = tempfile::tempdir().unwrap();
+    let binary = dir.path().join("binary.mech");
+    std::fs::write(&binary, [0u8; 64]).unwrap();
+    let missing = dir.path().join("missing.mech");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["-"], "give a file, not standard input"),
+        (vec![missing.to_str().unwrap()], "cannot read"),
+        (vec![dir.path().to_str().unwrap()], "is a directory"),
+        (vec![binary.to_str().unwrap()], "is a binary file"),
+    ];
+    for (args, phrase) in cases {
+        let out = Cmd::cargo_bin("mech")
+            .unwrap()
+            .arg("serve")
+            .args(&args)
+            .args(["--port", "0"])
+            .timeout(Duration::from_secs(20))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(phrase), "{args:?}: {err}");
+    }
+    // A port that is taken.
+    let s = Server::start();
+    let out = Cmd::cargo_bin("mech")
+        .unwrap()
+        .args(["serve", s.file.to_str().unwrap(), "--port", &s.port.to_string()])
+        .timeout(Duration::from_secs(20))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("cannot listen on 127.0.0.1"), "{err}");
 }

@@ -1,12 +1,16 @@
 //! The HTTP server: the page and its script (built into the binary), the data as JSON,
 //! the version as server-sent events, the drag as a POST. Any other path is 404; no
-//! request names a file (FILE is the only one read or written).
+//! request names a file (FILE is the only one read or written). A request must name the
+//! host 127.0.0.1 or localhost (a page elsewhere cannot reach the server by a name of its
+//! own), and the drag must be JSON from this server's page (a form of another site cannot
+//! write FILE).
 
 use super::state::Workbench;
 use super::{data, drag};
 use crate::Failure;
-use axum::extract::{Query, State};
-use axum::http::{header, StatusCode};
+use axum::extract::{Query, Request, State};
+use axum::http::{header, HeaderMap, Method, StatusCode};
+use axum::middleware::{self, Next};
 use axum::response::sse::{Event, KeepAlive, Sse};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
@@ -33,7 +37,51 @@ pub fn router(wb: Arc<Workbench>) -> Router {
         .route("/api/events", get(events))
         .route("/api/drag", post(drag))
         .fallback(not_found)
+        .layer(middleware::from_fn(guard))
         .with_state(wb)
+}
+
+/// The host a request names, if it is this machine's loopback name (`127.0.0.1`,
+/// `localhost`, with a port or not).
+fn loopback_host(headers: &HeaderMap) -> Option<&str> {
+    let host = headers.get(header::HOST)?.to_str().ok()?;
+    let name = host.rsplit_once(':').map_or(host, |(n, _)| n);
+    matches!(name, "127.0.0.1" | "localhost").then_some(host)
+}
+
+/// Refuses a request that names another host (403), and a POST that is not JSON (415) or
+/// comes from a page of another origin (403).
+async fn guard(req: Request, next: Next) -> Response {
+    let headers = req.headers();
+    let Some(host) = loopback_host(headers) else {
+        return (
+            StatusCode::FORBIDDEN,
+            "mech serve answers requests for 127.0.0.1 or localhost only\n",
+        )
+            .into_response();
+    };
+    if req.method() == Method::POST {
+        let json = headers
+            .get(header::CONTENT_TYPE)
+            .and_then(|v| v.to_str().ok())
+            .is_some_and(|v| v.starts_with("application/json"));
+        if !json {
+            return (
+                StatusCode::UNSUPPORTED_MEDIA_TYPE,
+                "a POST to mech serve is application/json\n",
+            )
+                .into_response();
+        }
+        let origin = headers.get(header::ORIGIN).and_then(|v| v.to_str().ok());
+        if origin.is_some_and(|o| o != format!("http://{host}")) {
+            return (
+                StatusCode::FORBIDDEN,
+                "a POST to mech serve comes from its own page\n",
+            )
+                .into_response();
+        }
+    }
+    next.run(req).await
 }
 
 async fn page() -> Response {
