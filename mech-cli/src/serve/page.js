@@ -3,7 +3,7 @@
 const $ = id => document.getElementById(id);
 const NS = 'http://www.w3.org/2000/svg';
 let M = null, C = null, q = [], version = -1, playing = false, busy = false, again = false;
-let handles = {}, hover = null, last = 0;
+let handles = {}, hover = null, last = 0, dragging = null;
 
 async function getJSON(url, opt) {
   const r = await fetch(url, opt);
@@ -84,7 +84,7 @@ async function showFrame() {
       const f = await getJSON('/api/frame?q=' + q.join(','));
       if (f.version !== version) { busy = false; return loadModel(); }
       f.attrs.forEach((a, i) => { const el = $('s' + i); if (el) a.forEach(([k, v]) => el.setAttribute(k, v)); });
-      for (const [p, xy] of Object.entries(f.px)) if (handles[p]) { handles[p].setAttribute('cx', xy[0]); handles[p].setAttribute('cy', xy[1]); }
+      for (const [p, xy] of Object.entries(f.px)) if (handles[p] && p !== dragging) { handles[p].setAttribute('cx', xy[0]); handles[p].setAttribute('cy', xy[1]); }
       $('drawing').dataset.q = f.q.join(',');
       syncSliders();
       if (!M.error) $('status').textContent = 'ok (version ' + version + ')';
@@ -214,11 +214,13 @@ function startDrag(e, p, c) {
   q = M.inputs.map(i => i.reference);
   showFrame();
   const svg = c.ownerSVGElement;
+  dragging = p;
   c.setPointerCapture(e.pointerId);
   const at = ev => { const pt = new DOMPoint(ev.clientX, ev.clientY).matrixTransform(svg.getScreenCTM().inverse()); return [pt.x, pt.y]; };
   const move = ev => { const [x, y] = at(ev); c.setAttribute('cx', x); c.setAttribute('cy', y); };
   const up = async ev => {
     c.removeEventListener('pointermove', move); c.removeEventListener('pointerup', up);
+    dragging = null;
     const [x, y] = at(ev), v = M.view;
     const body = { point: p, x: (x - v.pad) / v.k + v.x_min, y: v.y_max - (y - v.pad) / v.k };
     try { await getJSON('/api/drag', { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) }); }
