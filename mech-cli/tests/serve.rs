@@ -55,12 +55,7 @@ impl Server {
         let at = first
             .find("http://127.0.0.1:")
             .unwrap_or_else(|| panic!("no address in {first:?}"));
-        let port: u16 = first[at + 17..]
-            .split('/')
-            .next()
-            .unwrap()
-            .parse()
-            .unwrap();
+        let port: u16 = first[at + 17..].split('/').next().unwrap().parse().unwrap();
         Server {
             child,
             port,
@@ -137,7 +132,11 @@ fn csv(text: &str) -> Vec<(String, Vec<f64>)> {
 
 fn mech(args: &[&str]) -> String {
     let out = Cmd::cargo_bin("mech").unwrap().args(args).output().unwrap();
-    assert!(out.status.success(), "mech {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "mech {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8(out.stdout).unwrap()
 }
 
@@ -201,19 +200,42 @@ fn it_listens_on_loopback_only_and_refuses_other_paths() {
         write!(c, "{head}Content-Length: {}\r\n\r\n{body}", body.len()).unwrap();
         let mut out = String::new();
         c.read_to_string(&mut out).unwrap();
-        out.split_whitespace().nth(1).unwrap().parse::<u16>().unwrap()
+        out.split_whitespace()
+            .nth(1)
+            .unwrap()
+            .parse::<u16>()
+            .unwrap()
     };
-    assert_eq!(raw("GET /api/model HTTP/1.0\r\nHost: evil.example:80\r\n", ""), 403);
+    assert_eq!(
+        raw("GET /api/model HTTP/1.0\r\nHost: evil.example:80\r\n", ""),
+        403
+    );
     assert_eq!(raw("GET /api/model HTTP/1.0\r\n", ""), 403);
     let drag = r#"{"point": "A", "x": 0.05, "y": 0.07}"#;
     let host = format!("Host: 127.0.0.1:{}\r\n", s.port);
-    assert_eq!(raw(&format!("POST /api/drag HTTP/1.0\r\n{host}Content-Type: text/plain\r\n"), drag), 415);
+    assert_eq!(
+        raw(
+            &format!("POST /api/drag HTTP/1.0\r\n{host}Content-Type: text/plain\r\n"),
+            drag
+        ),
+        415
+    );
     assert_eq!(
         raw(&format!("POST /api/drag HTTP/1.0\r\n{host}Content-Type: application/json\r\nOrigin: http://evil.example\r\n"), drag),
         403
     );
-    assert_eq!(std::fs::read_to_string(&s.file).unwrap(), FOUR_BAR, "FILE untouched");
-    assert_eq!(raw(&format!("GET /api/model HTTP/1.0\r\nHost: localhost:{}\r\n", s.port), ""), 200);
+    assert_eq!(
+        std::fs::read_to_string(&s.file).unwrap(),
+        FOUR_BAR,
+        "FILE untouched"
+    );
+    assert_eq!(
+        raw(
+            &format!("GET /api/model HTTP/1.0\r\nHost: localhost:{}\r\n", s.port),
+            ""
+        ),
+        200
+    );
 }
 
 #[test]
@@ -222,7 +244,9 @@ fn the_frame_is_mech_solve_at_the_sliders_value() {
     let path = s.file.to_str().unwrap();
     for q in ["0.7", "2.5", "-1"] {
         let f = s.json(&format!("/api/frame?q={q}"));
-        let solved = csv(&mech(&["solve", path, "--at", q, "--level", "pose", "--format", "csv"]));
+        let solved = csv(&mech(&[
+            "solve", path, "--at", q, "--level", "pose", "--format", "csv",
+        ]));
         let mut compared = 0;
         for (name, v) in &solved {
             if let Some((p, c)) = name.split_once('.') {
@@ -259,26 +283,60 @@ fn the_charts_are_mech_sweeps_columns() {
     let path = s.file.to_str().unwrap();
     let two_pi = format!("{:?}", std::f64::consts::TAU);
     let sweep = csv(&mech(&[
-        "sweep", path, "--from", "0", "--to", &two_pi, "--steps", "360", "--speed", "12", "--format", "csv",
+        "sweep", path, "--from", "0", "--to", &two_pi, "--steps", "360", "--speed", "12",
+        "--format", "csv",
     ]));
-    let x: Vec<f64> = c["x"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let x: Vec<f64> = c["x"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
     assert_eq!(x, sweep.iter().find(|c| c.0 == "q").unwrap().1);
     let mut compared = Vec::new();
     for (name, values) in &sweep {
         if let Some(col) = c["columns"].get(name) {
-            let got: Vec<f64> = col.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+            let got: Vec<f64> = col
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect();
             assert_eq!(&got, values, "column {name}");
             compared.push(name.as_str());
         }
     }
-    for name in ["driver", "virtual_power", "inertia", "moment", "O2.fx", "A.fy", "B.fx", "O4.fy"] {
-        assert!(compared.contains(&name), "{name} not in the charts: {compared:?}");
+    for name in [
+        "driver",
+        "virtual_power",
+        "inertia",
+        "moment",
+        "O2.fx",
+        "A.fy",
+        "B.fx",
+        "O4.fy",
+    ] {
+        assert!(
+            compared.contains(&name),
+            "{name} not in the charts: {compared:?}"
+        );
     }
     // The shaking force is `mech shaking`'s.
-    let shaking = csv(&mech(&["shaking", path, "--speed", "12", "--format", "csv"]));
+    let shaking = csv(&mech(&[
+        "shaking", path, "--speed", "12", "--format", "csv",
+    ]));
     for name in ["shaking.fx", "shaking.fy"] {
-        let got: Vec<f64> = c["columns"][name].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
-        assert_eq!(got, shaking.iter().find(|c| c.0 == name).unwrap().1, "{name}");
+        let got: Vec<f64> = c["columns"][name]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert_eq!(
+            got,
+            shaking.iter().find(|c| c.0 == name).unwrap().1,
+            "{name}"
+        );
     }
     assert!(c["cam"].is_null(), "a four-bar has no cam");
 }
@@ -289,8 +347,14 @@ fn an_edit_on_disk_is_served_within_a_second() {
     let v0 = s.model()["version"].as_u64().unwrap();
     // The event stream says the version now, then again when the file changes.
     let mut events = TcpStream::connect(("127.0.0.1", s.port)).unwrap();
-    events.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
-    write!(events, "GET /api/events HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n").unwrap();
+    events
+        .set_read_timeout(Some(Duration::from_secs(5)))
+        .unwrap();
+    write!(
+        events,
+        "GET /api/events HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n"
+    )
+    .unwrap();
     let mut events = BufReader::new(events);
     let mut read_event = || loop {
         let mut line = String::new();
@@ -320,14 +384,24 @@ fn line_of(text: &str, needle: &str) -> u64 {
 fn a_broken_file_shows_mech_checks_message_and_line() {
     let s = Server::start();
     let good = s.model();
-    let broken = FOUR_BAR.replace("B: revolute(coupler, rocker)", "B: revolute(coupler, rockr)");
+    let broken = FOUR_BAR.replace(
+        "B: revolute(coupler, rocker)",
+        "B: revolute(coupler, rockr)",
+    );
     std::fs::write(&s.file, &broken).unwrap();
     let (m, _) = s.next_model(good["version"].as_u64().unwrap(), Duration::from_secs(1));
     let e = &m["error"];
     assert_eq!(e["line"].as_u64(), Some(line_of(&broken, "rockr")), "{e}");
-    let check = Cmd::cargo_bin("mech").unwrap().args(["check", s.file.to_str().unwrap()]).output().unwrap();
+    let check = Cmd::cargo_bin("mech")
+        .unwrap()
+        .args(["check", s.file.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert_eq!(check.status.code(), Some(1));
-    assert_eq!(e["message"].as_str().unwrap().trim_end(), String::from_utf8_lossy(&check.stderr).trim_end());
+    assert_eq!(
+        e["message"].as_str().unwrap().trim_end(),
+        String::from_utf8_lossy(&check.stderr).trim_end()
+    );
     assert!(e["message"].as_str().unwrap().contains("rockr"));
     // The last good drawing stays, and still moves.
     assert_eq!(m["picture"], good["picture"]);
@@ -347,21 +421,46 @@ fn it_survives_the_file_deleted_renamed_and_half_written() {
         let (m, _) = s.next_model(v, Duration::from_secs(1));
         v = m["version"].as_u64().unwrap();
         assert_eq!(!m["error"].is_null(), broken, "{what}: {m}");
-        assert!(m["picture"].as_str().unwrap().contains("<svg"), "{what}: the last good drawing");
+        assert!(
+            m["picture"].as_str().unwrap().contains("<svg"),
+            "{what}: the last good drawing"
+        );
         assert_eq!(s.get("/api/frame?q=1").0, 200, "{what}");
         m
     };
     let file = s.file.clone();
     let aside = file.with_extension("moved");
     let m = step("deleted", &|| std::fs::remove_file(&file).unwrap(), true);
-    assert!(m["error"]["message"].as_str().unwrap().contains("cannot read"), "{m}");
+    assert!(
+        m["error"]["message"]
+            .as_str()
+            .unwrap()
+            .contains("cannot read"),
+        "{m}"
+    );
     step("back", &|| std::fs::write(&file, FOUR_BAR).unwrap(), false);
-    step("renamed away", &|| std::fs::rename(&file, &aside).unwrap(), true);
-    step("renamed back", &|| std::fs::rename(&aside, &file).unwrap(), false);
+    step(
+        "renamed away",
+        &|| std::fs::rename(&file, &aside).unwrap(),
+        true,
+    );
+    step(
+        "renamed back",
+        &|| std::fs::rename(&aside, &file).unwrap(),
+        false,
+    );
     let half = &FOUR_BAR[..FOUR_BAR.len() / 2];
-    let m = step("half written", &|| std::fs::write(&file, half).unwrap(), true);
+    let m = step(
+        "half written",
+        &|| std::fs::write(&file, half).unwrap(),
+        true,
+    );
     assert!(m["error"]["line"].as_u64().is_some(), "{m}");
-    step("whole again", &|| std::fs::write(&file, FOUR_BAR).unwrap(), false);
+    step(
+        "whole again",
+        &|| std::fs::write(&file, FOUR_BAR).unwrap(),
+        false,
+    );
     // The renamed file was never written.
     assert!(!Path::new(&aside).exists());
 }
@@ -378,7 +477,11 @@ fn a_drag_rewrites_only_the_points_numbers() {
     std::fs::write(&s.file, &before).unwrap();
     let (m, _) = s.next_model(v, Duration::from_secs(1));
     assert!(m["error"].is_null());
-    let (status, body) = s.request("POST", "/api/drag", r#"{"point": "A", "x": 0.05, "y": 0.0712345678}"#);
+    let (status, body) = s.request(
+        "POST",
+        "/api/drag",
+        r#"{"point": "A", "x": 0.05, "y": 0.0712345678}"#,
+    );
     assert_eq!(status, 200, "{body}");
     let after = std::fs::read_to_string(&s.file).unwrap();
     assert_eq!(
@@ -390,14 +493,28 @@ fn a_drag_rewrites_only_the_points_numbers() {
     let m = s.model();
     assert!(m["error"].is_null(), "{m}");
     let f = s.json("/api/frame");
-    assert!((f["points"]["A"][0].as_f64().unwrap() - 0.05).abs() < 1e-12, "{f}");
-    assert!((f["points"]["A"][1].as_f64().unwrap() - 0.07123).abs() < 1e-12, "{f}");
+    assert!(
+        (f["points"]["A"][0].as_f64().unwrap() - 0.05).abs() < 1e-12,
+        "{f}"
+    );
+    assert!(
+        (f["points"]["A"][1].as_f64().unwrap() - 0.07123).abs() < 1e-12,
+        "{f}"
+    );
     // A ground point, then refusals: no such point, not JSON; the file stays.
-    let (status, _) = s.request("POST", "/api/drag", r#"{"point": "O4", "x": 0.31, "y": 0.05}"#);
+    let (status, _) = s.request(
+        "POST",
+        "/api/drag",
+        r#"{"point": "O4", "x": 0.31, "y": 0.05}"#,
+    );
     assert_eq!(status, 200);
     let moved = std::fs::read_to_string(&s.file).unwrap();
     assert_eq!(moved, after.replace("O4: (0.3, 0.04)", "O4: (0.31, 0.05)"));
-    for body in [r#"{"point": "Z", "x": 0, "y": 0}"#, "not json", r#"{"point": "A"}"#] {
+    for body in [
+        r#"{"point": "Z", "x": 0, "y": 0}"#,
+        "not json",
+        r#"{"point": "A"}"#,
+    ] {
         let (status, msg) = s.request("POST", "/api/drag", body);
         assert_eq!(status, 400, "{body}: {msg}");
     }
@@ -432,7 +549,10 @@ fn the_page_in_headless_chromium() {
         .rev()
         .find(|l| l.starts_with("serve_check:"))
         .unwrap_or_else(|| panic!("no summary:\n{stdout}\n{stderr}"));
-    assert!(summary.contains(" 5 passed, 0 failed"), "{summary}\n{stdout}");
+    assert!(
+        summary.contains(" 5 passed, 0 failed"),
+        "{summary}\n{stdout}"
+    );
 }
 
 /// What cannot be served is refused at the start with a message and status 2: standard
@@ -466,7 +586,12 @@ fn what_cannot_be_served_is_refused_at_the_start() {
     let s = Server::start();
     let out = Cmd::cargo_bin("mech")
         .unwrap()
-        .args(["serve", s.file.to_str().unwrap(), "--port", &s.port.to_string()])
+        .args([
+            "serve",
+            s.file.to_str().unwrap(),
+            "--port",
+            &s.port.to_string(),
+        ])
         .timeout(Duration::from_secs(20))
         .output()
         .unwrap();

@@ -31,7 +31,9 @@ pub fn drag(wb: &Workbench, name: &str, x: f64, y: f64) -> Result<u64, Failure> 
         return Err(Failure::usage("no mechanism yet"));
     };
     if g.mechanism.model().point_index(name).is_none() {
-        return Err(Failure::usage(format!("no point `{name}` in the mechanism")));
+        return Err(Failure::usage(format!(
+            "no point `{name}` in the mechanism"
+        )));
     }
     if !(x.is_finite() && y.is_finite()) {
         return Err(Failure::usage(format!(

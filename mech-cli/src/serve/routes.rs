@@ -97,7 +97,11 @@ async fn script() -> Response {
 }
 
 async fn not_found() -> Response {
-    (StatusCode::NOT_FOUND, "not found: mech serve has /, /page.js and /api/*\n").into_response()
+    (
+        StatusCode::NOT_FOUND,
+        "not found: mech serve has /, /page.js and /api/*\n",
+    )
+        .into_response()
 }
 
 /// A failure as a response: 400 for a bad request, 422 for a mechanism that cannot do it.

@@ -159,7 +159,10 @@ pub fn inputs(m: &Mechanism) -> Vec<Input> {
             let range = if k == 0 {
                 crate::draw::default_range(m)
             } else if angle {
-                (reference - std::f64::consts::PI, reference + std::f64::consts::PI)
+                (
+                    reference - std::f64::consts::PI,
+                    reference + std::f64::consts::PI,
+                )
             } else {
                 (reference - 0.25 * size, reference + 0.25 * size)
             };
@@ -178,7 +181,9 @@ pub fn inputs(m: &Mechanism) -> Vec<Input> {
 fn good(m: Mechanism) -> Result<Good, Failure> {
     let inputs = inputs(&m);
     if inputs.is_empty() {
-        return Err(Failure::mechanism("the mechanism has no input: nothing to move"));
+        return Err(Failure::mechanism(
+            "the mechanism has no input: nothing to move",
+        ));
     }
     let reference: Vec<f64> = inputs.iter().map(|i| i.reference).collect();
     let first = scene::frame(&m, &reference)?;

@@ -165,7 +165,9 @@ pub fn point(text: &str, name: &str) -> Option<[Range<usize>; 2]> {
         lists.push(b);
     }
     lists.sort_by_key(|r| r.start);
-    lists.iter().find_map(|body| pair(text, entry(text, body.clone(), name)?))
+    lists
+        .iter()
+        .find_map(|body| pair(text, entry(text, body.clone(), name)?))
 }
 
 /// The two coordinates' bytes of a value `(x, y)` at `value` (nothing else around it).
@@ -216,7 +218,9 @@ pub fn move_point(text: &str, name: &str, xy: [f64; 2], step: f64) -> Result<Str
             format!("point `{name}`: `{old}` is not a plain number (an expression or a name): edit it in the file")
         })?;
         if !v.is_finite() {
-            return Err(format!("point `{name}`: the new coordinate {v} is not finite"));
+            return Err(format!(
+                "point `{name}`: the new coordinate {v} is not finite"
+            ));
         }
         let factor = unit.map_or(1.0, |u| u.factor);
         let x = v / factor;
@@ -228,7 +232,11 @@ pub fn move_point(text: &str, name: &str, xy: [f64; 2], step: f64) -> Result<Str
             } else {
                 t
             };
-            if t == "-0" || t.is_empty() { "0".to_string() } else { t }
+            if t == "-0" || t.is_empty() {
+                "0".to_string()
+            } else {
+                t
+            }
         } else {
             format!("{x:?}")
         };
@@ -238,10 +246,13 @@ pub fn move_point(text: &str, name: &str, xy: [f64; 2], step: f64) -> Result<Str
         } else {
             s
         };
-        edits.push((r, match unit {
-            Some(u) => format!("{s} {}", u.word),
-            None => s,
-        }));
+        edits.push((
+            r,
+            match unit {
+                Some(u) => format!("{s} {}", u.word),
+                None => s,
+            },
+        ));
     }
     Ok(replace(text, &edits))
 }
@@ -286,12 +297,17 @@ mod tests {
         assert_eq!(at("B"), Some(("l", "0.1")));
         assert_eq!(at("C"), None);
         let moved = move_point(text, "A", [0.05, -0.0712345], 1e-5).unwrap();
-        assert_eq!(moved, text.replace("( 0.04 , 0.06928 )", "( 0.05 , -0.07123 )"));
+        assert_eq!(
+            moved,
+            text.replace("( 0.04 , 0.06928 )", "( 0.05 , -0.07123 )")
+        );
         let moved = move_point(text, "O4", [0.31, 0.0], 1e-5).unwrap();
         assert_eq!(moved, text.replacen("(300 mm, 40 mm)", "(310 mm, 0 mm)", 1));
         let moved = move_point(text, "O2", [0.1, 0.2], 1e-5).unwrap();
         assert!(moved.contains("O2: (0.1, 0.2)"), "{moved}");
-        assert!(move_point(text, "B", [0.0, 0.0], 1e-5).unwrap_err().contains("not a plain number"));
+        assert!(move_point(text, "B", [0.0, 0.0], 1e-5)
+            .unwrap_err()
+            .contains("not a plain number"));
         assert!(move_point(text, "C", [0.0, 0.0], 1e-5).is_err());
     }
 
