@@ -5,6 +5,10 @@
 //! `mass` or `inertia` (`links.crank.mass`). The value's text runs from after its `:` to
 //! the next `,` or closing brace at the same depth (brackets and parentheses nest;
 //! comments are skipped).
+//!
+//! A point's coordinates are found the same way ([`point`]: `A: (0.04, 0.069)` in the
+//! `ground` block or a link's `points` block) and written anew in their unit words
+//! ([`move_point`]), for a point dragged on `mech serve`'s page.
 
 use crate::model::units::{all_words, lookup, Unit};
 use std::ops::Range;
