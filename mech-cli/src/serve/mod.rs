@@ -6,19 +6,21 @@
 //! stays). FILE is read again within a second of changing on disk, and dragging a point of
 //! the drawing writes its new coordinates into FILE (those numbers only).
 //!
-//! One way through the modules: [`state`] reads FILE and keeps the last good mechanism;
-//! [`watch`] polls FILE; [`data`] computes what the page asks for (the drawing's shapes,
-//! the columns of `mech sweep`); [`drag`] writes a point back; [`routes`] is the HTTP
-//! server (axum on a one-thread tokio runtime) with the page (`page.html`, `page.js`,
-//! built into the binary: it works offline).
+//! One way through the modules: `state` reads FILE and keeps the last good mechanism;
+//! `watch` polls FILE; `data` computes what the page asks for (the drawing's shapes, the
+//! columns of `mech sweep`); `drag` writes a point back; `routes` is the HTTP server
+//! (axum on a one-thread tokio runtime) with the page (`page.html`, `page.js`, built into
+//! the binary: it works offline). Outside, [`run`] serves; [`Workbench`] and [`router`]
+//! are the server without its socket.
 
-pub mod data;
-pub mod drag;
-pub mod routes;
-pub mod state;
-pub mod watch;
+mod data;
+mod drag;
+mod routes;
+mod state;
+mod watch;
 
-pub use state::Workbench;
+pub use routes::router;
+pub use state::{Diagnostic, Good, Input, Snapshot, Workbench};
 
 use crate::Failure;
 use std::path::PathBuf;
