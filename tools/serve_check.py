@@ -5,8 +5,8 @@ Serves a temporary copy of examples/mech/four_bar.mech and checks, as a person w
 the page:
 1. slider: the drawing moves when the slider moves; the pins read from the page's SVG
    are `mech solve`'s points at the slider's value;
-2. chart: the value under the cursor of the driver torque chart, and of a reaction's
-   magnitude, are `mech sweep`'s at that row;
+2. chart: the values under the pointer on the driver torque, a reaction's magnitude and
+   I* charts are `mech sweep`'s at that row;
 3. edit: the file edited on disk is on the page within a second (a ground pivot moved);
 4. error: a broken file shows its line and `mech check`'s message; the drawing stays;
 5. drag: dragging point A on the page rewrites A's two numbers in the file, nothing else.
