@@ -49,7 +49,8 @@ class Check:
         self.file = os.path.join(self.dir, "four_bar.mech")
         shutil.copy(FOUR_BAR, self.file)
         self.original = open(self.file).read()
-        self.server = subprocess.Popen([args.mech, "serve", self.file, "--port", "0"], stdin=subprocess.DEVNULL,
+        # Served by its name in its folder, as a designer would: the page shows `four_bar.mech`.
+        self.server = subprocess.Popen([args.mech, "serve", "four_bar.mech", "--port", "0"], cwd=self.dir, stdin=subprocess.DEVNULL,
                                        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         line = self.server.stderr.readline()
         m = re.search(r"http://127\.0\.0\.1:\d+/", line)
@@ -143,7 +144,7 @@ class Check:
             f.write(broken)
         page.wait_for_function("l => document.getElementById('error').dataset.line == String(l)", arg=line, timeout=1000)
         shown = page.text_content("#error")
-        check = subprocess.run([self.args.mech, "check", self.file], capture_output=True, text=True)
+        check = subprocess.run([self.args.mech, "check", "four_bar.mech"], cwd=self.dir, capture_output=True, text=True)
         assert check.returncode == 1 and check.stderr.strip() in shown, (shown, check.stderr)
         assert page.is_visible("#error") and page.locator("#drawing circle.pin").count() >= 4, "the drawing went"
         page.screenshot(path=os.path.join(self.args.out, "serve-error.png"))
@@ -193,7 +194,7 @@ def main():
     try:
         with sync_playwright() as p:
             browser = p.chromium.launch(executable_path=args.chromium, headless=True, args=CHROMIUM_ARGS)
-            page = browser.new_page(viewport={"width": 1280, "height": 820})
+            page = browser.new_page(viewport={"width": 1200, "height": 710})
             page.goto(c.url)
             page.wait_for_function("document.getElementById('drawing').dataset.q && document.getElementById('charts').dataset.speed !== undefined", timeout=15000)
             for name, check in (("slider", c.slider), ("chart", c.chart), ("edit", c.edit), ("error", c.error), ("drag", c.drag)):
