@@ -116,7 +116,7 @@ for p in "${PKGS[@]}"; do
         grep -qx "$need" "$WORK/$p.list" || { echo "release_check: $p lacks $need" >&2; exit 1; }
     done
     grep -Eq '^src/(lib|main)\.rs$' "$WORK/$p.list" || { echo "release_check: $p has no src/lib.rs" >&2; exit 1; }
-    if grep -Ev '^(Cargo\.toml(\.orig)?|Cargo\.lock|README\.md|LICENSE-MIT|LICENSE-APACHE|\.cargo_vcs_info\.json|src/.*\.rs)$' "$WORK/$p.list"; then
+    if grep -Ev '^(Cargo\.toml(\.orig)?|Cargo\.lock|README\.md|LICENSE-MIT|LICENSE-APACHE|\.cargo_vcs_info\.json|src/.*\.rs|src/serve/page\.(html|js))$' "$WORK/$p.list"; then
         echo "release_check: $p would publish the files above, which it does not need" >&2
         exit 1
     fi

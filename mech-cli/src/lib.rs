@@ -29,6 +29,7 @@ pub mod quantity;
 pub mod regime;
 pub mod report;
 pub mod scene;
+pub mod serve;
 pub mod shaking;
 pub mod simulate;
 pub mod size;

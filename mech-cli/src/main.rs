@@ -7,7 +7,7 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    balance, cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report,
+    balance, cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, serve,
     shaking, simulate, size, solve, source, strength, synth, synth_exact, Failure,
 };
 use std::io::Write;
@@ -138,6 +138,11 @@ enum Command {
     /// slider-crank's crank for its rotating masses and a fraction of the reciprocating
     /// ones) into a copy of the file; print the shaking force before and after.
     Balance(balance::BalanceArgs),
+    /// The workbench: a page on 127.0.0.1 with the linkage drawn and moving, a slider for
+    /// each input, the charts against the input (motor torque, I*, M*, each reaction, the
+    /// shaking force), the check's errors with the file's line; it follows FILE as it
+    /// changes on disk, and dragging a point writes its coordinates into FILE.
+    Serve(serve::ServeArgs),
     /// Dimensional synthesis: a four-bar (O2, O4, A, B, P, input O2) from what it must do,
     /// written as a `.mech` file.
     #[command(subcommand)]
@@ -263,6 +268,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Cam(args) => cam::run(args, stdout),
         Command::Shaking(args) => shaking::run(args, stdout),
         Command::Balance(args) => balance::run(args, stdout),
+        Command::Serve(args) => serve::run(args),
         Command::Synth(Synth::Function(args)) => synth_exact::function(args, stdout),
         Command::Synth(Synth::Motion(args)) => synth_exact::motion(args, stdout),
         Command::Synth(Synth::Path(args)) => synth::run_path(args, stdout),

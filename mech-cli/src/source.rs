@@ -23,7 +23,13 @@ pub fn read(path: &Path) -> Result<(String, String), Failure> {
 /// [`Failure`] whose message starts `FILE:LINE:COLUMN:`.
 pub fn load(path: &Path) -> Result<Mechanism, Failure> {
     let (text, origin) = read(path)?;
-    Mechanism::from_dsl_named(&text, &origin).map_err(|e| match e {
+    parse(&text, &origin)
+}
+
+/// The mechanism of `text` (read from [`read`]) through every check of the macro, its
+/// messages naming `origin`: what [`load`] does once the file is read.
+pub fn parse(text: &str, origin: &str) -> Result<Mechanism, Failure> {
+    Mechanism::from_dsl_named(text, origin).map_err(|e| match e {
         mech_core::MechError::Invalid(rendered) => Failure::mechanism(rendered),
         other => Failure::mechanism(other.to_string()),
     })

@@ -14,6 +14,7 @@ mod hostile;
 mod import;
 mod optimize;
 mod regime;
+mod serve;
 mod snapshots;
 mod strength;
 mod synth;

@@ -5,6 +5,10 @@
 //! `mass` or `inertia` (`links.crank.mass`). The value's text runs from after its `:` to
 //! the next `,` or closing brace at the same depth (brackets and parentheses nest;
 //! comments are skipped).
+//!
+//! A point's coordinates are found the same way ([`point`]: `A: (0.04, 0.069)` in the
+//! `ground` block or a link's `points` block) and written anew in their unit words
+//! ([`move_point`]), for a point dragged on `mech serve`'s page.
 
 use crate::model::units::{all_words, lookup, Unit};
 use std::ops::Range;
@@ -148,6 +152,115 @@ pub fn number(written: &str) -> Result<(f64, Option<&'static Unit>), String> {
     }
 }
 
+/// The bytes of the two coordinates of point `name` where `text` first places it: in the
+/// `ground { .. }` block (`O2: (0.0, 0.0)`, or its `points { .. }`) or a link's
+/// `points { .. }` block (`A: (0.04, 0.069)`), the first text of each coordinate in the
+/// parentheses (white space trimmed). None when the point is not written there with a
+/// parenthesized pair (a point given as an expression, `A: O2 + polar(r, 30 deg)`).
+pub fn point(text: &str, name: &str) -> Option<[Range<usize>; 2]> {
+    let whole = 0..text.len();
+    let mut lists = Vec::new();
+    if let Some(g) = block(text, whole.clone(), &["ground"]) {
+        lists.push(g);
+    }
+    let mut from = 0;
+    while let Some(b) = block(text, from..text.len(), &["points"]) {
+        from = b.end;
+        lists.push(b);
+    }
+    lists.sort_by_key(|r| r.start);
+    lists
+        .iter()
+        .find_map(|body| pair(text, entry(text, body.clone(), name)?))
+}
+
+/// The two coordinates' bytes of a value `(x, y)` at `value` (nothing else around it).
+fn pair(text: &str, value: Range<usize>) -> Option<[Range<usize>; 2]> {
+    let v = &text[value.clone()];
+    if !v.starts_with('(') || !v.ends_with(')') {
+        return None;
+    }
+    let inner = value.start + 1..value.end - 1;
+    let mut comma = None;
+    let mut whole = true;
+    scan(text, inner.clone(), |i, c, depth| {
+        if depth < 0 {
+            whole = false;
+            return false;
+        }
+        if depth == 0 && c == ',' {
+            if comma.is_some() {
+                whole = false;
+                return false;
+            }
+            comma = Some(i);
+        }
+        true
+    });
+    let comma = comma.filter(|_| whole)?;
+    let trim = |r: Range<usize>| {
+        let t = &text[r.clone()];
+        let lead = t.len() - t.trim_start().len();
+        r.start + lead..r.start + t.trim_end().len()
+    };
+    let (x, y) = (trim(inner.start..comma), trim(comma + 1..inner.end));
+    (!x.is_empty() && !y.is_empty()).then_some([x, y])
+}
+
+/// `text` with point `name`'s coordinates written as `xy` (m), each in the unit word its
+/// old number had (`40 mm` stays in mm), rounded to `step` (m; 0 for none); nothing else
+/// of the text changes. Errors: the point is not written as `(x, y)`, or a coordinate is
+/// not a plain number (an expression, a constant's name).
+pub fn move_point(text: &str, name: &str, xy: [f64; 2], step: f64) -> Result<String, String> {
+    let ranges = point(text, name).ok_or_else(|| {
+        format!("point `{name}` is not written as `{name}: (x, y)` in a `ground` or `points` block")
+    })?;
+    let mut edits = Vec::new();
+    for (r, v) in ranges.into_iter().zip(xy) {
+        let old = &text[r.clone()];
+        let (_, unit) = number(old).map_err(|_| {
+            format!("point `{name}`: `{old}` is not a plain number (an expression or a name): edit it in the file")
+        })?;
+        if !v.is_finite() {
+            return Err(format!(
+                "point `{name}`: the new coordinate {v} is not finite"
+            ));
+        }
+        let factor = unit.map_or(1.0, |u| u.factor);
+        let x = v / factor;
+        let s = if step > 0.0 {
+            let digits = (-(step / factor).log10().floor()).clamp(0.0, 15.0) as usize;
+            let t = format!("{x:.digits$}");
+            let t = if t.contains('.') {
+                t.trim_end_matches('0').trim_end_matches('.').to_string()
+            } else {
+                t
+            };
+            if t == "-0" || t.is_empty() {
+                "0".to_string()
+            } else {
+                t
+            }
+        } else {
+            format!("{x:?}")
+        };
+        // Keep a written decimal point where the old number had one (`0.0` stays a float).
+        let s = if old.contains('.') && !s.contains('.') && !s.contains('e') {
+            format!("{s}.0")
+        } else {
+            s
+        };
+        edits.push((
+            r,
+            match unit {
+                Some(u) => format!("{s} {}", u.word),
+                None => s,
+            },
+        ));
+    }
+    Ok(replace(text, &edits))
+}
+
 /// `text` with each (range, replacement) written in (ranges from [`find`], disjoint).
 pub fn replace(text: &str, edits: &[(Range<usize>, String)]) -> String {
     let mut order: Vec<&(Range<usize>, String)> = edits.iter().collect();
@@ -173,6 +286,34 @@ mod tests {
     },
     link crank2 { points { A }, mass: 1.0 },
 }";
+
+    #[test]
+    fn points_are_found_and_moved_keeping_the_rest() {
+        let text = "pub struct F {
+    ground { O2: (0.0, 0.0), O4: (300 mm, 40 mm) }, // O4: (9, 9)
+    link crank { points { O2, A: ( 0.04 , 0.06928 ) }, mass: 1 },
+    link rod { points { A, B: (l, 0.1) } },
+}";
+        let at = |n: &str| point(text, n).map(|[x, y]| (&text[x], &text[y]));
+        assert_eq!(at("O2"), Some(("0.0", "0.0")));
+        assert_eq!(at("O4"), Some(("300 mm", "40 mm")));
+        assert_eq!(at("A"), Some(("0.04", "0.06928")));
+        assert_eq!(at("B"), Some(("l", "0.1")));
+        assert_eq!(at("C"), None);
+        let moved = move_point(text, "A", [0.05, -0.0712345], 1e-5).unwrap();
+        assert_eq!(
+            moved,
+            text.replace("( 0.04 , 0.06928 )", "( 0.05 , -0.07123 )")
+        );
+        let moved = move_point(text, "O4", [0.31, 0.0], 1e-5).unwrap();
+        assert_eq!(moved, text.replacen("(300 mm, 40 mm)", "(310 mm, 0 mm)", 1));
+        let moved = move_point(text, "O2", [0.1, 0.2], 1e-5).unwrap();
+        assert!(moved.contains("O2: (0.1, 0.2)"), "{moved}");
+        assert!(move_point(text, "B", [0.0, 0.0], 1e-5)
+            .unwrap_err()
+            .contains("not a plain number"));
+        assert!(move_point(text, "C", [0.0, 0.0], 1e-5).is_err());
+    }
 
     #[test]
     fn constants_and_link_values_are_found_by_name() {
