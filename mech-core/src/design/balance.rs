@@ -451,7 +451,7 @@ fn rms_triple(m: &Mechanism, speed: f64, steps: usize) -> Result<[f64; 3], MechE
 /// first moment (kg·m, two components each) chosen to minimise
 /// w_F rms(F)/rms₀(F) + w_M rms(M)/rms₀(M) + w_T rms(T)/rms₀(T) over a turn at `speed`
 /// (rad/s, 72 instants), rms₀ the machine's without counterweights. The search is
-/// Nelder–Mead ([`super::nelder_mead`], shared with [`super::optimize`]) over each first
+/// Nelder–Mead (`design::nelder_mead`, shared with [`super::optimize`]) over each first
 /// moment's components within ±4 S (S = Σ m |cg − first point| of the moving links, plus
 /// 1 mm per kg), from no counterweight and a simplex of a tenth of that range per axis,
 /// 300 evaluations per variable.

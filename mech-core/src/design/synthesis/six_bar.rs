@@ -22,8 +22,8 @@
 //!   toggle, so the branch holds between the samples;
 //! - the longest of the six lengths over the shortest at most R.
 //!
-//! The search and the polish are [`super::path`]'s ([`super::path::islands`],
-//! [`super::path::polish`]) with this linkage's curve; the reported error is SPEC §3f's on
+//! The search and the polish are [`super::path`]'s (its `islands` and `polish`) with this
+//! linkage's curve; the reported error is SPEC §3f's on
 //! the result ([`super::error::nearest_on`]: free timing, each target's nearest point over
 //! a full turn; prescribed: P at the crank angle φ + αᵢ).
 
