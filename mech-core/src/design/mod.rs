@@ -3,9 +3,11 @@
 //! dynamics re-run with each change (the design cycle of `docs/theory.md`); [`synthesis`]:
 //! four-bars from the motion they must make; [`optimize`]: any mechanism's named numbers
 //! varied against an objective of its dynamics, written back by [`rewrite`]; [`balance`]:
-//! the shaking force and moment over a cycle, and the counterweights that reduce them.
+//! the shaking force and moment over a cycle, and the counterweights that reduce them;
+//! [`engine`]: engines of several cylinders, their files and classical balance tables.
 
 pub mod balance;
+pub mod engine;
 pub mod optimize;
 pub mod rewrite;
 pub mod sizing;
