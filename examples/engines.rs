@@ -31,15 +31,15 @@ mechanism! {
         consts { r: 45 mm, l: 150 mm, mp: 0.5 kg },
         ground { O: (0.0, 0.0) },
         link crank {
-            points { O, A1: O + polar(r, 90 deg), A2: O + polar(r, 270 deg), A3: O + polar(r, 270 deg), A4: O + polar(r, 90 deg) },
+            points { O, A1: O + polar(r, 90 deg), A2: O + polar(r, 270 deg) },
         },
         link rod1 { points { A1, B1: circle_line(A1, l, O, 90 deg, forward) }, plane: -135 mm },
         link piston1 { points { B1 }, mass: mp, cg: B1, plane: -135 mm },
         link rod2 { points { A2, B2: circle_line(A2, l, O, 90 deg, forward) }, plane: -45 mm },
         link piston2 { points { B2 }, mass: mp, cg: B2, plane: -45 mm },
-        link rod3 { points { A3, B3: circle_line(A3, l, O, 90 deg, forward) }, plane: 45 mm },
+        link rod3 { points { A2, B3: circle_line(A2, l, O, 90 deg, forward) }, plane: 45 mm },
         link piston3 { points { B3 }, mass: mp, cg: B3, plane: 45 mm },
-        link rod4 { points { A4, B4: circle_line(A4, l, O, 90 deg, forward) }, plane: 135 mm },
+        link rod4 { points { A1, B4: circle_line(A1, l, O, 90 deg, forward) }, plane: 135 mm },
         link piston4 { points { B4 }, mass: mp, cg: B4, plane: 135 mm },
         joints {
             main: revolute(ground, crank) at O,
@@ -49,14 +49,14 @@ mechanism! {
             pin2: revolute(crank, rod2) at A2,
             wrist2: revolute(rod2, piston2) at B2,
             bore2: prismatic(ground, piston2) at B2 along (0, 1),
-            pin3: revolute(crank, rod3) at A3,
+            pin3: revolute(crank, rod3) at A2,
             wrist3: revolute(rod3, piston3) at B3,
             bore3: prismatic(ground, piston3) at B3 along (0, 1),
-            pin4: revolute(crank, rod4) at A4,
+            pin4: revolute(crank, rod4) at A1,
             wrist4: revolute(rod4, piston4) at B4,
             bore4: prismatic(ground, piston4) at B4 along (0, 1),
         },
-        input: main,
+        input: main from 90 deg,
     }
 }
 

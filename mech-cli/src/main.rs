@@ -7,7 +7,7 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    balance, cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report,
+    balance, cam, check, draw, engine, flywheel, import, limits, optimize, quantity, regime, report,
     shaking, simulate, size, solve, source, strength, synth, synth_exact, Failure,
 };
 use std::io::Write;
@@ -138,6 +138,10 @@ enum Command {
     /// slider-crank's crank for its rotating masses and a fraction of the reciprocating
     /// ones) into a copy of the file; print the shaking force before and after.
     Balance(balance::BalanceArgs),
+    /// An engine of several cylinders (in-line, V, boxer) on one crankshaft, written as a
+    /// `.mech` file with -o; its primary and secondary shaking forces and couples, exact and
+    /// to the textbook's first order, on standard output.
+    Engine(engine::EngineArgs),
     /// Dimensional synthesis: a four-bar (O2, O4, A, B, P, input O2) from what it must do,
     /// written as a `.mech` file.
     #[command(subcommand)]
@@ -263,6 +267,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Cam(args) => cam::run(args, stdout),
         Command::Shaking(args) => shaking::run(args, stdout),
         Command::Balance(args) => balance::run(args, stdout),
+        Command::Engine(args) => engine::run(args, stdout),
         Command::Synth(Synth::Function(args)) => synth_exact::function(args, stdout),
         Command::Synth(Synth::Motion(args)) => synth_exact::motion(args, stdout),
         Command::Synth(Synth::Path(args)) => synth::run_path(args, stdout),

@@ -207,6 +207,19 @@ impl Engine {
         }
     }
 
+    /// The point of the drawing that stands for crank pin k: the first pin with the same
+    /// throw (pins in one line along the shaft are one point of the plane; their rods keep
+    /// their own planes).
+    fn pin_point(&self, k: usize) -> usize {
+        let same = |a: f64, b: f64| {
+            let d = wrap(a - b);
+            d < 1e-9 || TAU - d < 1e-9
+        };
+        (0..k)
+            .find(|&j| same(self.throws[j], self.throws[k]))
+            .unwrap_or(k)
+    }
+
     /// The axis angle βᵢ of cylinder i (from 0), rad: in-line π/2; V π/2 ± bank/2 (the
     /// left, +, first); boxer 0 and π alternately.
     pub fn axis(&self, i: usize) -> f64 {
@@ -341,9 +354,11 @@ impl Engine {
     }
 
     /// The mechanism file of the engine, named `name` (a Rust type name): the crankshaft
-    /// (massless, with its counterweights in their planes) on the ground pivot O, and per
+    /// (massless, with its counterweights in their planes; pins of the same throw are one
+    /// point `A` of the drawing, named after the first) on the ground pivot O, and per
     /// cylinder a massless rod and a piston of mass m in the cylinder's plane, on a guide
-    /// along its axis, drawn at q = 0; the input is the main bearing.
+    /// along its axis, drawn at q = 0; the input is the main bearing, q the crank's turn
+    /// from the drawing (`from` the first pin's angle).
     pub fn to_mech(&self, name: &str) -> Result<String, MechError> {
         self.check()?;
         let mut t = format!(
@@ -377,11 +392,13 @@ impl Engine {
         );
         let b1 = self.axis(0);
         for (k, c) in self.throws.iter().enumerate() {
-            t += &format!(
-                ", A{}: O + polar(r, {} deg)",
-                k + 1,
-                fmt((b1 + c).to_degrees())
-            );
+            if self.pin_point(k) == k {
+                t += &format!(
+                    ", A{}: O + polar(r, {} deg)",
+                    k + 1,
+                    fmt((b1 + c).to_degrees())
+                );
+            }
         }
         t += " },\n";
         for w in &self.counterweights {
@@ -396,7 +413,7 @@ impl Engine {
         }
         t += "    },\n";
         for i in 0..self.cylinders {
-            let (n, k) = (i + 1, self.pin(i) + 1);
+            let (n, k) = (i + 1, self.pin_point(self.pin(i)) + 1);
             let z = fmt(self.plane(i) * 1e3);
             t += &format!(
                 "    link rod{n} {{ points {{ A{k}, B{n}: circle_line(A{k}, l, O, {} deg, forward) }}, plane: {z} mm }},\n    link piston{n} {{ points {{ B{n} }}, mass: mp, cg: B{n}, plane: {z} mm }},\n",
@@ -405,7 +422,7 @@ impl Engine {
         }
         t += "    joints {\n        main: revolute(ground, crank) at O,\n";
         for i in 0..self.cylinders {
-            let (n, k) = (i + 1, self.pin(i) + 1);
+            let (n, k) = (i + 1, self.pin_point(self.pin(i)) + 1);
             let b = self.axis(i);
             t += &format!(
                 "        pin{n}: revolute(crank, rod{n}) at A{k},\n        wrist{n}: revolute(rod{n}, piston{n}) at B{n},\n        bore{n}: prismatic(ground, piston{n}) at B{n} along ({}, {}),\n",
@@ -413,7 +430,11 @@ impl Engine {
                 fmt(b.sin())
             );
         }
-        t += "    },\n    input: main,\n}\n";
+        // q = 0 in the drawing: the crank's angle (O → its first pin) is β₁ + c₁ there.
+        t += &format!(
+            "    }},\n    input: main from {} deg,\n}}\n",
+            fmt((b1 + self.throws[0]).to_degrees())
+        );
         Ok(t)
     }
 
@@ -538,7 +559,7 @@ pub fn table_text(rows: &[BalanceRow]) -> String {
     );
     t += &format!(
         "{:<14} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
-        "", "", "[m r w^2]", "[m r w^2 r/l]", "[m r w^2 a]", "[m r w^2 a r/l]"
+        "", "", "[m r ω²]", "[m r ω² r/l]", "[m r ω² a]", "[m r ω² a r/l]"
     );
     let cell = |v: [f64; 2]| {
         let c = |x: f64| if x.abs() < 5e-10 { 0.0 } else { x };
