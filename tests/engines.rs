@@ -114,14 +114,15 @@ fn boxer_twin_couple() {
     assert!(within((row.primary_couple[1] - 1.0).abs(), 1e-12), "{row:?}");
     let a2 = secondary_coefficient(e.radius, e.rod) / lambda;
     assert!(within((row.secondary_couple[0] - a2).abs(), 1e-9 * a2), "{row:?} vs {a2}");
-    // At any instant the couple is a m ẍ about the vertical axis (−y here): My = −a m ẍ.
+    // At any instant the couple is about the vertical axis: cylinder 1 (along +x) at
+    // z = −a/2 and cylinder 2 (along −x) at z = +a/2, f_x = ∓m ẍ, so My = Σ z f_x = a m ẍ.
     let mech = runtime(&e);
     for j in 0..12 {
         let q = 0.3 + j as f64;
         let s = mech.shaking(&mech.motion(&[q], &[50.0], &[0.0]).unwrap());
         // cylinder 1 along +x, its crank angle θ = q
         let x = piston_acc(q, 50.0, 0.0, e.radius, e.rod);
-        let want = -e.spacing * e.mass * x;
+        let want = e.spacing * e.mass * x;
         assert!(within((s.my - want).abs(), 1e-9 * e.mass * e.radius * 2500.0 * e.spacing), "{s:?} vs {want}");
         assert!(within(s.force.norm() + s.mx.abs(), 1e-9 * e.mass * e.radius * 2500.0), "{s:?}");
     }

@@ -33,7 +33,7 @@ pub struct EngineArgs {
     #[arg(long)]
     pub cylinders: usize,
     /// The angle between the banks of a V (deg, or `1.57rad`).
-    #[arg(long, default_value = "90deg")]
+    #[arg(long, default_value = "90deg", allow_hyphen_values = true)]
     pub bank: String,
     /// A four-stroke firing order, cylinders numbered from 1 along the shaft (a V's left
     /// bank first on each pin): the throws that fire evenly in this order.
@@ -44,16 +44,16 @@ pub struct EngineArgs {
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub phases: Option<Vec<String>>,
     /// The crank radius r (m, or `45mm`).
-    #[arg(long, default_value = "45mm")]
+    #[arg(long, default_value = "45mm", allow_hyphen_values = true)]
     pub radius: String,
     /// The rod length l (m, or `150mm`).
-    #[arg(long, default_value = "150mm")]
+    #[arg(long, default_value = "150mm", allow_hyphen_values = true)]
     pub rod: String,
     /// The reciprocating mass of each cylinder (kg, or `500g`).
-    #[arg(long, default_value = "0.5kg")]
+    #[arg(long, default_value = "0.5kg", allow_hyphen_values = true)]
     pub mass: String,
     /// The distance between neighbouring crank pins along the shaft (m, or `90mm`).
-    #[arg(long, default_value = "90mm")]
+    #[arg(long, default_value = "90mm", allow_hyphen_values = true)]
     pub spacing: String,
     /// Add two crankshaft counterweights at the end planes that cancel a primary couple
     /// rotating with the crank (a cross-plane V8's), at the crank radius.
