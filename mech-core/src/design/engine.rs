@@ -554,11 +554,11 @@ pub fn balance_table(engine: &Engine, steps: usize) -> Result<BalanceRow, MechEr
 /// and m r ω² λ a.
 pub fn table_text(rows: &[BalanceRow]) -> String {
     let mut t = format!(
-        "{:<14} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
+        "{:<16} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
         "engine", "firing order / throws", "primary F", "secondary F", "primary M", "secondary M"
     );
     t += &format!(
-        "{:<14} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
+        "{:<16} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
         "", "", "[m r ω²]", "[m r ω² r/l]", "[m r ω² a]", "[m r ω² a r/l]"
     );
     let cell = |v: [f64; 2]| {
@@ -567,7 +567,7 @@ pub fn table_text(rows: &[BalanceRow]) -> String {
     };
     for r in rows {
         t += &format!(
-            "{:<14} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
+            "{:<16} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
             r.engine,
             r.firing,
             cell(r.primary_force),
@@ -659,5 +659,16 @@ mod tests {
         assert!(e4.clone().with_throws(&[0.0, 1.0]).is_err());
         assert!(Engine::new(Layout::Vee { bank: 0.0 }, 8).is_err());
         assert!(Engine::new(Layout::Boxer, 3).is_err());
+        // A 90° V-twin on one pin cannot fire every 360°: the pin would need 0° and 270°.
+        let v2 = Engine::new(Layout::Vee { bank: PI / 2.0 }, 2).unwrap();
+        let e = v2.with_firing(&[1, 2]).unwrap_err().to_string();
+        assert!(e.contains("share crank pin 1"), "{e}");
+        // In-line 4 fired 1-2-4-3, by cₖ = −k·180° (cylinder 1 k = 0, 2 k = 1, 4 k = 2,
+        // 3 k = 3): the same crank as 1-3-4-2.
+        let f = Engine::new(Layout::Inline, 4)
+            .unwrap()
+            .with_firing(&[1, 2, 4, 3])
+            .unwrap();
+        assert_eq!(deg(&f), vec![0.0, 180.0, 180.0, 0.0]);
     }
 }
