@@ -80,16 +80,24 @@ fn main() -> Result<(), Box<dyn Error>> {
         .iter()
         .map(|e| balance_table(e, 360))
         .collect::<Result<Vec<_>, _>>()?;
-    println!("Shaking forces and couples of engines: exact (first order), r/l = 0.3, a = pin spacing\n");
+    println!(
+        "Shaking forces and couples of engines: exact (first order), r/l = 0.3, a = pin spacing\n"
+    );
     print!("{}", table_text(&rows));
 
     // The in-line four of the macro: its declaration is the file `Engine::to_mech` writes.
     let e4 = &engines[3];
-    println!("\nThe in-line four as a mechanism file:\n\n{}", e4.to_mech("Inline4")?);
+    println!(
+        "\nThe in-line four as a mechanism file:\n\n{}",
+        e4.to_mech("Inline4")?
+    );
     let machine = Inline4::new();
     let (m, r, lambda, w) = (e4.mass, e4.radius, e4.radius / e4.rod, 100.0);
     println!("In-line four at {w} rad/s: the shaking force F_y against 4 m r ω² (r/l) cos 2θ");
-    println!("{:>8} {:>14} {:>14} {:>12}", "θ, deg", "exact F_y, N", "4mrω²λcos2θ", "|M_x|+|M_y|");
+    println!(
+        "{:>8} {:>14} {:>14} {:>12}",
+        "θ, deg", "exact F_y, N", "4mrω²λcos2θ", "|M_x|+|M_y|"
+    );
     for k in 0..=8 {
         let th = PI * k as f64 / 8.0;
         let s = machine.shaking(&machine.motion(&[th], &[w], &[0.0])?);
@@ -123,7 +131,12 @@ fn main() -> Result<(), Box<dyn Error>> {
         after.primary_couple[0]
     );
     let file = balanced.to_mech("V8")?;
-    let cycle = shaking_cycle(&Mechanism::from_dsl(&file)?, (0.0, 2.0 * PI, 360), &[0.0], &[1.0])?;
+    let cycle = shaking_cycle(
+        &Mechanism::from_dsl(&file)?,
+        (0.0, 2.0 * PI, 360),
+        &[0.0],
+        &[1.0],
+    )?;
     println!(
         "its peak couple over the turn {:.4e} N·m at 1 rad/s (without: {:.4e})",
         cycle.summary().peak_couple,

@@ -6,9 +6,7 @@
 
 use crate::measure::within;
 use mech::design::balance::shaking_cycle;
-use mech::design::engine::{
-    balance_table, primary_couple_counterweights, Engine, Layout,
-};
+use mech::design::engine::{balance_table, primary_couple_counterweights, Engine, Layout};
 use mech::prelude::*;
 
 const PI: f64 = std::f64::consts::PI;
@@ -69,8 +67,14 @@ fn inline_four_is_the_sum_of_its_cylinders() {
             let unit = m * r * (w * w + al.abs());
             // measured worst ~3e-15 (a few ulps of the sums); 1e-9 as the brief's bound
             assert!(within(s.force.x.abs(), 1e-9 * unit), "{q}: {s:?}");
-            assert!(within((s.force.y - fy).abs(), 1e-9 * unit), "{q}: {s:?} vs {fy}");
-            assert!(within((s.mx - mx).abs(), 1e-9 * unit * a), "{q}: {s:?} vs {mx}");
+            assert!(
+                within((s.force.y - fy).abs(), 1e-9 * unit),
+                "{q}: {s:?} vs {fy}"
+            );
+            assert!(
+                within((s.mx - mx).abs(), 1e-9 * unit * a),
+                "{q}: {s:?} vs {mx}"
+            );
             assert!(within(s.my.abs(), 1e-9 * unit * a), "{q}: {s:?}");
         }
     }
@@ -88,9 +92,15 @@ fn inline_four_primary_balanced_secondary_four_lambda() {
     assert!(within(row.primary_force[0], 1e-9), "{row:?}");
     assert!(within(row.primary_couple[0], 1e-9), "{row:?}");
     assert!(within(row.secondary_couple[0], 1e-9), "{row:?}");
-    assert!(within((row.secondary_force[1] - 4.0).abs(), 1e-12), "{row:?}");
+    assert!(
+        within((row.secondary_force[1] - 4.0).abs(), 1e-12),
+        "{row:?}"
+    );
     let exact = 4.0 * secondary_coefficient(e.radius, e.rod) / lambda;
-    assert!(within((row.secondary_force[0] - exact).abs(), 1e-9 * exact), "{row:?} vs {exact}");
+    assert!(
+        within((row.secondary_force[0] - exact).abs(), 1e-9 * exact),
+        "{row:?} vs {exact}"
+    );
     let next = 4.0 * lambda * lambda / 4.0;
     let gap = row.secondary_force[0] - 4.0;
     assert!(gap > 0.9 * next && gap < 1.2 * next, "{gap} vs {next}");
@@ -98,8 +108,14 @@ fn inline_four_primary_balanced_secondary_four_lambda() {
     let h = row.exact[1];
     let a2 = secondary_coefficient(e.radius, e.rod);
     let want = 4.0 * e.mass * e.radius * a2;
-    assert!(within((h.fy[0] - want).abs(), 1e-9 * want), "{h:?} vs {want}");
-    assert!(within(h.fy[1].abs() + h.fx[0].abs() + h.fx[1].abs(), 1e-9 * want), "{h:?}");
+    assert!(
+        within((h.fy[0] - want).abs(), 1e-9 * want),
+        "{h:?} vs {want}"
+    );
+    assert!(
+        within(h.fy[1].abs() + h.fx[0].abs() + h.fx[1].abs(), 1e-9 * want),
+        "{h:?}"
+    );
 }
 
 /// Boxer twin: the forces cancel, the primary couple is m r ω² a (a the spacing of the two
@@ -109,11 +125,20 @@ fn boxer_twin_couple() {
     let e = Engine::new(Layout::Boxer, 2).unwrap();
     let row = balance_table(&e, 360).unwrap();
     let lambda = e.radius / e.rod;
-    assert!(within(row.primary_force[0] + row.secondary_force[0], 1e-9), "{row:?}");
+    assert!(
+        within(row.primary_force[0] + row.secondary_force[0], 1e-9),
+        "{row:?}"
+    );
     assert!(within((row.primary_couple[0] - 1.0).abs(), 1e-9), "{row:?}");
-    assert!(within((row.primary_couple[1] - 1.0).abs(), 1e-12), "{row:?}");
+    assert!(
+        within((row.primary_couple[1] - 1.0).abs(), 1e-12),
+        "{row:?}"
+    );
     let a2 = secondary_coefficient(e.radius, e.rod) / lambda;
-    assert!(within((row.secondary_couple[0] - a2).abs(), 1e-9 * a2), "{row:?} vs {a2}");
+    assert!(
+        within((row.secondary_couple[0] - a2).abs(), 1e-9 * a2),
+        "{row:?} vs {a2}"
+    );
     // At any instant the couple is about the vertical axis: cylinder 1 (along +x) at
     // z = −a/2 and cylinder 2 (along −x) at z = +a/2, f_x = ∓m ẍ, so My = Σ z f_x = a m ẍ.
     let mech = runtime(&e);
@@ -123,8 +148,20 @@ fn boxer_twin_couple() {
         // cylinder 1 along +x, its crank angle θ = q
         let x = piston_acc(q, 50.0, 0.0, e.radius, e.rod);
         let want = e.spacing * e.mass * x;
-        assert!(within((s.my - want).abs(), 1e-9 * e.mass * e.radius * 2500.0 * e.spacing), "{s:?} vs {want}");
-        assert!(within(s.force.norm() + s.mx.abs(), 1e-9 * e.mass * e.radius * 2500.0), "{s:?}");
+        assert!(
+            within(
+                (s.my - want).abs(),
+                1e-9 * e.mass * e.radius * 2500.0 * e.spacing
+            ),
+            "{s:?} vs {want}"
+        );
+        assert!(
+            within(
+                s.force.norm() + s.mx.abs(),
+                1e-9 * e.mass * e.radius * 2500.0
+            ),
+            "{s:?}"
+        );
     }
 }
 
@@ -135,22 +172,40 @@ fn boxer_twin_couple() {
 fn cross_plane_v8_primary_couple_and_its_counterweights() {
     let e = Engine::new(Layout::Vee { bank: PI / 2.0 }, 8).unwrap();
     let row = balance_table(&e, 360).unwrap();
-    assert!(within(row.primary_force[0] + row.secondary_force[0], 1e-9), "{row:?}");
+    assert!(
+        within(row.primary_force[0] + row.secondary_force[0], 1e-9),
+        "{row:?}"
+    );
     assert!(within(row.secondary_couple[0], 1e-9), "{row:?}");
-    assert!(within((row.primary_couple[0] - 10f64.sqrt()).abs(), 1e-9), "{row:?}");
+    assert!(
+        within((row.primary_couple[0] - 10f64.sqrt()).abs(), 1e-9),
+        "{row:?}"
+    );
     // Constant magnitude: b is a turned by +90°.
     let h = row.exact[0];
     let size = h.mx[0].hypot(h.my[0]);
-    assert!(within((h.mx[1] + h.my[0]).abs() + (h.my[1] - h.mx[0]).abs(), 1e-9 * size), "{h:?}");
+    assert!(
+        within(
+            (h.mx[1] + h.my[0]).abs() + (h.my[1] - h.mx[0]).abs(),
+            1e-9 * size
+        ),
+        "{h:?}"
+    );
     let ends = 1.5 * e.spacing;
     let w = primary_couple_counterweights(&e, &h, 0.06, (-ends, ends)).unwrap();
     // m_c = √10 m r a/(2 Z ρ)
     let want = 10f64.sqrt() * e.mass * e.radius * e.spacing / (2.0 * ends * 0.06);
-    assert!(within((w[0].mass - want).abs(), 1e-9 * want), "{w:?} vs {want}");
+    assert!(
+        within((w[0].mass - want).abs(), 1e-9 * want),
+        "{w:?} vs {want}"
+    );
     let mut balanced = e.clone();
     balanced.counterweights = w.to_vec();
     let after = balance_table(&balanced, 360).unwrap();
-    assert!(within(after.primary_couple[0], 1e-9 * row.primary_couple[0]), "{after:?}");
+    assert!(
+        within(after.primary_couple[0], 1e-9 * row.primary_couple[0]),
+        "{after:?}"
+    );
     assert!(within(after.primary_force[0], 1e-9), "{after:?}");
     // The whole couple over the turn: only the small higher harmonics are left.
     let peak = |e: &Engine| {
@@ -159,7 +214,12 @@ fn cross_plane_v8_primary_couple_and_its_counterweights() {
             .summary()
             .peak_couple
     };
-    assert!(peak(&balanced) < 0.05 * peak(&e), "{} vs {}", peak(&balanced), peak(&e));
+    assert!(
+        peak(&balanced) < 0.05 * peak(&e),
+        "{} vs {}",
+        peak(&balanced),
+        peak(&e)
+    );
 }
 
 /// The textbook rows: in-line 3 and 6, a 180° in-line twin, a 90° V-twin.
@@ -167,12 +227,26 @@ fn cross_plane_v8_primary_couple_and_its_counterweights() {
 fn classical_rows() {
     let sqrt3 = 3f64.sqrt();
     let i3 = balance_table(&Engine::new(Layout::Inline, 3).unwrap(), 360).unwrap();
-    assert!(within(i3.primary_force[0] + i3.secondary_force[0], 1e-9), "{i3:?}");
-    assert!(within((i3.primary_couple[1] - sqrt3).abs(), 1e-12), "{i3:?}");
+    assert!(
+        within(i3.primary_force[0] + i3.secondary_force[0], 1e-9),
+        "{i3:?}"
+    );
+    assert!(
+        within((i3.primary_couple[1] - sqrt3).abs(), 1e-12),
+        "{i3:?}"
+    );
     assert!(within((i3.primary_couple[0] - sqrt3).abs(), 1e-9), "{i3:?}");
-    assert!(within((i3.secondary_couple[1] - sqrt3).abs(), 1e-12), "{i3:?}");
+    assert!(
+        within((i3.secondary_couple[1] - sqrt3).abs(), 1e-12),
+        "{i3:?}"
+    );
     let i6 = balance_table(&Engine::new(Layout::Inline, 6).unwrap(), 360).unwrap();
-    for v in [i6.primary_force, i6.secondary_force, i6.primary_couple, i6.secondary_couple] {
+    for v in [
+        i6.primary_force,
+        i6.secondary_force,
+        i6.primary_couple,
+        i6.secondary_couple,
+    ] {
         assert!(within(v[0] + v[1], 1e-9), "{i6:?}");
     }
     let i2 = balance_table(&Engine::new(Layout::Inline, 2).unwrap(), 360).unwrap();
@@ -180,9 +254,16 @@ fn classical_rows() {
     assert!(within((i2.primary_couple[0] - 1.0).abs(), 1e-9), "{i2:?}");
     assert!(within((i2.secondary_force[1] - 2.0).abs(), 1e-12), "{i2:?}");
     // 90° V-twin: the primary force m r ω² rotating (constant), the secondary √2 m r ω² λ.
-    let v2 = balance_table(&Engine::new(Layout::Vee { bank: PI / 2.0 }, 2).unwrap(), 360).unwrap();
+    let v2 = balance_table(
+        &Engine::new(Layout::Vee { bank: PI / 2.0 }, 2).unwrap(),
+        360,
+    )
+    .unwrap();
     assert!(within((v2.primary_force[0] - 1.0).abs(), 1e-9), "{v2:?}");
-    assert!(within((v2.secondary_force[1] - 2f64.sqrt()).abs(), 1e-12), "{v2:?}");
+    assert!(
+        within((v2.secondary_force[1] - 2f64.sqrt()).abs(), 1e-12),
+        "{v2:?}"
+    );
 }
 
 mechanism! {
@@ -221,7 +302,10 @@ fn counterweights_in_two_planes_make_a_couple() {
     for &(q, w, al) in &[(0.7, 30.0, 0.0), (2.5, -12.0, 400.0)] {
         let (s, c) = f64::sin_cos(q);
         // the weight at +z: f = m ρ (ω² (c, s) − α (−s, c))
-        let f = [m * rho * (w * w * c + al * s), m * rho * (w * w * s - al * c)];
+        let f = [
+            m * rho * (w * w * c + al * s),
+            m * rho * (w * w * s - al * c),
+        ];
         let want = [2.0 * z * -f[1], 2.0 * z * f[0]];
         for sh in [
             generated.shaking(&generated.motion(&[q], &[w], &[al]).unwrap()),
@@ -229,7 +313,13 @@ fn counterweights_in_two_planes_make_a_couple() {
         ] {
             let unit = m * rho * (w * w + al.abs());
             assert!(within(sh.force.norm(), 1e-12 * unit), "{sh:?}");
-            assert!(within((sh.mx - want[0]).abs() + (sh.my - want[1]).abs(), 1e-12 * unit * z), "{sh:?} vs {want:?}");
+            assert!(
+                within(
+                    (sh.mx - want[0]).abs() + (sh.my - want[1]).abs(),
+                    1e-12 * unit * z
+                ),
+                "{sh:?} vs {want:?}"
+            );
         }
     }
 }
@@ -243,13 +333,24 @@ fn bad_engine_input() {
         "ground { O: (0.0, 0.0) }",
         "ground { points { O: (0.0, 0.0) }, counterweight: (1 kg, at (0, 0)) }",
     );
-    assert!(err(&ground).contains("counterweight on the ground"), "{}", err(&ground));
+    assert!(
+        err(&ground).contains("counterweight on the ground"),
+        "{}",
+        err(&ground)
+    );
     let negative = TWO_PLANES.replace("(1.0 kg, at (0.1, 0.0)", "(-1.0 kg, at (0.1, 0.0)");
-    assert!(err(&negative).contains("negative mass"), "{}", err(&negative));
+    assert!(
+        err(&negative).contains("negative mass"),
+        "{}",
+        err(&negative)
+    );
     let not_length = TWO_PLANES.replace("plane: 200 mm", "plane: 2 kg");
     let e = err(&not_length);
     assert!(e.contains("plane") && e.contains("length"), "{e}");
-    let link_plane = TWO_PLANES.replace("points { O, A: (0.1, 0.0) },", "points { O, A: (0.1, 0.0) }, plane: 3 deg,");
+    let link_plane = TWO_PLANES.replace(
+        "points { O, A: (0.1, 0.0) },",
+        "points { O, A: (0.1, 0.0) }, plane: 3 deg,",
+    );
     let e = err(&link_plane);
     assert!(e.contains("plane") && e.contains("length"), "{e}");
     let v8 = Engine::new(Layout::Vee { bank: PI / 2.0 }, 8).unwrap();
@@ -257,7 +358,11 @@ fn bad_engine_input() {
     assert!(e.contains("8 phase angles for 4 crank pins"), "{e}");
     let mut neg = v8;
     neg.mass = -1.0;
-    assert!(neg.to_mech("V8").unwrap_err().to_string().contains("positive"));
+    assert!(neg
+        .to_mech("V8")
+        .unwrap_err()
+        .to_string()
+        .contains("positive"));
     let e = Engine::new(Layout::Inline, 4)
         .unwrap()
         .with_firing(&[1, 2, 2, 4])

@@ -7,8 +7,8 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    balance, cam, check, draw, engine, flywheel, import, limits, optimize, quantity, regime, report,
-    shaking, simulate, size, solve, source, strength, synth, synth_exact, Failure,
+    balance, cam, check, draw, engine, flywheel, import, limits, optimize, quantity, regime,
+    report, shaking, simulate, size, solve, source, strength, synth, synth_exact, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;

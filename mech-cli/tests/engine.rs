@@ -63,11 +63,17 @@ fn boxer_twin_file_and_its_couple() {
         let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
         let (s, c) = v[0].sin_cos();
         let d = (l * l - rr * rr * s * s).sqrt();
-        let xdd = (-rr * c - rr * rr * (c * c - s * s) / d - rr.powi(4) * s * s * c * c / d.powi(3)) * w * w;
+        let xdd =
+            (-rr * c - rr * rr * (c * c - s * s) / d - rr.powi(4) * s * s * c * c / d.powi(3))
+                * w
+                * w;
         let want = a * m * xdd;
         let unit = m * rr * w * w;
         assert!((v[5] - want).abs() <= 1e-9 * unit * a, "{line}: {want}");
-        assert!(v[1].abs() + v[2].abs() + v[4].abs() <= 1e-9 * unit, "{line}");
+        assert!(
+            v[1].abs() + v[2].abs() + v[4].abs() <= 1e-9 * unit,
+            "{line}"
+        );
         rows += 1;
     }
     assert_eq!(rows, 37);
@@ -75,7 +81,14 @@ fn boxer_twin_file_and_its_couple() {
 
 #[test]
 fn cross_plane_v8_and_its_couple_counterweights() {
-    let table = stdout(mech().args(["engine", "--layout", "v", "--cylinders", "8", "--balance-couple"]));
+    let table = stdout(mech().args([
+        "engine",
+        "--layout",
+        "v",
+        "--cylinders",
+        "8",
+        "--balance-couple",
+    ]));
     let before = row(&table, "90° V8 ");
     assert!((before[4] - 10f64.sqrt()).abs() < 1e-4, "{table}");
     let after = row(&table, "90° V8 balanced");
@@ -91,11 +104,25 @@ fn engine_bad_input_is_a_clear_error() {
         assert!(err.contains(what), "{args:?}: {err}");
     };
     fails(
-        &["--layout", "inline", "--cylinders", "4", "--phases", "0,180"],
+        &[
+            "--layout",
+            "inline",
+            "--cylinders",
+            "4",
+            "--phases",
+            "0,180",
+        ],
         "2 phase angles for 4 crank pins",
     );
     fails(
-        &["--layout", "inline", "--cylinders", "4", "--firing", "1-2-2-4"],
+        &[
+            "--layout",
+            "inline",
+            "--cylinders",
+            "4",
+            "--firing",
+            "1-2-2-4",
+        ],
         "once",
     );
     fails(&["--layout", "v", "--cylinders", "3"], "odd");

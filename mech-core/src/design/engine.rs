@@ -152,7 +152,7 @@ impl Engine {
                 )));
             }
         }
-        if layout != Layout::Inline && cylinders % 2 != 0 {
+        if layout != Layout::Inline && !cylinders.is_multiple_of(2) {
             return Err(MechError::InvalidInput(format!(
                 "a V or boxer engine has its cylinders in pairs: {cylinders} is odd"
             )));
@@ -225,9 +225,16 @@ impl Engine {
     pub fn axis(&self, i: usize) -> f64 {
         match self.layout {
             Layout::Inline => PI / 2.0,
-            Layout::Vee { bank } => PI / 2.0 + if i % 2 == 0 { bank / 2.0 } else { -bank / 2.0 },
+            Layout::Vee { bank } => {
+                PI / 2.0
+                    + if i.is_multiple_of(2) {
+                        bank / 2.0
+                    } else {
+                        -bank / 2.0
+                    }
+            }
             Layout::Boxer => {
-                if i % 2 == 0 {
+                if i.is_multiple_of(2) {
                     0.0
                 } else {
                     PI
@@ -533,13 +540,15 @@ pub fn balance_table(engine: &Engine, steps: usize) -> Result<BalanceRow, MechEr
                 .map(|c| c.to_string())
                 .collect::<Vec<_>>()
                 .join("-"),
-            None => engine
-                .throws
-                .iter()
-                .map(|c| format!("{}", fmt(c.to_degrees())))
-                .collect::<Vec<_>>()
-                .join("/")
-                + "°",
+            None => {
+                engine
+                    .throws
+                    .iter()
+                    .map(|c| fmt(c.to_degrees()))
+                    .collect::<Vec<_>>()
+                    .join("/")
+                    + "°"
+            }
         },
         primary_force: pair(&Harmonic::force_amplitude, 0, unit),
         secondary_force: pair(&Harmonic::force_amplitude, 1, unit * lambda),
@@ -594,7 +603,7 @@ pub fn primary_couple_counterweights(
     planes: (f64, f64),
 ) -> Result<[CrankWeight; 2], MechError> {
     let (z1, z2) = planes;
-    if !(radius > 0.0 && radius.is_finite()) || !(z1 != z2 && (z2 - z1).is_finite()) {
+    if !(radius > 0.0 && radius.is_finite() && z1 != z2 && (z2 - z1).is_finite()) {
         return Err(MechError::InvalidInput(
             "give a positive radius and two different planes for the counterweights".into(),
         ));

@@ -95,7 +95,8 @@ pub(super) fn link_body(
                     let _: Option<Token![,]> = inner.parse()?;
                 }
                 if !inner.is_empty() {
-                    return Err(inner.error("expected `(MASS, at (x, y))` or `(MASS, at (x, y), plane: Z)`"));
+                    return Err(inner
+                        .error("expected `(MASS, at (x, y))` or `(MASS, at (x, y), plane: Z)`"));
                 }
                 decl.counterweights.push((mass, pos, plane, key.span()));
             }

@@ -194,10 +194,7 @@ fn counterweights<S: Clone>(l: &LinkDecl<S>, link: &mut Link, errs: &mut Vec<Dia
         };
         let both = own.combine(weight);
         let in_plane = Axial {
-            plane: plane
-                .as_ref()
-                .or(l.plane.as_ref())
-                .map_or(0.0, |z| z.value),
+            plane: plane.as_ref().or(l.plane.as_ref()).map_or(0.0, |z| z.value),
             product: [0.0, 0.0],
         };
         link.axial = link.axial.combine(&own, in_plane, &weight, both.cg);
