@@ -1,7 +1,9 @@
 //! `mech shaking FILE --speed QD [--from A --to B --steps N] [--svg FILE]`: the shaking
 //! force and moment on the frame over a cycle (SPEC 3g, `mech_core::design::balance`), one
-//! row per input value (the grid of `mech sweep`); the peaks, RMS values and the primary and
-//! secondary harmonics on standard error; a polar diagram of the force as SVG.
+//! row per input value (the grid of `mech sweep`), with the couples about the x and y axes
+//! (`shaking.mx`, `shaking.my`) when some link is out of the plane z = 0 (`plane: z`); the
+//! peaks, RMS values and the primary and secondary harmonics on standard error; a polar
+//! diagram of the force as SVG.
 
 use crate::output::{Format, Writer};
 use crate::{limits, quantity, source, Failure};
