@@ -104,6 +104,21 @@ fn inline_four_primary_balanced_secondary_four_lambda() {
     let next = 4.0 * lambda * lambda / 4.0;
     let gap = row.secondary_force[0] - 4.0;
     assert!(gap > 0.9 * next && gap < 1.2 * next, "{gap} vs {next}");
+    // At every instant the exact force differs from 4 m r ω² λ cos 2θ by the dropped terms,
+    // 4 m r ω² ((A₂ − λ) cos 2θ − A₄ cos 4θ + …), A₂ − λ ≈ A₄ ≈ λ³/4: within 1.2 (λ³/4 + λ³/4).
+    let mech = runtime(&e);
+    let w = 100.0;
+    let unit = 4.0 * e.mass * e.radius * w * w;
+    for j in 0..48 {
+        let q = 2.0 * PI * j as f64 / 48.0;
+        let s = mech.shaking(&mech.motion(&[q], &[w], &[0.0]).unwrap());
+        let textbook = unit * lambda * (2.0 * q).cos();
+        assert!(
+            (s.force.y - textbook).abs() <= 1.2 * unit * lambda.powi(3) / 2.0,
+            "{q}: {} vs {textbook}",
+            s.force.y
+        );
+    }
     // The force itself, phase included: F_y ≈ 4 m r ω² A₂ cos 2θ along the cylinders.
     let h = row.exact[1];
     let a2 = secondary_coefficient(e.radius, e.rod);
