@@ -127,6 +127,10 @@ fn engine_bad_input_is_a_clear_error() {
     );
     fails(&["--layout", "v", "--cylinders", "3"], "odd");
     fails(
+        &["--layout", "boxer", "--cylinders", "2", "--balance-couple"],
+        "cannot cancel",
+    );
+    fails(
         &["--layout", "inline", "--cylinders", "2", "--mass", "-1kg"],
         "positive",
     );

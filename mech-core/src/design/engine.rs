@@ -594,8 +594,9 @@ pub fn table_text(rows: &[BalanceRow]) -> String {
 /// order 1 at ω = 1 rad/s): the pair's inertia forces cancel and its couple is
 /// (z₂ − z₁) m_c ρ ω² (cos(q + γ + 90°), sin(q + γ + 90°)) for the weight in z₂ at the angle
 /// γ (the one in z₁ at γ + 180°), so m_c = |a|/(|z₂ − z₁| ρ) and γ + 90° the direction of
-/// −a (for z₂ > z₁). The angles are from cylinder 1's axis ([`CrankWeight`]). An error when
-/// the couple does not rotate forward (b ≠ a turned by 90° within 1e-6 |a|).
+/// −a (for z₂ > z₁). The angles are from cylinder 1's axis ([`CrankWeight`]). No couple
+/// (|a|, |b| ≤ 1e-12 m r a): two weights of zero mass. An error when the couple does not
+/// rotate forward (b ≠ a turned by 90° within 1e-6 |a|: a boxer twin's, which swings).
 pub fn primary_couple_counterweights(
     engine: &Engine,
     h: &Harmonic,
@@ -610,13 +611,22 @@ pub fn primary_couple_counterweights(
     }
     let a = [h.mx[0], h.my[0]];
     let b = [h.mx[1], h.my[1]];
-    let size = a[0].hypot(a[1]);
-    if (b[0] + a[1]).hypot(b[1] - a[0]) > 1e-6 * size.max(f64::MIN_POSITIVE) {
+    let size = a[0].hypot(a[1]).max(b[0].hypot(b[1]));
+    let (lo, hi) = if z2 > z1 { (z1, z2) } else { (z2, z1) };
+    if size <= 1e-12 * engine.mass * engine.radius * engine.spacing {
+        // No primary couple (to rounding): nothing to cancel.
+        return Ok([lo, hi].map(|plane| CrankWeight {
+            mass: 0.0,
+            radius,
+            angle: 0.0,
+            plane,
+        }));
+    }
+    if (b[0] + a[1]).hypot(b[1] - a[0]) > 1e-6 * size {
         return Err(MechError::InvalidInput(
             "the primary couple does not rotate with the crank at a constant magnitude: two crankshaft counterweights cannot cancel it".into(),
         ));
     }
-    let (lo, hi) = if z2 > z1 { (z1, z2) } else { (z2, z1) };
     let mass = size / ((hi - lo) * radius);
     let gamma = (-a[1]).atan2(-a[0]) - PI / 2.0 - engine.axis(0);
     Ok([
