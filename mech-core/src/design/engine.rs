@@ -178,7 +178,7 @@ impl Engine {
                 None,
             ),
         };
-        Ok(Engine {
+        let mut e = Engine {
             layout,
             cylinders,
             throws,
@@ -188,7 +188,49 @@ impl Engine {
             mass: 0.5,
             spacing: 0.090,
             counterweights: Vec::new(),
-        })
+        };
+        if e.firing.is_none() {
+            e.firing = e.even_firing();
+        }
+        Ok(e)
+    }
+
+    /// An even four-stroke firing order of the crank as it is, if it has one: cylinder i
+    /// is at top dead centre at q = tᵢ = βᵢ − β₁ − cₖ (mod 360°) and fires at tᵢ or
+    /// tᵢ + 360°; the order is even when these can be chosen, cylinder 1 at 0, to fill every
+    /// multiple of 720°/n once. The first such choice, cylinder by cylinder, the earlier turn
+    /// first; `None` for an uneven crank (a 180° twin, a 90° V-twin).
+    pub fn even_firing(&self) -> Option<Vec<usize>> {
+        let n = self.cylinders;
+        let interval = 2.0 * TAU / n as f64;
+        let tdc: Vec<f64> = (0..n)
+            .map(|i| wrap(self.axis(i) - self.axis(0) - self.throws[self.pin(i)]))
+            .collect();
+        fn place(i: usize, tdc: &[f64], interval: f64, slots: &mut Vec<Option<usize>>) -> bool {
+            if i == tdc.len() {
+                return true;
+            }
+            let turns: &[f64] = if i == 0 { &[0.0] } else { &[0.0, TAU] };
+            for &turn in turns {
+                let x = tdc[i] + turn;
+                let k = (x / interval).round();
+                if (x - k * interval).abs() > 1e-9 || k < 0.0 || k as usize >= slots.len() {
+                    continue;
+                }
+                let k = k as usize;
+                if slots[k].is_none() {
+                    slots[k] = Some(i);
+                    if place(i + 1, tdc, interval, slots) {
+                        return true;
+                    }
+                    slots[k] = None;
+                }
+            }
+            false
+        }
+        let mut slots = vec![None; n];
+        place(0, &tdc, interval, &mut slots)
+            .then(|| slots.into_iter().map(|c| c.unwrap_or(0) + 1).collect())
     }
 
     /// The number of crank pins: n/2 for a V, else n.
@@ -254,7 +296,8 @@ impl Engine {
         q + self.axis(0) + self.throws[self.pin(i)] - self.axis(i)
     }
 
-    /// Set the throws (rad, one per pin); an error when their number is not the pins'.
+    /// Set the throws (rad, one per pin), and the firing order to [`Engine::even_firing`];
+    /// an error when their number is not the pins'.
     pub fn with_throws(mut self, throws: &[f64]) -> Result<Engine, MechError> {
         if throws.len() != self.pins() {
             return Err(MechError::InvalidInput(format!(
@@ -271,7 +314,7 @@ impl Engine {
             ));
         }
         self.throws = throws.iter().map(|&t| wrap(t)).collect();
-        self.firing = None;
+        self.firing = self.even_firing();
         Ok(self)
     }
 
@@ -494,8 +537,10 @@ fn fmt(x: f64) -> String {
 pub struct BalanceRow {
     /// The engine.
     pub engine: String,
-    /// The firing order (or the throws) as written in the table.
+    /// The firing order as written in the table ("1-3-4-2"), "uneven" when there is none.
     pub firing: String,
+    /// The crank throws as written in the table ("0/180/180/0°").
+    pub throws: String,
     /// The primary force's amplitude over m r ω²: [exact, first order].
     pub primary_force: [f64; 2],
     /// The secondary force's amplitude over m r ω² λ: [exact, first order].
@@ -540,16 +585,15 @@ pub fn balance_table(engine: &Engine, steps: usize) -> Result<BalanceRow, MechEr
                 .map(|c| c.to_string())
                 .collect::<Vec<_>>()
                 .join("-"),
-            None => {
-                engine
-                    .throws
-                    .iter()
-                    .map(|c| fmt(c.to_degrees()))
-                    .collect::<Vec<_>>()
-                    .join("/")
-                    + "°"
-            }
+            None => "uneven".into(),
         },
+        throws: engine
+            .throws
+            .iter()
+            .map(|c| fmt(c.to_degrees()))
+            .collect::<Vec<_>>()
+            .join("/")
+            + "°",
         primary_force: pair(&Harmonic::force_amplitude, 0, unit),
         secondary_force: pair(&Harmonic::force_amplitude, 1, unit * lambda),
         primary_couple: pair(&Harmonic::couple_amplitude, 0, unit * a),
@@ -558,16 +602,16 @@ pub fn balance_table(engine: &Engine, steps: usize) -> Result<BalanceRow, MechEr
     })
 }
 
-/// The classical table as text: one line per row, each amplitude as "exact (first
-/// order)", forces over m r ω² (primary) and m r ω² λ (secondary), couples over m r ω² a
+/// The classical table as text: one line per row, the firing order, each amplitude as
+/// "exact (first order)", and the throws; forces over m r ω² (primary) and m r ω² λ (secondary), couples over m r ω² a
 /// and m r ω² λ a.
 pub fn table_text(rows: &[BalanceRow]) -> String {
     let mut t = format!(
-        "{:<16} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
-        "engine", "firing order / throws", "primary F", "secondary F", "primary M", "secondary M"
+        "{:<16} {:<16} {:>17} {:>17} {:>17} {:>17}  {}\n",
+        "engine", "firing order", "primary F", "secondary F", "primary M", "secondary M", "throws"
     );
     t += &format!(
-        "{:<16} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
+        "{:<16} {:<16} {:>17} {:>17} {:>17} {:>17}\n",
         "", "", "[m r ω²]", "[m r ω² r/l]", "[m r ω² a]", "[m r ω² a r/l]"
     );
     let cell = |v: [f64; 2]| {
@@ -576,13 +620,14 @@ pub fn table_text(rows: &[BalanceRow]) -> String {
     };
     for r in rows {
         t += &format!(
-            "{:<16} {:<22} {:>17} {:>17} {:>17} {:>17}\n",
+            "{:<16} {:<16} {:>17} {:>17} {:>17} {:>17}  {}\n",
             r.engine,
             r.firing,
             cell(r.primary_force),
             cell(r.secondary_force),
             cell(r.primary_couple),
-            cell(r.secondary_couple)
+            cell(r.secondary_couple),
+            r.throws
         );
     }
     t
@@ -689,5 +734,40 @@ mod tests {
             .with_firing(&[1, 2, 4, 3])
             .unwrap();
         assert_eq!(deg(&f), vec![0.0, 180.0, 180.0, 0.0]);
+        // The even firing order found for a crank gives that crank back.
+        for e in [
+            Engine::new(Layout::Vee { bank: PI / 2.0 }, 8).unwrap(),
+            Engine::new(
+                Layout::Vee {
+                    bank: 2.0 * PI / 3.0,
+                },
+                6,
+            )
+            .unwrap(),
+            Engine::new(Layout::Boxer, 4).unwrap(),
+            Engine::new(Layout::Boxer, 6).unwrap(),
+            Engine::new(Layout::Inline, 6).unwrap(),
+        ] {
+            let order = e
+                .even_firing()
+                .unwrap_or_else(|| panic!("{}", e.describe()));
+            if e.layout != Layout::Inline {
+                assert_eq!(e.firing.as_ref(), Some(&order));
+            }
+            let again = e.clone().with_firing(&order).unwrap();
+            assert_eq!(deg(&again), deg(&e), "{} {order:?}", e.describe());
+        }
+        // A 60° V6 on three shared pins fires 60° and 180° apart: uneven.
+        let v6 = Engine::new(Layout::Vee { bank: PI / 3.0 }, 6).unwrap();
+        assert_eq!(v6.firing, None);
+        let v8 = Engine::new(Layout::Vee { bank: PI / 2.0 }, 8).unwrap();
+        assert_eq!(v8.firing, Some(vec![1, 5, 4, 2, 6, 8, 7, 3]));
+        assert_eq!(Engine::new(Layout::Inline, 2).unwrap().even_firing(), None);
+        assert_eq!(
+            Engine::new(Layout::Vee { bank: PI / 2.0 }, 2)
+                .unwrap()
+                .even_firing(),
+            None
+        );
     }
 }
