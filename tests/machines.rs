@@ -40,6 +40,7 @@ mod compile_pass;
 mod dimensions;
 mod docs_figures;
 mod elements;
+mod engines;
 mod flywheel;
 mod flywheel_designer;
 mod friction;

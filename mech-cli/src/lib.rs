@@ -17,6 +17,7 @@ pub mod cam;
 pub mod check;
 pub mod columns;
 pub mod draw;
+pub mod engine;
 pub mod flywheel;
 pub mod import;
 pub mod limits;

@@ -7,8 +7,8 @@ use mech_cli::columns::Level;
 use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
-    balance, cam, check, draw, flywheel, import, limits, optimize, quantity, regime, report, serve,
-    shaking, simulate, size, solve, source, strength, synth, synth_exact, Failure,
+    balance, cam, check, draw, engine, flywheel, import, limits, optimize, quantity, regime,
+    report, serve, shaking, simulate, size, solve, source, strength, synth, synth_exact, Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -143,6 +143,10 @@ enum Command {
     /// shaking force), the check's errors with the file's line; it follows FILE as it
     /// changes on disk, and dragging a point writes its coordinates into FILE.
     Serve(serve::ServeArgs),
+    /// An engine of several cylinders (in-line, V, boxer) on one crankshaft, written as a
+    /// `.mech` file with -o; its primary and secondary shaking forces and couples, exact and
+    /// to the textbook's first order, on standard output.
+    Engine(engine::EngineArgs),
     /// Dimensional synthesis: a four-bar (O2, O4, A, B, P, input O2) from what it must do,
     /// written as a `.mech` file.
     #[command(subcommand)]
@@ -269,6 +273,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Shaking(args) => shaking::run(args, stdout),
         Command::Balance(args) => balance::run(args, stdout),
         Command::Serve(args) => serve::run(args),
+        Command::Engine(args) => engine::run(args, stdout),
         Command::Synth(Synth::Function(args)) => synth_exact::function(args, stdout),
         Command::Synth(Synth::Motion(args)) => synth_exact::motion(args, stdout),
         Command::Synth(Synth::Path(args)) => synth::run_path(args, stdout),

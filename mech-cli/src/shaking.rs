@@ -1,7 +1,9 @@
 //! `mech shaking FILE --speed QD [--from A --to B --steps N] [--svg FILE]`: the shaking
 //! force and moment on the frame over a cycle (SPEC 3g, `mech_core::design::balance`), one
-//! row per input value (the grid of `mech sweep`); the peaks, RMS values and the primary and
-//! secondary harmonics on standard error; a polar diagram of the force as SVG.
+//! row per input value (the grid of `mech sweep`), with the couples about the x and y axes
+//! (`shaking.mx`, `shaking.my`) when some link is out of the plane z = 0 (`plane: z`); the
+//! peaks, RMS values and the primary and secondary harmonics on standard error; a polar
+//! diagram of the force as SVG.
 
 use crate::output::{Format, Writer};
 use crate::{limits, quantity, source, Failure};
@@ -59,7 +61,8 @@ pub fn run(args: ShakingArgs, out: impl Write) -> Result<(), Failure> {
         std::fs::write(path, polar_svg(&cycle))
             .map_err(|e| Failure::usage(format!("--svg {}: {e}", path.display())))?;
     }
-    let names: Vec<String> = ["q", "shaking.fx", "shaking.fy", "shaking.moment"]
+    let planes = model.has_planes();
+    let mut names: Vec<String> = ["q", "shaking.fx", "shaking.fy", "shaking.moment"]
         .iter()
         .map(|s| s.to_string())
         .collect();
@@ -68,9 +71,18 @@ pub fn run(args: ShakingArgs, out: impl Write) -> Result<(), Failure> {
     } else {
         "m"
     };
-    let mut w = Writer::new(out, args.format, &names, &[unit_q, "N", "N", "N·m"])?;
+    let mut units = vec![unit_q, "N", "N", "N·m"];
+    if planes {
+        names.extend(["shaking.mx".to_string(), "shaking.my".to_string()]);
+        units.extend(["N·m", "N·m"]);
+    }
+    let mut w = Writer::new(out, args.format, &names, &units)?;
     for (q, s) in cycle.q.iter().zip(&cycle.shaking) {
-        w.row(&[*q, s.force.x, s.force.y, s.moment])?;
+        let mut row = vec![*q, s.force.x, s.force.y, s.moment];
+        if planes {
+            row.extend([s.mx, s.my]);
+        }
+        w.row(&row)?;
     }
     w.finish()?;
     Ok(())
@@ -82,12 +94,24 @@ pub fn summary_text(s: &ShakingSummary) -> String {
         "shaking force:  peak {:.12e} N, rms {:.12e} N\nshaking moment: peak {:.12e} N·m, rms {:.12e} N·m\n",
         s.peak_force, s.rms_force, s.peak_moment, s.rms_moment
     );
+    if s.peak_couple > 0.0 {
+        t += &format!(
+            "shaking couple about x and y: peak {:.12e} N·m\n",
+            s.peak_couple
+        );
+    }
     for h in &s.harmonics {
         let name = if h.order == 1 { "primary" } else { "secondary" };
         t += &format!(
             "{name} (order {}): fx = {:.12e} cos + {:.12e} sin N, fy = {:.12e} cos + {:.12e} sin N\n",
             h.order, h.fx[0], h.fx[1], h.fy[0], h.fy[1]
         );
+        if s.peak_couple > 0.0 {
+            t += &format!(
+                "{name} couple (order {}): mx = {:.12e} cos + {:.12e} sin N·m, my = {:.12e} cos + {:.12e} sin N·m\n",
+                h.order, h.mx[0], h.mx[1], h.my[0], h.my[1]
+            );
+        }
     }
     t
 }

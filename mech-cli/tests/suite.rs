@@ -10,6 +10,7 @@
 mod balance;
 mod cli;
 mod draw;
+mod engine;
 mod hostile;
 mod import;
 mod optimize;

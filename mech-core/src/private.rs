@@ -73,7 +73,7 @@ pub mod model {
     };
 }
 pub mod shape {
-    pub use crate::model::shape::{MassProperties, Material, Shape};
+    pub use crate::model::shape::{Axial, MassProperties, Material, Shape};
 }
 pub mod params {
     pub use crate::solvers::params::LinkTerms;

@@ -490,6 +490,29 @@ def test_shaking_is_minus_the_ground_reactions():
     assert np.max(np.abs(s["shaking.fx"] - fx)) <= 1e-9 * peak
     assert np.max(np.abs(s["shaking.fy"] - fy)) <= 1e-9 * peak
     assert np.max(np.abs(s["shaking.moment"] - mo)) <= 1e-9 * peak
+def test_shaking_couples_of_two_planes():
+    """Two 1 kg counterweights at (±0.1, 0) on one crank in the planes ±0.2 m: no force,
+    the couples (Mx, My) = 2 z (−f_y, f_x) of the weight at +z, f = m ρ ω² (cos q, sin q) at
+    constant ω."""
+    m = mech.Mechanism.from_dsl("""pub struct TwoPlanes {
+        ground { O: (0.0, 0.0) },
+        link crank {
+            points { O, A: (0.1, 0.0) },
+            counterweight: (1.0 kg, at (0.1, 0.0), plane: 200 mm),
+            counterweight: (1.0 kg, at (-0.1, 0.0), plane: -200 mm),
+        },
+        joints { O: revolute(ground, crank) },
+        input: O,
+    }""")
+    q = np.linspace(0.0, 2 * math.pi, 13)
+    w = 30.0
+    s = m.shaking(q, w, 0.0)
+    f = 1.0 * 0.1 * w * w
+    assert np.max(np.abs(s["shaking.fx"])) + np.max(np.abs(s["shaking.fy"])) <= 1e-12 * f
+    assert np.max(np.abs(s["shaking.mx"] + 0.4 * f * np.sin(q))) <= 1e-12 * f
+    assert np.max(np.abs(s["shaking.my"] - 0.4 * f * np.cos(q))) <= 1e-12 * f
+
+
 def _known_curve(n):
     """n points of the coupler curve of the crank-rocker O2 (0, 0), O4 (0.3, 0), A (0, 0.1),
     B (0.25, 0.2), P (0.1, 0.3), at crank angles 0.1 + 2 pi k / n (the input q of the file

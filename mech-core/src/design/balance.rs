@@ -22,10 +22,11 @@ pub struct ShakingCycle {
     pub shaking: Vec<Shaking>,
 }
 
-/// The Fourier coefficients of one order n of the shaking force over the cycle: with the
+/// The Fourier coefficients of one order n of the shaking over the cycle: with the
 /// cycle's phase ψ = 2π (q − q_from)/(q_to − q_from) and N samples (the last grid value,
 /// the period's repeat of the first, left out), a = (2/N) Σ F cos nψ, b = (2/N) Σ F sin nψ
-/// (N), so that F ≈ Σ_n a cos nψ + b sin nψ.
+/// for each component F, so that F ≈ F₀ + Σ_n a cos nψ + b sin nψ (exact for n < N/2 when
+/// F has no harmonics above N/2 − 1).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Harmonic {
     /// The order n (1 primary, 2 secondary).
@@ -34,6 +35,38 @@ pub struct Harmonic {
     pub fx: [f64; 2],
     /// a and b of F_y, N.
     pub fy: [f64; 2],
+    /// a and b of the moment about the z axis, N·m.
+    pub moment: [f64; 2],
+    /// a and b of the couple about the x axis, N·m.
+    pub mx: [f64; 2],
+    /// a and b of the couple about the y axis, N·m.
+    pub my: [f64; 2],
+}
+
+impl Harmonic {
+    /// The amplitude of the order's force, the largest |F| of the ellipse
+    /// F(ψ) = a cos nψ + b sin nψ traced by (F_x, F_y): its semi-major axis
+    /// √((|a|² + |b|²)/2 + √(((|a|² − |b|²)/2)² + (a·b)²)), with a = (a_x, a_y) and
+    /// b = (b_x, b_y) (N). For a force along a line, A of A cos(nψ + φ).
+    pub fn force_amplitude(&self) -> f64 {
+        semi_major([self.fx[0], self.fy[0]], [self.fx[1], self.fy[1]])
+    }
+    /// The amplitude of the order's couple about the transverse axes (Mx, My), as
+    /// [`Harmonic::force_amplitude`] (N·m).
+    pub fn couple_amplitude(&self) -> f64 {
+        semi_major([self.mx[0], self.my[0]], [self.mx[1], self.my[1]])
+    }
+}
+
+/// The semi-major axis of the ellipse a cos t + b sin t (a, b vectors of the plane):
+/// √((|a|² + |b|²)/2 + √(((|a|² − |b|²)/2)² + (a·b)²)).
+fn semi_major(a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (aa, bb, ab) = (
+        a[0] * a[0] + a[1] * a[1],
+        b[0] * b[0] + b[1] * b[1],
+        a[0] * b[0] + a[1] * b[1],
+    );
+    (0.5 * (aa + bb) + (0.25 * (aa - bb).powi(2) + ab * ab).sqrt()).sqrt()
 }
 
 /// Peak and RMS values of a [`ShakingCycle`] and its harmonics of orders 1 and 2.
@@ -47,6 +80,8 @@ pub struct ShakingSummary {
     pub peak_moment: f64,
     /// √(mean M²), N·m.
     pub rms_moment: f64,
+    /// max √(Mx² + My²) over the samples, N·m: the couple about the transverse axes.
+    pub peak_couple: f64,
     /// The primary (order 1) and secondary (order 2) harmonics of F.
     pub harmonics: [Harmonic; 2],
 }
@@ -98,6 +133,26 @@ impl ShakingCycle {
         let nf = n.max(1) as f64;
         let mean2 =
             |f: &dyn Fn(&Shaking) -> f64| body.iter().map(|s| f(s).powi(2)).sum::<f64>() / nf;
+        ShakingSummary {
+            peak_force: all.iter().map(|s| s.force.norm()).fold(0.0, f64::max),
+            rms_force: mean2(&|s| s.force.norm()).sqrt(),
+            peak_moment: all.iter().map(|s| s.moment.abs()).fold(0.0, f64::max),
+            rms_moment: mean2(&|s| s.moment).sqrt(),
+            peak_couple: all.iter().map(|s| s.mx.hypot(s.my)).fold(0.0, f64::max),
+            harmonics: [self.harmonic(1), self.harmonic(2)],
+        }
+    }
+
+    /// The harmonic of order `order` (see [`Harmonic`]) of every component of the
+    /// shaking, over the samples but the last when there are at least two.
+    pub fn harmonic(&self, order: usize) -> Harmonic {
+        let all = &self.shaking;
+        let n = if all.len() > 1 {
+            all.len() - 1
+        } else {
+            all.len()
+        };
+        let nf = n.max(1) as f64;
         let (from, to) = (
             self.q.first().copied().unwrap_or(0.0),
             self.q.last().copied().unwrap_or(0.0),
@@ -107,28 +162,25 @@ impl ShakingCycle {
         } else {
             std::f64::consts::TAU
         };
-        let harmonic = |order: usize| {
-            let mut h = Harmonic {
-                order,
-                ..Harmonic::default()
-            };
-            for (q, s) in self.q.iter().zip(body) {
-                let psi = std::f64::consts::TAU * order as f64 * (q - from) / span;
-                let (sn, cs) = psi.sin_cos();
-                h.fx[0] += 2.0 / nf * s.force.x * cs;
-                h.fx[1] += 2.0 / nf * s.force.x * sn;
-                h.fy[0] += 2.0 / nf * s.force.y * cs;
-                h.fy[1] += 2.0 / nf * s.force.y * sn;
-            }
-            h
+        let mut h = Harmonic {
+            order,
+            ..Harmonic::default()
         };
-        ShakingSummary {
-            peak_force: all.iter().map(|s| s.force.norm()).fold(0.0, f64::max),
-            rms_force: mean2(&|s| s.force.norm()).sqrt(),
-            peak_moment: all.iter().map(|s| s.moment.abs()).fold(0.0, f64::max),
-            rms_moment: mean2(&|s| s.moment).sqrt(),
-            harmonics: [harmonic(1), harmonic(2)],
+        for (q, s) in self.q.iter().zip(&all[..n]) {
+            let psi = std::f64::consts::TAU * order as f64 * (q - from) / span;
+            let (sn, cs) = psi.sin_cos();
+            for (c, v) in [
+                (&mut h.fx, s.force.x),
+                (&mut h.fy, s.force.y),
+                (&mut h.moment, s.moment),
+                (&mut h.mx, s.mx),
+                (&mut h.my, s.my),
+            ] {
+                c[0] += 2.0 / nf * v * cs;
+                c[1] += 2.0 / nf * v * sn;
+            }
         }
+        h
     }
 }
 

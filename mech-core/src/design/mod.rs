@@ -4,9 +4,11 @@
 //! four-bars from the motion they must make; [`optimize`]: any mechanism's named numbers
 //! varied against an objective of its dynamics, written back by [`rewrite`]; [`balance`]:
 //! the shaking force and moment over a cycle, and the counterweights that reduce them;
-//! `nelder_mead`: the local search the last two share.
+//! `nelder_mead`: the local search the last two share; [`engine`]: engines of several
+//! cylinders, their files and classical balance tables.
 
 pub mod balance;
+pub mod engine;
 pub(crate) mod nelder_mead;
 pub mod optimize;
 pub mod rewrite;

@@ -3,7 +3,7 @@
 //! `potential_energy` call these once per link whose declaration has the term (see
 //! [`crate::solvers::params::LinkTerms`]), with the run-time mass and inertia; units SI.
 
-use crate::kernel::link_state::{cross, LinkGeom, LinkMotion, V2};
+use crate::kernel::link_state::{cross, perp, rotate, LinkGeom, LinkMotion, V2};
 
 /// Kinetic energy of a link, T = ½ (m |v_G|² + I_G ω²) (J), with m (kg), I_G (kg·m²)
 /// from `l` and the cg velocity v_G (m/s) and angular velocity ω (rad/s) from `m`.
@@ -30,24 +30,49 @@ pub fn potential(l: &LinkGeom, m: &LinkMotion, g: V2) -> f64 {
 /// SPEC 3g): what the moving links and the motor's stator put on the frame by the links'
 /// inertia, with no loads and no gravity, F = −Σ m a_G (N) and, about the origin of the
 /// global frame, M = −Σ (r_G × m a_G + I_G α) (N·m, counter-clockwise positive).
+///
+/// With links in several planes along the shaft axis z (`plane: z`), the inertia forces
+/// −mᵢ aᵢ of the mass elements at heights zᵢ also have couples about the transverse axes,
+/// M = Σ rᵢ × fᵢ: Mx = −Σ zᵢ f_yᵢ = Σ zᵢ mᵢ a_yᵢ and My = Σ zᵢ f_xᵢ = −Σ zᵢ mᵢ a_xᵢ (N·m),
+/// zero when every plane is 0.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Shaking {
     /// F = −Σ m a_G, N.
     pub force: V2,
     /// M = −Σ (r_G × m a_G + I_G α) about the origin, N·m.
     pub moment: f64,
+    /// The couple about the x axis, Mx = Σ zᵢ mᵢ a_yᵢ, N·m.
+    pub mx: f64,
+    /// The couple about the y axis, My = −Σ zᵢ mᵢ a_xᵢ, N·m.
+    pub my: f64,
 }
 
 impl Shaking {
     /// Add one link's share: −m a_G to the force and −(r_G × m a_G + I_G α) to the
     /// moment, with m (kg), I_G (kg·m²) from `l` and r_G (m), a_G (m/s²), α (rad/s²) from
-    /// `m`. The generated `shaking` and the run-time one call this once per link with
-    /// inertia terms.
+    /// `m`; and to the transverse couples, with the link's rigid motion
+    /// aᵢ = a_G + α k × (rᵢ − G) − ω² (rᵢ − G), its axial moment
+    /// A = Σ zᵢ mᵢ aᵢ = m z̄ a_G + α k × P − ω² P (z̄ = `l.plane` m, P = `l.product` kg·m²
+    /// turned by the link's rotation θ − θ_ref), Mx += A_y and My −= A_x. The generated
+    /// `shaking` and the run-time one call this once per link with inertia terms.
     #[inline]
     pub fn add(&mut self, l: &LinkGeom, m: &LinkMotion) {
         let f = m.cg_acc * l.mass;
         self.force -= f;
         self.moment -= cross(m.cg, f) + l.inertia * m.alpha;
+        let mut a = f * l.plane;
+        if l.product != V2::zeros() {
+            let (s, c) = m.angle.sin_cos();
+            // (cos θ, sin θ) times the conjugate of (cos θ_ref, sin θ_ref)
+            let turn = V2::new(
+                c * l.dir_ref.x + s * l.dir_ref.y,
+                s * l.dir_ref.x - c * l.dir_ref.y,
+            );
+            let p = rotate(turn, l.product);
+            a += perp(p) * m.alpha - p * (m.omega * m.omega);
+        }
+        self.mx += a.y;
+        self.my -= a.x;
     }
 }
 
@@ -66,6 +91,8 @@ mod tests {
             inertia: 0.05,
             inertia_anchor: 0.05 + 2.0 * 0.1,
             cg_span: V2::zeros(),
+            plane: 0.0,
+            product: V2::zeros(),
         }
     }
 

@@ -209,6 +209,12 @@ pub struct LinkGeom {
     /// G − P₁ = κ₁ e + κ₂ perp(e), e = P₂ − P₁ now ([`LinkGeom::cg_by_span`]); zero for a
     /// link with fewer than two distinct points.
     pub cg_span: V2,
+    /// The axial position z̄ of the cg along the shaft axis z (m), `plane: z`
+    /// ([`crate::model::shape::Axial`]): only the shaking couples about x and y read it.
+    pub plane: f64,
+    /// The products of inertia P = Σ mᵢ (zᵢ − z̄)(rᵢ − G) in the drawing (kg·m²), turning
+    /// with the link: in a pose of angle θ it is rotated by θ − θ_ref.
+    pub product: V2,
 }
 
 /// Position, velocity and acceleration of a point (`docs/conventions.md#generated-api`), m, m/s, m/s².

@@ -84,9 +84,13 @@ pub struct LinkDecl<S> {
     pub shape: Option<ShapeDecl<S>>,
     /// `material: NAME` or `material { .. }`.
     pub material: Option<MaterialDecl<S>>,
-    /// Each `counterweight: (MASS, at (x, y))`: a point mass (kg) fixed to the link at a
-    /// point of the drawing (m), in declaration order, with where it was written.
-    pub counterweights: Vec<(Num<S>, Pair<S>, S)>,
+    /// Each `counterweight: (MASS, at (x, y))` or `(MASS, at (x, y), plane: Z)`: a point
+    /// mass (kg) fixed to the link at a point of the drawing (m), in the plane z (m; `None`:
+    /// the link's), in declaration order, with where it was written.
+    pub counterweights: Vec<(Num<S>, Pair<S>, Option<Num<S>>, S)>,
+    /// `plane: z`: the axial position of the link's plane along the z axis (m), for the
+    /// shaking couples about the transverse axes; `None` = 0.
+    pub plane: Option<Num<S>>,
 }
 
 /// A link's `shape:` as written: the keyword (`bar`, `rod`, `tube`, `disc`, `plate`) and
@@ -412,6 +416,10 @@ pub struct Link {
     /// The shape and material the mass, cg and inertia came from, when the link was
     /// declared by them.
     pub body: Option<(crate::model::shape::Shape, crate::model::shape::Material)>,
+    /// `plane: z` and the counterweights in other planes: the axial position of the cg
+    /// (m) and the products of inertia (kg·m²) ([`crate::model::shape::Axial`]); zero for
+    /// a mechanism in one plane.
+    pub axial: crate::model::shape::Axial,
 }
 
 impl Link {
@@ -574,6 +582,14 @@ pub struct Model {
 }
 
 impl Model {
+    /// True when some link lies out of the plane z = 0 or has products of inertia
+    /// (`plane: z`, a counterweight in another plane, [`crate::model::shape::Axial`]):
+    /// then the shaking has couples about the x and y axes (SPEC 3g).
+    pub fn has_planes(&self) -> bool {
+        self.links
+            .iter()
+            .any(|l| l.axial != crate::model::shape::Axial::default())
+    }
     /// N: the number of links, ground included.
     pub fn n_links(&self) -> usize {
         self.links.len()

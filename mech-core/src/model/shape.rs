@@ -70,6 +70,49 @@ pub struct MassProperties {
     pub inertia: f64,
 }
 
+/// How a link's mass lies along the shaft axis z, normal to the plane of motion (SPEC 3g,
+/// `plane: z`): the axial position z̄ of its cg (m) and its products of inertia
+/// P = Σ mᵢ (zᵢ − z̄)(rᵢ − G) (kg·m², a vector of the drawing: (I_xz, I_yz) up to sign),
+/// zero for a body symmetric about its plane. Only the shaking couples about the
+/// transverse axes depend on them ([`crate::kernel::energy::Shaking::add`]); the planar
+/// kinematics and dynamics do not.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Axial {
+    /// z̄, the axial position of the cg, m.
+    pub plane: f64,
+    /// P = Σ mᵢ (zᵢ − z̄)(rᵢ − G) in the drawing, kg·m².
+    pub product: [f64; 2],
+}
+
+impl Axial {
+    /// Two bodies fixed together (a crankshaft and a counterweight in another plane), of
+    /// mass properties `a` (self's) and `b` (other's), combined cg `g` (m): with
+    /// m = m₁ + m₂, z̄ = (m₁ z₁ + m₂ z₂)/m and P = P₁ + P₂ + m₁ z₁ (G₁ − G) + m₂ z₂ (G₂ − G)
+    /// (independent of the origin of z, since Σ mₖ (Gₖ − G) = 0). Massless: self's.
+    pub fn combine(
+        self,
+        a: &MassProperties,
+        other: Axial,
+        b: &MassProperties,
+        g: [f64; 2],
+    ) -> Axial {
+        let mass = a.mass + b.mass;
+        if mass == 0.0 {
+            return self;
+        }
+        let moment = |m: f64, z: f64, c: [f64; 2], i: usize| m * z * (c[i] - g[i]);
+        Axial {
+            plane: (a.mass * self.plane + b.mass * other.plane) / mass,
+            product: [0, 1].map(|i| {
+                self.product[i]
+                    + other.product[i]
+                    + moment(a.mass, self.plane, a.cg, i)
+                    + moment(b.mass, other.plane, b.cg, i)
+            }),
+        }
+    }
+}
+
 impl MassProperties {
     /// Two bodies fixed together (a link and a counterweight): m = m₁ + m₂,
     /// G = (m₁ G₁ + m₂ G₂)/m, and by the parallel-axis theorem

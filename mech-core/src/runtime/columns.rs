@@ -35,7 +35,9 @@ pub enum Part {
     /// `inertia`, `inertia_derivative`, `moment`: Zhukovski's I*, dI*/dq, M* (one input).
     Zhukovski,
     /// `shaking.fx`, `shaking.fy` (N), `shaking.moment` (N·m): the shaking force and moment
-    /// on the frame ([`crate::solvers::traits::Machine::shaking`]); not in [`Part::ALL`].
+    /// on the frame ([`crate::solvers::traits::Machine::shaking`]), and with links in
+    /// several planes ([`crate::model::Model::has_planes`]) `shaking.mx`, `shaking.my`
+    /// (N·m), the couples about the x and y axes; not in [`Part::ALL`].
     Shaking,
 }
 
@@ -74,6 +76,8 @@ pub struct Columns {
     pub units: Vec<&'static str>,
     /// `parts` as bits (1 << part), for [`Columns::has`] at every row.
     mask: u16,
+    /// The shaking has the couples about x and y (links in several planes).
+    planes: bool,
 }
 
 impl Columns {
@@ -105,6 +109,7 @@ impl Columns {
             names: Vec::new(),
             units: Vec::new(),
             mask,
+            planes: model.has_planes(),
         };
         let has = |p: Part| c.parts.contains(&p);
         let (inputs, positions, rates, reactions, driver, vp, zhukovski) = (
@@ -193,6 +198,10 @@ impl Columns {
             c.push("shaking.fx".into(), "N");
             c.push("shaking.fy".into(), "N");
             c.push("shaking.moment".into(), "N·m");
+            if c.planes {
+                c.push("shaking.mx".into(), "N·m");
+                c.push("shaking.my".into(), "N·m");
+            }
         }
         c
     }
@@ -390,6 +399,9 @@ impl Columns {
         }
         if let Some(sh) = shaking {
             row.extend([sh.force.x, sh.force.y, sh.moment]);
+            if self.planes {
+                row.extend([sh.mx, sh.my]);
+            }
         }
         debug_assert_eq!(row.len(), self.names.len());
         Ok(row)

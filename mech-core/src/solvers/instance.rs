@@ -76,6 +76,8 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
                     }
                     None => V2::zeros(),
                 },
+                plane: link.axial.plane,
+                product: V2::new(link.axial.product[0], link.axial.product[1]),
             }
         })
         .collect();

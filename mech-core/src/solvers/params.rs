@@ -90,6 +90,7 @@ mod tests {
             flywheel: 0.0,
             cg: [0.0, 0.0],
             body: None,
+            axial: Default::default(),
         }
     }
 

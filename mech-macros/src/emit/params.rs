@@ -384,12 +384,13 @@ fn model_expr(cx: &Ctx) -> TokenStream {
     let links = model.links.iter().enumerate().map(|(l, lk)| {
         let (n, pts) = (&lk.name, &lk.points);
         if l == 0 {
-            return quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: None, inertia: 0.0, flywheel: 0.0, cg: [0.0, 0.0], body: None });
+            return quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: None, inertia: 0.0, flywheel: 0.0, cg: [0.0, 0.0], body: None, axial: #p::shape::Axial { plane: 0.0, product: [0.0, 0.0] } });
         }
         let lid = &cx.link_ids[l];
         let mass = if lk.mass.is_some() { quote!(Some(p.links.#lid.mass)) } else { quote!(None) };
         let body = if lk.body.is_some() { quote!(Some((p.shapes.#lid.shape, p.shapes.#lid.material))) } else { quote!(None) };
-        quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: #mass, inertia: p.links.#lid.inertia, flywheel: p.links.#lid.flywheel, cg: [p.links.#lid.cg.x, p.links.#lid.cg.y], body: #body })
+        let (z, px, py) = (f64s(lk.axial.plane), f64s(lk.axial.product[0]), f64s(lk.axial.product[1]));
+        quote!(#p::model::Link { name: #n.into(), points: ::std::vec::Vec::from([#(#pts),*]), mass: #mass, inertia: p.links.#lid.inertia, flywheel: p.links.#lid.flywheel, cg: [p.links.#lid.cg.x, p.links.#lid.cg.y], body: #body, axial: #p::shape::Axial { plane: #z, product: [#px, #py] } })
     });
     let joints = model.joints.iter().enumerate().map(|(j, jt)| {
         let (n, a, b, pt) = (&jt.name, jt.a, jt.b, jt.point);

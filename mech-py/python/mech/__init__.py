@@ -415,7 +415,9 @@ class Mechanism:
     def shaking(self, q, qd=0.0, qdd=0.0, errors="raise"):
         """The shaking force and moment on the frame (no loads, no gravity): ``shaking.fx``,
         ``shaking.fy`` = −Σ m a_G (N) and ``shaking.moment`` = −Σ (r_G × m a_G + I_G α)
-        about the origin (N·m), with ``q``."""
+        about the origin (N·m), with ``q``; with links in several planes (``plane: z``)
+        also ``shaking.mx`` = Σ z m a_y and ``shaking.my`` = −Σ z m a_x (N·m), the
+        couples about the x and y axes."""
         return self._table(["inputs", "shaking"], q, qd, qdd, None, errors)
 
     def driver_action(self, q, qd=0.0, qdd=0.0, loads=None, errors="raise"):

@@ -29,6 +29,7 @@ pub(super) fn link_body(
         shape: None,
         material: None,
         counterweights: Vec::new(),
+        plane: None,
     };
     // `ground { O2: (0, 0), O4: (..) }` lists points directly.
     if ground && !content.peek2(syn::token::Brace) {
@@ -80,10 +81,28 @@ pub(super) fn link_body(
                 }
                 let pos = scope.point_expr(&inner)?;
                 let _: Option<Token![,]> = inner.parse()?;
-                if !inner.is_empty() {
-                    return Err(inner.error("expected `(MASS, at (x, y))`"));
+                let mut plane = None;
+                if inner.peek(Ident) {
+                    let kw: Ident = inner.parse()?;
+                    if kw != "plane" {
+                        return Err(syn::Error::new(
+                            kw.span(),
+                            format!("unknown counterweight item `{kw}`: expected `plane: Z`, as in `counterweight: (MASS, at (x, y), plane: Z)`"),
+                        ));
+                    }
+                    inner.parse::<Token![:]>()?;
+                    plane = Some(scope.scalar(&inner, Dim::LENGTH, "a counterweight's plane")?);
+                    let _: Option<Token![,]> = inner.parse()?;
                 }
-                decl.counterweights.push((mass, pos, key.span()));
+                if !inner.is_empty() {
+                    return Err(inner
+                        .error("expected `(MASS, at (x, y))` or `(MASS, at (x, y), plane: Z)`"));
+                }
+                decl.counterweights.push((mass, pos, plane, key.span()));
+            }
+            "plane" if !ground => {
+                content.parse::<Token![:]>()?;
+                decl.plane = Some(scope.scalar(&content, Dim::LENGTH, "a link's plane")?);
             }
             "material" if !ground => {
                 decl.material = Some(material(&content, scope, key.span())?);
@@ -92,7 +111,7 @@ pub(super) fn link_body(
                 let expected = if ground {
                     "`points`"
                 } else {
-                    "`points`, `mass`, `inertia`, `cg`, `shape`, `material` or `counterweight`"
+                    "`points`, `mass`, `inertia`, `cg`, `shape`, `material`, `counterweight` or `plane`"
                 };
                 return Err(syn::Error::new(
                     key.span(),

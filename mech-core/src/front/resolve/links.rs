@@ -2,7 +2,7 @@
 //! each link's points, mass and cg; and [`Known`], what the later sections look names up in.
 
 use super::{list, Diagnostic};
-use crate::model::shape::MassProperties;
+use crate::model::shape::{Axial, MassProperties};
 use crate::model::*;
 use std::collections::HashMap;
 
@@ -90,6 +90,10 @@ pub(super) fn links<S: Clone>(
                     .unwrap_or([0.0, 0.0])
             }),
             body: None,
+            axial: Axial {
+                plane: l.plane.as_ref().map(|z| z.value).unwrap_or(0.0),
+                product: [0.0, 0.0],
+            },
         };
         body(l, &mut link, points, errs);
         counterweights(l, &mut link, errs);
@@ -155,11 +159,12 @@ fn body<S: Clone>(
     }
 }
 
-/// Each `counterweight: (MASS, at (x, y))` of `l` added to `link` as a point mass fixed
-/// to it ([`MassProperties::combine`]); a negative mass, and a counterweight beside
-/// `shape:`, are errors.
+/// Each `counterweight: (MASS, at (x, y))` (or `.., plane: Z)`) of `l` added to `link` as
+/// a point mass fixed to it ([`MassProperties::combine`], and along the axis
+/// [`Axial::combine`]: in the plane Z, the link's own when not given); a negative mass, and
+/// a counterweight beside `shape:`, are errors.
 fn counterweights<S: Clone>(l: &LinkDecl<S>, link: &mut Link, errs: &mut Vec<Diagnostic<S>>) {
-    for (mass, at, span) in &l.counterweights {
+    for (mass, at, plane, span) in &l.counterweights {
         if !(mass.value >= 0.0) {
             errs.push(Diagnostic::at(
                 mass.span.clone(),
@@ -182,11 +187,17 @@ fn counterweights<S: Clone>(l: &LinkDecl<S>, link: &mut Link, errs: &mut Vec<Dia
             cg: link.cg,
             inertia: link.inertia,
         };
-        let both = own.combine(MassProperties {
+        let weight = MassProperties {
             mass: mass.value,
             cg: at.value,
             inertia: 0.0,
-        });
+        };
+        let both = own.combine(weight);
+        let in_plane = Axial {
+            plane: plane.as_ref().or(l.plane.as_ref()).map_or(0.0, |z| z.value),
+            product: [0.0, 0.0],
+        };
+        link.axial = link.axial.combine(&own, in_plane, &weight, both.cg);
         link.mass = Some(both.mass);
         link.cg = both.cg;
         link.inertia = both.inertia;
