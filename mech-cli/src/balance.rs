@@ -19,7 +19,7 @@ pub enum Method {
     /// masses and the fraction C of the reciprocating ones.
     Force,
     /// Counterweights on the ground-pinned links minimising the weighted RMS of shaking
-    /// force, shaking moment and driver torque (`--weights`), by a compass search.
+    /// force, shaking moment and driver torque (`--weights`), by Nelder–Mead.
     Optimal,
 }
 

@@ -1202,12 +1202,134 @@ fn optimize(
     Ok((o.values, o.objective, o.initial, o.history, o.text, o.evaluations))
 }
 
+/// Counterweights for the mechanism `text` (`mech_core::design::balance`, SPEC 3g), the
+/// balanced text returned: `method` "force" (`force_balance`: a four-bar exactly; a
+/// slider-crank's crank for its rotating masses and the fraction `fraction` of the
+/// reciprocating one) or "optimal" (`optimal_balance` at `speed` rad/s with `weights` on
+/// the RMS of shaking force, shaking moment and driver torque); `radius` (m) the
+/// counterweights' distance from their pivots, `None` for each link's own length.
+#[pyfunction]
+#[pyo3(signature = (text, speed, method, fraction, radius, weights))]
+fn balance(
+    py: Python<'_>,
+    text: &str,
+    speed: f64,
+    method: &str,
+    fraction: f64,
+    radius: Option<f64>,
+    weights: (f64, f64, f64),
+) -> PyResult<String> {
+    use mech_core::design::balance::{
+        force_balance, optimal_balance, write_counterweights, BalanceWeights,
+    };
+    check_text(text, "the text")?;
+    let m = mech_core::Mechanism::from_dsl(text).map_err(|e| py_err(py, e))?;
+    if m.dof() != 1 {
+        return Err(invalid("balancing takes a mechanism with one input"));
+    }
+    let weights = match method {
+        "force" => force_balance(m.model(), fraction, radius),
+        "optimal" => {
+            let w = BalanceWeights {
+                force: weights.0,
+                moment: weights.1,
+                driver: weights.2,
+            };
+            py.allow_threads(|| optimal_balance(text, speed, w, radius))
+        }
+        other => {
+            return Err(invalid(format!(
+                "method = {other:?}: give \"force\" or \"optimal\""
+            )))
+        }
+    }
+    .map_err(|e| invalid(e.to_string()))?;
+    write_counterweights(text, &weights).map_err(|e| invalid(e.to_string()))
+}
+
+/// An engine of several cylinders (`mech_core::design::engine`): `layout` "inline", "v"
+/// (bank angle `bank`, rad) or "boxer", `cylinders`, the throws from the four-stroke
+/// `firing` order (cylinders from 1) or given as `phases` (rad), the crank radius, rod
+/// length (m), reciprocating mass (kg) and pin spacing (m); with `balance_couple` the two
+/// end-plane crankshaft counterweights that cancel a rotating primary couple. Returns
+/// the engine's mechanism text and its rows of the classical balance table (before, and
+/// after the counterweights when asked), each a dict of the exact and first-order
+/// amplitudes.
+#[pyfunction]
+#[pyo3(signature = (layout, cylinders, bank, firing, phases, radius, rod, mass, spacing, balance_couple))]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+fn engine<'py>(
+    py: Python<'py>,
+    layout: &str,
+    cylinders: usize,
+    bank: f64,
+    firing: Option<Vec<usize>>,
+    phases: Option<Vec<f64>>,
+    radius: f64,
+    rod: f64,
+    mass: f64,
+    spacing: f64,
+    balance_couple: bool,
+) -> PyResult<(String, Vec<Bound<'py, PyDict>>)> {
+    use mech_core::design::engine::{
+        balance_table, primary_couple_counterweights, Engine, Layout,
+    };
+    let bad = |e: CoreError| invalid(e.to_string());
+    let layout = match layout {
+        "inline" => Layout::Inline,
+        "boxer" => Layout::Boxer,
+        "v" => Layout::Vee { bank },
+        other => {
+            return Err(invalid(format!(
+                "layout = {other:?}: give \"inline\", \"v\" or \"boxer\""
+            )))
+        }
+    };
+    let mut e = Engine::new(layout, cylinders).map_err(bad)?;
+    (e.radius, e.rod, e.mass, e.spacing) = (radius, rod, mass, spacing);
+    if let Some(order) = &firing {
+        e = e.with_firing(order).map_err(bad)?;
+    }
+    if let Some(throws) = &phases {
+        e = e.with_throws(throws).map_err(bad)?;
+    }
+    let steps = 360;
+    let mut rows = vec![balance_table(&e, steps).map_err(bad)?];
+    if balance_couple {
+        let ends = (e.pins() as f64 - 1.0) / 2.0 * e.spacing;
+        let w = primary_couple_counterweights(&e, &rows[0].exact[0], e.radius, (-ends, ends))
+            .map_err(bad)?;
+        e.counterweights = w.to_vec();
+        let mut after = balance_table(&e, steps).map_err(bad)?;
+        after.engine += " balanced";
+        rows.push(after);
+    }
+    let text = e.to_mech("Engine").map_err(bad)?;
+    let dicts = rows
+        .iter()
+        .map(|r| {
+            let d = PyDict::new(py);
+            d.set_item("engine", &r.engine)?;
+            d.set_item("firing", &r.firing)?;
+            d.set_item("throws", &r.throws)?;
+            d.set_item("primary_force", (r.primary_force[0], r.primary_force[1]))?;
+            d.set_item("secondary_force", (r.secondary_force[0], r.secondary_force[1]))?;
+            d.set_item("primary_couple", (r.primary_couple[0], r.primary_couple[1]))?;
+            d.set_item("secondary_couple", (r.secondary_couple[0], r.secondary_couple[1]))?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok((text, dicts))
+}
+
 /// The native module `mech._mech`.
 #[pymodule]
 fn _mech(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMechanism>()?;
     m.add_function(wrap_pyfunction!(num_threads, m)?)?;
     m.add_function(wrap_pyfunction!(optimize, m)?)?;
+    m.add_function(wrap_pyfunction!(balance, m)?)?;
+    m.add_function(wrap_pyfunction!(engine, m)?)?;
     m.add_function(wrap_pyfunction!(synthesize_function, m)?)?;
     m.add_function(wrap_pyfunction!(synthesize_motion, m)?)?;
     m.add_function(wrap_pyfunction!(synthesize_path, m)?)?;

@@ -513,6 +513,64 @@ def test_shaking_couples_of_two_planes():
     assert np.max(np.abs(s["shaking.my"] - 0.4 * f * np.cos(q))) <= 1e-12 * f
 
 
+FOUR_BAR_MASSES = """pub struct Linkage {
+    ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
+    link crank { points { O2, A: (0.0, 0.1) }, mass: 0.5, inertia: 1e-3, cg: (0.0, 0.05) },
+    link coupler { points { A, B: (0.25, 0.2) }, mass: 1.0, inertia: 6e-3, cg: (0.12, 0.15) },
+    link rocker { points { O4, B }, mass: 0.8, inertia: 3e-3, cg: (0.28, 0.1) },
+    joints { O2: revolute(ground, crank), A: revolute(crank, coupler),
+             B: revolute(coupler, rocker), O4: revolute(ground, rocker) },
+    input: O2,
+}"""
+
+
+def test_balance_a_four_bar_and_a_slider_crank():
+    """Mechanism.balance: the force-balanced four-bar's shaking force is below 1e-9 of the
+    unbalanced one over a turn (two counterweights written into its text); the optimal
+    method with the force alone finds it too (to 1e-4); the slider-crank's crank
+    counterweight with fraction 1/2 leaves half the reciprocating primary force; bad
+    methods and fractions are refused by name."""
+    m = mech.Mechanism.from_dsl(FOUR_BAR_MASSES)
+    q = np.linspace(0.0, 2 * math.pi, 73)
+    before = m.shaking(q, 20.0, 0.0)
+    b = m.balance(20.0)
+    assert b.text.count("counterweight:") == 2
+    after = b.shaking(q, 20.0, 0.0)
+    peak = np.max(np.hypot(before["shaking.fx"], before["shaking.fy"]))
+    assert np.max(np.hypot(after["shaking.fx"], after["shaking.fy"])) <= 1e-9 * peak
+    o = m.balance(20.0, method="optimal", weights=(1.0, 0.0, 0.0)).shaking(q, 20.0, 0.0)
+    assert np.max(np.hypot(o["shaking.fx"], o["shaking.fy"])) <= 1e-4 * peak
+    with pytest.raises(mech.InvalidInput, match="method"):
+        m.balance(20.0, method="magic")
+    with pytest.raises(mech.InvalidInput, match="fraction"):
+        m.balance(20.0, fraction=1.5)
+
+
+def test_engine_tables_from_python():
+    """mech.engine: an in-line four has no primary force or couple and a secondary force
+    of 4 (first order 4) over m r w^2 (r/l); a boxer twin's primary couple is m r w^2 a
+    (1 over its unit); a cross-plane V8's primary couple, sqrt(10) over its unit, is gone
+    with the two crankshaft counterweights; the mechanism's shaking force at the top dead
+    centre equals the table's exact harmonics' sum; bad input is refused by name."""
+    m, rows = mech.engine("inline", 4, firing="1-3-4-2")
+    (row,) = rows
+    assert row["firing"] == "1-3-4-2"
+    assert row["primary_force"][0] < 1e-9 and row["primary_couple"][0] < 1e-9
+    assert abs(row["secondary_force"][1] - 4.0) < 1e-12
+    lam = 0.045 / 0.15
+    assert abs(row["secondary_force"][0] - 4.0) < 4.0 * lam ** 2
+    assert m.dof == 1 and "plane:" in m.text
+    _, (boxer,) = mech.engine("boxer", 2)
+    assert abs(boxer["primary_couple"][0] - 1.0) < 1e-6
+    _, v8 = mech.engine("v", 8, bank=math.pi / 2, phases=np.radians([0, 90, 270, 180]), balance_couple=True)
+    assert abs(v8[0]["primary_couple"][0] - math.sqrt(10.0)) < 1e-6
+    assert v8[1]["primary_couple"][0] < 1e-9 * math.sqrt(10.0)
+    with pytest.raises(mech.InvalidInput, match="layout"):
+        mech.engine("w", 12)
+    with pytest.raises(mech.InvalidInput):
+        mech.engine("inline", 4, firing="1-3-4")
+
+
 def _known_curve(n):
     """n points of the coupler curve of the crank-rocker O2 (0, 0), O4 (0.3, 0), A (0, 0.1),
     B (0.25, 0.2), P (0.1, 0.3), at crank angles 0.1 + 2 pi k / n (the input q of the file

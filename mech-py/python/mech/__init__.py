@@ -56,6 +56,7 @@ __all__ = [
     "synthesize_function",
     "synthesize_motion",
     "synthesize_path",
+    "engine",
     "num_threads",
     "MechError",
     "InvalidMechanism",
@@ -420,6 +421,29 @@ class Mechanism:
         couples about the x and y axes."""
         return self._table(["inputs", "shaking"], q, qd, qdd, None, errors)
 
+    def balance(self, speed=0.0, method="force", fraction=0.5, radius=None, weights=(1.0, 1.0, 1.0)):
+        """The mechanism with counterweights that balance its shaking force (SPEC 3g, as
+        ``mech balance`` does it): ``method="force"`` balances the force exactly where the
+        topology allows (a four-bar by two counterweights on its ground-pinned links; a
+        slider-crank's crank counterweight takes the rotating masses and the fraction
+        ``fraction`` of the reciprocating one); ``"optimal"`` minimises
+        ``weights`` = (w_F, w_M, w_T) on the RMS of shaking force, shaking moment and
+        driver torque over a turn at ``speed`` (rad/s). ``radius`` (m): the counterweights'
+        distance from their pivots (``None``: each link's own length). Returns a new
+        :class:`Mechanism` whose text carries the ``counterweight:`` entries."""
+        if method not in ("force", "optimal"):
+            raise InvalidInput("method = %r: give \"force\" or \"optimal\"" % (method,))
+        speed = _number(speed, "speed")
+        fraction = _number(fraction, "fraction")
+        if not 0.0 <= fraction <= 1.0:
+            raise InvalidInput("fraction = %r: give a number from 0 to 1" % (fraction,))
+        if radius is not None:
+            radius = _number(radius, "radius")
+        w = tuple(_number(v, "weights") for v in weights)
+        if len(w) != 3:
+            raise InvalidInput("weights = %r: give three numbers, force, moment, driver" % (weights,))
+        return Mechanism(_mech.balance(self.text, speed, method, fraction, radius, w))
+
     def driver_action(self, q, qd=0.0, qdd=0.0, loads=None, errors="raise"):
         """The motor actions by virtual power, no reaction computed: ``driver``
         (``driver.<joint>``)."""
@@ -747,6 +771,39 @@ def synthesize_motion(poses, circle_points=None, full=False):
     if full:
         return m, error, {"offset": offset, "q": np.array(q)}
     return m, error
+def engine(layout="inline", cylinders=4, bank=np.pi / 2, firing=None, phases=None,
+           radius=0.045, rod=0.15, mass=0.5, spacing=0.09, balance_couple=False):
+    """An engine of several cylinders on one crankshaft, as ``mech engine`` writes it
+    (docs/cli.md): ``layout`` ``"inline"``, ``"v"`` (bank angle ``bank``, rad) or
+    ``"boxer"``; the crank throws from the four-stroke ``firing`` order (a list of cylinder
+    numbers from 1, or a string ``"1-3-4-2"``) or given as ``phases`` (rad, one per crank
+    pin); ``radius``, ``rod`` (m), the reciprocating ``mass`` of each cylinder (kg) and the
+    pin ``spacing`` along the shaft (m). With ``balance_couple`` two crankshaft
+    counterweights at the end planes cancel a primary couple that rotates with the crank
+    (a cross-plane V8's).
+
+    Returns ``(mechanism, table)``: the engine as a :class:`Mechanism` (links in their
+    planes, ``plane: z``) and the classical balance table, a list of dicts (one row, two
+    with ``balance_couple``: before and after) with ``engine``, ``firing``, ``throws``
+    and, as ``(exact, first_order)`` pairs, ``primary_force`` and ``secondary_force``
+    over m r w^2 and m r w^2 (r/l), ``primary_couple`` and ``secondary_couple`` over the
+    same times the pin spacing."""
+    if isinstance(firing, str):
+        try:
+            firing = [int(c) for c in firing.replace(",", "-").split("-")]
+        except ValueError:
+            raise InvalidInput("firing = %r: give cylinder numbers like \"1-3-4-2\"" % (firing,))
+    if firing is not None:
+        firing = [_count(c, "firing") for c in firing]
+    if phases is not None:
+        phases = [float(v) for v in np.atleast_1d(_floats(phases, "phases")).ravel()]
+    text, rows = _mech.engine(
+        str(layout), _count(cylinders, "cylinders"), _number(bank, "bank"), firing, phases,
+        _number(radius, "radius"), _number(rod, "rod"), _number(mass, "mass"),
+        _number(spacing, "spacing"), bool(balance_couple))
+    return Mechanism(text), rows
+
+
 def synthesize_path(points, closed=True, seed=1, evaluations=200000, angles=None,
                     transmission=30.0, ratio=10.0, topology="four-bar"):
     """A four-bar whose coupler point P passes nearest to ``points`` (an (n, 2) array of

@@ -62,6 +62,8 @@ class Mechanism:
         """Every reaction (`<joint>.fx`, `.fy`, `.moment`) and `driver` by d'Alembert."""
     def driver_action(self, q: ArrayLike, qd: ArrayLike = ..., qdd: ArrayLike = ..., loads: Optional[Mapping[str, LoadValue]] = ..., errors: str = ...) -> Columns:
         """`driver` by virtual power, no reaction computed."""
+    def balance(self, speed: float = ..., method: str = ..., fraction: float = ..., radius: Optional[float] = ..., weights: Sequence[float] = ...) -> "Mechanism":
+        """The mechanism with counterweights that balance its shaking force (`mech balance`)."""
     def reduced(self, q: ArrayLike, errors: str = ...) -> Columns:
         """`inertia` I* (kg·m²) and `inertia_derivative` dI*/dq."""
     def reduced_moment(self, q: ArrayLike, loads: Optional[Mapping[str, LoadValue]] = ..., errors: str = ...) -> Columns:
@@ -93,6 +95,8 @@ def synthesize_function(pairs: ArrayLike, frame: float = ...) -> Tuple[Mechanism
 
 def synthesize_motion(poses: ArrayLike, circle_points: Optional[ArrayLike] = ..., full: bool = ...) -> Tuple[Any, ...]:
     """A four-bar through (x, y, angle) poses: Burmester (3 to 5 exact, more least squares); (Mechanism, error m²) [, {"offset", "q"}]."""
+def engine(layout: str = ..., cylinders: int = ..., bank: float = ..., firing: Optional[Union[str, Sequence[int]]] = ..., phases: Optional[ArrayLike] = ..., radius: float = ..., rod: float = ..., mass: float = ..., spacing: float = ..., balance_couple: bool = ...) -> Tuple[Mechanism, List[Dict[str, object]]]:
+    """An engine of several cylinders and its classical balance table (`mech engine`)."""
 def synthesize_path(points: ArrayLike, closed: bool = ..., seed: int = ..., evaluations: int = ..., angles: Optional[ArrayLike] = ..., transmission: float = ..., ratio: float = ..., topology: str = ...) -> Tuple[Mechanism, float]:
     """A four-bar whose coupler point passes nearest to the points (SPEC 3f), and its error E (m²)."""
     ...
