@@ -577,7 +577,8 @@ pub fn optimal_balance(
         .max(1e-12);
     // The unit cube's u ↦ x = 4 S (2u − 1): no counterweight at u = ½.
     let n = 2 * pivots.len();
-    let to_x = |u: &[f64]| -> Vec<f64> { u.iter().map(|t| 4.0 * scale * (2.0 * t - 1.0)).collect() };
+    let to_x =
+        |u: &[f64]| -> Vec<f64> { u.iter().map(|t| 4.0 * scale * (2.0 * t - 1.0)).collect() };
     let cost_u = |u: &[f64]| cost(&to_x(u));
     let centre = vec![0.5; n];
     let mut simplex = vec![(centre.clone(), cost_u(&centre))];

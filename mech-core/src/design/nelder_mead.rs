@@ -122,7 +122,10 @@ mod tests {
                 (vec![0.5, 0.6], f(&[0.5, 0.6])),
             ];
             let (x, v, n) = nelder_mead(start, std::iter::empty(), 3, 400, f, |_, _| {});
-            assert!((x[0] - at[0]).abs() < 1e-6 && (x[1] - at[1]).abs() < 1e-6, "{x:?}");
+            assert!(
+                (x[0] - at[0]).abs() < 1e-6 && (x[1] - at[1]).abs() < 1e-6,
+                "{x:?}"
+            );
             assert!((v - f(&at)).abs() < 1e-10);
             assert!(n <= 400, "{n}");
         }

@@ -36,7 +36,9 @@ pub fn nearest(fb: &FourBar, t: [f64; 2]) -> (f64, f64) {
 /// [`SAMPLES`] samples, then a golden-section search beside the nearest).
 pub fn nearest_on(point: impl Fn(f64) -> Option<[f64; 2]>, t0: f64, t: [f64; 2]) -> (f64, f64) {
     let dist2 = |theta: f64| {
-        point(theta).map_or(f64::INFINITY, |p| (p[0] - t[0]).powi(2) + (p[1] - t[1]).powi(2))
+        point(theta).map_or(f64::INFINITY, |p| {
+            (p[0] - t[0]).powi(2) + (p[1] - t[1]).powi(2)
+        })
     };
     let h = std::f64::consts::TAU / SAMPLES as f64;
     let (k, best) = (0..SAMPLES)

@@ -304,19 +304,11 @@ impl Design {
 
     /// The usable set c_lo ≤ cos ψ ≤ c_hi (the module's docs).
     fn usable(&self, mu: f64) -> (f64, f64) {
-        let [r1, r2, r3, r4] = self.r;
-        let (lo, hi) = (
-            r3 * r3 + r4 * r4 - 2.0 * r3 * r4 * mu.cos(),
-            r3 * r3 + r4 * r4 + 2.0 * r3 * r4 * mu.cos(),
-        );
-        let s = r1 * r1 + r2 * r2;
-        ((s - hi) / (2.0 * r1 * r2), (s - lo) / (2.0 * r1 * r2))
+        usable(self.r, mu)
     }
 
     fn ratio(&self) -> f64 {
-        let max = self.r.iter().copied().fold(0.0, f64::max);
-        let min = self.r.iter().copied().fold(f64::INFINITY, f64::min);
-        max / min
+        length_ratio(&self.r)
     }
 
     /// The arcs of the usable set as [ψ_a, ψ_b] with ψ_a < ψ_b (a full turn: one arc of
@@ -345,6 +337,29 @@ impl Design {
             p: arr(p),
         })
     }
+}
+
+/// The squared distances [D_lo, D_hi] between the free ends of a dyad of links `a` and `b`
+/// (m) within which its transmission angle stays in [μ, π − μ]: a² + b² ∓ 2 a b cos μ, m².
+pub(super) fn dyad_window(a: f64, b: f64, mu: f64) -> (f64, f64) {
+    let (mid, k) = (a * a + b * b, 2.0 * a * b * mu.cos());
+    (mid - k, mid + k)
+}
+
+/// The usable set c_lo ≤ cos ψ ≤ c_hi of a four-bar of lengths r = [r₁, r₂, r₃, r₄] with
+/// the transmission bound μ (the module's docs).
+pub(super) fn usable(r: [f64; 4], mu: f64) -> (f64, f64) {
+    let [r1, r2, r3, r4] = r;
+    let (lo, hi) = dyad_window(r3, r4, mu);
+    let s = r1 * r1 + r2 * r2;
+    ((s - hi) / (2.0 * r1 * r2), (s - lo) / (2.0 * r1 * r2))
+}
+
+/// The longest of the lengths `r` over the shortest.
+pub(super) fn length_ratio(r: &[f64]) -> f64 {
+    let max = r.iter().copied().fold(0.0, f64::max);
+    let min = r.iter().copied().fold(f64::INFINITY, f64::min);
+    max / min
 }
 
 /// A final population: (design vector, its evaluation), best first.
@@ -460,7 +475,8 @@ pub(super) fn prepare(problem: &PathProblem, options: &PathOptions) -> Result<Pr
 }
 
 impl Prepared {
-    fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
+    /// The search box of the module's docs (the last coordinate the branch's sign).
+    pub(super) fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
         let (c, l) = (self.centre, self.size);
         (
             vec![

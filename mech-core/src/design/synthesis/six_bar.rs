@@ -31,8 +31,8 @@ use super::error;
 use super::four_bar::FourBar;
 use super::optimiser::Evaluation;
 use super::path::{
-    islands, polish, polyline_distance2, prepare, Constraint, PathError, PathOptions,
-    PathProblem, Prepared, SEARCH_SAMPLES,
+    dyad_window, islands, length_ratio, polish, polyline_distance2, prepare, usable, Constraint,
+    PathError, PathOptions, PathProblem, Prepared, SEARCH_SAMPLES,
 };
 use crate::kernel::dyad::circle_circle;
 use crate::kernel::link_state::{cross, perp, V2};
@@ -266,8 +266,14 @@ impl Design {
     fn first(&self, o4: V2, psi: f64) -> Option<(V2, V2, V2)> {
         let t = self.phi + psi;
         let a = self.o2 + V2::new(t.cos(), t.sin()) * self.r[1];
-        let b = circle_circle(a, self.r[2] * self.r[2], o4, self.r[3] * self.r[3], self.branch[0])
-            .ok()?;
+        let b = circle_circle(
+            a,
+            self.r[2] * self.r[2],
+            o4,
+            self.r[3] * self.r[3],
+            self.branch[0],
+        )
+        .ok()?;
         let e = (b - a) / self.r[2];
         Some((a, b, a + e * self.u + perp(e) * self.w))
     }
@@ -275,8 +281,14 @@ impl Design {
     /// D and P from C (the second dyad's closed form).
     #[inline]
     fn second(&self, c: V2) -> Option<(V2, V2)> {
-        let d = circle_circle(c, self.r[4] * self.r[4], self.o6, self.r[5] * self.r[5], self.branch[1])
-            .ok()?;
+        let d = circle_circle(
+            c,
+            self.r[4] * self.r[4],
+            self.o6,
+            self.r[5] * self.r[5],
+            self.branch[1],
+        )
+        .ok()?;
         let e = (d - c) / self.r[4];
         Some((d, c + e * self.u2 + perp(e) * self.w2))
     }
@@ -287,21 +299,14 @@ impl Design {
     }
 
     fn ratio(&self) -> f64 {
-        let max = self.r.iter().copied().fold(0.0, f64::max);
-        let min = self.r.iter().copied().fold(f64::INFINITY, f64::min);
-        max / min
+        length_ratio(&self.r)
     }
 
     /// The four-bar's violation of a full turn within the bound μ (a cosine; the module's
     /// docs).
     fn crank(&self, mu: f64) -> f64 {
         let [r1, r2, r3, r4, ..] = self.r;
-        let (lo, hi) = (
-            r3 * r3 + r4 * r4 - 2.0 * r3 * r4 * mu.cos(),
-            r3 * r3 + r4 * r4 + 2.0 * r3 * r4 * mu.cos(),
-        );
-        let s = r1 * r1 + r2 * r2;
-        let (c_lo, c_hi) = ((s - hi) / (2.0 * r1 * r2), (s - lo) / (2.0 * r1 * r2));
+        let (c_lo, c_hi) = usable([r1, r2, r3, r4], mu);
         (c_lo + 1.0).max(0.0) + (1.0 - c_hi).max(0.0)
     }
 
@@ -309,9 +314,8 @@ impl Design {
     fn dyad(&self, c: V2, mu: f64) -> f64 {
         let [.., r5, r6] = self.r;
         let d2 = (c - self.o6).norm_squared();
-        let k = 2.0 * r5 * r6;
-        let mid = r5 * r5 + r6 * r6;
-        ((mid - k * mu.cos() - d2).max(d2 - mid - k * mu.cos())).max(0.0) / k
+        let (lo, hi) = dyad_window(r5, r6, mu);
+        (lo - d2).max(d2 - hi).max(0.0) / (2.0 * r5 * r6)
     }
 
     fn six_bar(&self, psi0: f64) -> Option<SixBar> {
@@ -332,48 +336,35 @@ impl Design {
 }
 
 impl Prepared {
+    /// The four-bar's box of [`super::path`] without its branch, then O6, r₅, r₆, u′, v′
+    /// and the two branches (the module's docs).
     fn six_bar_bounds(&self) -> (Vec<f64>, Vec<f64>) {
         let (c, l) = (self.centre, self.size);
-        (
-            vec![
-                c.x - 2.5 * l,
-                c.y - 2.5 * l,
-                -PI,
-                0.05 * l,
-                0.05 * l,
-                0.05 * l,
-                0.05 * l,
-                -3.0 * l,
-                -3.0 * l,
-                c.x - 2.5 * l,
-                c.y - 2.5 * l,
-                0.05 * l,
-                0.05 * l,
-                -3.0 * l,
-                -3.0 * l,
-                -1.0,
-                -1.0,
-            ],
-            vec![
-                c.x + 2.5 * l,
-                c.y + 2.5 * l,
-                PI,
-                5.0 * l,
-                2.5 * l,
-                5.0 * l,
-                5.0 * l,
-                3.0 * l,
-                3.0 * l,
-                c.x + 2.5 * l,
-                c.y + 2.5 * l,
-                5.0 * l,
-                5.0 * l,
-                3.0 * l,
-                3.0 * l,
-                1.0,
-                1.0,
-            ],
-        )
+        let (mut lo, mut hi) = self.bounds();
+        lo.pop();
+        hi.pop();
+        lo.extend([
+            c.x - 2.5 * l,
+            c.y - 2.5 * l,
+            0.05 * l,
+            0.05 * l,
+            -3.0 * l,
+            -3.0 * l,
+            -1.0,
+            -1.0,
+        ]);
+        hi.extend([
+            c.x + 2.5 * l,
+            c.y + 2.5 * l,
+            5.0 * l,
+            5.0 * l,
+            3.0 * l,
+            3.0 * l,
+            1.0,
+            1.0,
+        ]);
+        debug_assert_eq!(lo.len(), DIM);
+        (lo, hi)
     }
 
     /// The violations (crank, second dyad, ratio) of a design with the bound μ; C's curve
@@ -618,7 +609,11 @@ mod tests {
             ratio: 10.0,
         }
         .six_bar_violations(&d, 0.0, &mut buf);
-        assert_eq!((crank, dyad, ratio), (0.0, 0.0, 0.0), "the test design must assemble");
+        assert_eq!(
+            (crank, dyad, ratio),
+            (0.0, 0.0, 0.0),
+            "the test design must assemble"
+        );
         let sb = d.six_bar(0.4).unwrap();
         assert_eq!(sb.branch(), d.branch[1]);
         assert_eq!(sb.four_bar().branch(), d.branch[0]);
@@ -631,7 +626,10 @@ mod tests {
             let (dd, p) = d.second(c).unwrap();
             let q = sb.pose(d.phi + psi).unwrap();
             for (x, y) in [(a, q.a), (b, q.b), (c, q.c), (dd, q.d), (p, q.p)] {
-                assert!((x.x - y[0]).abs() < 1e-14 && (x.y - y[1]).abs() < 1e-14, "{k}");
+                assert!(
+                    (x.x - y[0]).abs() < 1e-14 && (x.y - y[1]).abs() < 1e-14,
+                    "{k}"
+                );
             }
             assert!((dist(q.c, q.d) - r[4]).abs() < 1e-14);
             assert!((dist(sb.o6, q.d) - r[5]).abs() < 1e-14);
