@@ -8,6 +8,10 @@
 //! next of 64 crank angles over a full turn, so that the count is the mean over a turn
 //! (a triad's Newton starts from the drawing, and its cost grows with the distance).
 //!
+//! The group `triad_sweep` times a sweep of the run-time `Mechanism` over the same 64
+//! angles: one batched call (each triad started from the previous configuration) against
+//! 64 one-configuration calls (each from the drawing).
+//!
 //! Count instructions per call with callgrind, as in the header of `benches/floor.rs`:
 //!
 //! ```text
@@ -46,6 +50,41 @@ macro_rules! bench_pose {
     }};
 }
 
+/// A sweep of the run-time `Mechanism` over the 64 angles, one batched call
+/// (`points_many`: each triad starts from the previous angle's configuration,
+/// `mech_core::runtime::warm`) against 64 calls of `points_into` (each from the drawing):
+/// `triad_sweep/<machine>/warm` and `.../cold`, per sweep of 64 configurations.
+fn sweep(c: &mut Criterion) {
+    const SOURCE: &str = include_str!("../tests/common/triads.rs");
+    let mut g = c.benchmark_group("triad_sweep");
+    for (name, ty) in [
+        ("stephenson3", "StephensonIII"),
+        ("stephenson2", "Stephenson2"),
+    ] {
+        let r = mech::Mechanism::from_rust_source(SOURCE, ty).unwrap();
+        let q = angles().to_vec();
+        let np = r.model().points.len();
+        let mut out = vec![0.0; 2 * np * q.len()];
+        g.bench_function(format!("{name}/warm"), |b| {
+            b.iter(|| {
+                assert!(black_box(&r)
+                    .points_many(black_box(&q), &mut out)
+                    .is_empty());
+            })
+        });
+        let mut s = Vec::new();
+        g.bench_function(format!("{name}/cold"), |b| {
+            b.iter(|| {
+                for (i, qi) in black_box(&q).iter().enumerate() {
+                    let row = &mut out[2 * np * i..2 * np * (i + 1)];
+                    black_box(&r).points_into(&[*qi], &mut s, row).unwrap();
+                }
+            })
+        });
+    }
+    g.finish();
+}
+
 fn triad(c: &mut Criterion) {
     let mut g = c.benchmark_group("triad");
     bench_pose!(g, "pose/stephenson3", StephensonIII);
@@ -54,5 +93,5 @@ fn triad(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, triad);
+criterion_group!(benches, triad, sweep);
 criterion_main!(benches);

@@ -156,8 +156,8 @@ fn the_engines_peak_driver_torque_is_lowered() {
 /// the search does not end above it.
 #[test]
 fn the_flywheel_objective_is_the_cycles_inertia() {
-    use mech::dynamics::flywheel::Cycle;
     use mech::design::optimize::FLYWHEEL_RTOL;
+    use mech::dynamics::flywheel::Cycle;
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/examples/mech/engine.mech"
@@ -178,7 +178,10 @@ fn the_flywheel_objective_is_the_cycles_inertia() {
     };
     let loads = |m: &Mechanism, q: f64| {
         let mut l = m.loads();
-        assert!(l.set_by_name("gas", &[gas(q), 0.0]), "the engine has a load `gas`");
+        assert!(
+            l.set_by_name("gas", &[gas(q), 0.0]),
+            "the engine has a load `gas`"
+        );
         Ok(l)
     };
     let speed = 3000.0 * PI / 30.0;
@@ -208,7 +211,12 @@ fn the_flywheel_objective_is_the_cycles_inertia() {
         "{} vs {exact}",
         best.initial
     );
-    assert!(best.objective <= best.initial, "{} → {}", best.initial, best.objective);
+    assert!(
+        best.objective <= best.initial,
+        "{} → {}",
+        best.initial,
+        best.objective
+    );
 }
 
 #[test]

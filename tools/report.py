@@ -434,6 +434,24 @@ SYNTH_CMD = ("`mech synth path FILE --seed S` (200 000 evaluations unless the ro
              "ratio ≤ 10) with RAYON_NUM_THREADS=1 and on every core, best of 5 interleaved")
 
 
+def triad():
+    """A triad machine's pose against the Watt II dyad chain (issue 35: at most 3×), and a
+    run-time sweep with the triads' warm start against one call per configuration."""
+    sh(["cargo", "bench", "--bench", "triad", "--", "--warm-up-time", "1", "--measurement-time", "3"])
+    med = criterion_medians()
+    watt = med.get("triad/pose/watt2")
+    rows = ["| machine | `pose` (ns) | / Watt II | run-time sweep, warm (ns per configuration) "
+            "| one call each (ns per configuration) | warm / one call |",
+            "|---|---:|---:|---:|---:|---:|"]
+    for name in ["stephenson3", "stephenson2", "watt2"]:
+        pose = med.get(f"triad/pose/{name}")
+        warm, cold = med.get(f"triad_sweep/{name}/warm"), med.get(f"triad_sweep/{name}/cold")
+        sweep = (f"{ns(warm / 64)} | {ns(cold / 64)} | {warm / cold:.2f}×" if warm and cold
+                 else "— | — | —")
+        rows.append(f"| {name} | {ns(pose)} | {pose / watt:.2f}× | {sweep} |")
+    return "\n".join(rows)
+
+
 class Figure:
     def __init__(self, run, command, paths):
         self.run, self.command, self.paths = run, command, paths
@@ -445,6 +463,9 @@ FIGURES = {
     "runtime_floor": Figure(runtime_floor, RUNTIME_FLOOR_CMD, GENERATED + ["mech-core/src/runtime", "benches/floor.rs",
                                                                           "benches/floor"]),
     "runtime": Figure(runtime, RUNTIME_CMD, CORE + ["mech-oracle/src", "benches/generated_vs_generic.rs"]),
+    "triad": Figure(triad, "`cargo bench --bench triad -- --warm-up-time 1 --measurement-time 3`, medians "
+                    "(a sweep: 64 crank angles over a turn)",
+                    GENERATED + ["mech-core/src/runtime", "benches/triad.rs", "tests/common/triads.rs"]),
     "elements": Figure(elements, "`cargo bench --bench machine_elements`, medians",
                        CORE + ["benches/machine_elements.rs"]),
     "accuracy": Figure(accuracy, "`cargo run --release --example accuracy_report`",

@@ -348,8 +348,9 @@ fn other_leads(
 /// Newton on the lead's angle (the module's docs), started from `start` (a previous
 /// configuration's states, every link; only the group's are read) or else from
 /// `drawing` (the drawing's states, every link); with each of the other two binary links
-/// as the lead when that fails, and then the general Newton from the drawing, its root
-/// kept only on the drawing's assembly. `s` holds the solved
+/// as the lead when that fails, then (a `start` that found nothing) all of it again from
+/// the drawing, and then the general Newton from the drawing, its root kept only on the
+/// drawing's assembly. `s` holds the solved
 /// links' states on entry (the group's own are not read). Then, when asked, velocities
 /// and accelerations from the group's linear system, which is returned for the
 /// reactions (as [`crate::kernel::group::group_solve`]).
@@ -369,11 +370,18 @@ pub fn triad_solve<const N: usize>(
 ) -> Result<Option<GroupSystem<N>>, MechError> {
     let g = Geom::new(t, joints);
     let drawn = assembly(t, &g, drawing);
-    let from = start.unwrap_or(drawing);
-    let (pins, u) = (pins_of(t, &g, from), from[t.links[0]].rot);
-    if triad_pose(t, &g, joints, s, &pins, u, drawn, scale).is_err()
-        && other_leads(t, joints, s, drawing, from, scale).is_err()
-    {
+    // From `start`, then (a warm start that found nothing) from the drawing, as a call
+    // without one would: a warm start never fails where the drawing's start succeeds.
+    let attempt = |s: &mut [LinkState], from: &[LinkState]| {
+        let (pins, u) = (pins_of(t, &g, from), from[t.links[0]].rot);
+        triad_pose(t, &g, joints, s, &pins, u, drawn, scale).is_ok()
+            || other_leads(t, joints, s, drawing, from, scale).is_ok()
+    };
+    let solved = match start {
+        Some(from) => attempt(s, from) || attempt(s, drawing),
+        None => attempt(s, drawing),
+    };
+    if !solved {
         for &b in bodies {
             s[b] = drawing[b];
         }

@@ -8,6 +8,7 @@
 use super::mechanism::{Mechanism, Scratch};
 use super::results::LoadValue;
 use super::results::{Forces, Loads, Motion, Pose};
+use super::warm::Warm;
 use crate::kernel::constraints::Level;
 use crate::kernel::lanes::{
     acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, Backend, Base,
@@ -87,9 +88,9 @@ impl Mechanism {
         each_with(
             rows.0,
             rows.1,
-            Vec::<LinkState>::new,
-            |i, r: &mut Block<Pose>, s| {
-                self.solve_into(inputs(q, g, i), &zero, &zero, Level::Position, s)?;
+            || (Vec::<LinkState>::new(), Warm::new(self)),
+            |i, r: &mut Block<Pose>, (s, warm)| {
+                self.solve_warm(inputs(q, g, i), &zero, &zero, Level::Position, s, warm)?;
                 crate::kernel::finite::finite_states(s, Level::Position)?;
                 let p = r.at(i);
                 p.links.clear();
@@ -133,8 +134,8 @@ impl Mechanism {
         each_with(
             rows.0,
             rows.1,
-            Vec::<LinkState>::new,
-            |i, r: &mut Block<f64>, s| self.points_into(inputs(q, g, i), s, r.row(i)),
+            || (Vec::<LinkState>::new(), Warm::new(self)),
+            |i, r: &mut Block<f64>, (s, warm)| self.points_warm(inputs(q, g, i), s, r.row(i), warm),
         )
     }
 
@@ -161,10 +162,10 @@ impl Mechanism {
         each_with(
             rows.0,
             rows.1,
-            || self.empty_motion(),
-            |i, r: &mut Block<f64>, m| {
+            || (self.empty_motion(), Warm::new(self)),
+            |i, r: &mut Block<f64>, (m, warm)| {
                 let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-                self.kinematics_into(qi, qdi, qddi, m)?;
+                self.kinematics_warm(qi, qdi, qddi, m, warm)?;
                 r.row(i).copy_from_slice(&self.driver_action(m, loads)?);
                 Ok(())
             },
@@ -290,10 +291,10 @@ impl Mechanism {
         each_with(
             rows.0,
             rows.1,
-            || self.empty_motion(),
-            |i, r, m| {
+            || (self.empty_motion(), Warm::new(self)),
+            |i, r, (m, warm)| {
                 let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-                self.kinematics_into(qi, qdi, qddi, m)?;
+                self.kinematics_warm(qi, qdi, qddi, m, warm)?;
                 put_kinematics(r, i, m.points.iter(), m.links[1..].iter());
                 Ok(())
             },
@@ -340,11 +341,11 @@ impl Mechanism {
                 joints: Vec::new(),
                 model: self.model.clone(),
             };
-            (self.empty_motion(), f)
+            (self.empty_motion(), f, Warm::new(self))
         };
-        each_with(rows.0, rows.1, scratch, |i, r, (m, f)| {
+        each_with(rows.0, rows.1, scratch, |i, r, (m, f, warm)| {
             let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-            self.kinematics_into(qi, qdi, qddi, m)?;
+            self.kinematics_warm(qi, qdi, qddi, m, warm)?;
             self.kinetostatics_into(m, loads, None, f)?;
             put_kinetostatics(
                 r,
@@ -357,7 +358,7 @@ impl Mechanism {
     }
 
     /// A motion with empty buffers: the scratch of a chunk.
-    fn empty_motion(&self) -> Motion {
+    pub(super) fn empty_motion(&self) -> Motion {
         Motion {
             links: Vec::new(),
             points: Vec::new(),

@@ -8,6 +8,7 @@
 //! `virtual_power` (`virtual_power.<joint>`), and for one input Zhukovski's `inertia` (I*),
 //! `inertia_derivative` (dI*/dq) and `moment` (M*). SI units throughout.
 
+use super::warm::Warm;
 use crate::kernel::link_state::LinkState;
 use crate::model::JointKind;
 use crate::runtime::mechanism::{Loads, Motion};
@@ -63,6 +64,8 @@ impl Part {
 pub struct RowScratch {
     states: Vec<LinkState>,
     motion: Option<Motion>,
+    /// The chunk's last solved configuration: the triads' warm start (`super::warm`).
+    warm: Option<Warm>,
 }
 
 /// The names and units of a row's columns.
@@ -257,12 +260,13 @@ impl Columns {
                 out[..q.len()].copy_from_slice(q);
                 at = q.len();
             }
+            let warm = scratch.warm.get_or_insert_with(|| Warm::new(m));
             if self.has(Part::Positions) {
                 let n = 2 * m.model().points.len() + m.model().links.len() - 1;
-                m.positions_into(q, &mut scratch.states, &mut out[at..at + n])?;
+                m.positions_warm(q, &mut scratch.states, &mut out[at..at + n], warm)?;
             } else if self.has(Part::Points) {
                 let n = 2 * m.model().points.len();
-                m.points_into(q, &mut scratch.states, &mut out[at..at + n])?;
+                m.points_warm(q, &mut scratch.states, &mut out[at..at + n], warm)?;
             }
             return Ok(());
         }
@@ -347,13 +351,9 @@ impl Columns {
                 }
             }
         } else {
-            let mo = match &mut scratch.motion {
-                Some(mo) => {
-                    m.kinematics_into(q, qd, qdd, mo)?;
-                    mo
-                }
-                slot => slot.insert(m.kinematics(q, qd, qdd)?),
-            };
+            let warm = scratch.warm.get_or_insert_with(|| Warm::new(m));
+            let mo = scratch.motion.get_or_insert_with(|| m.empty_motion());
+            m.kinematics_warm(q, qd, qdd, mo, warm)?;
             if self.has(Part::Positions) || self.has(Part::Points) {
                 row.extend(mo.points.iter().flat_map(|p| [p.pos.x, p.pos.y]));
                 if self.has(Part::Positions) {

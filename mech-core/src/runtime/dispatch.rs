@@ -133,8 +133,22 @@ impl Mechanism {
         upto: Level,
         s: &mut Vec<LinkState>,
     ) -> Result<(), MechError> {
+        self.solve_into_from(q, qd, qdd, upto, s, None)
+    }
+
+    /// [`Mechanism::solve_into`] with the triads' Newton started from `start` (a previous
+    /// configuration's states, `super::warm::Warm`) where given.
+    pub(super) fn solve_into_from(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        upto: Level,
+        s: &mut Vec<LinkState>,
+        start: Option<&[LinkState]>,
+    ) -> Result<(), MechError> {
         s.resize(self.inst.drawing.len(), LinkState::default());
-        self.solve_slice(q, qd, qdd, upto, s)
+        self.solve_slice(q, qd, qdd, upto, s, start)
     }
 
     /// [`Mechanism::solve_into`] into a slice of one state per link.
@@ -145,13 +159,14 @@ impl Mechanism {
         qdd: &[f64],
         upto: Level,
         s: &mut [LinkState],
+        start: Option<&[LinkState]>,
     ) -> Result<(), MechError> {
         self.check_inputs(&[q, qd, qdd])?;
         let drive = (q, qd, qdd);
         match upto {
-            Level::Position => self.solve_at::<POSITION>(drive, s, &mut []),
-            Level::Velocity => self.solve_at::<VELOCITY>(drive, s, &mut []),
-            Level::Acceleration => self.solve_at::<ACCELERATION>(drive, s, &mut []),
+            Level::Position => self.solve_from::<POSITION>(drive, s, &mut [], start),
+            Level::Velocity => self.solve_from::<VELOCITY>(drive, s, &mut [], start),
+            Level::Acceleration => self.solve_from::<ACCELERATION>(drive, s, &mut [], start),
             Level::Jacobian if self.redundant => {
                 let branches: Scratch<f64> = SmallVec::from_slice(&self.branches);
                 crate::kernel::branches::search(&branches, |b| self.solve_on(b, drive, upto, s))
@@ -172,6 +187,20 @@ impl Mechanism {
         s: &mut [LinkState],
         kept: &mut [kinematics::DyadSystem],
     ) -> Result<(), MechError> {
+        self.solve_from::<UPTO>(drive, s, kept, None)
+    }
+
+    /// [`Mechanism::solve_at`] with the triads' Newton started from `start` (a previous
+    /// configuration's states, one per link: the warm start of a sweep,
+    /// `super::warm::Warm`) instead of the drawing; the other groups as always.
+    #[inline(always)]
+    pub(super) fn solve_from<const UPTO: u8>(
+        &self,
+        drive: Drive,
+        s: &mut [LinkState],
+        kept: &mut [kinematics::DyadSystem],
+        start: Option<&[LinkState]>,
+    ) -> Result<(), MechError> {
         if self.redundant {
             // Past a change point the drawing's branches may not close a redundant group:
             // the other combinations are tried, as the generated code does.
@@ -189,7 +218,7 @@ impl Mechanism {
         }
         let keep = kept.len() == self.plan.len();
         for (i, (g, &sign)) in self.plan.iter().zip(&self.branches).enumerate() {
-            let k = self.group_step::<UPTO>(g, sign, drive, s)?;
+            let k = self.group_step::<UPTO>(g, sign, drive, s, start)?;
             if keep {
                 kept[i] = k;
             }
@@ -217,7 +246,7 @@ impl Mechanism {
             s[0] = self.inst.drawing[0];
         }
         for (g, &sign) in self.plan.iter().zip(branches) {
-            self.group_positions(g, sign, drive, upto, s)?;
+            self.group_positions(g, sign, drive, upto, s, None)?;
         }
         Ok(())
     }
@@ -232,8 +261,20 @@ impl Mechanism {
         s: &mut Vec<LinkState>,
         out: &mut [f64],
     ) -> Result<(), MechError> {
+        self.positions_from(q, s, out, None)
+    }
+
+    /// [`Mechanism::positions_into`] with the triads' Newton started from `start` where
+    /// given (`super::warm::Warm`).
+    pub(super) fn positions_from(
+        &self,
+        q: &[f64],
+        s: &mut Vec<LinkState>,
+        out: &mut [f64],
+        start: Option<&[LinkState]>,
+    ) -> Result<(), MechError> {
         let np = self.inst.points.len();
-        self.points_into(q, s, &mut out[..2 * np])?;
+        self.points_from(q, s, &mut out[..2 * np], start)?;
         for (k, (l, st)) in self.inst.links.iter().zip(s.iter()).enumerate().skip(1) {
             out[2 * np + k - 1] = l.pose(st).angle;
         }
@@ -249,13 +290,25 @@ impl Mechanism {
         s: &mut Vec<LinkState>,
         out: &mut [f64],
     ) -> Result<(), MechError> {
+        self.points_from(q, s, out, None)
+    }
+
+    /// [`Mechanism::points_into`] with the triads' Newton started from `start` where given
+    /// (`super::warm::Warm`).
+    pub(super) fn points_from(
+        &self,
+        q: &[f64],
+        s: &mut Vec<LinkState>,
+        out: &mut [f64],
+        start: Option<&[LinkState]>,
+    ) -> Result<(), MechError> {
         const ZEROS: [f64; 16] = [0.0; 16];
         let zero: Scratch<f64> = if q.len() <= ZEROS.len() {
             SmallVec::from_slice(&ZEROS[..q.len()])
         } else {
             SmallVec::from_elem(0.0, q.len())
         };
-        self.solve_into(q, &zero, &zero, Level::Position, s)?;
+        self.solve_into_from(q, &zero, &zero, Level::Position, s, start)?;
         let np = self.inst.points.len();
         for (xy, &(o, d)) in out[..2 * np].chunks_exact_mut(2).zip(&self.inst.points) {
             let p = point_pose(s, o, d).pos;
@@ -389,6 +442,19 @@ impl Mechanism {
         qdd: &[f64],
         out: &mut Motion,
     ) -> Result<(), MechError> {
+        self.kinematics_from(q, qd, qdd, out, None)
+    }
+
+    /// [`Mechanism::kinematics_into`] with the triads' Newton started from `start` where
+    /// given (`super::warm::Warm`).
+    pub(super) fn kinematics_from(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut Motion,
+        start: Option<&[LinkState]>,
+    ) -> Result<(), MechError> {
         let v: [&[f64]; 3] = [q, qd, qdd];
         let (n, ng) = (self.inst.drawing.len(), self.plan.len());
         out.states.resize(n, LinkState::default());
@@ -396,7 +462,8 @@ impl Mechanism {
         let solved = if self.newton || self.redundant {
             // Newton and the branch search are given finite inputs only.
             self.check_inputs(&v).and_then(|()| {
-                self.solve_at::<ACCELERATION>((q, qd, qdd), &mut out.states, &mut out.systems)
+                let (s, kept) = (&mut out.states, &mut out.systems);
+                self.solve_from::<ACCELERATION>((q, qd, qdd), s, kept, start)
             })
         } else {
             self.check_lengths(&v)
@@ -490,6 +557,7 @@ impl Mechanism {
         sign: f64,
         drive: Drive,
         s: &mut [LinkState],
+        start: Option<&[LinkState]>,
     ) -> Result<kinematics::DyadSystem, MechError> {
         use crate::kernel::dyad::Solver;
         use kinematics::DyadSystem;
@@ -516,7 +584,7 @@ impl Mechanism {
                 let solver = Solver::SlottedSlider { body, jq, js };
                 kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto)
             }
-            _ => self.other_step(g, sign, drive, upto, s),
+            _ => self.other_step(g, sign, drive, upto, s, start),
         }
     }
 
@@ -587,12 +655,13 @@ impl Mechanism {
         drive: Drive,
         upto: Level,
         s: &mut [LinkState],
+        start: Option<&[LinkState]>,
     ) -> Result<kinematics::DyadSystem, MechError> {
         if let Kernel::Chain(c) = &g.kernel {
             let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
             return kinematics::solve_chain(g.solver, c, joints, s, drive, sign, scale, upto);
         }
-        self.group_positions(g, sign, drive, upto, s)?;
+        self.group_positions(g, sign, drive, upto, s, start)?;
         Ok(kinematics::DyadSystem::None)
     }
 }
@@ -602,7 +671,9 @@ impl Mechanism {
 /// field of virtual power, and the reactions. The generated code calls the same entry
 /// points, unrolled.
 impl Mechanism {
-    /// Solve group `g` on assembly branch `sign` at the inputs `drive`, up to `upto`.
+    /// Solve group `g` on assembly branch `sign` at the inputs `drive`, up to `upto`; a
+    /// triad's Newton from `start` (a previous configuration's states) when given, else
+    /// from the drawing.
     #[inline]
     pub(super) fn group_positions(
         &self,
@@ -611,6 +682,7 @@ impl Mechanism {
         drive: Drive,
         upto: Level,
         s: &mut [LinkState],
+        start: Option<&[LinkState]>,
     ) -> Result<(), MechError> {
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
         match &g.kernel {
@@ -640,7 +712,7 @@ impl Mechanism {
                     scale,
                     upto,
                     &self.inst.drawing,
-                    None,
+                    start,
                 )
                 .map(|_| ())?,
                 None => system(g, |n| n.solve(g, joints, s, drive, scale, upto))?,

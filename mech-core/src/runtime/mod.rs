@@ -9,6 +9,7 @@ pub mod mechanism;
 mod newton;
 pub mod results;
 mod strength;
+mod warm;
 
 pub use mechanism::Mechanism;
 pub use results::{Forces, JointReaction, LoadValue, Loads, Motion, Pose};
