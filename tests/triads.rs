@@ -238,9 +238,16 @@ fn a_warm_sweep_follows_the_drawn_assembly() {
         let loads = m.loads();
         let e_rows = cols.rows_many(&m, &q, &qd, &qdd, &|_| Cow::Borrowed(&loads), &mut rows);
         let kin_at = |n: &str, c: &str, i: usize| kin.get(&format!("{n}.{c}"), i).unwrap();
+        // Zhukovski's batched route: I*, dI*/dq and q̈ under a driver torque.
+        let (mut inertia, mut slope, mut qdd_many) =
+            (vec![0.0; q.len()], vec![0.0; q.len()], vec![0.0; q.len()]);
+        let e_red = m.reduced_many(&q, &mut inertia, &mut slope);
+        let driver = vec![0.7; q.len()];
+        let e_acc = m.acceleration_many(&q, &qd, &driver, &loads, &mut qdd_many);
         let (mut failed, mut other, mut jumps) = (0, 0, 0);
         for (i, &qi) in q.iter().enumerate() {
-            let failures = [&e_pose, &e_points, &e_kin, &e_rows].map(|e| e.get(i).is_some());
+            let failures =
+                [&e_pose, &e_points, &e_kin, &e_rows, &e_red, &e_acc].map(|e| e.get(i).is_some());
             assert!(
                 failures.iter().all(|&f| f == failures[0]),
                 "{name} at step {i}"
@@ -316,6 +323,17 @@ fn a_warm_sweep_follows_the_drawn_assembly() {
             });
             if stretch == 1.0 {
                 assert!(same, "{name} at step {i}: {one:?}");
+                let z = OneDof::reduced(&m, qi).unwrap();
+                let a = OneDof::acceleration(&m, qi, 1.0, 0.7, &loads).unwrap();
+                let scale = |v: &[f64]| v.iter().fold(0.0, |m: f64, x| m.max(x.abs()));
+                for (x, y, all) in [
+                    (inertia[i], z.inertia, &inertia),
+                    (slope[i], z.inertia_derivative, &slope),
+                    (qdd_many[i], a, &qdd_many),
+                ] {
+                    let d = (x - y).abs() / scale(all);
+                    assert!(within(d, 1e-12), "{name} at step {i}: {x} vs {y}");
+                }
             } else if !same {
                 other += 1;
             }

@@ -197,6 +197,16 @@ impl Mechanism {
             *b.at(i) = z.inertia_derivative;
             Ok(())
         };
+        if Warm::new(self).applies() {
+            // A triad: each configuration from the previous one (`super::warm`).
+            let scratch = || (Vec::new(), Warm::new(self));
+            return each_with(n, rows, scratch, |i, (a, b), (s, warm)| {
+                let z = self.zhukovski_warm(q[i], 0.0, None, Level::Acceleration, s, warm)?;
+                *a.at(i) = z.reduced.inertia;
+                *b.at(i) = z.reduced.inertia_derivative;
+                Ok(())
+            });
+        }
         if !self.lanes {
             return each(n, rows, one);
         }
@@ -234,6 +244,18 @@ impl Mechanism {
             *r.at(i) = OneDof::acceleration(self, q[i], qd[i], driver[i], loads)?;
             Ok(())
         };
+        if Warm::new(self).applies() {
+            // A triad: each configuration from the previous one (`super::warm`).
+            let scratch = || (Vec::new(), Warm::new(self));
+            return each_with(n, rows, scratch, |i, r, (s, warm)| {
+                crate::error::check_finite("q, qd, driver", &[q[i], qd[i], driver[i]])?;
+                let z =
+                    self.zhukovski_warm(q[i], qd[i], Some(loads), Level::Acceleration, s, warm)?;
+                *r.at(i) =
+                    crate::solvers::zhukovski::acceleration(z.reduced, z.moment, qd[i], driver[i])?;
+                Ok(())
+            });
+        }
         if !self.lanes {
             return each(n, rows, one);
         }

@@ -59,6 +59,11 @@ impl Warm {
         }
     }
 
+    /// The mechanism has a triad: the warm start applies.
+    pub(crate) fn applies(&self) -> bool {
+        self.on
+    }
+
     /// The start for the configuration at inputs `q`: the last solved configuration's
     /// states when every input moved by at most its step since, else `None` (the drawing).
     #[inline]
@@ -137,6 +142,32 @@ impl Mechanism {
         let r = self.positions_from(q, s, out, warm.start(q));
         warm.keep(q, s, r.is_ok());
         r
+    }
+
+    /// Zhukovski's sums (`Mechanism::zhukovski_sums`) with the warm start, the states
+    /// solved into `s`.
+    pub(crate) fn zhukovski_warm(
+        &self,
+        q: f64,
+        qd: f64,
+        loads: Option<&super::results::Loads>,
+        upto: Level,
+        s: &mut Vec<LinkState>,
+        warm: &mut Warm,
+    ) -> Result<crate::solvers::zhukovski::ZhukovskiSums, MechError> {
+        crate::error::check_finite("q, qd, qdd", &[q])?;
+        s.resize(self.inst.drawing.len(), LinkState::default());
+        let drive: crate::kernel::constraints::Drive = (&[q], &[1.0], &[0.0]);
+        let start = warm.start(&[q]);
+        let r = match upto {
+            Level::Acceleration => {
+                self.solve_from::<{ super::dispatch::ACCELERATION }>(drive, s, &mut [], start)
+            }
+            _ => self.solve_from::<{ super::dispatch::VELOCITY }>(drive, s, &mut [], start),
+        };
+        warm.keep(&[q], s, r.is_ok());
+        r?;
+        self.sums(s, loads, qd, upto == Level::Acceleration)
     }
 
     /// [`Mechanism::kinematics_into`] with the warm start.
