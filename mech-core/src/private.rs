@@ -65,7 +65,9 @@ pub mod kinetostatics {
     };
 }
 pub mod magnitudes {
-    pub use crate::kernel::finite::{finite_few, finite_reactions, finite_result, finite_states};
+    pub use crate::kernel::finite::{
+        finite_derived, finite_few, finite_reactions, finite_result, finite_states,
+    };
 }
 pub mod model {
     pub use crate::model::{

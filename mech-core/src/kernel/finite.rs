@@ -97,6 +97,30 @@ pub fn finite_states(
     }
 }
 
+/// `Ok(())` when the motions a solver publishes beyond the link states are finite: the
+/// velocity and acceleration of each point away from its link's anchor (`points`) and of
+/// each moving link's cg (`links`). They derive from finite states but can still overflow
+/// (a point far from its anchor at a huge speed: ω² r). Each times zero (`zeroed`),
+/// summed, one compare; the error is [`states_overflow`]'s, given no values.
+#[inline(always)]
+pub fn finite_derived(
+    points: &[&crate::kernel::link_state::PointMotion],
+    links: &[&crate::kernel::link_state::LinkMotion],
+) -> Result<(), MechError> {
+    let mut sum = crate::kernel::link_state::zero();
+    for p in points {
+        sum += zeroed(p.vel) + zeroed(p.acc);
+    }
+    for l in links {
+        sum += zeroed(l.cg_vel) + zeroed(l.cg_acc);
+    }
+    if still_zero(sum) {
+        Ok(())
+    } else {
+        Err(states_overflow())
+    }
+}
+
 /// The overflow error of link motions ([`finite_states`]'s), also that of the run-time
 /// `kinematics`' check of the point and cg motions it publishes (derived from finite
 /// states, a point far from its link's anchor at a huge speed, ω² r, can still overflow).

@@ -464,6 +464,13 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
             }
         }
     });
+    // What derives from the states and is not one of them: a point away from its link's
+    // anchor, each moving link's cg (checked finite, `magnitudes::finite_derived`).
+    let derived_points: Vec<_> = (0..cx.n_points)
+        .filter(|&pt| matches!(owners[pt], Owner::Local(o) if o != 0))
+        .map(|pt| &point_ids[pt])
+        .collect();
+    let derived_links: Vec<_> = (1..cx.n_links).map(|l| &cx.link_ids[l]).collect();
     let (q_arr, qd_arr, qdd_arr) = (to_array(cx, "q"), to_array(cx, "qd"), to_array(cx, "qdd"));
     let inputs = &cx.inputs_doc;
     let (rots, turns) = (kept_rotations(cx), kept_angles(cx));
@@ -478,14 +485,16 @@ fn kinematics_fn(cx: &Ctx) -> TokenStream {
                 .__solve(&q, &qd, &qdd, #p::kinematics::Level::Acceleration, true)
                 .map_err(|e| #p::error::blame("q, qd, qdd", &[#(q[#ks],)* #(qd[#ks],)* #(qdd[#ks],)*], e))?;
             #angles
-            Ok(#motion {
+            let m = #motion {
                 links: #motion_links { #(#links)* },
                 points: #motion_points { #(#points)* },
                 rots: [#(s[#rots].rot,)*],
                 angles: [#(s[#turns].angle,)*],
                 qd,
                 systems,
-            })
+            };
+            #p::magnitudes::finite_derived(&[#(&m.points.#derived_points,)*], &[#(&m.links.#derived_links,)*])?;
+            Ok(m)
         }
     }
 }
