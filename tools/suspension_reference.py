@@ -386,8 +386,10 @@ def source():
     f = lambda v: "(" + ", ".join(mp.nstr(v[i], 17) for i in range(3)) + ")"  # noqa: E731
 
     def inertia(b):
+        # (Ixx, Iyy, Izz, Ixy, Ixz, Iyz), the products Ixy = Σ m x y: the tensor's
+        # off-diagonal entries negated (docs/spatial.md)
         t = BODIES[b][2]
-        return "(" + ", ".join(mp.nstr(x, 17) for x in (t[0, 0], t[1, 1], t[2, 2], t[0, 1], t[0, 2], t[1, 2])) + ")"
+        return "(" + ", ".join(mp.nstr(x, 17) for x in (t[0, 0], t[1, 1], t[2, 2], -t[0, 1], -t[0, 2], -t[1, 2])) + ")"
 
     m = lambda b: mp.nstr(BODIES[b][0], 17)  # noqa: E731
     return f"""pub struct DoubleWishbone {{
@@ -434,8 +436,11 @@ def main():
         "source": source(),
         "input": {"joint": "Lo", "axis": vec(AXIS_L), "q": "rotation of the lower arm from the drawing (rad)"},
         "loads": {"wheel": vec(WHEEL_LOAD), "brake": vec(UPRIGHT_TORQUE)},
-        "inertia_convention": "tensor about the cg in the drawing: [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]]",
-        "idle_spin": "the tie rod's angular velocity is normal to its axis; its inertia about its axis is zero",
+        "inertia_convention": "the tensors of the script about the cg in the drawing; the source's tuples "
+                              "(Ixx, Iyy, Izz, Ixy, Ixz, Iyz) are products Ixy = Σ m x y, the tensor's "
+                              "off-diagonal entries negated (docs/spatial.md)",
+        "idle_spin": "the tie rod's angular velocity is normal to its axis; its inertia about its axis is zero, "
+                     "so only the tie rod's omega and alpha along its axis depend on the convention",
         "reaction_convention": "force and moment (about the joint's point) by the joint's first body on its "
                                "second; revolute joints: the moment's two components normal to the axis; "
                                "the driver torque (about Lo's axis, by the ground on the lower arm) apart",
