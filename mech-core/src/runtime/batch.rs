@@ -90,7 +90,11 @@ impl Mechanism {
             rows.1,
             || (Vec::<LinkState>::new(), Warm::new(self)),
             |i, r: &mut Block<Pose>, (s, warm)| {
-                self.solve_warm(inputs(q, g, i), &zero, &zero, Level::Position, s, warm)?;
+                let (qi, zero) = (inputs(q, g, i), &zero[..]);
+                warm.run(qi, |start| {
+                    self.solve_into_from(qi, zero, zero, Level::Position, s, start)?;
+                    Ok(((), &s[..]))
+                })?;
                 crate::kernel::finite::finite_states(s, Level::Position)?;
                 let p = r.at(i);
                 p.links.clear();
@@ -135,7 +139,13 @@ impl Mechanism {
             rows.0,
             rows.1,
             || (Vec::<LinkState>::new(), Warm::new(self)),
-            |i, r: &mut Block<f64>, (s, warm)| self.points_warm(inputs(q, g, i), s, r.row(i), warm),
+            |i, r: &mut Block<f64>, (s, warm)| {
+                let qi = inputs(q, g, i);
+                warm.run(qi, |start| {
+                    self.points_from(qi, s, r.row(i), start)?;
+                    Ok(((), &s[..]))
+                })
+            },
         )
     }
 
@@ -165,7 +175,10 @@ impl Mechanism {
             || (self.empty_motion(), Warm::new(self)),
             |i, r: &mut Block<f64>, (m, warm)| {
                 let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-                self.kinematics_warm(qi, qdi, qddi, m, warm)?;
+                warm.run(qi, |start| {
+                    self.kinematics_from(qi, qdi, qddi, m, start)?;
+                    Ok(((), &m.states[..]))
+                })?;
                 r.row(i).copy_from_slice(&self.driver_action(m, loads)?);
                 Ok(())
             },
@@ -201,7 +214,10 @@ impl Mechanism {
             // A triad: each configuration from the previous one (`super::warm`).
             let scratch = || (Vec::new(), Warm::new(self));
             return each_with(n, rows, scratch, |i, (a, b), (s, warm)| {
-                let z = self.zhukovski_warm(q[i], 0.0, None, Level::Acceleration, s, warm)?;
+                let z = warm.run(&q[i..i + 1], |start| {
+                    let z = self.zhukovski_from(q[i], 0.0, None, Level::Acceleration, s, start)?;
+                    Ok((z, &s[..]))
+                })?;
                 *a.at(i) = z.reduced.inertia;
                 *b.at(i) = z.reduced.inertia_derivative;
                 Ok(())
@@ -249,8 +265,11 @@ impl Mechanism {
             let scratch = || (Vec::new(), Warm::new(self));
             return each_with(n, rows, scratch, |i, r, (s, warm)| {
                 crate::error::check_finite("q, qd, driver", &[q[i], qd[i], driver[i]])?;
-                let z =
-                    self.zhukovski_warm(q[i], qd[i], Some(loads), Level::Acceleration, s, warm)?;
+                let z = warm.run(&q[i..i + 1], |start| {
+                    let (l, upto) = (Some(loads), Level::Acceleration);
+                    let z = self.zhukovski_from(q[i], qd[i], l, upto, s, start)?;
+                    Ok((z, &s[..]))
+                })?;
                 *r.at(i) =
                     crate::solvers::zhukovski::acceleration(z.reduced, z.moment, qd[i], driver[i])?;
                 Ok(())
@@ -316,7 +335,10 @@ impl Mechanism {
             || (self.empty_motion(), Warm::new(self)),
             |i, r, (m, warm)| {
                 let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-                self.kinematics_warm(qi, qdi, qddi, m, warm)?;
+                warm.run(qi, |start| {
+                    self.kinematics_from(qi, qdi, qddi, m, start)?;
+                    Ok(((), &m.states[..]))
+                })?;
                 put_kinematics(r, i, m.points.iter(), m.links[1..].iter());
                 Ok(())
             },
@@ -367,7 +389,10 @@ impl Mechanism {
         };
         each_with(rows.0, rows.1, scratch, |i, r, (m, f, warm)| {
             let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-            self.kinematics_warm(qi, qdi, qddi, m, warm)?;
+            warm.run(qi, |start| {
+                self.kinematics_from(qi, qdi, qddi, m, start)?;
+                Ok(((), &m.states[..]))
+            })?;
             self.kinetostatics_into(m, loads, None, f)?;
             put_kinetostatics(
                 r,

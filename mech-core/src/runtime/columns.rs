@@ -261,12 +261,19 @@ impl Columns {
                 at = q.len();
             }
             let warm = scratch.warm.get_or_insert_with(|| Warm::new(m));
+            let s = &mut scratch.states;
             if self.has(Part::Positions) {
                 let n = 2 * m.model().points.len() + m.model().links.len() - 1;
-                m.positions_warm(q, &mut scratch.states, &mut out[at..at + n], warm)?;
+                warm.run(q, |start| {
+                    m.positions_from(q, s, &mut out[at..at + n], start)?;
+                    Ok(((), &s[..]))
+                })?;
             } else if self.has(Part::Points) {
                 let n = 2 * m.model().points.len();
-                m.points_warm(q, &mut scratch.states, &mut out[at..at + n], warm)?;
+                warm.run(q, |start| {
+                    m.points_from(q, s, &mut out[at..at + n], start)?;
+                    Ok(((), &s[..]))
+                })?;
             }
             return Ok(());
         }
@@ -353,7 +360,10 @@ impl Columns {
         } else {
             let warm = scratch.warm.get_or_insert_with(|| Warm::new(m));
             let mo = scratch.motion.get_or_insert_with(|| m.empty_motion());
-            m.kinematics_warm(q, qd, qdd, mo, warm)?;
+            warm.run(q, |start| {
+                m.kinematics_from(q, qd, qdd, mo, start)?;
+                Ok(((), &mo.states[..]))
+            })?;
             if self.has(Part::Positions) || self.has(Part::Points) {
                 row.extend(mo.points.iter().flat_map(|p| [p.pos.x, p.pos.y]));
                 if self.has(Part::Positions) {

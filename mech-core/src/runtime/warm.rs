@@ -95,93 +95,54 @@ impl Warm {
     }
 }
 
-use super::results::Motion;
 use crate::kernel::constraints::Level;
 use crate::MechError;
 
-/// The solvers of a chunk with the warm start: each solves as its one-configuration form
-/// with the triads started from `warm` ([`Warm::start`]) and then remembers the
-/// configuration ([`Warm::keep`]).
+impl Warm {
+    /// Solve the configuration at inputs `q` by `solve`, given the start for it
+    /// ([`Warm::start`]) and returning its answer and the states it solved into; remember
+    /// them when it succeeds, forget the last configuration when it fails.
+    #[inline]
+    pub(crate) fn run<'s, T>(
+        &mut self,
+        q: &[f64],
+        solve: impl FnOnce(Option<&[LinkState]>) -> Result<(T, &'s [LinkState]), MechError>,
+    ) -> Result<T, MechError> {
+        match solve(self.start(q)) {
+            Ok((t, s)) => {
+                self.keep(q, s, true);
+                Ok(t)
+            }
+            Err(e) => {
+                self.keep(q, &[], false);
+                Err(e)
+            }
+        }
+    }
+}
+
 impl Mechanism {
-    /// [`Mechanism::solve_into`] with the warm start.
-    pub(crate) fn solve_warm(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        upto: Level,
-        s: &mut Vec<LinkState>,
-        warm: &mut Warm,
-    ) -> Result<(), MechError> {
-        let r = self.solve_into_from(q, qd, qdd, upto, s, warm.start(q));
-        warm.keep(q, s, r.is_ok());
-        r
-    }
-
-    /// [`Mechanism::points_into`] with the warm start.
-    pub(crate) fn points_warm(
-        &self,
-        q: &[f64],
-        s: &mut Vec<LinkState>,
-        out: &mut [f64],
-        warm: &mut Warm,
-    ) -> Result<(), MechError> {
-        let r = self.points_from(q, s, out, warm.start(q));
-        warm.keep(q, s, r.is_ok());
-        r
-    }
-
-    /// [`Mechanism::positions_into`] with the warm start.
-    pub(crate) fn positions_warm(
-        &self,
-        q: &[f64],
-        s: &mut Vec<LinkState>,
-        out: &mut [f64],
-        warm: &mut Warm,
-    ) -> Result<(), MechError> {
-        let r = self.positions_from(q, s, out, warm.start(q));
-        warm.keep(q, s, r.is_ok());
-        r
-    }
-
-    /// Zhukovski's sums (`Mechanism::zhukovski_sums`) with the warm start, the states
-    /// solved into `s`.
-    pub(crate) fn zhukovski_warm(
+    /// Zhukovski's sums (`Mechanism::zhukovski_sums`) with the triads started from `start`,
+    /// the states solved into `s` (the batched `reduced_many` and `acceleration_many`).
+    pub(crate) fn zhukovski_from(
         &self,
         q: f64,
         qd: f64,
         loads: Option<&super::results::Loads>,
         upto: Level,
         s: &mut Vec<LinkState>,
-        warm: &mut Warm,
+        start: Option<&[LinkState]>,
     ) -> Result<crate::solvers::zhukovski::ZhukovskiSums, MechError> {
         crate::error::check_finite("q, qd, qdd", &[q])?;
         s.resize(self.inst.drawing.len(), LinkState::default());
         let drive: crate::kernel::constraints::Drive = (&[q], &[1.0], &[0.0]);
-        let start = warm.start(&[q]);
-        let r = match upto {
+        match upto {
             Level::Acceleration => {
-                self.solve_from::<{ super::dispatch::ACCELERATION }>(drive, s, &mut [], start)
+                self.solve_from::<{ super::dispatch::ACCELERATION }>(drive, s, &mut [], start)?
             }
-            _ => self.solve_from::<{ super::dispatch::VELOCITY }>(drive, s, &mut [], start),
-        };
-        warm.keep(&[q], s, r.is_ok());
-        r?;
+            _ => self.solve_from::<{ super::dispatch::VELOCITY }>(drive, s, &mut [], start)?,
+        }
         self.sums(s, loads, qd, upto == Level::Acceleration)
-    }
-
-    /// [`Mechanism::kinematics_into`] with the warm start.
-    pub(crate) fn kinematics_warm(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        out: &mut Motion,
-        warm: &mut Warm,
-    ) -> Result<(), MechError> {
-        let r = self.kinematics_from(q, qd, qdd, out, warm.start(q));
-        warm.keep(q, &out.states, r.is_ok());
-        r
     }
 }
 
@@ -226,8 +187,11 @@ mod tests {
         let mut w = Warm::new(&m);
         for k in 0..40 {
             let q = [1.2 + 0.05 * k as f64];
-            m.solve_warm(&q, &[0.0], &[0.0], Level::Position, &mut warm, &mut w)
-                .unwrap();
+            w.run(&q, |start| {
+                m.solve_into_from(&q, &[0.0], &[0.0], Level::Position, &mut warm, start)?;
+                Ok(((), &warm[..]))
+            })
+            .unwrap();
             m.solve_into(&q, &[0.0], &[0.0], Level::Position, &mut cold)
                 .unwrap();
             for (a, b) in warm.iter().zip(&cold) {
