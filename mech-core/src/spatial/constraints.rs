@@ -1,0 +1,237 @@
+//! The spatial joints' constraint equations in the bodies' absolute coordinates, their Jacobian rows and the rows' velocity terms
+//!
+//! Each moving body i has a reference point o_i (its cg, else its first point) and a
+//! rotation R_i from the drawing (R_i = 1 in the drawing, so vectors fixed in a body are
+//! written with their drawing components). Its twist is (v_i, ω_i): the velocity of o_i and
+//! the angular velocity, both in global axes. A constraint Φ = 0 has the row J with
+//! Φ̇ = J·(v_a, ω_a, v_b, ω_b) and Φ̈ = J·(a_a, α_a, a_b, α_b) + γ, γ the terms in the
+//! velocities alone. Every joint is built from five primitives, each written once:
+//! - `coincide`: a point of a on a point of b, p_a − p_b = 0 (3 rows);
+//! - `perpendicular`: a vector fixed in a stays at its drawing angle to one fixed in b,
+//!   (R_a x)·(R_b y) = x·y (1 row);
+//! - `offset`: the point of b stays at its drawing distance from a plane of a:
+//!   n·(p_b − p_a) = target (1 row, n fixed in a);
+//! - `angle`: b's rotation about an axis u fixed in a, θ = atan2((n_a × n_b)·u, n_a·n_b) with
+//!   n ⊥ u fixed in both (1 row, θ̇ = u·(ω_b − ω_a));
+//! - `spin`: an idle link keeps the drawing's spin about its axis e, the vector part of its
+//!   rotation quaternion ⊥ e (1 row).
+
+use nalgebra::{UnitQuaternion, Vector3};
+use std::f64::consts::PI;
+
+type V3 = Vector3<f64>;
+
+/// A body's pose and twist during a solve (the ground: o = 0, R = 1, at rest).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyState {
+    /// The reference point o (m).
+    pub o: V3,
+    /// The rotation from the drawing.
+    pub rot: UnitQuaternion<f64>,
+    /// The velocity of o (m/s).
+    pub v: V3,
+    /// The angular velocity (rad/s).
+    pub w: V3,
+}
+
+impl BodyState {
+    /// The body in the drawing, at rest, its reference point at `o`.
+    pub fn drawing(o: V3) -> Self {
+        BodyState {
+            o,
+            rot: UnitQuaternion::identity(),
+            v: V3::zeros(),
+            w: V3::zeros(),
+        }
+    }
+}
+
+/// One constraint row: its value Φ, its Jacobian blocks on body a's and body b's twists
+/// ((v, ω) coefficients each) and γ (Φ̈ = J·accelerations + γ).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Row {
+    /// Φ (m, or dimensionless, or rad).
+    pub value: f64,
+    /// Coefficients of (v_a, ω_a).
+    pub a: [V3; 2],
+    /// Coefficients of (v_b, ω_b).
+    pub b: [V3; 2],
+    /// The velocity terms of Φ̈.
+    pub gamma: f64,
+}
+
+impl Row {
+    /// self + k·other, every part.
+    fn plus(self, k: f64, o: Row) -> Row {
+        Row {
+            value: self.value + k * o.value,
+            a: [self.a[0] + o.a[0] * k, self.a[1] + o.a[1] * k],
+            b: [self.b[0] + o.b[0] * k, self.b[1] + o.b[1] * k],
+            gamma: self.gamma + k * o.gamma,
+        }
+    }
+}
+
+/// Two unit vectors completing the unit `u` to a right-handed orthonormal basis (n1, n2, u).
+pub fn basis(u: V3) -> (V3, V3) {
+    let t = if u.x.abs() < 0.9 { V3::x() } else { V3::y() };
+    let n1 = u.cross(&t).normalize();
+    (n1, u.cross(&n1))
+}
+
+/// The three rows of p_a = p_b, p = o + R s (s: the point from the body's o in the drawing).
+fn coincide(a: &BodyState, sa: V3, b: &BodyState, sb: V3, out: &mut Vec<Row>) {
+    let (ra, rb) = (a.rot * sa, b.rot * sb);
+    let d = a.o + ra - b.o - rb;
+    let g = a.w.cross(&a.w.cross(&ra)) - b.w.cross(&b.w.cross(&rb));
+    for k in 0..3 {
+        let e = V3::ith(k, 1.0);
+        out.push(Row {
+            value: d[k],
+            a: [e, ra.cross(&e)],
+            b: [-e, -rb.cross(&e)],
+            gamma: g[k],
+        });
+    }
+}
+
+/// (R_a x)·(R_b y) − x·y: Φ̇ = (x_a × y_b)·(ω_a − ω_b).
+fn perpendicular(a: &BodyState, x: V3, b: &BodyState, y: V3) -> Row {
+    let (xa, yb) = (a.rot * x, b.rot * y);
+    let c = xa.cross(&yb);
+    let dc = a.w.cross(&xa).cross(&yb) + xa.cross(&b.w.cross(&yb));
+    Row {
+        value: xa.dot(&yb) - x.dot(&y),
+        a: [V3::zeros(), c],
+        b: [V3::zeros(), -c],
+        gamma: (a.w - b.w).dot(&dc),
+    }
+}
+
+/// n·(p_b − p_a) − target, n = R_a n fixed in a, p_a = o_a + R_a s_a, p_b = o_b + R_b s_b.
+fn offset(a: &BodyState, n: V3, sa: V3, b: &BodyState, sb: V3, target: f64) -> Row {
+    let (n, ra, rb) = (a.rot * n, a.rot * sa, b.rot * sb);
+    let d = b.o + rb - a.o - ra;
+    let dd = b.v + b.w.cross(&rb) - a.v - a.w.cross(&ra);
+    let gamma = a.w.cross(&a.w.cross(&n)).dot(&d)
+        + 2.0 * a.w.cross(&n).dot(&dd)
+        + n.dot(&(b.w.cross(&b.w.cross(&rb)) - a.w.cross(&a.w.cross(&ra))));
+    Row {
+        value: n.dot(&d) - target,
+        a: [-n, n.cross(&(d + ra))],
+        b: [n, rb.cross(&n)],
+        gamma,
+    }
+}
+
+/// θ − target, θ the rotation of b relative to a about u (fixed in a) measured by n ⊥ u
+/// (fixed in both in the drawing), unwrapped to the turn nearest `target`.
+fn angle(a: &BodyState, u: V3, n: V3, b: &BodyState, target: f64) -> Row {
+    let (u, na, nb) = (a.rot * u, a.rot * n, b.rot * n);
+    let theta = na.cross(&nb).dot(&u).atan2(na.dot(&nb));
+    let turns = ((target - theta) / (2.0 * PI)).round();
+    Row {
+        value: theta + 2.0 * PI * turns - target,
+        a: [V3::zeros(), -u],
+        b: [V3::zeros(), u],
+        gamma: a.w.cross(&u).dot(&(b.w - a.w)),
+    }
+}
+
+/// The idle link's spin fix: e·vec(q) = 0 for its rotation quaternion q = (w, v) (e the
+/// link's axis in the drawing); with q̇ = ½ (0, ω) ⊗ q, Φ̇ = ½ ω·(w e + v × e) and
+/// γ = ½ ω·(ẇ e + v̇ × e). The row's ground side (a) is empty.
+pub fn spin(body: &BodyState, e: V3) -> Row {
+    let q = body.rot.quaternion();
+    let (w, v) = (q.w, q.imag());
+    let (wd, vd) = (-0.5 * body.w.dot(&v), 0.5 * (body.w * w + body.w.cross(&v)));
+    Row {
+        value: e.dot(&v),
+        a: [V3::zeros(); 2],
+        b: [V3::zeros(), 0.5 * (e * w + v.cross(&e))],
+        gamma: 0.5 * body.w.dot(&(e * wd + vd.cross(&e))),
+    }
+}
+
+/// A joint's geometry fixed in its bodies: the point from each body's o and its axes, all
+/// in the drawing's components.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointGeom {
+    /// The first body.
+    pub a: usize,
+    /// The second body.
+    pub b: usize,
+    /// The joint's point from o_a in the drawing (m).
+    pub sa: V3,
+    /// The joint's point from o_b in the drawing (m).
+    pub sb: V3,
+    /// The kind's axes: (u, n1, n2) (u the axis, n1, n2 from [`basis`]; the universal's
+    /// second axis in n1).
+    pub axes: [V3; 3],
+    /// The kind: 0 spherical, 1 revolute, 2 universal, 3 cylindrical, 4 prismatic, 5 helical.
+    pub kind: u8,
+    /// A helical joint's lead (m per turn).
+    pub pitch: f64,
+}
+
+/// The spherical kind's code in [`JointGeom::kind`].
+pub const SPHERICAL: u8 = 0;
+/// The revolute kind's code.
+pub const REVOLUTE: u8 = 1;
+/// The universal kind's code.
+pub const UNIVERSAL: u8 = 2;
+/// The cylindrical kind's code.
+pub const CYLINDRICAL: u8 = 3;
+/// The prismatic kind's code.
+pub const PRISMATIC: u8 = 4;
+/// The helical kind's code.
+pub const HELICAL: u8 = 5;
+
+/// The joint's 6 − k rows (k its class), appended to `out`, for bodies in states `a`, `b`.
+pub fn joint_rows(g: &JointGeom, a: &BodyState, b: &BodyState, out: &mut Vec<Row>) {
+    let [u, n1, n2] = g.axes;
+    match g.kind {
+        SPHERICAL => coincide(a, g.sa, b, g.sb, out),
+        REVOLUTE => {
+            coincide(a, g.sa, b, g.sb, out);
+            out.push(perpendicular(a, n1, b, u));
+            out.push(perpendicular(a, n2, b, u));
+        }
+        UNIVERSAL => {
+            coincide(a, g.sa, b, g.sb, out);
+            out.push(perpendicular(a, u, b, n1));
+        }
+        _ => {
+            // cylindrical, then prismatic's no-rotation or helical's lead
+            out.push(perpendicular(a, n1, b, u));
+            out.push(perpendicular(a, n2, b, u));
+            out.push(offset(a, n1, g.sa, b, g.sb, 0.0));
+            out.push(offset(a, n2, g.sa, b, g.sb, 0.0));
+            if g.kind == PRISMATIC {
+                out.push(perpendicular(a, n1, b, n2));
+            } else if g.kind == HELICAL {
+                out.push(lead(g, a, b));
+            }
+        }
+    }
+}
+
+/// A helical joint's u·d − p θ/(2π), θ unwrapped near 2π u·d / p.
+fn lead(g: &JointGeom, a: &BodyState, b: &BodyState) -> Row {
+    let [u, n1, _] = g.axes;
+    let along = offset(a, u, g.sa, b, g.sb, 0.0);
+    let k = -g.pitch / (2.0 * PI);
+    along.plus(k, angle(a, u, n1, b, along.value * 2.0 * PI / g.pitch))
+}
+
+/// The driver's row at input value q: a revolute's or helical's rotation about its axis
+/// θ − q (rad), a prismatic's advance along its axis u·(p_b − p_a) − q (m, 0 in the
+/// drawing). Its multiplier is the motor action (N·m or N, by a on b along the axis).
+pub fn driver_row(g: &JointGeom, a: &BodyState, b: &BodyState, q: f64) -> Row {
+    let [u, n1, _] = g.axes;
+    if g.kind == PRISMATIC {
+        offset(a, u, g.sa, b, g.sb, q)
+    } else {
+        angle(a, u, n1, b, q)
+    }
+}

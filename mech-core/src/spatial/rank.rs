@@ -1,0 +1,80 @@
+//! The rank of a spatial mechanism's constraint Jacobian at the drawing, and which joints' equations repeat the others'
+//!
+//! The rows (joints in order, then the drivers, then the idle spins) are each scaled to
+//! unit length and added group by group; a group whose rows raise the rank (singular
+//! values above 1e-9 of the largest) by fewer than their number repeats equations already
+//! imposed: redundant constraints (their reactions are statically indeterminate), or an
+//! input that cannot move the drawing (a dead point).
+
+use super::constraints::BodyState;
+use super::kinematics::Layout;
+use nalgebra::DMatrix;
+
+fn rank(m: &DMatrix<f64>) -> usize {
+    if m.nrows() == 0 || m.ncols() == 0 {
+        return 0;
+    }
+    let s = m.clone().singular_values();
+    let top = s.max();
+    s.iter().filter(|&&v| v > 1e-9 * top).count()
+}
+
+/// The message naming the redundant joints (or the locked inputs) when the Jacobian at the
+/// drawing has fewer independent rows than rows; `None` when its rows are independent.
+pub(crate) fn check(layout: &Layout) -> Option<String> {
+    let s: Vec<BodyState> = layout.o0.iter().map(|&o| BodyState::drawing(o)).collect();
+    let q = vec![0.0; layout.model.inputs.len()];
+    let (rows, owners) = layout.rows(&s, &q);
+    let mut j = layout.jacobian(&rows, &owners);
+    for mut r in j.row_iter_mut() {
+        let n = r.norm();
+        if n > 0.0 {
+            r /= n;
+        }
+    }
+    let total = rank(&j);
+    if total == rows.len() {
+        return None;
+    }
+    let model = &layout.model;
+    let mut groups: Vec<(String, usize)> = model
+        .joints
+        .iter()
+        .map(|x| {
+            (
+                format!("joint `{}` ({})", x.name, x.kind.word()),
+                6 - x.kind.class(),
+            )
+        })
+        .collect();
+    groups.extend(
+        model
+            .inputs
+            .iter()
+            .map(|&k| (format!("input `{}`", model.joints[k].name), 1)),
+    );
+    groups.extend(layout.spins.iter().map(|&(b, _)| {
+        (
+            format!("the spin fix of link `{}`", model.bodies[b].name),
+            1,
+        )
+    }));
+    let (mut start, mut before, mut found) = (0, 0, Vec::new());
+    for (name, count) in groups {
+        let now = rank(&j.rows(0, start + count).into_owned());
+        if now < before + count {
+            found.push(format!(
+                "{name}: {} of its {count} equation(s) repeat those before it",
+                before + count - now
+            ));
+        }
+        before = now;
+        start += count;
+    }
+    Some(format!(
+        "the constraint Jacobian at the drawing has rank {total} for {} equations: {} redundant. {}. Redundant joint equations make the reactions statically indeterminate: replace a joint by one that leaves more freedom (e.g. a revolute (5 equations) by a universal (4) or a spherical (3) joint) until Kutzbach's count and the rank agree; an input whose equation repeats the others is at a dead point in the drawing: draw the mechanism elsewhere or choose another input",
+        rows.len(),
+        rows.len() - total,
+        found.join("; ")
+    ))
+}
