@@ -4,9 +4,10 @@
 //! direct problem, an mpmath Newton–Euler table of a spatial slider-crank, and the load-time
 //! errors.
 
-use mech_core::solvers::traits::Machine;
+use mech_core::dynamics::ode::{integrate, Dop853};
+use mech_core::dynamics::{equation_of_motion, total_energy};
 use mech_core::spatial::{SpatialLoads, SpatialMechanism};
-use mech_core::MechError;
+use mech_core::{MechError, Mechanism};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 
@@ -33,10 +34,6 @@ pub struct Rssr {
     loads { tool: torque on rocker, push: force on rod at B },
 }
 "#;
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> V3 {
-    V3::from(a) - V3::from(b)
-}
 
 /// The RSSR's closed form (independent of the solver): A(q) on the crank circle about x,
 /// B(φ) on the rocker circle about z through C, |B − A| = L solved as P cos φ + Q sin φ = R
@@ -207,3 +204,158 @@ fn the_three_routes_to_the_driver_torque_agree() {
     eprintln!("three routes: {worst:.2e} relative");
     assert!(worst < 1e-10, "{worst}");
 }
+
+const PLANAR: &str = r#"
+pub struct FourBar {
+    gravity: (0.0, -9.81),
+    ground { O2: (0.0, 0.0), O4: (0.3, 0.0) },
+    link crank { points { O2, A: (0.02, 0.06) }, mass: 0.4, inertia: 2e-4, cg: (0.012, 0.03) },
+    link coupler { points { A, B: (0.25, 0.16) }, mass: 1.1, inertia: 6e-3, cg: (0.14, 0.13) },
+    link rocker { points { B, O4 }, mass: 0.7, inertia: 2.5e-3, cg: (0.27, 0.07) },
+    joints {
+        O2: revolute(ground, crank),
+        A: revolute(crank, coupler),
+        B: revolute(coupler, rocker),
+        O4: revolute(rocker, ground),
+    },
+    input: O2,
+    loads { push: force on coupler at B, tool: torque on rocker },
+}
+"#;
+
+/// The same four-bar in space: revolute axes along z at z = 0, A spherical and B universal
+/// (z in the coupler, the rocker's line in the rocker) so that Kutzbach's count is 1 (four
+/// revolutes in space are over-constrained: G = −2); Izz as the planar inertia, Ixx, Iyy,
+/// Ixy arbitrary (Ixz = Iyz = 0 keeps the motion planar).
+const PLANAR_IN_SPACE: &str = r#"
+pub struct FourBar3 {
+    space,
+    gravity: (0.0, -9.81, 0.0),
+    ground { O2: (0.0, 0.0, 0.0), O4: (0.3, 0.0, 0.0) },
+    link crank { points { O2, A: (0.02, 0.06, 0.0) }, mass: 0.4, cg: (0.012, 0.03, 0.0), inertia: (1e-4, 3e-4, 2e-4, 5e-5, 0.0, 0.0) },
+    link coupler { points { A, B: (0.25, 0.16, 0.0) }, mass: 1.1, cg: (0.14, 0.13, 0.0), inertia: (2e-3, 5e-3, 6e-3, -1e-3, 0.0, 0.0) },
+    link rocker { points { B, O4 }, mass: 0.7, cg: (0.27, 0.07, 0.0), inertia: (2e-3, 4e-4, 2.5e-3, 3e-4, 0.0, 0.0) },
+    joints {
+        O2: revolute(ground, crank) axis (0.0, 0.0, 1.0),
+        A: spherical(crank, coupler),
+        B: universal(coupler, rocker) axes (0.0, 0.0, 1.0) (0.05, -0.16, 0.0),
+        O4: revolute(rocker, ground) axis (0.0, 0.0, 1.0),
+    },
+    input: O2,
+    loads { push: force on coupler at B, tool: torque on rocker },
+}
+"#;
+
+/// A planar mechanism declared with `space` gives the planar run-time Mechanism's numbers:
+/// positions, velocities, accelerations, the driver torque and every reaction force; under
+/// planar loads the z force components and the x and y moment components are zero (the
+/// only moments a revolute or universal joint carries here).
+#[test]
+fn a_planar_four_bar_declared_in_space_gives_the_planar_numbers() {
+    let plane = Mechanism::from_dsl(PLANAR).unwrap();
+    let space = SpatialMechanism::from_dsl(PLANAR_IN_SPACE).unwrap();
+    assert!(space.idle_links().is_empty());
+    let mut pl = plane.loads();
+    assert!(pl.set_by_name("push", &[3.0, -2.0]) && pl.set_by_name("tool", &[1.5]));
+    let mut sl = space.loads();
+    assert!(sl.set_by_name("push", &[3.0, -2.0, 0.0]) && sl.set_by_name("tool", &[0.0, 0.0, 1.5]));
+    let (mut kin, mut force, mut out_of_plane) = (0.0f64, 0.0f64, 0.0f64);
+    for k in 0..36 {
+        let q = 2.0 * PI * k as f64 / 36.0;
+        let (qd, qdd) = (7.0, -20.0 + k as f64);
+        // the planar q is the crank's angle θ (SPEC 2), the spatial one its rotation from
+        // the drawing
+        let a = plane.kinematics(&[q + 0.06f64.atan2(0.02)], &[qd], &[qdd]).unwrap();
+        let b = space.kinematics(&[q], &[qd], &[qdd]).unwrap();
+        for p in ["A", "B"] {
+            let (pa, pb) = (a.point(p).unwrap(), b.point_motion(p).unwrap());
+            for (x, y, scale) in [(pa.pos, pb[0], 0.3), (pa.vel, pb[1], 0.3 * qd), (pa.acc, pb[2], 0.3 * (qd * qd + qdd.abs()))] {
+                kin = kin.max((x - y.xy()).amax() / scale).max(y.z.abs() / scale);
+            }
+        }
+        for l in ["crank", "coupler", "rocker"] {
+            let (la, lb) = (a.link(l).unwrap(), b.link(l).unwrap());
+            kin = kin.max((la.omega - lb.omega.z).abs() / qd).max((la.alpha - lb.alpha.z).abs() / (qd * qd + qdd.abs()));
+            kin = kin.max(lb.omega.xy().amax() / qd).max(lb.alpha.xy().amax() / (qd * qd));
+        }
+        let (fa, fb) = (plane.kinetostatics(&a, &pl).unwrap(), space.kinetostatics(&b, &sl).unwrap());
+        let scale = fa.joints.iter().map(|j| j.force.amax()).fold(fa.driver[0].abs(), f64::max);
+        force = force.max((fa.driver[0] - fb.driver()).abs() / scale);
+        for j in ["O2", "A", "B", "O4"] {
+            let (ra, rb) = (fa.reaction(j).unwrap().0, fb.reaction(j).unwrap());
+            force = force.max((ra - rb.force.xy()).amax() / scale);
+            out_of_plane = out_of_plane.max(rb.force.z.abs() / scale).max(rb.moment.xy().amax() / (0.3 * scale));
+            // a spherical joint carries no moment; a universal's only about its cross's normal
+            assert!(j != "A" || rb.moment.amax() < 1e-12 * scale, "{j}");
+        }
+    }
+    eprintln!("planar in space: kinematics {kin:.2e}, forces {force:.2e}, out of plane {out_of_plane:.2e} (relative)");
+    assert!(kin < 1e-12 && force < 1e-12 && out_of_plane < 1e-12, "{kin} {force} {out_of_plane}");
+}
+
+/// The direct problem keeps T + V: the RSSR coasting under gravity (driver 0, no loads)
+/// integrated by DOP853 at 1e-11 for one second.
+#[test]
+fn the_direct_problem_keeps_the_energy() {
+    let m = SpatialMechanism::from_dsl(RSSR).unwrap();
+    let (q0, w0) = (0.3, 8.0);
+    let e0 = total_energy(&m, &[q0], &[w0]).unwrap();
+    let out = integrate(
+        &mut Dop853::new(1e-11, 1e-11),
+        equation_of_motion(&m, |_, _, _| (0.0, SpatialLoads::default())),
+        0.0,
+        [q0, w0],
+        1.0,
+    )
+    .unwrap();
+    let e1 = total_energy(&m, &[out.y[0]], &[out.y[1]]).unwrap();
+    eprintln!("energy: q {:.3} rad after 1 s, |ΔE| = {:.2e} J of {e0:.5} J", out.y[0], (e1 - e0).abs());
+    assert!((out.y[0] - q0).abs() > 1.0, "it moves: {}", out.y[0]);
+    assert!((e1 - e0).abs() < 1e-8 * e0.abs().max(1.0), "{e0} {e1}");
+}
+
+fn invalid(text: &str) -> String {
+    match SpatialMechanism::from_dsl(text) {
+        Err(MechError::Invalid(m)) => m,
+        other => panic!("expected Invalid, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_input_is_refused_with_the_numbers_and_the_fix() {
+    // Kutzbach off: the rocker's revolute made cylindrical gives G = 6·3 − 5 − 3 − 3 − 4 = 3,
+    // one idle, 2 ≠ 1 input.
+    let m = invalid(&RSSR.replace("C: revolute(ground, rocker)", "C: cylindrical(ground, rocker)"));
+    assert!(m.contains("Kutzbach") && m.contains("= 3, of which 1 idle") && m.contains("link `rod` spins idly") && m.contains("declare 2 input"), "{m}");
+    // Two idle links are both named.
+    let m = invalid(&RSSR.replace("C: revolute(ground, rocker) axis (0.0, 0.0, 1.0)", "C: spherical(ground, rocker)"));
+    assert!(m.contains("of which 2 idle") && m.contains("link `rocker` spins idly"), "{m}");
+    // An unknown kind.
+    let m = invalid(&RSSR.replace("A: spherical(crank, rod)", "A: ball(crank, rod)"));
+    assert!(m.contains("unknown joint kind `ball`") && m.contains("universal(a, b) axes"), "{m}");
+    // A zero axis.
+    let m = invalid(&RSSR.replace("axis (1.0, 0.0, 0.0)", "axis (0.0, 0.0, 0.0)"));
+    assert!(m.contains("the axis of joint `O` is (0, 0, 0)"), "{m}");
+    // A universal joint whose axes are not perpendicular.
+    let m = invalid(&PLANAR_IN_SPACE.replace("(0.05, -0.16, 0.0)", "(0.05, -0.16, 0.1)"));
+    assert!(m.contains("universal joint's two axes are perpendicular"), "{m}");
+    // Four revolutes in space: Kutzbach's G = −2, and the rank names the joint that repeats.
+    let m = invalid(
+        &PLANAR_IN_SPACE
+            .replace("A: spherical(crank, coupler)", "A: revolute(crank, coupler) axis (0.0, 0.0, 1.0)")
+            .replace("universal(coupler, rocker) axes (0.0, 0.0, 1.0) (0.05, -0.16, 0.0)", "revolute(coupler, rocker) axis (0.0, 0.0, 1.0)"),
+    );
+    assert!(m.contains("= -2") && m.contains("rank 18 for 21 equations: 3 redundant") && m.contains("joint `O4` (revolute): 3 of its 5"), "{m}");
+    // Units and names.
+    let m = invalid(&RSSR.replace("mass: 0.5,", "mass: 0.5 mm,"));
+    assert!(m.contains("a mass is"), "{m}");
+    let m = invalid(&RSSR.replace("input: O,", "input: A,"));
+    assert!(m.contains("input `A` is a spherical joint"), "{m}");
+    let m = invalid(&RSSR.replace("space,", ""));
+    assert!(m.contains("starts with the word `space`"), "{m}");
+    // Not a panic, not a non-finite number: q beyond reach, NaN.
+    let m = SpatialMechanism::from_dsl(RSSR).unwrap();
+    assert!(matches!(m.pose(&[f64::NAN]), Err(MechError::InvalidInput(_))));
+    assert!(m.kinematics(&[0.1, 0.2], &[0.0], &[0.0]).is_err());
+}
+

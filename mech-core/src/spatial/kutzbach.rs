@@ -94,7 +94,7 @@ pub fn check(model: &SpatialModel) -> Option<String> {
             })
             .collect();
         format!(
-            ", of which {idle} idle ({}; the solver fixes that spin), leaving {g}",
+            ", of which {idle} idle ({}; the solver fixes each such spin), leaving {g}",
             names.join("; ")
         )
     };
