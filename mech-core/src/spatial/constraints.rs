@@ -1,4 +1,4 @@
-//! The spatial joints' constraint equations in the bodies' absolute coordinates, their Jacobian rows and the rows' velocity terms
+//! The spatial joints' constraint equations, their Jacobian rows and their velocity terms.
 //!
 //! Each moving body i has a reference point o_i (its cg, else its first point) and a
 //! rotation R_i from the drawing (R_i = 1 in the drawing, so vectors fixed in a body are

@@ -1,4 +1,4 @@
-//! The `space` form of the DSL (SPEC 3i), parsed with `syn` into a [`SpatialModel`]
+//! The `space` form of the DSL (SPEC 3i), parsed with `syn` into a `SpatialModel`.
 
 use super::model::{inertia_tensor, Body, Joint, JointKind, Load, LoadKind, SpatialModel};
 use crate::front::expr::Constants;

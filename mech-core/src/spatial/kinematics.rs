@@ -1,4 +1,4 @@
-//! Spatial kinematics: Newton on the loop equations from the drawing (its assembly kept), velocities and accelerations by linear solves
+//! Spatial kinematics by Newton on the loop equations from the drawing, rates by linear solves.
 //!
 //! The unknowns are the moving bodies' twists (v, ω) at their reference points, 6 per
 //! body; the rows are the joints' (`constraints::joint_rows`), one per input (the driver)

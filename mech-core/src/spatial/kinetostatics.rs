@@ -1,4 +1,4 @@
-//! Spatial kinetostatics: Newton–Euler of every moving body with its full inertia tensor and gyroscopic term, the joints' reaction wrenches and the motor actions
+//! Spatial kinetostatics by Newton–Euler with the full inertia tensor, and the joints' reactions.
 //!
 //! For each moving body, at its reference point o (its cg when declared): the inertia
 //! wrench (m a_G, I α + ω × (I ω)), I = R I_drawing Rᵀ the tensor turned to the pose, and

@@ -1,4 +1,4 @@
-//! Kutzbach's count of a spatial mechanism and its idle freedoms (a link spinning between two spherical joints)
+//! Kutzbach's count of a spatial mechanism and its idle freedoms.
 //!
 //! G = 6(N − 1) − (5 P_I + 4 P_II + 3 P_III + 2 P_IV + P_V)
 //! ([`crate::checks::grubler::spatial_mobility`]), N the links with the ground, P_k the

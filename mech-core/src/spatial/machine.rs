@@ -1,4 +1,4 @@
-//! `Machine` and `OneDof` for `SpatialMechanism`, so the generic dynamics run on spatial mechanisms
+//! `Machine` and `OneDof` for `SpatialMechanism`, so the generic dynamics run on it.
 
 use super::kinematics::SpatialMotion;
 use super::kinetostatics::SpatialLoads;

@@ -1,4 +1,4 @@
-//! `SpatialMechanism`: a spatial mechanism loaded at run time from the `space` text, its checks and its solvers
+//! `SpatialMechanism`, a spatial mechanism loaded at run time, its checks and its solvers.
 
 use super::kinematics::{kinematics, Layout, SpatialMotion};
 use super::kinetostatics::{kinetostatics, SpatialForces, SpatialLoads};

@@ -1,4 +1,4 @@
-//! Spatial mechanisms at run time (SPEC 3i, issue 33): the `space` text form, Kutzbach's count and the rank at the drawing, kinematics, kinetostatics, virtual power and Zhukovski's reduction in absolute coordinates
+//! Spatial mechanisms at run time (SPEC 3i, issue 33), from the `space` text to the solvers.
 //!
 //! `SpatialMechanism::from_dsl(text)` reads the text form, checks it and answers the same
 //! solvers as the planar run-time mechanism: `pose`, `kinematics`, `kinetostatics`,

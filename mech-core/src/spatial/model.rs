@@ -1,4 +1,4 @@
-//! The plain data of a spatial mechanism: bodies, points in 3-D, joints, inputs, loads
+//! The plain data of a spatial mechanism (bodies, 3-D points, joints, inputs, loads).
 
 use nalgebra::{Matrix3, Vector3};
 

@@ -1,4 +1,4 @@
-//! The rank of a spatial mechanism's constraint Jacobian at the drawing, and which joints' equations repeat the others'
+//! The constraint Jacobian's rank at the drawing, naming the joints whose equations repeat.
 //!
 //! The rows (joints in order, then the drivers, then the idle spins) are each scaled to
 //! unit length and added group by group; a group whose rows raise the rank (singular

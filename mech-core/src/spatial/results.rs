@@ -1,4 +1,4 @@
-//! What a spatial motion answers by name: a point's position, velocity and acceleration, a link's rotation and rates
+//! What a spatial motion answers by name (a point's motion, a link's).
 
 use super::kinematics::SpatialMotion;
 use nalgebra::{UnitQuaternion, Vector3};

@@ -1,4 +1,4 @@
-//! The motor actions of a spatial mechanism by virtual power, without reactions
+//! The motor actions of a spatial mechanism by virtual power, without reactions.
 //!
 //! For input k, the velocity coefficients x'_k (every body's (v, ω) per unit q̇_k, the
 //! others held) solve J x'_k = e_k (1 on input k's driver row). Virtual power over all the

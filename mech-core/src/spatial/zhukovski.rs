@@ -1,4 +1,4 @@
-//! Zhukovski's reduction of a one-DOF spatial mechanism: I*(q), dI*/dq and M*(q)
+//! Zhukovski's reduction of a one-DOF spatial mechanism (I*, dI*/dq, M*).
 //!
 //! From the motion with q̇ = 1, q̈ = 0 (velocity coefficients v'_G, ω' and their
 //! derivatives d v'_G/dq = a_G, dω'/dq = α of that motion), with I = R I_drawing Rᵀ:
