@@ -154,6 +154,8 @@ def tables():
                    rtol="1e-30", fast=True, seconds=0.3))
     T.append(Table("rolling", ["rolling_reference.py", "--out-root", "{root}"], ["tests/data/rolling.json"],
                    rtol="1e-30", fast=True, seconds=0.4))
+    T.append(Table("spatial", ["spatial_reference.py", "--out-root", "{root}"],
+                   ["tests/data/spatial/slider_crank.truth.json"], rtol="1e-27", fast=True, seconds=2.2))
     T.append(Table("large.rs", ["large_mechanisms.py", "--out-root", "{root}"], ["tests/large.rs"],
                    fast=True, seconds=0.05))
     # reads pyslvs's example list from the installed pyslvs (pyslvs_example_py below)
