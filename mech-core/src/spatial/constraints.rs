@@ -220,8 +220,10 @@ pub fn joint_rows(g: &JointGeom, a: &BodyState, b: &BodyState, out: &mut Vec<Row
 fn lead(g: &JointGeom, a: &BodyState, b: &BodyState) -> Row {
     let [u, n1, _] = g.axes;
     let along = offset(a, u, g.sa, b, g.sb, 0.0);
-    let k = -g.pitch / (2.0 * PI);
-    along.plus(k, angle(a, u, n1, b, along.value * 2.0 * PI / g.pitch))
+    let near = along.value * 2.0 * PI / g.pitch;
+    let mut theta = angle(a, u, n1, b, near);
+    theta.value += near;
+    along.plus(-g.pitch / (2.0 * PI), theta)
 }
 
 /// The driver's row at input value q: a revolute's or helical's rotation about its axis
@@ -233,5 +235,97 @@ pub fn driver_row(g: &JointGeom, a: &BodyState, b: &BodyState, q: f64) -> Row {
         offset(a, u, g.sa, b, g.sb, q)
     } else {
         angle(a, u, n1, b, q)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Fourth-order central differences (first and second derivative) of five samples at
+    /// −2h, −h, 0, h, 2h.
+    fn differences(f: [f64; 5], h: f64) -> (f64, f64) {
+        (
+            (f[0] - 8.0 * f[1] + 8.0 * f[3] - f[4]) / (12.0 * h),
+            (-f[0] + 16.0 * f[1] - 30.0 * f[2] + 16.0 * f[3] - f[4]) / (12.0 * h * h),
+        )
+    }
+
+    /// Φ̇ = J·ẋ and Φ̈ = J·ẍ + γ for every row of every joint kind, its driver, and a
+    /// `perpendicular` row of two generic vectors, against differences of Φ along a path:
+    /// body a on o(t) = o + v t + ½ a t², R(t) = exp(ω t + ½ α t²) R0 (so its ω, α at t = 0
+    /// are ω, α); body b turning with a about the joint's axis (R_b = R_a Rot(u, θ(t)) C,
+    /// C about u, so the axes stay aligned: ω_b = ω_a + θ̇ R_a u,
+    /// α_b = α_a + θ̈ R_a u + θ̇ ω_a × R_a u), its o on a parabola of its own.
+    #[test]
+    fn rows_and_velocity_terms_match_differences_of_the_equations() {
+        let u = V3::new(0.3, -0.5, 0.8).normalize();
+        let (n1, n2) = basis(u);
+        let r0 = UnitQuaternion::from_scaled_axis(V3::new(0.4, 0.1, -0.7));
+        let (oa, va, aa) = (V3::new(0.1, 0.2, -0.1), V3::new(0.5, -1.0, 0.3), V3::new(2.0, 1.0, -3.0));
+        let (wa, ala) = (V3::new(1.5, -0.5, 2.0), V3::new(-4.0, 3.0, 1.0));
+        let (ob, vb, ab) = (V3::new(0.4, 0.1, 0.2), V3::new(-0.3, 0.8, 1.1), V3::new(1.0, -2.0, 0.5));
+        let (thd, thdd) = (2.5, -6.0);
+        let c = UnitQuaternion::from_scaled_axis(u * 0.3);
+        let at = |t: f64| {
+            let ra = UnitQuaternion::from_scaled_axis(wa * t + ala * (0.5 * t * t)) * r0;
+            let rb = ra * UnitQuaternion::from_scaled_axis(u * (thd * t + 0.5 * thdd * t * t)) * c;
+            (
+                BodyState { o: oa + va * t + aa * (0.5 * t * t), rot: ra, v: va, w: wa },
+                BodyState { o: ob + vb * t + ab * (0.5 * t * t), rot: rb, v: vb, w: wa },
+            )
+        };
+        let (sa, sb) = (V3::new(0.2, -0.1, 0.05), V3::new(-0.15, 0.3, 0.1));
+        let h = 1e-3;
+        let mut worst = 0.0f64;
+        for kind in [SPHERICAL, REVOLUTE, UNIVERSAL, CYLINDRICAL, PRISMATIC, HELICAL] {
+            let g = JointGeom { a: 1, b: 2, sa, sb, axes: [u, n1, n2], kind, pitch: 0.07 };
+            let rows = |a: &BodyState, b: &BodyState| {
+                let mut out = Vec::new();
+                joint_rows(&g, a, b, &mut out);
+                out.push(driver_row(&g, a, b, 0.2));
+                out.push(perpendicular(a, V3::new(0.6, 0.0, 0.8), b, V3::new(0.0, 0.6, -0.8)));
+                out
+            };
+            let samples: Vec<Vec<Row>> = [-2.0, -1.0, 0.0, 1.0, 2.0]
+                .iter()
+                .map(|k| {
+                    let (a, b) = at(k * h);
+                    rows(&a, &b)
+                })
+                .collect();
+            let (a, b) = at(0.0);
+            let ua = a.rot * u;
+            let wb = wa + ua * thd;
+            let alb = ala + ua * thdd + wa.cross(&(ua * thd));
+            let exact = rows(&a, &BodyState { w: wb, ..b });
+            for (r, row) in exact.iter().enumerate() {
+                let (d1, d2) = differences(std::array::from_fn(|k| samples[k][r].value), h);
+                let j1 = row.a[0].dot(&va) + row.a[1].dot(&wa) + row.b[0].dot(&vb) + row.b[1].dot(&wb);
+                let j2 = row.a[0].dot(&aa) + row.a[1].dot(&ala) + row.b[0].dot(&ab) + row.b[1].dot(&alb) + row.gamma;
+                worst = worst.max((d1 - j1).abs()).max((d2 - j2).abs());
+                assert!((d1 - j1).abs() < 1e-8 && (d2 - j2).abs() < 1e-6, "kind {kind} row {r}: {d1} {j1} {d2} {j2}");
+            }
+        }
+        eprintln!("rows against differences: {worst:.1e}");
+    }
+
+    /// The spin row of an idle link, along a free path of the body alone.
+    #[test]
+    fn the_spin_row_matches_differences() {
+        let e = V3::new(0.2, 0.9, -0.3).normalize();
+        let (w, al) = (V3::new(1.0, -2.0, 0.5), V3::new(3.0, 1.0, -2.0));
+        let r0 = UnitQuaternion::from_scaled_axis(V3::new(0.2, -0.3, 0.1));
+        let at = |t: f64| BodyState {
+            o: V3::zeros(),
+            rot: UnitQuaternion::from_scaled_axis(w * t + al * (0.5 * t * t)) * r0,
+            v: V3::zeros(),
+            w,
+        };
+        let h = 1e-3;
+        let (d1, d2) = differences(std::array::from_fn(|k| spin(&at((k as f64 - 2.0) * h), e).value), h);
+        let row = spin(&at(0.0), e);
+        assert!((d1 - row.b[1].dot(&w)).abs() < 1e-9, "{d1}");
+        assert!((d2 - row.b[1].dot(&al) - row.gamma).abs() < 1e-6, "{d2}");
     }
 }
