@@ -423,3 +423,103 @@ fn a_spatial_slider_crank_matches_the_mpmath_newton_euler_table() {
     eprintln!("spatial slider-crank against mpmath:{report}");
     assert!(worst < 1e-12, "{report}");
 }
+
+/// A nut on a fixed screw (helical joint, lead 5 mm): over three turns each way the nut's
+/// point rises p q / (2π) and its cg turns about z; the motor torque is the closed form
+/// T = I* q̈ − M*, I* = m (r² + (p/2π)²) + Izz constant, M* = (F_z + m g_z) p / (2π).
+#[test]
+fn a_helical_joint_matches_its_closed_form_over_three_turns_each_way() {
+    let text = r#"pub struct Nut {
+        space,
+        gravity: (0.0, 0.0, -9.81),
+        consts { lead: 5 mm },
+        ground { O: (0.0, 0.0, 0.0) },
+        link nut { points { P: (0.0, 0.0, 100 mm) }, mass: 2.0, cg: (0.01, 0.02, 0.1), inertia: (3e-3, 2e-3, 4e-3, 5e-4, 0.0, 0.0) },
+        joints { P: helical(ground, nut) axis (0.0, 0.0, 1.0) pitch lead },
+        input: P,
+        loads { thrust: force on nut at P },
+    }"#;
+    let m = SpatialMechanism::from_dsl(text).unwrap();
+    let mut loads = m.loads();
+    loads.set_by_name("thrust", &[3.0, -1.0, -100.0]);
+    let k = 0.005 / (2.0 * PI);
+    let (mass, r) = (2.0, V3::new(0.01, 0.02, 0.0));
+    let inertia = mass * (r.norm_squared() + k * k) + 4e-3;
+    let (mut pos, mut torque) = (0.0f64, 0.0f64);
+    for i in -36..=36 {
+        let q = 3.0 * PI * i as f64 / 36.0;
+        let (qd, qdd) = (4.0, 30.0 - i as f64);
+        let motion = m.kinematics(&[q], &[qd], &[qdd]).unwrap();
+        let p = motion.point("P").unwrap();
+        let cg = motion.link("nut").unwrap().cg;
+        let turned = V3::new(r.x * q.cos() - r.y * q.sin(), r.x * q.sin() + r.y * q.cos(), 0.1 + k * q);
+        pos = pos.max((p - V3::new(0.0, 0.0, 0.1 + k * q)).amax()).max((cg - turned).amax());
+        let want = inertia * qdd - (-100.0 - mass * 9.81) * k;
+        let got = m.kinetostatics(&motion, &loads).unwrap().driver();
+        torque = torque.max((got - want).abs() / want.abs().max(1.0));
+        assert!((m.driver_action(&motion, &loads).unwrap()[0] - want).abs() < 1e-12 * want.abs().max(1.0));
+    }
+    eprintln!("helical: positions {pos:.1e} m, torque {torque:.1e} relative");
+    assert!(pos < 1e-12 && torque < 1e-12, "{pos} {torque}");
+}
+
+/// The RSSP driven at its slide (a prismatic input): the crank's angle from the closed form
+/// 0.1 (B_y cos θ + B_z sin θ) = |B|² + r² − L², and the three routes agree.
+#[test]
+fn the_rssp_driven_at_its_slide_matches_its_closed_form() {
+    let m = SpatialMechanism::from_dsl(&RSSP.replace("input: O,", "input: guide,")).unwrap();
+    let w = V3::new(1.0, 0.2, -0.1).normalize();
+    let (a0, b0) = (V3::new(0.0, 0.05, 0.0), V3::new(0.25, 0.02, 0.08));
+    let l2 = (b0 - a0).norm_squared();
+    let (mut pos, mut routes) = (0.0f64, 0.0f64);
+    let mut loads = m.loads();
+    loads.set_by_name("gas", &[-30.0, 5.0, 2.0]);
+    // the stroke is about −0.02 m .. 0.012 m (the dead points, c = ±1)
+    for i in 0..=40 {
+        let s = -0.018 + 0.028 * i as f64 / 40.0;
+        let b = b0 + w * s;
+        let c = (b.norm_squared() + 0.0025 - l2) / (0.1 * b.y.hypot(b.z));
+        let theta = b.z.atan2(b.y) - c.acos();
+        let pose = m.pose(&[s]).unwrap();
+        pos = pos.max((pose.point("A").unwrap() - V3::new(0.0, 0.05 * theta.cos(), 0.05 * theta.sin())).amax());
+        pos = pos.max((pose.point("B").unwrap() - b).amax());
+        routes = routes.max(three_routes(&m, &loads, s, 0.7, -3.0 + i as f64 / 4.0));
+    }
+    eprintln!("RSSP by its slide: positions {pos:.1e} m, routes {routes:.1e}");
+    assert!(pos < 1e-12 && routes < 1e-10, "{pos} {routes}");
+}
+
+/// An RSCR: the RSSR with a cylindrical joint (axis z, fixed in the rod) between rod and
+/// rocker: the rod only turns about z, so in the xy plane the crank pin, the rod and the
+/// rocker are a planar dyad (|B_xy − A_xy| = the drawing's), and B's point on the rod
+/// slides along z by A's rise. Three routes agree.
+#[test]
+fn a_cylindrical_joint_in_an_rscr_matches_its_closed_form() {
+    let text = RSSR
+        .replace("B: spherical(rod, rocker)", "B: cylindrical(rod, rocker) axis (0.0, 0.0, 1.0)");
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    assert!(m.idle_links().is_empty());
+    let loads = rssr_loads(&m);
+    let (a0, c, b0) = (V3::new(0.0, 0.05, 0.0), V3::new(0.25, 0.12, 0.08), V3::new(0.25, 0.02, 0.08));
+    let b = b0 - c;
+    let l2 = (b0 - a0).xy().norm_squared();
+    let (mut pos, mut routes) = (0.0f64, 0.0f64);
+    for i in 0..36 {
+        let q = 2.0 * PI * i as f64 / 36.0;
+        let a = V3::new(0.0, 0.05 * q.cos(), 0.05 * q.sin());
+        let d = (c - a).xy();
+        let (p, qq) = (2.0 * (d.x * b.x + d.y * b.y), 2.0 * (d.y * b.x - d.x * b.y));
+        let r = l2 - d.norm_squared() - b.xy().norm_squared();
+        let phi = qq.atan2(p) - (r / p.hypot(qq)).acos();
+        let bb = c + V3::new(b.x * phi.cos() - b.y * phi.sin(), b.x * phi.sin() + b.y * phi.cos(), b.z);
+        let pose = m.pose(&[q]).unwrap();
+        // `B` moves with the rod, the first link to list it: A_z above its drawing height
+        pos = pos.max((pose.point("B").unwrap() - V3::new(bb.x, bb.y, b0.z + a.z)).amax());
+        let rocker = pose.link("rocker").unwrap();
+        let rocker_b = rocker.cg + rocker.rotation * (b0 - V3::new(0.25, 0.07, 0.09));
+        pos = pos.max((rocker_b - bb).amax());
+        routes = routes.max(three_routes(&m, &loads, q, 5.0, 17.0));
+    }
+    eprintln!("RSCR: positions {pos:.1e} m, routes {routes:.1e}");
+    assert!(pos < 1e-12 && routes < 1e-10, "{pos} {routes}");
+}
