@@ -47,14 +47,31 @@ struct RssrClosed {
 
 impl RssrClosed {
     fn new() -> Self {
-        let (a0, c, b0) = (V3::new(0.0, 0.05, 0.0), V3::new(0.25, 0.12, 0.08), V3::new(0.25, 0.02, 0.08));
-        RssrClosed { a0, c, b: b0 - c, l: (b0 - a0).norm() }
+        let (a0, c, b0) = (
+            V3::new(0.0, 0.05, 0.0),
+            V3::new(0.25, 0.12, 0.08),
+            V3::new(0.25, 0.02, 0.08),
+        );
+        RssrClosed {
+            a0,
+            c,
+            b: b0 - c,
+            l: (b0 - a0).norm(),
+        }
     }
     fn a(&self, q: f64) -> V3 {
-        V3::new(0.0, self.a0.y * q.cos() - self.a0.z * q.sin(), self.a0.y * q.sin() + self.a0.z * q.cos())
+        V3::new(
+            0.0,
+            self.a0.y * q.cos() - self.a0.z * q.sin(),
+            self.a0.y * q.sin() + self.a0.z * q.cos(),
+        )
     }
     fn rz(v: V3, phi: f64) -> V3 {
-        V3::new(v.x * phi.cos() - v.y * phi.sin(), v.x * phi.sin() + v.y * phi.cos(), v.z)
+        V3::new(
+            v.x * phi.cos() - v.y * phi.sin(),
+            v.x * phi.sin() + v.y * phi.cos(),
+            v.z,
+        )
     }
     /// (A, B, φ, φ').
     fn solve(&self, q: f64) -> (V3, V3, f64, f64) {
@@ -94,7 +111,9 @@ fn rssr_matches_its_closed_form_over_a_full_turn() {
         let q = 2.0 * PI * k as f64 / 72.0;
         let (a, b, phi, phi_dot) = cf.solve(q);
         let pose = m.pose(&[q]).unwrap();
-        worst_pos = worst_pos.max((pose.point("A").unwrap() - a).amax()).max((pose.point("B").unwrap() - b).amax());
+        worst_pos = worst_pos
+            .max((pose.point("A").unwrap() - a).amax())
+            .max((pose.point("B").unwrap() - b).amax());
         let rocker = pose.link("rocker").unwrap();
         assert!((rocker.rotation.angle() - phi.abs()).abs() < 1e-11, "{q}");
         // Static driver torque by virtual work with the closed form's velocity coefficients:
@@ -107,14 +126,20 @@ fn rssr_matches_its_closed_form_over_a_full_turn() {
         let rocker_g = V3::z().cross(&(pose.link("rocker").unwrap().cg - cf.c)) * phi_dot;
         let rod_cg = pose.link("rod").unwrap().cg;
         let t = (rod_cg - a).dot(&(b - a)) / (b - a).norm_squared();
-        assert!(((a + (b - a) * t) - rod_cg).norm() < 1e-12, "the rod's cg is on AB");
+        assert!(
+            ((a + (b - a) * t) - rod_cg).norm() < 1e-12,
+            "the rod's cg is on AB"
+        );
         let rod_g = va + (vb - va) * t;
-        let power = loads.values[0].dot(&(V3::z() * phi_dot)) + loads.values[1].dot(&vb)
+        let power = loads.values[0].dot(&(V3::z() * phi_dot))
+            + loads.values[1].dot(&vb)
             + g.dot(&(crank_g * 1.0 + rod_g * 0.5 + rocker_g * 0.8));
         let tau = -power;
         let got = m.driver_action(&pose, &loads).unwrap()[0];
         let f = m.kinetostatics(&pose, &loads).unwrap();
-        worst_torque = worst_torque.max((got - tau).abs() / tau.abs().max(1.0)).max((f.driver() - tau).abs() / tau.abs().max(1.0));
+        worst_torque = worst_torque
+            .max((got - tau).abs() / tau.abs().max(1.0))
+            .max((f.driver() - tau).abs() / tau.abs().max(1.0));
     }
     eprintln!("RSSR: positions {worst_pos:.2e} m, static torque {worst_torque:.2e} relative");
     assert!(worst_pos < 1e-12, "{worst_pos}");
@@ -159,7 +184,9 @@ fn rssp_matches_its_closed_form_over_a_full_turn() {
         let va = V3::x().cross(&a);
         let s_dot = (b - a).dot(&va) / (b - a).dot(&w);
         let pose = m.pose(&[q]).unwrap();
-        worst_pos = worst_pos.max((pose.point("A").unwrap() - a).amax()).max((pose.point("B").unwrap() - b).amax());
+        worst_pos = worst_pos
+            .max((pose.point("A").unwrap() - a).amax())
+            .max((pose.point("B").unwrap() - b).amax());
         let rod_cg = pose.link("rod").unwrap().cg;
         let t = (rod_cg - a).dot(&(b - a)) / (b - a).norm_squared();
         let g = V3::new(0.0, -9.81, 0.0);
@@ -181,7 +208,8 @@ fn three_routes(m: &SpatialMechanism, loads: &SpatialLoads, q: f64, qd: f64, qdd
     let dalembert = m.kinetostatics(&motion, loads).unwrap().driver();
     let power = m.driver_action(&motion, loads).unwrap()[0];
     let r = m.reduced(q).unwrap();
-    let zhukovski = r.inertia * qdd + 0.5 * r.inertia_derivative * qd * qd - m.reduced_moment(q, loads).unwrap();
+    let zhukovski = r.inertia * qdd + 0.5 * r.inertia_derivative * qd * qd
+        - m.reduced_moment(q, loads).unwrap();
     let scale = dalembert.abs().max(power.abs()).max(1e-3);
     ((dalembert - power).abs() / scale).max((dalembert - zhukovski).abs() / scale)
 }
@@ -193,7 +221,13 @@ fn the_three_routes_to_the_driver_torque_agree() {
     let mut worst = 0.0f64;
     for k in 0..24 {
         let q = 2.0 * PI * k as f64 / 24.0 + 0.1;
-        worst = worst.max(three_routes(&m, &loads, q, 12.0 - k as f64, 40.0 * (q).sin()));
+        worst = worst.max(three_routes(
+            &m,
+            &loads,
+            q,
+            12.0 - k as f64,
+            40.0 * (q).sin(),
+        ));
     }
     let m = SpatialMechanism::from_dsl(RSSP).unwrap();
     let loads = m.loads();
@@ -265,32 +299,54 @@ fn a_planar_four_bar_declared_in_space_gives_the_planar_numbers() {
         let (qd, qdd) = (7.0, -20.0 + k as f64);
         // the planar q is the crank's angle θ (SPEC 2), the spatial one its rotation from
         // the drawing
-        let a = plane.kinematics(&[q + 0.06f64.atan2(0.02)], &[qd], &[qdd]).unwrap();
+        let a = plane
+            .kinematics(&[q + 0.06f64.atan2(0.02)], &[qd], &[qdd])
+            .unwrap();
         let b = space.kinematics(&[q], &[qd], &[qdd]).unwrap();
         for p in ["A", "B"] {
             let (pa, pb) = (a.point(p).unwrap(), b.point_motion(p).unwrap());
-            for (x, y, scale) in [(pa.pos, pb[0], 0.3), (pa.vel, pb[1], 0.3 * qd), (pa.acc, pb[2], 0.3 * (qd * qd + qdd.abs()))] {
+            for (x, y, scale) in [
+                (pa.pos, pb[0], 0.3),
+                (pa.vel, pb[1], 0.3 * qd),
+                (pa.acc, pb[2], 0.3 * (qd * qd + qdd.abs())),
+            ] {
                 kin = kin.max((x - y.xy()).amax() / scale).max(y.z.abs() / scale);
             }
         }
         for l in ["crank", "coupler", "rocker"] {
             let (la, lb) = (a.link(l).unwrap(), b.link(l).unwrap());
-            kin = kin.max((la.omega - lb.omega.z).abs() / qd).max((la.alpha - lb.alpha.z).abs() / (qd * qd + qdd.abs()));
-            kin = kin.max(lb.omega.xy().amax() / qd).max(lb.alpha.xy().amax() / (qd * qd));
+            kin = kin
+                .max((la.omega - lb.omega.z).abs() / qd)
+                .max((la.alpha - lb.alpha.z).abs() / (qd * qd + qdd.abs()));
+            kin = kin
+                .max(lb.omega.xy().amax() / qd)
+                .max(lb.alpha.xy().amax() / (qd * qd));
         }
-        let (fa, fb) = (plane.kinetostatics(&a, &pl).unwrap(), space.kinetostatics(&b, &sl).unwrap());
-        let scale = fa.joints.iter().map(|j| j.force.amax()).fold(fa.driver[0].abs(), f64::max);
+        let (fa, fb) = (
+            plane.kinetostatics(&a, &pl).unwrap(),
+            space.kinetostatics(&b, &sl).unwrap(),
+        );
+        let scale = fa
+            .joints
+            .iter()
+            .map(|j| j.force.amax())
+            .fold(fa.driver[0].abs(), f64::max);
         force = force.max((fa.driver[0] - fb.driver()).abs() / scale);
         for j in ["O2", "A", "B", "O4"] {
             let (ra, rb) = (fa.reaction(j).unwrap().0, fb.reaction(j).unwrap());
             force = force.max((ra - rb.force.xy()).amax() / scale);
-            out_of_plane = out_of_plane.max(rb.force.z.abs() / scale).max(rb.moment.xy().amax() / (0.3 * scale));
+            out_of_plane = out_of_plane
+                .max(rb.force.z.abs() / scale)
+                .max(rb.moment.xy().amax() / (0.3 * scale));
             // a spherical joint carries no moment; a universal's only about its cross's normal
             assert!(j != "A" || rb.moment.amax() < 1e-12 * scale, "{j}");
         }
     }
     eprintln!("planar in space: kinematics {kin:.2e}, forces {force:.2e}, out of plane {out_of_plane:.2e} (relative)");
-    assert!(kin < 1e-12 && force < 1e-12 && out_of_plane < 1e-12, "{kin} {force} {out_of_plane}");
+    assert!(
+        kin < 1e-12 && force < 1e-12 && out_of_plane < 1e-12,
+        "{kin} {force} {out_of_plane}"
+    );
 }
 
 /// The direct problem keeps T + V: the RSSR coasting under gravity (driver 0, no loads)
@@ -309,7 +365,11 @@ fn the_direct_problem_keeps_the_energy() {
     )
     .unwrap();
     let e1 = total_energy(&m, &[out.y[0]], &[out.y[1]]).unwrap();
-    eprintln!("energy: q {:.3} rad after 1 s, |ΔE| = {:.2e} J of {e0:.5} J", out.y[0], (e1 - e0).abs());
+    eprintln!(
+        "energy: q {:.3} rad after 1 s, |ΔE| = {:.2e} J of {e0:.5} J",
+        out.y[0],
+        (e1 - e0).abs()
+    );
     assert!((out.y[0] - q0).abs() > 1.0, "it moves: {}", out.y[0]);
     assert!((e1 - e0).abs() < 1e-8 * e0.abs().max(1.0), "{e0} {e1}");
 }
@@ -325,27 +385,59 @@ fn invalid(text: &str) -> String {
 fn bad_input_is_refused_with_the_numbers_and_the_fix() {
     // Kutzbach off: the rocker's revolute made cylindrical gives G = 6·3 − 5 − 3 − 3 − 4 = 3,
     // one idle, 2 ≠ 1 input.
-    let m = invalid(&RSSR.replace("C: revolute(ground, rocker)", "C: cylindrical(ground, rocker)"));
-    assert!(m.contains("Kutzbach") && m.contains("= 3, of which 1 idle") && m.contains("link `rod` spins idly") && m.contains("declare 2 input"), "{m}");
+    let m = invalid(&RSSR.replace(
+        "C: revolute(ground, rocker)",
+        "C: cylindrical(ground, rocker)",
+    ));
+    assert!(
+        m.contains("Kutzbach")
+            && m.contains("= 3, of which 1 idle")
+            && m.contains("link `rod` spins idly")
+            && m.contains("declare 2 input"),
+        "{m}"
+    );
     // Two idle links are both named.
-    let m = invalid(&RSSR.replace("C: revolute(ground, rocker) axis (0.0, 0.0, 1.0)", "C: spherical(ground, rocker)"));
-    assert!(m.contains("of which 2 idle") && m.contains("link `rocker` spins idly"), "{m}");
+    let m = invalid(&RSSR.replace(
+        "C: revolute(ground, rocker) axis (0.0, 0.0, 1.0)",
+        "C: spherical(ground, rocker)",
+    ));
+    assert!(
+        m.contains("of which 2 idle") && m.contains("link `rocker` spins idly"),
+        "{m}"
+    );
     // An unknown kind.
     let m = invalid(&RSSR.replace("A: spherical(crank, rod)", "A: ball(crank, rod)"));
-    assert!(m.contains("unknown joint kind `ball`") && m.contains("universal(a, b) axes"), "{m}");
+    assert!(
+        m.contains("unknown joint kind `ball`") && m.contains("universal(a, b) axes"),
+        "{m}"
+    );
     // A zero axis.
     let m = invalid(&RSSR.replace("axis (1.0, 0.0, 0.0)", "axis (0.0, 0.0, 0.0)"));
     assert!(m.contains("the axis of joint `O` is (0, 0, 0)"), "{m}");
     // A universal joint whose axes are not perpendicular.
     let m = invalid(&PLANAR_IN_SPACE.replace("(0.05, -0.16, 0.0)", "(0.05, -0.16, 0.1)"));
-    assert!(m.contains("universal joint's two axes are perpendicular"), "{m}");
+    assert!(
+        m.contains("universal joint's two axes are perpendicular"),
+        "{m}"
+    );
     // Four revolutes in space: Kutzbach's G = −2, and the rank names the joint that repeats.
     let m = invalid(
         &PLANAR_IN_SPACE
-            .replace("A: spherical(crank, coupler)", "A: revolute(crank, coupler) axis (0.0, 0.0, 1.0)")
-            .replace("universal(coupler, rocker) axes (0.0, 0.0, 1.0) (0.05, -0.16, 0.0)", "revolute(coupler, rocker) axis (0.0, 0.0, 1.0)"),
+            .replace(
+                "A: spherical(crank, coupler)",
+                "A: revolute(crank, coupler) axis (0.0, 0.0, 1.0)",
+            )
+            .replace(
+                "universal(coupler, rocker) axes (0.0, 0.0, 1.0) (0.05, -0.16, 0.0)",
+                "revolute(coupler, rocker) axis (0.0, 0.0, 1.0)",
+            ),
     );
-    assert!(m.contains("= -2") && m.contains("rank 18 for 21 equations: 3 redundant") && m.contains("joint `O4` (revolute): 3 of its 5"), "{m}");
+    assert!(
+        m.contains("= -2")
+            && m.contains("rank 18 for 21 equations: 3 redundant")
+            && m.contains("joint `O4` (revolute): 3 of its 5"),
+        "{m}"
+    );
     // Units and names.
     let m = invalid(&RSSR.replace("mass: 0.5,", "mass: 0.5 mm,"));
     assert!(m.contains("a mass is"), "{m}");
@@ -355,10 +447,12 @@ fn bad_input_is_refused_with_the_numbers_and_the_fix() {
     assert!(m.contains("starts with the word `space`"), "{m}");
     // Not a panic, not a non-finite number: q beyond reach, NaN.
     let m = SpatialMechanism::from_dsl(RSSR).unwrap();
-    assert!(matches!(m.pose(&[f64::NAN]), Err(MechError::InvalidInput(_))));
+    assert!(matches!(
+        m.pose(&[f64::NAN]),
+        Err(MechError::InvalidInput(_))
+    ));
     assert!(m.kinematics(&[0.1, 0.2], &[0.0], &[0.0]).is_err());
 }
-
 
 /// A spatial slider-crank (R-S-U-P: a skew crank axis, a skew slide) against
 /// tools/spatial_reference.py's table: 50-digit Newton on its own loop equations (the rod's
@@ -367,17 +461,27 @@ fn bad_input_is_refused_with_the_numbers_and_the_fix() {
 /// 1e-12 of its kind's scale (the largest magnitude of that kind in the table).
 #[test]
 fn a_spatial_slider_crank_matches_the_mpmath_newton_euler_table() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/spatial/slider_crank.truth.json");
-    let data: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/spatial/slider_crank.truth.json"
+    );
+    let data: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     let m = SpatialMechanism::from_dsl(data["dsl"].as_str().unwrap()).unwrap();
     assert!(m.idle_links().is_empty());
     let mut loads = m.loads();
     for (name, value) in data["loads"].as_object().unwrap() {
-        let v: Vec<f64> = value.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let v: Vec<f64> = value
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
         assert!(loads.set_by_name(name, &v), "{name}");
     }
     let num = |x: &serde_json::Value| -> f64 { x.as_str().unwrap().parse().unwrap() };
-    let vec = |x: &serde_json::Value| -> V3 { V3::from_iterator(x.as_array().unwrap().iter().map(num)) };
+    let vec =
+        |x: &serde_json::Value| -> V3 { V3::from_iterator(x.as_array().unwrap().iter().map(num)) };
     // (kind, reference, computed), scaled per kind afterwards
     let mut pairs: Vec<(&str, f64, f64)> = Vec::new();
     let mut push = |kind: &'static str, a: V3, b: V3| {
@@ -388,7 +492,10 @@ fn a_spatial_slider_crank_matches_the_mpmath_newton_euler_table() {
     for c in data["cases"].as_array().unwrap() {
         let (q, qd, qdd) = (num(&c["q"]), num(&c["qd"]), num(&c["qdd"]));
         let motion = m.kinematics(&[q], &[qd], &[qdd]).unwrap();
-        for (p, kinds) in [("A", ["position", "velocity", "acceleration"]), ("B", ["position", "velocity", "acceleration"])] {
+        for (p, kinds) in [
+            ("A", ["position", "velocity", "acceleration"]),
+            ("B", ["position", "velocity", "acceleration"]),
+        ] {
             let got = motion.point_motion(p).unwrap();
             for k in 0..3 {
                 push(kinds[k], vec(&c["points"][p][k]), got[k]);
@@ -398,7 +505,11 @@ fn a_spatial_slider_crank_matches_the_mpmath_newton_euler_table() {
             let got = motion.link(l).unwrap();
             push("omega", vec(&c["links"][l]["omega"]), got.omega);
             push("alpha", vec(&c["links"][l]["alpha"]), got.alpha);
-            push("acceleration", vec(&c["links"][l]["cg_acceleration"]), got.cg_acceleration);
+            push(
+                "acceleration",
+                vec(&c["links"][l]["cg_acceleration"]),
+                got.cg_acceleration,
+            );
         }
         let f = m.kinetostatics(&motion, &loads).unwrap();
         for j in ["O", "A", "B", "guide"] {
@@ -407,13 +518,25 @@ fn a_spatial_slider_crank_matches_the_mpmath_newton_euler_table() {
             push("moment", vec(&c["reactions"][j]["moment"]), r.moment);
         }
         let tau = num(&c["driver"]);
-        push("moment", V3::new(tau, 0.0, 0.0), V3::new(f.driver(), 0.0, 0.0));
+        push(
+            "moment",
+            V3::new(tau, 0.0, 0.0),
+            V3::new(f.driver(), 0.0, 0.0),
+        );
         let power = m.driver_action(&motion, &loads).unwrap()[0];
         push("moment", V3::new(tau, 0.0, 0.0), V3::new(power, 0.0, 0.0));
     }
     let mut report = String::new();
     let mut worst = 0.0f64;
-    for kind in ["position", "velocity", "acceleration", "omega", "alpha", "force", "moment"] {
+    for kind in [
+        "position",
+        "velocity",
+        "acceleration",
+        "omega",
+        "alpha",
+        "force",
+        "moment",
+    ] {
         let these: Vec<_> = pairs.iter().filter(|p| p.0 == kind).collect();
         let scale = these.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
         let err = these.iter().map(|p| (p.1 - p.2).abs()).fold(0.0, f64::max) / scale;
@@ -452,12 +575,21 @@ fn a_helical_joint_matches_its_closed_form_over_three_turns_each_way() {
         let motion = m.kinematics(&[q], &[qd], &[qdd]).unwrap();
         let p = motion.point("P").unwrap();
         let cg = motion.link("nut").unwrap().cg;
-        let turned = V3::new(r.x * q.cos() - r.y * q.sin(), r.x * q.sin() + r.y * q.cos(), 0.1 + k * q);
-        pos = pos.max((p - V3::new(0.0, 0.0, 0.1 + k * q)).amax()).max((cg - turned).amax());
+        let turned = V3::new(
+            r.x * q.cos() - r.y * q.sin(),
+            r.x * q.sin() + r.y * q.cos(),
+            0.1 + k * q,
+        );
+        pos = pos
+            .max((p - V3::new(0.0, 0.0, 0.1 + k * q)).amax())
+            .max((cg - turned).amax());
         let want = inertia * qdd - (-100.0 - mass * 9.81) * k;
         let got = m.kinetostatics(&motion, &loads).unwrap().driver();
         torque = torque.max((got - want).abs() / want.abs().max(1.0));
-        assert!((m.driver_action(&motion, &loads).unwrap()[0] - want).abs() < 1e-12 * want.abs().max(1.0));
+        assert!(
+            (m.driver_action(&motion, &loads).unwrap()[0] - want).abs()
+                < 1e-12 * want.abs().max(1.0)
+        );
     }
     eprintln!("helical: positions {pos:.1e} m, torque {torque:.1e} relative");
     assert!(pos < 1e-12 && torque < 1e-12, "{pos} {torque}");
@@ -481,7 +613,10 @@ fn the_rssp_driven_at_its_slide_matches_its_closed_form() {
         let c = (b.norm_squared() + 0.0025 - l2) / (0.1 * b.y.hypot(b.z));
         let theta = b.z.atan2(b.y) - c.acos();
         let pose = m.pose(&[s]).unwrap();
-        pos = pos.max((pose.point("A").unwrap() - V3::new(0.0, 0.05 * theta.cos(), 0.05 * theta.sin())).amax());
+        pos = pos.max(
+            (pose.point("A").unwrap() - V3::new(0.0, 0.05 * theta.cos(), 0.05 * theta.sin()))
+                .amax(),
+        );
         pos = pos.max((pose.point("B").unwrap() - b).amax());
         routes = routes.max(three_routes(&m, &loads, s, 0.7, -3.0 + i as f64 / 4.0));
     }
@@ -495,12 +630,18 @@ fn the_rssp_driven_at_its_slide_matches_its_closed_form() {
 /// slides along z by A's rise. Three routes agree.
 #[test]
 fn a_cylindrical_joint_in_an_rscr_matches_its_closed_form() {
-    let text = RSSR
-        .replace("B: spherical(rod, rocker)", "B: cylindrical(rod, rocker) axis (0.0, 0.0, 1.0)");
+    let text = RSSR.replace(
+        "B: spherical(rod, rocker)",
+        "B: cylindrical(rod, rocker) axis (0.0, 0.0, 1.0)",
+    );
     let m = SpatialMechanism::from_dsl(&text).unwrap();
     assert!(m.idle_links().is_empty());
     let loads = rssr_loads(&m);
-    let (a0, c, b0) = (V3::new(0.0, 0.05, 0.0), V3::new(0.25, 0.12, 0.08), V3::new(0.25, 0.02, 0.08));
+    let (a0, c, b0) = (
+        V3::new(0.0, 0.05, 0.0),
+        V3::new(0.25, 0.12, 0.08),
+        V3::new(0.25, 0.02, 0.08),
+    );
     let b = b0 - c;
     let l2 = (b0 - a0).xy().norm_squared();
     let (mut pos, mut routes) = (0.0f64, 0.0f64);
@@ -511,7 +652,11 @@ fn a_cylindrical_joint_in_an_rscr_matches_its_closed_form() {
         let (p, qq) = (2.0 * (d.x * b.x + d.y * b.y), 2.0 * (d.y * b.x - d.x * b.y));
         let r = l2 - d.norm_squared() - b.xy().norm_squared();
         let phi = qq.atan2(p) - (r / p.hypot(qq)).acos();
-        let bb = c + V3::new(b.x * phi.cos() - b.y * phi.sin(), b.x * phi.sin() + b.y * phi.cos(), b.z);
+        let bb = c + V3::new(
+            b.x * phi.cos() - b.y * phi.sin(),
+            b.x * phi.sin() + b.y * phi.cos(),
+            b.z,
+        );
         let pose = m.pose(&[q]).unwrap();
         // `B` moves with the rod, the first link to list it: A_z above its drawing height
         pos = pos.max((pose.point("B").unwrap() - V3::new(bb.x, bb.y, b0.z + a.z)).amax());

@@ -262,29 +262,67 @@ mod tests {
         let u = V3::new(0.3, -0.5, 0.8).normalize();
         let (n1, n2) = basis(u);
         let r0 = UnitQuaternion::from_scaled_axis(V3::new(0.4, 0.1, -0.7));
-        let (oa, va, aa) = (V3::new(0.1, 0.2, -0.1), V3::new(0.5, -1.0, 0.3), V3::new(2.0, 1.0, -3.0));
+        let (oa, va, aa) = (
+            V3::new(0.1, 0.2, -0.1),
+            V3::new(0.5, -1.0, 0.3),
+            V3::new(2.0, 1.0, -3.0),
+        );
         let (wa, ala) = (V3::new(1.5, -0.5, 2.0), V3::new(-4.0, 3.0, 1.0));
-        let (ob, vb, ab) = (V3::new(0.4, 0.1, 0.2), V3::new(-0.3, 0.8, 1.1), V3::new(1.0, -2.0, 0.5));
+        let (ob, vb, ab) = (
+            V3::new(0.4, 0.1, 0.2),
+            V3::new(-0.3, 0.8, 1.1),
+            V3::new(1.0, -2.0, 0.5),
+        );
         let (thd, thdd) = (2.5, -6.0);
         let c = UnitQuaternion::from_scaled_axis(u * 0.3);
         let at = |t: f64| {
             let ra = UnitQuaternion::from_scaled_axis(wa * t + ala * (0.5 * t * t)) * r0;
             let rb = ra * UnitQuaternion::from_scaled_axis(u * (thd * t + 0.5 * thdd * t * t)) * c;
             (
-                BodyState { o: oa + va * t + aa * (0.5 * t * t), rot: ra, v: va, w: wa },
-                BodyState { o: ob + vb * t + ab * (0.5 * t * t), rot: rb, v: vb, w: wa },
+                BodyState {
+                    o: oa + va * t + aa * (0.5 * t * t),
+                    rot: ra,
+                    v: va,
+                    w: wa,
+                },
+                BodyState {
+                    o: ob + vb * t + ab * (0.5 * t * t),
+                    rot: rb,
+                    v: vb,
+                    w: wa,
+                },
             )
         };
         let (sa, sb) = (V3::new(0.2, -0.1, 0.05), V3::new(-0.15, 0.3, 0.1));
         let h = 1e-3;
         let mut worst = 0.0f64;
-        for kind in [SPHERICAL, REVOLUTE, UNIVERSAL, CYLINDRICAL, PRISMATIC, HELICAL] {
-            let g = JointGeom { a: 1, b: 2, sa, sb, axes: [u, n1, n2], kind, pitch: 0.07 };
+        for kind in [
+            SPHERICAL,
+            REVOLUTE,
+            UNIVERSAL,
+            CYLINDRICAL,
+            PRISMATIC,
+            HELICAL,
+        ] {
+            let g = JointGeom {
+                a: 1,
+                b: 2,
+                sa,
+                sb,
+                axes: [u, n1, n2],
+                kind,
+                pitch: 0.07,
+            };
             let rows = |a: &BodyState, b: &BodyState| {
                 let mut out = Vec::new();
                 joint_rows(&g, a, b, &mut out);
                 out.push(driver_row(&g, a, b, 0.2));
-                out.push(perpendicular(a, V3::new(0.6, 0.0, 0.8), b, V3::new(0.0, 0.6, -0.8)));
+                out.push(perpendicular(
+                    a,
+                    V3::new(0.6, 0.0, 0.8),
+                    b,
+                    V3::new(0.0, 0.6, -0.8),
+                ));
                 out
             };
             let samples: Vec<Vec<Row>> = [-2.0, -1.0, 0.0, 1.0, 2.0]
@@ -301,10 +339,18 @@ mod tests {
             let exact = rows(&a, &BodyState { w: wb, ..b });
             for (r, row) in exact.iter().enumerate() {
                 let (d1, d2) = differences(std::array::from_fn(|k| samples[k][r].value), h);
-                let j1 = row.a[0].dot(&va) + row.a[1].dot(&wa) + row.b[0].dot(&vb) + row.b[1].dot(&wb);
-                let j2 = row.a[0].dot(&aa) + row.a[1].dot(&ala) + row.b[0].dot(&ab) + row.b[1].dot(&alb) + row.gamma;
+                let j1 =
+                    row.a[0].dot(&va) + row.a[1].dot(&wa) + row.b[0].dot(&vb) + row.b[1].dot(&wb);
+                let j2 = row.a[0].dot(&aa)
+                    + row.a[1].dot(&ala)
+                    + row.b[0].dot(&ab)
+                    + row.b[1].dot(&alb)
+                    + row.gamma;
                 worst = worst.max((d1 - j1).abs()).max((d2 - j2).abs());
-                assert!((d1 - j1).abs() < 1e-8 && (d2 - j2).abs() < 1e-6, "kind {kind} row {r}: {d1} {j1} {d2} {j2}");
+                assert!(
+                    (d1 - j1).abs() < 1e-8 && (d2 - j2).abs() < 1e-6,
+                    "kind {kind} row {r}: {d1} {j1} {d2} {j2}"
+                );
             }
         }
         eprintln!("rows against differences: {worst:.1e}");
@@ -323,7 +369,10 @@ mod tests {
             w,
         };
         let h = 1e-3;
-        let (d1, d2) = differences(std::array::from_fn(|k| spin(&at((k as f64 - 2.0) * h), e).value), h);
+        let (d1, d2) = differences(
+            std::array::from_fn(|k| spin(&at((k as f64 - 2.0) * h), e).value),
+            h,
+        );
         let row = spin(&at(0.0), e);
         assert!((d1 - row.b[1].dot(&w)).abs() < 1e-9, "{d1}");
         assert!((d2 - row.b[1].dot(&al) - row.gamma).abs() < 1e-6, "{d2}");

@@ -1,43 +1,43 @@
 //! The `space` form of the DSL (SPEC 3i), parsed with `syn` into a `SpatialModel`.
 
-use super::model::{inertia_tensor, Body, Joint, JointKind, Load, LoadKind, SpatialModel};
+use super::model::SpatialModel;
 use crate::front::expr::Constants;
 use crate::model::units::Dim;
 use crate::MechError;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 use proc_macro2::Span;
 use syn::ext::IdentExt;
 use syn::parse::{Parse, ParseStream};
 use syn::{braced, bracketed, parenthesized, Ident, Token};
 
 /// A joint as written: names not yet resolved.
-struct JointDecl {
-    name: Ident,
-    kind: Ident,
-    a: Ident,
-    b: Ident,
-    at: Option<Ident>,
-    axes: Vec<(Vector3<f64>, Span)>,
-    pitch: Option<f64>,
+pub(super) struct JointDecl {
+    pub(super) name: Ident,
+    pub(super) kind: Ident,
+    pub(super) a: Ident,
+    pub(super) b: Ident,
+    pub(super) at: Option<Ident>,
+    pub(super) axes: Vec<(Vector3<f64>, Span)>,
+    pub(super) pitch: Option<f64>,
 }
 
 /// A link as written.
-struct LinkDecl {
-    name: Ident,
-    points: Vec<(Ident, Option<Vector3<f64>>)>,
-    mass: Option<f64>,
-    cg: Option<Vector3<f64>>,
-    inertia: Option<[f64; 6]>,
+pub(super) struct LinkDecl {
+    pub(super) name: Ident,
+    pub(super) points: Vec<(Ident, Option<Vector3<f64>>)>,
+    pub(super) mass: Option<f64>,
+    pub(super) cg: Option<Vector3<f64>>,
+    pub(super) inertia: Option<[f64; 6]>,
 }
 
 /// The whole text as written.
-struct Written {
-    name: Ident,
-    gravity: Option<Vector3<f64>>,
-    links: Vec<LinkDecl>,
-    joints: Vec<JointDecl>,
-    inputs: Vec<Ident>,
-    loads: Vec<(Ident, Ident, Ident, Option<Ident>)>,
+pub(super) struct Written {
+    pub(super) name: Ident,
+    pub(super) gravity: Option<Vector3<f64>>,
+    pub(super) links: Vec<LinkDecl>,
+    pub(super) joints: Vec<JointDecl>,
+    pub(super) inputs: Vec<Ident>,
+    pub(super) loads: Vec<(Ident, Ident, Ident, Option<Ident>)>,
 }
 
 fn comma(input: ParseStream) -> syn::Result<()> {
@@ -291,229 +291,111 @@ fn located(e: &syn::Error) -> String {
 /// geometry mistake found is reported at once in one [`MechError::Invalid`].
 pub fn parse(text: &str) -> Result<SpatialModel, MechError> {
     let w = syn::parse_str::<Written>(text).map_err(|e| MechError::Invalid(located(&e)))?;
-    resolve(w)
+    super::resolve::resolve(w)
 }
 
-fn unit(v: Vector3<f64>, what: &str, errors: &mut Vec<String>) -> Vector3<f64> {
-    let n = v.norm();
-    if !(n > 1e-12) || !n.is_finite() {
-        errors.push(format!("{what} is ({}, {}, {}), which has no direction: give a nonzero vector, e.g. (0.0, 0.0, 1.0)", v.x, v.y, v.z));
-        return Vector3::z();
-    }
-    v / n
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spatial::model::{JointKind, LoadKind};
+    use nalgebra::Matrix3;
 
-fn resolve(w: Written) -> Result<SpatialModel, MechError> {
-    let mut errors = Vec::new();
-    let mut points: Vec<(String, Vector3<f64>)> = Vec::new();
-    let ground_missing = w.links.first().map_or(true, |l| l.name != "ground");
-    if ground_missing {
-        errors.push("missing `ground { ... }` block: every mechanism needs a frame, e.g. `ground { O: (0.0, 0.0, 0.0) }`".to_string());
-    }
-    // Points with coordinates first, then the references.
-    for l in &w.links {
-        for (id, at) in &l.points {
-            if let Some(p) = at {
-                if points.iter().any(|(n, _)| *n == id.to_string()) {
-                    errors.push(format!("point `{id}` is given coordinates twice: define it once (`{id}: (x, y, z)`) and name it alone elsewhere"));
-                } else {
-                    points.push((id.to_string(), *p));
-                }
-            }
-        }
-    }
-    let mut bodies = Vec::new();
-    for l in &w.links {
-        let mut idx = Vec::new();
-        for (id, _) in &l.points {
-            match points.iter().position(|(n, _)| *n == id.to_string()) {
-                Some(i) => idx.push(i),
-                None => errors.push(format!("point `{id}` of link `{}` is never given coordinates: write `{id}: (x, y, z)` in one link", l.name)),
-            }
-        }
-        let mass = l.mass.unwrap_or(0.0);
-        if !(mass >= 0.0) || !mass.is_finite() {
-            errors.push(format!(
-                "the mass of link `{}` is {mass} kg: a mass is finite and ≥ 0",
-                l.name
-            ));
-        }
-        let inertia = l.inertia.map(inertia_tensor).unwrap_or_else(Matrix3::zeros);
-        if l.inertia.is_some() && inertia.symmetric_eigenvalues().min() < -1e-12 * inertia.norm() {
-            errors.push(format!("the inertia tensor of link `{}` is not positive semi-definite (eigenvalues {:?} kg·m²): check the signs of the products Ixy, Ixz, Iyz (Ixy = Σ m x y)", l.name, inertia.symmetric_eigenvalues().as_slice()));
-        }
-        bodies.push(Body {
-            name: l.name.to_string(),
-            points: idx,
-            mass,
-            cg: l.cg,
-            inertia,
-        });
-    }
-    if ground_missing {
-        bodies.insert(
-            0,
-            Body {
-                name: "ground".into(),
-                points: Vec::new(),
-                mass: 0.0,
-                cg: None,
-                inertia: Matrix3::zeros(),
+    const TEXT: &str = r#"
+        /// A doc comment is accepted.
+        pub struct Crank {
+            space,
+            consts { r: 50 mm, h: 2 * r },
+            gravity: (0.0, 0.0, -9.81),
+            ground { O: (0.0, 0.0, 0.0), G: (1 m, 0.0, h) },
+            link crank { points { O, A: (0.0, r, 0.0) }, mass: 500 g, cg: (0.0, 20 mm, 0.0),
+                         inertia: (1.0, 2.0, 3.0, 0.1, 0.2, 0.3) },
+            link arm { points { A, B: (0.0, r, h) } },
+            joints {
+                O: revolute(ground, crank) axis (0.0, 0.0, 2.0),
+                A: universal(crank, arm) axes (1.0, 0.0, 0.0) (0.0, 3.0, 0.0),
+                slide: helical(ground, arm) at B axis (0.0, 0.0, 1.0) pitch 4 mm,
             },
+            input: O,
+            loads { t: torque on crank, f: force on arm at B },
+        }
+    "#;
+
+    #[test]
+    fn units_constants_axes_and_the_inertia_convention() {
+        let m = parse(TEXT).unwrap();
+        assert_eq!(m.name, "Crank");
+        let p = |n: &str| m.points[m.point_index(n).unwrap()].1;
+        assert_eq!(p("G"), Vector3::new(1.0, 0.0, 0.1));
+        assert_eq!(p("A"), Vector3::new(0.0, 0.05, 0.0));
+        assert_eq!(p("B"), Vector3::new(0.0, 0.05, 0.1));
+        let crank = &m.bodies[m.body_index("crank").unwrap()];
+        assert_eq!(crank.mass, 0.5);
+        assert_eq!(crank.cg, Some(Vector3::new(0.0, 0.02, 0.0)));
+        // products of inertia Ixy = Σ m x y enter the tensor with a minus sign
+        assert_eq!(
+            crank.inertia,
+            Matrix3::new(1.0, -0.1, -0.2, -0.1, 2.0, -0.3, -0.2, -0.3, 3.0)
+        );
+        assert_eq!(m.joints[0].kind, JointKind::Revolute { axis: Vector3::z() });
+        assert_eq!(
+            m.joints[1].kind,
+            JointKind::Universal {
+                first: Vector3::x(),
+                second: Vector3::y()
+            }
+        );
+        assert_eq!(
+            m.joints[2].kind,
+            JointKind::Helical {
+                axis: Vector3::z(),
+                pitch: 0.004
+            }
+        );
+        assert_eq!(m.joints[2].point, m.point_index("B").unwrap());
+        assert_eq!(m.inputs, vec![0]);
+        assert_eq!(
+            m.loads[1].kind,
+            LoadKind::Force {
+                body: 2,
+                point: m.point_index("B").unwrap()
+            }
+        );
+        assert_eq!(m.gravity, Some(Vector3::new(0.0, 0.0, -9.81)));
+    }
+
+    fn message(text: &str) -> String {
+        match parse(text) {
+            Err(MechError::Invalid(m)) => m,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn mistakes_are_named_and_located() {
+        let m = message(&TEXT.replace("mass: 500 g", "mass: 500 mm"));
+        assert!(m.starts_with("line 8, column 64: a mass is"), "{m}");
+        let m = message(&TEXT.replace("(0.0, r, h)", "(0.0, r)"));
+        assert!(
+            m.contains("expected `(x, y, z)`") || m.contains("expected `,`"),
+            "{m}"
+        );
+        let m = message(&TEXT.replace("revolute(ground, crank)", "revolute(ground, crunk)"));
+        assert!(m.contains("unknown link `crunk`"), "{m}");
+        let m = message(&TEXT.replace("at B axis", "at Q axis"));
+        assert!(m.contains("point `Q` is not defined"), "{m}");
+        let m = message(&TEXT.replace(" pitch 4 mm", ""));
+        assert!(m.contains("needs its lead"), "{m}");
+        let m = message(&TEXT.replace("f: force on arm at B", "f: force on crank at B"));
+        assert!(m.contains("`B` is not a point of link `crank`"), "{m}");
+        let m = message(&TEXT.replace(
+            "inertia: (1.0, 2.0, 3.0, 0.1, 0.2, 0.3)",
+            "inertia: (1.0, 2.0, 3.0, 5.0, 0.0, 0.0)",
+        ));
+        assert!(m.contains("not positive semi-definite"), "{m}");
+        let m = message(&TEXT.replace("A: universal", "B: universal"));
+        assert!(
+            m.contains("must be a point of both `crank` and `arm`"),
+            "{m}"
         );
     }
-    let body = |id: &Ident, errors: &mut Vec<String>| -> usize {
-        bodies
-            .iter()
-            .position(|b| b.name == id.to_string())
-            .unwrap_or_else(|| {
-                errors.push(format!(
-                    "unknown link `{id}`: the links are {}",
-                    bodies
-                        .iter()
-                        .map(|b| format!("`{}`", b.name))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ));
-                0
-            })
-    };
-    let mut joints = Vec::new();
-    for j in &w.joints {
-        let (a, b) = (body(&j.a, &mut errors), body(&j.b, &mut errors));
-        let at = j.at.as_ref().unwrap_or(&j.name);
-        let point = points.iter().position(|(n, _)| *n == at.to_string()).unwrap_or_else(|| {
-            errors.push(format!("joint `{}`: point `{at}` is not defined: name the joint after a point or write `at P`", j.name));
-            0
-        });
-        let want = match j.kind.to_string().as_str() {
-            "spherical" => 0,
-            "revolute" | "prismatic" | "cylindrical" | "helical" => 1,
-            "universal" => 2,
-            other => {
-                errors.push(format!("joint `{}`: unknown joint kind `{other}`: a spatial joint is `revolute(a, b) axis (..)`, `prismatic(a, b) along (..)`, `cylindrical(a, b) axis (..)`, `spherical(a, b)`, `universal(a, b) axes (..) (..)` or `helical(a, b) axis (..) pitch ..`", j.name));
-                continue;
-            }
-        };
-        if j.axes.len() != want {
-            errors.push(format!(
-                "joint `{}`: a {} joint takes {want} direction(s), {} given (e.g. `{}`)",
-                j.name,
-                j.kind,
-                j.axes.len(),
-                [
-                    "`spherical(a, b)`",
-                    "`axis (0.0, 0.0, 1.0)`",
-                    "`axes (1.0, 0.0, 0.0) (0.0, 1.0, 0.0)`"
-                ][want]
-            ));
-            continue;
-        }
-        let what = |k: usize| format!("the {} of joint `{}`", ["axis", "second axis"][k], j.name);
-        let u: Vec<Vector3<f64>> = j
-            .axes
-            .iter()
-            .enumerate()
-            .map(|(k, (v, _))| unit(*v, &what(k), &mut errors))
-            .collect();
-        let kind = match (j.kind.to_string().as_str(), j.pitch) {
-            ("helical", None) => {
-                errors.push(format!(
-                    "joint `{}`: a helical joint needs its lead: `pitch 5 mm` (m per turn)",
-                    j.name
-                ));
-                continue;
-            }
-            ("helical", Some(pitch)) => JointKind::Helical { axis: u[0], pitch },
-            (k, Some(_)) => {
-                errors.push(format!(
-                    "joint `{}`: only a helical joint takes `pitch`, not a {k} one",
-                    j.name
-                ));
-                continue;
-            }
-            ("revolute", _) => JointKind::Revolute { axis: u[0] },
-            ("prismatic", _) => JointKind::Prismatic { axis: u[0] },
-            ("cylindrical", _) => JointKind::Cylindrical { axis: u[0] },
-            ("universal", _) => {
-                let cos = u[0].dot(&u[1]);
-                if cos.abs() > 1e-9 {
-                    errors.push(format!("joint `{}`: a universal joint's two axes are perpendicular, but these make {:.6}°: correct the second axis", j.name, cos.clamp(-1.0, 1.0).acos().to_degrees()));
-                }
-                JointKind::Universal {
-                    first: u[0],
-                    second: u[1],
-                }
-            }
-            _ => JointKind::Spherical,
-        };
-        if a == b {
-            errors.push(format!(
-                "joint `{}` joins link `{}` to itself: name two different links",
-                j.name, j.a
-            ));
-        }
-        let owns = |x: usize| bodies[x].points.contains(&point);
-        let shared = !matches!(
-            kind,
-            JointKind::Prismatic { .. } | JointKind::Cylindrical { .. } | JointKind::Helical { .. }
-        );
-        if !owns(b) || (shared && !owns(a)) {
-            errors.push(format!("joint `{}`: its point `{at}` must be a point of {}: list it in the link's `points`", j.name, if shared { format!("both `{}` and `{}`", j.a, j.b) } else { format!("`{}` (the second link)", j.b) }));
-        }
-        joints.push(Joint {
-            name: j.name.to_string(),
-            kind,
-            a,
-            b,
-            point,
-        });
-    }
-    let mut inputs = Vec::new();
-    for id in &w.inputs {
-        match joints.iter().position(|j| j.name == id.to_string()) {
-            Some(k) => inputs.push(k),
-            None => errors.push(format!(
-                "input `{id}` is not a joint: name a revolute, prismatic or helical joint"
-            )),
-        }
-    }
-    let mut loads = Vec::new();
-    for (n, kind, link, at) in &w.loads {
-        let b = body(link, &mut errors);
-        let kind = match (kind.to_string().as_str(), at) {
-            ("torque", None) => LoadKind::Torque { body: b },
-            ("force", Some(p)) => match points.iter().position(|(m, _)| *m == p.to_string()) {
-                Some(point) if bodies[b].points.contains(&point) => {
-                    LoadKind::Force { body: b, point }
-                }
-                _ => {
-                    errors.push(format!("load `{n}`: `{p}` is not a point of link `{link}`: list it in the link's `points`"));
-                    continue;
-                }
-            },
-            _ => {
-                errors.push(format!(
-                    "load `{n}`: expected `force on LINK at P` or `torque on LINK`"
-                ));
-                continue;
-            }
-        };
-        loads.push(Load {
-            name: n.to_string(),
-            kind,
-        });
-    }
-    if !errors.is_empty() {
-        return Err(MechError::Invalid(errors.join("\n")));
-    }
-    Ok(SpatialModel {
-        name: w.name.to_string(),
-        gravity: w.gravity,
-        points,
-        bodies,
-        joints,
-        inputs,
-        loads,
-    })
 }

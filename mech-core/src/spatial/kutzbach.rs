@@ -109,3 +109,48 @@ pub fn check(model: &SpatialModel) -> Option<String> {
         c.equations(), c.reactions(), inputs
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spatial::dsl::parse;
+
+    const RSSR: &str = r#"pub struct Rssr {
+        space,
+        ground { O: (0.0, 0.0, 0.0), C: (0.3, 0.1, 0.05) },
+        link crank { points { O, A: (0.0, 0.08, 0.0) } },
+        link rod { points { A, B: (0.3, 0.15, 0.1) } },
+        link rocker { points { C, B } },
+        joints {
+            O: revolute(ground, crank) axis (1.0, 0.0, 0.0),
+            A: spherical(crank, rod),
+            B: spherical(rod, rocker),
+            C: revolute(ground, rocker) axis (0.0, 0.0, 1.0),
+        },
+        input: O,
+    }"#;
+
+    #[test]
+    fn the_rssr_counts_two_of_which_one_is_idle() {
+        let m = parse(RSSR).unwrap();
+        let c = count(&m);
+        assert_eq!(c.pairs_by_class, [2, 0, 2, 0, 0]);
+        assert_eq!(c.mobility, 6 * 3 - 5 * 2 - 3 * 2);
+        assert_eq!(c.idle, vec![(2, 1, 2)]);
+        assert_eq!((c.equations(), c.reactions()), (18, 17));
+        assert_eq!(check(&m), None);
+        // a universal joint at B (class II) holds the spin: G = 18 − 10 − 3 − 4 = 1, no idle
+        let m = parse(&RSSR.replace(
+            "B: spherical(rod, rocker)",
+            "B: universal(rod, rocker) axes (0.0, 0.0, 1.0) (1.0, 0.0, 0.0)",
+        ))
+        .unwrap();
+        let c = count(&m);
+        assert_eq!((c.mobility, c.idle.len()), (1, 0));
+        assert_eq!(check(&m), None);
+        // without the input: the numbers and the fix
+        let m = parse(&RSSR.replace("input: O,", "")).unwrap();
+        let msg = check(&m).unwrap();
+        assert!(msg.contains("= 2, of which 1 idle (link `rod` spins idly about the line through its spherical joints `A` and `B`") && msg.contains("declare 1 input(s)"), "{msg}");
+    }
+}

@@ -14,6 +14,7 @@ mod machine;
 pub mod mechanism;
 pub mod model;
 mod rank;
+mod resolve;
 pub mod results;
 mod virtual_power;
 mod zhukovski;
