@@ -190,11 +190,11 @@ impl Layout {
             last = r;
             let rhs = DVector::from_iterator(rows.len(), rows.iter().map(|r| -r.value));
             let dx = solve(self.jacobian(&rows, &owners), rhs)?;
-            for b in 1..s.len() {
+            for (b, st) in s.iter_mut().enumerate().skip(1) {
                 let c = 6 * (b - 1);
-                s[b].o += dx.fixed_rows::<3>(c);
-                s[b].rot = UnitQuaternion::from_scaled_axis(dx.fixed_rows::<3>(c + 3).into_owned())
-                    * s[b].rot;
+                st.o += dx.fixed_rows::<3>(c);
+                st.rot = UnitQuaternion::from_scaled_axis(dx.fixed_rows::<3>(c + 3).into_owned())
+                    * st.rot;
             }
         }
         let (rows, _) = self.rows(s, q);
@@ -310,9 +310,9 @@ pub(crate) fn kinematics(
     };
     let j = layout.jacobian(&rows, &owners);
     let xd = solve(j.clone(), drive(qd, DVector::zeros(rows.len())))?;
-    for b in 1..s.len() {
-        s[b].v = xd.fixed_rows::<3>(6 * (b - 1)).into_owned();
-        s[b].w = xd.fixed_rows::<3>(6 * (b - 1) + 3).into_owned();
+    for (b, st) in s.iter_mut().enumerate().skip(1) {
+        st.v = xd.fixed_rows::<3>(6 * (b - 1)).into_owned();
+        st.w = xd.fixed_rows::<3>(6 * (b - 1) + 3).into_owned();
     }
     let (rows, _) = layout.rows(&s, q);
     let gamma = DVector::from_iterator(rows.len(), rows.iter().map(|r| -r.gamma));

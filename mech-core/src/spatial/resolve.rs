@@ -24,7 +24,7 @@ fn unit(v: Vector3<f64>, what: &str, errors: &mut Vec<String>) -> Vector3<f64> {
 pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
     let mut errors = Vec::new();
     let mut points: Vec<(String, Vector3<f64>)> = Vec::new();
-    let ground_missing = w.links.first().map_or(true, |l| l.name != "ground");
+    let ground_missing = !matches!(w.links.first(), Some(l) if l.name == "ground");
     if ground_missing {
         errors.push("missing `ground { ... }` block: every mechanism needs a frame, e.g. `ground { O: (0.0, 0.0, 0.0) }`".to_string());
     }
@@ -32,7 +32,7 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
     for l in &w.links {
         for (id, at) in &l.points {
             if let Some(p) = at {
-                if points.iter().any(|(n, _)| *n == id.to_string()) {
+                if points.iter().any(|(n, _)| *id == *n) {
                     errors.push(format!("point `{id}` is given coordinates twice: define it once (`{id}: (x, y, z)`) and name it alone elsewhere"));
                 } else {
                     points.push((id.to_string(), *p));
@@ -44,7 +44,7 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
     for l in &w.links {
         let mut idx = Vec::new();
         for (id, _) in &l.points {
-            match points.iter().position(|(n, _)| *n == id.to_string()) {
+            match points.iter().position(|(n, _)| *id == *n) {
                 Some(i) => idx.push(i),
                 None => errors.push(format!("point `{id}` of link `{}` is never given coordinates: write `{id}: (x, y, z)` in one link", l.name)),
             }
@@ -83,7 +83,7 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
     let body = |id: &Ident, errors: &mut Vec<String>| -> usize {
         bodies
             .iter()
-            .position(|b| b.name == id.to_string())
+            .position(|b| *id == b.name)
             .unwrap_or_else(|| {
                 errors.push(format!(
                     "unknown link `{id}`: the links are {}",
@@ -100,7 +100,7 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
     for j in &w.joints {
         let (a, b) = (body(&j.a, &mut errors), body(&j.b, &mut errors));
         let at = j.at.as_ref().unwrap_or(&j.name);
-        let point = points.iter().position(|(n, _)| *n == at.to_string()).unwrap_or_else(|| {
+        let point = points.iter().position(|(n, _)| *at == *n).unwrap_or_else(|| {
             errors.push(format!("joint `{}`: point `{at}` is not defined: name the joint after a point or write `at P`", j.name));
             0
         });
@@ -189,7 +189,7 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
     }
     let mut inputs = Vec::new();
     for id in &w.inputs {
-        match joints.iter().position(|j| j.name == id.to_string()) {
+        match joints.iter().position(|j| *id == j.name) {
             Some(k) => inputs.push(k),
             None => errors.push(format!(
                 "input `{id}` is not a joint: name a revolute, prismatic or helical joint"
@@ -201,7 +201,7 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
         let b = body(link, &mut errors);
         let kind = match (kind.to_string().as_str(), at) {
             ("torque", None) => LoadKind::Torque { body: b },
-            ("force", Some(p)) => match points.iter().position(|(m, _)| *m == p.to_string()) {
+            ("force", Some(p)) => match points.iter().position(|(m, _)| *p == *m) {
                 Some(point) if bodies[b].points.contains(&point) => {
                     LoadKind::Force { body: b, point }
                 }
