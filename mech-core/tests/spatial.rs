@@ -452,6 +452,24 @@ fn bad_input_is_refused_with_the_numbers_and_the_fix() {
         Err(MechError::InvalidInput(_))
     ));
     assert!(m.kinematics(&[0.1, 0.2], &[0.0], &[0.0]).is_err());
+    assert!(matches!(m.pose(&[1e300]), Err(MechError::InvalidInput(_))));
+    let motion = m.kinematics(&[0.3], &[1.0], &[0.0]).unwrap();
+    let mut loads = m.loads();
+    loads.set_by_name("push", &[f64::NAN, 0.0, 0.0]);
+    assert!(matches!(
+        m.kinetostatics(&motion, &loads),
+        Err(MechError::InvalidInput(_))
+    ));
+    assert!(m.driver_action(&motion, &loads).is_err());
+    assert!(m.reduced_moment(0.3, &loads).is_err());
+    assert!(m.acceleration(0.3, f64::INFINITY, 0.0, &m.loads()).is_err());
+    // the RSSP pushed at its slide beyond the crank's reach (c = 2.1 in the closed form)
+    let far = SpatialMechanism::from_dsl(&RSSP.replace("input: O,", "input: guide,")).unwrap();
+    let e = far.pose(&[0.03]).map(|p| p.point("A"));
+    assert!(
+        matches!(e, Err(MechError::NoAssembly | MechError::Singular { .. })),
+        "{e:?}"
+    );
 }
 
 /// A spatial slider-crank (R-S-U-P: a skew crank axis, a skew slide) against

@@ -168,36 +168,40 @@ pub struct JointGeom {
     /// The kind's axes: (u, n1, n2) (u the axis, n1, n2 from [`basis`]; the universal's
     /// second axis in n1).
     pub axes: [V3; 3],
-    /// The kind: 0 spherical, 1 revolute, 2 universal, 3 cylindrical, 4 prismatic, 5 helical.
-    pub kind: u8,
+    /// The kind.
+    pub kind: Kind,
     /// A helical joint's lead (m per turn).
     pub pitch: f64,
 }
 
-/// The spherical kind's code in [`JointGeom::kind`].
-pub const SPHERICAL: u8 = 0;
-/// The revolute kind's code.
-pub const REVOLUTE: u8 = 1;
-/// The universal kind's code.
-pub const UNIVERSAL: u8 = 2;
-/// The cylindrical kind's code.
-pub const CYLINDRICAL: u8 = 3;
-/// The prismatic kind's code.
-pub const PRISMATIC: u8 = 4;
-/// The helical kind's code.
-pub const HELICAL: u8 = 5;
+/// The rows a joint contributes (its kind without its geometry).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// The point (3 rows).
+    Spherical,
+    /// The point and the axis in line (5).
+    Revolute,
+    /// The point and the cross's two axes at their drawing angle (4).
+    Universal,
+    /// The axis in line and the point on it (4).
+    Cylindrical,
+    /// The cylindrical rows and no turning about the axis (5).
+    Prismatic,
+    /// The cylindrical rows and the lead, advance = p θ / (2π) (5).
+    Helical,
+}
 
 /// The joint's 6 − k rows (k its class), appended to `out`, for bodies in states `a`, `b`.
 pub fn joint_rows(g: &JointGeom, a: &BodyState, b: &BodyState, out: &mut Vec<Row>) {
     let [u, n1, n2] = g.axes;
     match g.kind {
-        SPHERICAL => coincide(a, g.sa, b, g.sb, out),
-        REVOLUTE => {
+        Kind::Spherical => coincide(a, g.sa, b, g.sb, out),
+        Kind::Revolute => {
             coincide(a, g.sa, b, g.sb, out);
             out.push(perpendicular(a, n1, b, u));
             out.push(perpendicular(a, n2, b, u));
         }
-        UNIVERSAL => {
+        Kind::Universal => {
             coincide(a, g.sa, b, g.sb, out);
             out.push(perpendicular(a, u, b, n1));
         }
@@ -207,9 +211,9 @@ pub fn joint_rows(g: &JointGeom, a: &BodyState, b: &BodyState, out: &mut Vec<Row
             out.push(perpendicular(a, n2, b, u));
             out.push(offset(a, n1, g.sa, b, g.sb, 0.0));
             out.push(offset(a, n2, g.sa, b, g.sb, 0.0));
-            if g.kind == PRISMATIC {
+            if g.kind == Kind::Prismatic {
                 out.push(perpendicular(a, n1, b, n2));
-            } else if g.kind == HELICAL {
+            } else if g.kind == Kind::Helical {
                 out.push(lead(g, a, b));
             }
         }
@@ -231,7 +235,7 @@ fn lead(g: &JointGeom, a: &BodyState, b: &BodyState) -> Row {
 /// drawing). Its multiplier is the motor action (N·m or N, by a on b along the axis).
 pub fn driver_row(g: &JointGeom, a: &BodyState, b: &BodyState, q: f64) -> Row {
     let [u, n1, _] = g.axes;
-    if g.kind == PRISMATIC {
+    if g.kind == Kind::Prismatic {
         offset(a, u, g.sa, b, g.sb, q)
     } else {
         angle(a, u, n1, b, q)
@@ -297,12 +301,12 @@ mod tests {
         let h = 1e-3;
         let mut worst = 0.0f64;
         for kind in [
-            SPHERICAL,
-            REVOLUTE,
-            UNIVERSAL,
-            CYLINDRICAL,
-            PRISMATIC,
-            HELICAL,
+            Kind::Spherical,
+            Kind::Revolute,
+            Kind::Universal,
+            Kind::Cylindrical,
+            Kind::Prismatic,
+            Kind::Helical,
         ] {
             let g = JointGeom {
                 a: 1,
@@ -349,7 +353,7 @@ mod tests {
                 worst = worst.max((d1 - j1).abs()).max((d2 - j2).abs());
                 assert!(
                     (d1 - j1).abs() < 1e-8 && (d2 - j2).abs() < 1e-6,
-                    "kind {kind} row {r}: {d1} {j1} {d2} {j2}"
+                    "kind {kind:?} row {r}: {d1} {j1} {d2} {j2}"
                 );
             }
         }

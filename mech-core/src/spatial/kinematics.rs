@@ -8,7 +8,7 @@
 //! result depends on q alone and stays on the drawing's assembly. Velocities: J ẋ = q̇ on
 //! the driver rows, 0 elsewhere; accelerations: J ẍ = q̈ − γ.
 
-use super::constraints::{self, BodyState, JointGeom, Row};
+use super::constraints::{self, BodyState, JointGeom, Kind, Row};
 use super::model::{JointKind, SpatialModel};
 use crate::MechError;
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
@@ -51,14 +51,14 @@ impl Layout {
             .map(|j| {
                 let p = model.points[j.point].1;
                 let (u, kind, pitch, second) = match j.kind {
-                    JointKind::Spherical => (V3::z(), constraints::SPHERICAL, 0.0, None),
-                    JointKind::Revolute { axis } => (axis, constraints::REVOLUTE, 0.0, None),
+                    JointKind::Spherical => (V3::z(), Kind::Spherical, 0.0, None),
+                    JointKind::Revolute { axis } => (axis, Kind::Revolute, 0.0, None),
                     JointKind::Universal { first, second } => {
-                        (first, constraints::UNIVERSAL, 0.0, Some(second))
+                        (first, Kind::Universal, 0.0, Some(second))
                     }
-                    JointKind::Cylindrical { axis } => (axis, constraints::CYLINDRICAL, 0.0, None),
-                    JointKind::Prismatic { axis } => (axis, constraints::PRISMATIC, 0.0, None),
-                    JointKind::Helical { axis, pitch } => (axis, constraints::HELICAL, pitch, None),
+                    JointKind::Cylindrical { axis } => (axis, Kind::Cylindrical, 0.0, None),
+                    JointKind::Prismatic { axis } => (axis, Kind::Prismatic, 0.0, None),
+                    JointKind::Helical { axis, pitch } => (axis, Kind::Helical, pitch, None),
                 };
                 let (n1, n2) = match second {
                     Some(s) => (s, u.cross(&s)),
@@ -167,10 +167,15 @@ impl Layout {
             _ => 0.25,
         };
         let steps = (0..q.len())
-            .map(|k| (q[k].abs() / step(k)).ceil() as usize)
-            .max()
-            .unwrap_or(0)
-            .max(1);
+            .map(|k| (q[k].abs() / step(k)).ceil())
+            .fold(1.0, f64::max);
+        if !(steps <= MAX_STEPS) {
+            return Err(MechError::InvalidInput(format!(
+                "q = {q:?} is more than {MAX_STEPS} continuation steps from the drawing (0.25 rad, or a tenth of the drawing's size, each): give q within about {:.0} turns of the drawing",
+                MAX_STEPS * 0.25 / (2.0 * std::f64::consts::PI)
+            )));
+        }
+        let steps = steps as usize;
         for i in 1..=steps {
             let target: Vec<f64> = q.iter().map(|x| x * i as f64 / steps as f64).collect();
             self.newton(&mut s, &target)?;
@@ -183,7 +188,7 @@ impl Layout {
         let mut last = f64::INFINITY;
         for it in 0..60 {
             let (rows, owners) = self.rows(s, q);
-            let r = rows.iter().map(|r| r.value.abs()).fold(0.0, f64::max);
+            let r = residual(&rows);
             if r <= tol || (it > 4 && r >= 0.5 * last) {
                 break;
             }
@@ -198,13 +203,27 @@ impl Layout {
             }
         }
         let (rows, _) = self.rows(s, q);
-        let r = rows.iter().map(|r| r.value.abs()).fold(0.0, f64::max);
+        let r = residual(&rows);
         if !(r <= 1e-9 * (1.0 + self.scale)) {
             return Err(MechError::NoAssembly);
         }
         Ok(())
     }
 }
+
+/// The largest |Φ| of the rows, +∞ when one is not finite.
+fn residual(rows: &[Row]) -> f64 {
+    rows.iter().fold(0.0, |m, r| {
+        if r.value.is_finite() {
+            m.max(r.value.abs())
+        } else {
+            f64::INFINITY
+        }
+    })
+}
+
+/// The most continuation steps from the drawing to q (2500 rad of a crank).
+const MAX_STEPS: f64 = 10_000.0;
 
 /// Solve the square system a x = b by LU; `Singular` (condition estimate max|U_ii| /
 /// min|U_ii|) when it is singular to working accuracy.

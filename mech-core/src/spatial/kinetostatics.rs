@@ -91,7 +91,13 @@ pub(crate) fn wrenches(
     m: &SpatialMotion,
     loads: &SpatialLoads,
     inertia: bool,
-) -> DVector<f64> {
+) -> Result<DVector<f64>, MechError> {
+    let values: Vec<f64> = loads
+        .values
+        .iter()
+        .flat_map(|v| v.iter().copied())
+        .collect();
+    crate::error::check_finite("the loads", &values)?;
     let model = &layout.model;
     let mut q = DVector::zeros(6 * layout.moving());
     let mut add = |b: usize, f: V3, mo: V3| {
@@ -123,7 +129,7 @@ pub(crate) fn wrenches(
             }
         }
     }
-    q
+    Ok(q)
 }
 
 /// Newton–Euler of every moving body at the motion `m`: Jᵀ λ = −(Q − inertia wrenches),
@@ -136,7 +142,7 @@ pub(crate) fn kinetostatics(
     let s: Vec<_> = m.bodies.iter().map(|b| b.state).collect();
     let (rows, owners) = layout.rows(&s, &m.q);
     let jt = layout.jacobian(&rows, &owners).transpose();
-    let lambda = solve(jt, -wrenches(layout, m, loads, true))?;
+    let lambda = solve(jt, -wrenches(layout, m, loads, true)?)?;
     let mut reactions = Vec::with_capacity(layout.joints.len());
     let mut r = 0;
     for (k, g) in layout.joints.iter().enumerate() {

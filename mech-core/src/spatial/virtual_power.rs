@@ -36,7 +36,7 @@ pub(crate) fn driver_actions(
     m: &SpatialMotion,
     loads: &SpatialLoads,
 ) -> Result<Vec<f64>, MechError> {
-    let w = wrenches(layout, m, loads, true);
+    let w = wrenches(layout, m, loads, true)?;
     let out: Vec<f64> = coefficients(layout, m)?.iter().map(|x| -w.dot(x)).collect();
     crate::kernel::finite::finite_few("the motor actions", &out)?;
     Ok(out)

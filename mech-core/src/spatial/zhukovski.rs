@@ -50,7 +50,7 @@ pub(crate) fn reduced_moment(
     one_dof(layout)?;
     let m = kinematics(layout, &[q], &[0.0], &[0.0])?;
     let x = coefficients(layout, &m)?;
-    let out = wrenches(layout, &m, loads, false).dot(&x[0]);
+    let out = wrenches(layout, &m, loads, false)?.dot(&x[0]);
     crate::kernel::finite::finite_few("M*", &[out])?;
     Ok(out)
 }
