@@ -686,3 +686,49 @@ fn a_cylindrical_joint_in_an_rscr_matches_its_closed_form() {
     eprintln!("RSCR: positions {pos:.1e} m, routes {routes:.1e}");
     assert!(pos < 1e-12 && routes < 1e-10, "{pos} {routes}");
 }
+
+/// Two inputs: the RSSR's rocker pinned to a slider on a skew guide (inputs O and the
+/// guide). With the slide held at 0 (s = ṡ = s̈ = 0) it is the RSSR: the same points and
+/// motor torque at O, and the guide's motor force is what holds the slider against the
+/// rocker and gravity, (F_C of the RSSR − m_s g)·w; virtual power gives both motor actions.
+#[test]
+fn two_inputs_with_one_held_give_the_rssr() {
+    let text = RSSR
+        .replace(
+            "ground { O: (0.0, 0.0, 0.0), C: (250 mm, 120 mm, 80 mm) },",
+            "ground { O: (0.0, 0.0, 0.0) },\n    link slider { points { C: (250 mm, 120 mm, 80 mm) }, mass: 3.0, cg: (0.26, 0.11, 0.07), inertia: (1e-3, 1e-3, 1e-3, 0.0, 0.0, 0.0) },",
+        )
+        .replace(
+            "C: revolute(ground, rocker) axis (0.0, 0.0, 1.0),",
+            "C: revolute(slider, rocker) axis (0.0, 0.0, 1.0),\n        guide: prismatic(ground, slider) at C along (0.3, 1.0, -0.2),",
+        )
+        .replace("input: O,", "inputs: [O, guide],");
+    let two = SpatialMechanism::from_dsl(&text).unwrap();
+    let one = SpatialMechanism::from_dsl(RSSR).unwrap();
+    assert_eq!((two.dof(), two.idle_links()), (2, vec!["rod"]));
+    let (l1, l2) = (rssr_loads(&one), rssr_loads(&two));
+    let w = V3::new(0.3, 1.0, -0.2).normalize();
+    let g = V3::new(0.0, 0.0, -9.81);
+    let mut worst = 0.0f64;
+    for k in 0..12 {
+        let q = 2.0 * PI * k as f64 / 12.0;
+        let (qd, qdd) = (6.0 - k as f64, 20.0 * q.cos());
+        let a = one.kinematics(&[q], &[qd], &[qdd]).unwrap();
+        let b = two.kinematics(&[q, 0.0], &[qd, 0.0], &[qdd, 0.0]).unwrap();
+        for p in ["A", "B", "C"] {
+            worst = worst.max((a.point(p).unwrap() - b.point(p).unwrap()).amax() / 0.3);
+        }
+        let (fa, fb) = (one.kinetostatics(&a, &l1).unwrap(), two.kinetostatics(&b, &l2).unwrap());
+        let scale = fa.drivers[0].abs().max(fa.reaction("C").unwrap().force.amax());
+        let push = (fa.reaction("C").unwrap().force - g * 3.0).dot(&w);
+        worst = worst.max((fa.drivers[0] - fb.drivers[0]).abs() / scale);
+        worst = worst.max((push - fb.drivers[1]).abs() / scale);
+        let power = two.driver_action(&b, &l2).unwrap();
+        worst = worst.max((power[0] - fb.drivers[0]).abs() / scale).max((power[1] - fb.drivers[1]).abs() / scale);
+        // the rocker's pin: the RSSR's ground reaction is now the slider's
+        let (ra, rb) = (fa.reaction("C").unwrap(), fb.reaction("C").unwrap());
+        worst = worst.max((ra.force - rb.force).amax() / scale).max((ra.moment - rb.moment).amax() / scale);
+    }
+    eprintln!("two inputs, one held: {worst:.1e} relative");
+    assert!(worst < 1e-12, "{worst}");
+}
