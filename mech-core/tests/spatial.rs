@@ -43,6 +43,8 @@ struct RssrClosed {
     c: V3,
     b: V3,
     l: f64,
+    /// The assembly: φ = atan2(Q, P) + sign·acos(R / √(P² + Q²)).
+    sign: f64,
 }
 
 impl RssrClosed {
@@ -57,6 +59,7 @@ impl RssrClosed {
             c,
             b: b0 - c,
             l: (b0 - a0).norm(),
+            sign: -1.0,
         }
     }
     fn a(&self, q: f64) -> V3 {
@@ -80,7 +83,7 @@ impl RssrClosed {
         let p = 2.0 * (d.x * b.x + d.y * b.y);
         let qq = 2.0 * (d.y * b.x - d.x * b.y);
         let r = self.l * self.l - d.norm_squared() - b.norm_squared() - 2.0 * d.z * b.z;
-        let phi = qq.atan2(p) - (r / p.hypot(qq)).acos();
+        let phi = qq.atan2(p) + self.sign * (r / p.hypot(qq)).acos();
         let bb = self.c + Self::rz(b, phi);
         let a_dot = V3::x().cross(&a);
         let b_dot = V3::z().cross(&(bb - self.c));
@@ -718,17 +721,72 @@ fn two_inputs_with_one_held_give_the_rssr() {
         for p in ["A", "B", "C"] {
             worst = worst.max((a.point(p).unwrap() - b.point(p).unwrap()).amax() / 0.3);
         }
-        let (fa, fb) = (one.kinetostatics(&a, &l1).unwrap(), two.kinetostatics(&b, &l2).unwrap());
-        let scale = fa.drivers[0].abs().max(fa.reaction("C").unwrap().force.amax());
+        let (fa, fb) = (
+            one.kinetostatics(&a, &l1).unwrap(),
+            two.kinetostatics(&b, &l2).unwrap(),
+        );
+        let scale = fa.drivers[0]
+            .abs()
+            .max(fa.reaction("C").unwrap().force.amax());
         let push = (fa.reaction("C").unwrap().force - g * 3.0).dot(&w);
         worst = worst.max((fa.drivers[0] - fb.drivers[0]).abs() / scale);
         worst = worst.max((push - fb.drivers[1]).abs() / scale);
         let power = two.driver_action(&b, &l2).unwrap();
-        worst = worst.max((power[0] - fb.drivers[0]).abs() / scale).max((power[1] - fb.drivers[1]).abs() / scale);
+        worst = worst
+            .max((power[0] - fb.drivers[0]).abs() / scale)
+            .max((power[1] - fb.drivers[1]).abs() / scale);
         // the rocker's pin: the RSSR's ground reaction is now the slider's
         let (ra, rb) = (fa.reaction("C").unwrap(), fb.reaction("C").unwrap());
-        worst = worst.max((ra.force - rb.force).amax() / scale).max((ra.moment - rb.moment).amax() / scale);
+        worst = worst
+            .max((ra.force - rb.force).amax() / scale)
+            .max((ra.moment - rb.moment).amax() / scale);
     }
     eprintln!("two inputs, one held: {worst:.1e} relative");
+    assert!(worst < 1e-12, "{worst}");
+}
+
+/// The drawing's assembly is kept: the RSSR drawn in its other assembly (B at the closed
+/// form's second root at q = 0) follows that assembly's closed form over a full turn.
+#[test]
+fn the_rssr_drawn_in_its_other_assembly_stays_in_it() {
+    let first = RssrClosed::new();
+    let flipped = RssrClosed {
+        sign: 1.0,
+        ..RssrClosed::new()
+    };
+    let (_, b0, phi0, _) = flipped.solve(0.0);
+    assert!(phi0.abs() > 0.5, "a distinct assembly: {phi0}");
+    let a0 = first.a0;
+    let other = RssrClosed {
+        b: b0 - first.c,
+        sign: 1.0,
+        ..RssrClosed::new()
+    };
+    let mid = (a0 + b0) * 0.5;
+    let text = RSSR
+        .replace(
+            "B: (0.25, 0.02, 0.08)",
+            &format!("B: ({:?}, {:?}, {:?})", b0.x, b0.y, b0.z),
+        )
+        .replace(
+            "cg: (0.125, 0.035, 0.04)",
+            &format!("cg: ({:?}, {:?}, {:?})", mid.x, mid.y, mid.z),
+        );
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let mut worst = 0.0f64;
+    for k in 0..72 {
+        let q = 2.0 * PI * k as f64 / 72.0;
+        let (a, b, _, _) = other.solve(q);
+        let (_, b_first, _, _) = first.solve(q);
+        let pose = m.pose(&[q]).unwrap();
+        worst = worst
+            .max((pose.point("A").unwrap() - a).amax())
+            .max((pose.point("B").unwrap() - b).amax());
+        assert!(
+            (b - b_first).norm() > 1e-3,
+            "the assemblies stay apart at {q}"
+        );
+    }
+    eprintln!("RSSR, other assembly: positions {worst:.1e} m");
     assert!(worst < 1e-12, "{worst}");
 }
