@@ -380,7 +380,10 @@ mod tests {
             "{m}"
         );
         let m = message(&TEXT.replace("revolute(ground, crank)", "revolute(ground, crunk)"));
-        assert!(m.contains("unknown link `crunk`"), "{m}");
+        assert_eq!(
+            m,
+            "line 12, column 37: unknown link `crunk`: the links are `ground`, `crank`, `arm`"
+        );
         let m = message(&TEXT.replace("at B axis", "at Q axis"));
         assert!(m.contains("point `Q` is not defined"), "{m}");
         let m = message(&TEXT.replace(" pitch 4 mm", ""));

@@ -12,6 +12,12 @@ use crate::MechError;
 use nalgebra::{Matrix3, Vector3};
 use syn::Ident;
 
+/// `line L, column C: ` of where `id` was written (columns from 1).
+fn located(id: &Ident) -> String {
+    let s = id.span().start();
+    format!("line {}, column {}: ", s.line, s.column + 1)
+}
+
 fn unit(v: Vector3<f64>, what: &str, errors: &mut Vec<String>) -> Vector3<f64> {
     let n = v.norm();
     if !(n > 1e-12) || !n.is_finite() {
@@ -33,7 +39,7 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
         for (id, at) in &l.points {
             if let Some(p) = at {
                 if points.iter().any(|(n, _)| *id == *n) {
-                    errors.push(format!("point `{id}` is given coordinates twice: define it once (`{id}: (x, y, z)`) and name it alone elsewhere"));
+                    errors.push(located(id) + &format!("point `{id}` is given coordinates twice: define it once (`{id}: (x, y, z)`) and name it alone elsewhere"));
                 } else {
                     points.push((id.to_string(), *p));
                 }
@@ -46,19 +52,22 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
         for (id, _) in &l.points {
             match points.iter().position(|(n, _)| *id == *n) {
                 Some(i) => idx.push(i),
-                None => errors.push(format!("point `{id}` of link `{}` is never given coordinates: write `{id}: (x, y, z)` in one link", l.name)),
+                None => errors.push(located(id) + &format!("point `{id}` of link `{}` is never given coordinates: write `{id}: (x, y, z)` in one link", l.name)),
             }
         }
         let mass = l.mass.unwrap_or(0.0);
         if !(mass >= 0.0) || !mass.is_finite() {
-            errors.push(format!(
-                "the mass of link `{}` is {mass} kg: a mass is finite and ≥ 0",
-                l.name
-            ));
+            errors.push(
+                located(&l.name)
+                    + &format!(
+                        "the mass of link `{}` is {mass} kg: a mass is finite and ≥ 0",
+                        l.name
+                    ),
+            );
         }
         let inertia = l.inertia.map(inertia_tensor).unwrap_or_else(Matrix3::zeros);
         if l.inertia.is_some() && inertia.symmetric_eigenvalues().min() < -1e-12 * inertia.norm() {
-            errors.push(format!("the inertia tensor of link `{}` is not positive semi-definite (eigenvalues {:?} kg·m²): check the signs of the products Ixy, Ixz, Iyz (Ixy = Σ m x y)", l.name, inertia.symmetric_eigenvalues().as_slice()));
+            errors.push(located(&l.name) + &format!("the inertia tensor of link `{}` is not positive semi-definite (eigenvalues {:?} kg·m²): check the signs of the products Ixy, Ixz, Iyz (Ixy = Σ m x y)", l.name, inertia.symmetric_eigenvalues().as_slice()));
         }
         bodies.push(Body {
             name: l.name.to_string(),
@@ -85,23 +94,28 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
             .iter()
             .position(|b| *id == b.name)
             .unwrap_or_else(|| {
-                errors.push(format!(
-                    "unknown link `{id}`: the links are {}",
-                    bodies
-                        .iter()
-                        .map(|b| format!("`{}`", b.name))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ));
+                errors.push(
+                    located(id)
+                        + &format!(
+                            "unknown link `{id}`: the links are {}",
+                            bodies
+                                .iter()
+                                .map(|b| format!("`{}`", b.name))
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                );
                 0
             })
     };
     let mut joints = Vec::new();
     for j in &w.joints {
+        let named = errors.len();
         let (a, b) = (body(&j.a, &mut errors), body(&j.b, &mut errors));
+        let named = errors.len() == named;
         let at = j.at.as_ref().unwrap_or(&j.name);
         let point = points.iter().position(|(n, _)| *at == *n).unwrap_or_else(|| {
-            errors.push(format!("joint `{}`: point `{at}` is not defined: name the joint after a point or write `at P`", j.name));
+            errors.push(located(at) + &format!("joint `{}`: point `{at}` is not defined: name the joint after a point or write `at P`", j.name));
             0
         });
         let want = match j.kind.to_string().as_str() {
@@ -109,22 +123,25 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
             "revolute" | "prismatic" | "cylindrical" | "helical" => 1,
             "universal" => 2,
             other => {
-                errors.push(format!("joint `{}`: unknown joint kind `{other}`: a spatial joint is `revolute(a, b) axis (..)`, `prismatic(a, b) along (..)`, `cylindrical(a, b) axis (..)`, `spherical(a, b)`, `universal(a, b) axes (..) (..)` or `helical(a, b) axis (..) pitch ..`", j.name));
+                errors.push(located(&j.kind) + &format!("joint `{}`: unknown joint kind `{other}`: a spatial joint is `revolute(a, b) axis (..)`, `prismatic(a, b) along (..)`, `cylindrical(a, b) axis (..)`, `spherical(a, b)`, `universal(a, b) axes (..) (..)` or `helical(a, b) axis (..) pitch ..`", j.name));
                 continue;
             }
         };
         if j.axes.len() != want {
-            errors.push(format!(
-                "joint `{}`: a {} joint takes {want} direction(s), {} given (e.g. `{}`)",
-                j.name,
-                j.kind,
-                j.axes.len(),
-                [
-                    "`spherical(a, b)`",
-                    "`axis (0.0, 0.0, 1.0)`",
-                    "`axes (1.0, 0.0, 0.0) (0.0, 1.0, 0.0)`"
-                ][want]
-            ));
+            errors.push(
+                located(&j.name)
+                    + &format!(
+                        "joint `{}`: a {} joint takes {want} direction(s), {} given (e.g. `{}`)",
+                        j.name,
+                        j.kind,
+                        j.axes.len(),
+                        [
+                            "`spherical(a, b)`",
+                            "`axis (0.0, 0.0, 1.0)`",
+                            "`axes (1.0, 0.0, 0.0) (0.0, 1.0, 0.0)`"
+                        ][want]
+                    ),
+            );
             continue;
         }
         let what = |k: usize| format!("the {} of joint `{}`", ["axis", "second axis"][k], j.name);
@@ -136,18 +153,24 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
             .collect();
         let kind = match (j.kind.to_string().as_str(), j.pitch) {
             ("helical", None) => {
-                errors.push(format!(
-                    "joint `{}`: a helical joint needs its lead: `pitch 5 mm` (m per turn)",
-                    j.name
-                ));
+                errors.push(
+                    located(&j.name)
+                        + &format!(
+                            "joint `{}`: a helical joint needs its lead: `pitch 5 mm` (m per turn)",
+                            j.name
+                        ),
+                );
                 continue;
             }
             ("helical", Some(pitch)) => JointKind::Helical { axis: u[0], pitch },
             (k, Some(_)) => {
-                errors.push(format!(
-                    "joint `{}`: only a helical joint takes `pitch`, not a {k} one",
-                    j.name
-                ));
+                errors.push(
+                    located(&j.name)
+                        + &format!(
+                            "joint `{}`: only a helical joint takes `pitch`, not a {k} one",
+                            j.name
+                        ),
+                );
                 continue;
             }
             ("revolute", _) => JointKind::Revolute { axis: u[0] },
@@ -156,7 +179,7 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
             ("universal", _) => {
                 let cos = u[0].dot(&u[1]);
                 if cos.abs() > 1e-9 {
-                    errors.push(format!("joint `{}`: a universal joint's two axes are perpendicular, but these make {:.6}°: correct the second axis", j.name, cos.clamp(-1.0, 1.0).acos().to_degrees()));
+                    errors.push(located(&j.name) + &format!("joint `{}`: a universal joint's two axes are perpendicular, but these make {:.6}°: correct the second axis", j.name, cos.clamp(-1.0, 1.0).acos().to_degrees()));
                 }
                 JointKind::Universal {
                     first: u[0],
@@ -165,19 +188,22 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
             }
             _ => JointKind::Spherical,
         };
-        if a == b {
-            errors.push(format!(
-                "joint `{}` joins link `{}` to itself: name two different links",
-                j.name, j.a
-            ));
+        if named && a == b {
+            errors.push(
+                located(&j.name)
+                    + &format!(
+                        "joint `{}` joins link `{}` to itself: name two different links",
+                        j.name, j.a
+                    ),
+            );
         }
         let owns = |x: usize| bodies[x].points.contains(&point);
         let shared = !matches!(
             kind,
             JointKind::Prismatic { .. } | JointKind::Cylindrical { .. } | JointKind::Helical { .. }
         );
-        if !owns(b) || (shared && !owns(a)) {
-            errors.push(format!("joint `{}`: its point `{at}` must be a point of {}: list it in the link's `points`", j.name, if shared { format!("both `{}` and `{}`", j.a, j.b) } else { format!("`{}` (the second link)", j.b) }));
+        if named && (!owns(b) || (shared && !owns(a))) {
+            errors.push(located(&j.name) + &format!("joint `{}`: its point `{at}` must be a point of {}: list it in the link's `points`", j.name, if shared { format!("both `{}` and `{}`", j.a, j.b) } else { format!("`{}` (the second link)", j.b) }));
         }
         joints.push(Joint {
             name: j.name.to_string(),
@@ -191,9 +217,12 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
     for id in &w.inputs {
         match joints.iter().position(|j| *id == j.name) {
             Some(k) => inputs.push(k),
-            None => errors.push(format!(
-                "input `{id}` is not a joint: name a revolute, prismatic or helical joint"
-            )),
+            None => errors.push(
+                located(id)
+                    + &format!(
+                        "input `{id}` is not a joint: name a revolute, prismatic or helical joint"
+                    ),
+            ),
         }
     }
     let mut loads = Vec::new();
@@ -206,14 +235,15 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
                     LoadKind::Force { body: b, point }
                 }
                 _ => {
-                    errors.push(format!("load `{n}`: `{p}` is not a point of link `{link}`: list it in the link's `points`"));
+                    errors.push(located(p) + &format!("load `{n}`: `{p}` is not a point of link `{link}`: list it in the link's `points`"));
                     continue;
                 }
             },
             _ => {
-                errors.push(format!(
-                    "load `{n}`: expected `force on LINK at P` or `torque on LINK`"
-                ));
+                errors.push(
+                    located(n)
+                        + &format!("load `{n}`: expected `force on LINK at P` or `torque on LINK`"),
+                );
                 continue;
             }
         };
