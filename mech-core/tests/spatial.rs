@@ -790,3 +790,41 @@ fn the_rssr_drawn_in_its_other_assembly_stays_in_it() {
     eprintln!("RSSR, other assembly: positions {worst:.1e} m");
     assert!(worst < 1e-12, "{worst}");
 }
+
+/// The idle spin is idle for a thin rod: with the rod's inertia I_t (1 − e eᵀ) (none about
+/// its own axis e) and its cg on AB, the moment fixing its spin vanishes; with a general
+/// tensor it does not (the spin convention then needs a moment, which does no work).
+#[test]
+fn a_thin_rod_needs_no_moment_to_fix_its_spin() {
+    let e = (V3::new(0.25, 0.02, 0.08) - V3::new(0.0, 0.05, 0.0)).normalize();
+    let it = 3e-3;
+    let six = [
+        it * (1.0 - e.x * e.x),
+        it * (1.0 - e.y * e.y),
+        it * (1.0 - e.z * e.z),
+        it * e.x * e.y,
+        it * e.x * e.z,
+        it * e.y * e.z,
+    ];
+    let thin = RSSR.replace(
+        "inertia: (2e-4, 3e-3, 2.5e-3, 3e-5, 1e-5, -4e-5)",
+        &format!(
+            "inertia: ({:?}, {:?}, {:?}, {:?}, {:?}, {:?})",
+            six[0], six[1], six[2], six[3], six[4], six[5]
+        ),
+    );
+    for (text, thin_rod) in [(thin.as_str(), true), (RSSR, false)] {
+        let m = SpatialMechanism::from_dsl(text).unwrap();
+        let loads = rssr_loads(&m);
+        let mut largest = 0.0f64;
+        for k in 0..12 {
+            let q = 2.0 * PI * k as f64 / 12.0;
+            let motion = m.kinematics(&[q], &[9.0], &[-30.0]).unwrap();
+            let f = m.kinetostatics(&motion, &loads).unwrap();
+            assert_eq!(f.spin_moments.len(), 1);
+            largest = largest.max(f.spin_moments[0].norm() / f.driver().abs().max(1.0));
+        }
+        eprintln!("spin moment, thin rod {thin_rod}: {largest:.1e} relative");
+        assert_eq!(largest < 1e-13, thin_rod, "{largest}");
+    }
+}
