@@ -456,6 +456,18 @@ fn bad_input_is_refused_with_the_numbers_and_the_fix() {
     ));
     assert!(m.kinematics(&[0.1, 0.2], &[0.0], &[0.0]).is_err());
     assert!(matches!(m.pose(&[1e300]), Err(MechError::InvalidInput(_))));
+    let other = SpatialMechanism::from_dsl(RSSP)
+        .unwrap()
+        .pose(&[0.1])
+        .unwrap();
+    assert!(matches!(
+        m.kinetostatics(&other, &m.loads()),
+        Err(MechError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        m.driver_action(&other, &m.loads()),
+        Err(MechError::InvalidInput(_))
+    ));
     let motion = m.kinematics(&[0.3], &[1.0], &[0.0]).unwrap();
     let mut loads = m.loads();
     loads.set_by_name("push", &[f64::NAN, 0.0, 0.0]);

@@ -40,6 +40,18 @@ impl SpatialMechanism {
         })
     }
 
+    /// `InvalidInput` unless `m` was computed by this mechanism (or a clone of it).
+    fn owns(&self, m: &SpatialMotion) -> Result<(), MechError> {
+        if Arc::ptr_eq(&self.layout, &m.layout) {
+            Ok(())
+        } else {
+            Err(MechError::InvalidInput(format!(
+                "this motion was computed by another mechanism (`{}`), not by `{}`: compute it with this mechanism's `kinematics`",
+                m.layout.model.name, self.layout.model.name
+            )))
+        }
+    }
+
     /// The model as loaded.
     pub fn model(&self) -> &SpatialModel {
         &self.layout.model
@@ -102,6 +114,7 @@ impl SpatialMechanism {
         m: &SpatialMotion,
         loads: &SpatialLoads,
     ) -> Result<SpatialForces, MechError> {
+        self.owns(m)?;
         kinetostatics(&self.layout, m, loads)
     }
 
@@ -111,6 +124,7 @@ impl SpatialMechanism {
         m: &SpatialMotion,
         loads: &SpatialLoads,
     ) -> Result<Vec<f64>, MechError> {
+        self.owns(m)?;
         super::virtual_power::driver_actions(&self.layout, m, loads)
     }
 
