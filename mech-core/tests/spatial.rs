@@ -441,6 +441,22 @@ fn bad_input_is_refused_with_the_numbers_and_the_fix() {
             && m.contains("joint `O4` (revolute): 3 of its 5"),
         "{m}"
     );
+    // Kutzbach's count can hide an over-constrained sub-chain: four revolutes (3 redundant
+    // equations) beside a pendulum on a ball joint (3 free turns) count G = −2 + 3 = 1.
+    let m = invalid(
+        &PLANAR_IN_SPACE
+            .replace("A: spherical(crank, coupler)", "A: revolute(crank, coupler) axis (0.0, 0.0, 1.0)")
+            .replace("universal(coupler, rocker) axes (0.0, 0.0, 1.0) (0.05, -0.16, 0.0)", "revolute(coupler, rocker) axis (0.0, 0.0, 1.0)")
+            .replace("O4: (0.3, 0.0, 0.0) },", "O4: (0.3, 0.0, 0.0), P: (0.5, 0.5, 0.5) },\n    link bob { points { P }, mass: 1.0 },")
+            .replace("O4: revolute(rocker, ground) axis (0.0, 0.0, 1.0),", "O4: revolute(rocker, ground) axis (0.0, 0.0, 1.0),\n        P: spherical(ground, bob),"),
+    );
+    assert!(
+        !m.contains("Kutzbach's count does not match")
+            && m.contains("as many freedoms are left to no input")
+            && m.contains("rank 21 for 24 equations: 3 redundant")
+            && m.contains("joint `O4` (revolute): 3 of its 5"),
+        "{m}"
+    );
     // Units and names.
     let m = invalid(&RSSR.replace("mass: 0.5,", "mass: 0.5 mm,"));
     assert!(m.contains("a mass is"), "{m}");

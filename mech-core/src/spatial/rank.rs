@@ -71,8 +71,13 @@ pub(crate) fn check(layout: &Layout) -> Option<String> {
         before = now;
         start += count;
     }
+    let hidden = if rows.len() == j.ncols() {
+        format!(" Kutzbach's count matches the inputs only because as many freedoms are left to no input elsewhere (a link free to turn or slide): {} of the 6(N − 1) = {} body coordinates are not determined.", rows.len() - total, j.ncols())
+    } else {
+        String::new()
+    };
     Some(format!(
-        "the constraint Jacobian at the drawing has rank {total} for {} equations: {} redundant. {}. Redundant joint equations make the reactions statically indeterminate: replace a joint by one that leaves more freedom (e.g. a revolute (5 equations) by a universal (4) or a spherical (3) joint) until Kutzbach's count and the rank agree; an input whose equation repeats the others is at a dead point in the drawing: draw the mechanism elsewhere or choose another input",
+        "the constraint Jacobian at the drawing has rank {total} for {} equations: {} redundant. {}.{hidden} Redundant joint equations make the reactions statically indeterminate: replace a joint by one that leaves more freedom (e.g. a revolute (5 equations) by a universal (4) or a spherical (3) joint) until Kutzbach's count and the rank agree; an input whose equation repeats the others is at a dead point in the drawing: draw the mechanism elsewhere or choose another input",
         rows.len(),
         rows.len() - total,
         found.join("; ")
