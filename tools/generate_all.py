@@ -152,10 +152,12 @@ def tables():
                    ["tests/data/spring_four_bar.json"], rtol="1e-30", fast=True, seconds=0.3))
     T.append(Table("gears", ["gears_reference.py", "--out-root", "{root}"], ["tests/data/gears.json"],
                    rtol="1e-30", fast=True, seconds=0.3))
-    T.append(Table("rolling", ["rolling_reference.py", "--out-root", "{root}"], ["tests/data/rolling.json"],
-                   rtol="1e-30", fast=True, seconds=0.4))
     T.append(Table("spatial", ["spatial_reference.py", "--out-root", "{root}"],
                    ["tests/data/spatial/slider_crank.truth.json"], rtol="1e-27", fast=True, seconds=2.2))
+    T.append(Table("rolling", ["rolling_reference.py", "--out-root", "{root}"], ["tests/data/rolling.json"],
+                   rtol="1e-30", fast=True, seconds=0.4))
+    T.append(Table("double_wishbone", ["suspension_reference.py", "--out-root", "{root}"],
+                   ["tests/data/spatial/double_wishbone.truth.json"], rtol="1e-28", fast=True, seconds=1.9))
     T.append(Table("large.rs", ["large_mechanisms.py", "--out-root", "{root}"], ["tests/large.rs"],
                    fast=True, seconds=0.05))
     # reads pyslvs's example list from the installed pyslvs (pyslvs_example_py below)
