@@ -850,6 +850,8 @@ fn a_thin_rod_needs_no_moment_to_fix_its_spin() {
             let motion = m.kinematics(&[q], &[9.0], &[-30.0]).unwrap();
             let f = m.kinetostatics(&motion, &loads).unwrap();
             assert_eq!(f.spin_moments.len(), 1);
+            assert_eq!(f.spin_moment("rod"), Some(f.spin_moments[0]));
+            assert_eq!(f.spin_moment("crank"), None);
             largest = largest.max(f.spin_moments[0].norm() / f.driver().abs().max(1.0));
         }
         eprintln!("spin moment, thin rod {thin_rod}: {largest:.1e} relative");

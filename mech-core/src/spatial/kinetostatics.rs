@@ -63,10 +63,13 @@ pub struct SpatialForces {
     /// The motor action of each input (N·m about its axis, or N along it, by its first link
     /// on its second).
     pub drivers: Vec<f64>,
-    /// The moment (N·m, about the link's reference point) the ground would have to apply to
-    /// keep each idle link from spinning: zero when the link's inertia about its axis is
-    /// zero (a thin rod), which makes the idle spin truly idle.
+    /// The pure moment (N·m) the ground would have to apply to keep each idle link to the
+    /// spin convention (`docs/spatial.md`), in the order of
+    /// [`crate::spatial::SpatialMechanism::idle_links`]: zero when the link has no inertia
+    /// about its own axis (a thin rod) and its loads pass through the axis, which makes the
+    /// idle spin truly idle; it does no work.
     pub spin_moments: Vec<V3>,
+    pub(crate) idle: Vec<String>,
 }
 
 impl SpatialForces {
@@ -76,6 +79,14 @@ impl SpatialForces {
             .iter()
             .position(|n| n == name)
             .map(|k| self.reactions[k])
+    }
+
+    /// The moment fixing the spin of the idle link `name` ([`SpatialForces::spin_moments`]).
+    pub fn spin_moment(&self, name: &str) -> Option<V3> {
+        self.idle
+            .iter()
+            .position(|n| n == name)
+            .map(|k| self.spin_moments[k])
     }
 
     /// The first input's motor action (N·m or N); 0 without inputs.
@@ -171,12 +182,21 @@ pub(crate) fn kinetostatics(
         reactions,
         drivers,
         spin_moments,
+        idle: layout
+            .spins
+            .iter()
+            .map(|&(b, _)| layout.model.bodies[b].name.clone())
+            .collect(),
     };
     let finite = out
         .reactions
         .iter()
         .all(|x| x.force.iter().chain(x.moment.iter()).all(|v| v.is_finite()))
-        && out.drivers.iter().all(|v| v.is_finite());
+        && out.drivers.iter().all(|v| v.is_finite())
+        && out
+            .spin_moments
+            .iter()
+            .all(|v| v.iter().all(|x| x.is_finite()));
     if finite {
         Ok(out)
     } else {
