@@ -969,3 +969,142 @@ fn a_double_wishbone_matches_the_mpmath_suspension_table() {
     eprintln!("double wishbone against mpmath:{report}");
     assert!(worst < 1e-12, "{report}");
 }
+
+/// `#[allow(redundant)]`: four revolutes in space (Kutzbach −2, the rank's mobility 1). The
+/// planar four-bar so declared gives the planar Mechanism's motion and, by virtual power,
+/// its motor torque; its reactions are refused (statically indeterminate).
+#[test]
+fn four_revolutes_with_allow_redundant_give_the_planar_motion_and_torque() {
+    let text = PLANAR_IN_SPACE
+        .replace(
+            "A: spherical(crank, coupler)",
+            "A: revolute(crank, coupler) axis (0.0, 0.0, 1.0)",
+        )
+        .replace(
+            "universal(coupler, rocker) axes (0.0, 0.0, 1.0) (0.05, -0.16, 0.0)",
+            "revolute(coupler, rocker) axis (0.0, 0.0, 1.0)",
+        );
+    assert!(SpatialMechanism::from_dsl(&text).is_err());
+    let space = SpatialMechanism::from_dsl(&format!("#[allow(redundant)]\n{text}")).unwrap();
+    let plane = Mechanism::from_dsl(PLANAR).unwrap();
+    let mut pl = plane.loads();
+    assert!(pl.set_by_name("push", &[3.0, -2.0]) && pl.set_by_name("tool", &[1.5]));
+    let mut sl = space.loads();
+    assert!(sl.set_by_name("push", &[3.0, -2.0, 0.0]) && sl.set_by_name("tool", &[0.0, 0.0, 1.5]));
+    let mut worst = 0.0f64;
+    for k in 0..36 {
+        let q = 2.0 * PI * k as f64 / 36.0;
+        let (qd, qdd) = (7.0, -20.0 + k as f64);
+        let a = plane
+            .kinematics(&[q + 0.06f64.atan2(0.02)], &[qd], &[qdd])
+            .unwrap();
+        let b = space.kinematics(&[q], &[qd], &[qdd]).unwrap();
+        for p in ["A", "B"] {
+            let (pa, pb) = (a.point(p).unwrap(), b.point_motion(p).unwrap());
+            worst = worst
+                .max((pa.pos - pb[0].xy()).amax() / 0.3)
+                .max((pa.acc - pb[2].xy()).amax() / (0.3 * qd * qd));
+        }
+        let torque = plane.kinetostatics(&a, &pl).unwrap().driver[0];
+        worst = worst
+            .max((torque - space.driver_action(&b, &sl).unwrap()[0]).abs() / torque.abs().max(1.0));
+        worst = worst.max(three_routes_without_reactions(&space, &sl, q, qd, qdd));
+        assert!(matches!(
+            space.kinetostatics(&b, &sl),
+            Err(MechError::Redundant(_))
+        ));
+    }
+    eprintln!("four revolutes, allow(redundant): {worst:.1e} relative");
+    assert!(worst < 1e-12, "{worst}");
+    // a wrong count of inputs is still refused, by the rank's mobility
+    let m = invalid(&format!(
+        "#[allow(redundant)]\n{}",
+        text.replace("input: O2,", "")
+    ));
+    assert!(
+        m.contains("the mobility is the rank's") && m.contains("= 1 at the drawing"),
+        "{m}"
+    );
+}
+
+/// Virtual power against Zhukovski, for a mechanism without reactions.
+fn three_routes_without_reactions(
+    m: &SpatialMechanism,
+    loads: &SpatialLoads,
+    q: f64,
+    qd: f64,
+    qdd: f64,
+) -> f64 {
+    let motion = m.kinematics(&[q], &[qd], &[qdd]).unwrap();
+    let power = m.driver_action(&motion, loads).unwrap()[0];
+    let r = m.reduced(q).unwrap();
+    let zhukovski = r.inertia * qdd + 0.5 * r.inertia_derivative * qd * qd
+        - m.reduced_moment(q, loads).unwrap();
+    (power - zhukovski).abs() / power.abs().max(1e-3)
+}
+
+/// The spherical four-bar (every axis through the centre; arcs 20°, 60°, 50°, ground 70°:
+/// a crank), with `#[allow(redundant)]`: the coupler–rocker axis against the closed form of
+/// two cones, c₂·g₂ = cos 50°, c₂·c₁ = cos 60°, |c₂| = 1, over a full turn; virtual power
+/// and Zhukovski agree.
+#[test]
+fn a_spherical_four_bar_matches_its_closed_form() {
+    let r = 0.1;
+    let deg = |d: f64| d.to_radians();
+    let g1 = V3::z();
+    let g2 = V3::new(deg(70.0).sin(), 0.0, deg(70.0).cos());
+    let c1_0 = V3::new(
+        deg(20.0).sin() * deg(60.0).cos(),
+        deg(20.0).sin() * deg(60.0).sin(),
+        deg(20.0).cos(),
+    );
+    let (cb, cg) = (deg(50.0).cos(), deg(60.0).cos());
+    // c₂ = x g₂ + y c₁ + z (g₂ × c₁), the + branch
+    let cone = |c1: V3| {
+        let k = g2.dot(&c1);
+        let (x, y) = ((cb - k * cg) / (1.0 - k * k), (cg - k * cb) / (1.0 - k * k));
+        let base = g2 * x + c1 * y;
+        let n = g2.cross(&c1);
+        base + n * ((1.0 - base.norm_squared()).sqrt() / n.norm())
+    };
+    let c2_0 = cone(c1_0);
+    let p = |v: V3| format!("({:?}, {:?}, {:?})", r * v.x, r * v.y, r * v.z);
+    let a = |v: V3| format!("({:?}, {:?}, {:?})", v.x, v.y, v.z);
+    let text = format!(
+        "#[allow(redundant)]
+        pub struct Spherical {{
+            space,
+            gravity: (0.0, 0.0, -9.81),
+            ground {{ O1: {}, O4: {} }},
+            link crank {{ points {{ O1, A: {} }}, mass: 0.3, cg: {}, inertia: (1e-4, 2e-4, 1.5e-4, 1e-5, 0.0, 2e-5) }},
+            link coupler {{ points {{ A, B: {} }}, mass: 0.5, cg: {}, inertia: (3e-4, 2e-4, 4e-4, 0.0, 3e-5, 0.0) }},
+            link rocker {{ points {{ B, O4 }}, mass: 0.4, cg: {}, inertia: (2e-4, 2e-4, 1e-4, 0.0, 0.0, 1e-5) }},
+            joints {{
+                O1: revolute(ground, crank) axis {},
+                A: revolute(crank, coupler) axis {},
+                B: revolute(coupler, rocker) axis {},
+                O4: revolute(rocker, ground) axis {},
+            }},
+            input: O1,
+            loads {{ tool: torque on rocker }},
+        }}",
+        p(g1), p(g2), p(c1_0), p((g1 + c1_0) * 0.5), p(c2_0), p((c1_0 + c2_0) * 0.5), p((c2_0 + g2) * 0.5),
+        a(g1), a(c1_0), a(c2_0), a(g2)
+    );
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let mut loads = m.loads();
+    loads.set_by_name("tool", &[0.2, -0.1, 0.5]);
+    let (mut pos, mut routes) = (0.0f64, 0.0f64);
+    for k in 0..72 {
+        let q = 2.0 * PI * k as f64 / 72.0;
+        let c1 =
+            c1_0 * q.cos() + g1.cross(&c1_0) * q.sin() + g1 * (g1.dot(&c1_0) * (1.0 - q.cos()));
+        let pose = m.pose(&[q]).unwrap();
+        pos = pos
+            .max((pose.point("A").unwrap() - c1 * r).amax())
+            .max((pose.point("B").unwrap() - cone(c1) * r).amax());
+        routes = routes.max(three_routes_without_reactions(&m, &loads, q, 4.0, -9.0));
+    }
+    eprintln!("spherical four-bar: positions {pos:.1e} m, routes {routes:.1e}");
+    assert!(pos < 1e-12 && routes < 1e-10, "{pos} {routes}");
+}

@@ -38,6 +38,7 @@ pub(super) struct Written {
     pub(super) joints: Vec<JointDecl>,
     pub(super) inputs: Vec<Ident>,
     pub(super) loads: Vec<(Ident, Ident, Ident, Option<Ident>)>,
+    pub(super) allow_redundant: bool,
 }
 
 fn comma(input: ParseStream) -> syn::Result<()> {
@@ -188,7 +189,24 @@ fn joint(input: ParseStream, c: &Constants) -> syn::Result<JointDecl> {
 
 impl Parse for Written {
     fn parse(input: ParseStream) -> syn::Result<Self> {
-        let _ = input.call(syn::Attribute::parse_outer)?;
+        let mut allow_redundant = false;
+        for attr in input.call(syn::Attribute::parse_outer)? {
+            if attr.path().is_ident("allow") {
+                let arg: Ident = attr.parse_args()?;
+                if arg != "redundant" {
+                    return Err(syn::Error::new(
+                        arg.span(),
+                        "only `#[allow(redundant)]` is understood here",
+                    ));
+                }
+                allow_redundant = true;
+            } else if !attr.path().is_ident("doc") {
+                return Err(syn::Error::new_spanned(
+                    attr,
+                    "unsupported attribute: use doc comments or `#[allow(redundant)]`",
+                ));
+            }
+        }
         input.parse::<Token![pub]>()?;
         input.parse::<Token![struct]>()?;
         let name: Ident = input.parse()?;
@@ -207,6 +225,7 @@ impl Parse for Written {
             joints: Vec::new(),
             inputs: Vec::new(),
             loads: Vec::new(),
+            allow_redundant,
         };
         while !body.is_empty() {
             let key: Ident = body.call(Ident::parse_any)?;

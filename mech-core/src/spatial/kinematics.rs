@@ -226,8 +226,24 @@ fn residual(rows: &[Row]) -> f64 {
 const MAX_STEPS: f64 = 10_000.0;
 
 /// Solve the square system a x = b by LU; `Singular` (condition estimate max|U_ii| /
-/// min|U_ii|) when it is singular to working accuracy.
+/// min|U_ii|) when it is singular to working accuracy. A system with more rows than
+/// columns (redundant constraints, consistent) by least squares through the SVD.
 pub(crate) fn solve(a: DMatrix<f64>, b: DVector<f64>) -> Result<DVector<f64>, MechError> {
+    if a.nrows() > a.ncols() && a.nrows() == b.len() && a.ncols() > 0 {
+        // redundant constraints (#[allow(redundant)]): the consistent system by least squares
+        let svd = a.svd(true, true);
+        let s = &svd.singular_values;
+        let (lo, hi) = (s.min(), s.max());
+        if !(lo > 1e-13 * hi) {
+            return Err(MechError::Singular { condition: hi / lo });
+        }
+        return match svd.solve(&b, 0.0) {
+            Ok(x) if x.iter().all(|v| v.is_finite()) => Ok(x),
+            _ => Err(MechError::Singular {
+                condition: f64::INFINITY,
+            }),
+        };
+    }
     if a.nrows() != a.ncols() || a.nrows() != b.len() || a.nrows() == 0 {
         return Err(MechError::InvalidInput(format!(
             "the constraint system is {}×{}: the count of equations does not match the unknowns",

@@ -26,12 +26,16 @@ impl SpatialMechanism {
     /// A mechanism from a [`SpatialModel`]: [`MechError::Invalid`] with every message
     /// (Kutzbach's count, the rank at the drawing, the input kinds) when a check fails.
     pub fn from_model(model: SpatialModel) -> Result<Self, MechError> {
-        let count = kutzbach::check(&model);
+        let count = (!model.allow_redundant)
+            .then(|| kutzbach::check(&model))
+            .flatten();
         let layout = Layout::new(model)?;
-        let messages: Vec<String> = count
-            .into_iter()
-            .chain(super::rank::check(&layout))
-            .collect();
+        let rank = if layout.model.allow_redundant {
+            super::rank::redundant(&layout)
+        } else {
+            super::rank::check(&layout)
+        };
+        let messages: Vec<String> = count.into_iter().chain(rank).collect();
         if !messages.is_empty() {
             return Err(MechError::Invalid(messages.join("\n")));
         }
@@ -109,12 +113,19 @@ impl SpatialMechanism {
 
     /// Every joint's reaction and every motor action at the motion `m` under `loads`
     /// (Newton–Euler with the full inertia tensor and the gyroscopic term).
+    /// [`MechError::Redundant`] for a mechanism accepted with `#[allow(redundant)]`.
     pub fn kinetostatics(
         &self,
         m: &SpatialMotion,
         loads: &SpatialLoads,
     ) -> Result<SpatialForces, MechError> {
         self.owns(m)?;
+        if self.layout.model.allow_redundant {
+            return Err(MechError::Redundant(format!(
+                "`{}` has redundant constraints (#[allow(redundant)]): its reactions are statically indeterminate; `driver_action` gives the motor actions by virtual power",
+                self.layout.model.name
+            )));
+        }
         kinetostatics(&self.layout, m, loads)
     }
 

@@ -147,6 +147,10 @@ pub struct SpatialModel {
     pub inputs: Vec<usize>,
     /// The loads in the order written.
     pub loads: Vec<Load>,
+    /// `#[allow(redundant)]`: redundant constraints accepted (the mobility is then the
+    /// rank's, 6(N − 1) − rank at the drawing; no reactions, the motor actions by virtual
+    /// power).
+    pub allow_redundant: bool,
 }
 
 impl SpatialModel {

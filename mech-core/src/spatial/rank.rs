@@ -19,9 +19,8 @@ fn rank(m: &DMatrix<f64>) -> usize {
     s.iter().filter(|&&v| v > 1e-9 * top).count()
 }
 
-/// The message naming the redundant joints (or the locked inputs) when the Jacobian at the
-/// drawing has fewer independent rows than rows; `None` when its rows are independent.
-pub(crate) fn check(layout: &Layout) -> Option<String> {
+/// The rows at the drawing and their Jacobian, each row scaled to unit length.
+fn drawing(layout: &Layout) -> (Vec<super::constraints::Row>, DMatrix<f64>) {
     let s: Vec<BodyState> = layout.o0.iter().map(|&o| BodyState::drawing(o)).collect();
     let q = vec![0.0; layout.model.inputs.len()];
     let (rows, owners) = layout.rows(&s, &q);
@@ -32,6 +31,34 @@ pub(crate) fn check(layout: &Layout) -> Option<String> {
             r /= n;
         }
     }
+    (rows, j)
+}
+
+/// With `#[allow(redundant)]`: the mobility is the rank's, 6(N − 1) − rank of the joints'
+/// (and idle spins') rows at the drawing, and must equal the inputs; with the drivers' rows
+/// the rank must be 6(N − 1) (the inputs determine the drawing). The message, or `None`.
+pub(crate) fn redundant(layout: &Layout) -> Option<String> {
+    let (rows, j) = drawing(layout);
+    let g = layout.model.inputs.len();
+    let first = rows.len() - g - layout.spins.len();
+    let cols = j.ncols();
+    let mobility = cols - rank(&j.clone().remove_rows(first, g));
+    if mobility != g {
+        return Some(format!(
+            "with #[allow(redundant)] the mobility is the rank's: 6(N−1) − rank = {cols} − {} = {mobility} at the drawing, but {g} input(s) were declared: declare {mobility} input(s)",
+            cols - mobility
+        ));
+    }
+    let all = rank(&j);
+    (all < cols).then(|| format!(
+        "the inputs do not determine the drawing (rank {all} of {cols} with their equations): an input is at a dead point; draw the mechanism elsewhere or choose another input"
+    ))
+}
+
+/// The message naming the redundant joints (or the locked inputs) when the Jacobian at the
+/// drawing has fewer independent rows than rows; `None` when its rows are independent.
+pub(crate) fn check(layout: &Layout) -> Option<String> {
+    let (rows, j) = drawing(layout);
     let total = rank(&j);
     if total == rows.len() {
         return None;

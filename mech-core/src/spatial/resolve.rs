@@ -263,5 +263,6 @@ pub(super) fn resolve(w: Written) -> Result<SpatialModel, MechError> {
         joints,
         inputs,
         loads,
+        allow_redundant: w.allow_redundant,
     })
 }
