@@ -7,7 +7,7 @@ import os, re, sys
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..')
 LAYERS = ['lib.rs', 'private.rs', 'error.rs', 'kernel', 'elements', 'model', 'front', 'plan',
-          'checks', 'solvers', 'dynamics', 'strength', 'runtime', 'design']
+          'checks', 'solvers', 'spatial', 'dynamics', 'strength', 'runtime', 'design']
 
 def summary(path):
     doc = []

@@ -152,6 +152,8 @@ def tables():
                    ["tests/data/spring_four_bar.json"], rtol="1e-30", fast=True, seconds=0.3))
     T.append(Table("gears", ["gears_reference.py", "--out-root", "{root}"], ["tests/data/gears.json"],
                    rtol="1e-30", fast=True, seconds=0.3))
+    T.append(Table("spatial", ["spatial_reference.py", "--out-root", "{root}"],
+                   ["tests/data/spatial/slider_crank.truth.json"], rtol="1e-27", fast=True, seconds=2.2))
     T.append(Table("rolling", ["rolling_reference.py", "--out-root", "{root}"], ["tests/data/rolling.json"],
                    rtol="1e-30", fast=True, seconds=0.4))
     T.append(Table("double_wishbone", ["suspension_reference.py", "--out-root", "{root}"],

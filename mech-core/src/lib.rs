@@ -16,6 +16,7 @@
 //! | [`plan`] | the drawing's joint geometry, the Assur groups in solving order, each group's kernel |
 //! | [`checks`] | Grübler, equations against unknowns, over-constrained sub-chains, magnitudes, the rank at the drawing; [`checks::load`], the whole front end written once for the macro and the run-time loader |
 //! | [`solvers`] | the numbers of an instance, virtual power, Zhukovski's reduction, friction, the [`solvers::traits`] every mechanism implements |
+//! | [`spatial`] | spatial mechanisms at run time: the `space` text form, Kutzbach's count, kinematics, kinetostatics, virtual power and Zhukovski in absolute coordinates |
 //! | [`dynamics`] | the direct problem, the integrators, the flywheel, equivalent masses, written once over the traits |
 //! | [`runtime`] | the run-time [`Mechanism`]: the plan walked with the generated code's kernels, its results |
 //!
@@ -38,6 +39,7 @@ pub mod model;
 pub mod plan;
 pub mod runtime;
 pub mod solvers;
+pub mod spatial;
 pub mod strength;
 
 pub use error::MechError;

@@ -8,8 +8,8 @@ use std::path::Path;
 
 /// The folders (and root files) of `mech-core/src`, lowest first.
 const LAYERS: &[&str] = &[
-    "error", "kernel", "elements", "model", "front", "plan", "checks", "solvers", "dynamics",
-    "strength", "runtime", "design",
+    "error", "kernel", "elements", "model", "front", "plan", "checks", "solvers", "spatial",
+    "dynamics", "strength", "runtime", "design",
 ];
 
 /// Files that are not a layer's module: the crate root, the generated code's hidden

@@ -1,0 +1,378 @@
+//! Spatial kinematics by Newton on the loop equations from the drawing, rates by linear solves.
+//!
+//! The unknowns are the moving bodies' twists (v, ω) at their reference points, 6 per
+//! body; the rows are the joints' (`constraints::joint_rows`), one per input (the driver)
+//! and one per idle freedom (`constraints::spin`), 6(N − 1) in all when Kutzbach's count
+//! holds. Positions: Newton, o += δv, R ← exp(δω) R, continued from the drawing to q in
+//! steps of at most 0.25 rad (or a tenth of the drawing's size for a sliding input), so the
+//! result depends on q alone and stays on the drawing's assembly. Velocities: J ẋ = q̇ on
+//! the driver rows, 0 elsewhere; accelerations: J ẍ = q̈ − γ.
+
+use super::constraints::{self, BodyState, JointGeom, Kind, Row};
+use super::model::{JointKind, SpatialModel};
+use crate::MechError;
+use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
+use std::sync::Arc;
+
+type V3 = Vector3<f64>;
+
+/// A spatial mechanism prepared for solving: the model, each body's reference point, each
+/// joint's geometry in its bodies, the idle links' axes.
+#[derive(Clone, Debug)]
+pub(crate) struct Layout {
+    pub model: SpatialModel,
+    /// Each body's reference point in the drawing: its cg when declared, else its first
+    /// point, else the origin (the ground's is the origin).
+    pub o0: Vec<V3>,
+    pub joints: Vec<JointGeom>,
+    /// (body, its axis from one spherical centre to the other in the drawing, unit).
+    pub spins: Vec<(usize, V3)>,
+    /// The drawing's size (m): the largest distance of a point from the origin, at least 1e-3.
+    pub scale: f64,
+}
+
+impl Layout {
+    /// Prepare `model` (checked for the input kinds and a degenerate idle link).
+    pub fn new(model: SpatialModel) -> Result<Self, MechError> {
+        let o0: Vec<V3> = model
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| match (i, b.cg, b.points.first()) {
+                (0, _, _) => V3::zeros(),
+                (_, Some(g), _) => g,
+                (_, None, Some(&p)) => model.points[p].1,
+                _ => V3::zeros(),
+            })
+            .collect();
+        let joints = model
+            .joints
+            .iter()
+            .map(|j| {
+                let p = model.points[j.point].1;
+                let (u, kind, pitch, second) = match j.kind {
+                    JointKind::Spherical => (V3::z(), Kind::Spherical, 0.0, None),
+                    JointKind::Revolute { axis } => (axis, Kind::Revolute, 0.0, None),
+                    JointKind::Universal { first, second } => {
+                        (first, Kind::Universal, 0.0, Some(second))
+                    }
+                    JointKind::Cylindrical { axis } => (axis, Kind::Cylindrical, 0.0, None),
+                    JointKind::Prismatic { axis } => (axis, Kind::Prismatic, 0.0, None),
+                    JointKind::Helical { axis, pitch } => (axis, Kind::Helical, pitch, None),
+                };
+                let (n1, n2) = match second {
+                    Some(s) => (s, u.cross(&s)),
+                    None => constraints::basis(u),
+                };
+                JointGeom {
+                    a: j.a,
+                    b: j.b,
+                    sa: p - o0[j.a],
+                    sb: p - o0[j.b],
+                    axes: [u, n1, n2],
+                    kind,
+                    pitch,
+                }
+            })
+            .collect();
+        let mut errors = Vec::new();
+        for &k in &model.inputs {
+            let j = &model.joints[k];
+            if !matches!(
+                j.kind,
+                JointKind::Revolute { .. }
+                    | JointKind::Prismatic { .. }
+                    | JointKind::Helical { .. }
+            ) {
+                errors.push(format!("input `{}` is a {} joint, which leaves more than one freedom: an input is a revolute, prismatic or helical joint", j.name, j.kind.word()));
+            }
+        }
+        let mut spins = Vec::new();
+        for (b, j1, j2) in super::kutzbach::idle_freedoms(&model) {
+            let e = model.points[model.joints[j2].point].1 - model.points[model.joints[j1].point].1;
+            if !(e.norm() > 0.0) {
+                errors.push(format!("link `{}` has its two spherical joints at one point: it can turn freely about it; give its joints distinct points", model.bodies[b].name));
+                continue;
+            }
+            spins.push((b, e.normalize()));
+        }
+        if !errors.is_empty() {
+            return Err(MechError::Invalid(errors.join("\n")));
+        }
+        let scale = model
+            .points
+            .iter()
+            .map(|(_, p)| p.norm())
+            .fold(1e-3, f64::max);
+        Ok(Layout {
+            model,
+            o0,
+            joints,
+            spins,
+            scale,
+        })
+    }
+
+    /// The moving bodies (N − 1).
+    pub fn moving(&self) -> usize {
+        self.o0.len() - 1
+    }
+
+    /// Every row at `states` and input values `q`: the joints' (in order), the drivers',
+    /// the spins'; with each row's two bodies.
+    pub fn rows(&self, s: &[BodyState], q: &[f64]) -> (Vec<Row>, Vec<(usize, usize)>) {
+        let (mut rows, mut owners) = (
+            Vec::with_capacity(6 * self.moving()),
+            Vec::with_capacity(6 * self.moving()),
+        );
+        for g in &self.joints {
+            let before = rows.len();
+            constraints::joint_rows(g, &s[g.a], &s[g.b], &mut rows);
+            owners.resize(owners.len() + rows.len() - before, (g.a, g.b));
+        }
+        for (&k, &qk) in self.model.inputs.iter().zip(q) {
+            let g = &self.joints[k];
+            rows.push(constraints::driver_row(g, &s[g.a], &s[g.b], qk));
+            owners.push((g.a, g.b));
+        }
+        for &(b, e) in &self.spins {
+            rows.push(constraints::spin(&s[b], e));
+            owners.push((0, b));
+        }
+        (rows, owners)
+    }
+
+    /// The Jacobian (rows × 6(N − 1)), body i's (v, ω) in columns 6(i − 1)..6i.
+    pub fn jacobian(&self, rows: &[Row], owners: &[(usize, usize)]) -> DMatrix<f64> {
+        let mut j = DMatrix::zeros(rows.len(), 6 * self.moving());
+        for (r, (row, &(a, b))) in rows.iter().zip(owners).enumerate() {
+            for (body, blocks) in [(a, &row.a), (b, &row.b)] {
+                if body > 0 {
+                    for (k, block) in blocks.iter().enumerate() {
+                        for c in 0..3 {
+                            j[(r, 6 * (body - 1) + 3 * k + c)] += block[c];
+                        }
+                    }
+                }
+            }
+        }
+        j
+    }
+
+    /// Positions at `q` (Newton continued from the drawing).
+    pub fn positions(&self, q: &[f64]) -> Result<Vec<BodyState>, MechError> {
+        let mut s: Vec<BodyState> = self.o0.iter().map(|&o| BodyState::drawing(o)).collect();
+        let step = |k: usize| match self.model.joints[self.model.inputs[k]].kind {
+            JointKind::Prismatic { .. } => 0.1 * self.scale,
+            _ => 0.25,
+        };
+        let steps = (0..q.len())
+            .map(|k| (q[k].abs() / step(k)).ceil())
+            .fold(1.0, f64::max);
+        if !(steps <= MAX_STEPS) {
+            return Err(MechError::InvalidInput(format!(
+                "q = {q:?} is more than {MAX_STEPS} continuation steps from the drawing (0.25 rad, or a tenth of the drawing's size, each): give q within about {:.0} turns of the drawing",
+                MAX_STEPS * 0.25 / (2.0 * std::f64::consts::PI)
+            )));
+        }
+        let steps = steps as usize;
+        for i in 1..=steps {
+            let target: Vec<f64> = q.iter().map(|x| x * i as f64 / steps as f64).collect();
+            self.newton(&mut s, &target)?;
+        }
+        Ok(s)
+    }
+
+    fn newton(&self, s: &mut [BodyState], q: &[f64]) -> Result<(), MechError> {
+        let tol = 1e-15 * (1.0 + self.scale);
+        let mut last = f64::INFINITY;
+        for it in 0..60 {
+            let (rows, owners) = self.rows(s, q);
+            let r = residual(&rows);
+            if r <= tol || (it > 4 && r >= 0.5 * last) {
+                break;
+            }
+            last = r;
+            let rhs = DVector::from_iterator(rows.len(), rows.iter().map(|r| -r.value));
+            let dx = solve(self.jacobian(&rows, &owners), rhs)?;
+            for (b, st) in s.iter_mut().enumerate().skip(1) {
+                let c = 6 * (b - 1);
+                st.o += dx.fixed_rows::<3>(c);
+                st.rot = UnitQuaternion::from_scaled_axis(dx.fixed_rows::<3>(c + 3).into_owned())
+                    * st.rot;
+            }
+        }
+        let (rows, _) = self.rows(s, q);
+        let r = residual(&rows);
+        if !(r <= 1e-9 * (1.0 + self.scale)) {
+            return Err(MechError::NoAssembly);
+        }
+        Ok(())
+    }
+}
+
+/// The largest |Φ| of the rows, +∞ when one is not finite.
+fn residual(rows: &[Row]) -> f64 {
+    rows.iter().fold(0.0, |m, r| {
+        if r.value.is_finite() {
+            m.max(r.value.abs())
+        } else {
+            f64::INFINITY
+        }
+    })
+}
+
+/// The most continuation steps from the drawing to q (2500 rad of a crank).
+const MAX_STEPS: f64 = 10_000.0;
+
+/// Solve the square system a x = b by LU; `Singular` (condition estimate max|U_ii| /
+/// min|U_ii|) when it is singular to working accuracy. A system with more rows than
+/// columns (redundant constraints, consistent) by least squares through the SVD.
+pub(crate) fn solve(a: DMatrix<f64>, b: DVector<f64>) -> Result<DVector<f64>, MechError> {
+    if a.nrows() > a.ncols() && a.nrows() == b.len() && a.ncols() > 0 {
+        // redundant constraints (#[allow(redundant)]): the consistent system by least squares
+        let svd = a.svd(true, true);
+        let s = &svd.singular_values;
+        let (lo, hi) = (s.min(), s.max());
+        if !(lo > 1e-13 * hi) {
+            return Err(MechError::Singular { condition: hi / lo });
+        }
+        return match svd.solve(&b, 0.0) {
+            Ok(x) if x.iter().all(|v| v.is_finite()) => Ok(x),
+            _ => Err(MechError::Singular {
+                condition: f64::INFINITY,
+            }),
+        };
+    }
+    if a.nrows() != a.ncols() || a.nrows() != b.len() || a.nrows() == 0 {
+        return Err(MechError::InvalidInput(format!(
+            "the constraint system is {}×{}: the count of equations does not match the unknowns",
+            a.nrows(),
+            a.ncols()
+        )));
+    }
+    let lu = a.lu();
+    let d = lu.u().diagonal().map(f64::abs);
+    let (lo, hi) = (d.min(), d.max());
+    if !(lo > 1e-13 * hi) {
+        return Err(MechError::Singular { condition: hi / lo });
+    }
+    let x = lu.solve(&b).ok_or(MechError::Singular {
+        condition: f64::INFINITY,
+    })?;
+    if x.iter().all(|v| v.is_finite()) {
+        Ok(x)
+    } else {
+        Err(MechError::Singular {
+            condition: f64::INFINITY,
+        })
+    }
+}
+
+/// One body's motion: its reference point's position, velocity, acceleration and its
+/// rotation, angular velocity and acceleration (SI, global axes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyMotion {
+    /// The body's pose and twist.
+    pub state: BodyState,
+    /// The reference point's acceleration (m/s²).
+    pub a: V3,
+    /// The angular acceleration (rad/s²).
+    pub alpha: V3,
+}
+
+impl BodyMotion {
+    /// The position, velocity and acceleration of the point at `s` from o in the drawing:
+    /// r = o + R s, v = v_o + ω × ρ, a = a_o + α × ρ + ω × (ω × ρ) with ρ = R s.
+    pub fn point(&self, s: V3) -> [V3; 3] {
+        let st = &self.state;
+        let rho = st.rot * s;
+        [
+            st.o + rho,
+            st.v + st.w.cross(&rho),
+            self.a + self.alpha.cross(&rho) + st.w.cross(&st.w.cross(&rho)),
+        ]
+    }
+
+    /// The inertia tensor about the cg turned to the current pose, R I Rᵀ (kg·m²).
+    pub fn inertia(&self, drawing: &Matrix3<f64>) -> Matrix3<f64> {
+        let r = self.state.rot.to_rotation_matrix();
+        r.matrix() * drawing * r.matrix().transpose()
+    }
+}
+
+/// The kinematics of a spatial mechanism at (q, q̇, q̈): every body's motion.
+#[derive(Clone, Debug)]
+pub struct SpatialMotion {
+    pub(crate) layout: Arc<Layout>,
+    /// The input values (rad or m).
+    pub q: Vec<f64>,
+    /// Their rates.
+    pub qd: Vec<f64>,
+    /// Their accelerations.
+    pub qdd: Vec<f64>,
+    /// Each body's motion, the ground first.
+    pub bodies: Vec<BodyMotion>,
+}
+
+/// Kinematics at (q, q̇, q̈): positions by Newton, then J ẋ = (q̇ on the driver rows) and
+/// J ẍ = (q̈ on the driver rows) − γ.
+pub(crate) fn kinematics(
+    layout: &Arc<Layout>,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+) -> Result<SpatialMotion, MechError> {
+    let g = layout.model.inputs.len();
+    if q.len() != g || qd.len() != g || qdd.len() != g {
+        return Err(MechError::InvalidInput(format!(
+            "q, q̇ and q̈ must each have {g} value(s) (one per input), got {}, {} and {}",
+            q.len(),
+            qd.len(),
+            qdd.len()
+        )));
+    }
+    crate::error::check_finite("q, q̇, q̈", &[q, qd, qdd].concat())?;
+    let mut s = layout.positions(q)?;
+    let (rows, owners) = layout.rows(&s, q);
+    let first_driver = rows.len() - g - layout.spins.len();
+    let drive = |values: &[f64], base: DVector<f64>| {
+        let mut b = base;
+        for (k, v) in values.iter().enumerate() {
+            b[first_driver + k] += v;
+        }
+        b
+    };
+    let j = layout.jacobian(&rows, &owners);
+    let xd = solve(j.clone(), drive(qd, DVector::zeros(rows.len())))?;
+    for (b, st) in s.iter_mut().enumerate().skip(1) {
+        st.v = xd.fixed_rows::<3>(6 * (b - 1)).into_owned();
+        st.w = xd.fixed_rows::<3>(6 * (b - 1) + 3).into_owned();
+    }
+    let (rows, _) = layout.rows(&s, q);
+    let gamma = DVector::from_iterator(rows.len(), rows.iter().map(|r| -r.gamma));
+    let xdd = solve(j, drive(qdd, gamma))?;
+    let bodies: Vec<BodyMotion> = s
+        .iter()
+        .enumerate()
+        .map(|(b, st)| match b {
+            0 => BodyMotion {
+                state: *st,
+                a: V3::zeros(),
+                alpha: V3::zeros(),
+            },
+            _ => BodyMotion {
+                state: *st,
+                a: xdd.fixed_rows::<3>(6 * (b - 1)).into_owned(),
+                alpha: xdd.fixed_rows::<3>(6 * (b - 1) + 3).into_owned(),
+            },
+        })
+        .collect();
+    Ok(SpatialMotion {
+        layout: layout.clone(),
+        q: q.to_vec(),
+        qd: qd.to_vec(),
+        qdd: qdd.to_vec(),
+        bodies,
+    })
+}

@@ -1,0 +1,215 @@
+//! Spatial kinetostatics by Newton–Euler with the full inertia tensor, and the joints' reactions.
+//!
+//! For each moving body, at its reference point o (its cg when declared): the inertia
+//! wrench (m a_G, I α + ω × (I ω)), I = R I_drawing Rᵀ the tensor turned to the pose, and
+//! the applied wrench Q (gravity m g at G, each force F at P with its moment (P − o) × F,
+//! each torque). With one multiplier λ_r per constraint row, Newton–Euler of all the bodies
+//! is Jᵀ λ = (inertia wrenches) − Q, one square solve. Row r acts on body b with the
+//! wrench λ_r (J_r,v_b, J_r,ω_b) about o_b, so a joint's reaction BY a ON b is the sum over
+//! its rows, its moment moved to the joint's point P: M_P = M_o − (P − o_b) × F. A driver
+//! row's multiplier is the motor action (N·m about the axis, or N along it, by a on b).
+
+use super::kinematics::{solve, Layout, SpatialMotion};
+use super::model::LoadKind;
+use crate::MechError;
+use nalgebra::{DVector, Vector3};
+
+type V3 = Vector3<f64>;
+
+/// The values of a spatial mechanism's loads, in the order written: a force (N) or a
+/// torque (N·m), a global 3-vector each. Missing values count as zero.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SpatialLoads {
+    /// The loads' names.
+    pub names: Vec<String>,
+    /// Their values.
+    pub values: Vec<V3>,
+}
+
+impl SpatialLoads {
+    /// Set the load `name` to (x, y, z); false when there is no such load or `v` does not
+    /// hold three numbers.
+    pub fn set_by_name(&mut self, name: &str, v: &[f64]) -> bool {
+        match (self.names.iter().position(|n| n == name), v) {
+            (Some(k), [x, y, z]) => {
+                if self.values.len() <= k {
+                    self.values.resize(k + 1, V3::zeros());
+                }
+                self.values[k] = V3::new(*x, *y, *z);
+                true
+            }
+            _ => false,
+        }
+    }
+}
+
+/// The reaction at a joint: the force (N) and moment (N·m, about the joint's point at its
+/// current position) exerted BY its first link ON its second, global axes.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Reaction {
+    /// The force, N.
+    pub force: V3,
+    /// The moment about the joint's point, N·m.
+    pub moment: V3,
+}
+
+/// The kinetostatics of a spatial mechanism: every joint's reaction, every motor action,
+/// the moment fixing each idle spin.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpatialForces {
+    pub(crate) names: Vec<String>,
+    /// The reaction of each joint, in the order written.
+    pub reactions: Vec<Reaction>,
+    /// The motor action of each input (N·m about its axis, or N along it, by its first link
+    /// on its second).
+    pub drivers: Vec<f64>,
+    /// The pure moment (N·m) the ground would have to apply to keep each idle link to the
+    /// spin convention (`docs/spatial.md`), in the order of
+    /// [`crate::spatial::SpatialMechanism::idle_links`]: zero when the link has no inertia
+    /// about its own axis (a thin rod) and its loads pass through the axis, which makes the
+    /// idle spin truly idle; it does no work.
+    pub spin_moments: Vec<V3>,
+    pub(crate) idle: Vec<String>,
+}
+
+impl SpatialForces {
+    /// The reaction at the joint `name`.
+    pub fn reaction(&self, name: &str) -> Option<Reaction> {
+        self.names
+            .iter()
+            .position(|n| n == name)
+            .map(|k| self.reactions[k])
+    }
+
+    /// The moment fixing the spin of the idle link `name` ([`SpatialForces::spin_moments`]).
+    pub fn spin_moment(&self, name: &str) -> Option<V3> {
+        self.idle
+            .iter()
+            .position(|n| n == name)
+            .map(|k| self.spin_moments[k])
+    }
+
+    /// The first input's motor action (N·m or N); 0 without inputs.
+    pub fn driver(&self) -> f64 {
+        self.drivers.first().copied().unwrap_or(0.0)
+    }
+}
+
+/// Each body's applied wrench (force, moment about o) minus its inertia wrench, when
+/// `inertia`; the applied alone otherwise: Q − (m a_G, I α + ω × I ω). 6(N − 1) values.
+pub(crate) fn wrenches(
+    layout: &Layout,
+    m: &SpatialMotion,
+    loads: &SpatialLoads,
+    inertia: bool,
+) -> Result<DVector<f64>, MechError> {
+    let values: Vec<f64> = loads
+        .values
+        .iter()
+        .flat_map(|v| v.iter().copied())
+        .collect();
+    crate::error::check_finite("the loads", &values)?;
+    let model = &layout.model;
+    let mut q = DVector::zeros(6 * layout.moving());
+    let mut add = |b: usize, f: V3, mo: V3| {
+        if b > 0 {
+            for c in 0..3 {
+                q[6 * (b - 1) + c] += f[c];
+                q[6 * (b - 1) + 3 + c] += mo[c];
+            }
+        }
+    };
+    for (b, body) in model.bodies.iter().enumerate().skip(1) {
+        if let Some(g) = model.gravity {
+            add(b, g * body.mass, V3::zeros());
+        }
+        if inertia {
+            let bm = &m.bodies[b];
+            let i = bm.inertia(&body.inertia);
+            let w = bm.state.w;
+            add(b, -bm.a * body.mass, -(i * bm.alpha + w.cross(&(i * w))));
+        }
+    }
+    for (k, load) in model.loads.iter().enumerate() {
+        let v = loads.values.get(k).copied().unwrap_or_default();
+        match load.kind {
+            LoadKind::Torque { body } => add(body, V3::zeros(), v),
+            LoadKind::Force { body, point } => {
+                let rho = m.bodies[body].state.rot * (model.points[point].1 - layout.o0[body]);
+                add(body, v, rho.cross(&v));
+            }
+        }
+    }
+    Ok(q)
+}
+
+/// Newton–Euler of every moving body at the motion `m`: Jᵀ λ = −(Q − inertia wrenches),
+/// then each joint's reaction from its rows' multipliers (module docs).
+pub(crate) fn kinetostatics(
+    layout: &Layout,
+    m: &SpatialMotion,
+    loads: &SpatialLoads,
+) -> Result<SpatialForces, MechError> {
+    let s: Vec<_> = m.bodies.iter().map(|b| b.state).collect();
+    let (rows, owners) = layout.rows(&s, &m.q);
+    let jt = layout.jacobian(&rows, &owners).transpose();
+    let lambda = solve(jt, -wrenches(layout, m, loads, true)?)?;
+    let mut reactions = Vec::with_capacity(layout.joints.len());
+    let mut r = 0;
+    for (k, g) in layout.joints.iter().enumerate() {
+        let count = 6 - layout.model.joints[k].kind.class();
+        let (mut f, mut mo) = (V3::zeros(), V3::zeros());
+        for (row, l) in rows[r..r + count].iter().zip(lambda.iter().skip(r)) {
+            f += row.b[0] * *l;
+            mo += row.b[1] * *l;
+        }
+        let rho = s[g.b].rot * g.sb;
+        reactions.push(Reaction {
+            force: f,
+            moment: mo - rho.cross(&f),
+        });
+        r += count;
+    }
+    let drivers: Vec<f64> = lambda.iter().skip(r).take(m.q.len()).copied().collect();
+    r += m.q.len();
+    let spin_moments = rows[r..]
+        .iter()
+        .zip(lambda.iter().skip(r))
+        .map(|(row, l)| row.b[1] * *l)
+        .collect();
+    let out = SpatialForces {
+        names: layout.model.joints.iter().map(|j| j.name.clone()).collect(),
+        reactions,
+        drivers,
+        spin_moments,
+        idle: layout
+            .spins
+            .iter()
+            .map(|&(b, _)| layout.model.bodies[b].name.clone())
+            .collect(),
+    };
+    let finite = out
+        .reactions
+        .iter()
+        .all(|x| x.force.iter().chain(x.moment.iter()).all(|v| v.is_finite()))
+        && out.drivers.iter().all(|v| v.is_finite())
+        && out
+            .spin_moments
+            .iter()
+            .all(|v| v.iter().all(|x| x.is_finite()));
+    if finite {
+        Ok(out)
+    } else {
+        Err(crate::error::blame(
+            "loads",
+            &loads
+                .values
+                .iter()
+                .flat_map(|v| v.iter().copied())
+                .collect::<Vec<_>>(),
+            MechError::Singular {
+                condition: f64::INFINITY,
+            },
+        ))
+    }
+}

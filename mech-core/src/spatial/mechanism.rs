@@ -1,0 +1,162 @@
+//! `SpatialMechanism`, a spatial mechanism loaded at run time, its checks and its solvers.
+
+use super::kinematics::{kinematics, Layout, SpatialMotion};
+use super::kinetostatics::{kinetostatics, SpatialForces, SpatialLoads};
+use super::kutzbach::{self, Kutzbach};
+use super::model::SpatialModel;
+use crate::solvers::zhukovski::Reduced;
+use crate::MechError;
+use std::sync::Arc;
+
+/// A spatial mechanism (SPEC 3i), checked at load time: Kutzbach's count against the
+/// inputs (an idle spin of a link between two spherical joints named and not counted), the
+/// constraint Jacobian's rank at the drawing (redundant joints named). Its solvers work in
+/// absolute coordinates (`docs/spatial.md`).
+#[derive(Clone, Debug)]
+pub struct SpatialMechanism {
+    layout: Arc<Layout>,
+}
+
+impl SpatialMechanism {
+    /// Parse the `space` text form and check it ([`SpatialMechanism::from_model`]).
+    pub fn from_dsl(text: &str) -> Result<Self, MechError> {
+        Self::from_model(super::dsl::parse(text)?)
+    }
+
+    /// A mechanism from a [`SpatialModel`]: [`MechError::Invalid`] with every message
+    /// (Kutzbach's count, the rank at the drawing, the input kinds) when a check fails.
+    pub fn from_model(model: SpatialModel) -> Result<Self, MechError> {
+        let count = (!model.allow_redundant)
+            .then(|| kutzbach::check(&model))
+            .flatten();
+        let layout = Layout::new(model)?;
+        let rank = if layout.model.allow_redundant {
+            super::rank::redundant(&layout)
+        } else {
+            super::rank::check(&layout)
+        };
+        let messages: Vec<String> = count.into_iter().chain(rank).collect();
+        if !messages.is_empty() {
+            return Err(MechError::Invalid(messages.join("\n")));
+        }
+        Ok(SpatialMechanism {
+            layout: Arc::new(layout),
+        })
+    }
+
+    /// `InvalidInput` unless `m` was computed by this mechanism (or a clone of it).
+    fn owns(&self, m: &SpatialMotion) -> Result<(), MechError> {
+        if Arc::ptr_eq(&self.layout, &m.layout) {
+            Ok(())
+        } else {
+            Err(MechError::InvalidInput(format!(
+                "this motion was computed by another mechanism (`{}`), not by `{}`: compute it with this mechanism's `kinematics`",
+                m.layout.model.name, self.layout.model.name
+            )))
+        }
+    }
+
+    /// The model as loaded.
+    pub fn model(&self) -> &SpatialModel {
+        &self.layout.model
+    }
+
+    /// G, the number of inputs.
+    pub fn dof(&self) -> usize {
+        self.layout.model.inputs.len()
+    }
+
+    /// Kutzbach's count of the mechanism, its idle freedoms included.
+    pub fn kutzbach(&self) -> Kutzbach {
+        kutzbach::count(&self.layout.model)
+    }
+
+    /// The names of the links with an idle spin (between two spherical joints).
+    pub fn idle_links(&self) -> Vec<&str> {
+        self.layout
+            .spins
+            .iter()
+            .map(|&(b, _)| self.layout.model.bodies[b].name.as_str())
+            .collect()
+    }
+
+    /// The loads, every value zero.
+    pub fn loads(&self) -> SpatialLoads {
+        let names: Vec<String> = self
+            .layout
+            .model
+            .loads
+            .iter()
+            .map(|l| l.name.clone())
+            .collect();
+        SpatialLoads {
+            values: vec![Default::default(); names.len()],
+            names,
+        }
+    }
+
+    /// The positions at q (velocities and accelerations zero).
+    pub fn pose(&self, q: &[f64]) -> Result<SpatialMotion, MechError> {
+        let zero = vec![0.0; q.len()];
+        kinematics(&self.layout, q, &zero, &zero)
+    }
+
+    /// Positions, velocities and accelerations at (q, q̇, q̈) (one value per input each).
+    pub fn kinematics(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) -> Result<SpatialMotion, MechError> {
+        kinematics(&self.layout, q, qd, qdd)
+    }
+
+    /// Every joint's reaction and every motor action at the motion `m` under `loads`
+    /// (Newton–Euler with the full inertia tensor and the gyroscopic term).
+    /// [`MechError::Redundant`] for a mechanism accepted with `#[allow(redundant)]`.
+    pub fn kinetostatics(
+        &self,
+        m: &SpatialMotion,
+        loads: &SpatialLoads,
+    ) -> Result<SpatialForces, MechError> {
+        self.owns(m)?;
+        if self.layout.model.allow_redundant {
+            return Err(MechError::Redundant(format!(
+                "`{}` has redundant constraints (#[allow(redundant)]): its reactions are statically indeterminate; `driver_action` gives the motor actions by virtual power",
+                self.layout.model.name
+            )));
+        }
+        kinetostatics(&self.layout, m, loads)
+    }
+
+    /// The motor actions by virtual power (N·m or N per input), no reactions computed.
+    pub fn driver_action(
+        &self,
+        m: &SpatialMotion,
+        loads: &SpatialLoads,
+    ) -> Result<Vec<f64>, MechError> {
+        self.owns(m)?;
+        super::virtual_power::driver_actions(&self.layout, m, loads)
+    }
+
+    /// Zhukovski's I*(q) (kg·m² or kg) and dI*/dq; one input only.
+    pub fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
+        super::zhukovski::reduced(&self.layout, q)
+    }
+
+    /// Zhukovski's M*(q) (N·m or N), loads and gravity; one input only.
+    pub fn reduced_moment(&self, q: f64, loads: &SpatialLoads) -> Result<f64, MechError> {
+        super::zhukovski::reduced_moment(&self.layout, q, loads)
+    }
+
+    /// q̈ = (driver + M* − ½ dI*/dq q̇²) / I* (rad/s² or m/s²); one input only.
+    pub fn acceleration(
+        &self,
+        q: f64,
+        qd: f64,
+        driver: f64,
+        loads: &SpatialLoads,
+    ) -> Result<f64, MechError> {
+        super::zhukovski::acceleration(&self.layout, q, qd, driver, loads)
+    }
+}

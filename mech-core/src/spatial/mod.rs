@@ -1,0 +1,26 @@
+//! Spatial mechanisms at run time (SPEC 3i, issue 33), from the `space` text to the solvers.
+//!
+//! `SpatialMechanism::from_dsl(text)` reads the text form, checks it and answers the same
+//! solvers as the planar run-time mechanism: `pose`, `kinematics`, `kinetostatics`,
+//! `driver_action`, `reduced`, `reduced_moment`, `acceleration`. The formulation is in
+//! `docs/spatial.md`.
+
+pub mod constraints;
+pub mod dsl;
+pub mod kinematics;
+pub mod kinetostatics;
+pub mod kutzbach;
+mod machine;
+pub mod mechanism;
+pub mod model;
+mod rank;
+mod resolve;
+pub mod results;
+mod virtual_power;
+mod zhukovski;
+
+pub use kinematics::{BodyMotion, SpatialMotion};
+pub use kinetostatics::{Reaction, SpatialForces, SpatialLoads};
+pub use mechanism::SpatialMechanism;
+pub use model::{Body, Joint, JointKind, Load, LoadKind, SpatialModel};
+pub use results::LinkMotion;
