@@ -98,7 +98,8 @@ mod runtime;
 use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hand::{
-    FourBarHand, InvertedSliderCrankHand, QuickReturnHand, ScotchYokeHand, SliderCrankHand,
+    FourBarHand, GearedSliderCrankHand, InvertedSliderCrankHand, QuickReturnHand, ScotchYokeHand,
+    SliderCrankHand,
 };
 use interleaved::Interleaved;
 use machines::*;
@@ -202,6 +203,24 @@ impl Case<InvertedSliderCrank, InvertedSliderCrankHand, InvertedSliderCrankLoads
         let mut loads = InvertedSliderCrankLoads::default();
         assert!(loads.set_by_name("push", &[-300.0, 40.0]));
         assert!(loads.set_by_name("resist", &[2.5]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<GearedSliderCrank, GearedSliderCrankHand, GearedSliderCrankLoads> {
+    /// A −900 N gas force on the piston at B (along the guide, mostly), a −4 N·m shaft
+    /// torque on the gear.
+    fn geared_slider_crank() -> Self {
+        let m = GearedSliderCrank::new();
+        let h = GearedSliderCrankHand::new(m.params());
+        let mut loads = GearedSliderCrankLoads::default();
+        assert!(loads.set_by_name("gas", &[-900.0, -90.0]));
+        assert!(loads.set_by_name("shaft", &[-4.0]));
         Case {
             m,
             h,
@@ -437,6 +456,14 @@ six_operations!(
     motion: InvertedSliderCrankMotion, hand::InvertedSliderCrankHandMotion,
     forces: InvertedSliderCrankForces, hand::InvertedSliderCrankHandForces,
 );
+six_operations!(
+    geared_slider_crank_ops,
+    "geared_slider_crank",
+    Case<GearedSliderCrank, GearedSliderCrankHand, GearedSliderCrankLoads>,
+    pose: GearedSliderCrankPose, hand::GearedSliderCrankHandPose,
+    motion: GearedSliderCrankMotion, hand::GearedSliderCrankHandMotion,
+    forces: GearedSliderCrankForces, hand::GearedSliderCrankHandForces,
+);
 
 /// The group `name` with the functions `generated` and `hand`, timed one after the other.
 /// (Each function is passed as its own zero-sized type, so the calls are direct and inline
@@ -511,6 +538,10 @@ fn inverted_slider_crank(c: &mut Criterion) {
     inverted_slider_crank_ops::pairs(c, &Case::inverted_slider_crank());
 }
 
+fn geared_slider_crank(c: &mut Criterion) {
+    geared_slider_crank_ops::pairs(c, &Case::geared_slider_crank());
+}
+
 fn ratios(c: &mut Criterion<Interleaved>) {
     let k = FourBarCase::new();
     ratio(c, "four_bar/pose", &k, pose_gen, pose_hand);
@@ -541,6 +572,7 @@ fn ratios(c: &mut Criterion<Interleaved>) {
     quick_return_ops::ratios(c, &Case::quick_return());
     scotch_yoke_ops::ratios(c, &Case::scotch_yoke());
     inverted_slider_crank_ops::ratios(c, &Case::inverted_slider_crank());
+    geared_slider_crank_ops::ratios(c, &Case::geared_slider_crank());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -731,6 +763,7 @@ criterion_group!(
     quick_return,
     scotch_yoke,
     inverted_slider_crank,
+    geared_slider_crank,
     batch,
     runtime::pairs
 );

@@ -45,7 +45,13 @@ const QD: f64 = 12.0;
 const QDD: f64 = -3.0;
 
 fn sweep() -> impl Iterator<Item = f64> {
-    (0..STEPS).map(|k| 0.7 + TAU * k as f64 / STEPS as f64)
+    sweep_turns(1)
+}
+
+/// `turns` full turns of q from 0.7, STEPS samples per turn (a geared input turns more
+/// than once while its crank turns once).
+fn sweep_turns(turns: usize) -> impl Iterator<Item = f64> {
+    (0..STEPS * turns).map(|k| 0.7 + TAU * k as f64 / STEPS as f64)
 }
 
 fn wrap(a: f64) -> f64 {
@@ -540,6 +546,13 @@ fn inverted_slider_crank_loads() -> InvertedSliderCrankLoads {
     l
 }
 
+fn geared_slider_crank_loads() -> GearedSliderCrankLoads {
+    let mut l = GearedSliderCrankLoads::default();
+    assert!(l.set_by_name("gas", &[-900.0, -90.0]));
+    assert!(l.set_by_name("shaft", &[-4.0]));
+    l
+}
+
 /// The quantities every machine of the six operations records (`record_six`), and the
 /// names of its own (joint forces, prismatic moment) to add.
 fn six_expected(extra: &[&'static str]) -> Vec<&'static str> {
@@ -882,6 +895,107 @@ fn inverted_slider_crank_hand_matches_generated() {
     r.check(&six_expected(&["kinetostatics: slide moment"]));
 }
 
+/// The geared slider-crank over three turns of the pinion (one of the crank): every
+/// quantity as the other machines, the mesh's tooth force, tooth load and flank besides.
+#[test]
+fn geared_slider_crank_hand_matches_generated() {
+    let m = GearedSliderCrank::new();
+    let h = GearedSliderCrankHand::new(m.params());
+    let loads = geared_slider_crank_loads();
+    let none = GearedSliderCrankLoads::default();
+    let mut r = Report::default();
+    let mut flanks = [0usize; 2];
+    for q in sweep_turns(3) {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[
+                (gl.pinion, hp.pinion),
+                (gl.crank, hp.crank),
+                (gl.rod, hp.rod),
+                (gl.piston, hp.piston),
+            ],
+            &[
+                (gpt.O1.pos, hp.o1),
+                (gpt.O2.pos, hp.o2),
+                (gpt.A.pos, hp.a),
+                (gpt.B.pos, hp.b),
+            ],
+            &[
+                (l.pinion, hm.pinion),
+                (l.crank, hm.crank),
+                (l.rod, hm.rod),
+                (l.piston, hm.piston),
+            ],
+            &[(pt.O1, hm.o1), (pt.O2, hm.o2), (pt.A, hm.a), (pt.B, hm.b)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O1.force, hf.o1),
+                (j.O2.force, hf.o2),
+                (j.A.force, hf.a),
+                (j.B.force, hf.b),
+                (j.guide.force, hf.guide),
+                (j.mesh.force, hf.mesh),
+            ],
+        );
+        r.scalar(
+            "kinetostatics: guide moment",
+            q,
+            j.guide.moment,
+            hf.guide_moment,
+        );
+        r.scalar(
+            "kinetostatics: tooth load",
+            q,
+            j.mesh.tooth_load,
+            hf.tooth_load,
+        );
+        assert_eq!(j.mesh.flank, hf.flank, "flank at q = {q}");
+        flanks[(hf.flank > 0.0) as usize] += 1;
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    // Both flanks are in contact during the turn (the comparison covers the sign of the
+    // tooth force's radial part).
+    assert!(flanks[0] > 0 && flanks[1] > 0, "flanks {flanks:?}");
+    r.check(&six_expected(&[
+        "kinetostatics: guide moment",
+        "kinetostatics: tooth load",
+    ]));
+}
+
 /// (name, value, its rate, its second rate): a point's position, velocity and acceleration,
 /// or a link's angle, ω and α.
 type Track<T> = (&'static str, T, T, T);
@@ -909,9 +1023,13 @@ impl Tracked {
 /// the acceleration at q̇ = 1, q̈ = 0, for every point and cg; the same for the link
 /// angles (differenced modulo 2π), ω and α; and q̈ enters linearly (the acceleration at
 /// q̇ = 0, q̈ = 1 is the velocity at q̇ = 1, α there is ω).
-fn check_by_finite_differences(machine: &str, motion: impl Fn(f64, f64, f64) -> Tracked) {
+fn check_by_finite_differences(
+    machine: &str,
+    turns: usize,
+    motion: impl Fn(f64, f64, f64) -> Tracked,
+) {
     let h = 1e-5;
-    for q in sweep() {
+    for q in sweep_turns(turns) {
         let (k, lin) = (motion(q, 1.0, 0.0), motion(q, 0.0, 1.0));
         let (plus, minus) = (motion(q + h, 1.0, 0.0), motion(q - h, 1.0, 0.0));
         for (i, &(name, _, v, a)) in k.points.iter().enumerate() {
@@ -974,8 +1092,8 @@ struct Dynamics {
 
 const FD_STEP: f64 = 1e-5;
 
-fn check_dynamics(machine: &str, at: impl Fn(f64) -> Dynamics) {
-    for q in sweep() {
+fn check_dynamics(machine: &str, turns: usize, at: impl Fn(f64) -> Dynamics) {
+    for q in sweep_turns(turns) {
         let d = at(q);
         let r = d.reduced;
         let zhukovski = r.inertia * QDD + 0.5 * r.inertia_derivative * QD * QD - d.reduced_moment;
@@ -1064,7 +1182,7 @@ fn quick_return_hand_independent_checks() {
     let m = QuickReturn::new();
     let p = m.params().clone();
     let h = QuickReturnHand::new(&p);
-    check_by_finite_differences("quick-return", |q, qd, qdd| {
+    check_by_finite_differences("quick-return", 1, |q, qd, qdd| {
         let k = h.kinematics(q, qd, qdd).unwrap();
         let mut t = Tracked::default();
         t.point("A", &k.a);
@@ -1106,7 +1224,7 @@ fn quick_return_hand_independent_checks() {
             &[-f.slot_moment],
         );
     }
-    check_dynamics("quick-return", |q| {
+    check_dynamics("quick-return", 1, |q| {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let pose = |q| h.pose(q).unwrap();
         let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
@@ -1134,7 +1252,7 @@ fn scotch_yoke_hand_independent_checks() {
     let m = ScotchYoke::new();
     let p = m.params().clone();
     let h = ScotchYokeHand::new(&p);
-    check_by_finite_differences("Scotch yoke", |q, qd, qdd| {
+    check_by_finite_differences("Scotch yoke", 1, |q, qd, qdd| {
         let k = h.kinematics(q, qd, qdd).unwrap();
         let mut t = Tracked::default();
         t.point("A", &k.a);
@@ -1167,7 +1285,7 @@ fn scotch_yoke_hand_independent_checks() {
             &[f.guide_moment],
         );
     }
-    check_dynamics("Scotch yoke", |q| {
+    check_dynamics("Scotch yoke", 1, |q| {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let pose = |q| h.pose(q).unwrap();
         let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
@@ -1194,7 +1312,7 @@ fn inverted_slider_crank_hand_independent_checks() {
     let m = InvertedSliderCrank::new();
     let p = m.params().clone();
     let h = InvertedSliderCrankHand::new(&p);
-    check_by_finite_differences("inverted slider-crank", |q, qd, qdd| {
+    check_by_finite_differences("inverted slider-crank", 1, |q, qd, qdd| {
         let k = h.kinematics(q, qd, qdd).unwrap();
         let mut t = Tracked::default();
         t.point("A", &k.a);
@@ -1236,7 +1354,7 @@ fn inverted_slider_crank_hand_independent_checks() {
             &[f.slide_moment, loads.resist],
         );
     }
-    check_dynamics("inverted slider-crank", |q| {
+    check_dynamics("inverted slider-crank", 1, |q| {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let pose = |q| h.pose(q).unwrap();
         let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
@@ -1254,6 +1372,127 @@ fn inverted_slider_crank_hand_independent_checks() {
                 + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
                 + loads.push.dot(&d_dq(|q| pose(q).p, q))
                 + loads.resist * block_turn,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
+/// The hand-written geared slider-crank against itself: the mesh's radii and pressure
+/// angle are the declared ones (the loaded model's), Willis' relation (no slip at the
+/// pitch point), finite differences, every link's balance (the tooth force at the pitch
+/// point on the line of action, at α from the tangent and pushing the gear away from the
+/// pinion), the driver by three routes, dI*/dq, M* and the inverse problem.
+#[test]
+fn geared_slider_crank_hand_independent_checks() {
+    let rt = mech::Mechanism::from_rust_source(
+        include_str!("../benches/floor/machines.rs"),
+        "GearedSliderCrank",
+    )
+    .unwrap();
+    let mesh = rt
+        .model()
+        .joints
+        .iter()
+        .find(|j| j.name == "mesh")
+        .and_then(|j| j.mesh.clone())
+        .unwrap();
+    assert_eq!(
+        (mesh.ra, mesh.rb, mesh.internal),
+        (GEARED_PINION_RADIUS, GEARED_GEAR_RADIUS, false)
+    );
+    assert!((mesh.pressure_angle - GEARED_PRESSURE_ANGLE).abs() < 1e-15);
+    let m = GearedSliderCrank::new();
+    let p = m.params().clone();
+    let h = GearedSliderCrankHand::new(&p);
+    let (ra, rb) = (GEARED_PINION_RADIUS, GEARED_GEAR_RADIUS);
+    let w = (p.points.O2 - p.points.O1).normalize();
+    let pitch = p.points.O1 + w * ra;
+    let tangent = Vector2::new(-w.y, w.x);
+    check_by_finite_differences("geared slider-crank", 3, |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("A", &k.a);
+        t.point("B", &k.b);
+        t.link("pinion", &k.pinion);
+        t.link("crank", &k.crank);
+        t.link("rod", &k.rod);
+        t.link("piston", &k.piston);
+        t
+    });
+    let loads = geared_slider_crank_loads();
+    let (l, g) = (&p.links, p.gravity);
+    for q in sweep_turns(3) {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        // Willis: the pitch circles roll, v_P of the pinion = v_P of the gear.
+        let vp1 = k.pinion.omega * ra;
+        let vp2 = -k.crank.omega * rb;
+        assert!((vp1 - vp2).abs() <= 1e-15 * vp1.abs(), "Willis at {q}");
+        let f = h.kinetostatics(&k, &loads);
+        let (o1, o2, a, b) = (k.o1.pos, k.o2.pos, k.a.pos, k.b.pos);
+        let (ft, fr) = (f.mesh.dot(&tangent), f.mesh.dot(&w));
+        assert!(
+            fr >= 0.0
+                && (fr - ft.abs() * GEARED_PRESSURE_ANGLE.tan()).abs() <= 1e-12 * f.tooth_load,
+            "line of action at {q}: tangential {ft}, radial {fr}"
+        );
+        assert!((f.mesh.norm() - f.tooth_load).abs() <= 1e-12 * f.tooth_load);
+        assert_eq!(f.flank, ft.signum());
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "geared slider-crank pinion",
+            q,
+            body(&l.pinion),
+            &k.pinion,
+            &[(o1, f.o1), (pitch, -f.mesh)],
+            &[f.driver],
+        );
+        check_balance(
+            "geared slider-crank gear",
+            q,
+            body(&l.crank),
+            &k.crank,
+            &[(o2, f.o2), (pitch, f.mesh), (a, -f.a)],
+            &[loads.shaft],
+        );
+        check_balance(
+            "geared slider-crank rod",
+            q,
+            body(&l.rod),
+            &k.rod,
+            &[(a, f.a), (b, -f.b)],
+            &[],
+        );
+        check_balance(
+            "geared slider-crank piston",
+            q,
+            body(&l.piston),
+            &k.piston,
+            &[(b, f.b), (b, f.guide), (b, loads.gas)],
+            &[f.guide_moment],
+        );
+        assert!(f.guide.dot(&p.axes.guide).abs() <= 1e-12 * f.guide.norm().max(1.0));
+    }
+    check_dynamics("geared slider-crank", 3, |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        let crank_turn =
+            wrap(pose(q + FD_STEP).crank.angle - pose(q - FD_STEP).crank.angle) / (2.0 * FD_STEP);
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.pinion.mass * g.dot(&d_dq(|q| pose(q).pinion.cg, q))
+                + l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
+                + l.rod.mass * g.dot(&d_dq(|q| pose(q).rod.cg, q))
+                + l.piston.mass * g.dot(&d_dq(|q| pose(q).piston.cg, q))
+                + loads.gas.dot(&d_dq(|q| pose(q).b, q))
+                + loads.shaft * crank_turn,
             inverse: h
                 .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
                 .driver,
@@ -1290,5 +1529,21 @@ fn floor_machines_group_kinds() {
         (FLOOR, "InvertedSliderCrank", ["DrivenRevolute", "Rpr"]),
     ] {
         assert_eq!(kinds(source, name), expected, "{name}");
+    }
+    // The machines with elements, which the dense oracle refuses: their model as the
+    // run-time `Mechanism` loads it.
+    let element_kinds = |name: &str| -> Vec<String> {
+        let m = mech::Mechanism::from_rust_source(FLOOR, name).unwrap();
+        plan(m.model())
+            .unwrap()
+            .iter()
+            .map(|group| {
+                let s = format!("{:?}", group.solver);
+                s.split([' ', '{']).next().unwrap().to_owned()
+            })
+            .collect()
+    };
+    for (name, expected) in [("GearedSliderCrank", &["DrivenRevolute", "Mesh", "Rrp"][..])] {
+        assert_eq!(element_kinds(name), expected, "{name}");
     }
 }

@@ -41,7 +41,13 @@ GROUPS = [
     "slider_crank/acceleration",
 ] + [
     f"{machine}/{op}"
-    for machine in ("quick_return", "scotch_yoke", "inverted_slider_crank")
+    for machine in (
+        "quick_return",
+        "scotch_yoke",
+        "inverted_slider_crank",
+        "geared_slider_crank",
+        "roller_cam",
+    )
     for op in OPERATIONS
 ]
 FUNCTIONS = ("generated", "hand")

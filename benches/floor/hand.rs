@@ -28,13 +28,18 @@
 
 #![allow(dead_code)]
 
-use super::machines::{InvertedSliderCrankLoads, InvertedSliderCrankParams};
+use super::machines::{
+    GearedSliderCrankLoads, GearedSliderCrankParams, InvertedSliderCrankLoads,
+    InvertedSliderCrankParams,
+};
 use crate::mechanisms::{
     FourBarLoads, FourBarParams, QuickReturnLoads, QuickReturnParams, ScotchYokeLoads,
     ScotchYokeParams, SliderCrankLoads, SliderCrankParams,
 };
 use mech::prelude::Vector2;
 
+#[path = "hand_geared_slider_crank.rs"]
+mod geared_slider_crank;
 #[path = "hand_inverted_slider_crank.rs"]
 mod inverted_slider_crank;
 #[path = "hand_quick_return.rs"]
@@ -42,6 +47,7 @@ mod quick_return;
 #[path = "hand_scotch_yoke.rs"]
 mod scotch_yoke;
 
+pub use geared_slider_crank::*;
 pub use inverted_slider_crank::*;
 pub use quick_return::*;
 pub use scotch_yoke::*;

@@ -266,6 +266,14 @@ runtime_machine!(
     "InvertedSliderCrank",
     loads: &[("push", &[-300.0, 40.0]), ("resist", &[2.5])]
 );
+runtime_machine!(
+    geared_slider_crank,
+    "geared_slider_crank",
+    Case::geared_slider_crank(),
+    FLOOR,
+    "GearedSliderCrank",
+    loads: &[("gas", &[-900.0, -90.0]), ("shaft", &[-4.0])]
+);
 
 /// The groups `runtime/<machine>/<op>`.
 pub fn pairs(c: &mut Criterion) {
@@ -274,6 +282,7 @@ pub fn pairs(c: &mut Criterion) {
     quick_return::pairs(c);
     scotch_yoke::pairs(c);
     inverted_slider_crank::pairs(c);
+    geared_slider_crank::pairs(c);
 }
 
 /// The entries `runtime_ratio/<machine>/<op>`.
@@ -283,4 +292,5 @@ pub fn ratios(c: &mut Criterion<Interleaved>) {
     quick_return::ratios(c);
     scotch_yoke::ratios(c);
     inverted_slider_crank::ratios(c);
+    geared_slider_crank::ratios(c);
 }
