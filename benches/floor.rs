@@ -19,7 +19,14 @@
 //! - the inverted slider-crank (`InvertedSliderCrank` of `benches/floor/machines.rs`: the
 //!   rod pinned to the crank slides through a block pivoted on the ground, its slide line
 //!   off the pin, an RPR dyad whose guide is pinned to the crank),
-//!   `inverted_slider_crank/<op>`,
+//!   `inverted_slider_crank/<op>`;
+//! - the geared slider-crank (`GearedSliderCrank` of `benches/floor/machines.rs`: the
+//!   input pinion drives, 3:1 down through a 20° gear pair, the gear that carries the
+//!   crank of an offset slider-crank; a meshing group of one link, Willis' relation, then
+//!   an RRP dyad), `geared_slider_crank/<op>`;
+//! - the roller cam (`RollerCam` of `benches/floor/machines.rs`: a disc cam, the input,
+//!   lifts an offset translating roller follower by a dwell–cycloidal rise–dwell–cycloidal
+//!   fall law; a cam group of one link), `roller_cam/<op>`,
 //!
 //! where `<op>` is each of `pose`, `kinematics`, `kinematics+kinetostatics`,
 //! `kinematics+driver_action`, `reduced`, `acceleration`. Inputs as in `benches/solvers.rs`:
@@ -29,8 +36,11 @@
 //! force (−250, 30) N at the lever's end C and a −1.5 N·m friction torque on the crank; the
 //! Scotch yoke a force (−120, 15) N on the yoke at Y and a −1.5 N·m drag on the crank; the
 //! inverted slider-crank a force (−300, 40) N on the rod at P and a 2.5 N·m torque on the
-//! block; these three a 5 N·m driver (acceleration). All inputs, and the solver struct
-//! itself, go through `black_box` (no constant folding of the drawing).
+//! block; the geared slider-crank a gas force (−900, −90) N on the piston at B and a
+//! −4 N·m shaft torque on the gear (q, q̇, q̈ are the pinion's: the crank turns at −1/3 of
+//! them); the roller cam a force (20, −250) N on the follower at its top T and a −1.5 N·m
+//! drag on the cam; these five a 5 N·m driver (acceleration). All inputs, and the solver
+//! struct itself, go through `black_box` (no constant folding of the drawing).
 //!
 //! Run and tabulate:
 //!
@@ -98,8 +108,8 @@ mod runtime;
 use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hand::{
-    FourBarHand, GearedSliderCrankHand, InvertedSliderCrankHand, QuickReturnHand, ScotchYokeHand,
-    SliderCrankHand,
+    FourBarHand, GearedSliderCrankHand, InvertedSliderCrankHand, QuickReturnHand, RollerCamHand,
+    ScotchYokeHand, SliderCrankHand,
 };
 use interleaved::Interleaved;
 use machines::*;
@@ -221,6 +231,24 @@ impl Case<GearedSliderCrank, GearedSliderCrankHand, GearedSliderCrankLoads> {
         let mut loads = GearedSliderCrankLoads::default();
         assert!(loads.set_by_name("gas", &[-900.0, -90.0]));
         assert!(loads.set_by_name("shaft", &[-4.0]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<RollerCam, RollerCamHand, RollerCamLoads> {
+    /// A (20, −250) N force on the follower at its top T (a valve spring and the gas
+    /// load, mostly along the axis), a −1.5 N·m drag on the cam.
+    fn roller_cam() -> Self {
+        let m = RollerCam::new();
+        let h = RollerCamHand::new(m.params());
+        let mut loads = RollerCamLoads::default();
+        assert!(loads.set_by_name("push", &[20.0, -250.0]));
+        assert!(loads.set_by_name("drag", &[-1.5]));
         Case {
             m,
             h,
@@ -464,6 +492,14 @@ six_operations!(
     motion: GearedSliderCrankMotion, hand::GearedSliderCrankHandMotion,
     forces: GearedSliderCrankForces, hand::GearedSliderCrankHandForces,
 );
+six_operations!(
+    roller_cam_ops,
+    "roller_cam",
+    Case<RollerCam, RollerCamHand, RollerCamLoads>,
+    pose: RollerCamPose, hand::RollerCamHandPose,
+    motion: RollerCamMotion, hand::RollerCamHandMotion,
+    forces: RollerCamForces, hand::RollerCamHandForces,
+);
 
 /// The group `name` with the functions `generated` and `hand`, timed one after the other.
 /// (Each function is passed as its own zero-sized type, so the calls are direct and inline
@@ -542,6 +578,10 @@ fn geared_slider_crank(c: &mut Criterion) {
     geared_slider_crank_ops::pairs(c, &Case::geared_slider_crank());
 }
 
+fn roller_cam(c: &mut Criterion) {
+    roller_cam_ops::pairs(c, &Case::roller_cam());
+}
+
 fn ratios(c: &mut Criterion<Interleaved>) {
     let k = FourBarCase::new();
     ratio(c, "four_bar/pose", &k, pose_gen, pose_hand);
@@ -573,6 +613,7 @@ fn ratios(c: &mut Criterion<Interleaved>) {
     scotch_yoke_ops::ratios(c, &Case::scotch_yoke());
     inverted_slider_crank_ops::ratios(c, &Case::inverted_slider_crank());
     geared_slider_crank_ops::ratios(c, &Case::geared_slider_crank());
+    roller_cam_ops::ratios(c, &Case::roller_cam());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -764,6 +805,7 @@ criterion_group!(
     scotch_yoke,
     inverted_slider_crank,
     geared_slider_crank,
+    roller_cam,
     batch,
     runtime::pairs
 );

@@ -1,9 +1,12 @@
 //! The hand-written floor (`benches/floor/hand.rs` and the `hand_*.rs` beside it) computes
 //! the same numbers as the generated solvers: every quantity of every operation timed in
-//! `benches/floor.rs` (the four-bar, the slider-crank, the quick-return, the Scotch yoke and
-//! the inverted slider-crank of `benches/floor/machines.rs`), on a sweep of 72 crank angles
-//! over a full turn, to 1e-13 relative (`TOL`: at most 100× the worst error measured over
-//! the quantities; the new machines' worst, the quick-return's α, 1.4e-14).
+//! `benches/floor.rs` (the four-bar, the slider-crank, the quick-return, the Scotch yoke, and
+//! the inverted slider-crank, the geared slider-crank and the roller cam of
+//! `benches/floor/machines.rs`), on a sweep of 72 input angles over a full turn (three
+//! turns of the geared slider-crank's pinion: one of its crank), to 1e-13 relative (`TOL`:
+//! at most 100× the worst error measured over the quantities; the new machines' worst, the
+//! quick-return's α, 1.4e-14), the roller cam to 1e-12 (`CAM_TOL`: its law's argument, an
+//! ulp apart on the two sides, amplified in the middle of the fall).
 //!
 //! "Relative" is scaled by the largest entry of the quantity: for a quantity made of
 //! several entries (the three link angles, the cg positions of the three links, the pin
@@ -16,11 +19,15 @@
 //! central finite differences of positions against velocities and of velocities against
 //! accelerations, of I* against dI*/dq, and the inverse problem (the generated d'Alembert
 //! driver at the hand-written q̈ gives back the applied torque). For the quick-return, the
-//! Scotch yoke and the inverted slider-crank, on the hand-written side alone: finite
+//! Scotch yoke, the inverted slider-crank, the geared slider-crank and the roller cam, on
+//! the hand-written side alone: finite
 //! differences of every point, cg and link angle (velocities, accelerations, q̈ entering
 //! linearly), every link's d'Alembert balance with the hand-written reactions, the driver
 //! torque by d'Alembert, by virtual power and by Zhukovski, dI*/dq against I*, M* against
-//! the power of gravity and the loads on the positions, and the inverse problem.
+//! the power of gravity and the loads on the positions, and the inverse problem; for the
+//! geared slider-crank also the mesh's data against the model, Willis' relation and the
+//! tooth force on the line of action, for the roller cam the law's data against the model
+//! and the contact normal against the pitch curve.
 
 use crate::measure::{within, within_at};
 use crate::mechanisms;
@@ -40,6 +47,12 @@ use std::f64::consts::{PI, TAU};
 
 // measured worst 1.9e-15 over the quantities (be05608); 100×
 const TOL: f64 = 1e-13;
+// The roller cam's: measured worst 5.0e-14, its follower's acceleration in the middle of
+// the cycloidal fall. The two sides take the cam's turn into [0, 2π) by different routes
+// (the generated from the rotation: atan2, then + 2π; the hand q − 2π), an ulp of 2π
+// apart, and there s″ = (2πL/β²) sin 2πx, with sin 2πx near zero, turns that ulp into
+// a few 1e-13 of s″. Every other quantity of the cam within TOL; 20×
+const CAM_TOL: f64 = 1e-12;
 const STEPS: usize = 72;
 const QD: f64 = 12.0;
 const QDD: f64 = -3.0;
@@ -116,6 +129,10 @@ impl Report {
     }
     /// Print the worst relative error of each quantity and fail on any above `TOL`.
     fn check(&self, expected: &[&str]) {
+        self.check_to(expected, TOL)
+    }
+    /// [`Report::check`] to `tol`.
+    fn check_to(&self, expected: &[&str], tol: f64) {
         for name in expected {
             assert!(
                 self.0.contains_key(name),
@@ -143,7 +160,7 @@ impl Report {
                 if rel > worst.0 {
                     worst = (rel, q);
                 }
-                if !within_at(name, rel, TOL) {
+                if !within_at(name, rel, tol) {
                     failures.push(format!("{name} at q = {q:.6}: |generated − hand| = {diff:.3e}, scale {scale:.3e}, relative {rel:.3e}"));
                 }
             }
@@ -550,6 +567,13 @@ fn geared_slider_crank_loads() -> GearedSliderCrankLoads {
     let mut l = GearedSliderCrankLoads::default();
     assert!(l.set_by_name("gas", &[-900.0, -90.0]));
     assert!(l.set_by_name("shaft", &[-4.0]));
+    l
+}
+
+fn roller_cam_loads() -> RollerCamLoads {
+    let mut l = RollerCamLoads::default();
+    assert!(l.set_by_name("push", &[20.0, -250.0]));
+    assert!(l.set_by_name("drag", &[-1.5]));
     l
 }
 
@@ -994,6 +1018,83 @@ fn geared_slider_crank_hand_matches_generated() {
         "kinetostatics: guide moment",
         "kinetostatics: tooth load",
     ]));
+}
+
+/// The roller cam over a turn of the cam: every quantity as the other machines, the
+/// contact force's signed magnitude besides.
+#[test]
+fn roller_cam_hand_matches_generated() {
+    let m = RollerCam::new();
+    let h = RollerCamHand::new(m.params());
+    let loads = roller_cam_loads();
+    let none = RollerCamLoads::default();
+    let mut r = Report::default();
+    for q in sweep() {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[(gl.cam, hp.cam), (gl.follower, hp.follower)],
+            &[(gpt.O.pos, hp.o), (gpt.P.pos, hp.p), (gpt.T.pos, hp.t)],
+            &[(l.cam, hm.cam), (l.follower, hm.follower)],
+            &[(pt.O, hm.o), (pt.P, hm.p), (pt.T, hm.t)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O.force, hf.o),
+                (j.slide.force, hf.slide),
+                (j.lobe.force, hf.lobe),
+            ],
+        );
+        r.scalar(
+            "kinetostatics: slide moment",
+            q,
+            j.slide.moment,
+            hf.slide_moment,
+        );
+        r.scalar(
+            "kinetostatics: normal force",
+            q,
+            j.lobe.normal_force,
+            hf.normal_force,
+        );
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    r.check_to(
+        &six_expected(&["kinetostatics: slide moment", "kinetostatics: normal force"]),
+        CAM_TOL,
+    );
 }
 
 /// (name, value, its rate, its second rate): a point's position, velocity and acceleration,
@@ -1500,6 +1601,129 @@ fn geared_slider_crank_hand_independent_checks() {
     });
 }
 
+/// The hand-written roller cam against itself: its law, base circle and roller are the
+/// declared ones (the loaded model's), the lift by finite differences, the contact normal
+/// perpendicular to the pitch curve as the cam sees it (a central difference of the
+/// roller's centre in the cam's frame) and pushing the follower away from the cam, every
+/// link's balance with the contact force at the contact point K = P − r n, the driver by
+/// three routes, dI*/dq, M* and the inverse problem.
+#[test]
+fn roller_cam_hand_independent_checks() {
+    use mech::cam::{Face, Law};
+    let rt = mech::Mechanism::from_rust_source(
+        include_str!("../benches/floor/machines.rs"),
+        "RollerCam",
+    )
+    .unwrap();
+    let spec = rt
+        .model()
+        .joints
+        .iter()
+        .find(|j| j.name == "lobe")
+        .and_then(|j| j.cam.clone())
+        .unwrap();
+    assert_eq!(spec.base_radius, CAM_BASE_RADIUS);
+    assert_eq!(spec.face, Face::Roller(CAM_ROLLER_RADIUS));
+    let laws: Vec<_> = spec.segments.iter().map(|g| g.law).collect();
+    assert_eq!(
+        laws,
+        [Law::Dwell, Law::Cycloidal, Law::Dwell, Law::Cycloidal]
+    );
+    let ends = [CAM_SEGMENTS[0], CAM_SEGMENTS[1], CAM_SEGMENTS[2], TAU];
+    let lifts = [0.0, CAM_LIFT, CAM_LIFT, 0.0];
+    for (k, g) in spec.segments.iter().enumerate() {
+        assert!(
+            (g.end - ends[k]).abs() < 1e-15,
+            "segment {k} ends at {}",
+            g.end
+        );
+        assert!(
+            (g.to - lifts[k]).abs() < 1e-15,
+            "segment {k} lifts to {}",
+            g.to
+        );
+    }
+    let m = RollerCam::new();
+    let p = m.params().clone();
+    let h = RollerCamHand::new(&p);
+    let r = CAM_ROLLER_RADIUS;
+    check_by_finite_differences("roller cam", 1, |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("P", &k.p);
+        t.point("T", &k.t);
+        t.link("cam", &k.cam);
+        t.link("follower", &k.follower);
+        t
+    });
+    let loads = roller_cam_loads();
+    let (l, g) = (&p.links, p.gravity);
+    let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
+    // The roller's centre seen from the cam (turned back by q), relative to O.
+    let in_cam = |q: f64, v: Vector2<f64>| {
+        let (sn, cs) = (-q).sin_cos();
+        Vector2::new(cs * v.x - sn * v.y, sn * v.x + cs * v.y)
+    };
+    for q in sweep() {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let f = h.kinetostatics(&k, &loads);
+        let (o, pp) = (k.o.pos, k.p.pos);
+        assert!(f.normal_force > 0.0, "the follower leaves the cam at {q}");
+        let n = f.lobe / f.normal_force;
+        assert!((n.norm() - 1.0).abs() < 1e-12, "|n| at {q}");
+        let pitch = |q: f64| in_cam(q, h.pose(q).unwrap().p - o);
+        let tangent = (pitch(q + FD_STEP) - pitch(q - FD_STEP)) / (2.0 * FD_STEP);
+        let nc = in_cam(q, n);
+        assert!(
+            nc.dot(&tangent).abs() < 1e-8 * tangent.norm(),
+            "normal not normal to the pitch curve at {q}"
+        );
+        assert!(
+            cross(tangent, nc) > 0.0,
+            "normal not outward at {q} (the pitch curve runs clockwise)"
+        );
+        let contact = pp - n * r;
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "roller cam cam",
+            q,
+            body(&l.cam),
+            &k.cam,
+            &[(o, f.o), (contact, -f.lobe)],
+            &[f.driver, loads.drag],
+        );
+        check_balance(
+            "roller cam follower",
+            q,
+            body(&l.follower),
+            &k.follower,
+            &[(pp, f.slide), (contact, f.lobe), (k.t.pos, loads.push)],
+            &[f.slide_moment],
+        );
+        assert!(f.slide.dot(&p.axes.slide).abs() <= 1e-12 * f.slide.norm().max(1.0));
+    }
+    check_dynamics("roller cam", 1, |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.cam.mass * g.dot(&d_dq(|q| pose(q).cam.cg, q))
+                + l.follower.mass * g.dot(&d_dq(|q| pose(q).follower.cg, q))
+                + loads.push.dot(&d_dq(|q| pose(q).t, q))
+                + loads.drag,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
 /// The kinds of group the floor's machines exercise, as the macro's plan solves them
 /// (`mech_core::plan::assur`, the decomposition the generated code is emitted from): what
 /// each bench group measures. The Scotch yoke's yoke (a guide and a pin in a slot) is a
@@ -1543,7 +1767,10 @@ fn floor_machines_group_kinds() {
             })
             .collect()
     };
-    for (name, expected) in [("GearedSliderCrank", &["DrivenRevolute", "Mesh", "Rrp"][..])] {
+    for (name, expected) in [
+        ("GearedSliderCrank", &["DrivenRevolute", "Mesh", "Rrp"][..]),
+        ("RollerCam", &["DrivenRevolute", "Cam"][..]),
+    ] {
         assert_eq!(element_kinds(name), expected, "{name}");
     }
 }

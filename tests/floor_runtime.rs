@@ -253,3 +253,10 @@ floor_runtime!(
     GearedSliderCrankLoads,
     [("gas", [-900.0, -90.0]), ("shaft", [-4.0])]
 );
+floor_runtime!(
+    roller_cam,
+    FLOOR,
+    RollerCam,
+    RollerCamLoads,
+    [("push", [20.0, -250.0]), ("drag", [-1.5])]
+);

@@ -88,7 +88,7 @@ mechanism! {
     /// about O, its cg off the centre) lifts the follower 15 mm by a cycloidal rise over
     /// 120°, holds it 60° and lets it down by a cycloidal fall over 90°, after a 90° dwell;
     /// base circle 40 mm, roller 10 mm, the follower's axis (vertical) 10 mm off O, its cg
-    /// off the axis. A cam group of one link (the follower, its slide and the cam pair); the
+    /// and its top T, where it is loaded, off the axis. A cam group of one link (the follower, its slide and the cam pair); the
     /// law, base circle and roller are those of the hand-written `RollerCamHand`
     /// (`benches/floor/hand_roller_cam.rs`).
     pub struct RollerCam {
@@ -99,7 +99,7 @@ mechanism! {
             mass: 1.2, inertia: 0.0008, cg: (0.002, -0.001),
         },
         link follower {
-            points { P: (0.01, 0.04898979485566356) },
+            points { P: (0.01, 0.04898979485566356), T: (0.025, 0.11) },
             mass: 0.35, inertia: 0.0002, cg: (0.012, 0.09),
         },
         joints {
@@ -111,7 +111,7 @@ mechanism! {
         },
         input: O,
         loads {
-            push: force on follower at P,
+            push: force on follower at T,
             drag: torque on cam,
         },
     }

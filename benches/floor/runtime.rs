@@ -274,6 +274,14 @@ runtime_machine!(
     "GearedSliderCrank",
     loads: &[("gas", &[-900.0, -90.0]), ("shaft", &[-4.0])]
 );
+runtime_machine!(
+    roller_cam,
+    "roller_cam",
+    Case::roller_cam(),
+    FLOOR,
+    "RollerCam",
+    loads: &[("push", &[20.0, -250.0]), ("drag", &[-1.5])]
+);
 
 /// The groups `runtime/<machine>/<op>`.
 pub fn pairs(c: &mut Criterion) {
@@ -283,6 +291,7 @@ pub fn pairs(c: &mut Criterion) {
     scotch_yoke::pairs(c);
     inverted_slider_crank::pairs(c);
     geared_slider_crank::pairs(c);
+    roller_cam::pairs(c);
 }
 
 /// The entries `runtime_ratio/<machine>/<op>`.
@@ -293,4 +302,5 @@ pub fn ratios(c: &mut Criterion<Interleaved>) {
     scotch_yoke::ratios(c);
     inverted_slider_crank::ratios(c);
     geared_slider_crank::ratios(c);
+    roller_cam::ratios(c);
 }
