@@ -26,7 +26,10 @@
 //!   an RRP dyad), `geared_slider_crank/<op>`;
 //! - the roller cam (`RollerCam` of `benches/floor/machines.rs`: a disc cam, the input,
 //!   lifts an offset translating roller follower by a dwell–cycloidal rise–dwell–cycloidal
-//!   fall law; a cam group of one link), `roller_cam/<op>`,
+//!   fall law; a cam group of one link), `roller_cam/<op>`;
+//! - the crank, rod and rolling wheel (`CrankRodWheel` of `benches/floor/machines.rs`: the
+//!   rod drives the centre of a wheel that rolls without slipping on a straight track; a
+//!   rolling group, the crank–rod–wheel dyad), `crank_rod_wheel/<op>`,
 //!
 //! where `<op>` is each of `pose`, `kinematics`, `kinematics+kinetostatics`,
 //! `kinematics+driver_action`, `reduced`, `acceleration`. Inputs as in `benches/solvers.rs`:
@@ -39,7 +42,8 @@
 //! block; the geared slider-crank a gas force (−900, −90) N on the piston at B and a
 //! −4 N·m shaft torque on the gear (q, q̇, q̈ are the pinion's: the crank turns at −1/3 of
 //! them); the roller cam a force (20, −250) N on the follower at its top T and a −1.5 N·m
-//! drag on the cam; these five a 5 N·m driver (acceleration). All inputs, and the solver
+//! drag on the cam; the crank, rod and wheel a pull (−150, 20) N on the wheel at its centre
+//! and a −0.8 N·m brake on the wheel; these six a 5 N·m driver (acceleration). All inputs, and the solver
 //! struct itself, go through `black_box` (no constant folding of the drawing).
 //!
 //! Run and tabulate:
@@ -108,8 +112,8 @@ mod runtime;
 use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hand::{
-    FourBarHand, GearedSliderCrankHand, InvertedSliderCrankHand, QuickReturnHand, RollerCamHand,
-    ScotchYokeHand, SliderCrankHand,
+    CrankRodWheelHand, FourBarHand, GearedSliderCrankHand, InvertedSliderCrankHand,
+    QuickReturnHand, RollerCamHand, ScotchYokeHand, SliderCrankHand,
 };
 use interleaved::Interleaved;
 use machines::*;
@@ -249,6 +253,23 @@ impl Case<RollerCam, RollerCamHand, RollerCamLoads> {
         let mut loads = RollerCamLoads::default();
         assert!(loads.set_by_name("push", &[20.0, -250.0]));
         assert!(loads.set_by_name("drag", &[-1.5]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<CrankRodWheel, CrankRodWheelHand, CrankRodWheelLoads> {
+    /// A (−150, 20) N pull on the wheel at its centre C, a −0.8 N·m brake on the wheel.
+    fn crank_rod_wheel() -> Self {
+        let m = CrankRodWheel::new();
+        let h = CrankRodWheelHand::new(m.params());
+        let mut loads = CrankRodWheelLoads::default();
+        assert!(loads.set_by_name("pull", &[-150.0, 20.0]));
+        assert!(loads.set_by_name("brake", &[-0.8]));
         Case {
             m,
             h,
@@ -500,6 +521,14 @@ six_operations!(
     motion: RollerCamMotion, hand::RollerCamHandMotion,
     forces: RollerCamForces, hand::RollerCamHandForces,
 );
+six_operations!(
+    crank_rod_wheel_ops,
+    "crank_rod_wheel",
+    Case<CrankRodWheel, CrankRodWheelHand, CrankRodWheelLoads>,
+    pose: CrankRodWheelPose, hand::CrankRodWheelHandPose,
+    motion: CrankRodWheelMotion, hand::CrankRodWheelHandMotion,
+    forces: CrankRodWheelForces, hand::CrankRodWheelHandForces,
+);
 
 /// The group `name` with the functions `generated` and `hand`, timed one after the other.
 /// (Each function is passed as its own zero-sized type, so the calls are direct and inline
@@ -582,6 +611,10 @@ fn roller_cam(c: &mut Criterion) {
     roller_cam_ops::pairs(c, &Case::roller_cam());
 }
 
+fn crank_rod_wheel(c: &mut Criterion) {
+    crank_rod_wheel_ops::pairs(c, &Case::crank_rod_wheel());
+}
+
 fn ratios(c: &mut Criterion<Interleaved>) {
     let k = FourBarCase::new();
     ratio(c, "four_bar/pose", &k, pose_gen, pose_hand);
@@ -614,6 +647,7 @@ fn ratios(c: &mut Criterion<Interleaved>) {
     inverted_slider_crank_ops::ratios(c, &Case::inverted_slider_crank());
     geared_slider_crank_ops::ratios(c, &Case::geared_slider_crank());
     roller_cam_ops::ratios(c, &Case::roller_cam());
+    crank_rod_wheel_ops::ratios(c, &Case::crank_rod_wheel());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -806,6 +840,7 @@ criterion_group!(
     inverted_slider_crank,
     geared_slider_crank,
     roller_cam,
+    crank_rod_wheel,
     batch,
     runtime::pairs
 );

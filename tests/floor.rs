@@ -577,6 +577,13 @@ fn roller_cam_loads() -> RollerCamLoads {
     l
 }
 
+fn crank_rod_wheel_loads() -> CrankRodWheelLoads {
+    let mut l = CrankRodWheelLoads::default();
+    assert!(l.set_by_name("pull", &[-150.0, 20.0]));
+    assert!(l.set_by_name("brake", &[-0.8]));
+    l
+}
+
 /// The quantities every machine of the six operations records (`record_six`), and the
 /// names of its own (joint forces, prismatic moment) to add.
 fn six_expected(extra: &[&'static str]) -> Vec<&'static str> {
@@ -1095,6 +1102,76 @@ fn roller_cam_hand_matches_generated() {
         &six_expected(&["kinetostatics: slide moment", "kinetostatics: normal force"]),
         CAM_TOL,
     );
+}
+
+/// The crank, rod and rolling wheel over a turn: every quantity as the other machines, the
+/// contact force's normal and friction parts besides.
+#[test]
+fn crank_rod_wheel_hand_matches_generated() {
+    let m = CrankRodWheel::new();
+    let h = CrankRodWheelHand::new(m.params());
+    let loads = crank_rod_wheel_loads();
+    let none = CrankRodWheelLoads::default();
+    let mut r = Report::default();
+    for q in sweep() {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[(gl.crank, hp.crank), (gl.rod, hp.rod), (gl.wheel, hp.wheel)],
+            &[(gpt.O2.pos, hp.o2), (gpt.A.pos, hp.a), (gpt.C.pos, hp.c)],
+            &[(l.crank, hm.crank), (l.rod, hm.rod), (l.wheel, hm.wheel)],
+            &[(pt.O2, hm.o2), (pt.A, hm.a), (pt.C, hm.c)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O2.force, hf.o2),
+                (j.A.force, hf.a),
+                (j.C.force, hf.c),
+                (j.roll.force, hf.roll),
+            ],
+        );
+        r.scalars(
+            "kinetostatics: contact normal and friction",
+            q,
+            &[(j.roll.normal, hf.normal), (j.roll.friction, hf.friction)],
+        );
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    r.check(&six_expected(&[
+        "kinetostatics: contact normal and friction",
+    ]));
 }
 
 /// (name, value, its rate, its second rate): a point's position, velocity and acceleration,
@@ -1724,6 +1801,103 @@ fn roller_cam_hand_independent_checks() {
     });
 }
 
+/// The hand-written crank, rod and wheel against itself: the wheel's radius is the
+/// declared one (the loaded model's), rolling without slipping (the contact point's
+/// velocity zero: v_C + ω₄ × (K − C) = 0), finite differences, every link's balance with
+/// the contact force at K = C − r n, its normal and friction parts, the driver by three
+/// routes, dI*/dq, M* and the inverse problem.
+#[test]
+fn crank_rod_wheel_hand_independent_checks() {
+    let rt = mech::Mechanism::from_rust_source(
+        include_str!("../benches/floor/machines.rs"),
+        "CrankRodWheel",
+    )
+    .unwrap();
+    let roll = rt.model().joints.iter().find(|j| j.name == "roll").unwrap();
+    assert_eq!(roll.radius, WHEEL_RADIUS);
+    let m = CrankRodWheel::new();
+    let p = m.params().clone();
+    let h = CrankRodWheelHand::new(&p);
+    check_by_finite_differences("crank-rod-wheel", 1, |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("A", &k.a);
+        t.point("C", &k.c);
+        t.link("crank", &k.crank);
+        t.link("rod", &k.rod);
+        t.link("wheel", &k.wheel);
+        t
+    });
+    let loads = crank_rod_wheel_loads();
+    let (l, g) = (&p.links, p.gravity);
+    let u = p.axes.roll.normalize();
+    let n = Vector2::new(-u.y, u.x);
+    for q in sweep() {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let f = h.kinetostatics(&k, &loads);
+        let (o2, a, c) = (k.o2.pos, k.a.pos, k.c.pos);
+        let contact = c - n * WHEEL_RADIUS;
+        let r = contact - c;
+        let vk = k.c.vel + Vector2::new(-r.y, r.x) * k.wheel.omega;
+        assert!(
+            vk.norm() <= 1e-12 * k.c.vel.norm().max(1e-3),
+            "the wheel slips at {q}: {vk:?}"
+        );
+        assert!(
+            (f.roll - (n * f.normal + u * f.friction)).norm() <= 1e-12 * f.roll.norm(),
+            "contact parts at {q}"
+        );
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "crank-rod-wheel crank",
+            q,
+            body(&l.crank),
+            &k.crank,
+            &[(o2, f.o2), (a, -f.a)],
+            &[f.driver],
+        );
+        check_balance(
+            "crank-rod-wheel rod",
+            q,
+            body(&l.rod),
+            &k.rod,
+            &[(a, f.a), (c, -f.c)],
+            &[],
+        );
+        check_balance(
+            "crank-rod-wheel wheel",
+            q,
+            body(&l.wheel),
+            &k.wheel,
+            &[(c, f.c), (contact, f.roll), (c, loads.pull)],
+            &[loads.brake],
+        );
+    }
+    check_dynamics("crank-rod-wheel", 1, |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        let wheel_turn =
+            (pose(q + FD_STEP).wheel.angle - pose(q - FD_STEP).wheel.angle) / (2.0 * FD_STEP);
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
+                + l.rod.mass * g.dot(&d_dq(|q| pose(q).rod.cg, q))
+                + l.wheel.mass * g.dot(&d_dq(|q| pose(q).wheel.cg, q))
+                + loads.pull.dot(&d_dq(|q| pose(q).c, q))
+                + loads.brake * wheel_turn,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
 /// The kinds of group the floor's machines exercise, as the macro's plan solves them
 /// (`mech_core::plan::assur`, the decomposition the generated code is emitted from): what
 /// each bench group measures. The Scotch yoke's yoke (a guide and a pin in a slot) is a
@@ -1770,6 +1944,7 @@ fn floor_machines_group_kinds() {
     for (name, expected) in [
         ("GearedSliderCrank", &["DrivenRevolute", "Mesh", "Rrp"][..]),
         ("RollerCam", &["DrivenRevolute", "Cam"][..]),
+        ("CrankRodWheel", &["DrivenRevolute", "Rrl"][..]),
     ] {
         assert_eq!(element_kinds(name), expected, "{name}");
     }

@@ -260,3 +260,10 @@ floor_runtime!(
     RollerCamLoads,
     [("push", [20.0, -250.0]), ("drag", [-1.5])]
 );
+floor_runtime!(
+    crank_rod_wheel,
+    FLOOR,
+    CrankRodWheel,
+    CrankRodWheelLoads,
+    [("pull", [-150.0, 20.0]), ("brake", [-0.8])]
+);

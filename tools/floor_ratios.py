@@ -47,6 +47,7 @@ GROUPS = [
         "inverted_slider_crank",
         "geared_slider_crank",
         "roller_cam",
+        "crank_rod_wheel",
     )
     for op in OPERATIONS
 ]

@@ -33,8 +33,8 @@
 #![allow(dead_code)]
 
 use super::machines::{
-    GearedSliderCrankLoads, GearedSliderCrankParams, InvertedSliderCrankLoads,
-    InvertedSliderCrankParams, RollerCamLoads, RollerCamParams,
+    CrankRodWheelLoads, CrankRodWheelParams, GearedSliderCrankLoads, GearedSliderCrankParams,
+    InvertedSliderCrankLoads, InvertedSliderCrankParams, RollerCamLoads, RollerCamParams,
 };
 use crate::mechanisms::{
     FourBarLoads, FourBarParams, QuickReturnLoads, QuickReturnParams, ScotchYokeLoads,
@@ -42,6 +42,8 @@ use crate::mechanisms::{
 };
 use mech::prelude::Vector2;
 
+#[path = "hand_crank_rod_wheel.rs"]
+mod crank_rod_wheel;
 #[path = "hand_geared_slider_crank.rs"]
 mod geared_slider_crank;
 #[path = "hand_inverted_slider_crank.rs"]
@@ -53,6 +55,7 @@ mod roller_cam;
 #[path = "hand_scotch_yoke.rs"]
 mod scotch_yoke;
 
+pub use crank_rod_wheel::*;
 pub use geared_slider_crank::*;
 pub use inverted_slider_crank::*;
 pub use quick_return::*;

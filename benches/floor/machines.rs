@@ -116,3 +116,39 @@ mechanism! {
         },
     }
 }
+
+mechanism! {
+    /// Crank, rod and a wheel rolling on the ground: the crank O2–A drives the rod A–C,
+    /// pinned at C to the centre of a 30 mm wheel that rolls without slipping on a straight
+    /// track tilted by 4.6° (`along (1.0, 0.08)`, the track under the wheel), its cg 2 mm
+    /// off the centre (an unbalanced wheel), pulled at C and braked. A rolling group: the
+    /// rod and the wheel as a crank–rod–wheel dyad (an RRP dyad whose slider turns by
+    /// −s/r as it travels s).
+    pub struct CrankRodWheel {
+        gravity: (0.0, -9.81),
+        ground { O2: (0.0, 0.0) },
+        link crank {
+            points { O2, A: (0.025711504387461575, 0.030641777724759120) },
+            mass: 0.6, inertia: 0.0004, cg: (0.012, 0.01),
+        },
+        link rod {
+            points { A, C: (0.2, 0.05) },
+            mass: 0.7, inertia: 0.002, cg: (0.11, 0.042),
+        },
+        link wheel {
+            points { C },
+            mass: 1.1, inertia: 0.0006, cg: (0.202, 0.0505),
+        },
+        joints {
+            O2: revolute(ground, crank),
+            A: revolute(crank, rod),
+            C: revolute(rod, wheel),
+            roll: rolling(ground, wheel) at C radius 30 mm along (1.0, 0.08),
+        },
+        input: O2,
+        loads {
+            pull: force on wheel at C,
+            brake: torque on wheel,
+        },
+    }
+}

@@ -282,6 +282,14 @@ runtime_machine!(
     "RollerCam",
     loads: &[("push", &[20.0, -250.0]), ("drag", &[-1.5])]
 );
+runtime_machine!(
+    crank_rod_wheel,
+    "crank_rod_wheel",
+    Case::crank_rod_wheel(),
+    FLOOR,
+    "CrankRodWheel",
+    loads: &[("pull", &[-150.0, 20.0]), ("brake", &[-0.8])]
+);
 
 /// The groups `runtime/<machine>/<op>`.
 pub fn pairs(c: &mut Criterion) {
@@ -292,6 +300,7 @@ pub fn pairs(c: &mut Criterion) {
     inverted_slider_crank::pairs(c);
     geared_slider_crank::pairs(c);
     roller_cam::pairs(c);
+    crank_rod_wheel::pairs(c);
 }
 
 /// The entries `runtime_ratio/<machine>/<op>`.
@@ -303,4 +312,5 @@ pub fn ratios(c: &mut Criterion<Interleaved>) {
     inverted_slider_crank::ratios(c);
     geared_slider_crank::ratios(c);
     roller_cam::ratios(c);
+    crank_rod_wheel::ratios(c);
 }
