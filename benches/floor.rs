@@ -25,8 +25,8 @@
 //!   crank of an offset slider-crank; a meshing group of one link, Willis' relation, then
 //!   an RRP dyad), `geared_slider_crank/<op>`;
 //! - the roller cam (`RollerCam` of `benches/floor/machines.rs`: a disc cam, the input,
-//!   lifts an offset translating roller follower by a dwell–cycloidal rise–dwell–cycloidal
-//!   fall law; a cam group of one link), `roller_cam/<op>`;
+//!   lifts an offset translating roller follower by a cycloidal rise–dwell–cycloidal
+//!   fall–dwell law; a cam group of one link), `roller_cam/<op>`;
 //! - the crank, rod and rolling wheel (`CrankRodWheel` of `benches/floor/machines.rs`: the
 //!   rod drives the centre of a wheel that rolls without slipping on a straight track; a
 //!   rolling group, the crank–rod–wheel dyad), `crank_rod_wheel/<op>`,

@@ -1704,10 +1704,10 @@ fn roller_cam_hand_independent_checks() {
     let laws: Vec<_> = spec.segments.iter().map(|g| g.law).collect();
     assert_eq!(
         laws,
-        [Law::Dwell, Law::Cycloidal, Law::Dwell, Law::Cycloidal]
+        [Law::Cycloidal, Law::Dwell, Law::Cycloidal, Law::Dwell]
     );
     let ends = [CAM_SEGMENTS[0], CAM_SEGMENTS[1], CAM_SEGMENTS[2], TAU];
-    let lifts = [0.0, CAM_LIFT, CAM_LIFT, 0.0];
+    let lifts = [CAM_LIFT, CAM_LIFT, 0.0, 0.0];
     for (k, g) in spec.segments.iter().enumerate() {
         assert!(
             (g.end - ends[k]).abs() < 1e-15,

@@ -13,9 +13,9 @@ pub const CAM_BASE_RADIUS: f64 = 0.040;
 pub const CAM_ROLLER_RADIUS: f64 = 0.010;
 /// The lift L of the rise and of the fall (m), as declared.
 pub const CAM_LIFT: f64 = 0.015;
-/// The law's segment ends θ₁ (end of the first dwell), θ₂ (end of the rise), θ₃ (end of
-/// the second dwell), rad; the fall ends at 2π.
-pub const CAM_SEGMENTS: [f64; 3] = [90.0 * TAU / 360.0, 210.0 * TAU / 360.0, 270.0 * TAU / 360.0];
+/// The law's segment ends θ₁ (end of the rise), θ₂ (end of the dwell at L), θ₃ (end of
+/// the fall), rad; the dwell at 0 ends at 2π.
+pub const CAM_SEGMENTS: [f64; 3] = [120.0 * TAU / 360.0, 180.0 * TAU / 360.0, 270.0 * TAU / 360.0];
 
 /// A cycloidal segment from (θ₀, h₀) rising by L (< 0: a fall) over β: with
 /// x = (θ − θ₀)/β, s = h₀ + L (x − sin 2πx/2π), s′ = (L/β)(1 − cos 2πx),
@@ -61,8 +61,8 @@ impl Cycloid {
 /// rotation since the drawing, counter-clockwise) turns about O; the follower 3 slides
 /// along u, its roller's centre P on the axis at the offset e from O.
 ///
-/// **The law**: θ = q taken in [0, 2π); a dwell at 0 to θ₁, a cycloidal rise of L to θ₂,
-/// a dwell at L to θ₃, a cycloidal fall of L to 2π ([`CAM_SEGMENTS`]). The follower
+/// **The law**: θ = q taken in [0, 2π); a cycloidal rise of L to θ₁, a dwell at L to
+/// θ₂, a cycloidal fall of L to θ₃, a dwell at 0 to 2π ([`CAM_SEGMENTS`]). The follower
 /// moves by s(θ) along u: v_P = s′ q̇ u, a_P = (s″ q̇² + s′ q̈) u.
 ///
 /// **The contact** (`docs/conventions.md#cams`): in the axis frame (x̂, u), x̂ = u turned
@@ -179,8 +179,8 @@ impl RollerCamHand {
             t2,
             t3,
             lift: CAM_LIFT,
-            rise: Cycloid::new(t1, t2, 0.0, CAM_LIFT),
-            fall: Cycloid::new(t3, TAU, CAM_LIFT, -CAM_LIFT),
+            rise: Cycloid::new(0.0, t1, 0.0, CAM_LIFT),
+            fall: Cycloid::new(t2, t3, CAM_LIFT, -CAM_LIFT),
             g2: cam.cg - o,
             i2: cam.inertia,
             io: cam.inertia + cam.mass * (cam.cg - o).norm_squared(),
@@ -196,13 +196,13 @@ impl RollerCamHand {
     fn law(&self, q: f64) -> [f64; 3] {
         let t = q.rem_euclid(TAU);
         if t < self.t1 {
-            [0.0; 3]
-        } else if t < self.t2 {
             self.rise.eval(t)
-        } else if t < self.t3 {
+        } else if t < self.t2 {
             [self.lift, 0.0, 0.0]
-        } else {
+        } else if t < self.t3 {
             self.fall.eval(t)
+        } else {
+            [0.0; 3]
         }
     }
 

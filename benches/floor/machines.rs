@@ -86,7 +86,8 @@ mechanism! {
 mechanism! {
     /// Disc cam with an offset translating roller follower: the cam (the input, turning
     /// about O, its cg off the centre) lifts the follower 15 mm by a cycloidal rise over
-    /// 120°, holds it 60° and lets it down by a cycloidal fall over 90°, after a 90° dwell;
+    /// 120°, holds it 60°, lets it down by a cycloidal fall over 90° and rests 90° (the
+    /// floor's q = 0.7 rad is in the rise);
     /// base circle 40 mm, roller 10 mm, the follower's axis (vertical) 10 mm off O, its cg
     /// and its top T, where it is loaded, off the axis. A cam group of one link (the follower, its slide and the cam pair); the
     /// law, base circle and roller are those of the hand-written `RollerCamHand`
@@ -106,8 +107,8 @@ mechanism! {
             O: revolute(ground, cam),
             slide: prismatic(ground, follower) at P along (0.0, 1.0),
             lobe: cam(cam, follower) base_radius 40 mm roller 10 mm
-                law [dwell 90 deg, cycloidal 120 deg rise 15 mm, dwell 60 deg,
-                     cycloidal 90 deg fall 15 mm],
+                law [cycloidal 120 deg rise 15 mm, dwell 60 deg, cycloidal 90 deg fall 15 mm,
+                     dwell 90 deg],
         },
         input: O,
         loads {
