@@ -106,6 +106,21 @@ pub struct Segment {
     pub to: f64,
 }
 
+/// x taken in [0, 2π): `x.rem_euclid(2π)` bit for bit, without its division (a call of
+/// `fmod`) when x is within a turn either side of 0, as the kernels' cam angles, from an
+/// `atan2`, always are: x itself on [0, 2π), x + 2π on (−2π, 0) (where `fmod` returns x;
+/// at −2π it returns −0).
+#[inline(always)]
+fn within_turn(x: f64) -> f64 {
+    if (0.0..TAU).contains(&x) {
+        x
+    } else if x > -TAU && x < 0.0 {
+        x + TAU
+    } else {
+        x.rem_euclid(TAU)
+    }
+}
+
 /// A periodic cubic spline through (θᵢ, sᵢ), i = 0..n, θ over one revolution (module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Spline {
@@ -175,7 +190,7 @@ impl Spline {
     pub fn eval(&self, theta: f64) -> [f64; 4] {
         let n = self.theta.len();
         let t0 = self.theta[0];
-        let t = t0 + (theta - t0).rem_euclid(TAU);
+        let t = t0 + within_turn(theta - t0);
         let k = self.theta.partition_point(|&x| x <= t).max(1) - 1;
         let (ta, tb) = (
             self.theta[k],
@@ -284,7 +299,7 @@ impl MotionLaw {
             MotionLaw::Table(sp) => sp.eval(theta),
             MotionLaw::Segments(segs) => {
                 let t0 = segs[0].start;
-                let t = t0 + (theta - t0).rem_euclid(TAU);
+                let t = t0 + within_turn(theta - t0);
                 let g = segs.iter().rev().find(|g| g.start <= t).unwrap_or(&segs[0]);
                 Self::segment(g, t)
             }
@@ -381,4 +396,38 @@ pub fn law_of(
         ));
     }
     Ok(law)
+}
+
+#[cfg(test)]
+mod tests {
+    /// `within_turn` is `rem_euclid(2π)` bit for bit, on and off its fast ranges.
+    #[test]
+    fn within_turn_is_rem_euclid() {
+        for x in [
+            0.0,
+            -0.0,
+            1e-300,
+            -1e-300,
+            1.0,
+            -1.0,
+            3.0,
+            -3.0,
+            6.283185307179586,
+            -6.283185307179586,
+            6.283185307179585,
+            -6.283185307179585,
+            7.0,
+            -7.0,
+            40.0,
+            -40.0,
+            -1e-17,
+            f64::MIN_POSITIVE,
+        ] {
+            assert_eq!(
+                super::within_turn(x).to_bits(),
+                x.rem_euclid(super::TAU).to_bits(),
+                "{x}"
+            );
+        }
+    }
 }
