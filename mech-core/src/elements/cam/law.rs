@@ -51,6 +51,7 @@ impl Law {
     }
 
     /// (s, ds/dx, d²s/dx², d³s/dx³) of the unit rise (L = 1) at x ∈ [0, 1].
+    #[inline]
     pub fn unit(self, x: f64) -> [f64; 4] {
         match self {
             Law::Dwell => [0.0; 4],
@@ -293,7 +294,9 @@ impl MotionLaw {
 
     /// (s, s', s'', s''') at cam angle θ (rad, any: taken modulo the turn); derivatives
     /// per unit cam angle (m/rad, m/rad², m/rad³ for a translating follower). At a joint
-    /// of two segments the later one's values are taken.
+    /// of two segments the later one's values are taken. (Inline: the cam pair's kernels
+    /// call it in the generated solvers, another crate.)
+    #[inline]
     pub fn eval(&self, theta: f64) -> [f64; 4] {
         match self {
             MotionLaw::Table(sp) => sp.eval(theta),
@@ -306,15 +309,20 @@ impl MotionLaw {
         }
     }
 
+    /// One segment's (s, s', s'', s''') at t (module docs): one division, 1/β, for the
+    /// four values.
+    #[inline]
     fn segment(g: &Segment, t: f64) -> [f64; 4] {
-        let beta = g.end - g.start;
+        let inv_beta = 1.0 / (g.end - g.start);
         let rise = g.to - g.from;
-        let u = g.law.unit(((t - g.start) / beta).clamp(0.0, 1.0));
+        let u = g.law.unit(((t - g.start) * inv_beta).clamp(0.0, 1.0));
+        let k1 = rise * inv_beta;
+        let k2 = k1 * inv_beta;
         [
             g.from + rise * u[0],
-            rise * u[1] / beta,
-            rise * u[2] / (beta * beta),
-            rise * u[3] / (beta * beta * beta),
+            k1 * u[1],
+            k2 * u[2],
+            k2 * inv_beta * u[3],
         ]
     }
 
