@@ -1,6 +1,6 @@
 //! The run-time side of the floor: the run-time `mech::Mechanism`, loaded from the very
 //! text the macro compiled (`tests/common/mechanisms.rs`, `benches/floor/machines.rs`),
-//! against the generated struct, on the floor's five machines and all six operations, with
+//! against the generated struct, on the floor's machines and all six operations, with
 //! the floor's inputs and loads. The run-time side uses its caller-buffer forms, no
 //! allocation per call: `pose_into`, `kinematics_into`, `kinetostatics_into`,
 //! `Machine::driver_actions` into a slice, and Zhukovski's `reduced` and `acceleration`.
