@@ -214,7 +214,7 @@ impl GearedSliderCrankHand {
         let (xa, ya) = (self.r2 * cs, self.r2 * sn);
         let y = self.e - ya;
         let x2 = self.lsq - y * y;
-        if !(x2 > 0.0) {
+        if x2 <= 0.0 || x2.is_nan() {
             return None;
         }
         let x = self.sigma * x2.sqrt();
