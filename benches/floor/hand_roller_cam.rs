@@ -15,7 +15,11 @@ pub const CAM_ROLLER_RADIUS: f64 = 0.010;
 pub const CAM_LIFT: f64 = 0.015;
 /// The law's segment ends θ₁ (end of the rise), θ₂ (end of the dwell at L), θ₃ (end of
 /// the fall), rad; the dwell at 0 ends at 2π.
-pub const CAM_SEGMENTS: [f64; 3] = [120.0 * TAU / 360.0, 180.0 * TAU / 360.0, 270.0 * TAU / 360.0];
+pub const CAM_SEGMENTS: [f64; 3] = [
+    120.0 * TAU / 360.0,
+    180.0 * TAU / 360.0,
+    270.0 * TAU / 360.0,
+];
 
 /// A cycloidal segment from (θ₀, h₀) rising by L (< 0: a fall) over β: with
 /// x = (θ − θ₀)/β, s = h₀ + L (x − sin 2πx/2π), s′ = (L/β)(1 − cos 2πx),
