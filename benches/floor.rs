@@ -19,7 +19,17 @@
 //! - the inverted slider-crank (`InvertedSliderCrank` of `benches/floor/machines.rs`: the
 //!   rod pinned to the crank slides through a block pivoted on the ground, its slide line
 //!   off the pin, an RPR dyad whose guide is pinned to the crank),
-//!   `inverted_slider_crank/<op>`,
+//!   `inverted_slider_crank/<op>`;
+//! - the geared slider-crank (`GearedSliderCrank` of `benches/floor/machines.rs`: the
+//!   input pinion drives, 3:1 down through a 20° gear pair, the gear that carries the
+//!   crank of an offset slider-crank; a meshing group of one link, Willis' relation, then
+//!   an RRP dyad), `geared_slider_crank/<op>`;
+//! - the roller cam (`RollerCam` of `benches/floor/machines.rs`: a disc cam, the input,
+//!   lifts an offset translating roller follower by a cycloidal rise–dwell–cycloidal
+//!   fall–dwell law; a cam group of one link), `roller_cam/<op>`;
+//! - the crank, rod and rolling wheel (`CrankRodWheel` of `benches/floor/machines.rs`: the
+//!   rod drives the centre of a wheel that rolls without slipping on a straight track; a
+//!   rolling group, the crank–rod–wheel dyad), `crank_rod_wheel/<op>`,
 //!
 //! where `<op>` is each of `pose`, `kinematics`, `kinematics+kinetostatics`,
 //! `kinematics+driver_action`, `reduced`, `acceleration`. Inputs as in `benches/solvers.rs`:
@@ -29,8 +39,12 @@
 //! force (−250, 30) N at the lever's end C and a −1.5 N·m friction torque on the crank; the
 //! Scotch yoke a force (−120, 15) N on the yoke at Y and a −1.5 N·m drag on the crank; the
 //! inverted slider-crank a force (−300, 40) N on the rod at P and a 2.5 N·m torque on the
-//! block; these three a 5 N·m driver (acceleration). All inputs, and the solver struct
-//! itself, go through `black_box` (no constant folding of the drawing).
+//! block; the geared slider-crank a gas force (−900, −90) N on the piston at B and a
+//! −4 N·m shaft torque on the gear (q, q̇, q̈ are the pinion's: the crank turns at −1/3 of
+//! them); the roller cam a force (20, −250) N on the follower at its top T and a −1.5 N·m
+//! drag on the cam; the crank, rod and wheel a pull (−150, 20) N on the wheel at its centre
+//! and a −0.8 N·m brake on the wheel; these six a 5 N·m driver (acceleration). All inputs, and the solver
+//! struct itself, go through `black_box` (no constant folding of the drawing).
 //!
 //! Run and tabulate:
 //!
@@ -98,7 +112,8 @@ mod runtime;
 use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hand::{
-    FourBarHand, InvertedSliderCrankHand, QuickReturnHand, ScotchYokeHand, SliderCrankHand,
+    CrankRodWheelHand, FourBarHand, GearedSliderCrankHand, InvertedSliderCrankHand,
+    QuickReturnHand, RollerCamHand, ScotchYokeHand, SliderCrankHand,
 };
 use interleaved::Interleaved;
 use machines::*;
@@ -202,6 +217,59 @@ impl Case<InvertedSliderCrank, InvertedSliderCrankHand, InvertedSliderCrankLoads
         let mut loads = InvertedSliderCrankLoads::default();
         assert!(loads.set_by_name("push", &[-300.0, 40.0]));
         assert!(loads.set_by_name("resist", &[2.5]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<GearedSliderCrank, GearedSliderCrankHand, GearedSliderCrankLoads> {
+    /// A −900 N gas force on the piston at B (along the guide, mostly), a −4 N·m shaft
+    /// torque on the gear.
+    fn geared_slider_crank() -> Self {
+        let m = GearedSliderCrank::new();
+        let h = GearedSliderCrankHand::new(m.params());
+        let mut loads = GearedSliderCrankLoads::default();
+        assert!(loads.set_by_name("gas", &[-900.0, -90.0]));
+        assert!(loads.set_by_name("shaft", &[-4.0]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<RollerCam, RollerCamHand, RollerCamLoads> {
+    /// A (20, −250) N force on the follower at its top T (a valve spring and the gas
+    /// load, mostly along the axis), a −1.5 N·m drag on the cam.
+    fn roller_cam() -> Self {
+        let m = RollerCam::new();
+        let h = RollerCamHand::new(m.params());
+        let mut loads = RollerCamLoads::default();
+        assert!(loads.set_by_name("push", &[20.0, -250.0]));
+        assert!(loads.set_by_name("drag", &[-1.5]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<CrankRodWheel, CrankRodWheelHand, CrankRodWheelLoads> {
+    /// A (−150, 20) N pull on the wheel at its centre C, a −0.8 N·m brake on the wheel.
+    fn crank_rod_wheel() -> Self {
+        let m = CrankRodWheel::new();
+        let h = CrankRodWheelHand::new(m.params());
+        let mut loads = CrankRodWheelLoads::default();
+        assert!(loads.set_by_name("pull", &[-150.0, 20.0]));
+        assert!(loads.set_by_name("brake", &[-0.8]));
         Case {
             m,
             h,
@@ -437,6 +505,30 @@ six_operations!(
     motion: InvertedSliderCrankMotion, hand::InvertedSliderCrankHandMotion,
     forces: InvertedSliderCrankForces, hand::InvertedSliderCrankHandForces,
 );
+six_operations!(
+    geared_slider_crank_ops,
+    "geared_slider_crank",
+    Case<GearedSliderCrank, GearedSliderCrankHand, GearedSliderCrankLoads>,
+    pose: GearedSliderCrankPose, hand::GearedSliderCrankHandPose,
+    motion: GearedSliderCrankMotion, hand::GearedSliderCrankHandMotion,
+    forces: GearedSliderCrankForces, hand::GearedSliderCrankHandForces,
+);
+six_operations!(
+    roller_cam_ops,
+    "roller_cam",
+    Case<RollerCam, RollerCamHand, RollerCamLoads>,
+    pose: RollerCamPose, hand::RollerCamHandPose,
+    motion: RollerCamMotion, hand::RollerCamHandMotion,
+    forces: RollerCamForces, hand::RollerCamHandForces,
+);
+six_operations!(
+    crank_rod_wheel_ops,
+    "crank_rod_wheel",
+    Case<CrankRodWheel, CrankRodWheelHand, CrankRodWheelLoads>,
+    pose: CrankRodWheelPose, hand::CrankRodWheelHandPose,
+    motion: CrankRodWheelMotion, hand::CrankRodWheelHandMotion,
+    forces: CrankRodWheelForces, hand::CrankRodWheelHandForces,
+);
 
 /// The group `name` with the functions `generated` and `hand`, timed one after the other.
 /// (Each function is passed as its own zero-sized type, so the calls are direct and inline
@@ -511,6 +603,18 @@ fn inverted_slider_crank(c: &mut Criterion) {
     inverted_slider_crank_ops::pairs(c, &Case::inverted_slider_crank());
 }
 
+fn geared_slider_crank(c: &mut Criterion) {
+    geared_slider_crank_ops::pairs(c, &Case::geared_slider_crank());
+}
+
+fn roller_cam(c: &mut Criterion) {
+    roller_cam_ops::pairs(c, &Case::roller_cam());
+}
+
+fn crank_rod_wheel(c: &mut Criterion) {
+    crank_rod_wheel_ops::pairs(c, &Case::crank_rod_wheel());
+}
+
 fn ratios(c: &mut Criterion<Interleaved>) {
     let k = FourBarCase::new();
     ratio(c, "four_bar/pose", &k, pose_gen, pose_hand);
@@ -541,6 +645,9 @@ fn ratios(c: &mut Criterion<Interleaved>) {
     quick_return_ops::ratios(c, &Case::quick_return());
     scotch_yoke_ops::ratios(c, &Case::scotch_yoke());
     inverted_slider_crank_ops::ratios(c, &Case::inverted_slider_crank());
+    geared_slider_crank_ops::ratios(c, &Case::geared_slider_crank());
+    roller_cam_ops::ratios(c, &Case::roller_cam());
+    crank_rod_wheel_ops::ratios(c, &Case::crank_rod_wheel());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -731,6 +838,9 @@ criterion_group!(
     quick_return,
     scotch_yoke,
     inverted_slider_crank,
+    geared_slider_crank,
+    roller_cam,
+    crank_rod_wheel,
     batch,
     runtime::pairs
 );

@@ -1,9 +1,12 @@
 //! The hand-written floor (`benches/floor/hand.rs` and the `hand_*.rs` beside it) computes
 //! the same numbers as the generated solvers: every quantity of every operation timed in
-//! `benches/floor.rs` (the four-bar, the slider-crank, the quick-return, the Scotch yoke and
-//! the inverted slider-crank of `benches/floor/machines.rs`), on a sweep of 72 crank angles
-//! over a full turn, to 1e-13 relative (`TOL`: at most 100× the worst error measured over
-//! the quantities; the new machines' worst, the quick-return's α, 1.4e-14).
+//! `benches/floor.rs` (the four-bar, the slider-crank, the quick-return, the Scotch yoke, and
+//! the inverted slider-crank, the geared slider-crank and the roller cam of
+//! `benches/floor/machines.rs`), on a sweep of 72 input angles over a full turn (three
+//! turns of the geared slider-crank's pinion: one of its crank), to 1e-13 relative (`TOL`:
+//! at most 100× the worst error measured over the quantities; the new machines' worst, the
+//! quick-return's α, 1.4e-14), the roller cam to 1e-12 (`CAM_TOL`: its law's argument, an
+//! ulp apart on the two sides, amplified in the middle of the fall).
 //!
 //! "Relative" is scaled by the largest entry of the quantity: for a quantity made of
 //! several entries (the three link angles, the cg positions of the three links, the pin
@@ -16,11 +19,15 @@
 //! central finite differences of positions against velocities and of velocities against
 //! accelerations, of I* against dI*/dq, and the inverse problem (the generated d'Alembert
 //! driver at the hand-written q̈ gives back the applied torque). For the quick-return, the
-//! Scotch yoke and the inverted slider-crank, on the hand-written side alone: finite
+//! Scotch yoke, the inverted slider-crank, the geared slider-crank and the roller cam, on
+//! the hand-written side alone: finite
 //! differences of every point, cg and link angle (velocities, accelerations, q̈ entering
 //! linearly), every link's d'Alembert balance with the hand-written reactions, the driver
 //! torque by d'Alembert, by virtual power and by Zhukovski, dI*/dq against I*, M* against
-//! the power of gravity and the loads on the positions, and the inverse problem.
+//! the power of gravity and the loads on the positions, and the inverse problem; for the
+//! geared slider-crank also the mesh's data against the model, Willis' relation and the
+//! tooth force on the line of action, for the roller cam the law's data against the model
+//! and the contact normal against the pitch curve.
 
 use crate::measure::{within, within_at};
 use crate::mechanisms;
@@ -40,12 +47,24 @@ use std::f64::consts::{PI, TAU};
 
 // measured worst 1.9e-15 over the quantities (be05608); 100×
 const TOL: f64 = 1e-13;
+// The roller cam's: measured worst 5.0e-14, its follower's acceleration in the middle of
+// the cycloidal fall. The two sides take the cam's turn into [0, 2π) by different routes
+// (the generated from the rotation: atan2, then + 2π; the hand q − 2π), an ulp of 2π
+// apart, and there s″ = (2πL/β²) sin 2πx, with sin 2πx near zero, turns that ulp into
+// a few 1e-13 of s″. Every other quantity of the cam within TOL; 20×
+const CAM_TOL: f64 = 1e-12;
 const STEPS: usize = 72;
 const QD: f64 = 12.0;
 const QDD: f64 = -3.0;
 
 fn sweep() -> impl Iterator<Item = f64> {
-    (0..STEPS).map(|k| 0.7 + TAU * k as f64 / STEPS as f64)
+    sweep_turns(1)
+}
+
+/// `turns` full turns of q from 0.7, STEPS samples per turn (a geared input turns more
+/// than once while its crank turns once).
+fn sweep_turns(turns: usize) -> impl Iterator<Item = f64> {
+    (0..STEPS * turns).map(|k| 0.7 + TAU * k as f64 / STEPS as f64)
 }
 
 fn wrap(a: f64) -> f64 {
@@ -110,6 +129,10 @@ impl Report {
     }
     /// Print the worst relative error of each quantity and fail on any above `TOL`.
     fn check(&self, expected: &[&str]) {
+        self.check_to(expected, TOL)
+    }
+    /// [`Report::check`] to `tol`.
+    fn check_to(&self, expected: &[&str], tol: f64) {
         for name in expected {
             assert!(
                 self.0.contains_key(name),
@@ -137,7 +160,7 @@ impl Report {
                 if rel > worst.0 {
                     worst = (rel, q);
                 }
-                if !within_at(name, rel, TOL) {
+                if !within_at(name, rel, tol) {
                     failures.push(format!("{name} at q = {q:.6}: |generated − hand| = {diff:.3e}, scale {scale:.3e}, relative {rel:.3e}"));
                 }
             }
@@ -540,6 +563,27 @@ fn inverted_slider_crank_loads() -> InvertedSliderCrankLoads {
     l
 }
 
+fn geared_slider_crank_loads() -> GearedSliderCrankLoads {
+    let mut l = GearedSliderCrankLoads::default();
+    assert!(l.set_by_name("gas", &[-900.0, -90.0]));
+    assert!(l.set_by_name("shaft", &[-4.0]));
+    l
+}
+
+fn roller_cam_loads() -> RollerCamLoads {
+    let mut l = RollerCamLoads::default();
+    assert!(l.set_by_name("push", &[20.0, -250.0]));
+    assert!(l.set_by_name("drag", &[-1.5]));
+    l
+}
+
+fn crank_rod_wheel_loads() -> CrankRodWheelLoads {
+    let mut l = CrankRodWheelLoads::default();
+    assert!(l.set_by_name("pull", &[-150.0, 20.0]));
+    assert!(l.set_by_name("brake", &[-0.8]));
+    l
+}
+
 /// The quantities every machine of the six operations records (`record_six`), and the
 /// names of its own (joint forces, prismatic moment) to add.
 fn six_expected(extra: &[&'static str]) -> Vec<&'static str> {
@@ -882,6 +926,254 @@ fn inverted_slider_crank_hand_matches_generated() {
     r.check(&six_expected(&["kinetostatics: slide moment"]));
 }
 
+/// The geared slider-crank over three turns of the pinion (one of the crank): every
+/// quantity as the other machines, the mesh's tooth force, tooth load and flank besides.
+#[test]
+fn geared_slider_crank_hand_matches_generated() {
+    let m = GearedSliderCrank::new();
+    let h = GearedSliderCrankHand::new(m.params());
+    let loads = geared_slider_crank_loads();
+    let none = GearedSliderCrankLoads::default();
+    let mut r = Report::default();
+    let mut flanks = [0usize; 2];
+    for q in sweep_turns(3) {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[
+                (gl.pinion, hp.pinion),
+                (gl.crank, hp.crank),
+                (gl.rod, hp.rod),
+                (gl.piston, hp.piston),
+            ],
+            &[
+                (gpt.O1.pos, hp.o1),
+                (gpt.O2.pos, hp.o2),
+                (gpt.A.pos, hp.a),
+                (gpt.B.pos, hp.b),
+            ],
+            &[
+                (l.pinion, hm.pinion),
+                (l.crank, hm.crank),
+                (l.rod, hm.rod),
+                (l.piston, hm.piston),
+            ],
+            &[(pt.O1, hm.o1), (pt.O2, hm.o2), (pt.A, hm.a), (pt.B, hm.b)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O1.force, hf.o1),
+                (j.O2.force, hf.o2),
+                (j.A.force, hf.a),
+                (j.B.force, hf.b),
+                (j.guide.force, hf.guide),
+                (j.mesh.force, hf.mesh),
+            ],
+        );
+        r.scalar(
+            "kinetostatics: guide moment",
+            q,
+            j.guide.moment,
+            hf.guide_moment,
+        );
+        r.scalar(
+            "kinetostatics: tooth load",
+            q,
+            j.mesh.tooth_load,
+            hf.tooth_load,
+        );
+        assert_eq!(j.mesh.flank, hf.flank, "flank at q = {q}");
+        flanks[(hf.flank > 0.0) as usize] += 1;
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    // Both flanks are in contact during the turn (the comparison covers the sign of the
+    // tooth force's radial part).
+    assert!(flanks[0] > 0 && flanks[1] > 0, "flanks {flanks:?}");
+    r.check(&six_expected(&[
+        "kinetostatics: guide moment",
+        "kinetostatics: tooth load",
+    ]));
+}
+
+/// The roller cam over a turn of the cam: every quantity as the other machines, the
+/// contact force's signed magnitude besides.
+#[test]
+fn roller_cam_hand_matches_generated() {
+    let m = RollerCam::new();
+    let h = RollerCamHand::new(m.params());
+    let loads = roller_cam_loads();
+    let none = RollerCamLoads::default();
+    let mut r = Report::default();
+    for q in sweep() {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[(gl.cam, hp.cam), (gl.follower, hp.follower)],
+            &[(gpt.O.pos, hp.o), (gpt.P.pos, hp.p), (gpt.T.pos, hp.t)],
+            &[(l.cam, hm.cam), (l.follower, hm.follower)],
+            &[(pt.O, hm.o), (pt.P, hm.p), (pt.T, hm.t)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O.force, hf.o),
+                (j.slide.force, hf.slide),
+                (j.lobe.force, hf.lobe),
+            ],
+        );
+        r.scalar(
+            "kinetostatics: slide moment",
+            q,
+            j.slide.moment,
+            hf.slide_moment,
+        );
+        r.scalar(
+            "kinetostatics: normal force",
+            q,
+            j.lobe.normal_force,
+            hf.normal_force,
+        );
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    r.check_to(
+        &six_expected(&["kinetostatics: slide moment", "kinetostatics: normal force"]),
+        CAM_TOL,
+    );
+}
+
+/// The crank, rod and rolling wheel over a turn: every quantity as the other machines, the
+/// contact force's normal and friction parts besides.
+#[test]
+fn crank_rod_wheel_hand_matches_generated() {
+    let m = CrankRodWheel::new();
+    let h = CrankRodWheelHand::new(m.params());
+    let loads = crank_rod_wheel_loads();
+    let none = CrankRodWheelLoads::default();
+    let mut r = Report::default();
+    for q in sweep() {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[(gl.crank, hp.crank), (gl.rod, hp.rod), (gl.wheel, hp.wheel)],
+            &[(gpt.O2.pos, hp.o2), (gpt.A.pos, hp.a), (gpt.C.pos, hp.c)],
+            &[(l.crank, hm.crank), (l.rod, hm.rod), (l.wheel, hm.wheel)],
+            &[(pt.O2, hm.o2), (pt.A, hm.a), (pt.C, hm.c)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O2.force, hf.o2),
+                (j.A.force, hf.a),
+                (j.C.force, hf.c),
+                (j.roll.force, hf.roll),
+            ],
+        );
+        r.scalars(
+            "kinetostatics: contact normal and friction",
+            q,
+            &[(j.roll.normal, hf.normal), (j.roll.friction, hf.friction)],
+        );
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    r.check(&six_expected(&[
+        "kinetostatics: contact normal and friction",
+    ]));
+}
+
 /// (name, value, its rate, its second rate): a point's position, velocity and acceleration,
 /// or a link's angle, ω and α.
 type Track<T> = (&'static str, T, T, T);
@@ -909,9 +1201,13 @@ impl Tracked {
 /// the acceleration at q̇ = 1, q̈ = 0, for every point and cg; the same for the link
 /// angles (differenced modulo 2π), ω and α; and q̈ enters linearly (the acceleration at
 /// q̇ = 0, q̈ = 1 is the velocity at q̇ = 1, α there is ω).
-fn check_by_finite_differences(machine: &str, motion: impl Fn(f64, f64, f64) -> Tracked) {
+fn check_by_finite_differences(
+    machine: &str,
+    turns: usize,
+    motion: impl Fn(f64, f64, f64) -> Tracked,
+) {
     let h = 1e-5;
-    for q in sweep() {
+    for q in sweep_turns(turns) {
         let (k, lin) = (motion(q, 1.0, 0.0), motion(q, 0.0, 1.0));
         let (plus, minus) = (motion(q + h, 1.0, 0.0), motion(q - h, 1.0, 0.0));
         for (i, &(name, _, v, a)) in k.points.iter().enumerate() {
@@ -974,8 +1270,8 @@ struct Dynamics {
 
 const FD_STEP: f64 = 1e-5;
 
-fn check_dynamics(machine: &str, at: impl Fn(f64) -> Dynamics) {
-    for q in sweep() {
+fn check_dynamics(machine: &str, turns: usize, at: impl Fn(f64) -> Dynamics) {
+    for q in sweep_turns(turns) {
         let d = at(q);
         let r = d.reduced;
         let zhukovski = r.inertia * QDD + 0.5 * r.inertia_derivative * QD * QD - d.reduced_moment;
@@ -1064,7 +1360,7 @@ fn quick_return_hand_independent_checks() {
     let m = QuickReturn::new();
     let p = m.params().clone();
     let h = QuickReturnHand::new(&p);
-    check_by_finite_differences("quick-return", |q, qd, qdd| {
+    check_by_finite_differences("quick-return", 1, |q, qd, qdd| {
         let k = h.kinematics(q, qd, qdd).unwrap();
         let mut t = Tracked::default();
         t.point("A", &k.a);
@@ -1106,7 +1402,7 @@ fn quick_return_hand_independent_checks() {
             &[-f.slot_moment],
         );
     }
-    check_dynamics("quick-return", |q| {
+    check_dynamics("quick-return", 1, |q| {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let pose = |q| h.pose(q).unwrap();
         let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
@@ -1134,7 +1430,7 @@ fn scotch_yoke_hand_independent_checks() {
     let m = ScotchYoke::new();
     let p = m.params().clone();
     let h = ScotchYokeHand::new(&p);
-    check_by_finite_differences("Scotch yoke", |q, qd, qdd| {
+    check_by_finite_differences("Scotch yoke", 1, |q, qd, qdd| {
         let k = h.kinematics(q, qd, qdd).unwrap();
         let mut t = Tracked::default();
         t.point("A", &k.a);
@@ -1167,7 +1463,7 @@ fn scotch_yoke_hand_independent_checks() {
             &[f.guide_moment],
         );
     }
-    check_dynamics("Scotch yoke", |q| {
+    check_dynamics("Scotch yoke", 1, |q| {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let pose = |q| h.pose(q).unwrap();
         let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
@@ -1194,7 +1490,7 @@ fn inverted_slider_crank_hand_independent_checks() {
     let m = InvertedSliderCrank::new();
     let p = m.params().clone();
     let h = InvertedSliderCrankHand::new(&p);
-    check_by_finite_differences("inverted slider-crank", |q, qd, qdd| {
+    check_by_finite_differences("inverted slider-crank", 1, |q, qd, qdd| {
         let k = h.kinematics(q, qd, qdd).unwrap();
         let mut t = Tracked::default();
         t.point("A", &k.a);
@@ -1236,7 +1532,7 @@ fn inverted_slider_crank_hand_independent_checks() {
             &[f.slide_moment, loads.resist],
         );
     }
-    check_dynamics("inverted slider-crank", |q| {
+    check_dynamics("inverted slider-crank", 1, |q| {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let pose = |q| h.pose(q).unwrap();
         let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
@@ -1254,6 +1550,347 @@ fn inverted_slider_crank_hand_independent_checks() {
                 + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
                 + loads.push.dot(&d_dq(|q| pose(q).p, q))
                 + loads.resist * block_turn,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
+/// The hand-written geared slider-crank against itself: the mesh's radii and pressure
+/// angle are the declared ones (the loaded model's), Willis' relation (no slip at the
+/// pitch point), finite differences, every link's balance (the tooth force at the pitch
+/// point on the line of action, at α from the tangent and pushing the gear away from the
+/// pinion), the driver by three routes, dI*/dq, M* and the inverse problem.
+#[test]
+fn geared_slider_crank_hand_independent_checks() {
+    let rt = mech::Mechanism::from_rust_source(
+        include_str!("../benches/floor/machines.rs"),
+        "GearedSliderCrank",
+    )
+    .unwrap();
+    let mesh = rt
+        .model()
+        .joints
+        .iter()
+        .find(|j| j.name == "mesh")
+        .and_then(|j| j.mesh.clone())
+        .unwrap();
+    assert_eq!(
+        (mesh.ra, mesh.rb, mesh.internal),
+        (GEARED_PINION_RADIUS, GEARED_GEAR_RADIUS, false)
+    );
+    assert!((mesh.pressure_angle - GEARED_PRESSURE_ANGLE).abs() < 1e-15);
+    let m = GearedSliderCrank::new();
+    let p = m.params().clone();
+    let h = GearedSliderCrankHand::new(&p);
+    let (ra, rb) = (GEARED_PINION_RADIUS, GEARED_GEAR_RADIUS);
+    let w = (p.points.O2 - p.points.O1).normalize();
+    let pitch = p.points.O1 + w * ra;
+    let tangent = Vector2::new(-w.y, w.x);
+    check_by_finite_differences("geared slider-crank", 3, |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("A", &k.a);
+        t.point("B", &k.b);
+        t.link("pinion", &k.pinion);
+        t.link("crank", &k.crank);
+        t.link("rod", &k.rod);
+        t.link("piston", &k.piston);
+        t
+    });
+    let loads = geared_slider_crank_loads();
+    let (l, g) = (&p.links, p.gravity);
+    for q in sweep_turns(3) {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        // Willis: the pitch circles roll, v_P of the pinion = v_P of the gear.
+        let vp1 = k.pinion.omega * ra;
+        let vp2 = -k.crank.omega * rb;
+        assert!((vp1 - vp2).abs() <= 1e-15 * vp1.abs(), "Willis at {q}");
+        let f = h.kinetostatics(&k, &loads);
+        let (o1, o2, a, b) = (k.o1.pos, k.o2.pos, k.a.pos, k.b.pos);
+        let (ft, fr) = (f.mesh.dot(&tangent), f.mesh.dot(&w));
+        assert!(
+            fr >= 0.0
+                && (fr - ft.abs() * GEARED_PRESSURE_ANGLE.tan()).abs() <= 1e-12 * f.tooth_load,
+            "line of action at {q}: tangential {ft}, radial {fr}"
+        );
+        assert!((f.mesh.norm() - f.tooth_load).abs() <= 1e-12 * f.tooth_load);
+        assert_eq!(f.flank, ft.signum());
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "geared slider-crank pinion",
+            q,
+            body(&l.pinion),
+            &k.pinion,
+            &[(o1, f.o1), (pitch, -f.mesh)],
+            &[f.driver],
+        );
+        check_balance(
+            "geared slider-crank gear",
+            q,
+            body(&l.crank),
+            &k.crank,
+            &[(o2, f.o2), (pitch, f.mesh), (a, -f.a)],
+            &[loads.shaft],
+        );
+        check_balance(
+            "geared slider-crank rod",
+            q,
+            body(&l.rod),
+            &k.rod,
+            &[(a, f.a), (b, -f.b)],
+            &[],
+        );
+        check_balance(
+            "geared slider-crank piston",
+            q,
+            body(&l.piston),
+            &k.piston,
+            &[(b, f.b), (b, f.guide), (b, loads.gas)],
+            &[f.guide_moment],
+        );
+        assert!(f.guide.dot(&p.axes.guide).abs() <= 1e-12 * f.guide.norm().max(1.0));
+    }
+    check_dynamics("geared slider-crank", 3, |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        let crank_turn =
+            wrap(pose(q + FD_STEP).crank.angle - pose(q - FD_STEP).crank.angle) / (2.0 * FD_STEP);
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.pinion.mass * g.dot(&d_dq(|q| pose(q).pinion.cg, q))
+                + l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
+                + l.rod.mass * g.dot(&d_dq(|q| pose(q).rod.cg, q))
+                + l.piston.mass * g.dot(&d_dq(|q| pose(q).piston.cg, q))
+                + loads.gas.dot(&d_dq(|q| pose(q).b, q))
+                + loads.shaft * crank_turn,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
+/// The hand-written roller cam against itself: its law, base circle and roller are the
+/// declared ones (the loaded model's), the lift by finite differences, the contact normal
+/// perpendicular to the pitch curve as the cam sees it (a central difference of the
+/// roller's centre in the cam's frame) and pushing the follower away from the cam, every
+/// link's balance with the contact force at the contact point K = P − r n, the driver by
+/// three routes, dI*/dq, M* and the inverse problem.
+#[test]
+fn roller_cam_hand_independent_checks() {
+    use mech::cam::{Face, Law};
+    let rt = mech::Mechanism::from_rust_source(
+        include_str!("../benches/floor/machines.rs"),
+        "RollerCam",
+    )
+    .unwrap();
+    let spec = rt
+        .model()
+        .joints
+        .iter()
+        .find(|j| j.name == "lobe")
+        .and_then(|j| j.cam.clone())
+        .unwrap();
+    assert_eq!(spec.base_radius, CAM_BASE_RADIUS);
+    assert_eq!(spec.face, Face::Roller(CAM_ROLLER_RADIUS));
+    let laws: Vec<_> = spec.segments.iter().map(|g| g.law).collect();
+    assert_eq!(
+        laws,
+        [Law::Cycloidal, Law::Dwell, Law::Cycloidal, Law::Dwell]
+    );
+    let ends = [CAM_SEGMENTS[0], CAM_SEGMENTS[1], CAM_SEGMENTS[2], TAU];
+    let lifts = [CAM_LIFT, CAM_LIFT, 0.0, 0.0];
+    for (k, g) in spec.segments.iter().enumerate() {
+        assert!(
+            (g.end - ends[k]).abs() < 1e-15,
+            "segment {k} ends at {}",
+            g.end
+        );
+        assert!(
+            (g.to - lifts[k]).abs() < 1e-15,
+            "segment {k} lifts to {}",
+            g.to
+        );
+    }
+    let m = RollerCam::new();
+    let p = m.params().clone();
+    let h = RollerCamHand::new(&p);
+    let r = CAM_ROLLER_RADIUS;
+    check_by_finite_differences("roller cam", 1, |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("P", &k.p);
+        t.point("T", &k.t);
+        t.link("cam", &k.cam);
+        t.link("follower", &k.follower);
+        t
+    });
+    let loads = roller_cam_loads();
+    let (l, g) = (&p.links, p.gravity);
+    let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
+    // The roller's centre seen from the cam (turned back by q), relative to O.
+    let in_cam = |q: f64, v: Vector2<f64>| {
+        let (sn, cs) = (-q).sin_cos();
+        Vector2::new(cs * v.x - sn * v.y, sn * v.x + cs * v.y)
+    };
+    for q in sweep() {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let f = h.kinetostatics(&k, &loads);
+        let (o, pp) = (k.o.pos, k.p.pos);
+        assert!(f.normal_force > 0.0, "the follower leaves the cam at {q}");
+        let n = f.lobe / f.normal_force;
+        assert!((n.norm() - 1.0).abs() < 1e-12, "|n| at {q}");
+        let pitch = |q: f64| in_cam(q, h.pose(q).unwrap().p - o);
+        let tangent = (pitch(q + FD_STEP) - pitch(q - FD_STEP)) / (2.0 * FD_STEP);
+        let nc = in_cam(q, n);
+        assert!(
+            nc.dot(&tangent).abs() < 1e-8 * tangent.norm(),
+            "normal not normal to the pitch curve at {q}"
+        );
+        assert!(
+            cross(tangent, nc) > 0.0,
+            "normal not outward at {q} (the pitch curve runs clockwise)"
+        );
+        let contact = pp - n * r;
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "roller cam cam",
+            q,
+            body(&l.cam),
+            &k.cam,
+            &[(o, f.o), (contact, -f.lobe)],
+            &[f.driver, loads.drag],
+        );
+        check_balance(
+            "roller cam follower",
+            q,
+            body(&l.follower),
+            &k.follower,
+            &[(pp, f.slide), (contact, f.lobe), (k.t.pos, loads.push)],
+            &[f.slide_moment],
+        );
+        assert!(f.slide.dot(&p.axes.slide).abs() <= 1e-12 * f.slide.norm().max(1.0));
+    }
+    check_dynamics("roller cam", 1, |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.cam.mass * g.dot(&d_dq(|q| pose(q).cam.cg, q))
+                + l.follower.mass * g.dot(&d_dq(|q| pose(q).follower.cg, q))
+                + loads.push.dot(&d_dq(|q| pose(q).t, q))
+                + loads.drag,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
+/// The hand-written crank, rod and wheel against itself: the wheel's radius is the
+/// declared one (the loaded model's), rolling without slipping (the contact point's
+/// velocity zero: v_C + ω₄ × (K − C) = 0), finite differences, every link's balance with
+/// the contact force at K = C − r n, its normal and friction parts, the driver by three
+/// routes, dI*/dq, M* and the inverse problem.
+#[test]
+fn crank_rod_wheel_hand_independent_checks() {
+    let rt = mech::Mechanism::from_rust_source(
+        include_str!("../benches/floor/machines.rs"),
+        "CrankRodWheel",
+    )
+    .unwrap();
+    let roll = rt.model().joints.iter().find(|j| j.name == "roll").unwrap();
+    assert_eq!(roll.radius, WHEEL_RADIUS);
+    let m = CrankRodWheel::new();
+    let p = m.params().clone();
+    let h = CrankRodWheelHand::new(&p);
+    check_by_finite_differences("crank-rod-wheel", 1, |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("A", &k.a);
+        t.point("C", &k.c);
+        t.link("crank", &k.crank);
+        t.link("rod", &k.rod);
+        t.link("wheel", &k.wheel);
+        t
+    });
+    let loads = crank_rod_wheel_loads();
+    let (l, g) = (&p.links, p.gravity);
+    let u = p.axes.roll.normalize();
+    let n = Vector2::new(-u.y, u.x);
+    for q in sweep() {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let f = h.kinetostatics(&k, &loads);
+        let (o2, a, c) = (k.o2.pos, k.a.pos, k.c.pos);
+        let contact = c - n * WHEEL_RADIUS;
+        let r = contact - c;
+        let vk = k.c.vel + Vector2::new(-r.y, r.x) * k.wheel.omega;
+        assert!(
+            vk.norm() <= 1e-12 * k.c.vel.norm().max(1e-3),
+            "the wheel slips at {q}: {vk:?}"
+        );
+        assert!(
+            (f.roll - (n * f.normal + u * f.friction)).norm() <= 1e-12 * f.roll.norm(),
+            "contact parts at {q}"
+        );
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "crank-rod-wheel crank",
+            q,
+            body(&l.crank),
+            &k.crank,
+            &[(o2, f.o2), (a, -f.a)],
+            &[f.driver],
+        );
+        check_balance(
+            "crank-rod-wheel rod",
+            q,
+            body(&l.rod),
+            &k.rod,
+            &[(a, f.a), (c, -f.c)],
+            &[],
+        );
+        check_balance(
+            "crank-rod-wheel wheel",
+            q,
+            body(&l.wheel),
+            &k.wheel,
+            &[(c, f.c), (contact, f.roll), (c, loads.pull)],
+            &[loads.brake],
+        );
+    }
+    check_dynamics("crank-rod-wheel", 1, |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        let wheel_turn =
+            (pose(q + FD_STEP).wheel.angle - pose(q - FD_STEP).wheel.angle) / (2.0 * FD_STEP);
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
+                + l.rod.mass * g.dot(&d_dq(|q| pose(q).rod.cg, q))
+                + l.wheel.mass * g.dot(&d_dq(|q| pose(q).wheel.cg, q))
+                + loads.pull.dot(&d_dq(|q| pose(q).c, q))
+                + loads.brake * wheel_turn,
             inverse: h
                 .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
                 .driver,
@@ -1290,5 +1927,25 @@ fn floor_machines_group_kinds() {
         (FLOOR, "InvertedSliderCrank", ["DrivenRevolute", "Rpr"]),
     ] {
         assert_eq!(kinds(source, name), expected, "{name}");
+    }
+    // The machines with elements, which the dense oracle refuses: their model as the
+    // run-time `Mechanism` loads it.
+    let element_kinds = |name: &str| -> Vec<String> {
+        let m = mech::Mechanism::from_rust_source(FLOOR, name).unwrap();
+        plan(m.model())
+            .unwrap()
+            .iter()
+            .map(|group| {
+                let s = format!("{:?}", group.solver);
+                s.split([' ', '{']).next().unwrap().to_owned()
+            })
+            .collect()
+    };
+    for (name, expected) in [
+        ("GearedSliderCrank", &["DrivenRevolute", "Mesh", "Rrp"][..]),
+        ("RollerCam", &["DrivenRevolute", "Cam"][..]),
+        ("CrankRodWheel", &["DrivenRevolute", "Rrl"][..]),
+    ] {
+        assert_eq!(element_kinds(name), expected, "{name}");
     }
 }

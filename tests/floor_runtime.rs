@@ -1,5 +1,5 @@
 //! The run-time `mech::Mechanism`, loaded from the text the macro compiled, gives the
-//! generated struct's answers on the floor's five machines (`benches/floor/runtime.rs`
+//! generated struct's answers on the floor's machines (`benches/floor/runtime.rs`
 //! times the two): every quantity of every operation the floor times — pose, kinematics,
 //! kinetostatics (every reaction and the driver), the driver by virtual power, Zhukovski's
 //! I*, dI*/dq and M*, the direct problem's q̈ — with the floor's loads, on a sweep of 72
@@ -245,4 +245,25 @@ floor_runtime!(
     InvertedSliderCrank,
     InvertedSliderCrankLoads,
     [("push", [-300.0, 40.0]), ("resist", [2.5])]
+);
+floor_runtime!(
+    geared_slider_crank,
+    FLOOR,
+    GearedSliderCrank,
+    GearedSliderCrankLoads,
+    [("gas", [-900.0, -90.0]), ("shaft", [-4.0])]
+);
+floor_runtime!(
+    roller_cam,
+    FLOOR,
+    RollerCam,
+    RollerCamLoads,
+    [("push", [20.0, -250.0]), ("drag", [-1.5])]
+);
+floor_runtime!(
+    crank_rod_wheel,
+    FLOOR,
+    CrankRodWheel,
+    CrankRodWheelLoads,
+    [("pull", [-150.0, 20.0]), ("brake", [-0.8])]
 );

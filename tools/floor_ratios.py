@@ -41,7 +41,14 @@ GROUPS = [
     "slider_crank/acceleration",
 ] + [
     f"{machine}/{op}"
-    for machine in ("quick_return", "scotch_yoke", "inverted_slider_crank")
+    for machine in (
+        "quick_return",
+        "scotch_yoke",
+        "inverted_slider_crank",
+        "geared_slider_crank",
+        "roller_cam",
+        "crank_rod_wheel",
+    )
     for op in OPERATIONS
 ]
 FUNCTIONS = ("generated", "hand")

@@ -136,7 +136,8 @@ def ns(v):
 # the figures
 
 
-FLOOR_MACHINES = "four_bar|slider_crank|quick_return|scotch_yoke|inverted_slider_crank"
+FLOOR_MACHINES = ("four_bar|slider_crank|quick_return|scotch_yoke|inverted_slider_crank|geared_slider_crank"
+                  "|roller_cam|crank_rod_wheel")
 
 
 def floor():

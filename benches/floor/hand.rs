@@ -1,18 +1,22 @@
 //! Hand-written closed-form solvers of the crank-rocker `FourBar`, the offset
 //! `SliderCrank`, the crank-shaper `QuickReturn` and the `ScotchYoke` of
-//! `tests/common/mechanisms.rs` and of the `InvertedSliderCrank` of
-//! `benches/floor/machines.rs`: the code an engineer who knows these machines writes in an
-//! afternoon, used as the *floor* that the generated solvers are timed against
-//! (`benches/floor.rs`) and checked against (`tests/floor.rs`). The last three are in
-//! modules of their own (`hand_quick_return.rs`, `hand_scotch_yoke.rs`,
-//! `hand_inverted_slider_crank.rs`, beside this file), re-exported here.
+//! `tests/common/mechanisms.rs` and of the `InvertedSliderCrank`, the `GearedSliderCrank`
+//! and the `RollerCam` of `benches/floor/machines.rs`: the code an engineer who knows these
+//! machines writes in an afternoon, used as the *floor* that the generated solvers are
+//! timed against (`benches/floor.rs`) and checked against (`tests/floor.rs`). The last five
+//! are in modules of their own (`hand_quick_return.rs`, `hand_scotch_yoke.rs`,
+//! `hand_inverted_slider_crank.rs`, `hand_geared_slider_crank.rs`, `hand_roller_cam.rs`,
+//! beside this file), re-exported here. (The gear pair's radii and pressure angle and the
+//! cam's law, base circle and roller are not generated parameters: the last two modules
+//! hold them as constants, which `tests/floor.rs` checks against the loaded model.)
 //!
 //! Conventions are those of `docs/conventions.md`: x right, y up, angles CCW; a link's
 //! angle is the direction of its first listed point → second listed point (a link with one
 //! point: its rotation since the drawing); the reaction at a joint declared `(a, b)` is the
 //! force BY a ON b at the joint point (and, at a prismatic joint, the moment by a on b
 //! about that point); the driver is the torque by the ground on the crank; gravity acts at
-//! every cg. The input q is the crank angle θ₂ (no drawing has an input offset).
+//! every cg. The input q is the driven link's angle (the crank's θ₂; the geared
+//! slider-crank's pinion's, the roller cam's cam's rotation), no drawing has an input offset.
 //!
 //! Everything is plain scalar `f64` code (with `Vector2<f64>` as the 2-vector), all
 //! constants of the drawing (lengths, branch signs, cg and coupler-point offsets in the
@@ -28,22 +32,34 @@
 
 #![allow(dead_code)]
 
-use super::machines::{InvertedSliderCrankLoads, InvertedSliderCrankParams};
+use super::machines::{
+    CrankRodWheelLoads, CrankRodWheelParams, GearedSliderCrankLoads, GearedSliderCrankParams,
+    InvertedSliderCrankLoads, InvertedSliderCrankParams, RollerCamLoads, RollerCamParams,
+};
 use crate::mechanisms::{
     FourBarLoads, FourBarParams, QuickReturnLoads, QuickReturnParams, ScotchYokeLoads,
     ScotchYokeParams, SliderCrankLoads, SliderCrankParams,
 };
 use mech::prelude::Vector2;
 
+#[path = "hand_crank_rod_wheel.rs"]
+mod crank_rod_wheel;
+#[path = "hand_geared_slider_crank.rs"]
+mod geared_slider_crank;
 #[path = "hand_inverted_slider_crank.rs"]
 mod inverted_slider_crank;
 #[path = "hand_quick_return.rs"]
 mod quick_return;
+#[path = "hand_roller_cam.rs"]
+mod roller_cam;
 #[path = "hand_scotch_yoke.rs"]
 mod scotch_yoke;
 
+pub use crank_rod_wheel::*;
+pub use geared_slider_crank::*;
 pub use inverted_slider_crank::*;
 pub use quick_return::*;
+pub use roller_cam::*;
 pub use scotch_yoke::*;
 
 /// A plane vector (m, m/s, m/s², N).

@@ -39,3 +39,117 @@ mechanism! {
         },
     }
 }
+
+mechanism! {
+    /// Geared slider-crank: the pinion (pitch radius 25 mm, centre O1) is the input; it
+    /// drives the gear (75 mm, centre O2) that carries the crank O2–A, 3:1 down, through a
+    /// 20° external gear pair whose line of centres O1→O2 is slanted (100 mm, at 36.87°);
+    /// the rod A–B drives the piston B along a guide tilted by 5.7° (`along (1.0, 0.1)`),
+    /// 10.9 mm off O2. A meshing group of one link (the gear, `mesh` and its pin O2) then
+    /// an RRP dyad; the mesh's radii and pressure angle are those of the hand-written
+    /// `GearedSliderCrankHand` (`benches/floor/hand_geared_slider_crank.rs`).
+    pub struct GearedSliderCrank {
+        gravity: (0.0, -9.81),
+        ground { O1: (0.0, 0.0), O2: (0.08, 0.06) },
+        link pinion {
+            points { O1 },
+            mass: 0.3, inertia: 0.0001, cg: (0.0, 0.0),
+        },
+        link crank {
+            points { O2, A: (0.11897114317029974, 0.0825) },
+            mass: 1.5, inertia: 0.003, cg: (0.09, 0.064),
+        },
+        link rod {
+            points { A, B: (0.27, 0.09) },
+            mass: 0.9, inertia: 0.0025, cg: (0.2, 0.087),
+        },
+        link piston {
+            points { B },
+            mass: 0.8, cg: (0.275, 0.088),
+        },
+        joints {
+            O1: revolute(ground, pinion),
+            O2: revolute(ground, crank),
+            A: revolute(crank, rod),
+            B: revolute(rod, piston),
+            guide: prismatic(ground, piston) at B along (1.0, 0.1),
+            mesh: gear(pinion, crank) radii (25 mm, 75 mm) pressure_angle 20 deg,
+        },
+        input: O1,
+        loads {
+            gas: force on piston at B,
+            shaft: torque on crank,
+        },
+    }
+}
+
+mechanism! {
+    /// Disc cam with an offset translating roller follower: the cam (the input, turning
+    /// about O, its cg off the centre) lifts the follower 15 mm by a cycloidal rise over
+    /// 120°, holds it 60°, lets it down by a cycloidal fall over 90° and rests 90° (the
+    /// floor's q = 0.7 rad is in the rise);
+    /// base circle 40 mm, roller 10 mm, the follower's axis (vertical) 10 mm off O, its cg
+    /// and its top T, where it is loaded, off the axis. A cam group of one link (the follower, its slide and the cam pair); the
+    /// law, base circle and roller are those of the hand-written `RollerCamHand`
+    /// (`benches/floor/hand_roller_cam.rs`).
+    pub struct RollerCam {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0) },
+        link cam {
+            points { O },
+            mass: 1.2, inertia: 0.0008, cg: (0.002, -0.001),
+        },
+        link follower {
+            points { P: (0.01, 0.04898979485566356), T: (0.025, 0.11) },
+            mass: 0.35, inertia: 0.0002, cg: (0.012, 0.09),
+        },
+        joints {
+            O: revolute(ground, cam),
+            slide: prismatic(ground, follower) at P along (0.0, 1.0),
+            lobe: cam(cam, follower) base_radius 40 mm roller 10 mm
+                law [cycloidal 120 deg rise 15 mm, dwell 60 deg, cycloidal 90 deg fall 15 mm,
+                     dwell 90 deg],
+        },
+        input: O,
+        loads {
+            push: force on follower at T,
+            drag: torque on cam,
+        },
+    }
+}
+
+mechanism! {
+    /// Crank, rod and a wheel rolling on the ground: the crank O2–A drives the rod A–C,
+    /// pinned at C to the centre of a 30 mm wheel that rolls without slipping on a straight
+    /// track tilted by 4.6° (`along (1.0, 0.08)`, the track under the wheel), its cg 2 mm
+    /// off the centre (an unbalanced wheel), pulled at C and braked. A rolling group: the
+    /// rod and the wheel as a crank–rod–wheel dyad (an RRP dyad whose slider turns by
+    /// −s/r as it travels s).
+    pub struct CrankRodWheel {
+        gravity: (0.0, -9.81),
+        ground { O2: (0.0, 0.0) },
+        link crank {
+            points { O2, A: (0.025711504387461575, 0.030641777724759120) },
+            mass: 0.6, inertia: 0.0004, cg: (0.012, 0.01),
+        },
+        link rod {
+            points { A, C: (0.2, 0.05) },
+            mass: 0.7, inertia: 0.002, cg: (0.11, 0.042),
+        },
+        link wheel {
+            points { C },
+            mass: 1.1, inertia: 0.0006, cg: (0.202, 0.0505),
+        },
+        joints {
+            O2: revolute(ground, crank),
+            A: revolute(crank, rod),
+            C: revolute(rod, wheel),
+            roll: rolling(ground, wheel) at C radius 30 mm along (1.0, 0.08),
+        },
+        input: O2,
+        loads {
+            pull: force on wheel at C,
+            brake: torque on wheel,
+        },
+    }
+}

@@ -1,6 +1,6 @@
 //! The run-time side of the floor: the run-time `mech::Mechanism`, loaded from the very
 //! text the macro compiled (`tests/common/mechanisms.rs`, `benches/floor/machines.rs`),
-//! against the generated struct, on the floor's five machines and all six operations, with
+//! against the generated struct, on the floor's machines and all six operations, with
 //! the floor's inputs and loads. The run-time side uses its caller-buffer forms, no
 //! allocation per call: `pose_into`, `kinematics_into`, `kinetostatics_into`,
 //! `Machine::driver_actions` into a slice, and Zhukovski's `reduced` and `acceleration`.
@@ -266,6 +266,30 @@ runtime_machine!(
     "InvertedSliderCrank",
     loads: &[("push", &[-300.0, 40.0]), ("resist", &[2.5])]
 );
+runtime_machine!(
+    geared_slider_crank,
+    "geared_slider_crank",
+    Case::geared_slider_crank(),
+    FLOOR,
+    "GearedSliderCrank",
+    loads: &[("gas", &[-900.0, -90.0]), ("shaft", &[-4.0])]
+);
+runtime_machine!(
+    roller_cam,
+    "roller_cam",
+    Case::roller_cam(),
+    FLOOR,
+    "RollerCam",
+    loads: &[("push", &[20.0, -250.0]), ("drag", &[-1.5])]
+);
+runtime_machine!(
+    crank_rod_wheel,
+    "crank_rod_wheel",
+    Case::crank_rod_wheel(),
+    FLOOR,
+    "CrankRodWheel",
+    loads: &[("pull", &[-150.0, 20.0]), ("brake", &[-0.8])]
+);
 
 /// The groups `runtime/<machine>/<op>`.
 pub fn pairs(c: &mut Criterion) {
@@ -274,6 +298,9 @@ pub fn pairs(c: &mut Criterion) {
     quick_return::pairs(c);
     scotch_yoke::pairs(c);
     inverted_slider_crank::pairs(c);
+    geared_slider_crank::pairs(c);
+    roller_cam::pairs(c);
+    crank_rod_wheel::pairs(c);
 }
 
 /// The entries `runtime_ratio/<machine>/<op>`.
@@ -283,4 +310,7 @@ pub fn ratios(c: &mut Criterion<Interleaved>) {
     quick_return::ratios(c);
     scotch_yoke::ratios(c);
     inverted_slider_crank::ratios(c);
+    geared_slider_crank::ratios(c);
+    roller_cam::ratios(c);
+    crank_rod_wheel::ratios(c);
 }

@@ -51,6 +51,7 @@ impl Law {
     }
 
     /// (s, ds/dx, d²s/dx², d³s/dx³) of the unit rise (L = 1) at x ∈ [0, 1].
+    #[inline]
     pub fn unit(self, x: f64) -> [f64; 4] {
         match self {
             Law::Dwell => [0.0; 4],
@@ -104,6 +105,21 @@ pub struct Segment {
     pub from: f64,
     /// h₁, the lift at θ₁ (= h₀ for a dwell).
     pub to: f64,
+}
+
+/// x taken in [0, 2π): `x.rem_euclid(2π)` bit for bit, without its division (a call of
+/// `fmod`) when x is within a turn either side of 0, as the kernels' cam angles, from an
+/// `atan2`, always are: x itself on [0, 2π), x + 2π on (−2π, 0) (where `fmod` returns x;
+/// at −2π it returns −0).
+#[inline(always)]
+fn within_turn(x: f64) -> f64 {
+    if (0.0..TAU).contains(&x) {
+        x
+    } else if x > -TAU && x < 0.0 {
+        x + TAU
+    } else {
+        x.rem_euclid(TAU)
+    }
 }
 
 /// A periodic cubic spline through (θᵢ, sᵢ), i = 0..n, θ over one revolution (module docs).
@@ -175,7 +191,7 @@ impl Spline {
     pub fn eval(&self, theta: f64) -> [f64; 4] {
         let n = self.theta.len();
         let t0 = self.theta[0];
-        let t = t0 + (theta - t0).rem_euclid(TAU);
+        let t = t0 + within_turn(theta - t0);
         let k = self.theta.partition_point(|&x| x <= t).max(1) - 1;
         let (ta, tb) = (
             self.theta[k],
@@ -278,28 +294,35 @@ impl MotionLaw {
 
     /// (s, s', s'', s''') at cam angle θ (rad, any: taken modulo the turn); derivatives
     /// per unit cam angle (m/rad, m/rad², m/rad³ for a translating follower). At a joint
-    /// of two segments the later one's values are taken.
+    /// of two segments the later one's values are taken. (Inline: the cam pair's kernels
+    /// call it in the generated solvers, another crate.)
+    #[inline]
     pub fn eval(&self, theta: f64) -> [f64; 4] {
         match self {
             MotionLaw::Table(sp) => sp.eval(theta),
             MotionLaw::Segments(segs) => {
                 let t0 = segs[0].start;
-                let t = t0 + (theta - t0).rem_euclid(TAU);
+                let t = t0 + within_turn(theta - t0);
                 let g = segs.iter().rev().find(|g| g.start <= t).unwrap_or(&segs[0]);
                 Self::segment(g, t)
             }
         }
     }
 
+    /// One segment's (s, s', s'', s''') at t (module docs): one division, 1/β, for the
+    /// four values.
+    #[inline]
     fn segment(g: &Segment, t: f64) -> [f64; 4] {
-        let beta = g.end - g.start;
+        let inv_beta = 1.0 / (g.end - g.start);
         let rise = g.to - g.from;
-        let u = g.law.unit(((t - g.start) / beta).clamp(0.0, 1.0));
+        let u = g.law.unit(((t - g.start) * inv_beta).clamp(0.0, 1.0));
+        let k1 = rise * inv_beta;
+        let k2 = k1 * inv_beta;
         [
             g.from + rise * u[0],
-            rise * u[1] / beta,
-            rise * u[2] / (beta * beta),
-            rise * u[3] / (beta * beta * beta),
+            k1 * u[1],
+            k2 * u[2],
+            k2 * inv_beta * u[3],
         ]
     }
 
@@ -381,4 +404,38 @@ pub fn law_of(
         ));
     }
     Ok(law)
+}
+
+#[cfg(test)]
+mod tests {
+    /// `within_turn` is `rem_euclid(2π)` bit for bit, on and off its fast ranges.
+    #[test]
+    fn within_turn_is_rem_euclid() {
+        for x in [
+            0.0,
+            -0.0,
+            1e-300,
+            -1e-300,
+            1.0,
+            -1.0,
+            3.0,
+            -3.0,
+            6.283185307179586,
+            -6.283185307179586,
+            6.283185307179585,
+            -6.283185307179585,
+            7.0,
+            -7.0,
+            40.0,
+            -40.0,
+            -1e-17,
+            f64::MIN_POSITIVE,
+        ] {
+            assert_eq!(
+                super::within_turn(x).to_bits(),
+                x.rem_euclid(super::TAU).to_bits(),
+                "{x}"
+            );
+        }
+    }
 }

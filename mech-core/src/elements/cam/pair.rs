@@ -159,9 +159,9 @@ pub fn cam_reactions(
     let (u, _, df) = grp.frame(g, geom, s, rc);
     let xh = V2::new(u.y, -u.x);
     let o = point_of(s, grp.cam, geom.centre);
-    let c = geom.profile.contact(th[0]);
-    let kw = o + xh * c.contact.x + u * c.contact.y;
-    let nw = xh * c.normal.x + u * c.normal.y;
+    let (kc, nc) = geom.profile.contact_normal(th[0]);
+    let kw = o + xh * kc.x + u * kc.y;
+    let nw = xh * nc.x + u * nc.y;
     let fl = grp.follower;
     let wf = f[fl];
     let ff = V2::new(wf.x, wf.y);

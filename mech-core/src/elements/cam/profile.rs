@@ -202,6 +202,31 @@ impl Profile {
         }
     }
 
+    /// The contact point K and the common normal n at cam angle θ, in the axis frame, as
+    /// [`Profile::contact`] gives them (bit for bit) but without the pressure angle and the
+    /// radius of curvature: what the cam pair's reactions need
+    /// ([`crate::elements::cam::cam_reactions`]), an `atan2` and a division less.
+    #[inline]
+    pub fn contact_normal(&self, theta: f64) -> (V2, V2) {
+        match (self.face, self.rocker) {
+            (Face::Flat, None) => {
+                let [s, s1, _, _] = self.law.eval(theta);
+                (V2::new(s1, self.base_radius + s), V2::new(0.0, 1.0))
+            }
+            (Face::Flat, Some(_)) => {
+                let c = self.contact(theta);
+                (c.contact, c.normal)
+            }
+            _ => {
+                let r = self.roller();
+                let [f, f1, _, _] = self.pitch_motion(self.law.eval(theta));
+                let v = f1 - perp(f);
+                let n = perp(v) / v.norm();
+                (f - n * r, n)
+            }
+        }
+    }
+
     /// The profile at cam angle θ, in the cam's frame: [`Profile::contact`] turned back
     /// by θ.
     pub fn at(&self, theta: f64) -> ProfilePoint {
@@ -370,5 +395,70 @@ impl Profile {
         }
         d.push('Z');
         d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::elements::cam::law::{Law, Segment};
+
+    /// `contact_normal` is `contact`'s contact point and normal bit for bit, for every
+    /// face, translating (with an offset) and oscillating, over a turn and beyond.
+    #[test]
+    fn contact_normal_is_contact() {
+        let seg = |law, start: f64, end: f64, from, to| Segment {
+            law,
+            start: start.to_radians(),
+            end: end.to_radians(),
+            from,
+            to,
+        };
+        let law = |lift: f64| {
+            MotionLaw::from_segments(vec![
+                seg(Law::Cycloidal, 0.0, 120.0, 0.0, lift),
+                seg(Law::Dwell, 120.0, 180.0, lift, lift),
+                seg(Law::Poly345, 180.0, 270.0, lift, 0.0),
+                seg(Law::Dwell, 270.0, 360.0, 0.0, 0.0),
+            ])
+            .unwrap()
+        };
+        let rocker = Some(Rocker {
+            pivot: [0.06, 0.03],
+            sign: -1.0,
+        });
+        let mut profiles = Vec::new();
+        for face in [Face::Knife, Face::Roller(0.01), Face::Flat] {
+            let offset = if face == Face::Flat { 0.0 } else { 0.01 };
+            profiles.push(Profile {
+                law: law(0.015),
+                base_radius: 0.04,
+                offset,
+                face,
+                rocker: None,
+            });
+            profiles.push(Profile {
+                law: law(0.2),
+                base_radius: 0.03,
+                offset: 0.0,
+                face,
+                rocker,
+            });
+        }
+        for p in &profiles {
+            for k in -40..80 {
+                let theta = 0.1 * k as f64 + 0.013;
+                let c = p.contact(theta);
+                let (contact, normal) = p.contact_normal(theta);
+                for (a, b) in [
+                    (contact.x, c.contact.x),
+                    (contact.y, c.contact.y),
+                    (normal.x, c.normal.x),
+                    (normal.y, c.normal.y),
+                ] {
+                    assert_eq!(a.to_bits(), b.to_bits(), "{:?} at {theta}", p.face);
+                }
+            }
+        }
     }
 }
