@@ -216,14 +216,7 @@ fn a_path_on_a_six_bars_curve_gives_a_six_bar_file() {
     let out_file = dir.path().join("six.mech");
     let out = mech()
         .args(["synth", "path", &csv, "--topology", "six-bar"])
-        .args([
-            "--evaluations",
-            "40000",
-            "--transmission",
-            "10",
-            "--ratio",
-            "20",
-        ])
+        .args(["--evaluations", "40000", "--transmission", "10", "--ratio", "20"])
         .args(["--format", "csv", "-o"])
         .arg(&out_file)
         .output()
@@ -240,18 +233,7 @@ fn a_path_on_a_six_bars_curve_gives_a_six_bar_file() {
     assert!(check.status.success(), "{report}");
     assert_eq!(report.matches("RRR dyad").count(), 2, "{report}");
     let text = std::fs::read_to_string(file).unwrap();
-    for name in [
-        "O2:",
-        "O4:",
-        "O6:",
-        "A:",
-        "B:",
-        "C:",
-        "D:",
-        "P:",
-        "input: O2",
-        "--topology six-bar",
-    ] {
+    for name in ["O2:", "O4:", "O6:", "A:", "B:", "C:", "D:", "P:", "input: O2", "--topology six-bar"] {
         assert!(text.contains(name), "{name} in {text}");
     }
     let curve = p_of(file, 0.0, std::f64::consts::TAU, 3600);
@@ -371,12 +353,7 @@ fn bad_input_is_refused_with_what_to_change() {
             2,
             "needs the crank angle of each target",
         ),
-        (
-            three,
-            &["--topology", "six-bar", "--open"],
-            2,
-            "closed paths",
-        ),
+        (three, &["--topology", "six-bar", "--open"], 2, "closed paths"),
         (three, &["--transmission", "95"], 2, "out of range"),
         (three, &["--ratio", "0.5"], 2, "out of range"),
         (three, &["--ratio", "1"], 1, "binds"),
