@@ -10,6 +10,7 @@ use std::path::Path;
 
 /// A mechanism of either kind: planar, or spatial (its first item is `space`).
 #[derive(Debug)]
+#[allow(clippy::large_enum_variant)] // one value per command: its size does not matter
 pub enum Any {
     /// A planar mechanism.
     Planar(Mechanism),
