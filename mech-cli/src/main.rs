@@ -217,6 +217,12 @@ fn spatial_sweep(
     state: &State,
     stdout: impl Write,
 ) -> Result<(), Failure> {
+    if m.dof() == 0 {
+        return Err(Failure::usage(format!(
+            "`{}` has no input: there is no range to sweep; declare an input (`input: J`)",
+            m.model().name
+        )));
+    }
     let (d, _) = spatial::input_dims(m, 0);
     let (a, b) = (
         quantity::parse(from, d, "--from")?,
