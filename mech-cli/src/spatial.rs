@@ -301,7 +301,8 @@ pub fn isometric(p: Vector3<f64>) -> V2 {
 
 /// The shapes of `m` at `q` in the isometric projection ([`isometric`]): the global axes
 /// (three guide lines labelled `x`, `y`, `z` at the drawing's lowest corner), each moving
-/// link (a bar between its two points, a plate through its points), a pin at each joint,
+/// link (a bar between its two points, a plate through its points taken in turn about
+/// their centre), a pin at each joint,
 /// the points' names.
 pub fn frame(m: &SpatialMechanism, q: &[f64]) -> Result<Frame, Failure> {
     let model = m.model();
@@ -339,7 +340,15 @@ pub fn frame(m: &SpatialMechanism, q: &[f64]) -> Result<Frame, Failure> {
         });
     }
     for b in &model.bodies[1..] {
-        let points: Vec<V2> = b.points.iter().map(|&p| isometric(at[p])).collect();
+        let mut points: Vec<V2> = b.points.iter().map(|&p| isometric(at[p])).collect();
+        if points.len() > 2 {
+            // A plate: its points in turn about their centre (a simple polygon).
+            let c = points.iter().fold(V2::zeros(), |s, p| s + p) / points.len() as f64;
+            points.sort_by(|p, q| {
+                let angle = |v: &V2| (v.y - c.y).atan2(v.x - c.x);
+                angle(p).total_cmp(&angle(q))
+            });
+        }
         let role = match points.len() {
             0 | 1 => continue,
             2 => Role::Bar,
