@@ -604,3 +604,124 @@ fn draw_shows_each_link_once_and_the_joints_where_the_solver_puts_them() {
         }
     }
 }
+
+/// The RSSP of mech-core/tests/spatial.rs (its `const RSSP`), driven at its slide.
+fn rssp_slide_text() -> String {
+    let source = include_str!("../../mech-core/tests/spatial.rs");
+    let start = source.find("const RSSP: &str = r#\"").unwrap() + "const RSSP: &str = r#\"".len();
+    let end = start + source[start..].find("\"#;").unwrap();
+    source[start..end].replace("input: O,", "input: guide,")
+}
+
+#[test]
+fn a_sliding_input_is_in_metres_and_its_driver_in_newtons() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssp_slide_text();
+    let file = rssr_file(&dir, &text);
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let mut loads = m.loads();
+    loads.set_by_name("gas", &[-50.0, 10.0, 5.0]);
+    let run = |format: &str| {
+        mech()
+            .arg("solve")
+            .arg(&file)
+            .args(["--at", "12mm", "--speed", "0.3", "--accel", "-0.5"])
+            .args(["--load", "gas=-50N,10N,5N", "--format", format])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone()
+    };
+    let got = csv_map(&run("csv"));
+    assert_same(&got, &library_row(&m, 0.012, 0.3, -0.5, &loads), "RSSP");
+    let table = String::from_utf8(run("table")).unwrap();
+    for (name, unit) in [
+        ("q", "m"),
+        ("driver", "N"),
+        ("virtual_power", "N"),
+        ("inertia", "kg"),
+        ("inertia_derivative", "kg/m"),
+        ("moment", "N"),
+        ("guide.fz", "N"),
+        ("guide.my", "N·m"),
+    ] {
+        let line = table
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("{name} in\n{table}"));
+        assert_eq!(line.split_whitespace().last(), Some(unit), "{line}");
+    }
+    // An angle where a length goes is a usage error naming the flag.
+    let o = mech()
+        .arg("solve")
+        .arg(&file)
+        .args(["--at", "30deg"])
+        .assert()
+        .failure()
+        .code(2)
+        .get_output()
+        .stderr
+        .clone();
+    let e = String::from_utf8(o).unwrap();
+    assert!(e.contains("--at") && e.contains("length"), "{e}");
+}
+
+#[test]
+fn two_inputs_name_their_columns_and_sweep_with_rest() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssr_text()
+        .replace(
+            "ground { O: (0.0, 0.0, 0.0), C: (250 mm, 120 mm, 80 mm) },",
+            "ground { O: (0.0, 0.0, 0.0) },\n    link slider { points { C: (250 mm, 120 mm, 80 mm) }, mass: 3.0, cg: (0.26, 0.11, 0.07), inertia: (1e-3, 1e-3, 1e-3, 0.0, 0.0, 0.0) },",
+        )
+        .replace(
+            "C: revolute(ground, rocker) axis (0.0, 0.0, 1.0),",
+            "C: revolute(slider, rocker) axis (0.0, 0.0, 1.0),\n        guide: prismatic(ground, slider) at C along (0.3, 1.0, -0.2),",
+        )
+        .replace("input: O,", "inputs: [O, guide],");
+    let file = rssr_file(&dir, &text);
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let out = mech()
+        .arg("sweep")
+        .arg(&file)
+        .args(["--from", "0", "--to", "1", "--steps", "4", "--rest", "5mm"])
+        .args(["--speed", "1,0.2", "--format", "csv"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let (head, rows) = csv_rows(&out);
+    assert_eq!(rows.len(), 5);
+    for c in [
+        "q.O",
+        "q.guide",
+        "driver.O",
+        "driver.guide",
+        "virtual_power.guide",
+    ] {
+        assert!(head.iter().any(|h| h == c), "{c} in {head:?}");
+    }
+    assert!(
+        !head.iter().any(|h| h == "inertia"),
+        "no Zhukovski for two inputs"
+    );
+    let col = |n: &str| head.iter().position(|h| h == n).unwrap();
+    let loads = m.loads();
+    for (k, row) in rows.iter().enumerate() {
+        let q = [0.25 * k as f64, 0.005];
+        assert_eq!((row[col("q.O")], row[col("q.guide")]), (q[0], q[1]));
+        let mo = m.kinematics(&q, &[1.0, 0.2], &[0.0, 0.0]).unwrap();
+        let f = m.kinetostatics(&mo, &loads).unwrap();
+        for (j, name) in ["driver.O", "driver.guide"].iter().enumerate() {
+            let (got, want) = (row[col(name)], f.drivers[j]);
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "{name}: {got} vs {want}"
+            );
+        }
+        let b = mo.point("B").unwrap();
+        assert!((row[col("B.z")] - b.z).abs() < 1e-15);
+    }
+}
