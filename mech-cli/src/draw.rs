@@ -1,6 +1,8 @@
 //! `mech draw FILE --at Q -o out.svg`: the linkage at one input as SVG (links, pins,
 //! slider blocks and guides, slots, hatched ground pivots, point names), with the paths
 //! of chosen points over a turn (`--path P`) and the reaction arrows (`--forces`).
+//! A spatial mechanism (`space` first) is drawn in an isometric projection
+//! ([`crate::spatial::frame`]).
 //! `mech animate FILE -o out.svg`: the linkage moving over a range of the first input, as
 //! an SVG that animates itself (SMIL) in any browser.
 
@@ -159,7 +161,19 @@ fn write(path: &std::path::Path, text: &str) -> Result<(), Failure> {
 /// Run `mech draw`.
 pub fn draw(args: DrawArgs) -> Result<(), Failure> {
     limits::writable(&args.output, "-o", "svg")?;
-    let m = source::load(&args.file)?;
+    let m = match source::load_any(&args.file)? {
+        source::Any::Planar(m) => m,
+        source::Any::Spatial(m) => {
+            if !args.path.is_empty() || args.forces {
+                return Err(Failure::usage(
+                    "--path and --forces are not drawn for a spatial mechanism yet: draw it without them (`mech draw FILE --at Q -o out.svg`), or read the paths and reactions from `mech sweep`",
+                ));
+            }
+            let q = crate::spatial::per_input(&args.at, &m, 0, "--at", 0.0)?;
+            let text = crate::spatial::draw(&m, &q, args.width, args.height)?;
+            return write(&args.output, &text);
+        }
+    };
     let model = m.model();
     let q = quantity::per_input(&args.at, model, 0, "--at", 0.0)?;
     let frame = scene::frame(&m, &q)?;

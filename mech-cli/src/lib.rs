@@ -36,6 +36,7 @@ pub mod simulate;
 pub mod size;
 pub mod solve;
 pub mod source;
+pub mod spatial;
 pub mod strength;
 pub mod svg;
 pub mod synth;

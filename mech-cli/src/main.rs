@@ -8,7 +8,8 @@ use mech_cli::loads::LoadSet;
 use mech_cli::output::Format;
 use mech_cli::{
     balance, cam, check, draw, engine, flywheel, import, limits, optimize, quantity, regime,
-    report, serve, shaking, simulate, size, solve, source, strength, synth, synth_exact, Failure,
+    report, serve, shaking, simulate, size, solve, source, spatial, strength, synth, synth_exact,
+    Failure,
 };
 use std::io::Write;
 use std::path::PathBuf;
@@ -50,14 +51,16 @@ struct State {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Run the macro's checks; print the structure (Grübler, Assur groups) or the errors
-    /// as FILE:LINE:COLUMN with an excerpt. Exit status 1 for a bad mechanism.
+    /// Run the macro's checks; print the structure (Grübler, Assur groups; Kutzbach's count
+    /// and the idle links for a spatial mechanism) or the errors as FILE:LINE:COLUMN with
+    /// an excerpt. Exit status 1 for a bad mechanism.
     Check {
         /// The mechanism file (`-` = standard input).
         file: PathBuf,
     },
     /// One configuration: every point and link, every reaction, the motor actions by
-    /// both routes, I* and M*.
+    /// both routes, I* and M*. A spatial mechanism (`space` first) takes loads as
+    /// NAME=x,y,z.
     Solve {
         /// The mechanism file (`-` = standard input).
         file: PathBuf,
@@ -117,7 +120,7 @@ enum Command {
     /// the shaking force, a path) under constraints; print the history, write the file.
     Optimize(optimize::OptimizeArgs),
     /// Draw the linkage at one input as SVG: links, pins, slider guides, ground hatching,
-    /// point names.
+    /// point names; a spatial mechanism in an isometric view.
     Draw(draw::DrawArgs),
     /// The linkage moving over a cycle as an animated SVG that plays in any browser.
     Animate(draw::AnimateArgs),
@@ -194,18 +197,103 @@ fn rates(
     ))
 }
 
+/// The rates and the loads of `state` for the spatial mechanism `m`.
+fn spatial_rates(
+    m: &mech_core::spatial::SpatialMechanism,
+    state: &State,
+) -> Result<(Vec<f64>, Vec<f64>, mech_core::spatial::SpatialLoads), Failure> {
+    Ok((
+        spatial::per_input(&state.speed, m, 1, "--speed", 0.0)?,
+        spatial::per_input(&state.accel, m, 2, "--accel", 0.0)?,
+        spatial::loads(&state.load, m)?,
+    ))
+}
+
+/// `mech sweep` of a spatial mechanism.
+fn spatial_sweep(
+    m: &mech_core::spatial::SpatialMechanism,
+    (from, to, steps): (&str, &str, usize),
+    rest: &[String],
+    state: &State,
+    stdout: impl Write,
+) -> Result<(), Failure> {
+    if m.dof() == 0 {
+        return Err(Failure::usage(format!(
+            "`{}` has no input: there is no range to sweep; declare an input (`input: J`)",
+            m.model().name
+        )));
+    }
+    let (d, _) = spatial::input_dims(m, 0);
+    let (a, b) = (
+        quantity::parse(from, d, "--from")?,
+        quantity::parse(to, d, "--to")?,
+    );
+    if !(b - a).is_finite() {
+        return Err(Failure::usage(format!(
+            "--from {from} --to {to}: the range overflows f64; give a narrower range"
+        )));
+    }
+    let g = m.dof();
+    if rest.len() + 1 != g {
+        return Err(Failure::usage(format!(
+            "--rest: {} value(s) for the {} input(s) after the first",
+            rest.len(),
+            g - 1
+        )));
+    }
+    let mut q = vec![a];
+    for (k, t) in rest.iter().enumerate() {
+        q.push(quantity::parse(
+            t,
+            spatial::input_dims(m, k + 1).0,
+            "--rest",
+        )?);
+    }
+    let (qd, qdd, loads) = spatial_rates(m, state)?;
+    spatial::sweep(
+        m,
+        (a, b, steps),
+        &q,
+        &qd,
+        &qdd,
+        &loads,
+        state.level,
+        state.format,
+        stdout,
+    )
+}
+
 fn run(command: Command) -> Result<(), Failure> {
     let mut stdout =
         std::io::BufWriter::with_capacity(1 << 16, limits::Stdout(std::io::stdout().lock()));
     match command {
         Command::Check { file } => {
-            let m = source::load(&file)?;
-            write!(stdout, "{}", check::summary(&m))?;
+            let text = match source::load_any(&file)? {
+                source::Any::Planar(m) => check::summary(&m),
+                source::Any::Spatial(m) => spatial::summary(&m),
+            };
+            write!(stdout, "{text}")?;
             stdout.flush()?;
             Ok(())
         }
         Command::Solve { file, at, state } => {
-            let m = source::load(&file)?;
+            let m = match source::load_any(&file)? {
+                source::Any::Planar(m) => m,
+                source::Any::Spatial(m) => {
+                    let q = spatial::per_input(&at, &m, 0, "--at", 0.0)?;
+                    let (qd, qdd, loads) = spatial_rates(&m, &state)?;
+                    return spatial::solve(
+                        &m,
+                        &q,
+                        &qd,
+                        &qdd,
+                        &loads,
+                        state.level,
+                        state.format,
+                        stdout,
+                    );
+                }
+            };
             let q = quantity::per_input(&at, m.model(), 0, "--at", 0.0)?;
             let (qd, qdd, loads) = rates(&m, &state)?;
             solve::solve(&m, &q, &qd, &qdd, &loads, state.level, state.format, stdout)
@@ -218,7 +306,12 @@ fn run(command: Command) -> Result<(), Failure> {
             rest,
             state,
         } => {
-            let m = source::load(&file)?;
+            let m = match source::load_any(&file)? {
+                source::Any::Planar(m) => m,
+                source::Any::Spatial(m) => {
+                    return spatial_sweep(&m, (&from, &to, steps), &rest, &state, stdout)
+                }
+            };
             let model = m.model();
             let (d, _) = quantity::input_dims(model, 0);
             let (a, b) = (

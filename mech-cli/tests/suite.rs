@@ -17,6 +17,7 @@ mod optimize;
 mod regime;
 mod serve;
 mod snapshots;
+mod spatial;
 mod strength;
 mod synth;
 mod synth_exact;

@@ -22,6 +22,8 @@ use pyo3::types::{PyDict, PyTuple, PyType};
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
+mod spatial;
+
 create_exception!(
     _mech,
     MechError,
@@ -1326,6 +1328,8 @@ fn engine<'py>(
 #[pymodule]
 fn _mech(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMechanism>()?;
+    m.add_class::<spatial::PySpatialMechanism>()?;
+    m.add_function(wrap_pyfunction!(spatial::is_spatial, m)?)?;
     m.add_function(wrap_pyfunction!(num_threads, m)?)?;
     m.add_function(wrap_pyfunction!(optimize, m)?)?;
     m.add_function(wrap_pyfunction!(balance, m)?)?;

@@ -8,6 +8,7 @@ mod forces;
 pub mod mechanism;
 mod newton;
 pub mod results;
+pub mod spatial_columns;
 mod strength;
 mod warm;
 

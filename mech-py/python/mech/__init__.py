@@ -51,6 +51,7 @@ from ._mech import InvalidInput, InvalidMechanism, MechError, NoAssembly, Singul
 
 __all__ = [
     "Mechanism",
+    "SpatialMechanism",
     "sweep",
     "optimize",
     "synthesize_function",
@@ -227,6 +228,8 @@ class Mechanism:
         or anything else); ``InvalidMechanism`` (with ``line``, ``column`` and
         ``message``) when a check fails; ``InvalidInput`` for a text of more than 4 MB or
         nested more than 64 brackets deep."""
+        if cls is Mechanism and _mech.is_spatial(_text(text)):
+            return SpatialMechanism(text)
         return cls(text)
 
     @classmethod
@@ -250,6 +253,8 @@ class Mechanism:
             text = data.decode("utf-8")
         except UnicodeDecodeError as e:
             raise InvalidInput("%s is not UTF-8 text (byte 0x%02x at offset %d); save it as UTF-8" % (name, data[e.start], e.start)) from None
+        if cls is Mechanism and _mech.is_spatial(text):
+            return SpatialMechanism(text, origin=name)
         return cls(text, origin=name)
 
     def __reduce__(self):
@@ -631,6 +636,147 @@ class Mechanism:
         out["min_convex_radius"] = (rho, rho_at)
         out["undercut"] = undercut
         return out
+
+
+def _restore_spatial(text, origin):
+    """Rebuild a pickled SpatialMechanism from its text."""
+    return SpatialMechanism(text, origin=origin)
+
+
+class SpatialMechanism:
+    """A spatial mechanism (SPEC 3i): a text whose first item is ``space``
+    (``docs/spatial.md``), checked at load time (Kutzbach's count with the idle links, the
+    constraints' rank). ``Mechanism.from_dsl`` and ``Mechanism.load`` return one for such
+    a text.
+
+    The solvers take q as ``Mechanism``'s do and return dicts keyed like the ``mech``
+    tool's spatial CSV columns (``docs/cli.md``, "Spatial mechanisms"): ``"B.x"``,
+    ``"B.y"``, ``"B.z"``, ``"rod.qw"`` … ``"rod.qz"`` (the rotation from the drawing, a unit
+    quaternion), ``"B.vz"``, ``"rod.omega_x"``, ``"rod.alpha_z"``, ``"A.fx"`` … ``"A.fz"``,
+    ``"A.mx"`` … ``"A.mz"``, ``"driver"``, ``"inertia"``, ``"moment"``. Loads are a dict of
+    name -> (x, y, z) (N for a force, N·m for a torque, global axes), or an (n, 3) array.
+    """
+
+    def __init__(self, text, origin=None):
+        text = _text(text)
+        if origin is not None and not isinstance(origin, str):
+            raise TypeError("origin is %s: give a str (a file name for the messages) or None" % _kind(origin))
+        self._text = text
+        self._origin = origin
+        self._core = _mech._SpatialMechanism.from_dsl(text, origin)
+
+    @classmethod
+    def from_dsl(cls, text):
+        """The spatial mechanism described by ``text``."""
+        return cls(text)
+
+    @classmethod
+    def load(cls, path):
+        """The spatial mechanism of a ``.mech`` file (``Mechanism.load``'s checks)."""
+        m = Mechanism.load(path)
+        if not isinstance(m, SpatialMechanism):
+            raise InvalidInput("%s is a planar mechanism (its first item is not `space`): load it with mech.Mechanism.load" % os.fsdecode(path))
+        return m
+
+    def __reduce__(self):
+        return (_restore_spatial, (self._text, self._origin))
+
+    def __repr__(self):
+        return "mech.SpatialMechanism(%r, dof=%d)" % (self.name, self.dof)
+
+    @property
+    def name(self):
+        """The mechanism's (struct) name."""
+        return self._core.name
+
+    @property
+    def dof(self):
+        """G, the number of inputs."""
+        return self._core.dof
+
+    @property
+    def inputs(self):
+        """The inputs as (joint name, kind: "revolute", "prismatic" or "helical")."""
+        return self._core.inputs
+
+    @property
+    def load_names(self):
+        """The declared loads as (name, "force" | "torque"), three components each."""
+        return self._core.loads
+
+    @property
+    def idle_links(self):
+        """The links that spin idly between two spherical joints."""
+        return self._core.idle_links
+
+    @property
+    def text(self):
+        """The text the mechanism was read from."""
+        return self._text
+
+    def columns(self, parts=None):
+        """The names of the columns of ``parts`` (default: all; a str is one part)."""
+        return self._core.columns(_parts(parts))
+
+    _count = Mechanism._count
+    _check_size = Mechanism._check_size
+    _rows = Mechanism._rows
+    _table = Mechanism._table
+
+    def _loads(self, loads, q):
+        """The loads (n, 3 L): each load's x, y, z in declaration order, from a dict of
+        name -> (x, y, z) or an (n, 3) array."""
+        n = q.shape[0]
+        spec = self.load_names
+        out = np.zeros((n, 3 * len(spec)))
+        if loads is not None and not isinstance(loads, Mapping):
+            raise TypeError("loads is %s: give a dict of load name -> (x, y, z)" % _kind(loads))
+        loads = dict(loads or {})
+        for k, (name, kind) in enumerate(spec):
+            if name in loads:
+                what = "loads[%r]" % name
+                v = _floats(loads.pop(name), what)
+                if v.size == 3:
+                    v = v.reshape(3)
+                elif v.shape == (n, 3):
+                    pass
+                else:
+                    raise InvalidInput("%s of shape %s: `%s` is a %s of a spatial mechanism, give its three components (x, y, z) or an (%d, 3) array" % (what, v.shape, name, kind, n))
+                out[:, 3 * k:3 * k + 3] = np.broadcast_to(v, (n, 3))
+        if loads:
+            raise InvalidInput("no load named %s: the mechanism's loads are %s" % (", ".join(sorted(loads)), ", ".join(n for n, _ in spec) or "none"))
+        return out
+
+    def pose(self, q, errors="raise"):
+        """Positions: ``<point>.x``, ``.y``, ``.z`` (m) and each link's rotation
+        ``<link>.qw``, ``.qx``, ``.qy``, ``.qz``."""
+        return self._table(["positions"], q, errors=errors)
+
+    def kinematics(self, q, qd=0.0, qdd=0.0, errors="raise"):
+        """Positions, velocities (``.vx``, ``.vy``, ``.vz``, ``<link>.omega_x`` …) and
+        accelerations (``.ax``, ``.ay``, ``.az``, ``<link>.alpha_x`` …)."""
+        return self._table(["positions", "rates"], q, qd, qdd, errors=errors)
+
+    def kinetostatics(self, q, qd=0.0, qdd=0.0, loads=None, errors="raise"):
+        """Newton–Euler: every reaction (``<joint>.fx``, ``.fy``, ``.fz`` N, ``.mx``,
+        ``.my``, ``.mz`` N·m about the joint's point, by its first link on its second) and
+        the motor action ``driver``."""
+        return self._table(["reactions", "driver"], q, qd, qdd, loads, errors)
+
+    def driver_action(self, q, qd=0.0, qdd=0.0, loads=None, errors="raise"):
+        """The motor actions by virtual power: ``driver`` (``driver.<joint>``)."""
+        return self._table(["virtual_power"], q, qd, qdd, loads, errors, rename=lambda n: n.replace("virtual_power", "driver"))
+
+    def reduced(self, q, errors="raise"):
+        """Zhukovski's ``inertia`` I* and ``inertia_derivative`` dI*/dq (one input)."""
+        out = self._table(["zhukovski"], q, errors=errors)
+        out.pop("moment", None)
+        return out
+
+    def reduced_moment(self, q, loads=None, errors="raise"):
+        """Zhukovski's reduced moment ``moment`` M* of the loads and gravity."""
+        out = self._table(["zhukovski"], q, loads=loads, errors=errors)
+        return {k: v for k, v in out.items() if k in ("moment", "ok")}
 
 
 def optimize(mechanism, vary, minimize, subject_to=(), qd=0.0, loads=None, steps=180, period=2 * np.pi,

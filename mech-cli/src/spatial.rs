@@ -1,0 +1,387 @@
+//! Spatial mechanisms (SPEC 3i) on the command line: a file whose first item is `space`
+//! ([`mech_core::runtime::spatial_columns::is_spatial`]) is loaded as a
+//! [`SpatialMechanism`]; `mech check` prints Kutzbach's count and the idle links, `mech
+//! solve` and `mech sweep` write the columns of
+//! [`mech_core::runtime::spatial_columns::SpatialColumns`], `mech draw` an isometric view.
+
+use crate::columns::Level;
+use crate::output::{Format, Writer};
+use crate::scene::{Frame, Role, Shape};
+use crate::{quantity, svg, Failure};
+use mech_core::kernel::link_state::V2;
+use mech_core::model::units::Dim;
+use mech_core::runtime::spatial_columns::SpatialColumns;
+use mech_core::spatial::{JointKind, LoadKind, SpatialLoads, SpatialMechanism};
+use nalgebra::Vector3;
+use std::fmt::Write as _;
+use std::io::Write;
+
+/// A spatial mechanism's messages rendered against its file: a message located `line L,
+/// column C: ...` becomes `ORIGIN:L:C: ...` with the line and a caret under the column; a
+/// whole-mechanism message (Kutzbach's count, the rank) `ORIGIN: ...`.
+pub fn render(text: &str, origin: &str, messages: &str) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    messages
+        .lines()
+        .map(|m| {
+            let located = m.strip_prefix("line ").and_then(|rest| {
+                let (l, rest) = rest.split_once(", column ")?;
+                let (c, msg) = rest.split_once(": ")?;
+                Some((l.parse::<usize>().ok()?, c.parse::<usize>().ok()?, msg))
+            });
+            match located {
+                Some((l, c, msg)) => {
+                    let mut s = format!("{origin}:{l}:{c}: {msg}");
+                    if let Some(line) = lines.get(l.wrapping_sub(1)) {
+                        let w = l.to_string().len();
+                        let pad: String = line
+                            .chars()
+                            .take(c.saturating_sub(1))
+                            .map(|ch| if ch == '\t' { '\t' } else { ' ' })
+                            .collect();
+                        let _ = write!(s, "\n{:w$} |\n{l} | {line}\n{:w$} | {pad}^ here", "", "");
+                    }
+                    s
+                }
+                None => format!("{origin}: {m}"),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n\n")
+}
+
+/// The spatial mechanism of `text` through every load-time check, its messages naming
+/// `origin` ([`render`]).
+pub fn parse(text: &str, origin: &str) -> Result<SpatialMechanism, Failure> {
+    SpatialMechanism::from_dsl(text).map_err(|e| match e {
+        mech_core::MechError::Invalid(m) => Failure::mechanism(render(text, origin, &m)),
+        other => Failure::mechanism(format!("{origin}: {other}")),
+    })
+}
+
+/// What `mech check` prints for a valid spatial mechanism: N and the pairs by class,
+/// Kutzbach's G, the idle freedoms, the equations against the unknowns.
+pub fn summary(m: &SpatialMechanism) -> String {
+    let model = m.model();
+    let c = m.kutzbach();
+    let p = c.pairs_by_class;
+    let mut s = String::new();
+    let _ = writeln!(s, "mechanism `{}`: valid (spatial)", model.name);
+    let _ = writeln!(
+        s,
+        "  N = {} links (ground included), pairs by class: P_I = {}, P_II = {}, P_III = {}, P_IV = {}, P_V = {}",
+        c.n, p[0], p[1], p[2], p[3], p[4]
+    );
+    let _ = writeln!(
+        s,
+        "  Kutzbach: G = 6(N − 1) − 5 P_I − 4 P_II − 3 P_III − 2 P_IV − P_V = {} − {} − {} − {} − {} − {} = {}",
+        c.equations(),
+        5 * p[0],
+        4 * p[1],
+        3 * p[2],
+        2 * p[3],
+        p[4],
+        c.mobility
+    );
+    if c.idle.is_empty() {
+        let _ = writeln!(s, "  idle freedoms: none");
+    } else {
+        let _ = writeln!(s, "  idle freedoms: {}", c.idle.len());
+        for &(b, j1, j2) in &c.idle {
+            let _ = writeln!(
+                s,
+                "    link `{}` spins about the line through its spherical joints `{}` and `{}` (held by the solver)",
+                model.bodies[b].name, model.joints[j1].name, model.joints[j2].name
+            );
+        }
+    }
+    let inputs: Vec<String> = model
+        .inputs
+        .iter()
+        .map(|&j| {
+            let joint = &model.joints[j];
+            format!("`{}` ({})", joint.name, joint.kind.word())
+        })
+        .collect();
+    let _ = writeln!(
+        s,
+        "  G − idle = {} = inputs declared: {} ({})",
+        c.mobility - c.idle.len() as i64,
+        c.inputs,
+        inputs.join(", ")
+    );
+    let _ = writeln!(
+        s,
+        "  equations 6(N − 1) = {}, unknowns G − idle + reaction components = {} + {}",
+        c.equations(),
+        c.mobility - c.idle.len() as i64,
+        c.reactions()
+    );
+    s
+}
+
+/// The dimensions of input `k`'s coordinate and rate: (angle, angular speed) for a revolute
+/// or helical input, (length, none) for a prismatic one.
+pub fn input_dims(m: &SpatialMechanism, k: usize) -> (Dim, Dim) {
+    let model = m.model();
+    match model.joints[model.inputs[k]].kind {
+        JointKind::Prismatic { .. } => (Dim::LENGTH, Dim::NONE),
+        _ => (Dim::ANGLE, Dim::SPEED),
+    }
+}
+
+/// One value per input of `m` from `texts` (`rate` 0: q, 1: q̇, 2: q̈); `default` for each
+/// when `texts` is empty.
+pub fn per_input(
+    texts: &[String],
+    m: &SpatialMechanism,
+    rate: usize,
+    what: &str,
+    default: f64,
+) -> Result<Vec<f64>, Failure> {
+    let g = m.dof();
+    if texts.is_empty() {
+        return Ok(vec![default; g]);
+    }
+    if texts.len() != g {
+        return Err(Failure::usage(format!(
+            "{what}: {} value(s) given for {g} input(s); give one per input, in the order of `inputs`",
+            texts.len()
+        )));
+    }
+    texts
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let (d, v) = input_dims(m, k);
+            let dim = match rate {
+                0 => d,
+                1 => v,
+                _ => Dim::NONE,
+            };
+            quantity::parse(t, dim, what)
+        })
+        .collect()
+}
+
+/// The loads of `--load NAME=x,y,z` arguments: each a force (N) or a torque (N·m) as three
+/// components in the global axes, units allowed (`push=4N,-3N,2.5N`).
+pub fn loads(args: &[String], m: &SpatialMechanism) -> Result<SpatialLoads, Failure> {
+    let model = m.model();
+    let mut loads = m.loads();
+    for a in args {
+        let Some((name, value)) = a.split_once('=') else {
+            return Err(Failure::usage(format!(
+                "--load `{a}`: expected NAME=x,y,z (a spatial load has three components), e.g. `push=0,0,-100`"
+            )));
+        };
+        let name = name.trim();
+        let Some(load) = model.loads.iter().find(|l| l.name == name) else {
+            let names: Vec<&str> = model.loads.iter().map(|l| l.name.as_str()).collect();
+            return Err(Failure::usage(format!(
+                "no load named `{name}`: the mechanism's loads are {}",
+                if names.is_empty() {
+                    "none".into()
+                } else {
+                    names.join(", ")
+                }
+            )));
+        };
+        let (dim, what, unit) = match load.kind {
+            LoadKind::Force { body, point } => (
+                Dim::FORCE,
+                format!(
+                    "a force on `{}` at `{}`",
+                    model.bodies[body].name, model.points[point].0
+                ),
+                "`fx,fy,fz` (N)",
+            ),
+            LoadKind::Torque { body } => (
+                Dim::TORQUE,
+                format!("a torque on `{}`", model.bodies[body].name),
+                "`mx,my,mz` (N·m)",
+            ),
+        };
+        if value.trim_start().starts_with('@') {
+            return Err(Failure::usage(format!(
+                "--load {name}={value}: a table of loads against q is not taken for a spatial mechanism yet; give the load's three components {unit}"
+            )));
+        }
+        let parts: Vec<&str> = value.split(',').collect();
+        if parts.len() != 3 {
+            let example = parts
+                .iter()
+                .map(|p| p.trim())
+                .chain(std::iter::repeat("0"))
+                .take(3)
+                .collect::<Vec<_>>()
+                .join(",");
+            return Err(Failure::usage(format!(
+                "--load {name}: `{value}` has {} component(s), but `{name}` is {what} of a spatial mechanism: give three components {unit} in the global axes, e.g. `--load {name}={example}`",
+                parts.len()
+            )));
+        }
+        let v: Vec<f64> = parts
+            .iter()
+            .map(|p| quantity::parse(p, dim, &format!("--load {name}")))
+            .collect::<Result<_, _>>()?;
+        loads.set_by_name(name, &v);
+    }
+    Ok(loads)
+}
+
+/// `mech solve` of a spatial mechanism: one configuration in `format` (`table`: one
+/// quantity a line with its unit).
+#[allow(clippy::too_many_arguments)]
+pub fn solve(
+    m: &SpatialMechanism,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    loads: &SpatialLoads,
+    level: Level,
+    format: Format,
+    out: impl Write,
+) -> Result<(), Failure> {
+    let cols = SpatialColumns::new(m, level.parts());
+    let row = cols.row(m, q, qd, qdd, loads)?;
+    if format == Format::Table {
+        let mut out = out;
+        let w = cols.names.iter().map(String::len).max().unwrap_or(1);
+        for ((n, u), v) in cols.names.iter().zip(&cols.units).zip(&row) {
+            writeln!(out, "{n:<w$}  {v:>20.12e}  {u}")?;
+        }
+        out.flush()?;
+        return Ok(());
+    }
+    let mut w = Writer::new(out, format, &cols.names, &cols.units)?;
+    w.row(&row)?;
+    w.finish()?;
+    Ok(())
+}
+
+/// `mech sweep` of a spatial mechanism: the first input from `from` to `to` in `steps`
+/// steps, the others at `rest[1..]`, one row per input, in order (serially: each position
+/// is continued from the drawing).
+#[allow(clippy::too_many_arguments)]
+pub fn sweep(
+    m: &SpatialMechanism,
+    (from, to, steps): (f64, f64, usize),
+    rest: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    loads: &SpatialLoads,
+    level: Level,
+    format: Format,
+    out: impl Write,
+) -> Result<(), Failure> {
+    let cols = SpatialColumns::new(m, level.parts());
+    let mut w = Writer::new(out, format, &cols.names, &cols.units)?;
+    let mut q = rest.to_vec();
+    for k in 0..=steps {
+        q[0] = crate::solve::inputs(from, to, steps, k);
+        let row = cols
+            .row(m, &q, qd, qdd, loads)
+            .map_err(|e| Failure::mechanism(format!("at q = {}: {e}", q[0])))?;
+        w.row(&row)?;
+    }
+    w.finish()?;
+    Ok(())
+}
+
+/// The isometric projection of a point (m): the view from (1, 1, 1) towards the origin,
+/// z up: X = (y − x)/√2, Y = (2z − x − y)/√6 (the x axis to the lower left, y to the lower
+/// right).
+pub fn isometric(p: Vector3<f64>) -> V2 {
+    V2::new(
+        (p.y - p.x) / std::f64::consts::SQRT_2,
+        (2.0 * p.z - p.x - p.y) / 6f64.sqrt(),
+    )
+}
+
+/// The shapes of `m` at `q` in the isometric projection ([`isometric`]): the global axes
+/// (three guide lines labelled `x`, `y`, `z` at the drawing's lowest corner), each moving
+/// link (a bar between its two points, a plate through its points taken in turn about
+/// their centre), a pin at each joint,
+/// the points' names.
+pub fn frame(m: &SpatialMechanism, q: &[f64]) -> Result<Frame, Failure> {
+    let model = m.model();
+    let pose = m.pose(q)?;
+    let at: Vec<Vector3<f64>> = model
+        .points
+        .iter()
+        .map(|(p, _)| {
+            pose.point(p)
+                .ok_or_else(|| Failure::mechanism(format!("the point `{p}` belongs to no link")))
+        })
+        .collect::<Result<_, _>>()?;
+    let (mut lo, mut hi) = (at[0], at[0]);
+    for p in &at {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    let size = (hi - lo).max().max(1e-6);
+    let mut shapes = Vec::new();
+    for (axis, name) in [
+        (Vector3::x(), "x"),
+        (Vector3::y(), "y"),
+        (Vector3::z(), "z"),
+    ] {
+        let tip = lo + axis * 0.2 * size;
+        shapes.push(Shape {
+            role: Role::Guide,
+            name: format!("axis {name}"),
+            points: vec![isometric(lo), isometric(tip)],
+        });
+        shapes.push(Shape {
+            role: Role::Label,
+            name: name.to_string(),
+            points: vec![isometric(tip)],
+        });
+    }
+    for b in &model.bodies[1..] {
+        let mut points: Vec<V2> = b.points.iter().map(|&p| isometric(at[p])).collect();
+        if points.len() > 2 {
+            // A plate: its points in turn about their centre (a simple polygon).
+            let c = points.iter().fold(V2::zeros(), |s, p| s + p) / points.len() as f64;
+            points.sort_by(|p, q| {
+                let angle = |v: &V2| (v.y - c.y).atan2(v.x - c.x);
+                angle(p).total_cmp(&angle(q))
+            });
+        }
+        let role = match points.len() {
+            0 | 1 => continue,
+            2 => Role::Bar,
+            _ => Role::Plate,
+        };
+        shapes.push(Shape {
+            role,
+            name: b.name.clone(),
+            points,
+        });
+    }
+    for j in &model.joints {
+        shapes.push(Shape {
+            role: Role::Pin,
+            name: j.name.clone(),
+            points: vec![isometric(at[j.point])],
+        });
+    }
+    for (k, (p, _)) in model.points.iter().enumerate() {
+        shapes.push(Shape {
+            role: Role::Label,
+            name: p.clone(),
+            points: vec![isometric(at[k]) + V2::new(0.02, 0.02) * size],
+        });
+    }
+    Ok(Frame {
+        q: q.to_vec(),
+        shapes,
+    })
+}
+
+/// The SVG of `m` at `q` ([`frame`], [`svg::still`]).
+pub fn draw(m: &SpatialMechanism, q: &[f64], width: f64, height: f64) -> Result<String, Failure> {
+    let frame = frame(m, q)?;
+    Ok(svg::still(&frame, &[], width, height).0)
+}

@@ -1,0 +1,727 @@
+//! Spatial mechanisms (SPEC 3i) on the command line: `mech solve` and `mech sweep` against
+//! `SpatialMechanism` called directly (the RSSR of mech-core/tests/spatial.rs, written to a
+//! `.mech` file), against the 50-digit mpmath table of the double-wishbone suspension, and
+//! a load's effect on the driver against virtual work; `mech check`'s count and its
+//! messages; `mech draw`'s isometric picture; the errors for planar-style arguments.
+
+use assert_cmd::Command;
+use mech_core::spatial::{SpatialLoads, SpatialMechanism};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+fn mech() -> Command {
+    Command::cargo_bin("mech").unwrap()
+}
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// The RSSR of mech-core/tests/spatial.rs (its `const RSSR`).
+fn rssr_text() -> String {
+    let source = include_str!("../../mech-core/tests/spatial.rs");
+    let start = source.find("const RSSR: &str = r#\"").unwrap() + "const RSSR: &str = r#\"".len();
+    let end = start + source[start..].find("\"#;").unwrap();
+    source[start..end].to_string()
+}
+
+/// The RSSR written to a `.mech` file in `dir`.
+fn rssr_file(dir: &tempfile::TempDir, text: &str) -> PathBuf {
+    let path = dir.path().join("rssr.mech");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// The rows of a CSV output as (header, rows).
+fn csv_rows(out: &[u8]) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = String::from_utf8(out.to_vec()).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<String> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    (head, rows)
+}
+
+/// One CSV row as a map of column name to value.
+fn csv_map(out: &[u8]) -> BTreeMap<String, f64> {
+    let (head, rows) = csv_rows(out);
+    assert_eq!(rows.len(), 1);
+    head.into_iter().zip(rows[0].iter().copied()).collect()
+}
+
+/// The columns the library gives directly at (q, q̇, q̈) under `loads`: every column of
+/// docs/cli.md's spatial table, computed without the columns module.
+fn library_row(
+    m: &SpatialMechanism,
+    q: f64,
+    qd: f64,
+    qdd: f64,
+    loads: &SpatialLoads,
+) -> BTreeMap<String, f64> {
+    let model = m.model();
+    let mo = m.kinematics(&[q], &[qd], &[qdd]).unwrap();
+    let f = m.kinetostatics(&mo, loads).unwrap();
+    let mut r = BTreeMap::new();
+    r.insert("q".to_string(), q);
+    for (p, _) in &model.points {
+        let [pos, vel, acc] = mo.point_motion(p).unwrap();
+        for (k, s) in ["x", "y", "z"].iter().enumerate() {
+            r.insert(format!("{p}.{s}"), pos[k]);
+            r.insert(format!("{p}.v{s}"), vel[k]);
+            r.insert(format!("{p}.a{s}"), acc[k]);
+        }
+    }
+    for b in &model.bodies[1..] {
+        let l = mo.link(&b.name).unwrap();
+        let qn = l.rotation.quaternion();
+        for (s, v) in [("qw", qn.w), ("qx", qn.i), ("qy", qn.j), ("qz", qn.k)] {
+            r.insert(format!("{}.{s}", b.name), v);
+        }
+        for (k, s) in ["x", "y", "z"].iter().enumerate() {
+            r.insert(format!("{}.omega_{s}", b.name), l.omega[k]);
+            r.insert(format!("{}.alpha_{s}", b.name), l.alpha[k]);
+        }
+    }
+    for j in &model.joints {
+        let re = f.reaction(&j.name).unwrap();
+        for (k, s) in ["x", "y", "z"].iter().enumerate() {
+            r.insert(format!("{}.f{s}", j.name), re.force[k]);
+            r.insert(format!("{}.m{s}", j.name), re.moment[k]);
+        }
+    }
+    r.insert("driver".into(), f.driver());
+    r.insert(
+        "virtual_power".into(),
+        m.driver_action(&mo, loads).unwrap()[0],
+    );
+    let z = m.reduced(q).unwrap();
+    r.insert("inertia".into(), z.inertia);
+    r.insert("inertia_derivative".into(), z.inertia_derivative);
+    r.insert("moment".into(), m.reduced_moment(q, loads).unwrap());
+    r
+}
+
+/// Every column of `got` equals the library's to 1e-12 of its kind's scale, and the
+/// columns are exactly the library's.
+fn assert_same(got: &BTreeMap<String, f64>, want: &BTreeMap<String, f64>, what: &str) {
+    assert_eq!(
+        got.keys().collect::<Vec<_>>(),
+        want.keys().collect::<Vec<_>>(),
+        "{what}: the columns"
+    );
+    let scale = want.values().fold(1e-3f64, |s, v| s.max(v.abs()));
+    for (k, w) in want {
+        let g = got[k];
+        assert!(
+            (g - w).abs() <= 1e-12 * scale.max(w.abs()),
+            "{what}: {k} = {g}, the library gives {w}"
+        );
+    }
+}
+
+const LOADS: [&str; 2] = ["tool=0.5,-1.0,2.0", "push=4,-3,2.5"];
+
+fn library_loads(m: &SpatialMechanism) -> SpatialLoads {
+    let mut l = m.loads();
+    assert!(l.set_by_name("tool", &[0.5, -1.0, 2.0]));
+    assert!(l.set_by_name("push", &[4.0, -3.0, 2.5]));
+    l
+}
+
+#[test]
+fn the_example_rssr_is_the_core_tests_rssr() {
+    let example = std::fs::read_to_string(root().join("examples/mech/rssr.mech")).unwrap();
+    let body: String = example
+        .lines()
+        .filter(|l| !l.starts_with("///"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_eq!(body.trim(), rssr_text().trim());
+}
+
+#[test]
+fn solve_gives_the_librarys_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = rssr_file(&dir, &rssr_text());
+    let out = mech()
+        .arg("solve")
+        .arg(&file)
+        .args([
+            "--at", "0.7", "--speed", "3", "--accel", "-2", "--format", "csv",
+        ])
+        .args(LOADS.iter().flat_map(|l| ["--load", l]))
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let got = csv_map(&out);
+    let m = SpatialMechanism::from_dsl(&rssr_text()).unwrap();
+    let want = library_row(&m, 0.7, 3.0, -2.0, &library_loads(&m));
+    assert_same(&got, &want, "solve");
+    // SPEC 3i's columns are there, and the two routes to the torque agree.
+    for c in ["B.z", "A.fz", "A.mx", "A.my", "A.mz", "driver"] {
+        assert!(got.contains_key(c), "{c}");
+    }
+    assert!((got["driver"] - got["virtual_power"]).abs() < 1e-9 * got["driver"].abs());
+    // A spherical joint carries no moment; a revolute's is normal to its axis (x at O).
+    assert_eq!((got["A.mx"], got["A.my"], got["A.mz"]), (0.0, 0.0, 0.0));
+    assert!(got["O.mx"].abs() < 1e-9 * (got["O.my"].abs() + got["O.mz"].abs()));
+
+    // JSON has the same keys and numbers; the table one quantity a line with its unit.
+    let json = mech()
+        .arg("solve")
+        .arg(&file)
+        .args([
+            "--at", "0.7", "--speed", "3", "--accel", "-2", "--format", "json",
+        ])
+        .args(LOADS.iter().flat_map(|l| ["--load", l]))
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let v: serde_json::Value = serde_json::from_slice(&json).unwrap();
+    let obj = v[0].as_object().unwrap();
+    assert_eq!(obj.len(), got.len());
+    for (k, x) in obj {
+        assert_eq!(x.as_f64().unwrap(), got[k], "{k}");
+    }
+    let table = mech()
+        .arg("solve")
+        .arg(&file)
+        .args(["--at", "40deg", "--level", "kinematics"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let table = String::from_utf8(table).unwrap();
+    let line = |name: &str| {
+        table
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("{name} in\n{table}"))
+            .to_string()
+    };
+    assert!(line("B.az").ends_with("m/s²"), "{}", line("B.az"));
+    assert!(line("rod.qw").ends_with(" 1"), "{}", line("rod.qw"));
+    assert!(line("rocker.omega_z").ends_with("rad/s"));
+    assert!(!table.contains("driver"), "no forces at level kinematics");
+    let b = m.pose(&[40f64.to_radians()]).unwrap().point("B").unwrap();
+    let printed: f64 = line("B.y")
+        .split_whitespace()
+        .nth(1)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        (printed - b.y).abs() <= 1e-11 * b.y.abs(),
+        "{printed} vs {}",
+        b.y
+    );
+}
+
+#[test]
+fn sweep_rows_are_the_librarys() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = rssr_file(&dir, &rssr_text());
+    let out = mech()
+        .arg("sweep")
+        .arg(&file)
+        .args(["--from", "-30deg", "--to", "330deg", "--steps", "12"])
+        .args(["--speed", "2", "--accel", "1.5", "--format", "csv"])
+        .args(LOADS.iter().flat_map(|l| ["--load", l]))
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let (head, rows) = csv_rows(&out);
+    assert_eq!(rows.len(), 13);
+    let m = SpatialMechanism::from_dsl(&rssr_text()).unwrap();
+    let loads = library_loads(&m);
+    for (k, row) in rows.iter().enumerate() {
+        let q = (-30.0 + 30.0 * k as f64).to_radians();
+        let got: BTreeMap<String, f64> = head.iter().cloned().zip(row.iter().copied()).collect();
+        assert!((got["q"] - q).abs() < 1e-15, "row {k}: q = {}", got["q"]);
+        assert_same(
+            &got,
+            &library_row(&m, got["q"], 2.0, 1.5, &loads),
+            &format!("row {k}"),
+        );
+    }
+    // --level pose: positions and rotations only.
+    let out = mech()
+        .arg("sweep")
+        .arg(&file)
+        .args([
+            "--from", "0", "--to", "1", "--steps", "2", "--level", "pose",
+        ])
+        .args(["--format", "csv"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let (head, rows) = csv_rows(&out);
+    assert_eq!(head.len(), 1 + 3 * 4 + 4 * 3, "{head:?}");
+    let pose = m.pose(&[0.5]).unwrap();
+    let i = head.iter().position(|h| h == "B.z").unwrap();
+    assert_eq!(rows[1][i], pose.point("B").unwrap().z);
+}
+
+#[test]
+fn a_load_changes_the_driver_by_its_virtual_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = rssr_file(&dir, &rssr_text());
+    let solve = |extra: &[&str]| {
+        csv_map(
+            &mech()
+                .arg("solve")
+                .arg(&file)
+                .args(["--at", "1.1", "--format", "csv"])
+                .args(extra)
+                .assert()
+                .success()
+                .get_output()
+                .stdout
+                .clone(),
+        )
+    };
+    let without = solve(&[]);
+    let with = solve(&["--load", "push=40N,-30N,25N"]);
+    // Virtual work at rest: driver + F·v_B(q̇ = 1) = 0 for the load's share.
+    let rates = solve(&["--speed", "1", "--level", "kinematics"]);
+    let work = 40.0 * rates["B.vx"] - 30.0 * rates["B.vy"] + 25.0 * rates["B.vz"];
+    let change = with["driver"] - without["driver"];
+    assert!(work.abs() > 0.1, "the load does work: {work}");
+    assert!(
+        (change + work).abs() < 1e-10 * work.abs(),
+        "driver change {change}, virtual work −{work}"
+    );
+    // ... and as the library says.
+    let m = SpatialMechanism::from_dsl(&rssr_text()).unwrap();
+    let mut loads = m.loads();
+    loads.set_by_name("push", &[40.0, -30.0, 25.0]);
+    let mo = m.pose(&[1.1]).unwrap();
+    let lib = m.kinetostatics(&mo, &loads).unwrap().driver();
+    assert!((with["driver"] - lib).abs() < 1e-12 * lib.abs());
+}
+
+#[test]
+fn planar_arguments_on_a_spatial_file_name_the_fix() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = rssr_file(&dir, &rssr_text());
+    let err = |args: &[&str]| {
+        let o = mech()
+            .arg("solve")
+            .arg(&file)
+            .args(args)
+            .assert()
+            .failure()
+            .code(2)
+            .get_output()
+            .stderr
+            .clone();
+        String::from_utf8(o).unwrap()
+    };
+    let e = err(&["--at", "0", "--load", "push=4,-3"]);
+    assert!(
+        e.contains("`4,-3` has 2 component(s)")
+            && e.contains("a force on `rod` at `B`")
+            && e.contains("three components `fx,fy,fz` (N)")
+            && e.contains("--load push=4,-3,0"),
+        "{e}"
+    );
+    let e = err(&["--at", "0", "--load", "tool=2"]);
+    assert!(
+        e.contains("`mx,my,mz` (N·m)") && e.contains("tool=2,0,0"),
+        "{e}"
+    );
+    let e = err(&["--at", "0", "--load", "gas=1,2,3"]);
+    assert!(
+        e.contains("no load named `gas`") && e.contains("tool, push"),
+        "{e}"
+    );
+    let e = err(&["--at", "0", "--load", "push=@table.csv"]);
+    assert!(e.contains("not taken for a spatial mechanism"), "{e}");
+    let e = err(&["--at", "0,1"]);
+    assert!(e.contains("2 value(s) given for 1 input(s)"), "{e}");
+    let e = err(&["--at", "30mm"]);
+    assert!(e.contains("--at"), "{e}");
+    // A command for planar mechanisms says so.
+    let out = dir.path().join("a.svg");
+    let o = mech()
+        .arg("animate")
+        .arg(&file)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .failure()
+        .code(1)
+        .get_output()
+        .stderr
+        .clone();
+    let e = String::from_utf8(o).unwrap();
+    assert!(
+        e.contains("a spatial mechanism") && e.contains("planar mechanisms only"),
+        "{e}"
+    );
+}
+
+#[test]
+fn check_prints_kutzbachs_count_or_the_error_with_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = rssr_file(&dir, &rssr_text());
+    let o = mech()
+        .arg("check")
+        .arg(&file)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let s = String::from_utf8(o).unwrap();
+    assert!(s.contains("mechanism `Rssr`: valid (spatial)"), "{s}");
+    // N = 4, P_I = 2 (the revolutes), P_III = 2 (the ball joints): G = 18 − 10 − 6 = 2.
+    assert!(
+        s.contains("P_I = 2, P_II = 0, P_III = 2")
+            && s.contains("= 18 − 10 − 0 − 6 − 0 − 0 = 2")
+            && s.contains(
+                "link `rod` spins about the line through its spherical joints `A` and `B`"
+            )
+            && s.contains("G − idle = 1 = inputs declared: 1 (`O` (revolute))"),
+        "{s}"
+    );
+    // The count off (no input): the numbers and the fix, status 1.
+    let bad = rssr_file(&dir, &rssr_text().replace("input: O,", ""));
+    let o = mech()
+        .arg("check")
+        .arg(&bad)
+        .assert()
+        .failure()
+        .code(1)
+        .get_output()
+        .stderr
+        .clone();
+    let e = String::from_utf8(o).unwrap();
+    assert!(
+        e.starts_with(&format!(
+            "{}: Kutzbach's count does not match the inputs",
+            bad.display()
+        )) && e.contains("of which 1 idle")
+            && e.contains("declare 1 input(s)"),
+        "{e}"
+    );
+    // A misspelt link: FILE:LINE:COLUMN, the line and a caret under the name.
+    let text = rssr_text().replace("revolute(ground, rocker)", "revolute(ground, rocket)");
+    let line = text.lines().position(|l| l.contains("rocket")).unwrap() + 1;
+    let column = text.lines().nth(line - 1).unwrap().find("rocket").unwrap() + 1;
+    let bad = rssr_file(&dir, &text);
+    let o = mech()
+        .arg("check")
+        .arg(&bad)
+        .assert()
+        .failure()
+        .code(1)
+        .get_output()
+        .stderr
+        .clone();
+    let e = String::from_utf8(o).unwrap();
+    assert!(
+        e.starts_with(&format!(
+            "{}:{line}:{column}: unknown link `rocket`",
+            bad.display()
+        )),
+        "{e}"
+    );
+    let caret = e.lines().find(|l| l.ends_with("^ here")).unwrap();
+    let excerpt = e.lines().find(|l| l.contains("rocket)")).unwrap();
+    assert_eq!(
+        caret.find('^').unwrap() - caret.find('|').unwrap(),
+        excerpt.find("rocket)").unwrap() - excerpt.find('|').unwrap(),
+        "{e}"
+    );
+}
+
+/// The numbers of the truth table (strings of 30 digits).
+fn num(v: &serde_json::Value) -> f64 {
+    v.as_str().unwrap().parse().unwrap()
+}
+
+#[test]
+fn the_double_wishbone_example_matches_the_mpmath_table() {
+    let truth: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/spatial/double_wishbone.truth.json"))
+            .unwrap(),
+    )
+    .unwrap();
+    let file = root().join("examples/mech/double_wishbone.mech");
+    let example = std::fs::read_to_string(&file).unwrap();
+    assert!(example.contains(truth["source"].as_str().unwrap().trim()));
+    let load = |name: &str| {
+        let v: Vec<String> = truth["loads"][name]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| num(x).to_string())
+            .collect();
+        format!("{name}={}", v.join(","))
+    };
+    let (mut worst_pos, mut worst_force) = (0f64, 0f64);
+    for case in truth["cases"].as_array().unwrap() {
+        let out = mech()
+            .arg("solve")
+            .arg(&file)
+            .arg(format!("--at={}", num(&case["q"])))
+            .arg(format!("--speed={}", num(&case["qd"])))
+            .arg(format!("--accel={}", num(&case["qdd"])))
+            .args(["--load", &load("wheel"), "--load", &load("brake")])
+            .args(["--format", "csv"])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let got = csv_map(&out);
+        for (p, v) in case["points"].as_object().unwrap() {
+            for (k, s) in ["x", "y", "z"].iter().enumerate() {
+                worst_pos = worst_pos.max((got[&format!("{p}.{s}")] - num(&v["pos"][k])).abs());
+                let scale_v = 1.0 + num(&case["qd"]).abs();
+                let scale_a = 1.0 + num(&case["qd"]).powi(2) + num(&case["qdd"]).abs();
+                worst_pos =
+                    worst_pos.max((got[&format!("{p}.v{s}")] - num(&v["vel"][k])).abs() / scale_v);
+                worst_pos =
+                    worst_pos.max((got[&format!("{p}.a{s}")] - num(&v["acc"][k])).abs() / scale_a);
+            }
+        }
+        let driver = num(&case["driver"]);
+        let scale = driver.abs().max(1e3);
+        worst_force = worst_force.max((got["driver"] - driver).abs() / scale);
+        for (j, r) in case["reactions"].as_object().unwrap() {
+            for (k, s) in ["x", "y", "z"].iter().enumerate() {
+                worst_force = worst_force
+                    .max((got[&format!("{j}.f{s}")] - num(&r["force"][k])).abs() / scale);
+                worst_force = worst_force
+                    .max((got[&format!("{j}.m{s}")] - num(&r["moment"][k])).abs() / scale);
+            }
+        }
+    }
+    assert!(worst_pos < 1e-12, "positions, rates: {worst_pos:e} m");
+    assert!(
+        worst_force < 1e-12,
+        "forces: {worst_force:e} of the driver's scale"
+    );
+}
+
+/// The isometric projection the picture promises (docs/cli.md): X = (y − x)/√2,
+/// Y = (2z − x − y)/√6, the picture's y pointing down.
+fn iso(p: nalgebra::Vector3<f64>) -> (f64, f64) {
+    (
+        (p.y - p.x) / 2f64.sqrt(),
+        -(2.0 * p.z - p.x - p.y) / 6f64.sqrt(),
+    )
+}
+
+#[test]
+fn draw_shows_each_link_once_and_the_joints_where_the_solver_puts_them() {
+    let dir = tempfile::tempdir().unwrap();
+    for (file, q) in [
+        (root().join("examples/mech/rssr.mech"), 0.9),
+        (root().join("examples/mech/double_wishbone.mech"), -0.08),
+    ] {
+        let out = dir.path().join("d.svg");
+        mech()
+            .arg("draw")
+            .arg(&file)
+            .arg(format!("--at={q}"))
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .success();
+        let text = std::fs::read_to_string(&out).unwrap();
+        let doc = roxmltree::Document::parse(&text).unwrap();
+        let m = SpatialMechanism::from_dsl(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        let model = m.model();
+        for b in &model.bodies[1..] {
+            let n = doc
+                .descendants()
+                .filter(|e| {
+                    matches!(e.attribute("class"), Some("bar") | Some("plate"))
+                        && e.attribute("data-name") == Some(b.name.as_str())
+                })
+                .count();
+            assert_eq!(n, 1, "{}: link `{}`", file.display(), b.name);
+        }
+        let links = doc
+            .descendants()
+            .filter(|e| matches!(e.attribute("class"), Some("bar") | Some("plate")))
+            .count();
+        assert_eq!(links, model.bodies.len() - 1);
+        // The pins: the projection of the library's points, up to the view's scale and shift.
+        let pose = m.pose(&[q]).unwrap();
+        let pins: Vec<((f64, f64), (f64, f64))> = model
+            .joints
+            .iter()
+            .map(|j| {
+                let e = doc
+                    .descendants()
+                    .find(|e| {
+                        e.attribute("class") == Some("pin")
+                            && e.attribute("data-name") == Some(j.name.as_str())
+                    })
+                    .unwrap();
+                let px = (
+                    e.attribute("cx").unwrap().parse::<f64>().unwrap(),
+                    e.attribute("cy").unwrap().parse::<f64>().unwrap(),
+                );
+                (px, iso(pose.point(&model.points[j.point].0).unwrap()))
+            })
+            .collect();
+        let (p0, w0) = pins[0];
+        let far = pins
+            .iter()
+            .max_by(|a, b| {
+                let d = |p: &((f64, f64), (f64, f64))| (p.1 .0 - w0.0).hypot(p.1 .1 - w0.1);
+                d(a).total_cmp(&d(b))
+            })
+            .unwrap();
+        let k = (far.0 .0 - p0.0).hypot(far.0 .1 - p0.1) / (far.1 .0 - w0.0).hypot(far.1 .1 - w0.1);
+        for ((x, y), (u, v)) in &pins {
+            let (ex, ey) = (p0.0 + k * (u - w0.0), p0.1 + k * (v - w0.1));
+            assert!(
+                (x - ex).abs() < 0.05 && (y - ey).abs() < 0.05,
+                "{}: pin at ({x}, {y}), the projection puts it at ({ex}, {ey})",
+                file.display()
+            );
+        }
+    }
+}
+
+/// The RSSP of mech-core/tests/spatial.rs (its `const RSSP`), driven at its slide.
+fn rssp_slide_text() -> String {
+    let source = include_str!("../../mech-core/tests/spatial.rs");
+    let start = source.find("const RSSP: &str = r#\"").unwrap() + "const RSSP: &str = r#\"".len();
+    let end = start + source[start..].find("\"#;").unwrap();
+    source[start..end].replace("input: O,", "input: guide,")
+}
+
+#[test]
+fn a_sliding_input_is_in_metres_and_its_driver_in_newtons() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssp_slide_text();
+    let file = rssr_file(&dir, &text);
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let mut loads = m.loads();
+    loads.set_by_name("gas", &[-50.0, 10.0, 5.0]);
+    let run = |format: &str| {
+        mech()
+            .arg("solve")
+            .arg(&file)
+            .args(["--at", "12mm", "--speed", "0.3", "--accel", "-0.5"])
+            .args(["--load", "gas=-50N,10N,5N", "--format", format])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone()
+    };
+    let got = csv_map(&run("csv"));
+    assert_same(&got, &library_row(&m, 0.012, 0.3, -0.5, &loads), "RSSP");
+    let table = String::from_utf8(run("table")).unwrap();
+    for (name, unit) in [
+        ("q", "m"),
+        ("driver", "N"),
+        ("virtual_power", "N"),
+        ("inertia", "kg"),
+        ("inertia_derivative", "kg/m"),
+        ("moment", "N"),
+        ("guide.fz", "N"),
+        ("guide.my", "N·m"),
+    ] {
+        let line = table
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("{name} in\n{table}"));
+        assert_eq!(line.split_whitespace().last(), Some(unit), "{line}");
+    }
+    // An angle where a length goes is a usage error naming the flag.
+    let o = mech()
+        .arg("solve")
+        .arg(&file)
+        .args(["--at", "30deg"])
+        .assert()
+        .failure()
+        .code(2)
+        .get_output()
+        .stderr
+        .clone();
+    let e = String::from_utf8(o).unwrap();
+    assert!(e.contains("--at") && e.contains("length"), "{e}");
+}
+
+#[test]
+fn two_inputs_name_their_columns_and_sweep_with_rest() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssr_text()
+        .replace(
+            "ground { O: (0.0, 0.0, 0.0), C: (250 mm, 120 mm, 80 mm) },",
+            "ground { O: (0.0, 0.0, 0.0) },\n    link slider { points { C: (250 mm, 120 mm, 80 mm) }, mass: 3.0, cg: (0.26, 0.11, 0.07), inertia: (1e-3, 1e-3, 1e-3, 0.0, 0.0, 0.0) },",
+        )
+        .replace(
+            "C: revolute(ground, rocker) axis (0.0, 0.0, 1.0),",
+            "C: revolute(slider, rocker) axis (0.0, 0.0, 1.0),\n        guide: prismatic(ground, slider) at C along (0.3, 1.0, -0.2),",
+        )
+        .replace("input: O,", "inputs: [O, guide],");
+    let file = rssr_file(&dir, &text);
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let out = mech()
+        .arg("sweep")
+        .arg(&file)
+        .args(["--from", "0", "--to", "1", "--steps", "4", "--rest", "5mm"])
+        .args(["--speed", "1,0.2", "--format", "csv"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let (head, rows) = csv_rows(&out);
+    assert_eq!(rows.len(), 5);
+    for c in [
+        "q.O",
+        "q.guide",
+        "driver.O",
+        "driver.guide",
+        "virtual_power.guide",
+    ] {
+        assert!(head.iter().any(|h| h == c), "{c} in {head:?}");
+    }
+    assert!(
+        !head.iter().any(|h| h == "inertia"),
+        "no Zhukovski for two inputs"
+    );
+    let col = |n: &str| head.iter().position(|h| h == n).unwrap();
+    let loads = m.loads();
+    for (k, row) in rows.iter().enumerate() {
+        let q = [0.25 * k as f64, 0.005];
+        assert_eq!((row[col("q.O")], row[col("q.guide")]), (q[0], q[1]));
+        let mo = m.kinematics(&q, &[1.0, 0.2], &[0.0, 0.0]).unwrap();
+        let f = m.kinetostatics(&mo, &loads).unwrap();
+        for (j, name) in ["driver.O", "driver.guide"].iter().enumerate() {
+            let (got, want) = (row[col(name)], f.drivers[j]);
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "{name}: {got} vs {want}"
+            );
+        }
+        let b = mo.point("B").unwrap();
+        assert!((row[col("B.z")] - b.z).abs() < 1e-15);
+    }
+}

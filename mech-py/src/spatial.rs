@@ -1,0 +1,206 @@
+//! Spatial mechanisms (SPEC 3i) for Python: [`mech_core::spatial::SpatialMechanism`]
+//! behind `mech._mech._SpatialMechanism`, whose `table` gives the columns of
+//! `mech_core::runtime::spatial_columns` (the `mech` tool's spatial CSV names) row by row.
+
+use crate::{check_size, check_text, invalid, parts_of, py_err};
+use mech_core::runtime::spatial_columns::{is_spatial as text_is_spatial, SpatialColumns};
+use mech_core::spatial::{LoadKind, SpatialMechanism};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
+use pyo3::prelude::*;
+
+/// True when `text` declares a spatial mechanism (its first item is `space`).
+#[pyfunction]
+pub fn is_spatial(text: &str) -> bool {
+    text_is_spatial(text)
+}
+
+/// The messages of a spatial check as `[FILE:]LINE:COLUMN: message` (the planar loader's
+/// form, so the exception carries `line` and `column`), a whole-mechanism one as
+/// `[FILE: ]message`.
+fn located(origin: Option<&str>, messages: &str) -> String {
+    let file = origin.map_or(String::new(), |o| format!("{o}:"));
+    messages
+        .lines()
+        .map(|m| {
+            let at = m.strip_prefix("line ").and_then(|rest| {
+                let (l, rest) = rest.split_once(", column ")?;
+                let (c, msg) = rest.split_once(": ")?;
+                Some((l.parse::<usize>().ok()?, c.parse::<usize>().ok()?, msg))
+            });
+            match (at, origin) {
+                (Some((l, c, msg)), _) => format!("{file}{l}:{c}: {msg}"),
+                (None, Some(o)) => format!("{o}: {m}"),
+                (None, None) => m.to_string(),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The native spatial mechanism (wrapped by `mech.SpatialMechanism`).
+#[pyclass(module = "mech._mech", name = "_SpatialMechanism")]
+#[derive(Clone)]
+pub struct PySpatialMechanism {
+    inner: SpatialMechanism,
+}
+
+/// (names, data (n, C), ok (n,), the first error message or None).
+type Table<'py> = (
+    Vec<String>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<bool>>,
+    Option<String>,
+);
+
+#[pymethods]
+impl PySpatialMechanism {
+    /// A spatial mechanism from its `space` text (`origin`: a file name for the messages).
+    #[staticmethod]
+    #[pyo3(signature = (text, origin=None))]
+    fn from_dsl(py: Python<'_>, text: &str, origin: Option<&str>) -> PyResult<Self> {
+        check_text(text, origin.unwrap_or("the text"))?;
+        SpatialMechanism::from_dsl(text)
+            .map(|inner| PySpatialMechanism { inner })
+            .map_err(|e| match e {
+                mech_core::MechError::Invalid(m) => {
+                    py_err(py, mech_core::MechError::Invalid(located(origin, &m)))
+                }
+                e => py_err(py, e),
+            })
+    }
+
+    /// The number of inputs G.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.inner.dof()
+    }
+
+    /// The mechanism's name.
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.model().name.clone()
+    }
+
+    /// The inputs: (joint name, its kind's word).
+    #[getter]
+    fn inputs(&self) -> Vec<(String, String)> {
+        let model = self.inner.model();
+        model
+            .inputs
+            .iter()
+            .map(|&j| {
+                (
+                    model.joints[j].name.clone(),
+                    model.joints[j].kind.word().to_string(),
+                )
+            })
+            .collect()
+    }
+
+    /// The loads: (name, "force" | "torque"), three components each.
+    #[getter]
+    fn loads(&self) -> Vec<(String, String)> {
+        self.inner
+            .model()
+            .loads
+            .iter()
+            .map(|l| {
+                let kind = match l.kind {
+                    LoadKind::Force { .. } => "force",
+                    LoadKind::Torque { .. } => "torque",
+                };
+                (l.name.clone(), kind.to_string())
+            })
+            .collect()
+    }
+
+    /// The idle links (between two spherical joints).
+    #[getter]
+    fn idle_links(&self) -> Vec<String> {
+        self.inner
+            .idle_links()
+            .into_iter()
+            .map(str::to_string)
+            .collect()
+    }
+
+    /// The column names of `parts`.
+    fn columns(&self, parts: Vec<String>) -> PyResult<Vec<String>> {
+        Ok(SpatialColumns::new(&self.inner, &parts_of(&parts)?).names)
+    }
+
+    /// The columns of `parts` at every row of q, q̇, q̈ (n, G) with the loads (n, 3 L), each
+    /// load's x, y, z in declaration order: (names, data (n, C), ok (n,), the first error).
+    /// A failed row is NaN with ok false.
+    fn table<'py>(
+        &self,
+        py: Python<'py>,
+        parts: Vec<String>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        loads: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Table<'py>> {
+        let m = &self.inner;
+        let cols = SpatialColumns::new(m, &parts_of(&parts)?);
+        let (q, qd, qdd, loads) = (
+            q.as_array(),
+            qd.as_array(),
+            qdd.as_array(),
+            loads.as_array(),
+        );
+        let (n, g, nl) = (q.nrows(), m.dof(), 3 * m.model().loads.len());
+        for (a, what) in [(&qd, "qd"), (&qdd, "qdd")] {
+            if a.shape() != q.shape() {
+                return Err(invalid(format!(
+                    "{what} has shape {:?} and q {:?}: give the same shape (rows, {g})",
+                    a.shape(),
+                    q.shape()
+                )));
+            }
+        }
+        if q.ncols() != g {
+            return Err(invalid(format!(
+                "q has {} column(s) for {g} input(s): give one per input",
+                q.ncols()
+            )));
+        }
+        if loads.ncols() != 0 && (loads.nrows() != n || loads.ncols() != nl) {
+            return Err(invalid(format!(
+                "loads of shape {:?}: give ({n}, {nl}), the x, y, z of each load in order",
+                loads.shape()
+            )));
+        }
+        check_size(n, cols.names.len(), "the table")?;
+        let width = cols.names.len();
+        let mut data = vec![f64::NAN; n * width];
+        let mut ok = vec![false; n];
+        let mut first = None;
+        let names = m.loads().names;
+        for i in 0..n {
+            let row = |a: &numpy::ndarray::ArrayView2<f64>| a.row(i).to_vec();
+            let mut l = m.loads();
+            if loads.ncols() != 0 {
+                let v = row(&loads);
+                for (k, name) in names.iter().enumerate() {
+                    l.set_by_name(name, &v[3 * k..3 * k + 3]);
+                }
+            }
+            match cols.row(m, &row(&q), &row(&qd), &row(&qdd), &l) {
+                Ok(r) => {
+                    data[i * width..(i + 1) * width].copy_from_slice(&r);
+                    ok[i] = true;
+                }
+                Err(e) => {
+                    if first.is_none() {
+                        first = Some(e.to_string());
+                    }
+                }
+            }
+        }
+        let data = numpy::ndarray::Array2::from_shape_vec((n, width), data)
+            .expect("n × width values")
+            .into_pyarray(py);
+        Ok((cols.names, data, ok.into_pyarray(py), first))
+    }
+}

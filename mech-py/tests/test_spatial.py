@@ -1,0 +1,94 @@
+"""Spatial mechanisms (SPEC 3i) from Python: mech.Mechanism.load of a `space` file gives a
+mech.SpatialMechanism whose dicts carry the `mech` tool's spatial column names; the RSSR
+against its closed-form geometry and virtual work, the double-wishbone suspension against
+its 50-digit mpmath table (tests/data/spatial/double_wishbone.truth.json)."""
+
+import json
+import math
+import pathlib
+import pickle
+
+import numpy as np
+import pytest
+
+import mech
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+RSSR = ROOT / "examples" / "mech" / "rssr.mech"
+WISHBONE = ROOT / "examples" / "mech" / "double_wishbone.mech"
+
+
+def test_the_rssr_answers_with_the_spatial_columns():
+    m = mech.Mechanism.load(str(RSSR))
+    assert isinstance(m, mech.SpatialMechanism)
+    assert m.idle_links == ["rod"]
+    assert m.load_names == [("tool", "torque"), ("push", "force")]
+    q = np.array([0.0, 0.7, 2.5])
+    k = m.kinematics(q, qd=2.0, qdd=-1.0)
+    # The crank turns A = (0, 0.05, 0) about x; the rocker keeps B at C's height; the rod
+    # and the rocker keep their lengths.
+    np.testing.assert_allclose(k["A.x"], 0.0, atol=1e-15)
+    np.testing.assert_allclose(k["A.y"], 0.05 * np.cos(q), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(k["A.z"], 0.05 * np.sin(q), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(k["A.vz"], 0.05 * np.cos(q) * 2.0, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(k["B.z"], 0.08, rtol=0, atol=1e-14)
+    rod = math.dist((0.0, 0.05, 0.0), (0.25, 0.02, 0.08))
+    ab = np.sqrt(sum((k["B." + c] - k["A." + c]) ** 2 for c in "xyz"))
+    np.testing.assert_allclose(ab, rod, rtol=1e-14)
+    np.testing.assert_allclose(k["crank.omega_x"], 2.0, rtol=1e-14)
+    np.testing.assert_allclose(k["crank.alpha_x"], -1.0, rtol=1e-14)
+    quat = np.sqrt(sum(k["rocker." + c] ** 2 for c in ("qw", "qx", "qy", "qz")))
+    np.testing.assert_allclose(quat, 1.0, rtol=1e-14)
+    # Reactions: SPEC 3i's columns; a ball joint carries no moment.
+    f = m.kinetostatics(0.7, loads={"push": (40.0, -30.0, 25.0)})
+    for c in ("A.fx", "A.fy", "A.fz", "A.mx", "A.my", "A.mz", "O.mz", "driver"):
+        assert c in f, c
+    assert (f["A.mx"], f["A.my"], f["A.mz"]) == (0.0, 0.0, 0.0)
+    # The load's share of the driver is minus its virtual work at q̇ = 1.
+    bare = m.kinetostatics(0.7)["driver"]
+    v = m.kinematics(0.7, qd=1.0)
+    work = 40.0 * v["B.vx"] - 30.0 * v["B.vy"] + 25.0 * v["B.vz"]
+    assert abs(work) > 0.1
+    assert abs((f["driver"] - bare) + work) < 1e-10 * abs(work)
+    # The three routes to the torque.
+    vp = m.driver_action(0.7, qd=3.0, qdd=2.0, loads={"tool": (0.5, -1.0, 2.0)})["driver"]
+    ne = m.kinetostatics(0.7, qd=3.0, qdd=2.0, loads={"tool": (0.5, -1.0, 2.0)})["driver"]
+    z = m.reduced(0.7)
+    zm = m.reduced_moment(0.7, loads={"tool": (0.5, -1.0, 2.0)})["moment"]
+    assert abs(vp - ne) < 1e-10 * abs(ne)
+    assert abs(z["inertia"] * 2.0 + 0.5 * z["inertia_derivative"] * 9.0 - zm - ne) < 1e-9 * abs(ne)
+    # Pickles; the planar loader's rule for bad loads.
+    assert pickle.loads(pickle.dumps(m)).kinetostatics(0.7)["driver"] == bare
+    with pytest.raises(mech.InvalidInput, match="three components"):
+        m.kinetostatics(0.7, loads={"push": (40.0, -30.0)})
+
+
+def test_a_bad_spatial_text_names_its_line():
+    text = RSSR.read_text().replace("revolute(ground, rocker)", "revolute(ground, rocket)")
+    with pytest.raises(mech.InvalidMechanism) as e:
+        mech.Mechanism.from_dsl(text)
+    line = next(i for i, l in enumerate(text.splitlines(), 1) if "rocket" in l)
+    assert e.value.line == line
+    assert "unknown link `rocket`" in str(e.value)
+
+
+def test_the_double_wishbone_matches_the_mpmath_table():
+    truth = json.loads((ROOT / "tests" / "data" / "spatial" / "double_wishbone.truth.json").read_text())
+    m = mech.Mechanism.load(str(WISHBONE))
+    cases = truth["cases"]
+    q = np.array([float(c["q"]) for c in cases])
+    qd = np.array([float(c["qd"]) for c in cases])
+    qdd = np.array([float(c["qdd"]) for c in cases])
+    loads = {n: tuple(float(x) for x in v) for n, v in truth["loads"].items()}
+    k = m.kinematics(q, qd, qdd)
+    f = m.kinetostatics(q, qd, qdd, loads=loads)
+    for i, c in enumerate(cases):
+        for p, v in c["points"].items():
+            for j, s in enumerate("xyz"):
+                assert abs(k["%s.%s" % (p, s)][i] - float(v["pos"][j])) < 1e-12
+        scale = max(abs(float(c["driver"])), 1e3)
+        assert abs(f["driver"][i] - float(c["driver"])) < 1e-12 * scale
+        for jn, r in c["reactions"].items():
+            for j, s in enumerate("xyz"):
+                assert abs(f["%s.f%s" % (jn, s)][i] - float(r["force"][j])) < 1e-12 * scale
+                assert abs(f["%s.m%s" % (jn, s)][i] - float(r["moment"][j])) < 1e-12 * scale
