@@ -9,8 +9,8 @@
 //! (a triad's Newton starts from the drawing, and its cost grows with the distance).
 //!
 //! The group `triad_sweep` times a sweep of the run-time `Mechanism` over the same 64
-//! angles: one batched call (each triad started from the previous configuration) against
-//! 64 one-configuration calls (each from the drawing).
+//! angles: the rows of `mech sweep` (each triad started from the previous configuration)
+//! against 64 one-configuration calls (each from the drawing).
 //!
 //! Count instructions per call with callgrind, as in the header of `benches/floor.rs`:
 //!
@@ -50,11 +50,13 @@ macro_rules! bench_pose {
     }};
 }
 
-/// A sweep of the run-time `Mechanism` over the 64 angles, one batched call
-/// (`points_many`: each triad starts from the previous angle's configuration,
-/// `mech_core::runtime::warm`) against 64 calls of `points_into` (each from the drawing):
-/// `triad_sweep/<machine>/warm` and `.../cold`, per sweep of 64 configurations.
+/// A sweep of the run-time `Mechanism` over the 64 angles: the rows of `mech sweep`
+/// (`Columns::rows_many` of the inputs and points: each triad starts from the previous
+/// angle's configuration, `mech_core::runtime::warm`) against 64 calls of `points_into`
+/// (each from the drawing): `triad_sweep/<machine>/warm` and `.../cold`, per sweep of 64
+/// configurations.
 fn sweep(c: &mut Criterion) {
+    use mech::columns::{Columns, Part};
     const SOURCE: &str = include_str!("../tests/common/triads.rs");
     let mut g = c.benchmark_group("triad_sweep");
     for (name, ty) in [
@@ -63,15 +65,19 @@ fn sweep(c: &mut Criterion) {
     ] {
         let r = mech::Mechanism::from_rust_source(SOURCE, ty).unwrap();
         let q = angles().to_vec();
+        let zero = vec![0.0; q.len()];
         let np = r.model().points.len();
-        let mut out = vec![0.0; 2 * np * q.len()];
+        let cols = Columns::new(&r, &[Part::Inputs, Part::Points]);
+        let loads = r.loads();
+        let mut rows = vec![0.0; cols.names.len() * q.len()];
         g.bench_function(format!("{name}/warm"), |b| {
             b.iter(|| {
-                assert!(black_box(&r)
-                    .points_many(black_box(&q), &mut out)
-                    .is_empty());
+                let l = |_| std::borrow::Cow::Borrowed(&loads);
+                let e = cols.rows_many(black_box(&r), black_box(&q), &zero, &zero, &l, &mut rows);
+                assert!(e.is_empty());
             })
         });
+        let mut out = vec![0.0; 2 * np * q.len()];
         let mut s = Vec::new();
         g.bench_function(format!("{name}/cold"), |b| {
             b.iter(|| {

@@ -8,7 +8,6 @@
 use super::mechanism::{Mechanism, Scratch};
 use super::results::LoadValue;
 use super::results::{Forces, Loads, Motion, Pose};
-use super::warm::Warm;
 use crate::kernel::constraints::Level;
 use crate::kernel::lanes::{
     acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, Backend, Base,
@@ -88,13 +87,9 @@ impl Mechanism {
         each_with(
             rows.0,
             rows.1,
-            || (Vec::<LinkState>::new(), Warm::new(self)),
-            |i, r: &mut Block<Pose>, (s, warm)| {
-                let (qi, zero) = (inputs(q, g, i), &zero[..]);
-                warm.run(qi, |start| {
-                    self.solve_into_from(qi, zero, zero, Level::Position, s, start)?;
-                    Ok(((), &s[..]))
-                })?;
+            Vec::<LinkState>::new,
+            |i, r: &mut Block<Pose>, s| {
+                self.solve_into(inputs(q, g, i), &zero, &zero, Level::Position, s)?;
                 crate::kernel::finite::finite_states(s, Level::Position)?;
                 let p = r.at(i);
                 p.links.clear();
@@ -138,14 +133,8 @@ impl Mechanism {
         each_with(
             rows.0,
             rows.1,
-            || (Vec::<LinkState>::new(), Warm::new(self)),
-            |i, r: &mut Block<f64>, (s, warm)| {
-                let qi = inputs(q, g, i);
-                warm.run(qi, |start| {
-                    self.points_from(qi, s, r.row(i), start)?;
-                    Ok(((), &s[..]))
-                })
-            },
+            Vec::<LinkState>::new,
+            |i, r: &mut Block<f64>, s| self.points_into(inputs(q, g, i), s, r.row(i)),
         )
     }
 
@@ -172,13 +161,10 @@ impl Mechanism {
         each_with(
             rows.0,
             rows.1,
-            || (self.empty_motion(), Warm::new(self)),
-            |i, r: &mut Block<f64>, (m, warm)| {
+            || self.empty_motion(),
+            |i, r: &mut Block<f64>, m| {
                 let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-                warm.run(qi, |start| {
-                    self.kinematics_from(qi, qdi, qddi, m, start)?;
-                    Ok(((), &m.states[..]))
-                })?;
+                self.kinematics_into(qi, qdi, qddi, m)?;
                 r.row(i).copy_from_slice(&self.driver_action(m, loads)?);
                 Ok(())
             },
@@ -210,19 +196,6 @@ impl Mechanism {
             *b.at(i) = z.inertia_derivative;
             Ok(())
         };
-        if Warm::new(self).applies() {
-            // A triad: each configuration from the previous one (`super::warm`).
-            let scratch = || (Vec::new(), Warm::new(self));
-            return each_with(n, rows, scratch, |i, (a, b), (s, warm)| {
-                let z = warm.run(&q[i..i + 1], |start| {
-                    let z = self.zhukovski_from(q[i], 0.0, None, Level::Acceleration, s, start)?;
-                    Ok((z, &s[..]))
-                })?;
-                *a.at(i) = z.reduced.inertia;
-                *b.at(i) = z.reduced.inertia_derivative;
-                Ok(())
-            });
-        }
         if !self.lanes {
             return each(n, rows, one);
         }
@@ -260,21 +233,6 @@ impl Mechanism {
             *r.at(i) = OneDof::acceleration(self, q[i], qd[i], driver[i], loads)?;
             Ok(())
         };
-        if Warm::new(self).applies() {
-            // A triad: each configuration from the previous one (`super::warm`).
-            let scratch = || (Vec::new(), Warm::new(self));
-            return each_with(n, rows, scratch, |i, r, (s, warm)| {
-                crate::error::check_finite("q, qd, driver", &[q[i], qd[i], driver[i]])?;
-                let z = warm.run(&q[i..i + 1], |start| {
-                    let (l, upto) = (Some(loads), Level::Acceleration);
-                    let z = self.zhukovski_from(q[i], qd[i], l, upto, s, start)?;
-                    Ok((z, &s[..]))
-                })?;
-                *r.at(i) =
-                    crate::solvers::zhukovski::acceleration(z.reduced, z.moment, qd[i], driver[i])?;
-                Ok(())
-            });
-        }
         if !self.lanes {
             return each(n, rows, one);
         }
@@ -332,13 +290,10 @@ impl Mechanism {
         each_with(
             rows.0,
             rows.1,
-            || (self.empty_motion(), Warm::new(self)),
-            |i, r, (m, warm)| {
+            || self.empty_motion(),
+            |i, r, m| {
                 let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-                warm.run(qi, |start| {
-                    self.kinematics_from(qi, qdi, qddi, m, start)?;
-                    Ok(((), &m.states[..]))
-                })?;
+                self.kinematics_into(qi, qdi, qddi, m)?;
                 put_kinematics(r, i, m.points.iter(), m.links[1..].iter());
                 Ok(())
             },
@@ -385,14 +340,11 @@ impl Mechanism {
                 joints: Vec::new(),
                 model: self.model.clone(),
             };
-            (self.empty_motion(), f, Warm::new(self))
+            (self.empty_motion(), f)
         };
-        each_with(rows.0, rows.1, scratch, |i, r, (m, f, warm)| {
+        each_with(rows.0, rows.1, scratch, |i, r, (m, f)| {
             let (qi, qdi, qddi) = (inputs(q, g, i), inputs(qd, g, i), inputs(qdd, g, i));
-            warm.run(qi, |start| {
-                self.kinematics_from(qi, qdi, qddi, m, start)?;
-                Ok(((), &m.states[..]))
-            })?;
+            self.kinematics_into(qi, qdi, qddi, m)?;
             self.kinetostatics_into(m, loads, None, f)?;
             put_kinetostatics(
                 r,

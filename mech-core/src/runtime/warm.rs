@@ -1,14 +1,18 @@
-//! The warm start of a sweep: a chunk of configurations solved one after the other hands
+//! The warm start of a sweep: the rows of `mech sweep` and of Python's tables
+//! (`super::columns::Columns::rows_many`), solved one after the other within a chunk, hand
 //! each triad (`crate::kernel::triad`) the previous configuration's link states as its
-//! Newton's start, instead of the drawing.
+//! Newton's start, instead of the drawing. The batched forms (`pose_many`, ...) do not:
+//! each of their configurations is the one-configuration solver's answer exactly.
 //!
 //! A triad's pose is one eliminated unknown solved by Newton; started from the drawing its
 //! cost grows with the distance from it, and a triad whose dyad changes side over the turn
 //! finds no root from the drawing with the plan's lead and tries the others. Started from
 //! a neighbour a few degrees away it converges in two or three steps. The root is accepted
 //! on the drawn assembly only (the sign of the group's Jacobian determinant, checked by the
-//! kernel whatever the start), so the warm start changes the cost, not the answer: the
-//! same root to round-off (`tests/batch.rs`).
+//! kernel whatever the start). On a mechanism as drawn the warm start changes the cost,
+//! not the answer (`tests/triads.rs`); where the turn passes dead points, one call from the
+//! drawing can miss a root or land on another assembly of the same sign, and a sweep
+//! follows the assembly from row to row instead.
 //!
 //! The previous configuration is used when it was solved and every input moved by at most
 //! [`WARM_STEP`] since (rad, or that fraction of the mechanism's size for a prismatic
@@ -59,11 +63,6 @@ impl Warm {
         }
     }
 
-    /// The mechanism has a triad: the warm start applies.
-    pub(crate) fn applies(&self) -> bool {
-        self.on
-    }
-
     /// The start for the configuration at inputs `q`: the last solved configuration's
     /// states when every input moved by at most its step since, else `None` (the drawing).
     #[inline]
@@ -95,7 +94,6 @@ impl Warm {
     }
 }
 
-use crate::kernel::constraints::Level;
 use crate::MechError;
 
 impl Warm {
@@ -121,36 +119,12 @@ impl Warm {
     }
 }
 
-impl Mechanism {
-    /// Zhukovski's sums (`Mechanism::zhukovski_sums`) with the triads started from `start`,
-    /// the states solved into `s` (the batched `reduced_many` and `acceleration_many`).
-    pub(crate) fn zhukovski_from(
-        &self,
-        q: f64,
-        qd: f64,
-        loads: Option<&super::results::Loads>,
-        upto: Level,
-        s: &mut Vec<LinkState>,
-        start: Option<&[LinkState]>,
-    ) -> Result<crate::solvers::zhukovski::ZhukovskiSums, MechError> {
-        crate::error::check_finite("q, qd, qdd", &[q])?;
-        s.resize(self.inst.drawing.len(), LinkState::default());
-        let drive: crate::kernel::constraints::Drive = (&[q], &[1.0], &[0.0]);
-        match upto {
-            Level::Acceleration => {
-                self.solve_from::<{ super::dispatch::ACCELERATION }>(drive, s, &mut [], start)?
-            }
-            _ => self.solve_from::<{ super::dispatch::VELOCITY }>(drive, s, &mut [], start)?,
-        }
-        self.sums(s, loads, qd, upto == Level::Acceleration)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     //! When the warm start is given: after a solved configuration, within the step, on a
     //! mechanism with a triad; never on one without.
     use super::*;
+    use crate::kernel::constraints::Level;
 
     const TRIAD: &str = "pub struct S {
         ground { P0: (0.0, 0.0), P4: (0.117, 0.023), P6: (0.139, 0.033) },
