@@ -101,7 +101,7 @@ pub fn finite_states(
 /// velocity and acceleration of each point away from its link's anchor (`points`) and of
 /// each moving link's cg (`links`). They derive from finite states but can still overflow
 /// (a point far from its anchor at a huge speed: ω² r). Each times zero (`zeroed`),
-/// summed, one compare; the error is [`states_overflow`]'s, given no values.
+/// summed, one compare; the error is `states_overflow`'s, given no values.
 #[inline(always)]
 pub fn finite_derived(
     points: &[&crate::kernel::link_state::PointMotion],

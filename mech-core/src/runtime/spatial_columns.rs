@@ -176,7 +176,7 @@ impl SpatialColumns {
     /// The row at inputs (q, q̇, q̈) under `loads`, in the order of
     /// [`SpatialColumns::names`]: the kinematics, then what the parts ask (the
     /// kinetostatics for the reactions and `driver`, the virtual power for
-    /// `virtual_power`, Zhukovski's reduction at q[0]).
+    /// `virtual_power`, Zhukovski's reduction at `q[0]`).
     pub fn row(
         &self,
         m: &SpatialMechanism,
