@@ -10,9 +10,18 @@ mod emit;
 use mech_core::front::dsl::Parsed;
 use proc_macro::TokenStream;
 
-/// Declare a planar mechanism; see the crate `mech` and `docs/conventions.md#dsl` for the grammar.
+/// Declare a planar mechanism (or a spatial one: `space` first); see the crate `mech` and `docs/conventions.md#dsl` for the grammar.
 #[proc_macro]
 pub fn mechanism(input: TokenStream) -> TokenStream {
+    let tokens = proc_macro2::TokenStream::from(input.clone());
+    let space = |s: syn::parse::ParseStream| {
+        let space = mech_core::spatial::dsl::is_space(s);
+        s.parse::<proc_macro2::TokenStream>()?;
+        Ok(space)
+    };
+    if syn::parse::Parser::parse2(space, tokens.clone()).unwrap_or(false) {
+        return emit::spatial::mechanism(tokens).into();
+    }
     let desc = match syn::parse::<Parsed>(input) {
         Ok(p) => p.0,
         Err(e) => return e.to_compile_error().into(),
