@@ -135,92 +135,96 @@ fn errors(found: &[Finding], spans: &Spans) -> TokenStream {
     out
 }
 
-/// A `Vector3<f64>` literal.
-fn vec3(v: &Vector3<f64>, s: &TokenStream) -> TokenStream {
+/// A `Vector3<f64>` literal (`Vector3` imported where it is used).
+fn vec3(v: &Vector3<f64>) -> TokenStream {
     let (x, y, z) = (f64s(v.x), f64s(v.y), f64s(v.z));
-    quote!(#s::Vector3::new(#x, #y, #z))
+    quote!(Vector3::new(#x, #y, #z))
 }
 
-/// The declaration as a `SpatialModel` literal (SI, the drawing's coordinates).
-fn model_literal(m: &SpatialModel, s: &TokenStream) -> TokenStream {
-    let name = &m.name;
-    let gravity = match &m.gravity {
-        Some(g) => {
-            let g = vec3(g, s);
-            quote!(Some(#g))
+/// `Some(v)` or `None`.
+fn some_vec3(v: &Option<Vector3<f64>>) -> TokenStream {
+    match v {
+        Some(v) => {
+            let v = vec3(v);
+            quote!(Some(#v))
         }
         None => quote!(None),
-    };
+    }
+}
+
+/// The declaration as a `SpatialModel` literal (SI, the drawing's coordinates), the body of
+/// the generated `model()`.
+fn model_literal(m: &SpatialModel, s: &TokenStream) -> TokenStream {
+    let name = &m.name;
+    let gravity = some_vec3(&m.gravity);
     let points = m.points.iter().map(|(n, p)| {
-        let p = vec3(p, s);
+        let p = vec3(p);
         quote!((#n.to_string(), #p))
     });
     let bodies = m.bodies.iter().map(|b| {
-        let (name, pts, mass) = (&b.name, &b.points, f64s(b.mass));
-        let cg = match &b.cg {
-            Some(g) => {
-                let g = vec3(g, s);
-                quote!(Some(#g))
-            }
-            None => quote!(None),
-        };
-        let i = b.inertia.transpose();
-        let i = i.iter().map(|&x| f64s(x));
-        quote!(#s::Body {
+        let (name, pts, mass, cg) = (&b.name, &b.points, f64s(b.mass), some_vec3(&b.cg));
+        // the DSL's six numbers (Ixx, Iyy, Izz, Ixy, Ixz, Iyz), products Ixy = Σ m x y
+        let t = &b.inertia;
+        let six = [t[(0, 0)], t[(1, 1)], t[(2, 2)], -t[(0, 1)], -t[(0, 2)], -t[(1, 2)]];
+        let i = six.iter().map(|&x| f64s(x + 0.0));
+        quote!(Body {
             name: #name.to_string(),
-            points: vec![#(#pts),*],
+            points: Vec::from([#(#pts),*]),
             mass: #mass,
             cg: #cg,
-            inertia: #s::Matrix3::new(#(#i),*),
+            inertia: inertia_tensor([#(#i),*]),
         })
     });
     let joints = m.joints.iter().map(|j| {
         let (name, a, b, point) = (&j.name, j.a, j.b, j.point);
         let kind = match &j.kind {
             JointKind::Revolute { axis } => {
-                let u = vec3(axis, s);
-                quote!(#s::JointKind::Revolute { axis: #u })
+                let u = vec3(axis);
+                quote!(JointKind::Revolute { axis: #u })
             }
             JointKind::Prismatic { axis } => {
-                let u = vec3(axis, s);
-                quote!(#s::JointKind::Prismatic { axis: #u })
+                let u = vec3(axis);
+                quote!(JointKind::Prismatic { axis: #u })
             }
             JointKind::Cylindrical { axis } => {
-                let u = vec3(axis, s);
-                quote!(#s::JointKind::Cylindrical { axis: #u })
+                let u = vec3(axis);
+                quote!(JointKind::Cylindrical { axis: #u })
             }
-            JointKind::Spherical => quote!(#s::JointKind::Spherical),
+            JointKind::Spherical => quote!(JointKind::Spherical),
             JointKind::Universal { first, second } => {
-                let (u, v) = (vec3(first, s), vec3(second, s));
-                quote!(#s::JointKind::Universal { first: #u, second: #v })
+                let (u, v) = (vec3(first), vec3(second));
+                quote!(JointKind::Universal { first: #u, second: #v })
             }
             JointKind::Helical { axis, pitch } => {
-                let (u, p) = (vec3(axis, s), f64s(*pitch));
-                quote!(#s::JointKind::Helical { axis: #u, pitch: #p })
+                let (u, p) = (vec3(axis), f64s(*pitch));
+                quote!(JointKind::Helical { axis: #u, pitch: #p })
             }
         };
-        quote!(#s::Joint { name: #name.to_string(), kind: #kind, a: #a, b: #b, point: #point })
+        quote!(Joint { name: #name.to_string(), kind: #kind, a: #a, b: #b, point: #point })
     });
     let inputs = &m.inputs;
     let loads = m.loads.iter().map(|l| {
         let name = &l.name;
         let kind = match l.kind {
-            LoadKind::Force { body, point } => quote!(#s::LoadKind::Force { body: #body, point: #point }),
-            LoadKind::Torque { body } => quote!(#s::LoadKind::Torque { body: #body }),
+            LoadKind::Force { body, point } => quote!(LoadKind::Force { body: #body, point: #point }),
+            LoadKind::Torque { body } => quote!(LoadKind::Torque { body: #body }),
         };
-        quote!(#s::Load { name: #name.to_string(), kind: #kind })
+        quote!(Load { name: #name.to_string(), kind: #kind })
     });
     let redundant = m.allow_redundant;
-    quote!(#s::SpatialModel {
-        name: #name.to_string(),
-        gravity: #gravity,
-        points: vec![#(#points),*],
-        bodies: vec![#(#bodies),*],
-        joints: vec![#(#joints),*],
-        inputs: vec![#(#inputs),*],
-        loads: vec![#(#loads),*],
-        allow_redundant: #redundant,
-    })
+    quote! {
+        use #s::{inertia_tensor, Body, Joint, JointKind, Load, LoadKind, SpatialModel, Vector3};
+        SpatialModel {
+            name: #name.to_string(),
+            gravity: #gravity,
+            points: Vec::from([#(#points),*]),
+            bodies: Vec::from([#(#bodies),*]),
+            joints: Vec::from([#(#joints),*]),
+            inputs: Vec::from([#(#inputs),*]),
+            loads: Vec::from([#(#loads),*]),
+            allow_redundant: #redundant,
+        }
+    }
 }
 
 /// The struct, its constants, `new`, `model`, `mechanism` and `Default`.

@@ -16,7 +16,7 @@ fn points(c: &Ctx) -> Vec<(Ident, usize, TokenStream)> {
         .enumerate()
         .filter_map(|(p, (name, _))| {
             let (b, offset) = c.mech.point_anchor(p)?;
-            Some((id(name), b, vec3(&offset, &c.s)))
+            Some((id(name), b, vec3(&offset)))
         })
         .collect()
 }
@@ -87,13 +87,14 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
             /// Position analysis: every link's rotation and cg, every point's position
             /// (Newton in absolute coordinates, continued from the drawing to q).
             pub fn pose(&self, q: #q_ty) -> Result<#pose, #p::MechError> {
+                use #s::{LinkMotion, LinkPose, PointPose, Vector3};
                 let m = self.inner.pose(&#qa)?;
                 Ok(#pose {
                     links: #pose_links {
-                        #(#link_ids: #s::LinkPose::from(#s::LinkMotion::from(&m.bodies[#bodies])),)*
+                        #(#link_ids: LinkPose::from(LinkMotion::from(&m.bodies[#bodies])),)*
                     },
                     points: #pose_points {
-                        #(#point_ids: #s::PointPose { pos: #point_at[0] },)*
+                        #(#point_ids: PointPose { pos: #point_at[0] },)*
                     },
                 })
             }
@@ -110,13 +111,14 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
                 qd: [f64; #dof],
                 qdd: [f64; #dof],
             ) -> Result<#motion, #p::MechError> {
+                use #s::{LinkMotion, PointMotion, Vector3};
                 let m = self.inner.kinematics(&q, &qd, &qdd)?;
                 Ok(#motion {
                     links: #motion_links {
-                        #(#link_ids: #s::LinkMotion::from(&m.bodies[#bodies]),)*
+                        #(#link_ids: LinkMotion::from(&m.bodies[#bodies]),)*
                     },
                     points: #motion_points {
-                        #(#point_ids: #s::PointMotion::from(#point_at),)*
+                        #(#point_ids: PointMotion::from(#point_at),)*
                     },
                     q,
                     qd,
