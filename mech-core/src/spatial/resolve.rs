@@ -9,6 +9,7 @@
 use super::dsl::Written;
 use super::model::{inertia_tensor, Body, Joint, JointKind, Load, LoadKind, SpatialModel};
 use super::dsl::Spans;
+use crate::checks::magnitudes::{in_range, COORDINATE, GRAVITY, INERTIA, MASS, SIZE, WHY};
 use proc_macro2::Span;
 use nalgebra::{Matrix3, Vector3};
 use syn::Ident;
@@ -16,6 +17,11 @@ use syn::Ident;
 /// The message `m` at where `id` was written.
 fn err(id: &Ident, m: String) -> syn::Error {
     syn::Error::new(id.span(), m)
+}
+
+/// Every coordinate finite and within ±[`COORDINATE`].
+fn within(p: &Vector3<f64>) -> bool {
+    p.iter().all(|x| x.abs() <= COORDINATE)
 }
 
 fn unit(v: Vector3<f64>, at: Span, what: &str, errors: &mut Vec<syn::Error>) -> Vector3<f64> {
@@ -39,7 +45,9 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
     for l in &w.links {
         for (id, at) in &l.points {
             if let Some(p) = at {
-                if points.iter().any(|(n, _)| *id == *n) {
+                if !within(p) {
+                    errors.push(err(id, format!("point `{id}` is at ({:e}, {:e}, {:e}) m: coordinates must be finite and within ±{COORDINATE:e} m ({WHY}); move the origin or check the unit", p.x, p.y, p.z)));
+                } else if points.iter().any(|(n, _)| *id == *n) {
                     errors.push(err(id, format!("point `{id}` is given coordinates twice: define it once (`{id}: (x, y, z)`) and name it alone elsewhere")));
                 } else {
                     points.push((id.to_string(), *p));
@@ -57,16 +65,20 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
             }
         }
         let mass = l.mass.unwrap_or(0.0);
-        if !(mass >= 0.0) || !mass.is_finite() {
-            errors.push(
-                err(&l.name, format!(
-                        "the mass of link `{}` is {mass} kg: a mass is finite and ≥ 0",
-                        l.name
-                    )),
-            );
+        if !in_range(mass, MASS) {
+            errors.push(err(&l.name, format!("the mass of link `{}` is {mass:e} kg: a mass is 0 or within {:e} to {:e} kg ({WHY})", l.name, MASS.0, MASS.1)));
+        }
+        if let Some(g) = l.cg.filter(|g| !within(g)) {
+            errors.push(err(&l.name, format!("the cg of link `{}` is at ({:e}, {:e}, {:e}) m: coordinates must be finite and within ±{COORDINATE:e} m ({WHY})", l.name, g.x, g.y, g.z)));
+        }
+        let six = l.inertia.unwrap_or_default();
+        let sized = six[..3].iter().all(|&x| in_range(x, INERTIA))
+            && six[3..].iter().all(|&x| x.is_finite() && x.abs() <= INERTIA.1);
+        if !sized {
+            errors.push(err(&l.name, format!("the inertia of link `{}` is {six:?} kg·m²: moments are 0 or within {:e} to {:e} kg·m², products within ±{:e} ({WHY})", l.name, INERTIA.0, INERTIA.1, INERTIA.1)));
         }
         let inertia = l.inertia.map(inertia_tensor).unwrap_or_else(Matrix3::zeros);
-        if l.inertia.is_some() && inertia.symmetric_eigenvalues().min() < -1e-12 * inertia.norm() {
+        if sized && l.inertia.is_some() && inertia.symmetric_eigenvalues().min() < -1e-12 * inertia.norm() {
             errors.push(err(&l.name, format!("the inertia tensor of link `{}` is not positive semi-definite (eigenvalues {:?} kg·m²): check the signs of the products Ixy, Ixz, Iyz (Ixy = Σ m x y)", l.name, inertia.symmetric_eigenvalues().as_slice())));
         }
         bodies.push(Body {
@@ -159,6 +171,10 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
                 );
                 continue;
             }
+            ("helical", Some(pitch)) if !(pitch.abs() <= COORDINATE) => {
+                errors.push(err(&j.name, format!("joint `{}`: the pitch {pitch:e} m must be finite and within ±{COORDINATE:e} m ({WHY})", j.name)));
+                continue;
+            }
             ("helical", Some(pitch)) => JointKind::Helical { axis: u[0], pitch },
             (k, Some(_)) => {
                 errors.push(
@@ -244,6 +260,16 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
             name: n.to_string(),
             kind,
         });
+    }
+    if let Some(g) = w.gravity.filter(|g| !(g.norm() <= GRAVITY)) {
+        errors.push(err(&w.name, format!("gravity is ({:e}, {:e}, {:e}) m/s²: its size must be at most {GRAVITY:e} m/s² ({WHY})", g.x, g.y, g.z)));
+    }
+    let size = points
+        .iter()
+        .flat_map(|(_, a)| points.iter().map(move |(_, b)| (a - b).norm()))
+        .fold(0.0, f64::max);
+    if points.len() > 1 && size < SIZE.0 {
+        errors.push(err(&w.name, format!("the drawing is {size:e} m across: its points must be at least {:e} m apart somewhere ({WHY}); check the unit", SIZE.0)));
     }
     if !errors.is_empty() {
         return Err(errors);
