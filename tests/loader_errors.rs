@@ -68,6 +68,11 @@ fn every_ui_mistake_loaded_as_text_gets_the_same_message_and_place() {
             .and_then(|r| r.split(|c: char| !c.is_alphanumeric() && c != '_').next())
             .unwrap();
         let file = path.file_name().unwrap().to_string_lossy();
+        if source.contains("        space,\n") {
+            spatial_case(&file, &source, &expected);
+            covered += 1;
+            continue;
+        }
         let msg = match GenericMechanism::from_rust_source(&source, name) {
             Err(MechError::Invalid(msg)) => msg,
             other => panic!(
@@ -94,6 +99,28 @@ fn every_ui_mistake_loaded_as_text_gets_the_same_message_and_place() {
     }
     eprintln!("{covered} cases of tests/ui loaded as text");
     assert!(covered >= 25, "only {covered} cases covered");
+}
+
+/// A spatial case (`space` first): the run-time spatial loader, given the macro's body,
+/// reports each of the macro's messages; one the loader places (a naming, unit or geometry
+/// mistake: `line L, column C: ` of the body) is at the macro's place. The counts (Kutzbach,
+/// the rank) name the mechanism as a whole at run time.
+fn spatial_case(file: &str, source: &str, expected: &[(String, usize, usize)]) {
+    let open = source.find("mechanism! {\n").unwrap() + "mechanism! {\n".len();
+    let close = source.rfind("\n}\n").unwrap();
+    let offset = source[..open].lines().count();
+    let msg = match mech::spatial::SpatialMechanism::from_dsl(&source[open..close]) {
+        Err(MechError::Invalid(msg)) => msg,
+        other => panic!("{file}: expected Invalid, got {other:?}"),
+    };
+    for (text, line, col) in expected {
+        let found = msg.lines().find(|l| l.contains(text.as_str()));
+        let found = found.unwrap_or_else(|| panic!("{file}: the macro's message\n  {text}\nis not in\n{msg}"));
+        if found.starts_with("line ") {
+            let at = format!("line {}, column {col}: {text}", line - offset);
+            assert_eq!(found, at, "{file}: not at the macro's place");
+        }
+    }
 }
 
 /// The rendering: the location line, then the excerpt with the culprit underlined.
