@@ -5,6 +5,7 @@
 //! `driver_action`, `reduced`, `reduced_moment`, `acceleration`. The formulation is in
 //! `docs/spatial.md`.
 
+pub mod closed;
 pub mod constraints;
 pub mod dsl;
 pub mod kinematics;

@@ -1,0 +1,80 @@
+//! The RSSP group in closed form: a crank (revolute input) and a slider (prismatic output)
+//! joined by a rod between two spherical joints.
+//!
+//! The crank pin A turns about the input's axis (c₁, u₁) by ψ, the slider's pin moves along
+//! the guide, B = B₀ + s w (w unit), and the rod keeps its length L = |B₀ − A₀|:
+//! |A − B₀ − s w| = L, a quadratic in the travel s (m, 0 in the drawing):
+//! s² − 2 s w·m + |m|² − L² = 0 with m = A − B₀, s = w·m + σ √((w·m)² − |m|² + L²)
+//! (`travel`). **Branch rule**: σ is the sign whose root is s = 0 at ψ = 0, fixed at
+//! construction (σ = sign of w·(A₀ − B₀); a drawing with the rod ⊥ the guide, both roots
+//! equal, is refused). Rates from |B − A| constant (`keep_length`): with r = A − B,
+//! ṡ = r·Ȧ / r·w, s̈ = (ṙ·ṙ + r·Ä) / r·w.
+
+use super::{circle, keep_length, travel, Output};
+use crate::MechError;
+use nalgebra::Vector3;
+
+type V3 = Vector3<f64>;
+
+/// An RSSP's closed form (all points in the drawing, m; axes unit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rssp {
+    /// A point of the input's axis (m).
+    pub centre: V3,
+    /// The input's axis (unit).
+    pub axis: V3,
+    /// The crank pin A in the drawing (m).
+    pub a0: V3,
+    /// The guide's direction w (unit).
+    pub slide: V3,
+    /// The slider's pin B in the drawing (m).
+    pub b0: V3,
+    /// The rod's length |B₀ − A₀| (m).
+    pub length: f64,
+    /// The branch σ = ±1 (module doc).
+    pub sign: f64,
+}
+
+impl Rssp {
+    /// The RSSP of the input axis (`centre`, `axis`) with pin `a0`, the guide `slide` and
+    /// the slider's pin `b0`; directions normalised here. `None` when the drawing is at a
+    /// toggle (the rod ⊥ the guide).
+    pub fn new(centre: V3, axis: V3, a0: V3, slide: V3, b0: V3) -> Option<Self> {
+        let mut k = Rssp {
+            centre,
+            axis: axis.try_normalize(0.0)?,
+            a0,
+            slide: slide.try_normalize(0.0)?,
+            b0,
+            length: (b0 - a0).norm(),
+            sign: 1.0,
+        };
+        k.sign = super::branch(|s| Self { sign: s, ..k }.travel(0.0), k.length)?;
+        Some(k)
+    }
+
+    /// The slider's travel s along w (m, 0 in the drawing) at the crank's rotation ψ (rad);
+    /// `NoAssembly` where the rod cannot reach the guide.
+    #[inline]
+    pub fn travel(&self, psi: f64) -> Result<f64, MechError> {
+        let a = circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0];
+        travel(a - self.b0, self.slide, self.length, self.sign)
+    }
+
+    /// (A, B, s) at ψ: the pins (m) and the travel (m).
+    #[inline]
+    pub fn points(&self, psi: f64) -> Result<(V3, V3, f64), MechError> {
+        let s = self.travel(psi)?;
+        let a = circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0];
+        Ok((a, self.b0 + self.slide * s, s))
+    }
+
+    /// s, ṡ, s̈ at (ψ, ψ̇, ψ̈) (m, m/s, m/s²); `Singular` with the rod ⊥ the guide.
+    #[inline]
+    pub fn solve(&self, psi: f64, psid: f64, psidd: f64) -> Result<Output, MechError> {
+        let (_, b, s) = self.points(psi)?;
+        let [a, ad, add] = circle(self.centre, self.axis, self.a0, [psi, psid, psidd]);
+        let (xd, xdd) = keep_length(a - b, ad, add, self.slide, V3::zeros())?;
+        Ok(Output { x: s, xd, xdd })
+    }
+}
