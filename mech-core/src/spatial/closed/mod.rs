@@ -366,3 +366,57 @@ impl Closed {
         Ok(s)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Both roots of `dot_angle` and `travel` satisfy their equations (1e-15), and out of
+    /// reach is `NoAssembly`.
+    #[test]
+    fn the_two_scalar_equations_are_solved_on_both_branches() {
+        let g = V3::new(0.3, -0.4, 0.8).normalize();
+        let (x, y0) = (V3::new(0.5, 0.2, -0.1), V3::new(-0.2, 0.7, 0.4));
+        let c = 0.1;
+        for sign in [1.0, -1.0] {
+            let phi = dot_angle(x, g, y0, c, sign).unwrap();
+            assert!((x.dot(&(turn(g, phi) * y0)) - c).abs() < 1e-15, "{sign}");
+        }
+        assert!(matches!(
+            dot_angle(x, g, y0, 1.0, 1.0),
+            Err(MechError::NoAssembly)
+        ));
+        let (m, w, l) = (
+            V3::new(0.2, -0.1, 0.3),
+            V3::new(1.0, 2.0, -0.5).normalize(),
+            0.5,
+        );
+        for sign in [1.0, -1.0] {
+            let s = travel(m, w, l, sign).unwrap();
+            assert!(((m - w * s).norm() - l).abs() < 1e-15, "{sign}");
+        }
+        assert!(matches!(
+            travel(m, w, 0.01, 1.0),
+            Err(MechError::NoAssembly)
+        ));
+        assert!(matches!(
+            dot_angle(x, g, y0, f64::NAN, 1.0),
+            Err(MechError::NoAssembly)
+        ));
+    }
+
+    /// The spin fix's rotation takes e to the current axis with its vector part ⊥ e;
+    /// `frame_rotation` takes both drawing vectors to the current ones.
+    #[test]
+    fn the_couplers_rotations_take_the_drawing_to_the_current_axes() {
+        let e = V3::new(0.25, -0.03, 0.08);
+        let now = V3::new(0.1, 0.2, -0.15).normalize() * e.norm();
+        let r = constraints::spin_rotation(e, now).unwrap();
+        assert!((r * e - now).norm() < 1e-16 && r.quaternion().imag().dot(&e).abs() < 1e-17);
+        assert!(constraints::spin_rotation(e, -e).is_none());
+        let turn_it = turn(V3::new(0.2, 0.5, -0.3).normalize(), 2.1);
+        let (x0, y0) = (V3::new(0.3, 0.1, 0.0), V3::new(-0.1, 0.4, 0.2));
+        let f = frame_rotation(x0, y0, turn_it * x0, turn_it * y0);
+        assert!(f.angle_to(&turn_it) < 1e-15);
+    }
+}
