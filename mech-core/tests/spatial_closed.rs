@@ -378,6 +378,9 @@ fn differences(f: impl Fn(f64) -> f64, x: f64, h: f64) -> (f64, f64) {
     )
 }
 
+/// A kernel's output at (ψ, ψ̇, ψ̈).
+type Kernel<'a> = dyn Fn(f64, f64, f64) -> Output + 'a;
+
 /// Each kernel's rates against differences of its positions along ψ(t) = ψ₀ + ψ̇ t + ½ ψ̈ t²
 /// (ẋ = x'(ψ) ψ̇, ẍ = x''(ψ) ψ̇² + x'(ψ) ψ̈): 1e-7 relative, over a full turn; and against
 /// the mechanism's rates (the rocker's ω·u₂, the slider's velocity along the guide, the
@@ -390,7 +393,7 @@ fn the_kernels_rates_match_differences_of_their_positions() {
         rsrc_kernel(),
         spherical_kernel(),
     );
-    let kernels: [(&str, &dyn Fn(f64, f64, f64) -> Output, &str); 5] = [
+    let kernels: [(&str, &Kernel, &str); 5] = [
         ("RSSR", &|p, d, dd| rssr.solve(p, d, dd).unwrap(), RSSR),
         ("RSSP", &|p, d, dd| rssp.solve(p, d, dd).unwrap(), RSSP),
         ("RSRC θ", &|p, d, dd| rsrc.solve(p, d, dd).unwrap()[0], RSRC),
