@@ -508,7 +508,7 @@ fn the_drawings_assembly_is_kept() {
 /// An RSSR whose crank (radius 150 mm) cannot turn fully: where the rod cannot reach the
 /// rocker's circle (q ≈ 201° to 266°) the closed form and the kernel return `NoAssembly`
 /// (and the Newton path an error), never a NaN inside Ok; where it can, every value is
-/// finite and equals the Newton path's.
+/// finite and equals the Newton path's (before the gap; beyond it, Newton's at q − 2π).
 #[test]
 fn an_rssr_that_cannot_assemble_returns_an_error() {
     let text = RSSR.replace("A: (0.0, 0.05, 0.0)", "A: (0.0, 0.15, 0.0)");
@@ -551,6 +551,17 @@ fn an_rssr_that_cannot_assemble_returns_an_error() {
     eprintln!("RSSR that cannot turn fully: {refused} of 360 refused, positions {worst:.1e}");
     assert!(refused > 30 && worst < 1e-12, "{refused} {worst}");
     assert!(matches!(k.solve(4.0, 1.0, 0.0), Err(MechError::NoAssembly)));
+    // beyond the gap (q = 5.5 rad) the Newton continuation from the drawing cannot pass the
+    // dead point and refuses; the closed form answers on the same branch, Newton's at
+    // q − 2π (reached the other way round)
+    let q = 5.5;
+    assert!(newton_only(|| m.pose(&[q])).is_err());
+    let (closed, back) = (
+        m.pose(&[q]).unwrap(),
+        newton_only(|| m.pose(&[q - 2.0 * PI])).unwrap(),
+    );
+    let d = difference(&closed, &back, [1.0, 1.0])[0];
+    assert!(d < 1e-12, "{d}");
 }
 
 /// The kernels allocate nothing (a counting global allocator, this thread's allocations):
