@@ -99,7 +99,12 @@ impl Rsrc {
     /// crank's rotation ψ (rad); `NoAssembly` where it cannot assemble.
     #[inline]
     pub fn rotation(&self, psi: f64) -> Result<f64, MechError> {
-        let a = circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0];
+        self.rotation_at(circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0])
+    }
+
+    /// θ with the crank pin at `a`.
+    #[inline]
+    fn rotation_at(&self, a: V3) -> Result<f64, MechError> {
         let c = (self.a0 - self.cylinder).dot(&self.pin_axis);
         dot_angle(
             a - self.cylinder,
@@ -113,8 +118,8 @@ impl Rsrc {
     /// (A, B, θ, s) at ψ: the pins (m), the rotation (rad) and the slide (m).
     #[inline]
     pub fn points(&self, psi: f64) -> Result<(V3, V3, f64, f64), MechError> {
-        let theta = self.rotation(psi)?;
         let a = circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0];
+        let theta = self.rotation_at(a)?;
         let turned = self.cylinder + turn(self.cylinder_axis, theta) * (self.b0 - self.cylinder);
         let s = travel(a - turned, self.cylinder_axis, self.length, self.sign[1])?;
         Ok((a, turned + self.cylinder_axis * s, theta, s))

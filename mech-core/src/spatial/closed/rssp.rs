@@ -57,15 +57,14 @@ impl Rssp {
     /// `NoAssembly` where the rod cannot reach the guide.
     #[inline]
     pub fn travel(&self, psi: f64) -> Result<f64, MechError> {
-        let a = circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0];
-        travel(a - self.b0, self.slide, self.length, self.sign)
+        Ok(self.points(psi)?.2)
     }
 
     /// (A, B, s) at ψ: the pins (m) and the travel (m).
     #[inline]
     pub fn points(&self, psi: f64) -> Result<(V3, V3, f64), MechError> {
-        let s = self.travel(psi)?;
         let a = circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0];
+        let s = travel(a - self.b0, self.slide, self.length, self.sign)?;
         Ok((a, self.b0 + self.slide * s, s))
     }
 

@@ -69,7 +69,18 @@ impl Rssr {
     /// (rad from the drawing); `NoAssembly` where the rod cannot reach.
     #[inline]
     pub fn angle(&self, psi: f64) -> Result<f64, MechError> {
-        let a = circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0];
+        self.angle_at(self.pin(psi))
+    }
+
+    /// The crank pin A at ψ (m).
+    #[inline]
+    fn pin(&self, psi: f64) -> V3 {
+        circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0]
+    }
+
+    /// φ with the crank pin at `a`.
+    #[inline]
+    fn angle_at(&self, a: V3) -> Result<f64, MechError> {
         let (d, b) = (self.rocker_centre - a, self.b0 - self.rocker_centre);
         let c = 0.5 * (self.length * self.length - d.norm_squared() - b.norm_squared());
         dot_angle(d, self.rocker_axis, b, c, self.sign)
@@ -78,8 +89,8 @@ impl Rssr {
     /// (A, B, φ) at ψ: the pins (m) and the rocker's angle (rad).
     #[inline]
     pub fn points(&self, psi: f64) -> Result<(V3, V3, f64), MechError> {
-        let phi = self.angle(psi)?;
-        let a = circle(self.centre, self.axis, self.a0, [psi, 0.0, 0.0])[0];
+        let a = self.pin(psi);
+        let phi = self.angle_at(a)?;
         let b = self.rocker_centre + turn(self.rocker_axis, phi) * (self.b0 - self.rocker_centre);
         Ok((a, b, phi))
     }

@@ -87,19 +87,15 @@ impl SphericalFourBar {
     /// (rad); `NoAssembly` where it cannot assemble.
     #[inline]
     pub fn angle(&self, psi: f64) -> Result<f64, MechError> {
-        let c1 = turn(self.g1, psi) * self.c1;
-        dot_angle(c1, self.g2, self.c2, self.c1.dot(&self.c2), self.sign)
+        Ok(self.axes(psi)?.2)
     }
 
     /// (c₁, c₂, φ) at ψ: the moving axes (unit) and the rocker's angle (rad).
     #[inline]
     pub fn axes(&self, psi: f64) -> Result<(V3, V3, f64), MechError> {
-        let phi = self.angle(psi)?;
-        Ok((
-            turn(self.g1, psi) * self.c1,
-            turn(self.g2, phi) * self.c2,
-            phi,
-        ))
+        let c1 = turn(self.g1, psi) * self.c1;
+        let phi = dot_angle(c1, self.g2, self.c2, self.c1.dot(&self.c2), self.sign)?;
+        Ok((c1, turn(self.g2, phi) * self.c2, phi))
     }
 
     /// φ, φ̇, φ̈ at (ψ, ψ̇, ψ̈) (rad, rad/s, rad/s²); `Singular` at a dead point of the rocker.
