@@ -3,7 +3,8 @@
 //!
 //! Each group is driven by a revolute crank (the input) and has one output: the rocker's
 //! angle φ (RSSR, spherical four-bar, rad), the slider's travel s (RSSP, m), or the output
-//! cylinder's rotation θ and slide s (RSRC). Every kernel reduces to two scalar equations,
+//! cylinder's rotation θ and slide s (RSRC); the RSSP may also be driven at its slide, the
+//! crank's angle its output (`RsspSlide`). Every kernel reduces to two scalar equations,
 //! each written once here:
 //! - `dot_angle`: x·Rot(g, φ) y₀ = c, the Freudenstein form P cos φ + Q sin φ = R with
 //!   P = x·y⊥, Q = x·(g × y⊥), R = c − (x·g)(y₀·g) (y⊥ = y₀ − (y₀·g) g), solved
@@ -28,7 +29,7 @@ pub mod rssr;
 pub mod spherical;
 
 pub use rsrc::Rsrc;
-pub use rssp::Rssp;
+pub use rssp::{Rssp, RsspSlide};
 pub use rssr::Rssr;
 pub use spherical::SphericalFourBar;
 
@@ -192,6 +193,7 @@ pub(crate) fn frame_rotation(x0: V3, y0: V3, x: V3, y: V3) -> UnitQuaternion<f64
 pub(crate) enum Group {
     Rssr(Rssr),
     Rssp(Rssp),
+    RsspSlide(RsspSlide),
     Rsrc(Rsrc),
     Spherical(SphericalFourBar),
 }
@@ -202,6 +204,7 @@ impl Group {
         match self {
             Group::Rssr(_) => "RSSR",
             Group::Rssp(_) => "RSSP",
+            Group::RsspSlide(_) => "RSSP driven at its slide",
             Group::Rsrc(_) => "RSRC",
             Group::Spherical(_) => "spherical four-bar",
         }
@@ -214,9 +217,11 @@ impl Group {
 pub(crate) struct Closed {
     pub group: Group,
     /// +1 when the input joint is (ground, crank), −1 when (crank, ground): the crank's
-    /// rotation about the axis is ψ = sign · q.
+    /// rotation about the axis is ψ = sign · q (a sliding input's travel along its axis
+    /// likewise).
     pub sign: f64,
-    /// (crank, coupler, output) body indices.
+    /// (crank, coupler, output) body indices (the crank: the input's body, the slider of
+    /// an RSSP driven at its slide).
     pub bodies: [usize; 3],
     /// Their reference points o in the drawing.
     pub o0: [V3; 3],
@@ -243,7 +248,8 @@ impl Closed {
     /// The closed group `model` is, when its whole topology is exactly one: four bodies in
     /// one loop ground–R(input)–crank–…–output–ground with one revolute input at the ground,
     /// and joints S, S, R (RSSR), S, S, P (RSSP), S, R, C with the R axis ⊥ the C axis
-    /// (RSRC), or R, R, R with all four axes through one point (spherical four-bar); and
+    /// (RSRC), or R, R, R with all four axes through one point (spherical four-bar); or
+    /// ground–P(input)–slider–S–rod–S–crank–R–ground (the RSSP driven at its slide); and
     /// the drawing not at a toggle of the group. `o0`: every body's reference point.
     pub fn recognise(model: &SpatialModel, o0: &[V3]) -> Option<Closed> {
         if model.bodies.len() != 4 || model.joints.len() != 4 || model.inputs.len() != 1 {
@@ -251,7 +257,7 @@ impl Closed {
         }
         let k0 = model.inputs[0];
         let j0 = &model.joints[k0];
-        let JointKind::Revolute { axis: u1 } = j0.kind else {
+        let (JointKind::Revolute { axis: u1 } | JointKind::Prismatic { axis: u1 }) = j0.kind else {
             return None;
         };
         let (crank, sign) = match (j0.a, j0.b) {
@@ -276,6 +282,25 @@ impl Closed {
         let p = |k: usize| model.points[model.joints[k].point].1;
         let (o, a0, b0, c0) = (p(k0), p(k1), p(k2), p(k3));
         use JointKind::{Cylindrical, Prismatic, Revolute, Spherical};
+        if let Prismatic { .. } = j0.kind {
+            // the RSSP driven at its slide: slider–S–rod–S–crank–R–ground
+            let group = match (
+                &model.joints[k1].kind,
+                &model.joints[k2].kind,
+                &model.joints[k3].kind,
+            ) {
+                (Spherical, Spherical, Revolute { axis }) => {
+                    Group::RsspSlide(RsspSlide::new(c0, *axis, b0, u1, a0)?)
+                }
+                _ => return None,
+            };
+            return Some(Closed {
+                group,
+                sign,
+                bodies: [crank, coupler, output],
+                o0: [o0[crank], o0[coupler], o0[output]],
+            });
+        }
         let group = match (
             &model.joints[k1].kind,
             &model.joints[k2].kind,
@@ -342,6 +367,17 @@ impl Closed {
                 let (a, b, x) = k.points(psi)?;
                 s[crank] = about(k.centre, turn(k.axis, psi), k.centre, oc);
                 s[output] = BodyState::drawing(oo + k.slide * x);
+                let rod =
+                    constraints::spin_rotation(k.b0 - k.a0, b - a).ok_or(MechError::Singular {
+                        condition: f64::INFINITY,
+                    })?;
+                s[coupler] = about(a, rod, k.a0, ok);
+            }
+            Group::RsspSlide(k) => {
+                // the input body is the slider, the output the crank
+                let (a, b, phi) = k.points(psi)?;
+                s[crank] = BodyState::drawing(oc + k.slide * psi);
+                s[output] = about(k.centre, turn(k.axis, phi), k.centre, oo);
                 let rod =
                     constraints::spin_rotation(k.b0 - k.a0, b - a).ok_or(MechError::Singular {
                         condition: f64::INFINITY,

@@ -9,8 +9,15 @@
 //! construction (σ = sign of w·(A₀ − B₀); a drawing with the rod ⊥ the guide, both roots
 //! equal, is refused). Rates from |B − A| constant (`keep_length`): with r = A − B,
 //! ṡ = r·Ȧ / r·w, s̈ = (ṙ·ṙ + r·Ä) / r·w.
+//!
+//! Driven at its slide (`RsspSlide`), the same length gives the crank's rotation ψ (rad,
+//! (−π, π], 0 in the drawing) at the travel s: with B = B₀ + s w, d = B − c₁ and
+//! a = A₀ − c₁, the Freudenstein-type equation d·Rot(u₁, ψ) a = (|d|² + |a|² − L²)/2
+//! (`dot_angle`). **Branch rule**: its σ is the sign whose root is ψ = 0 at s = 0, fixed at
+//! construction (a drawing with the rod ⊥ the pin's path is refused). Rates
+//! (`keep_length`): with r = A − B and t = u₁ × (A − c₁), ṙ = ψ̇ t − ṡ w.
 
-use super::{circle, keep_length, travel, Output};
+use super::{circle, dot_angle, keep_length, travel, turn, Output};
 use crate::MechError;
 use nalgebra::Vector3;
 
@@ -75,5 +82,78 @@ impl Rssp {
         let [a, ad, add] = circle(self.centre, self.axis, self.a0, [psi, psid, psidd]);
         let (xd, xdd) = keep_length(a - b, ad, add, self.slide, V3::zeros())?;
         Ok(Output { x: s, xd, xdd })
+    }
+}
+
+/// An RSSP driven at its slide, in closed form: the crank's rotation from the slider's
+/// travel (module doc; all points in the drawing, m; axes unit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RsspSlide {
+    /// A point of the crank's axis (m).
+    pub centre: V3,
+    /// The crank's axis (unit).
+    pub axis: V3,
+    /// The crank pin A in the drawing (m).
+    pub a0: V3,
+    /// The guide's direction w (unit): the input's axis.
+    pub slide: V3,
+    /// The slider's pin B in the drawing (m).
+    pub b0: V3,
+    /// The rod's length |B₀ − A₀| (m).
+    pub length: f64,
+    /// The branch σ = ±1 (module doc).
+    pub sign: f64,
+}
+
+impl RsspSlide {
+    /// The RSSP of the crank's axis (`centre`, `axis`) with pin `a0`, driven along `slide`
+    /// at the slider's pin `b0`; directions normalised here. `None` when the drawing is at
+    /// a toggle (the rod ⊥ the pin's path).
+    pub fn new(centre: V3, axis: V3, a0: V3, slide: V3, b0: V3) -> Option<Self> {
+        let mut k = RsspSlide {
+            centre,
+            axis: axis.try_normalize(0.0)?,
+            a0,
+            slide: slide.try_normalize(0.0)?,
+            b0,
+            length: (b0 - a0).norm(),
+            sign: 1.0,
+        };
+        k.sign = super::branch(|s| Self { sign: s, ..k }.angle(0.0), 1.0)?;
+        Some(k)
+    }
+
+    /// The crank's rotation ψ (rad, (−π, π], 0 in the drawing) at the travel s (m);
+    /// `NoAssembly` where the rod cannot reach the crank's circle.
+    #[inline]
+    pub fn angle(&self, s: f64) -> Result<f64, MechError> {
+        Ok(self.points(s)?.2)
+    }
+
+    /// (A, B, ψ) at s: the pins (m) and the crank's rotation (rad).
+    #[inline]
+    pub fn points(&self, s: f64) -> Result<(V3, V3, f64), MechError> {
+        let b = self.b0 + self.slide * s;
+        let (d, a) = (b - self.centre, self.a0 - self.centre);
+        let c = 0.5 * (d.norm_squared() + a.norm_squared() - self.length * self.length);
+        let psi = dot_angle(d, self.axis, a, c, self.sign)?;
+        Ok((self.centre + turn(self.axis, psi) * a, b, psi))
+    }
+
+    /// ψ, ψ̇, ψ̈ at (s, ṡ, s̈) (rad, rad/s, rad/s²); `Singular` with the rod ⊥ the pin's
+    /// path (the crank at a dead point).
+    #[inline]
+    pub fn solve(&self, s: f64, sd: f64, sdd: f64) -> Result<Output, MechError> {
+        let (a, b, psi) = self.points(s)?;
+        let t = self.axis.cross(&(a - self.centre));
+        // r = A − B: ṙ = −ṡ w − ψ̇ (−t), r̈ = −s̈ w − ψ̈ (−t) − ψ̇² (−u₁ × t)
+        let (xd, xdd) = keep_length(
+            a - b,
+            -self.slide * sd,
+            -self.slide * sdd,
+            -t,
+            -self.axis.cross(&t),
+        )?;
+        Ok(Output { x: psi, xd, xdd })
     }
 }
