@@ -620,6 +620,23 @@ fn other_topologies_stay_with_newton() {
     assert_eq!(m.pose(&[0.1]).unwrap().closed_group(), None);
 }
 
+/// The spherical four-bar needs `#[allow(redundant)]`: four revolutes in space count
+/// Kutzbach's G = −2 and three of their equations repeat the others' at the drawing, so
+/// without it the load is refused (with the rank's numbers).
+#[test]
+fn the_spherical_four_bar_loads_with_allow_redundant_only() {
+    match SpatialMechanism::from_dsl(&spherical_text().replace("#[allow(redundant)]", "")) {
+        Err(MechError::Invalid(m)) => assert!(m.contains("3 redundant"), "{m}"),
+        other => panic!("expected Invalid, got {other:?}"),
+    }
+    let m = SpatialMechanism::from_dsl(&spherical_text()).unwrap();
+    assert_eq!(m.kutzbach().mobility, -2);
+    assert_eq!(
+        m.pose(&[0.4]).unwrap().closed_group(),
+        Some("spherical four-bar")
+    );
+}
+
 /// The RSSR driven at its rocker (`input: C`): the loop is walked from the input, so the
 /// rocker is the group's crank and the crank its output. Over the rocker's swing (about
 /// −0.2 to 0.13 rad) the closed form equals the Newton path to 1e-12 up to 0.02 rad from
