@@ -188,6 +188,16 @@ pub(crate) fn frame_rotation(x0: V3, y0: V3, x: V3, y: V3) -> UnitQuaternion<f64
     UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m))
 }
 
+/// The rotation of a rod between two spherical joints, A₀B₀ in the drawing and AB now,
+/// with its idle spin fixed as `constraints::spin` fixes it (`constraints::spin_rotation`);
+/// `Singular` with AB opposite A₀B₀ (the spin fix is then undefined).
+#[inline]
+fn rod(a0: V3, b0: V3, a: V3, b: V3) -> Result<UnitQuaternion<f64>, MechError> {
+    constraints::spin_rotation(b0 - a0, b - a).ok_or(MechError::Singular {
+        condition: f64::INFINITY,
+    })
+}
+
 /// Which group, with its kernel.
 #[derive(Clone, Debug)]
 pub(crate) enum Group {
@@ -357,32 +367,20 @@ impl Closed {
                     k.rocker_centre,
                     oo,
                 );
-                let rod =
-                    constraints::spin_rotation(k.b0 - k.a0, b - a).ok_or(MechError::Singular {
-                        condition: f64::INFINITY,
-                    })?;
-                s[coupler] = about(a, rod, k.a0, ok);
+                s[coupler] = about(a, rod(k.a0, k.b0, a, b)?, k.a0, ok);
             }
             Group::Rssp(k) => {
                 let (a, b, x) = k.points(psi)?;
                 s[crank] = about(k.centre, turn(k.axis, psi), k.centre, oc);
                 s[output] = BodyState::drawing(oo + k.slide * x);
-                let rod =
-                    constraints::spin_rotation(k.b0 - k.a0, b - a).ok_or(MechError::Singular {
-                        condition: f64::INFINITY,
-                    })?;
-                s[coupler] = about(a, rod, k.a0, ok);
+                s[coupler] = about(a, rod(k.a0, k.b0, a, b)?, k.a0, ok);
             }
             Group::RsspSlide(k) => {
                 // the input body is the slider, the output the crank
                 let (a, b, phi) = k.points(psi)?;
                 s[crank] = BodyState::drawing(oc + k.slide * psi);
                 s[output] = about(k.centre, turn(k.axis, phi), k.centre, oo);
-                let rod =
-                    constraints::spin_rotation(k.b0 - k.a0, b - a).ok_or(MechError::Singular {
-                        condition: f64::INFINITY,
-                    })?;
-                s[coupler] = about(a, rod, k.a0, ok);
+                s[coupler] = about(a, rod(k.a0, k.b0, a, b)?, k.a0, ok);
             }
             Group::Rsrc(k) => {
                 let (a, b, theta, x) = k.points(psi)?;
