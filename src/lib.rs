@@ -40,7 +40,7 @@ pub use mech_macros::mechanism;
 
 // The run-time mechanism (`docs/guide.md`): the same text loaded and solved at run time.
 pub use mech_core::runtime::{Forces, JointReaction, LoadValue, Loads, Motion, Pose};
-pub use mech_core::{MechError, Mechanism, Vector2};
+pub use mech_core::{MechError, Mechanism, UnitQuaternion, Vector2, Vector3};
 
 // What a solver returns and takes, by concept.
 pub use mech_core::kernel::energy::Shaking;
@@ -70,6 +70,18 @@ pub use mech_core::runtime::columns;
 pub use mech_core::solvers::friction;
 pub use mech_core::{design, strength};
 
+/// Spatial mechanisms (SPEC 3i, `docs/spatial.md`): `mechanism!` with `space` first, or
+/// [`spatial::SpatialMechanism::from_dsl`] at run time.
+pub mod spatial {
+    pub use mech_core::spatial::dsl::parse;
+    pub use mech_core::spatial::kutzbach::Kutzbach;
+    pub use mech_core::spatial::results::{LinkPose, PointMotion, PointPose};
+    pub use mech_core::spatial::{
+        BodyMotion, Finding, Joint, JointKind, LinkMotion, Load, LoadKind, Reaction, Site,
+        SpatialForces, SpatialLoads, SpatialMechanism, SpatialModel, SpatialMotion,
+    };
+}
+
 /// The paths the generated code uses (`mech_core::__private`). Not part of the public API.
 #[doc(hidden)]
 pub mod __private {
@@ -82,7 +94,7 @@ pub mod prelude {
         mechanism, BatchErrors, CamReaction, DamperParams, DeterminateReactions, LinkMotion,
         LinkPose, Machine, MechError, Mechanism, MeshReaction, OneDof, PointMotion, PointPose,
         PrismaticReaction, Reduced, RevoluteReaction, RollingReaction, RotaryDamperParams, Shaking,
-        SlotReaction, SpringParams, TorsionSpringParams, Vector2,
+        SlotReaction, SpringParams, TorsionSpringParams, UnitQuaternion, Vector2, Vector3,
     };
 }
 

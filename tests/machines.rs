@@ -55,5 +55,6 @@ mod regime;
 mod rolling;
 mod runtime_alloc;
 mod shapes;
+mod spatial;
 mod strength;
 mod synthesis;

@@ -184,6 +184,9 @@ pub fn loads(m: &Mechanism, size: f64) -> Loads {
 /// parameter changed by `set_param` and whether the costly [`crate::dynamics`] run. The findings,
 /// and whether it loaded.
 pub fn run(text: &str, pick: u64, dog: &Watchdog) -> (Vec<Finding>, bool) {
+    if mech_core::runtime::spatial_columns::is_spatial(text) {
+        return crate::spatial::run(text, dog);
+    }
     let mut c = Case::new(dog);
     // The loader catches a panic of its own thread: `Internal`, counted as a panic.
     let Some(m) = c.attempt("load", || Mechanism::from_dsl(text)) else {

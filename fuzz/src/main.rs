@@ -1,5 +1,6 @@
 //! `mech-fuzz`: mutated mechanism texts through the run-time loader
-//! (`mech_core::Mechanism::from_dsl`) and every solver on what loads, checking the
+//! (`mech_core::Mechanism::from_dsl`, or `SpatialMechanism::from_dsl` for a text whose first
+//! item is `space`) and every solver on what loads, checking the
 //! promise of `docs/conventions.md#magnitudes`: no panic, no non-finite number inside an
 //! `Ok`, no call over a second.
 //!
@@ -23,6 +24,7 @@ mod dynamics;
 mod exercise;
 mod mutate;
 mod oracle;
+mod spatial;
 mod watchdog;
 
 use exercise::Finding;

@@ -3,20 +3,24 @@
 //! that balances it (unless `--driver` is given), the maximum fluctuation of energy
 //! ΔE = S_max − S_min, the flywheel inertia by the approximate formula and by
 //! Wittenbauer's exact method, and the check of the exact one by integrating a cycle in
-//! time (`mech_core::dynamics::flywheel`).
+//! time (`mech_core::dynamics::flywheel`). A spatial file (`space` first) takes constant
+//! loads, `--load NAME=x,y,z`.
 
 use crate::loads::LoadSet;
 use crate::output::{Format, Writer};
 use crate::{limits, quantity, source, Failure};
 use mech_core::dynamics::flywheel::Cycle;
 use mech_core::model::units::Dim;
+use mech_core::solvers::traits::OneDof;
+use mech_core::spatial::JointKind as SpatialJoint;
+use mech_core::MechError;
 use std::io::Write;
 use std::path::PathBuf;
 
 /// `mech flywheel` arguments.
 #[derive(clap::Args, Debug)]
 pub struct FlywheelArgs {
-    /// The mechanism file (`-` = standard input); one revolute input.
+    /// The mechanism file (`-` = standard input), planar or spatial; one revolute input.
     pub file: PathBuf,
     /// The cycle's period λ (rad): `2pi`, `4*PI` (a four-stroke engine), `720deg`.
     #[arg(long, default_value = "2*PI", allow_hyphen_values = true)]
@@ -33,7 +37,8 @@ pub struct FlywheelArgs {
     /// Input angles (inside the cycle) where the loads are not smooth: panels end there.
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub breakpoints: Vec<String>,
-    /// A load: NAME=VALUE or NAME=@table.csv (as `mech solve`). Repeatable.
+    /// A load: NAME=VALUE or NAME=@table.csv (as `mech solve`); for a spatial file
+    /// NAME=x,y,z, constant. Repeatable.
     #[arg(long = "load", allow_hyphen_values = true)]
     pub load: Vec<String>,
     /// A constant driver torque on the input (N·m); omitted: the constant torque that
@@ -48,16 +53,39 @@ pub struct FlywheelArgs {
     pub format: Format,
 }
 
-/// The results' names, units and values, in order.
+/// The results' names, units and values, in order: the file's machine, planar (loads
+/// constant or tables against q) or spatial (constant 3-vector loads).
 fn results(args: &FlywheelArgs) -> Result<Vec<(&'static str, &'static str, f64)>, Failure> {
-    let m = source::load(&args.file)?;
-    if m.dof() != 1
-        || m.model().joints[m.model().inputs[0]].kind != mech_core::model::JointKind::Revolute
-    {
-        return Err(Failure::usage(
-            "`mech flywheel` sizes the flywheel of a machine with one revolute input",
-        ));
+    match source::load_any(&args.file)? {
+        source::Any::Planar(m) => {
+            let input = m.model().joints[m.model().inputs[0]].kind;
+            if m.dof() != 1 || input != mech_core::model::JointKind::Revolute {
+                return Err(one_revolute());
+            }
+            let loads = LoadSet::parse(&args.load, m.model())?;
+            cycle(&m, |q| Ok(loads.at(&m, q)), args)
+        }
+        source::Any::Spatial(m) => {
+            let input = &m.model().joints[m.model().inputs[0]].kind;
+            if m.dof() != 1 || !matches!(input, SpatialJoint::Revolute { .. }) {
+                return Err(one_revolute());
+            }
+            let loads = crate::spatial::loads(&args.load, &m)?;
+            cycle(&m, |_| Ok(loads.clone()), args)
+        }
     }
+}
+
+fn one_revolute() -> Failure {
+    Failure::usage("`mech flywheel` sizes the flywheel of a machine with one revolute input")
+}
+
+/// The cycle of `m` under `loads` (against q), its flywheel and the check by integration.
+fn cycle<M: OneDof>(
+    m: &M,
+    loads: impl Fn(f64) -> Result<M::Loads, MechError>,
+    args: &FlywheelArgs,
+) -> Result<Vec<(&'static str, &'static str, f64)>, Failure> {
     let period = quantity::parse(&args.period, Dim::ANGLE, "--period")?;
     if period > limits::PERIOD {
         return Err(Failure::usage(format!(
@@ -81,17 +109,16 @@ fn results(args: &FlywheelArgs) -> Result<Vec<(&'static str, &'static str, f64)>
         .iter()
         .map(|b| quantity::parse(b, Dim::ANGLE, "--breakpoints"))
         .collect::<Result<_, _>>()?;
-    let loads = LoadSet::parse(&args.load, m.model())?;
     let driver = match &args.driver {
         Some(d) => Some(quantity::parse(d, Dim::TORQUE, "--driver")?),
         None => None,
     };
     let cycle = Cycle::new(
-        &m,
+        m,
         start,
         period,
         &breakpoints,
-        |q| Ok(loads.at(&m, q)),
+        loads,
         move |_| driver.unwrap_or(0.0),
     )?;
     let net = cycle.net_work();

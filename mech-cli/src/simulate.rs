@@ -2,7 +2,8 @@
 //! machine over time, I*(q) q̈ + ½ dI*/dq q̇² = driver + M*(q) (Zhukovski), with the driver
 //! and the loads as constants or tables against q, integrated by DOP853 (default),
 //! Dormand–Prince 5(4) or fixed-step RK4 (`mech_core::dynamics::ode`), sampled at even times on the
-//! integrator's dense output.
+//! integrator's dense output. A spatial file (`space` first) takes constant loads,
+//! `--load NAME=x,y,z`.
 
 use crate::loads::{LoadSet, Table};
 use crate::output::{Format, Writer};
@@ -12,7 +13,7 @@ use mech_core::dynamics::motor::Motor;
 use mech_core::dynamics::ode::{self, Dense, Dop853, DormandPrince, Method, Rk4, Tolerance};
 use mech_core::dynamics::regime::Drive;
 use mech_core::model::units::Dim;
-use mech_core::Mechanism;
+use mech_core::solvers::traits::OneDof;
 use std::cell::Cell;
 use std::io::Write;
 use std::path::PathBuf;
@@ -111,25 +112,26 @@ impl Driver {
 /// the integrator passes them (no memory in the number of samples). The run stops with a
 /// message when it would take more than [`limits::INTEGRATION_STEPS`] steps: at once for
 /// RK4 (t_end / step), by the rate so far for an adaptive method.
-fn integrate<Mt: Method<2>>(
+fn integrate<Mt: Method<2>, M: OneDof>(
     mut method: Mt,
-    m: &Mechanism,
+    m: &M,
     args: &SimulateArgs,
     y0: [f64; 2],
     driver: &Driver,
-    loads: &LoadSet,
+    loads: &impl Fn(f64) -> M::Loads,
     w: &mut Writer<impl Write>,
 ) -> Result<(), Failure> {
     let limit = limits::INTEGRATION_STEPS;
     let n = args.samples.max(1);
     let time = |k: usize| args.t_end * k as f64 / n as f64;
-    let qdd =
-        |y: [f64; 2]| m.acceleration_at(y[0], y[1], driver.at(y[0], y[1]), &loads.at(m, y[0]));
+    let qdd = |y: [f64; 2]| -> Result<f64, Failure> {
+        Ok(m.acceleration(y[0], y[1], driver.at(y[0], y[1]), &loads(y[0]))?)
+    };
     w.row(&[0.0, y0[0], y0[1], qdd(y0)?])?;
     // Accepted steps and the time they reached; the budget's verdict.
     let (steps, reached) = (Cell::new(0u64), Cell::new(0.0f64));
     let over: Cell<Option<(u64, f64, f64)>> = Cell::new(None);
-    let mut eom = equation_of_motion(m, |_, q, qd| (driver.at(q, qd), loads.at(m, q)));
+    let mut eom = equation_of_motion(m, |_, q, qd| (driver.at(q, qd), loads(q)));
     let f = |t: f64, y: &[f64; 2]| {
         let (k, at) = (steps.get(), reached.get());
         // After 10³ steps, the rate so far predicts the whole run's.
@@ -191,41 +193,43 @@ fn integrate<Mt: Method<2>>(
     Ok(())
 }
 
-/// q̈ of the run-time mechanism (Zhukovski), as the equation of motion computes it.
-trait Acceleration {
-    fn acceleration_at(
-        &self,
-        q: f64,
-        qd: f64,
-        driver: f64,
-        loads: &mech_core::runtime::mechanism::Loads,
-    ) -> Result<f64, Failure>;
-}
-
-impl Acceleration for Mechanism {
-    fn acceleration_at(
-        &self,
-        q: f64,
-        qd: f64,
-        driver: f64,
-        loads: &mech_core::runtime::mechanism::Loads,
-    ) -> Result<f64, Failure> {
-        Ok(mech_core::solvers::traits::OneDof::acceleration(
-            self, q, qd, driver, loads,
-        )?)
-    }
-}
-
-/// Run `mech simulate`.
+/// Run `mech simulate` on the file's machine, planar (loads constant or tables against q)
+/// or spatial (constant 3-vector loads).
 pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
-    let m = source::load(&args.file)?;
-    if m.dof() != 1 {
-        return Err(Failure::usage(format!(
-            "`mech simulate` integrates a machine with one input; this one has {}",
-            m.dof()
-        )));
+    let one_input = |g: usize| {
+        if g == 1 {
+            Ok(())
+        } else {
+            Err(Failure::usage(format!(
+                "`mech simulate` integrates a machine with one input; this one has {g}"
+            )))
+        }
+    };
+    match source::load_any(&args.file)? {
+        source::Any::Planar(m) => {
+            one_input(m.dof())?;
+            let loads = LoadSet::parse(&args.load, m.model())?;
+            let dims = quantity::input_dims(m.model(), 0);
+            simulate(&m, dims, |q| loads.at(&m, q), &args, out)
+        }
+        source::Any::Spatial(m) => {
+            one_input(m.dof())?;
+            let loads = crate::spatial::loads(&args.load, &m)?;
+            let dims = crate::spatial::input_dims(&m, 0);
+            simulate(&m, dims, |_| loads.clone(), &args, out)
+        }
     }
-    let (dq, dv) = quantity::input_dims(m.model(), 0);
+}
+
+/// The run on a one-input machine `m` whose input has the dimensions `(dq, dv)` (its value's
+/// and its rate's) under `loads` against q.
+fn simulate<M: OneDof>(
+    m: &M,
+    (dq, dv): (Dim, Dim),
+    loads: impl Fn(f64) -> M::Loads,
+    args: &SimulateArgs,
+    out: impl Write,
+) -> Result<(), Failure> {
     let y0 = [
         quantity::parse(&args.q0, dq, "--q0")?,
         quantity::parse(&args.speed, dv, "--speed")?,
@@ -235,8 +239,7 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
         Some(text) => {
             let motor = motor::parse(text, args.ratio)?;
             if args.from_rest {
-                let loads = LoadSet::parse(&args.load, m.model())?;
-                Drive::new(&m, motor.clone(), |q| Ok(loads.at(&m, q))).check_start(y0[0])?;
+                Drive::new(m, motor.clone(), |q| Ok(loads(q))).check_start(y0[0])?;
             }
             Driver::Motor(motor)
         }
@@ -253,7 +256,6 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
             )?),
         },
     };
-    let loads = LoadSet::parse(&args.load, m.model())?;
     let unit = if dq == Dim::ANGLE {
         ["s", "rad", "rad/s", "rad/s²"]
     } else {
@@ -266,11 +268,11 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
         ..Tolerance::new(args.rtol, args.atol)
     };
     match args.method {
-        Integrator::Dop853 => integrate(Dop853::with(tol), &m, &args, y0, &driver, &loads, &mut w)?,
+        Integrator::Dop853 => integrate(Dop853::with(tol), m, args, y0, &driver, &loads, &mut w)?,
         Integrator::Dopri5 => integrate(
             DormandPrince::with(tol),
-            &m,
-            &args,
+            m,
+            args,
             y0,
             &driver,
             &loads,
@@ -286,7 +288,7 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
                     limits::INTEGRATION_STEPS
                 )));
             }
-            integrate(Rk4 { h: args.step }, &m, &args, y0, &driver, &loads, &mut w)?
+            integrate(Rk4 { h: args.step }, m, args, y0, &driver, &loads, &mut w)?
         }
     }
     w.finish()?;

@@ -725,3 +725,82 @@ fn two_inputs_name_their_columns_and_sweep_with_rest() {
         assert!((row[col("B.z")] - b.z).abs() < 1e-15);
     }
 }
+
+/// `mech simulate` on a spatial file: every printed row keeps the RSSR's energy (the
+/// library's T + V at its (q, q̇): coasting under gravity, no loads) and its q̈ is the
+/// library's direct problem at that state.
+#[test]
+fn simulate_keeps_the_energy_of_a_spatial_machine() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssr_text();
+    let file = rssr_file(&dir, &text);
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let out = mech()
+        .arg("simulate")
+        .arg(&file)
+        .args(["--q0", "0.3", "--speed", "8", "--t-end", "1", "--samples", "20"])
+        .args(["--rtol", "1e-11", "--atol", "1e-11", "--format", "csv"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let (head, rows) = csv_rows(&out);
+    assert_eq!(head, ["t", "q", "qd", "qdd"]);
+    assert_eq!(rows.len(), 21);
+    let energy = |q: f64, qd: f64| mech_core::dynamics::total_energy(&m, &[q], &[qd]).unwrap();
+    let e0 = energy(0.3, 8.0);
+    let (mut drift, mut qdd) = (0.0f64, 0.0f64);
+    for r in &rows {
+        drift = drift.max((energy(r[1], r[2]) - e0).abs());
+        let want = m.acceleration(r[1], r[2], 0.0, &m.loads()).unwrap();
+        qdd = qdd.max((r[3] - want).abs() / want.abs().max(1.0));
+    }
+    assert!((rows[20][1] - 0.3).abs() > 1.0, "it moves");
+    assert!(drift < 1e-8 * e0, "energy drift {drift:e} J of {e0} J");
+    assert!(qdd < 1e-12, "{qdd:e}");
+}
+
+/// `mech flywheel` on a spatial file: the fluctuation of energy is the trapezoid rule's
+/// max − min of ∫ M* dq over the turn (M* from the library at 4000 points: a turning moment
+/// on the rocker and gravity, zero net work), and the exact flywheel's simulated
+/// irregularity is the one asked for.
+#[test]
+fn flywheel_sizes_a_spatial_machine() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssr_text();
+    let file = rssr_file(&dir, &text);
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let out = mech()
+        .arg("flywheel")
+        .arg(&file)
+        .args(["--speed", "60rpm", "--irregularity", "0.05"])
+        .args(["--load", "tool=0,0,-1.5", "--format", "csv"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let r = csv_map(&out);
+    let mut loads = m.loads();
+    assert!(loads.set_by_name("tool", &[0.0, 0.0, -1.5]));
+    let n = 4000;
+    let h = std::f64::consts::TAU / n as f64;
+    let moment = |k: usize| m.reduced_moment(k as f64 * h, &loads).unwrap();
+    let (mut s, mut lo, mut hi) = (0.0f64, 0.0f64, 0.0f64);
+    for k in 0..n {
+        s += 0.5 * h * (moment(k) + moment(k + 1));
+        lo = lo.min(s);
+        hi = hi.max(s);
+    }
+    assert!(s.abs() < 1e-9, "a conservative cycle: net work {s:e}");
+    assert!(r["net_work"].abs() < 1e-9, "{r:?}");
+    let fluctuation = r["fluctuation"];
+    assert!(
+        (fluctuation - (hi - lo)).abs() < 1e-6 * fluctuation,
+        "{fluctuation} against the trapezoid's {}",
+        hi - lo
+    );
+    assert!((r["irregularity_simulated"] - 0.05).abs() < 1e-6, "{r:?}");
+    assert!(r["inertia_exact"] > 0.0 && r["inertia_approximate"] > 0.0);
+}

@@ -43,7 +43,7 @@ pub mod spatial;
 pub mod strength;
 
 pub use error::MechError;
-pub use nalgebra::Vector2;
+pub use nalgebra::{UnitQuaternion, Vector2, Vector3};
 pub use runtime::mechanism::Mechanism;
 
 #[doc(hidden)]

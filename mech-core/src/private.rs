@@ -110,3 +110,13 @@ pub mod lanes {
         LinkLanes, Mask, Wide, ZhukovskiLanes, L, LANES, NONE,
     };
 }
+pub mod spatial {
+    pub use crate::spatial::kinematics::BodyMotion;
+    pub use crate::spatial::model::inertia_tensor;
+    pub use crate::spatial::results::{LinkPose, PointMotion, PointPose};
+    pub use crate::spatial::{
+        Body, Joint, JointKind, LinkMotion, Load, LoadKind, Reaction, SpatialForces, SpatialLoads,
+        SpatialMechanism, SpatialModel, SpatialMotion,
+    };
+    pub use nalgebra::{UnitQuaternion, Vector3};
+}

@@ -10,9 +10,18 @@ mod emit;
 use mech_core::front::dsl::Parsed;
 use proc_macro::TokenStream;
 
-/// Declare a planar mechanism; see the crate `mech` and `docs/conventions.md#dsl` for the grammar.
+/// Declare a planar mechanism (or a spatial one: `space` first); see the crate `mech` and `docs/conventions.md#dsl` for the grammar.
 #[proc_macro]
 pub fn mechanism(input: TokenStream) -> TokenStream {
+    let tokens = proc_macro2::TokenStream::from(input.clone());
+    let space = |s: syn::parse::ParseStream| {
+        let space = mech_core::spatial::dsl::is_space(s);
+        s.parse::<proc_macro2::TokenStream>()?;
+        Ok(space)
+    };
+    if syn::parse::Parser::parse2(space, tokens.clone()).unwrap_or(false) {
+        return emit::spatial::mechanism(tokens).into();
+    }
     let desc = match syn::parse::<Parsed>(input) {
         Ok(p) => p.0,
         Err(e) => return e.to_compile_error().into(),
@@ -233,6 +242,38 @@ mod snapshots {
             code.contains("triad::triad_solve::<12usize,>(&Self::__G1_TRIAD"),
             "{plan}"
         );
+    }
+
+    /// The whole expansion of a spatial RSSR (`space` first): the struct, its constants and
+    /// declaration as a `SpatialModel` literal, the typed results copied from the run-time
+    /// solver's answer, each point moved with its body from a constant offset.
+    #[test]
+    fn rssr_spatial() {
+        let text = r#"
+            /// An RSSR.
+            pub struct Rssr {
+                space,
+                gravity: (0.0, 0.0, -9.81),
+                ground { O: (0.0, 0.0, 0.0), C: (250 mm, 120 mm, 80 mm) },
+                link crank { points { O, A: (0.0, 0.05, 0.0) }, mass: 1.0, cg: (0.01, 0.025, 0.004),
+                             inertia: (1e-3, 4e-4, 9e-4, 1e-4, -2e-5, 5e-5) },
+                link rod { points { A, B: (0.25, 0.02, 0.08) } },
+                link rocker { points { C, B } },
+                joints {
+                    O: revolute(ground, crank) axis (1.0, 0.0, 0.0),
+                    A: spherical(crank, rod),
+                    B: spherical(rod, rocker),
+                    C: revolute(ground, rocker) axis (0.0, 0.0, 1.0),
+                },
+                input: O,
+                loads { tool: torque on rocker },
+            }
+        "#;
+        let tokens = super::emit::spatial::mechanism(text.parse().expect("tokens"));
+        let file = syn::parse2::<syn::File>(tokens).expect("the expansion parses as a file");
+        let code = prettyplease::unparse(&file);
+        assert!(!code.contains("compile_error"), "{code}");
+        insta::assert_snapshot!("rssr_spatial", code);
     }
 
     #[test]

@@ -203,4 +203,55 @@ impl PySpatialMechanism {
             .into_pyarray(py);
         Ok((cols.names, data, ok.into_pyarray(py), first))
     }
+    /// The direct problem, q̈ from I* q̈ + ½ dI*/dq q̇² = driver + M*, at each row of q, q̇
+    /// and the driver (n each) with the loads (n, 3 L): (q̈ (n,), ok (n,), the first error).
+    /// A failed row is NaN with ok false.
+    fn acceleration<'py>(
+        &self,
+        py: Python<'py>,
+        q: Vec<f64>,
+        qd: Vec<f64>,
+        driver: Vec<f64>,
+        loads: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<bool>>, Option<String>)> {
+        let m = &self.inner;
+        if m.dof() != 1 {
+            return Err(invalid(format!(
+                "the direct problem by Zhukovski needs one input; this mechanism has {}",
+                m.dof()
+            )));
+        }
+        let (loads, n, nl) = (loads.as_array(), q.len(), 3 * m.model().loads.len());
+        if qd.len() != n || driver.len() != n {
+            return Err(invalid(format!(
+                "q, qd and driver of lengths {n}, {} and {}: give one value of each per configuration",
+                qd.len(),
+                driver.len()
+            )));
+        }
+        if loads.ncols() != 0 && (loads.nrows() != n || loads.ncols() != nl) {
+            return Err(invalid(format!(
+                "loads of shape {:?}: give ({n}, {nl}), the x, y, z of each load in order",
+                loads.shape()
+            )));
+        }
+        let names = m.loads().names;
+        let (mut out, mut ok, mut first) = (vec![f64::NAN; n], vec![false; n], None);
+        for i in 0..n {
+            let mut l = m.loads();
+            if loads.ncols() != 0 {
+                let v = loads.row(i).to_vec();
+                for (k, name) in names.iter().enumerate() {
+                    l.set_by_name(name, &v[3 * k..3 * k + 3]);
+                }
+            }
+            match m.acceleration(q[i], qd[i], driver[i], &l) {
+                Ok(a) => (out[i], ok[i]) = (a, true),
+                Err(e) => {
+                    first.get_or_insert_with(|| e.to_string());
+                }
+            }
+        }
+        Ok((out.into_pyarray(py), ok.into_pyarray(py), first))
+    }
 }

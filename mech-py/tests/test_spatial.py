@@ -63,6 +63,27 @@ def test_the_rssr_answers_with_the_spatial_columns():
         m.kinetostatics(0.7, loads={"push": (40.0, -30.0)})
 
 
+def test_the_direct_problem_inverts_the_driver_torque():
+    """q̈ from the direct problem, put back into d'Alembert's kinetostatics at that state,
+    gives the driver torque it was computed from (row by row, loads per row)."""
+    m = mech.Mechanism.load(str(RSSR))
+    q = np.linspace(0.1, 6.0, 7)
+    qd = np.linspace(-4.0, 9.0, 7)
+    driver = np.linspace(-2.0, 3.0, 7)
+    tool = np.column_stack([np.zeros(7), np.zeros(7), np.linspace(-1.0, 1.0, 7)])
+    out = m.acceleration(q, qd, driver, loads={"tool": tool})
+    qdd = out["qdd"]
+    assert qdd.shape == (7,) and np.all(np.isfinite(qdd))
+    for i in range(7):
+        back = m.kinetostatics(q[i], qd=qd[i], qdd=qdd[i], loads={"tool": tuple(tool[i])})["driver"]
+        assert abs(back - driver[i]) < 1e-10 * max(1.0, abs(driver[i])), (i, back, driver[i])
+    # A callable driver and a scalar q, as for a planar mechanism.
+    one = m.acceleration(0.7, 2.0, lambda x: 0.5)["qdd"]
+    assert one == m.acceleration(0.7, 2.0, 0.5)["qdd"]
+    bad = m.acceleration([0.7, float("nan")], 1.0, 0.0, errors="mask")
+    assert list(bad["ok"]) == [True, False] and math.isnan(bad["qdd"][1])
+
+
 def test_a_bad_spatial_text_names_its_line():
     text = RSSR.read_text().replace("revolute(ground, rocker)", "revolute(ground, rocket)")
     with pytest.raises(mech.InvalidMechanism) as e:

@@ -30,10 +30,10 @@ pub const INERTIA: (f64, f64) = (1e-36, 1e15);
 /// The largest |gravity|, m/s².
 pub const GRAVITY: f64 = 1e4;
 
-const WHY: &str = "products of masses, lengths and squared speeds must stay far from f64's overflow and underflow";
+pub(crate) const WHY: &str = "products of masses, lengths and squared speeds must stay far from f64's overflow and underflow";
 
 /// x is 0 or within [lo, hi] (a finite, non-negative number).
-fn in_range(x: f64, (lo, hi): (f64, f64)) -> bool {
+pub(crate) fn in_range(x: f64, (lo, hi): (f64, f64)) -> bool {
     x == 0.0 || (x >= lo && x <= hi)
 }
 

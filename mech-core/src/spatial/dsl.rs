@@ -33,12 +33,18 @@ pub(super) struct LinkDecl {
 /// The whole text as written.
 pub(super) struct Written {
     pub(super) name: Ident,
+    /// The word `space`.
+    pub(super) space: Ident,
+    /// The word `input` or `inputs`, when written.
+    pub(super) input_key: Option<Ident>,
     pub(super) gravity: Option<Vector3<f64>>,
     pub(super) links: Vec<LinkDecl>,
     pub(super) joints: Vec<JointDecl>,
     pub(super) inputs: Vec<Ident>,
     pub(super) loads: Vec<(Ident, Ident, Ident, Option<Ident>)>,
     pub(super) allow_redundant: bool,
+    /// The doc comment lines written on the struct.
+    pub(super) docs: Vec<String>,
 }
 
 fn comma(input: ParseStream) -> syn::Result<()> {
@@ -189,8 +195,22 @@ fn joint(input: ParseStream, c: &Constants) -> syn::Result<JointDecl> {
 
 impl Parse for Written {
     fn parse(input: ParseStream) -> syn::Result<Self> {
-        let mut allow_redundant = false;
+        let (mut allow_redundant, mut docs) = (false, Vec::new());
         for attr in input.call(syn::Attribute::parse_outer)? {
+            if let syn::Meta::NameValue(syn::MetaNameValue {
+                value:
+                    syn::Expr::Lit(syn::ExprLit {
+                        lit: syn::Lit::Str(line),
+                        ..
+                    }),
+                ..
+            }) = &attr.meta
+            {
+                if attr.path().is_ident("doc") {
+                    docs.push(line.value());
+                    continue;
+                }
+            }
             if attr.path().is_ident("allow") {
                 let arg: Ident = attr.parse_args()?;
                 if arg != "redundant" {
@@ -220,12 +240,15 @@ impl Parse for Written {
         let mut c = Constants::default();
         let mut w = Written {
             name,
+            space: first,
+            input_key: None,
             gravity: None,
             links: Vec::new(),
             joints: Vec::new(),
             inputs: Vec::new(),
             loads: Vec::new(),
             allow_redundant,
+            docs,
         };
         while !body.is_empty() {
             let key: Ident = body.call(Ident::parse_any)?;
@@ -249,10 +272,12 @@ impl Parse for Written {
                     }
                 }
                 "input" => {
+                    w.input_key = Some(key.clone());
                     body.parse::<Token![:]>()?;
                     w.inputs.push(body.parse()?);
                 }
                 "inputs" => {
+                    w.input_key = Some(key.clone());
                     body.parse::<Token![:]>()?;
                     let list;
                     bracketed!(list in body);
@@ -307,10 +332,69 @@ fn located(e: &syn::Error) -> String {
 
 /// Parse the `space` text form (the body of a `mechanism! { ... }`) into a
 /// [`SpatialModel`]: names resolved, units converted to SI, axes normalised. Every naming or
-/// geometry mistake found is reported at once in one [`MechError::Invalid`].
+/// geometry mistake found is reported at once in one [`MechError::Invalid`], each line
+/// starting with where it was written.
 pub fn parse(text: &str) -> Result<SpatialModel, MechError> {
     let w = syn::parse_str::<Written>(text).map_err(|e| MechError::Invalid(located(&e)))?;
-    super::resolve::resolve(w)
+    super::resolve::resolve(w).map(|(m, _)| m).map_err(|errors| {
+        MechError::Invalid(errors.iter().map(located).collect::<Vec<_>>().join("\n"))
+    })
+}
+
+/// Where the parts of a `space` declaration were written, for the macro's spanned errors.
+#[derive(Clone, Debug)]
+pub struct Spans {
+    /// The struct's name.
+    pub name: Span,
+    /// The word `space`.
+    pub space: Span,
+    /// The word `input` / `inputs` (the word `space` when none is written).
+    pub input: Span,
+    /// Each body's name, in the model's order (the ground first).
+    pub bodies: Vec<Span>,
+    /// Each joint's name, in the model's order.
+    pub joints: Vec<Span>,
+    /// The doc comment lines written on the struct.
+    pub docs: Vec<String>,
+}
+
+/// The `space` form parsed from the tokens of a `mechanism!` call: the model and where its
+/// parts were written. Every mistake is one `syn::Error` at its place (combined).
+pub struct Declared {
+    /// The resolved model (SI).
+    pub model: SpatialModel,
+    /// Where its parts were written.
+    pub spans: Spans,
+}
+
+impl Parse for Declared {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let w: Written = input.parse()?;
+        super::resolve::resolve(w)
+            .map(|(model, spans)| Declared { model, spans })
+            .map_err(|errors| {
+                let mut all = errors.into_iter();
+                let mut first = all.next().expect("an error");
+                first.extend(all);
+                first
+            })
+    }
+}
+
+/// Whether the tokens of a `mechanism!` call declare a spatial mechanism: attributes, then
+/// `pub struct Name { space ...`.
+pub fn is_space(input: ParseStream) -> bool {
+    let fork = input.fork();
+    let head = || -> syn::Result<bool> {
+        fork.call(syn::Attribute::parse_outer)?;
+        fork.parse::<Token![pub]>()?;
+        fork.parse::<Token![struct]>()?;
+        fork.parse::<Ident>()?;
+        let body;
+        braced!(body in fork);
+        Ok(body.call(Ident::parse_any).is_ok_and(|w| w == "space"))
+    };
+    head().unwrap_or(false)
 }
 
 #[cfg(test)]
@@ -414,6 +498,17 @@ mod tests {
             "inertia: (1.0, 2.0, 3.0, 5.0, 0.0, 0.0)",
         ));
         assert!(m.contains("not positive semi-definite"), "{m}");
+        // magnitudes (docs/conventions.md#magnitudes): an infinity never reaches the solvers
+        let m = message(&TEXT.replace("G: (1 m, 0.0, h)", "G: (1 m, 0.0, 1e999)"));
+        assert!(m.contains("point `G` is at (1e0, 0e0, inf) m: coordinates must be finite and within ±1e6 m"), "{m}");
+        let m = message(&TEXT.replace("mass: 500 g", "mass: 1e12"));
+        assert!(m.contains("a mass is 0 or within 1e-18 to 1e9 kg"), "{m}");
+        let m = message(&TEXT.replace("(1.0, 2.0, 3.0, 0.1, 0.2, 0.3)", "(1.0, 2.0, 3.0, 1e300, 0.2, 0.3)"));
+        assert!(m.contains("products within ±1e15"), "{m}");
+        let m = message(&TEXT.replace("(0.0, 0.0, -9.81)", "(0.0, 0.0, -1e5)"));
+        assert!(m.contains("gravity is (0e0, 0e0, -1e5) m/s²"), "{m}");
+        let m = message(&TEXT.replace("pitch 4 mm", "pitch 1e999"));
+        assert!(m.contains("the pitch inf m must be finite"), "{m}");
         let m = message(&TEXT.replace("A: universal", "B: universal"));
         assert!(
             m.contains("must be a point of both `crank` and `arm`"),

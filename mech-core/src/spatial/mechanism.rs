@@ -1,9 +1,9 @@
 //! `SpatialMechanism`, a spatial mechanism loaded at run time, its checks and its solvers.
 
-use super::kinematics::{kinematics, Layout, SpatialMotion};
+use super::kinematics::{kinematics, BodyMotion, Layout, SpatialMotion};
 use super::kinetostatics::{kinetostatics, SpatialForces, SpatialLoads};
 use super::kutzbach::{self, Kutzbach};
-use super::model::SpatialModel;
+use super::model::{Finding, Site, SpatialModel};
 use crate::solvers::zhukovski::Reduced;
 use crate::MechError;
 use std::sync::Arc;
@@ -26,18 +26,68 @@ impl SpatialMechanism {
     /// A mechanism from a [`SpatialModel`]: [`MechError::Invalid`] with every message
     /// (Kutzbach's count, the rank at the drawing, the input kinds) when a check fails.
     pub fn from_model(model: SpatialModel) -> Result<Self, MechError> {
-        let count = (!model.allow_redundant)
+        Self::checked(model).map_err(|found| {
+            MechError::Invalid(
+                found
+                    .into_iter()
+                    .map(|f| f.message)
+                    .collect::<Vec<_>>()
+                    .join("\n"),
+            )
+        })
+    }
+
+    /// [`SpatialMechanism::from_model`] with each finding placed ([`Finding`]): Kutzbach's
+    /// count at the inputs (every link and joint involved), the rank at the drawing at the
+    /// first joint whose equations repeat (the others involved), the layout's checks at the
+    /// mechanism. The `mechanism!` macro turns the findings into spanned errors.
+    pub fn checked(model: SpatialModel) -> Result<Self, Vec<Finding>> {
+        let everything = || -> Vec<Site> {
+            (0..model.bodies.len())
+                .map(Site::Body)
+                .chain((0..model.joints.len()).map(Site::Joint))
+                .collect()
+        };
+        let mut found: Vec<Finding> = (!model.allow_redundant)
             .then(|| kutzbach::check(&model))
-            .flatten();
-        let layout = Layout::new(model)?;
+            .flatten()
+            .map(|message| Finding {
+                site: Site::Inputs,
+                message,
+                involved: everything(),
+            })
+            .into_iter()
+            .collect();
+        let layout = match Layout::new(model) {
+            Ok(layout) => layout,
+            Err(e) => {
+                let message = match e {
+                    MechError::Invalid(m) => m,
+                    other => other.to_string(),
+                };
+                found.push(Finding {
+                    site: Site::Whole,
+                    message,
+                    involved: Vec::new(),
+                });
+                return Err(found);
+            }
+        };
         let rank = if layout.model.allow_redundant {
-            super::rank::redundant(&layout)
+            super::rank::redundant(&layout).map(|m| (vec![Site::Inputs], m))
         } else {
             super::rank::check(&layout)
         };
-        let messages: Vec<String> = count.into_iter().chain(rank).collect();
-        if !messages.is_empty() {
-            return Err(MechError::Invalid(messages.join("\n")));
+        if let Some((sites, message)) = rank {
+            let mut sites = sites.into_iter();
+            found.push(Finding {
+                site: sites.next().unwrap_or(Site::Whole),
+                message,
+                involved: sites.collect(),
+            });
+        }
+        if !found.is_empty() {
+            return Err(found);
         }
         Ok(SpatialMechanism {
             layout: Arc::new(layout),
@@ -54,6 +104,43 @@ impl SpatialMechanism {
                 m.layout.model.name, self.layout.model.name
             )))
         }
+    }
+
+    /// A motion of this mechanism from its parts: the inputs' values, rates and
+    /// accelerations and every body's motion (the ground first), as a generated struct keeps
+    /// them. `InvalidInput` when a length does not match.
+    pub fn motion_from(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        bodies: &[BodyMotion],
+    ) -> Result<SpatialMotion, MechError> {
+        let (g, n) = (self.dof(), self.layout.model.bodies.len());
+        if q.len() != g || qd.len() != g || qdd.len() != g || bodies.len() != n {
+            return Err(MechError::InvalidInput(format!(
+                "a motion of `{}` has {g} input value(s) and {n} bodies; given {}, {}, {} values and {} bodies",
+                self.layout.model.name,
+                q.len(),
+                qd.len(),
+                qdd.len(),
+                bodies.len()
+            )));
+        }
+        Ok(SpatialMotion {
+            layout: self.layout.clone(),
+            q: q.to_vec(),
+            qd: qd.to_vec(),
+            qdd: qdd.to_vec(),
+            bodies: bodies.to_vec(),
+        })
+    }
+
+    /// The body the point with index `p` moves with and the point's offset from that
+    /// body's reference point (its cg when declared, else its first point) in the drawing, m:
+    /// the point is at o + R s.
+    pub fn point_anchor(&self, p: usize) -> Option<(usize, nalgebra::Vector3<f64>)> {
+        super::results::anchor(&self.layout, p)
     }
 
     /// The model as loaded.

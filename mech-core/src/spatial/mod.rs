@@ -24,5 +24,5 @@ mod zhukovski;
 pub use kinematics::{BodyMotion, SpatialMotion};
 pub use kinetostatics::{Reaction, SpatialForces, SpatialLoads};
 pub use mechanism::SpatialMechanism;
-pub use model::{Body, Joint, JointKind, Load, LoadKind, SpatialModel};
+pub use model::{Body, Finding, Joint, JointKind, Load, LoadKind, Site, SpatialModel};
 pub use results::LinkMotion;

@@ -176,3 +176,27 @@ pub fn inertia_tensor(six: [f64; 6]) -> Matrix3<f64> {
     let [xx, yy, zz, xy, xz, yz] = six;
     Matrix3::new(xx, -xy, -xz, -xy, yy, -yz, -xz, -yz, zz)
 }
+
+/// Where a check's finding belongs in the declaration (the macro puts its error there).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Site {
+    /// The whole mechanism (its name).
+    Whole,
+    /// The inputs' declaration (`input:` / `inputs:`).
+    Inputs,
+    /// A body, index into [`SpatialModel::bodies`].
+    Body(usize),
+    /// A joint, index into [`SpatialModel::joints`].
+    Joint(usize),
+}
+
+/// A check's finding: the message, where it belongs and the other places it involves.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finding {
+    /// Where the message is put.
+    pub site: Site,
+    /// What is wrong, the numbers and the fix.
+    pub message: String,
+    /// Other places taking part (shown as "involved here").
+    pub involved: Vec<Site>,
+}

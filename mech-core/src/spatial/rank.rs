@@ -8,6 +8,7 @@
 
 use super::constraints::BodyState;
 use super::kinematics::Layout;
+use super::model::Site;
 use nalgebra::DMatrix;
 
 fn rank(m: &DMatrix<f64>) -> usize {
@@ -56,21 +57,24 @@ pub(crate) fn redundant(layout: &Layout) -> Option<String> {
 }
 
 /// The message naming the redundant joints (or the locked inputs) when the Jacobian at the
-/// drawing has fewer independent rows than rows; `None` when its rows are independent.
-pub(crate) fn check(layout: &Layout) -> Option<String> {
+/// drawing has fewer independent rows than rows, with the places named (joints, inputs'
+/// joints, idle links); `None` when its rows are independent.
+pub(crate) fn check(layout: &Layout) -> Option<(Vec<Site>, String)> {
     let (rows, j) = drawing(layout);
     let total = rank(&j);
     if total == rows.len() {
         return None;
     }
     let model = &layout.model;
-    let mut groups: Vec<(String, usize)> = model
+    let mut groups: Vec<(String, usize, Site)> = model
         .joints
         .iter()
-        .map(|x| {
+        .enumerate()
+        .map(|(k, x)| {
             (
                 format!("joint `{}` ({})", x.name, x.kind.word()),
                 6 - x.kind.class(),
+                Site::Joint(k),
             )
         })
         .collect();
@@ -78,18 +82,20 @@ pub(crate) fn check(layout: &Layout) -> Option<String> {
         model
             .inputs
             .iter()
-            .map(|&k| (format!("input `{}`", model.joints[k].name), 1)),
+            .map(|&k| (format!("input `{}`", model.joints[k].name), 1, Site::Joint(k))),
     );
     groups.extend(layout.spins.iter().map(|&(b, _)| {
         (
             format!("the spin fix of link `{}`", model.bodies[b].name),
             1,
+            Site::Body(b),
         )
     }));
-    let (mut start, mut before, mut found) = (0, 0, Vec::new());
-    for (name, count) in groups {
+    let (mut start, mut before, mut found, mut sites) = (0, 0, Vec::new(), Vec::new());
+    for (name, count, site) in groups {
         let now = rank(&j.rows(0, start + count).into_owned());
         if now < before + count {
+            sites.push(site);
             found.push(format!(
                 "{name}: {} of its {count} equation(s) repeat those before it",
                 before + count - now
@@ -103,10 +109,10 @@ pub(crate) fn check(layout: &Layout) -> Option<String> {
     } else {
         String::new()
     };
-    Some(format!(
+    Some((sites, format!(
         "the constraint Jacobian at the drawing has rank {total} for {} equations: {} redundant. {}.{hidden} Redundant joint equations make the reactions statically indeterminate: replace a joint by one that leaves more freedom (e.g. a revolute (5 equations) by a universal (4) or a spherical (3) joint) until Kutzbach's count and the rank agree; an input whose equation repeats the others is at a dead point in the drawing: draw the mechanism elsewhere or choose another input",
         rows.len(),
         rows.len() - total,
         found.join("; ")
-    ))
+    )))
 }

@@ -1,6 +1,6 @@
 //! What a spatial motion answers by name (a point's motion, a link's).
 
-use super::kinematics::SpatialMotion;
+use super::kinematics::{BodyMotion, Layout, SpatialMotion};
 use nalgebra::{UnitQuaternion, Vector3};
 
 type V3 = Vector3<f64>;
@@ -23,14 +23,60 @@ pub struct LinkMotion {
     pub cg_acceleration: V3,
 }
 
+/// One link's pose (SI, global axes): what `pose` gives of a link.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkPose {
+    /// The rotation from the drawing.
+    pub rotation: UnitQuaternion<f64>,
+    /// The reference point's position (m): the cg when declared, else the first point.
+    pub cg: V3,
+}
+
+/// One point's position (m, global axes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointPose {
+    /// The position, m.
+    pub pos: V3,
+}
+
+/// One point's motion (SI, global axes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointMotion {
+    /// The position, m.
+    pub pos: V3,
+    /// The velocity, m/s.
+    pub vel: V3,
+    /// The acceleration, m/s².
+    pub acc: V3,
+}
+
+impl From<LinkMotion> for LinkPose {
+    fn from(m: LinkMotion) -> Self {
+        LinkPose {
+            rotation: m.rotation,
+            cg: m.cg,
+        }
+    }
+}
+
+impl From<[V3; 3]> for PointMotion {
+    fn from([pos, vel, acc]: [V3; 3]) -> Self {
+        PointMotion { pos, vel, acc }
+    }
+}
+
 impl SpatialMotion {
     /// The position (m), velocity (m/s) and acceleration (m/s²) of the point `name`, moved
     /// with the first link that lists it (the ground first).
     pub fn point_motion(&self, name: &str) -> Option<[V3; 3]> {
-        let model = &self.layout.model;
-        let p = model.point_index(name)?;
-        let b = model.bodies.iter().position(|b| b.points.contains(&p))?;
-        Some(self.bodies[b].point(model.points[p].1 - self.layout.o0[b]))
+        let p = self.layout.model.point_index(name)?;
+        self.point_motion_at(p)
+    }
+
+    /// [`SpatialMotion::point_motion`] of the point with index `p` in the model's points.
+    pub fn point_motion_at(&self, p: usize) -> Option<[V3; 3]> {
+        let (b, s) = anchor(&self.layout, p)?;
+        Some(self.bodies[b].point(s))
     }
 
     /// The position of the point `name`, m.
@@ -40,15 +86,32 @@ impl SpatialMotion {
 
     /// The motion of the link `name` (`ground` included).
     pub fn link(&self, name: &str) -> Option<LinkMotion> {
-        let b = self.layout.model.body_index(name)?;
-        let m = &self.bodies[b];
-        Some(LinkMotion {
+        self.link_at(self.layout.model.body_index(name)?)
+    }
+
+    /// [`SpatialMotion::link`] of the body with index `b` (the ground is 0).
+    pub fn link_at(&self, b: usize) -> Option<LinkMotion> {
+        self.bodies.get(b).map(LinkMotion::from)
+    }
+}
+
+impl From<&BodyMotion> for LinkMotion {
+    fn from(m: &BodyMotion) -> Self {
+        LinkMotion {
             rotation: m.state.rot,
             omega: m.state.w,
             alpha: m.alpha,
             cg: m.state.o,
             cg_velocity: m.state.v,
             cg_acceleration: m.a,
-        })
+        }
     }
+}
+
+/// The body a point moves with (the first that lists it, the ground first) and the point's
+/// offset from that body's reference point in the drawing, m.
+pub(crate) fn anchor(layout: &Layout, p: usize) -> Option<(usize, V3)> {
+    let model = &layout.model;
+    let b = model.bodies.iter().position(|b| b.points.contains(&p))?;
+    Some((b, model.points[p].1 - layout.o0[b]))
 }

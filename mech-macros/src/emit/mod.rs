@@ -22,6 +22,7 @@ mod outline;
 mod params;
 pub(crate) mod plan;
 mod results;
+pub(crate) mod spatial;
 mod traits;
 
 pub use outline::outline;

@@ -778,6 +778,10 @@ class SpatialMechanism:
         out = self._table(["zhukovski"], q, loads=loads, errors=errors)
         return {k: v for k, v in out.items() if k in ("moment", "ok")}
 
+    # The direct problem ``qdd`` (one input), as ``Mechanism.acceleration``: loads as
+    # (x, y, z) per name.
+    acceleration = Mechanism.acceleration
+
 
 def optimize(mechanism, vary, minimize, subject_to=(), qd=0.0, loads=None, steps=180, period=2 * np.pi,
              irregularity=None, targets=None, point=None, evaluations=300, seed=0):

@@ -90,7 +90,7 @@ impl Scope {
         let y = self.scalar(&content, dim, what)?;
         let _: Option<Token![,]> = content.parse()?;
         if !content.is_empty() {
-            return Err(content.error("expected `(x, y)`: two numbers"));
+            return Err(content.error("expected `(x, y)`: two numbers (a planar mechanism; a spatial one, with points `(x, y, z)`, starts with the word `space`: `pub struct Name { space, ... }`)"));
         }
         Ok(Pair {
             value: [x.value, y.value],
