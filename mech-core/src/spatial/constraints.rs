@@ -16,7 +16,7 @@
 //! - `spin`: an idle link keeps the drawing's spin about its axis e, the vector part of its
 //!   rotation quaternion ⊥ e (1 row).
 
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::f64::consts::PI;
 
 type V3 = Vector3<f64>;
@@ -151,6 +151,22 @@ pub fn spin(body: &BodyState, e: V3) -> Row {
         b: [V3::zeros(), 0.5 * (e * w + v.cross(&e))],
         gamma: 0.5 * body.w.dot(&(e * wd + vd.cross(&e))),
     }
+}
+
+/// The rotation the spin fix gives an idle link whose axis (from one spherical centre to the
+/// other) is `e` in the drawing and `now` at present (any lengths): the shortest arc from e
+/// to now, the quaternion ∝ (1 + ê·n̂, ê × n̂), its vector part ⊥ e (`spin`'s value 0; the
+/// only rotation taking ê to n̂ with that property). `None` when now is opposite e.
+pub fn spin_rotation(e: V3, now: V3) -> Option<UnitQuaternion<f64>> {
+    let (e, n) = (e.try_normalize(0.0)?, now.try_normalize(0.0)?);
+    let w = 1.0 + e.dot(&n);
+    if !(w > 1e-12) {
+        return None;
+    }
+    Some(UnitQuaternion::from_quaternion(Quaternion::from_parts(
+        w,
+        e.cross(&n),
+    )))
 }
 
 /// A joint's geometry fixed in its bodies: the point from each body's o and its axes, all

@@ -6,12 +6,16 @@
 //! holds. Positions: Newton, o += δv, R ← exp(δω) R, continued from the drawing to q in
 //! steps of at most 0.25 rad (or a tenth of the drawing's size for a sliding input), so the
 //! result depends on q alone and stays on the drawing's assembly. Velocities: J ẋ = q̇ on
-//! the driver rows, 0 elsewhere; accelerations: J ẍ = q̈ − γ.
+//! the driver rows, 0 elsewhere; accelerations: J ẍ = q̈ − γ. A mechanism that is one
+//! closed group (RSSR, RSSP, RSRC, the spherical four-bar: `closed`) takes its positions
+//! from the closed form instead, on the same assembly; its rates are the same linear solves.
 
+use super::closed::Closed;
 use super::constraints::{self, BodyState, JointGeom, Kind, Row};
 use super::model::{JointKind, SpatialModel};
 use crate::MechError;
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
+use std::cell::Cell;
 use std::sync::Arc;
 
 type V3 = Vector3<f64>;
@@ -29,6 +33,9 @@ pub(crate) struct Layout {
     pub spins: Vec<(usize, V3)>,
     /// The drawing's size (m): the largest distance of a point from the origin, at least 1e-3.
     pub scale: f64,
+    /// The closed group the whole mechanism is, when it is one (`closed`): its positions
+    /// then come from the closed form, not from Newton.
+    pub closed: Option<Closed>,
 }
 
 impl Layout {
@@ -104,12 +111,14 @@ impl Layout {
             .iter()
             .map(|(_, p)| p.norm())
             .fold(1e-3, f64::max);
+        let closed = Closed::recognise(&model, &o0);
         Ok(Layout {
             model,
             o0,
             joints,
             spins,
             scale,
+            closed,
         })
     }
 
@@ -159,9 +168,22 @@ impl Layout {
         j
     }
 
-    /// Positions at `q` (Newton continued from the drawing).
+    /// Positions at `q`: the closed form when the mechanism is a closed group (unless
+    /// `newton_only` asks otherwise), else Newton continued from the drawing.
     pub fn positions(&self, q: &[f64]) -> Result<Vec<BodyState>, MechError> {
-        let mut s: Vec<BodyState> = self.o0.iter().map(|&o| BodyState::drawing(o)).collect();
+        let steps = self.steps(q)?;
+        if let (Some(c), [q]) = (&self.closed, q) {
+            if !NEWTON_ONLY.with(|n| n.get()) {
+                return Ok(c.positions(*q)?.to_vec());
+            }
+        }
+        self.newton_positions(q, steps)
+    }
+
+    /// The continuation steps from the drawing to `q` (0.25 rad, or a tenth of the
+    /// drawing's size for a sliding input, each); `InvalidInput` beyond `MAX_STEPS` (the
+    /// closed forms refuse the same q, so both paths answer the same inputs).
+    fn steps(&self, q: &[f64]) -> Result<usize, MechError> {
         let step = |k: usize| match self.model.joints[self.model.inputs[k]].kind {
             JointKind::Prismatic { .. } => 0.1 * self.scale,
             _ => 0.25,
@@ -175,7 +197,12 @@ impl Layout {
                 MAX_STEPS * 0.25 / (2.0 * std::f64::consts::PI)
             )));
         }
-        let steps = steps as usize;
+        Ok(steps as usize)
+    }
+
+    /// Positions at `q` by Newton continued from the drawing in `steps` steps.
+    fn newton_positions(&self, q: &[f64], steps: usize) -> Result<Vec<BodyState>, MechError> {
+        let mut s: Vec<BodyState> = self.o0.iter().map(|&o| BodyState::drawing(o)).collect();
         for i in 1..=steps {
             let target: Vec<f64> = q.iter().map(|x| x * i as f64 / steps as f64).collect();
             self.newton(&mut s, &target)?;
@@ -209,6 +236,26 @@ impl Layout {
         }
         Ok(())
     }
+}
+
+thread_local! {
+    /// Set by `newton_only`: this thread's positions by Newton even for a closed group.
+    static NEWTON_ONLY: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Run `f` with every position on this thread solved by Newton continued from the
+/// drawing, the closed forms (`closed`) set aside: for comparing the two paths (tests,
+/// benches). Restored on return, and on a panic.
+#[doc(hidden)]
+pub fn newton_only<R>(f: impl FnOnce() -> R) -> R {
+    struct Restore(bool);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            NEWTON_ONLY.with(|n| n.set(self.0));
+        }
+    }
+    let _restore = Restore(NEWTON_ONLY.with(|n| n.replace(true)));
+    f()
 }
 
 /// The largest |Φ| of the rows, +∞ when one is not finite.
@@ -313,6 +360,15 @@ pub struct SpatialMotion {
     pub qdd: Vec<f64>,
     /// Each body's motion, the ground first.
     pub bodies: Vec<BodyMotion>,
+}
+
+impl SpatialMotion {
+    /// The closed group whose closed form this motion's mechanism takes its positions from
+    /// (`RSSR`, `RSSP`, `RSRC`, `spherical four-bar`), `None` when it is solved by Newton.
+    #[doc(hidden)]
+    pub fn closed_group(&self) -> Option<&'static str> {
+        self.layout.closed.as_ref().map(|c| c.group.name())
+    }
 }
 
 /// Kinematics at (q, q̇, q̈): positions by Newton, then J ẋ = (q̇ on the driver rows) and

@@ -3,8 +3,10 @@
 //! `SpatialMechanism::from_dsl(text)` reads the text form, checks it and answers the same
 //! solvers as the planar run-time mechanism: `pose`, `kinematics`, `kinetostatics`,
 //! `driver_action`, `reduced`, `reduced_moment`, `acceleration`. The formulation is in
-//! `docs/spatial.md`.
+//! `docs/spatial.md`. A mechanism that is one RSSR, RSSP, RSRC or spherical four-bar takes
+//! its positions from that group's closed form (`closed`), the others by Newton.
 
+pub mod closed;
 pub mod constraints;
 pub mod dsl;
 pub mod kinematics;
