@@ -12,7 +12,7 @@
 
 use super::closed::Closed;
 use super::constraints::{self, BodyState, JointGeom, Kind, Row};
-use super::model::{JointKind, SpatialModel};
+use super::model::{Finding, JointKind, Site, SpatialModel};
 use crate::MechError;
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
 use std::cell::Cell;
@@ -39,8 +39,9 @@ pub(crate) struct Layout {
 }
 
 impl Layout {
-    /// Prepare `model` (checked for the input kinds and a degenerate idle link).
-    pub fn new(model: SpatialModel) -> Result<Self, MechError> {
+    /// Prepare `model` (checked for the input kinds and a degenerate idle link: each
+    /// finding at its joint or link).
+    pub fn new(model: SpatialModel) -> Result<Self, Vec<Finding>> {
         let o0: Vec<V3> = model
             .bodies
             .iter()
@@ -91,20 +92,28 @@ impl Layout {
                     | JointKind::Prismatic { .. }
                     | JointKind::Helical { .. }
             ) {
-                errors.push(format!("input `{}` is a {} joint, which leaves more than one freedom: an input is a revolute, prismatic or helical joint", j.name, j.kind.word()));
+                errors.push(Finding {
+                    site: Site::Joint(k),
+                    message: format!("input `{}` is a {} joint, which leaves more than one freedom: an input is a revolute, prismatic or helical joint", j.name, j.kind.word()),
+                    involved: Vec::new(),
+                });
             }
         }
         let mut spins = Vec::new();
         for (b, j1, j2) in super::kutzbach::idle_freedoms(&model) {
             let e = model.points[model.joints[j2].point].1 - model.points[model.joints[j1].point].1;
             if !(e.norm() > 0.0) {
-                errors.push(format!("link `{}` has its two spherical joints at one point: it can turn freely about it; give its joints distinct points", model.bodies[b].name));
+                errors.push(Finding {
+                    site: Site::Body(b),
+                    message: format!("link `{}` has its two spherical joints at one point: it can turn freely about it; give its joints distinct points", model.bodies[b].name),
+                    involved: Vec::new(),
+                });
                 continue;
             }
             spins.push((b, e.normalize()));
         }
         if !errors.is_empty() {
-            return Err(MechError::Invalid(errors.join("\n")));
+            return Err(errors);
         }
         let scale = model
             .points

@@ -39,8 +39,8 @@ impl SpatialMechanism {
 
     /// [`SpatialMechanism::from_model`] with each finding placed ([`Finding`]): Kutzbach's
     /// count at the inputs (every link and joint involved), the rank at the drawing at the
-    /// first joint whose equations repeat (the others involved), the layout's checks at the
-    /// mechanism. The `mechanism!` macro turns the findings into spanned errors.
+    /// first joint whose equations repeat (the others involved), an input of the wrong kind
+    /// at its joint, a degenerate idle link at the link. The `mechanism!` macro turns the findings into spanned errors.
     pub fn checked(model: SpatialModel) -> Result<Self, Vec<Finding>> {
         let everything = || -> Vec<Site> {
             (0..model.bodies.len())
@@ -60,16 +60,8 @@ impl SpatialMechanism {
             .collect();
         let layout = match Layout::new(model) {
             Ok(layout) => layout,
-            Err(e) => {
-                let message = match e {
-                    MechError::Invalid(m) => m,
-                    other => other.to_string(),
-                };
-                found.push(Finding {
-                    site: Site::Whole,
-                    message,
-                    involved: Vec::new(),
-                });
+            Err(more) => {
+                found.extend(more);
                 return Err(found);
             }
         };
