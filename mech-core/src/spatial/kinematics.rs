@@ -382,6 +382,35 @@ impl SpatialMotion {
 
 /// Kinematics at (q, q̇, q̈): positions by Newton, then J ẋ = (q̇ on the driver rows) and
 /// J ẍ = (q̈ on the driver rows) − γ.
+/// Positions alone at q: [`Layout::positions`], every rate zero (no linear solve).
+pub(crate) fn pose(layout: &Arc<Layout>, q: &[f64]) -> Result<SpatialMotion, MechError> {
+    let g = layout.model.inputs.len();
+    if q.len() != g {
+        return Err(MechError::InvalidInput(format!(
+            "q must have {g} value(s) (one per input), got {}",
+            q.len()
+        )));
+    }
+    crate::error::check_finite("q", q)?;
+    let bodies = layout
+        .positions(q)?
+        .into_iter()
+        .map(|state| BodyMotion {
+            state,
+            a: V3::zeros(),
+            alpha: V3::zeros(),
+        })
+        .collect();
+    let zero = vec![0.0; g];
+    Ok(SpatialMotion {
+        layout: layout.clone(),
+        q: q.to_vec(),
+        qd: zero.clone(),
+        qdd: zero,
+        bodies,
+    })
+}
+
 pub(crate) fn kinematics(
     layout: &Arc<Layout>,
     q: &[f64],

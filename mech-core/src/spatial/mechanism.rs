@@ -174,10 +174,9 @@ impl SpatialMechanism {
         }
     }
 
-    /// The positions at q (velocities and accelerations zero).
+    /// The positions at q (velocities and accelerations zero; no rate is solved for).
     pub fn pose(&self, q: &[f64]) -> Result<SpatialMotion, MechError> {
-        let zero = vec![0.0; q.len()];
-        kinematics(&self.layout, q, &zero, &zero)
+        super::kinematics::pose(&self.layout, q)
     }
 
     /// Positions, velocities and accelerations at (q, q̇, q̈) (one value per input each).
