@@ -8,12 +8,15 @@
 //! from the start's lead angle (the predictor) until a step would move no pin by more than
 //! 3 % of the scale; from there, Newton on the two loop equations in θ and the ternary
 //! link's angle φ together (a 2 × 2 system by Cramer's rule: no square root, no circle to
-//! close), which converges to the same root in about half the time per step, its root
-//! kept when its dyad is on the same side and its assembly the drawing's (else the
-//! eliminated Newton goes on). Each step turns the angles by the rotation
-//! (den + i num)²/(den² + num²) of its half-angle tangent num/den: unit, one division per
-//! step. The other two binary links as the lead, then the general Newton
-//! ([`crate::kernel::group::group_newton`]), are the fallbacks.
+//! close: a step costs about half of one on θ alone), its root kept when its dyad is on
+//! the same side and its assembly the drawing's (else the eliminated Newton goes on).
+//! Started that close, it finds the root the eliminated Newton would (checked against it
+//! over 300 random variants of the test machines, 180 angles each); from the drawing's
+//! angle it may find another one on the same side and assembly sign. Each step turns the
+//! angles by the rotation (den + i num)²/(den² + num²) of its half-angle tangent num/den:
+//! unit, one division per step; a step that moves no pin by more than 1e-8 of the scale
+//! is the last, taken unchecked. The other two binary links as the lead, then the general
+//! Newton ([`crate::kernel::group::group_newton`]), are the fallbacks.
 //!
 //! The drawn assembly: the dyad's side σ is taken from the start configuration (the
 //! drawing, or the caller's previous configuration, [`triad_solve`]'s `start`), the other
@@ -362,14 +365,7 @@ const MAX_BOTH: usize = 12;
 /// [`SWITCH`]), where it finds the one the eliminated Newton would: from farther (the
 /// drawing's angle, say) it may find another root on the same side and assembly sign.
 #[inline(always)]
-fn both_angles(
-    g: &Geom,
-    o: [V2; 3],
-    mut u: V2,
-    x: &Pins,
-    sigma: f64,
-    scale: f64,
-) -> Option<Pins> {
+fn both_angles(g: &Geom, o: [V2; 3], mut u: V2, x: &Pins, sigma: f64, scale: f64) -> Option<Pins> {
     // The ternary link's rotation: (B − A₁)/m₁, |B − A₁| = |m₁|.
     let mut v = V2::new(g.m1.dot(&(x.b - x.a1)), cross(g.m1, x.b - x.a1)) * (1.0 / g.r_mid);
     let (tol, final_move) = (1e-14 * scale, FINAL_MOVE * scale);
