@@ -1,12 +1,22 @@
 //! The class III Assur group of revolute joints (a triad: a ternary link pinned to three
-//! binary links, each pinned to a solved link) by one eliminated unknown: the angle of
+//! binary links, each pinned to a solved link) by one eliminated unknown: the angle θ of
 //! one binary link (the lead) places its inner pin; the ternary link and a second binary
 //! link then close as an RRR dyad ([`crate::kernel::dyad::circle_circle`]), which places
 //! the ternary link's third pin; the one scalar equation left is that the third binary
 //! link reaches it, f(θ) = |A₃ − O₃|² − L₃² = 0 (m²). Newton on θ (safeguarded: the step
-//! bounded, halved until |f| decreases and the dyad closes), f′ from the dyad's rates;
-//! the other two binary links as the lead, then the general Newton
-//! ([`crate::kernel::group::group_newton`]), are the fallbacks.
+//! bounded, halved until |f| decreases and the dyad closes), f′ from the dyad's rates,
+//! from the start's lead angle (the predictor) until a step would move no pin by more than
+//! 3 % of the scale; from there, Newton on the two loop equations in θ and the ternary
+//! link's angle φ together (a 2 × 2 system by Cramer's rule: no square root, no circle to
+//! close: a step costs about half of one on θ alone), its root kept when its dyad is on
+//! the same side and its assembly the drawing's (else the eliminated Newton goes on).
+//! Started that close, it finds the root the eliminated Newton would (checked against it
+//! over 300 random variants of the test machines, 180 angles each); from the drawing's
+//! angle it may find another one on the same side and assembly sign. Each step turns the
+//! angles by the rotation (den + i num)²/(den² + num²) of its half-angle tangent num/den:
+//! unit, one division per step; a step that moves no pin by more than 1e-8 of the scale
+//! is the last, taken unchecked. The other two binary links as the lead, then the general
+//! Newton ([`crate::kernel::group::group_newton`]), are the fallbacks.
 //!
 //! The drawn assembly: the dyad's side σ is taken from the start configuration (the
 //! drawing, or the caller's previous configuration, [`triad_solve`]'s `start`), the other
@@ -63,6 +73,10 @@ struct Geom {
     /// |A₃ − A₁| (m): A₃ = A₁ + z (B − A₁).
     z: V2,
     arm: f64,
+    /// The ternary link's B − A₁ and A₃ − A₁, local (m), and the longer one's length.
+    m1: V2,
+    m2: V2,
+    reach: f64,
     /// |ternary B − A₁|², |dyad link|², |close link|² (m²).
     r_mid: f64,
     r_dyad: f64,
@@ -88,6 +102,9 @@ impl Geom {
             lead_len: lead.norm(),
             z: quotient(e31, e21),
             arm: e31.norm(),
+            m1: e21,
+            m2: e31,
+            reach: e21.norm_squared().max(e31.norm_squared()).sqrt(),
             r_mid: e21.norm_squared(),
             r_dyad: (inner[1] - outer[1]).norm_squared(),
             r_close: (inner[2] - outer[2]).norm_squared(),
@@ -108,16 +125,29 @@ struct Pins {
     o3: V2,
 }
 
-/// The residual and the Newton step at `x`, with θ the lead's angle:
-/// f = |A₃ − O₃|² − L₃² (m²). With Ȧ₁ = perp(A₁ − O₁) (θ̇ = 1), the dyad's rates (B fixed
-/// to both of its links) give the ternary link's ω = −(Ȧ₁·q)/c, p = B − A₁, q = B − O₂,
-/// c = p × q; then Ȧ₃ = Ȧ₁ + ω perp(A₃ − A₁) and f′ = 2 (A₃ − O₃)·Ȧ₃ = 2n/c with
-/// n = c (w·Ȧ₁) − (Ȧ₁·q)(w·perp(A₃ − A₁)), w = A₃ − O₃. Returns (f, n, Δθ = −f c/(2n),
-/// the largest pin move of that step ≈ |Δθ| |lead| + |ω Δθ| |A₃ − A₁|, m). n is the
-/// group's Jacobian determinant up to a positive factor and a sign of the topology: its
-/// sign is the assembly's (the module's docs). One division.
+/// A Newton step on the lead's angle θ: the residual f = |A₃ − O₃|² − L₃² (m²), n (below),
+/// and the step as the tangent of its half, Δθ/2 = `num`/`den`, with `reach` such that the
+/// step moves no pin by more than `reach`/|`den`| (m).
+///
+/// With Ȧ₁ = perp(A₁ − O₁) (θ̇ = 1), the dyad's rates (B fixed to both of its links) give
+/// the ternary link's ω = −(Ȧ₁·q)/c, p = B − A₁, q = B − O₂, c = p × q; then
+/// Ȧ₃ = Ȧ₁ + ω perp(A₃ − A₁) and f′ = 2 (A₃ − O₃)·Ȧ₃ = 2n/c with
+/// n = c (w·Ȧ₁) − (Ȧ₁·q)(w·perp(A₃ − A₁)), w = A₃ − O₃. So Δθ = −f/f′ = −f c/(2n):
+/// num = −f c, den = 4n, and the largest pin move |Δθ| |lead| + |ω Δθ| |A₃ − A₁| is
+/// (2|f c| |lead| + 2|f (Ȧ₁·q)| |A₃ − A₁|)/|den|. No division: [`half_turn`] takes the
+/// step's one. n is the group's Jacobian determinant up to a positive factor and a sign of
+/// the topology: its sign is the assembly's (the module's docs).
+#[derive(Clone, Copy)]
+struct Step {
+    f: f64,
+    n: f64,
+    num: f64,
+    den: f64,
+    reach: f64,
+}
+
 #[inline(always)]
-fn newton_step(x: &Pins, g: &Geom) -> (f64, f64, f64, f64) {
+fn newton_step(x: &Pins, g: &Geom) -> Step {
     let (p, q) = (x.b - x.a1, x.b - x.o2);
     let c = cross(p, q);
     let da1 = perp(x.a1 - x.o1);
@@ -125,9 +155,24 @@ fn newton_step(x: &Pins, g: &Geom) -> (f64, f64, f64, f64) {
     let f = w.norm_squared() - g.r_close;
     let dq = da1.dot(&q);
     let n = c * w.dot(&da1) - dq * w.dot(&perp(x.a3 - x.a1));
-    let inv = 0.5 / n;
-    let (step, turn) = (-f * c * inv, f * dq * inv);
-    (f, n, step, step.abs() * g.lead_len + turn.abs() * g.arm)
+    let num = -f * c;
+    Step {
+        f,
+        n,
+        num,
+        den: 4.0 * n,
+        reach: 2.0 * (num.abs() * g.lead_len + (f * dq).abs() * g.arm),
+    }
+}
+
+/// The sign of [`Step`]'s n at `x` alone: ±1, 0 at a dead point.
+#[inline(always)]
+fn det_sign(x: &Pins) -> f64 {
+    let (p, q) = (x.b - x.a1, x.b - x.o2);
+    let c = cross(p, q);
+    let da1 = perp(x.a1 - x.o1);
+    let w = x.a3 - x.o3;
+    sign0(c * w.dot(&da1) - da1.dot(&q) * w.dot(&perp(x.a3 - x.a1)))
 }
 
 /// The pins at the lead's rotation `u` (unit, from the drawing), on the dyad's side
@@ -164,7 +209,7 @@ fn pins_of(t: &Triad, g: &Geom, s: &[LinkState]) -> Pins {
 /// The sign of the group's Jacobian determinant (±1, 0 at a dead point) in `s`.
 #[inline(always)]
 fn assembly(t: &Triad, g: &Geom, s: &[LinkState]) -> f64 {
-    sign0(newton_step(&pins_of(t, g, s), g).1)
+    det_sign(&pins_of(t, g, s))
 }
 
 /// −1, 0 or +1 (0 for zero and NaN).
@@ -220,12 +265,26 @@ fn feasible(g: &Geom, o: [V2; 3], u: V2) -> Result<V2, MechError> {
 const MAX_STEPS: usize = 40;
 /// The largest step of the lead's angle (rad).
 const MAX_TURN: f64 = 0.5;
+/// The largest pin move of a step taken as the last one, unchecked (of the scale).
+const FINAL_MOVE: f64 = 1e-8;
+
+/// The rotation by 2 atan(num/den): (den + i num)²/(den² + num²), unit with no square root
+/// and one division (the Newton step's, [`Step`]). For a step Δθ, num/den = Δθ/2 turns by
+/// 2 atan(Δθ/2) = Δθ + O(Δθ³).
+#[inline(always)]
+fn half_turn(num: f64, den: f64) -> V2 {
+    V2::new((den - num) * (den + num), 2.0 * den * num) * (1.0 / (den * den + num * num))
+}
 
 /// Newton on the lead's angle from rotation `u` on the dyad's side `sigma`: the pins at
-/// the root and its assembly's n ([`newton_step`]), converged when the next step would
-/// move no pin by more than 1e-14 `scale` (m); `NoAssembly` when the dyad cannot close,
-/// the steps stall, or they do not converge. Each step turns u by (1 − t² + 2it)/(1 + t²),
-/// t = h/2: a turn of 2 atan(h/2) = h + O(h³), unit with no square root.
+/// the root and the sign of its assembly's n ([`Step`]); `NoAssembly` when the dyad cannot
+/// close, the steps stall, or they do not converge. Each step is bounded by 0.5 rad, then
+/// halved until |f| decreases and the dyad closes. Converged when the next step would move
+/// no pin by more than 1e-14 `scale` (m); a step of at most 1e-8 `scale` is taken as the
+/// last one without evaluating the next (Newton's error after it, O(step²), is below the
+/// tolerance). Once a step would move no pin by more than [`SWITCH`] `scale`,
+/// [`both_angles`] takes over from there (once), its root returned when its assembly sign
+/// is `drawn` (0 accepts any).
 #[inline(always)]
 fn search(
     g: &Geom,
@@ -233,37 +292,121 @@ fn search(
     mut u: V2,
     sigma: f64,
     scale: f64,
+    drawn: f64,
 ) -> Result<(Pins, f64), MechError> {
     let mut x = pins_at(g, o, u, sigma)?;
-    let (mut f, mut n, mut step, mut moves) = newton_step(&x, g);
-    let tol = 1e-14 * scale;
+    let mut st = newton_step(&x, g);
+    let (tol, final_move) = (1e-14 * scale, FINAL_MOVE * scale);
+    let switch = SWITCH * scale;
+    let mut both = true;
     for _ in 0..MAX_STEPS {
-        if !step.is_finite() {
+        if !(st.num.is_finite() && st.den.is_finite() && st.den != 0.0) {
             return Err(MechError::NoAssembly);
         }
-        if moves <= tol {
-            return Ok((x, n));
+        let big = st.den.abs();
+        if st.reach <= tol * big {
+            return Ok((x, sign0(st.n)));
         }
-        let mut h = step.clamp(-MAX_TURN, MAX_TURN);
+        if both && st.reach <= switch * big {
+            both = false;
+            if let Some(y) = both_angles(g, o, u, &x, sigma, scale) {
+                let det = det_sign(&y);
+                if drawn == 0.0 || det == drawn {
+                    return Ok((y, det));
+                }
+            }
+        }
+        if st.reach <= final_move * big {
+            if let Ok(y) = pins_at(g, o, rotate(u, half_turn(st.num, st.den)), sigma) {
+                return Ok((y, det_sign(&y)));
+            }
+        }
+        // |Δθ| ≤ MAX_TURN: |num| ≤ MAX_TURN/2 |den|.
+        let lim = 0.5 * MAX_TURN * big;
+        let mut num = st.num.clamp(-lim, lim);
         loop {
-            let t = 0.5 * h;
-            let r = V2::new(1.0 - t * t, 2.0 * t) * (1.0 / (1.0 + t * t));
-            let v = rotate(u, r);
+            let v = rotate(u, half_turn(num, st.den));
             if let Ok(y) = pins_at(g, o, v, sigma) {
                 let next = newton_step(&y, g);
-                if next.0.abs() < f.abs() {
-                    (u, x) = (v, y);
-                    (f, n, step, moves) = next;
+                if next.f.abs() < st.f.abs() {
+                    (u, x, st) = (v, y, next);
                     break;
                 }
             }
-            h *= 0.5;
-            if h.abs() * g.lead_len <= 0.1 * tol {
+            num *= 0.5;
+            // |Δθ| |lead| = 2 |num| |lead| / |den| ≤ 0.1 tol: stalled.
+            if 2.0 * num.abs() * g.lead_len <= 0.1 * tol * big {
                 return Err(MechError::NoAssembly);
             }
         }
     }
     Err(MechError::NoAssembly)
+}
+
+/// The largest pin move of a Newton step on the lead's angle from which [`search`] turns
+/// to [`both_angles`] (of the scale).
+const SWITCH: f64 = 0.03;
+/// The most steps of [`both_angles`].
+const MAX_BOTH: usize = 12;
+
+/// Newton on the lead's and the ternary link's angles (θ, φ) together, from the pins `x`
+/// (the lead at rotation `u`, the dyad closed on side `sigma`): the two loop equations
+/// g₂ = |B − O₂|² − L₂² = 0 and g₃ = |A₃ − O₃|² − L₃² = 0, with A₁ = O₁ + R(θ) (lead's
+/// span), B = A₁ + R(φ) m₁, A₃ = A₁ + R(φ) m₂ (m₁, m₂ the ternary link's local B − A₁,
+/// A₃ − A₁). With e₂ = B − O₂, e₃ = A₃ − O₃, Ȧ₁ = perp(A₁ − O₁), the Jacobian is 2 j,
+/// j = [e₂·Ȧ₁, e₂·perp(B − A₁); e₃·Ȧ₁, e₃·perp(A₃ − A₁)], and Cramer's rule gives the
+/// half-angle tangents of the step, Δθ/2 = (g₃ j₁₂ − g₂ j₂₂)/(4 det j) and
+/// Δφ/2 = (g₂ j₂₁ − g₃ j₁₁)/(4 det j), each turned by [`half_turn`]: no square root, and
+/// the two divisions side by side. Each step is bounded by 0.5 rad in either angle.
+/// Converged as [`search`] (no pin moved by more than 1e-14 `scale` by the next step, a
+/// step of at most 1e-8 `scale` taken as the last); the root is kept only when its dyad is
+/// on side `sigma` (B on that side of A₁ → O₂). `None` otherwise, or after
+/// [`MAX_BOTH`] steps: then [`search`] goes on. Started close to the root (within
+/// [`SWITCH`]), where it finds the one the eliminated Newton would: from farther (the
+/// drawing's angle, say) it may find another root on the same side and assembly sign.
+#[inline(always)]
+fn both_angles(g: &Geom, o: [V2; 3], mut u: V2, x: &Pins, sigma: f64, scale: f64) -> Option<Pins> {
+    // The ternary link's rotation: (B − A₁)/m₁, |B − A₁| = |m₁|.
+    let mut v = V2::new(g.m1.dot(&(x.b - x.a1)), cross(g.m1, x.b - x.a1)) * (1.0 / g.r_mid);
+    let (tol, final_move) = (1e-14 * scale, FINAL_MOVE * scale);
+    let pins = |u: V2, v: V2| {
+        let a1 = o[0] + rotate(u, g.lead);
+        Pins {
+            a1,
+            o1: o[0],
+            b: a1 + rotate(v, g.m1),
+            o2: o[1],
+            a3: a1 + rotate(v, g.m2),
+            o3: o[2],
+        }
+    };
+    let mut y = *x;
+    for _ in 0..MAX_BOTH {
+        let (e2, e3) = (y.b - y.o2, y.a3 - y.o3);
+        let (g2, g3) = (e2.norm_squared() - g.r_dyad, e3.norm_squared() - g.r_close);
+        let da1 = perp(y.a1 - y.o1);
+        let (j11, j12) = (e2.dot(&da1), e2.dot(&perp(y.b - y.a1)));
+        let (j21, j22) = (e3.dot(&da1), e3.dot(&perp(y.a3 - y.a1)));
+        let den = 4.0 * (j11 * j22 - j12 * j21);
+        let (nt, nf) = (g3 * j12 - g2 * j22, g2 * j21 - g3 * j11);
+        if !(den.is_finite() && den != 0.0 && nt.is_finite() && nf.is_finite()) {
+            return None;
+        }
+        let big = den.abs();
+        let reach = 2.0 * (nt.abs() * g.lead_len + nf.abs() * g.reach);
+        let last = reach <= final_move * big;
+        if reach <= tol * big || last {
+            if last {
+                y = pins(rotate(u, half_turn(nt, den)), rotate(v, half_turn(nf, den)));
+            }
+            return (cross(y.o2 - y.a1, y.b - y.a1) * sigma >= 0.0).then_some(y);
+        }
+        let lim = 0.5 * MAX_TURN * big;
+        u = rotate(u, half_turn(nt.clamp(-lim, lim), den));
+        v = rotate(v, half_turn(nf.clamp(-lim, lim), den));
+        y = pins(u, v);
+    }
+    None
 }
 
 /// The triad's positions: Newton on the lead's angle from the predictor `u` (the lead's
@@ -296,10 +439,10 @@ fn triad_pose(
     };
     let u = feasible(g, o, u)?;
     for side in [sigma, -sigma] {
-        let Ok((x, det)) = search(g, o, u, side, scale) else {
+        let Ok((x, det)) = search(g, o, u, side, scale, drawn) else {
             continue;
         };
-        if drawn != 0.0 && sign0(det) != drawn {
+        if drawn != 0.0 && det != drawn {
             continue;
         }
         place_by_two_points(&mut s[l1], g.outer[0], g.inner[0], x.o1, x.a1);
@@ -344,6 +487,34 @@ fn other_leads(
     Err(MechError::NoAssembly)
 }
 
+/// [`triad_solve`]'s positions: the plan's lead from `start`, then the other leads, then
+/// (a `start` that found nothing) the same from the drawing. Whether they were found, and
+/// the drawing's assembly sign.
+#[inline(always)]
+fn positions(
+    t: &Triad,
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    scale: f64,
+    drawing: &[LinkState],
+    start: Option<&[LinkState]>,
+) -> (bool, f64) {
+    let g = Geom::new(t, joints);
+    let drawn = assembly(t, &g, drawing);
+    // From `start`, then (a warm start that found nothing) from the drawing, as a call
+    // without one would: a warm start never fails where the drawing's start succeeds.
+    let attempt = |s: &mut [LinkState], from: &[LinkState]| {
+        let (pins, u) = (pins_of(t, &g, from), from[t.links[0]].rot);
+        triad_pose(t, &g, joints, s, &pins, u, drawn, scale).is_ok()
+            || other_leads(t, joints, s, drawing, from, scale).is_ok()
+    };
+    let solved = match start {
+        Some(from) => attempt(s, from) || attempt(s, drawing),
+        None => attempt(s, drawing),
+    };
+    (solved, drawn)
+}
+
 /// Solve a triad ([`Triad`], its group's `bodies` and `cons`) up to `upto`: positions by
 /// Newton on the lead's angle (the module's docs), started from `start` (a previous
 /// configuration's states, every link; only the group's are read) or else from
@@ -368,25 +539,13 @@ pub fn triad_solve<const N: usize>(
     drawing: &[LinkState],
     start: Option<&[LinkState]>,
 ) -> Result<Option<GroupSystem<N>>, MechError> {
-    let g = Geom::new(t, joints);
-    let drawn = assembly(t, &g, drawing);
-    // From `start`, then (a warm start that found nothing) from the drawing, as a call
-    // without one would: a warm start never fails where the drawing's start succeeds.
-    let attempt = |s: &mut [LinkState], from: &[LinkState]| {
-        let (pins, u) = (pins_of(t, &g, from), from[t.links[0]].rot);
-        triad_pose(t, &g, joints, s, &pins, u, drawn, scale).is_ok()
-            || other_leads(t, joints, s, drawing, from, scale).is_ok()
-    };
-    let solved = match start {
-        Some(from) => attempt(s, from) || attempt(s, drawing),
-        None => attempt(s, drawing),
-    };
+    let (solved, drawn) = positions(t, joints, s, scale, drawing, start);
     if !solved {
         for &b in bodies {
             s[b] = drawing[b];
         }
         group_newton::<N>(bodies, cons, joints, s, drive, scale)?;
-        if drawn != 0.0 && assembly(t, &g, s) == -drawn {
+        if drawn != 0.0 && assembly(t, &Geom::new(t, joints), s) == -drawn {
             return Err(MechError::NoAssembly);
         }
     }
