@@ -54,8 +54,7 @@ pub struct BalanceArgs {
 /// Run `mech balance`.
 pub fn run(args: BalanceArgs, mut out: impl Write) -> Result<(), Failure> {
     let (text, origin) = source::read(&args.file)?;
-    let m = mech_core::Mechanism::from_dsl_named(&text, &origin)
-        .map_err(|e| Failure::mechanism(e.to_string()))?;
+    let m = source::parse(&text, &origin)?;
     if m.dof() != 1 {
         return Err(Failure::usage(
             "mech balance takes a mechanism with one input",

@@ -210,7 +210,10 @@ pub fn animate(args: AnimateArgs) -> Result<(), Failure> {
         )));
     }
     limits::writable(&args.output, "-o", "svg")?;
-    let m = source::load(&args.file)?;
+    let m = match source::load_any(&args.file)? {
+        source::Any::Planar(m) => m,
+        source::Any::Spatial(m) => return write(&args.output, &crate::spatial::animate(&m, &args)?),
+    };
     let (a, b, q) = inputs(&m, &args.from, &args.to, &args.rest)?;
     let qs = range(&q, a, b, args.frames - 1);
     let frames = scene::frames(&m, &qs)?;

@@ -56,7 +56,7 @@ pub fn load(path: &Path) -> Result<Mechanism, Failure> {
 pub fn parse(text: &str, origin: &str) -> Result<Mechanism, Failure> {
     if is_spatial(text) {
         return Err(Failure::mechanism(format!(
-            "{origin}: a spatial mechanism (its first item is `space`): `mech check`, `solve`, `sweep`, `draw`, `flywheel` and `simulate` take it; this command takes planar mechanisms only"
+            "{origin}: a spatial mechanism (its first item is `space`): `mech check`, `solve`, `sweep`, `draw`, `animate`, `flywheel` and `simulate` take it; this command takes planar mechanisms only"
         )));
     }
     parse_planar(text, origin)

@@ -315,10 +315,12 @@ pub fn frame(m: &SpatialMechanism, q: &[f64]) -> Result<Frame, Failure> {
                 .ok_or_else(|| Failure::mechanism(format!("the point `{p}` belongs to no link")))
         })
         .collect::<Result<_, _>>()?;
-    let (mut lo, mut hi) = (at[0], at[0]);
-    for p in &at {
-        lo = lo.inf(p);
-        hi = hi.sup(p);
+    // The axes at the drawing's lowest corner (not the pose's: they stay put in an animation).
+    let drawn = model.points.iter().map(|(_, p)| *p);
+    let (mut lo, mut hi) = (model.points[0].1, model.points[0].1);
+    for p in drawn {
+        lo = lo.inf(&p);
+        hi = hi.sup(&p);
     }
     let size = (hi - lo).max().max(1e-6);
     let mut shapes = Vec::new();
@@ -384,4 +386,64 @@ pub fn frame(m: &SpatialMechanism, q: &[f64]) -> Result<Frame, Failure> {
 pub fn draw(m: &SpatialMechanism, q: &[f64], width: f64, height: f64) -> Result<String, Failure> {
     let frame = frame(m, q)?;
     Ok(svg::still(&frame, &[], width, height).0)
+}
+
+/// `mech animate` of a spatial mechanism: the isometric picture of [`frame`] at `frames`
+/// values of the first input from `from` to `to` (defaults: a turn for a revolute or
+/// helical input, ± a tenth of the drawing's size for a prismatic one), the other inputs
+/// at `rest`; a value where it does not assemble shows the last one that did. The SVG text.
+pub fn animate(m: &SpatialMechanism, args: &crate::draw::AnimateArgs) -> Result<String, Failure> {
+    if !args.path.is_empty() {
+        return Err(Failure::usage(
+            "--path is not drawn for a spatial mechanism yet: animate without it",
+        ));
+    }
+    let (d, _) = input_dims(m, 0);
+    let size = m
+        .model()
+        .points
+        .iter()
+        .flat_map(|(_, a)| m.model().points.iter().map(move |(_, b)| (a - b).norm()))
+        .fold(0.0, f64::max);
+    let (a0, b0) = if d == Dim::ANGLE {
+        (0.0, std::f64::consts::TAU)
+    } else {
+        (-0.1 * size, 0.1 * size)
+    };
+    let bound = |t: &Option<String>, default: f64, what: &str| match t {
+        Some(t) => quantity::parse(t, d, what),
+        None => Ok(default),
+    };
+    let (a, b) = (bound(&args.from, a0, "--from")?, bound(&args.to, b0, "--to")?);
+    if !(b - a).is_finite() {
+        return Err(Failure::usage(
+            "--from and --to: the range overflows f64; give a narrower range",
+        ));
+    }
+    if args.rest.len() + 1 != m.dof() {
+        return Err(Failure::usage(format!(
+            "--rest: {} value(s) for the {} input(s) after the first",
+            args.rest.len(),
+            m.dof() - 1
+        )));
+    }
+    let mut q = vec![a];
+    for (k, t) in args.rest.iter().enumerate() {
+        q.push(quantity::parse(t, input_dims(m, k + 1).0, "--rest")?);
+    }
+    let qs = crate::draw::range(&q, a, b, args.frames - 1);
+    let solved: Vec<Option<Frame>> = qs.iter().map(|q| frame(m, q).ok()).collect();
+    let mut last = solved.iter().flatten().next().cloned().ok_or_else(|| {
+        Failure::mechanism("the mechanism does not assemble at any of these inputs")
+    })?;
+    let frames: Vec<Frame> = solved
+        .into_iter()
+        .map(|f| {
+            if let Some(f) = f {
+                last = f;
+            }
+            last.clone()
+        })
+        .collect();
+    Ok(svg::animated(&frames, &[], args.width, args.height, args.seconds).0)
 }

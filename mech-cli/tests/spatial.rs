@@ -357,12 +357,11 @@ fn planar_arguments_on_a_spatial_file_name_the_fix() {
     let e = err(&["--at", "30mm"]);
     assert!(e.contains("--at"), "{e}");
     // A command for planar mechanisms says so.
-    let out = dir.path().join("a.svg");
     let o = mech()
-        .arg("animate")
+        .arg("balance")
         .arg(&file)
-        .arg("-o")
-        .arg(&out)
+        .args(["--speed", "100", "-o"])
+        .arg(dir.path().join("balanced.mech"))
         .assert()
         .failure()
         .code(1)
@@ -803,4 +802,68 @@ fn flywheel_sizes_a_spatial_machine() {
     );
     assert!((r["irregularity_simulated"] - 0.05).abs() < 1e-6, "{r:?}");
     assert!(r["inertia_exact"] > 0.0 && r["inertia_approximate"] > 0.0);
+}
+
+/// `mech animate` on a spatial file: one frame per input value, each the isometric picture
+/// of `mech draw` at that value (the SMIL frames hold the projected points where the
+/// library puts them), and `--path` refused for now.
+#[test]
+fn animate_moves_the_isometric_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssr_text();
+    let file = rssr_file(&dir, &text);
+    let out = dir.path().join("rssr.svg");
+    mech()
+        .arg("animate")
+        .arg(&file)
+        .args(["-o"])
+        .arg(&out)
+        .args(["--frames", "8", "--seconds", "2"])
+        .assert()
+        .success();
+    let svg = std::fs::read_to_string(&out).unwrap();
+    // Eight frames: the axes stay put, the crank pin's marker moves (its x in the picture
+    // takes as many values as the library's projected A over the eight inputs).
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let xs: Vec<f64> = (0..8)
+        .map(|k| iso(m.pose(&[std::f64::consts::TAU * k as f64 / 7.0]).unwrap().point("A").unwrap()).0)
+        .collect();
+    let distinct = |v: &[f64]| {
+        let mut v = v.to_vec();
+        v.sort_by(f64::total_cmp);
+        v.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        v.len()
+    };
+    let axis = svg.split("data-name=\"axis x\"").nth(1).unwrap();
+    let axis = &axis[..axis.find("/>").unwrap().min(axis.find("</line>").unwrap_or(usize::MAX))];
+    let axis_x1 = axis.split("attributeName=\"x1\" values=\"").nth(1);
+    assert!(axis_x1.map_or(true, |v| {
+        let vals: Vec<&str> = v.split('"').next().unwrap().split(';').collect();
+        vals.iter().all(|x| *x == vals[0])
+    }), "the axes stay put");
+    let pin = svg.split("data-name=\"A\"").nth(1).expect("the pin A is drawn");
+    let cx: Vec<f64> = pin
+        .split("values=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+        .split(';')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert_eq!(cx.len(), 8, "{pin:.300}");
+    assert_eq!(distinct(&cx), distinct(&xs), "{cx:?} against {xs:?}");
+    let o = mech()
+        .arg("animate")
+        .arg(&file)
+        .arg("-o")
+        .arg(dir.path().join("p.svg"))
+        .args(["--path", "A"])
+        .assert()
+        .failure()
+        .get_output()
+        .stderr
+        .clone();
+    assert!(String::from_utf8(o).unwrap().contains("--path is not drawn"));
 }
