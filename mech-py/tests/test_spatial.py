@@ -21,6 +21,8 @@ WISHBONE = ROOT / "examples" / "mech" / "double_wishbone.mech"
 def test_the_rssr_answers_with_the_spatial_columns():
     m = mech.Mechanism.load(str(RSSR))
     assert isinstance(m, mech.SpatialMechanism)
+    assert repr(m) == "mech.SpatialMechanism('Rssr', dof=1)"
+    assert (m.name, m.dof, m.text) == ("Rssr", 1, RSSR.read_text())
     assert m.idle_links == ["rod"]
     assert m.load_names == [("tool", "torque"), ("push", "force")]
     q = np.array([0.0, 0.7, 2.5])

@@ -261,7 +261,7 @@ class Mechanism:
         return (_restore, (self._text, self._origin, tuple(self._params)))
 
     def __repr__(self):
-        return "mech.Mechanism(%r, dof=%d)" % (self.name, self.dof)
+        return "mech.%s(%r, dof=%d)" % (type(self).__name__, self.name, self.dof)
 
     # -- description -------------------------------------------------------------------
 
@@ -681,18 +681,11 @@ class SpatialMechanism:
     def __reduce__(self):
         return (_restore_spatial, (self._text, self._origin))
 
-    def __repr__(self):
-        return "mech.SpatialMechanism(%r, dof=%d)" % (self.name, self.dof)
-
-    @property
-    def name(self):
-        """The mechanism's (struct) name."""
-        return self._core.name
-
-    @property
-    def dof(self):
-        """G, the number of inputs."""
-        return self._core.dof
+    # What both kinds share: the name, G, the text, the representation.
+    __repr__ = Mechanism.__repr__
+    name = Mechanism.name
+    dof = Mechanism.dof
+    text = Mechanism.text
 
     @property
     def inputs(self):
@@ -708,11 +701,6 @@ class SpatialMechanism:
     def idle_links(self):
         """The links that spin idly between two spherical joints."""
         return self._core.idle_links
-
-    @property
-    def text(self):
-        """The text the mechanism was read from."""
-        return self._text
 
     def columns(self, parts=None):
         """The names of the columns of ``parts`` (default: all; a str is one part)."""
