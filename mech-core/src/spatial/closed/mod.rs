@@ -29,7 +29,7 @@ pub mod rssr;
 pub mod spherical;
 
 pub use rsrc::Rsrc;
-pub use rssp::{Rssp, RsspSlide};
+pub use rssp::{Rssp, RsspGeometry, RsspSlide};
 pub use rssr::Rssr;
 pub use spherical::SphericalFourBar;
 
@@ -371,16 +371,18 @@ impl Closed {
             }
             Group::Rssp(k) => {
                 let (a, b, x) = k.points(psi)?;
-                s[crank] = about(k.centre, turn(k.axis, psi), k.centre, oc);
-                s[output] = BodyState::drawing(oo + k.slide * x);
-                s[coupler] = about(a, rod(k.a0, k.b0, a, b)?, k.a0, ok);
+                let g = &k.geometry;
+                s[crank] = about(g.centre, turn(g.axis, psi), g.centre, oc);
+                s[output] = BodyState::drawing(oo + g.slide * x);
+                s[coupler] = about(a, rod(g.a0, g.b0, a, b)?, g.a0, ok);
             }
             Group::RsspSlide(k) => {
                 // the input body is the slider, the output the crank
                 let (a, b, phi) = k.points(psi)?;
-                s[crank] = BodyState::drawing(oc + k.slide * psi);
-                s[output] = about(k.centre, turn(k.axis, phi), k.centre, oo);
-                s[coupler] = about(a, rod(k.a0, k.b0, a, b)?, k.a0, ok);
+                let g = &k.geometry;
+                s[crank] = BodyState::drawing(oc + g.slide * psi);
+                s[output] = about(g.centre, turn(g.axis, phi), g.centre, oo);
+                s[coupler] = about(a, rod(g.a0, g.b0, a, b)?, g.a0, ok);
             }
             Group::Rsrc(k) => {
                 let (a, b, theta, x) = k.points(psi)?;
