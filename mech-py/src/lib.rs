@@ -232,6 +232,90 @@ fn motor_of(
     Motor::parse(text, &read)?.through(ratio)
 }
 
+/// The numbers of a flywheel sizing (`Mechanism.flywheel` in Python).
+pub(crate) struct CycleArgs<'a> {
+    pub start: f64,
+    pub period: f64,
+    pub breakpoints: &'a [f64],
+    pub omega_mean: f64,
+    pub irregularity: f64,
+    pub rtol: f64,
+}
+
+/// The flywheel of a one-input machine (planar or spatial) over one cycle: the loads at
+/// q from `loads`, the driver a callable of q (`None`: the constant torque that balances
+/// the cycle); the names and values `Mechanism.flywheel` returns. The first exception a
+/// callable raised is re-raised as it is.
+pub(crate) fn flywheel_of<M: OneDof>(
+    py: Python<'_>,
+    m: &M,
+    c: &CycleArgs,
+    loads: impl Fn(f64) -> Result<M::Loads, CoreError>,
+    driver: Option<&PyObject>,
+    raised: &Raised,
+) -> PyResult<Vec<(String, f64)>> {
+    let (period, start) = (c.period, c.start);
+    if period.is_finite() && period > MAX_PERIOD {
+        return Err(invalid(format!(
+            "period = {period:e} rad: {:.3e} turns, more than the limit of {:.0} turns; a cycle is the shortest span after which the loads repeat",
+            period / std::f64::consts::TAU,
+            MAX_PERIOD / std::f64::consts::TAU
+        )));
+    }
+    if start.is_finite() && period > 0.0 && start.abs() * f64::EPSILON > 1e-9 * period {
+        return Err(invalid(format!(
+            "start = {start:e} rad: so large beside the period that the cycle's angles lose their precision; give a start within a few periods of 0"
+        )));
+    }
+    let keep = |e: PyErr| keep_first(raised, e);
+    let balance = driver.is_none();
+    let call_driver = |q: f64| -> f64 {
+        driver.map_or(0.0, |d| {
+            d.call1(py, (q,))
+                .and_then(|v| v.extract::<f64>(py))
+                .unwrap_or_else(|e| {
+                    keep(e);
+                    f64::NAN
+                })
+        })
+    };
+    let run = || -> Result<Vec<(String, f64)>, CoreError> {
+        let cycle = Cycle::new(m, start, period, c.breakpoints, loads, call_driver)?;
+        let net = cycle.net_work();
+        let (cycle, torque) = if balance {
+            cycle.balanced()
+        } else {
+            (cycle, 0.0)
+        };
+        cycle.check_periodic()?;
+        let fw = cycle.flywheel(c.omega_mean, c.irregularity)?;
+        let sim = cycle.simulate(&fw.exact.state, c.rtol)?;
+        let a = fw.approximate;
+        Ok([
+            ("net_work", net),
+            ("balancing_torque", torque),
+            ("s_max", a.s_max),
+            ("q_s_max", a.q_s_max),
+            ("s_min", a.s_min),
+            ("q_s_min", a.q_s_min),
+            ("fluctuation", a.s_max - a.s_min),
+            ("inertia_approximate", a.inertia),
+            ("inertia_exact", fw.exact.inertia),
+            ("omega_max", sim.speeds.omega_max),
+            ("omega_min", sim.speeds.omega_min),
+            ("irregularity_simulated", sim.speeds.irregularity),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect())
+    };
+    let out = run();
+    if let Some(e) = raised.borrow_mut().take() {
+        return Err(e);
+    }
+    out.map_err(|e| py_err(py, e))
+}
+
 fn loads_of(m: &Mechanism, flat: &[f64]) -> Loads {
     let mut loads = m.loads();
     set_loads(m, &mut loads, flat);
@@ -650,68 +734,18 @@ impl PyMechanism {
         rtol: f64,
     ) -> PyResult<Vec<(String, f64)>> {
         let m = self.one_revolute_input("flywheel sizing")?;
-        if period.is_finite() && period > MAX_PERIOD {
-            return Err(invalid(format!(
-                "period = {period:e} rad: {:.3e} turns, more than the limit of {:.0} turns; a cycle is the shortest span after which the loads repeat",
-                period / std::f64::consts::TAU,
-                MAX_PERIOD / std::f64::consts::TAU
-            )));
-        }
-        if start.is_finite() && period > 0.0 && start.abs() * f64::EPSILON > 1e-9 * period {
-            return Err(invalid(format!(
-                "start = {start:e} rad: so large beside the period that the cycle's angles lose their precision; give a start within a few periods of 0"
-            )));
-        }
         // The first exception of a callable, re-raised as it is.
         let raised = Raised::default();
-        let keep = |e: PyErr| keep_first(&raised, e);
         let call_loads = loads_callable(py, m, &loads, &raised);
-        let balance = driver.is_none();
-        let call_driver = |q: f64| -> f64 {
-            driver.as_ref().map_or(0.0, |d| {
-                d.call1(py, (q,))
-                    .and_then(|v| v.extract::<f64>(py))
-                    .unwrap_or_else(|e| {
-                        keep(e);
-                        f64::NAN
-                    })
-            })
+        let cycle = CycleArgs {
+            start,
+            period,
+            breakpoints: &breakpoints,
+            omega_mean,
+            irregularity,
+            rtol,
         };
-        let run = || -> Result<Vec<(String, f64)>, CoreError> {
-            let cycle = Cycle::new(m, start, period, &breakpoints, call_loads, call_driver)?;
-            let net = cycle.net_work();
-            let (cycle, torque) = if balance {
-                cycle.balanced()
-            } else {
-                (cycle, 0.0)
-            };
-            cycle.check_periodic()?;
-            let fw = cycle.flywheel(omega_mean, irregularity)?;
-            let sim = cycle.simulate(&fw.exact.state, rtol)?;
-            let a = fw.approximate;
-            Ok([
-                ("net_work", net),
-                ("balancing_torque", torque),
-                ("s_max", a.s_max),
-                ("q_s_max", a.q_s_max),
-                ("s_min", a.s_min),
-                ("q_s_min", a.q_s_min),
-                ("fluctuation", a.s_max - a.s_min),
-                ("inertia_approximate", a.inertia),
-                ("inertia_exact", fw.exact.inertia),
-                ("omega_max", sim.speeds.omega_max),
-                ("omega_min", sim.speeds.omega_min),
-                ("irregularity_simulated", sim.speeds.irregularity),
-            ]
-            .into_iter()
-            .map(|(k, v)| (k.to_string(), v))
-            .collect())
-        };
-        let out = run();
-        if let Some(e) = raised.borrow_mut().take() {
-            return Err(e);
-        }
-        out.map_err(|e| py_err(py, e))
+        flywheel_of(py, m, &cycle, call_loads, driver.as_ref(), &raised)
     }
 
     /// The motion under a motor from (q0, qd0) over [0, t_end] at `samples` + 1 even times

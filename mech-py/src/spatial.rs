@@ -4,7 +4,8 @@
 
 use crate::{check_size, check_text, invalid, parts_of, py_err};
 use mech_core::runtime::spatial_columns::{is_spatial as text_is_spatial, SpatialColumns};
-use mech_core::spatial::{LoadKind, SpatialMechanism};
+use mech_core::spatial::{JointKind, LoadKind, SpatialMechanism};
+use mech_core::MechError as CoreError;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 
@@ -253,5 +254,56 @@ impl PySpatialMechanism {
             }
         }
         Ok((out.into_pyarray(py), ok.into_pyarray(py), first))
+    }
+    /// The flywheel over one cycle (one revolute input): the loads at q from `loads` (a
+    /// callable of q giving the x, y, z of each load in order), the driver a callable of q
+    /// (`None`: the constant torque that balances the cycle); as `Mechanism.flywheel`.
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (start, period, breakpoints, omega_mean, irregularity, loads, driver, rtol))]
+    fn flywheel(
+        &self,
+        py: Python<'_>,
+        start: f64,
+        period: f64,
+        breakpoints: Vec<f64>,
+        omega_mean: f64,
+        irregularity: f64,
+        loads: PyObject,
+        driver: Option<PyObject>,
+        rtol: f64,
+    ) -> PyResult<Vec<(String, f64)>> {
+        let m = &self.inner;
+        let model = m.model();
+        if m.dof() != 1 || !matches!(model.joints[model.inputs[0]].kind, JointKind::Revolute { .. }) {
+            return Err(invalid("flywheel sizing needs one revolute input".to_string()));
+        }
+        let raised = crate::Raised::default();
+        let names = m.loads().names;
+        let call_loads = |q: f64| {
+            let flat: Vec<f64> = loads
+                .call1(py, (q,))
+                .and_then(|v| v.extract(py))
+                .map_err(|e| {
+                    let text = format!("the loads callable at q = {q}: {e}");
+                    crate::keep_first(&raised, e);
+                    CoreError::InvalidInput(text)
+                })?;
+            let mut l = m.loads();
+            for (k, name) in names.iter().enumerate() {
+                if let Some(v) = flat.get(3 * k..3 * k + 3) {
+                    l.set_by_name(name, v);
+                }
+            }
+            Ok(l)
+        };
+        let cycle = crate::CycleArgs {
+            start,
+            period,
+            breakpoints: &breakpoints,
+            omega_mean,
+            irregularity,
+            rtol,
+        };
+        crate::flywheel_of(py, m, &cycle, call_loads, driver.as_ref(), &raised)
     }
 }

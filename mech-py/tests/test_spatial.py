@@ -86,6 +86,23 @@ def test_the_direct_problem_inverts_the_driver_torque():
     assert list(bad["ok"]) == [True, False] and math.isnan(bad["qdd"][1])
 
 
+def test_the_flywheel_of_a_spatial_machine():
+    """The fluctuation of energy against a trapezoid of M* over the turn (4000 points), the
+    simulated irregularity the one asked; a prismatic-input or bad call refused."""
+    m = mech.Mechanism.load(str(RSSR))
+    tool = (0.0, 0.0, -1.5)
+    fw = m.flywheel(2 * np.pi, 2 * np.pi, 0.05, loads={"tool": tool})
+    q = np.linspace(0.0, 2 * np.pi, 4001)
+    moment = m.reduced_moment(q, loads={"tool": np.tile(tool, (4001, 1))})["moment"]
+    s = np.concatenate([[0.0], np.cumsum(0.5 * (moment[1:] + moment[:-1]) * np.diff(q))])
+    assert abs(s[-1]) < 1e-9 and abs(fw["net_work"]) < 1e-9
+    assert abs(fw["fluctuation"] - (s.max() - s.min())) < 1e-6 * fw["fluctuation"]
+    assert abs(fw["irregularity_simulated"] - 0.05) < 1e-6
+    assert fw["inertia_exact"] > 0.0
+    with pytest.raises(mech.InvalidInput):
+        m.flywheel(2 * np.pi, 2 * np.pi, 5.0)
+
+
 def test_a_bad_spatial_text_names_its_line():
     text = RSSR.read_text().replace("revolute(ground, rocker)", "revolute(ground, rocket)")
     with pytest.raises(mech.InvalidMechanism) as e:

@@ -766,9 +766,11 @@ class SpatialMechanism:
         out = self._table(["zhukovski"], q, loads=loads, errors=errors)
         return {k: v for k, v in out.items() if k in ("moment", "ok")}
 
-    # The direct problem ``qdd`` (one input), as ``Mechanism.acceleration``: loads as
-    # (x, y, z) per name.
+    # The direct problem ``qdd`` (one input) and the flywheel over a cycle (one revolute
+    # input), as ``Mechanism``'s: loads as (x, y, z) per name, or callables of q.
     acceleration = Mechanism.acceleration
+    flywheel = Mechanism.flywheel
+    _loads_of_q = Mechanism._loads_of_q
 
 
 def optimize(mechanism, vary, minimize, subject_to=(), qd=0.0, loads=None, steps=180, period=2 * np.pi,
