@@ -3,8 +3,8 @@
 //! that balances it (unless `--driver` is given), the maximum fluctuation of energy
 //! ΔE = S_max − S_min, the flywheel inertia by the approximate formula and by
 //! Wittenbauer's exact method, and the check of the exact one by integrating a cycle in
-//! time (`mech_core::dynamics::flywheel`). A spatial file (`space` first) takes constant
-//! loads, `--load NAME=x,y,z`.
+//! time (`mech_core::dynamics::flywheel`). A spatial file (`space` first) takes its loads
+//! as `--load NAME=x,y,z` or `NAME=@table.csv`.
 
 use crate::loads::LoadSet;
 use crate::output::{Format, Writer};
@@ -38,7 +38,7 @@ pub struct FlywheelArgs {
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub breakpoints: Vec<String>,
     /// A load: NAME=VALUE or NAME=@table.csv (as `mech solve`); for a spatial file
-    /// NAME=x,y,z, constant. Repeatable.
+    /// NAME=x,y,z or NAME=@table.csv (columns q, x, y, z). Repeatable.
     #[arg(long = "load", allow_hyphen_values = true)]
     pub load: Vec<String>,
     /// A constant driver torque on the input (N·m); omitted: the constant torque that
@@ -71,7 +71,7 @@ fn results(args: &FlywheelArgs) -> Result<Vec<(&'static str, &'static str, f64)>
                 return Err(one_revolute());
             }
             let loads = crate::spatial::loads(&args.load, &m)?;
-            cycle(&m, |_| Ok(loads.clone()), args)
+            cycle(&m, |q| Ok(loads.at(q)), args)
         }
     }
 }

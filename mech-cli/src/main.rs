@@ -201,7 +201,7 @@ fn rates(
 fn spatial_rates(
     m: &mech_core::spatial::SpatialMechanism,
     state: &State,
-) -> Result<(Vec<f64>, Vec<f64>, mech_core::spatial::SpatialLoads), Failure> {
+) -> Result<(Vec<f64>, Vec<f64>, spatial::SpatialLoadSet), Failure> {
     Ok((
         spatial::per_input(&state.speed, m, 1, "--speed", 0.0)?,
         spatial::per_input(&state.accel, m, 2, "--accel", 0.0)?,
@@ -287,7 +287,7 @@ fn run(command: Command) -> Result<(), Failure> {
                         &q,
                         &qd,
                         &qdd,
-                        &loads,
+                        &loads.at(q.first().copied().unwrap_or(0.0)),
                         state.level,
                         state.format,
                         stdout,

@@ -2,8 +2,8 @@
 //! machine over time, I*(q) q̈ + ½ dI*/dq q̇² = driver + M*(q) (Zhukovski), with the driver
 //! and the loads as constants or tables against q, integrated by DOP853 (default),
 //! Dormand–Prince 5(4) or fixed-step RK4 (`mech_core::dynamics::ode`), sampled at even times on the
-//! integrator's dense output. A spatial file (`space` first) takes constant loads,
-//! `--load NAME=x,y,z`.
+//! integrator's dense output. A spatial file (`space` first) takes its loads as
+//! `--load NAME=x,y,z` or `NAME=@table.csv`.
 
 use crate::loads::{LoadSet, Table};
 use crate::output::{Format, Writer};
@@ -216,7 +216,7 @@ pub fn run(args: SimulateArgs, out: impl Write) -> Result<(), Failure> {
             one_input(m.dof())?;
             let loads = crate::spatial::loads(&args.load, &m)?;
             let dims = crate::spatial::input_dims(&m, 0);
-            simulate(&m, dims, |_| loads.clone(), &args, out)
+            simulate(&m, dims, |q| loads.at(q), &args, out)
         }
     }
 }

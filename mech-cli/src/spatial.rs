@@ -166,9 +166,10 @@ pub fn per_input(
 
 /// The loads of `--load NAME=x,y,z` arguments: each a force (N) or a torque (N·m) as three
 /// components in the global axes, units allowed (`push=4N,-3N,2.5N`).
-pub fn loads(args: &[String], m: &SpatialMechanism) -> Result<SpatialLoads, Failure> {
+pub fn loads(args: &[String], m: &SpatialMechanism) -> Result<SpatialLoadSet, Failure> {
     let model = m.model();
     let mut loads = m.loads();
+    let mut tables = Vec::new();
     for a in args {
         let Some((name, value)) = a.split_once('=') else {
             return Err(Failure::usage(format!(
@@ -202,10 +203,10 @@ pub fn loads(args: &[String], m: &SpatialMechanism) -> Result<SpatialLoads, Fail
                 "`mx,my,mz` (N·m)",
             ),
         };
-        if value.trim_start().starts_with('@') {
-            return Err(Failure::usage(format!(
-                "--load {name}={value}: a table of loads against q is not taken for a spatial mechanism yet; give the load's three components {unit}"
-            )));
+        if let Some(path) = value.trim_start().strip_prefix('@') {
+            let flag = format!("--load {name}");
+            tables.push((name.to_string(), crate::loads::Table::read(path, 3, &flag)?));
+            continue;
         }
         let parts: Vec<&str> = value.split(',').collect();
         if parts.len() != 3 {
@@ -227,7 +228,30 @@ pub fn loads(args: &[String], m: &SpatialMechanism) -> Result<SpatialLoads, Fail
             .collect::<Result<_, _>>()?;
         loads.set_by_name(name, &v);
     }
-    Ok(loads)
+    Ok(SpatialLoadSet {
+        constant: loads,
+        tables,
+    })
+}
+
+/// The loads of a spatial run: the constants of `--load NAME=x,y,z` and the tables of
+/// `--load NAME=@file.csv` (columns q, then the three components in SI, N or N·m, linear
+/// between rows and repeating with the table's span, as the planar tables).
+#[derive(Debug)]
+pub struct SpatialLoadSet {
+    constant: SpatialLoads,
+    tables: Vec<(String, crate::loads::Table)>,
+}
+
+impl SpatialLoadSet {
+    /// The loads at the first input's value `q`.
+    pub fn at(&self, q: f64) -> SpatialLoads {
+        let mut loads = self.constant.clone();
+        for (name, table) in &self.tables {
+            loads.set_by_name(name, &table.at(q));
+        }
+        loads
+    }
 }
 
 /// `mech solve` of a spatial mechanism: one configuration in `format` (`table`: one
@@ -270,7 +294,7 @@ pub fn sweep(
     rest: &[f64],
     qd: &[f64],
     qdd: &[f64],
-    loads: &SpatialLoads,
+    loads: &SpatialLoadSet,
     level: Level,
     format: Format,
     out: impl Write,
@@ -281,7 +305,7 @@ pub fn sweep(
     for k in 0..=steps {
         q[0] = crate::solve::inputs(from, to, steps, k);
         let row = cols
-            .row(m, &q, qd, qdd, loads)
+            .row(m, &q, qd, qdd, &loads.at(q[0]))
             .map_err(|e| Failure::mechanism(format!("at q = {}: {e}", q[0])))?;
         w.row(&row)?;
     }
