@@ -344,7 +344,12 @@ pub fn frame(m: &Mechanism, q: &[f64]) -> Result<Frame, Failure> {
 /// The frames of `m` at each of `qs`; an input where the mechanism does not assemble
 /// repeats the previous frame (the first solvable one when it is the first).
 pub fn frames(m: &Mechanism, qs: &[Vec<f64>]) -> Result<Vec<Frame>, Failure> {
-    let solved: Vec<Option<Frame>> = qs.iter().map(|q| frame(m, q).ok()).collect();
+    held(qs.iter().map(|q| frame(m, q).ok()).collect())
+}
+
+/// The frames of an animation from the solved ones: where an input does not assemble, the
+/// last frame that did (the first that did before it); an error when none did.
+pub fn held(solved: Vec<Option<Frame>>) -> Result<Vec<Frame>, Failure> {
     let first = solved.iter().flatten().next().cloned().ok_or_else(|| {
         Failure::mechanism("the mechanism does not assemble at any of these inputs")
     })?;

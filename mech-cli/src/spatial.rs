@@ -456,18 +456,6 @@ pub fn animate(m: &SpatialMechanism, args: &crate::draw::AnimateArgs) -> Result<
         q.push(quantity::parse(t, input_dims(m, k + 1).0, "--rest")?);
     }
     let qs = crate::draw::range(&q, a, b, args.frames - 1);
-    let solved: Vec<Option<Frame>> = qs.iter().map(|q| frame(m, q).ok()).collect();
-    let mut last = solved.iter().flatten().next().cloned().ok_or_else(|| {
-        Failure::mechanism("the mechanism does not assemble at any of these inputs")
-    })?;
-    let frames: Vec<Frame> = solved
-        .into_iter()
-        .map(|f| {
-            if let Some(f) = f {
-                last = f;
-            }
-            last.clone()
-        })
-        .collect();
+    let frames = crate::scene::held(qs.iter().map(|q| frame(m, q).ok()).collect())?;
     Ok(svg::animated(&frames, &[], args.width, args.height, args.seconds).0)
 }
