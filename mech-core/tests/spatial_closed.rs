@@ -20,26 +20,8 @@ use std::f64::consts::PI;
 
 type V3 = Vector3<f64>;
 
-const RSSR: &str = r#"
-pub struct Rssr {
-    space,
-    gravity: (0.0, 0.0, -9.81),
-    ground { O: (0.0, 0.0, 0.0), C: (250 mm, 120 mm, 80 mm) },
-    link crank { points { O, A: (0.0, 0.05, 0.0) }, mass: 1.0, cg: (0.01, 0.025, 0.004),
-                 inertia: (1e-3, 4e-4, 9e-4, 1e-4, -2e-5, 5e-5) },
-    link rod { points { A, B: (0.25, 0.02, 0.08) }, mass: 0.5, cg: (0.125, 0.035, 0.04),
-               inertia: (2e-4, 3e-3, 2.5e-3, 3e-5, 1e-5, -4e-5) },
-    link rocker { points { C, B }, mass: 0.8, cg: (0.25, 0.07, 0.09),
-                  inertia: (1.2e-3, 6e-4, 1.1e-3, 0.0, 2e-5, 0.0) },
-    joints {
-        O: revolute(ground, crank) axis (1.0, 0.0, 0.0),
-        A: spherical(crank, rod),
-        B: spherical(rod, rocker),
-        C: revolute(ground, rocker) axis (0.0, 0.0, 1.0),
-    },
-    input: O,
-}
-"#;
+/// The RSSR of `examples/mech/rssr.mech` (the core, CLI and Python tests' RSSR).
+const RSSR: &str = include_str!("../../examples/mech/rssr.mech");
 
 const RSSP: &str = r#"
 pub struct Rssp {
