@@ -111,12 +111,13 @@ pub mod lanes {
     };
 }
 pub mod spatial {
+    pub use crate::spatial::frame::{Dense, Fixed};
     pub use crate::spatial::kinematics::BodyMotion;
     pub use crate::spatial::model::inertia_tensor;
     pub use crate::spatial::results::{LinkPose, PointMotion, PointPose};
     pub use crate::spatial::{
-        Body, Joint, JointKind, LinkMotion, Load, LoadKind, Reaction, SpatialForces, SpatialLoads,
-        SpatialMechanism, SpatialModel, SpatialMotion,
+        Body, Joint, JointKind, LinkMotion, Load, LoadKind, Reaction, Solver, SpatialForces,
+        SpatialLoads, SpatialMechanism, SpatialModel, SpatialMotion,
     };
     pub use nalgebra::{UnitQuaternion, Vector3};
 }

@@ -80,18 +80,18 @@ pub fn basis(u: V3) -> (V3, V3) {
 }
 
 /// The three rows of p_a = p_b, p = o + R s (s: the point from the body's o in the drawing).
-fn coincide(a: &BodyState, sa: V3, b: &BodyState, sb: V3, out: &mut Vec<Row>) {
+fn coincide(a: &BodyState, sa: V3, b: &BodyState, sb: V3, out: &mut impl Extend<Row>) {
     let (ra, rb) = (a.rot * sa, b.rot * sb);
     let d = a.o + ra - b.o - rb;
     let g = a.w.cross(&a.w.cross(&ra)) - b.w.cross(&b.w.cross(&rb));
     for k in 0..3 {
         let e = V3::ith(k, 1.0);
-        out.push(Row {
+        out.extend([Row {
             value: d[k],
             a: [e, ra.cross(&e)],
             b: [-e, -rb.cross(&e)],
             gamma: g[k],
-        });
+        }]);
     }
 }
 
@@ -208,29 +208,29 @@ pub enum Kind {
 }
 
 /// The joint's 6 − k rows (k its class), appended to `out`, for bodies in states `a`, `b`.
-pub fn joint_rows(g: &JointGeom, a: &BodyState, b: &BodyState, out: &mut Vec<Row>) {
+pub fn joint_rows(g: &JointGeom, a: &BodyState, b: &BodyState, out: &mut impl Extend<Row>) {
     let [u, n1, n2] = g.axes;
     match g.kind {
         Kind::Spherical => coincide(a, g.sa, b, g.sb, out),
         Kind::Revolute => {
             coincide(a, g.sa, b, g.sb, out);
-            out.push(perpendicular(a, n1, b, u));
-            out.push(perpendicular(a, n2, b, u));
+            out.extend([perpendicular(a, n1, b, u)]);
+            out.extend([perpendicular(a, n2, b, u)]);
         }
         Kind::Universal => {
             coincide(a, g.sa, b, g.sb, out);
-            out.push(perpendicular(a, u, b, n1));
+            out.extend([perpendicular(a, u, b, n1)]);
         }
         _ => {
             // cylindrical, then prismatic's no-rotation or helical's lead
-            out.push(perpendicular(a, n1, b, u));
-            out.push(perpendicular(a, n2, b, u));
-            out.push(offset(a, n1, g.sa, b, g.sb, 0.0));
-            out.push(offset(a, n2, g.sa, b, g.sb, 0.0));
+            out.extend([perpendicular(a, n1, b, u)]);
+            out.extend([perpendicular(a, n2, b, u)]);
+            out.extend([offset(a, n1, g.sa, b, g.sb, 0.0)]);
+            out.extend([offset(a, n2, g.sa, b, g.sb, 0.0)]);
             if g.kind == Kind::Prismatic {
-                out.push(perpendicular(a, n1, b, n2));
+                out.extend([perpendicular(a, n1, b, n2)]);
             } else if g.kind == Kind::Helical {
-                out.push(lead(g, a, b));
+                out.extend([lead(g, a, b)]);
             }
         }
     }

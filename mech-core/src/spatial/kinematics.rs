@@ -12,6 +12,7 @@
 
 use super::closed::Closed;
 use super::constraints::{self, BodyState, JointGeom, Kind, Row};
+use super::frame::{Dense, Frame, RowBuffer};
 use super::model::{Finding, JointKind, Site, SpatialModel};
 use crate::MechError;
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
@@ -136,57 +137,76 @@ impl Layout {
         self.o0.len() - 1
     }
 
-    /// Every row at `states` and input values `q`: the joints' (in order), the drivers',
-    /// the spins'; with each row's two bodies.
-    pub fn rows(&self, s: &[BodyState], q: &[f64]) -> (Vec<Row>, Vec<(usize, usize)>) {
-        let (mut rows, mut owners) = (
-            Vec::with_capacity(6 * self.moving()),
-            Vec::with_capacity(6 * self.moving()),
-        );
+    /// The rows of J: the joints' Σ (6 − class), one per input, one per idle spin.
+    pub fn row_count(&self) -> usize {
+        let joints: usize = self.model.joints.iter().map(|j| 6 - j.kind.class()).sum();
+        joints + self.model.inputs.len() + self.spins.len()
+    }
+
+    /// The heap frame of this mechanism (the run-time solvers').
+    pub fn dense(&self) -> Dense {
+        Dense {
+            bodies: self.o0.len(),
+            rows: self.row_count(),
+        }
+    }
+
+    /// Every row at `states` and input values `frac · q`, appended to `out` with each
+    /// row's two bodies: the joints' (in order), the drivers', the spins'.
+    pub fn rows_into(&self, s: &[BodyState], q: &[f64], frac: f64, out: &mut impl RowBuffer) {
         for g in &self.joints {
-            let before = rows.len();
-            constraints::joint_rows(g, &s[g.a], &s[g.b], &mut rows);
-            owners.resize(owners.len() + rows.len() - before, (g.a, g.b));
+            constraints::joint_rows(g, &s[g.a], &s[g.b], &mut Owned(&mut *out, (g.a, g.b)));
         }
         for (&k, &qk) in self.model.inputs.iter().zip(q) {
             let g = &self.joints[k];
-            rows.push(constraints::driver_row(g, &s[g.a], &s[g.b], qk));
-            owners.push((g.a, g.b));
+            out.push(
+                constraints::driver_row(g, &s[g.a], &s[g.b], qk * frac),
+                (g.a, g.b),
+            );
         }
         for &(b, e) in &self.spins {
-            rows.push(constraints::spin(&s[b], e));
-            owners.push((0, b));
+            out.push(constraints::spin(&s[b], e), (0, b));
         }
-        (rows, owners)
+    }
+
+    /// Every row at `states` and input values `q` ([`Layout::rows_into`]), on the heap.
+    pub fn rows(&self, s: &[BodyState], q: &[f64]) -> (Vec<Row>, Vec<(usize, usize)>) {
+        let mut out = self.dense().rows();
+        self.rows_into(s, q, 1.0, &mut out);
+        out
     }
 
     /// The Jacobian (rows × 6(N − 1)), body i's (v, ω) in columns 6(i − 1)..6i.
     pub fn jacobian(&self, rows: &[Row], owners: &[(usize, usize)]) -> DMatrix<f64> {
         let mut j = DMatrix::zeros(rows.len(), 6 * self.moving());
-        for (r, (row, &(a, b))) in rows.iter().zip(owners).enumerate() {
-            for (body, blocks) in [(a, &row.a), (b, &row.b)] {
-                if body > 0 {
-                    for (k, block) in blocks.iter().enumerate() {
-                        for c in 0..3 {
-                            j[(r, 6 * (body - 1) + 3 * k + c)] += block[c];
-                        }
-                    }
-                }
-            }
-        }
+        super::frame::assemble(rows, owners, |r, c, v| j[(r, c)] += v);
         j
     }
 
-    /// Positions at `q`: the closed form when the mechanism is a closed group (unless
-    /// `newton_only` asks otherwise), else Newton continued from the drawing.
-    pub fn positions(&self, q: &[f64]) -> Result<Vec<BodyState>, MechError> {
+    /// Positions at `q` into `s` (one state per body): the closed form when the mechanism
+    /// is a closed group (unless `newton_only` asks otherwise), else Newton continued from
+    /// the drawing.
+    pub fn positions_into<F: Frame>(
+        &self,
+        f: F,
+        q: &[f64],
+        s: &mut [BodyState],
+    ) -> Result<(), MechError> {
         let steps = self.steps(q)?;
-        if let (Some(c), [q]) = (&self.closed, q) {
+        if let (Some(c), [q], 4) = (&self.closed, q, s.len()) {
             if !NEWTON_ONLY.with(|n| n.get()) {
-                return Ok(c.positions(*q)?.to_vec());
+                s.copy_from_slice(&c.positions(*q)?);
+                return Ok(());
             }
         }
-        self.newton_positions(q, steps)
+        for (st, &o) in s.iter_mut().zip(&self.o0) {
+            *st = BodyState::drawing(o);
+        }
+        let mut rows = f.rows();
+        for i in 1..=steps {
+            self.newton(f, s, q, i as f64 / steps as f64, &mut rows)?;
+        }
+        Ok(())
     }
 
     /// The continuation steps from the drawing to `q` (0.25 rad, or a tenth of the
@@ -209,41 +229,176 @@ impl Layout {
         Ok(steps as usize)
     }
 
-    /// Positions at `q` by Newton continued from the drawing in `steps` steps.
-    fn newton_positions(&self, q: &[f64], steps: usize) -> Result<Vec<BodyState>, MechError> {
-        let mut s: Vec<BodyState> = self.o0.iter().map(|&o| BodyState::drawing(o)).collect();
-        for i in 1..=steps {
-            let target: Vec<f64> = q.iter().map(|x| x * i as f64 / steps as f64).collect();
-            self.newton(&mut s, &target)?;
-        }
-        Ok(s)
-    }
-
-    fn newton(&self, s: &mut [BodyState], q: &[f64]) -> Result<(), MechError> {
+    /// Newton on the rows at input values `frac · q`, from `s`: o += δv, R ← exp(δω) R.
+    fn newton<F: Frame>(
+        &self,
+        f: F,
+        s: &mut [BodyState],
+        q: &[f64],
+        frac: f64,
+        rows: &mut F::Rows,
+    ) -> Result<(), MechError> {
         let tol = 1e-15 * (1.0 + self.scale);
         let mut last = f64::INFINITY;
         for it in 0..60 {
-            let (rows, owners) = self.rows(s, q);
-            let r = residual(&rows);
+            rows.clear();
+            self.rows_into(s, q, frac, rows);
+            let r = residual(rows.rows());
             if r <= tol || (it > 4 && r >= 0.5 * last) {
                 break;
             }
             last = r;
-            let rhs = DVector::from_iterator(rows.len(), rows.iter().map(|r| -r.value));
-            let dx = solve(self.jacobian(&rows, &owners), rhs)?;
+            let mut rhs = f.rhs();
+            for (x, row) in rhs.as_mut().iter_mut().zip(rows.rows()) {
+                *x = -row.value;
+            }
+            let dx = f.solve(&f.factor(rows)?, &rhs)?;
+            let dx = dx.as_ref();
             for (b, st) in s.iter_mut().enumerate().skip(1) {
                 let c = 6 * (b - 1);
-                st.o += dx.fixed_rows::<3>(c);
-                st.rot = UnitQuaternion::from_scaled_axis(dx.fixed_rows::<3>(c + 3).into_owned())
+                st.o += V3::from_column_slice(&dx[c..c + 3]);
+                st.rot = UnitQuaternion::from_scaled_axis(V3::from_column_slice(&dx[c + 3..c + 6]))
                     * st.rot;
             }
         }
-        let (rows, _) = self.rows(s, q);
-        let r = residual(&rows);
+        rows.clear();
+        self.rows_into(s, q, frac, rows);
+        let r = residual(rows.rows());
         if !(r <= 1e-9 * (1.0 + self.scale)) {
             return Err(MechError::NoAssembly);
         }
         Ok(())
+    }
+
+    /// `InvalidInput` unless q, q̇, q̈ hold one value per input each and `out` one motion
+    /// per body; `InvalidInput` naming the first that is not finite.
+    fn check_inputs(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: usize,
+    ) -> Result<(), MechError> {
+        let g = self.model.inputs.len();
+        if q.len() != g || qd.len() != g || qdd.len() != g {
+            return Err(MechError::InvalidInput(format!(
+                "q, q̇ and q̈ must each have {g} value(s) (one per input), got {}, {} and {}",
+                q.len(),
+                qd.len(),
+                qdd.len()
+            )));
+        }
+        bodies_len(self, out)?;
+        crate::error::check_finite("q", q)?;
+        crate::error::check_finite("q̇", qd)?;
+        crate::error::check_finite("q̈", qdd)
+    }
+
+    /// Positions alone at q into `out` (one motion per body, every rate zero; no linear
+    /// solve).
+    pub fn pose_into<F: Frame>(
+        &self,
+        f: F,
+        q: &[f64],
+        out: &mut [BodyMotion],
+    ) -> Result<(), MechError> {
+        let g = self.model.inputs.len();
+        if q.len() != g {
+            return Err(MechError::InvalidInput(format!(
+                "q must have {g} value(s) (one per input), got {}",
+                q.len()
+            )));
+        }
+        bodies_len(self, out.len())?;
+        crate::error::check_finite("q", q)?;
+        let mut s = f.states(&self.o0);
+        self.positions_into(f, q, s.as_mut())?;
+        for (m, &state) in out.iter_mut().zip(s.as_ref()) {
+            *m = BodyMotion {
+                state,
+                ..BodyMotion::rest()
+            };
+        }
+        Ok(())
+    }
+
+    /// Kinematics at (q, q̇, q̈) into `out`: positions ([`Layout::positions_into`]), then
+    /// J ẋ = (q̇ on the driver rows) and J ẍ = (q̈ on the driver rows) − γ, J factored once.
+    pub fn kinematics_into<F: Frame>(
+        &self,
+        f: F,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        out: &mut [BodyMotion],
+    ) -> Result<(), MechError> {
+        self.check_inputs(q, qd, qdd, out.len())?;
+        let mut states = f.states(&self.o0);
+        let s = states.as_mut();
+        self.positions_into(f, q, s)?;
+        let mut rows = f.rows();
+        self.rows_into(s, q, 1.0, &mut rows);
+        let first_driver = rows.rows().len() - q.len() - self.spins.len();
+        let j = f.factor(&rows)?;
+        let mut b = f.rhs();
+        b.as_mut()[first_driver..first_driver + q.len()].copy_from_slice(qd);
+        let xd = f.solve(&j, &b)?;
+        for (k, st) in s.iter_mut().enumerate().skip(1) {
+            let c = 6 * (k - 1);
+            st.v = V3::from_column_slice(&xd.as_ref()[c..c + 3]);
+            st.w = V3::from_column_slice(&xd.as_ref()[c + 3..c + 6]);
+        }
+        rows.clear();
+        self.rows_into(s, q, 1.0, &mut rows);
+        let mut b = f.rhs();
+        for (x, row) in b.as_mut().iter_mut().zip(rows.rows()) {
+            *x = -row.gamma;
+        }
+        for (x, v) in b.as_mut()[first_driver..].iter_mut().zip(qdd) {
+            *x += v;
+        }
+        let xdd = f.solve(&j, &b)?;
+        for (k, (m, &state)) in out.iter_mut().zip(s.iter()).enumerate() {
+            *m = match k {
+                0 => BodyMotion {
+                    state,
+                    ..BodyMotion::rest()
+                },
+                _ => {
+                    let c = 6 * (k - 1);
+                    BodyMotion {
+                        state,
+                        a: V3::from_column_slice(&xdd.as_ref()[c..c + 3]),
+                        alpha: V3::from_column_slice(&xdd.as_ref()[c + 3..c + 6]),
+                    }
+                }
+            };
+        }
+        Ok(())
+    }
+}
+
+/// `InvalidInput` unless `n` is the layout's body count.
+fn bodies_len(layout: &Layout, n: usize) -> Result<(), MechError> {
+    if n == layout.o0.len() {
+        Ok(())
+    } else {
+        Err(MechError::InvalidInput(format!(
+            "`{}` has {} bodies (the ground included); a buffer of {n} motions was given",
+            layout.model.name,
+            layout.o0.len()
+        )))
+    }
+}
+
+/// A row buffer that appends every row with one owner (a joint's rows).
+struct Owned<'a, B>(&'a mut B, (usize, usize));
+
+impl<B: RowBuffer> Extend<Row> for Owned<'_, B> {
+    fn extend<I: IntoIterator<Item = Row>>(&mut self, rows: I) {
+        for r in rows {
+            self.0.push(r, self.1);
+        }
     }
 }
 
@@ -338,6 +493,15 @@ pub struct BodyMotion {
 }
 
 impl BodyMotion {
+    /// A body at the drawing's origin, unturned, at rest.
+    pub fn rest() -> Self {
+        BodyMotion {
+            state: BodyState::drawing(V3::zeros()),
+            a: V3::zeros(),
+            alpha: V3::zeros(),
+        }
+    }
+
     /// The position, velocity and acceleration of the point at `s` from o in the drawing:
     /// r = o + R s, v = v_o + ω × ρ, a = a_o + α × ρ + ω × (ω × ρ) with ρ = R s.
     pub fn point(&self, s: V3) -> [V3; 3] {
@@ -380,28 +544,12 @@ impl SpatialMotion {
     }
 }
 
-/// Kinematics at (q, q̇, q̈): positions by Newton, then J ẋ = (q̇ on the driver rows) and
-/// J ẍ = (q̈ on the driver rows) − γ.
-/// Positions alone at q: [`Layout::positions`], every rate zero (no linear solve).
+/// Positions alone at q ([`Layout::pose_into`] on the heap frame).
 pub(crate) fn pose(layout: &Arc<Layout>, q: &[f64]) -> Result<SpatialMotion, MechError> {
-    let g = layout.model.inputs.len();
-    if q.len() != g {
-        return Err(MechError::InvalidInput(format!(
-            "q must have {g} value(s) (one per input), got {}",
-            q.len()
-        )));
-    }
-    crate::error::check_finite("q", q)?;
-    let bodies = layout
-        .positions(q)?
-        .into_iter()
-        .map(|state| BodyMotion {
-            state,
-            a: V3::zeros(),
-            alpha: V3::zeros(),
-        })
-        .collect();
-    let zero = vec![0.0; g];
+    let f = layout.dense();
+    let mut bodies = f.motions();
+    layout.pose_into(f, q, &mut bodies)?;
+    let zero = vec![0.0; q.len()];
     Ok(SpatialMotion {
         layout: layout.clone(),
         q: q.to_vec(),
@@ -411,57 +559,16 @@ pub(crate) fn pose(layout: &Arc<Layout>, q: &[f64]) -> Result<SpatialMotion, Mec
     })
 }
 
+/// Kinematics at (q, q̇, q̈) ([`Layout::kinematics_into`] on the heap frame).
 pub(crate) fn kinematics(
     layout: &Arc<Layout>,
     q: &[f64],
     qd: &[f64],
     qdd: &[f64],
 ) -> Result<SpatialMotion, MechError> {
-    let g = layout.model.inputs.len();
-    if q.len() != g || qd.len() != g || qdd.len() != g {
-        return Err(MechError::InvalidInput(format!(
-            "q, q̇ and q̈ must each have {g} value(s) (one per input), got {}, {} and {}",
-            q.len(),
-            qd.len(),
-            qdd.len()
-        )));
-    }
-    crate::error::check_finite("q, q̇, q̈", &[q, qd, qdd].concat())?;
-    let mut s = layout.positions(q)?;
-    let (rows, owners) = layout.rows(&s, q);
-    let first_driver = rows.len() - g - layout.spins.len();
-    let drive = |values: &[f64], base: DVector<f64>| {
-        let mut b = base;
-        for (k, v) in values.iter().enumerate() {
-            b[first_driver + k] += v;
-        }
-        b
-    };
-    let j = layout.jacobian(&rows, &owners);
-    let xd = solve(j.clone(), drive(qd, DVector::zeros(rows.len())))?;
-    for (b, st) in s.iter_mut().enumerate().skip(1) {
-        st.v = xd.fixed_rows::<3>(6 * (b - 1)).into_owned();
-        st.w = xd.fixed_rows::<3>(6 * (b - 1) + 3).into_owned();
-    }
-    let (rows, _) = layout.rows(&s, q);
-    let gamma = DVector::from_iterator(rows.len(), rows.iter().map(|r| -r.gamma));
-    let xdd = solve(j, drive(qdd, gamma))?;
-    let bodies: Vec<BodyMotion> = s
-        .iter()
-        .enumerate()
-        .map(|(b, st)| match b {
-            0 => BodyMotion {
-                state: *st,
-                a: V3::zeros(),
-                alpha: V3::zeros(),
-            },
-            _ => BodyMotion {
-                state: *st,
-                a: xdd.fixed_rows::<3>(6 * (b - 1)).into_owned(),
-                alpha: xdd.fixed_rows::<3>(6 * (b - 1) + 3).into_owned(),
-            },
-        })
-        .collect();
+    let f = layout.dense();
+    let mut bodies = f.motions();
+    layout.kinematics_into(f, q, qd, qdd, &mut bodies)?;
     Ok(SpatialMotion {
         layout: layout.clone(),
         q: q.to_vec(),

@@ -9,10 +9,11 @@
 //! its rows, its moment moved to the joint's point P: M_P = M_o − (P − o_b) × F. A driver
 //! row's multiplier is the motor action (N·m about the axis, or N along it, by a on b).
 
-use super::kinematics::{solve, Layout, SpatialMotion};
+use super::frame::{Frame, RowBuffer};
+use super::kinematics::{BodyMotion, Layout, SpatialMotion};
 use super::model::LoadKind;
 use crate::MechError;
-use nalgebra::{DVector, Vector3};
+use nalgebra::Vector3;
 
 type V3 = Vector3<f64>;
 
@@ -97,20 +98,20 @@ impl SpatialForces {
 
 /// Each body's applied wrench (force, moment about o) minus its inertia wrench, when
 /// `inertia`; the applied alone otherwise: Q − (m a_G, I α + ω × I ω). 6(N − 1) values.
-pub(crate) fn wrenches(
+/// `loads` in the model's order, a missing one zero.
+pub(crate) fn wrenches<F: Frame>(
     layout: &Layout,
-    m: &SpatialMotion,
-    loads: &SpatialLoads,
+    f: F,
+    bodies: &[BodyMotion],
+    loads: &[V3],
     inertia: bool,
-) -> Result<DVector<f64>, MechError> {
-    let values: Vec<f64> = loads
-        .values
-        .iter()
-        .flat_map(|v| v.iter().copied())
-        .collect();
-    crate::error::check_finite("the loads", &values)?;
+) -> Result<F::Vector, MechError> {
+    for v in loads {
+        crate::error::check_finite("the loads", v.as_slice())?;
+    }
     let model = &layout.model;
-    let mut q = DVector::zeros(6 * layout.moving());
+    let mut out = f.unknowns();
+    let q = out.as_mut();
     let mut add = |b: usize, f: V3, mo: V3| {
         if b > 0 {
             for c in 0..3 {
@@ -124,86 +125,121 @@ pub(crate) fn wrenches(
             add(b, g * body.mass, V3::zeros());
         }
         if inertia {
-            let bm = &m.bodies[b];
+            let bm = &bodies[b];
             let i = bm.inertia(&body.inertia);
             let w = bm.state.w;
             add(b, -bm.a * body.mass, -(i * bm.alpha + w.cross(&(i * w))));
         }
     }
     for (k, load) in model.loads.iter().enumerate() {
-        let v = loads.values.get(k).copied().unwrap_or_default();
+        let v = loads.get(k).copied().unwrap_or_default();
         match load.kind {
             LoadKind::Torque { body } => add(body, V3::zeros(), v),
             LoadKind::Force { body, point } => {
-                let rho = m.bodies[body].state.rot * (model.points[point].1 - layout.o0[body]);
+                let rho = bodies[body].state.rot * (model.points[point].1 - layout.o0[body]);
                 add(body, v, rho.cross(&v));
             }
         }
     }
-    Ok(q)
+    Ok(out)
 }
 
-/// Newton–Euler of every moving body at the motion `m`: Jᵀ λ = −(Q − inertia wrenches),
-/// then each joint's reaction from its rows' multipliers (module docs).
-pub(crate) fn kinetostatics(
+/// The bodies' states of `bodies`, in a frame's buffer.
+pub(crate) fn states<F: Frame>(layout: &Layout, f: F, bodies: &[BodyMotion]) -> F::States {
+    let mut s = f.states(&layout.o0);
+    for (st, b) in s.as_mut().iter_mut().zip(bodies) {
+        *st = b.state;
+    }
+    s
+}
+
+/// Where [`reactions_into`] writes: one reaction per joint, one motor action per input, one
+/// moment per idle spin.
+pub(crate) struct Written<'a> {
+    pub reactions: &'a mut [Reaction],
+    pub drivers: &'a mut [f64],
+    pub spin_moments: &'a mut [V3],
+}
+
+/// Newton–Euler of every moving body at the motion (`bodies`, inputs `q`): Jᵀ λ =
+/// −(Q − inertia wrenches), then each joint's reaction from its rows' multipliers (module
+/// docs) into `reactions`, the drivers' multipliers into `drivers`, the spins' moments into
+/// `spin_moments`. `InvalidInput` when a buffer's length is not the mechanism's.
+pub(crate) fn reactions_into<F: Frame>(
     layout: &Layout,
-    m: &SpatialMotion,
-    loads: &SpatialLoads,
-) -> Result<SpatialForces, MechError> {
-    let s: Vec<_> = m.bodies.iter().map(|b| b.state).collect();
-    let (rows, owners) = layout.rows(&s, &m.q);
-    let jt = layout.jacobian(&rows, &owners).transpose();
-    let lambda = solve(jt, -wrenches(layout, m, loads, true)?)?;
-    let mut reactions = Vec::with_capacity(layout.joints.len());
+    f: F,
+    bodies: &[BodyMotion],
+    q: &[f64],
+    loads: &[V3],
+    out: Written<'_>,
+) -> Result<(), MechError> {
+    let Written {
+        reactions,
+        drivers,
+        spin_moments,
+    } = out;
+    let lens = [
+        bodies.len(),
+        q.len(),
+        reactions.len(),
+        drivers.len(),
+        spin_moments.len(),
+    ];
+    let want = [
+        layout.o0.len(),
+        layout.model.inputs.len(),
+        layout.joints.len(),
+        layout.model.inputs.len(),
+        layout.spins.len(),
+    ];
+    if lens != want {
+        return Err(MechError::InvalidInput(format!(
+            "the kinetostatics of `{}` takes {want:?} bodies, inputs, reactions, drivers and idle spins; given {lens:?}",
+            layout.model.name
+        )));
+    }
+    let w = wrenches(layout, f, bodies, loads, true)?;
+    let s = states(layout, f, bodies);
+    let s = s.as_ref();
+    let mut rows = f.rows();
+    layout.rows_into(s, q, 1.0, &mut rows);
+    let mut rhs = f.unknowns();
+    for (x, w) in rhs.as_mut().iter_mut().zip(w.as_ref()) {
+        *x = -w;
+    }
+    let lambda = f.solve_transpose(&f.factor(&rows)?, &rhs)?;
+    let (rows, lambda) = (rows.rows(), lambda.as_ref());
     let mut r = 0;
-    for (k, g) in layout.joints.iter().enumerate() {
+    for (k, (g, out)) in layout.joints.iter().zip(reactions.iter_mut()).enumerate() {
         let count = 6 - layout.model.joints[k].kind.class();
         let (mut f, mut mo) = (V3::zeros(), V3::zeros());
-        for (row, l) in rows[r..r + count].iter().zip(lambda.iter().skip(r)) {
+        for (row, l) in rows[r..r + count].iter().zip(&lambda[r..]) {
             f += row.b[0] * *l;
             mo += row.b[1] * *l;
         }
         let rho = s[g.b].rot * g.sb;
-        reactions.push(Reaction {
+        *out = Reaction {
             force: f,
             moment: mo - rho.cross(&f),
-        });
+        };
         r += count;
     }
-    let drivers: Vec<f64> = lambda.iter().skip(r).take(m.q.len()).copied().collect();
-    r += m.q.len();
-    let spin_moments = rows[r..]
-        .iter()
-        .zip(lambda.iter().skip(r))
-        .map(|(row, l)| row.b[1] * *l)
-        .collect();
-    let out = SpatialForces {
-        names: layout.model.joints.iter().map(|j| j.name.clone()).collect(),
-        reactions,
-        drivers,
-        spin_moments,
-        idle: layout
-            .spins
-            .iter()
-            .map(|&(b, _)| layout.model.bodies[b].name.clone())
-            .collect(),
-    };
-    let finite = out
-        .reactions
+    drivers.copy_from_slice(&lambda[r..r + q.len()]);
+    r += q.len();
+    for ((out, row), l) in spin_moments.iter_mut().zip(&rows[r..]).zip(&lambda[r..]) {
+        *out = row.b[1] * *l;
+    }
+    let finite = reactions
         .iter()
         .all(|x| x.force.iter().chain(x.moment.iter()).all(|v| v.is_finite()))
-        && out.drivers.iter().all(|v| v.is_finite())
-        && out
-            .spin_moments
-            .iter()
-            .all(|v| v.iter().all(|x| x.is_finite()));
+        && drivers.iter().all(|v| v.is_finite())
+        && spin_moments.iter().all(|v| v.iter().all(|x| x.is_finite()));
     if finite {
-        Ok(out)
+        Ok(())
     } else {
         Err(crate::error::blame(
             "loads",
             &loads
-                .values
                 .iter()
                 .flat_map(|v| v.iter().copied())
                 .collect::<Vec<_>>(),
@@ -212,4 +248,36 @@ pub(crate) fn kinetostatics(
             },
         ))
     }
+}
+
+/// [`reactions_into`] on the heap frame, as a [`SpatialForces`].
+pub(crate) fn kinetostatics(
+    layout: &Layout,
+    m: &SpatialMotion,
+    loads: &SpatialLoads,
+) -> Result<SpatialForces, MechError> {
+    let mut out = SpatialForces {
+        names: layout.model.joints.iter().map(|j| j.name.clone()).collect(),
+        reactions: vec![Reaction::default(); layout.joints.len()],
+        drivers: vec![0.0; m.q.len()],
+        spin_moments: vec![V3::zeros(); layout.spins.len()],
+        idle: layout
+            .spins
+            .iter()
+            .map(|&(b, _)| layout.model.bodies[b].name.clone())
+            .collect(),
+    };
+    reactions_into(
+        layout,
+        layout.dense(),
+        &m.bodies,
+        &m.q,
+        &loads.values,
+        Written {
+            reactions: &mut out.reactions,
+            drivers: &mut out.drivers,
+            spin_moments: &mut out.spin_moments,
+        },
+    )?;
+    Ok(out)
 }

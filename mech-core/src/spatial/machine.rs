@@ -3,11 +3,11 @@
 use super::kinematics::SpatialMotion;
 use super::kinetostatics::SpatialLoads;
 use super::mechanism::SpatialMechanism;
+use super::solver;
 use crate::kernel::energy::Shaking;
 use crate::solvers::traits::{Machine, OneDof};
 use crate::solvers::zhukovski::Reduced;
 use crate::MechError;
-use nalgebra::Vector2;
 
 impl Machine for SpatialMechanism {
     type Loads = SpatialLoads;
@@ -40,42 +40,17 @@ impl Machine for SpatialMechanism {
     }
     /// ½ m |v_G|² + ½ ωᵀ I ω per link, I turned to the pose (J).
     fn link_kinetic_energies(&self, m: &SpatialMotion, out: &mut [f64]) {
-        for ((o, b), bm) in out.iter_mut().zip(&self.model().bodies).zip(&m.bodies) {
-            let w = bm.state.w;
-            *o = 0.5 * (b.mass * bm.state.v.norm_squared() + w.dot(&(bm.inertia(&b.inertia) * w)));
-        }
+        solver::kinetic_energies(self.layout(), &m.bodies, out)
     }
     /// −Σ m g·r_G (J).
     fn potential_energy(&self, m: &SpatialMotion) -> f64 {
-        let Some(g) = self.model().gravity else {
-            return 0.0;
-        };
-        self.model()
-            .bodies
-            .iter()
-            .zip(&m.bodies)
-            .skip(1)
-            .map(|(b, bm)| -b.mass * g.dot(&bm.state.o))
-            .sum()
+        solver::potential_energy(self.layout(), &m.bodies)
     }
     /// The planar [`Shaking`] filled from the spatial sums: F = −Σ m a_G (its x and y;
     /// the z component has no place in it), M = −Σ (r_G × m a_G + I α + ω × I ω) about the
     /// origin: `moment` its z component, `mx` and `my` its x and y.
     fn shaking(&self, m: &SpatialMotion) -> Shaking {
-        let (mut f, mut mo) = (nalgebra::Vector3::zeros(), nalgebra::Vector3::zeros());
-        for (b, bm) in self.model().bodies.iter().zip(&m.bodies).skip(1) {
-            let i = bm.inertia(&b.inertia);
-            let w = bm.state.w;
-            let fa = bm.a * b.mass;
-            f -= fa;
-            mo -= bm.state.o.cross(&fa) + i * bm.alpha + w.cross(&(i * w));
-        }
-        Shaking {
-            force: Vector2::new(f.x, f.y),
-            moment: mo.z,
-            mx: mo.x,
-            my: mo.y,
-        }
+        solver::shaking(self.layout(), &m.bodies)
     }
 }
 

@@ -1,6 +1,6 @@
 //! `SpatialMechanism`, a spatial mechanism loaded at run time, its checks and its solvers.
 
-use super::kinematics::{kinematics, BodyMotion, Layout, SpatialMotion};
+use super::kinematics::{kinematics, Layout, SpatialMotion};
 use super::kinetostatics::{kinetostatics, SpatialForces, SpatialLoads};
 use super::kutzbach::{self, Kutzbach};
 use super::model::{Finding, Site, SpatialModel};
@@ -86,6 +86,11 @@ impl SpatialMechanism {
         })
     }
 
+    /// The prepared layout the solvers work on.
+    pub(crate) fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
     /// `InvalidInput` unless `m` was computed by this mechanism (or a clone of it).
     fn owns(&self, m: &SpatialMotion) -> Result<(), MechError> {
         if Arc::ptr_eq(&self.layout, &m.layout) {
@@ -98,36 +103,6 @@ impl SpatialMechanism {
         }
     }
 
-    /// A motion of this mechanism from its parts: the inputs' values, rates and
-    /// accelerations and every body's motion (the ground first), as a generated struct keeps
-    /// them. `InvalidInput` when a length does not match.
-    pub fn motion_from(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-        bodies: &[BodyMotion],
-    ) -> Result<SpatialMotion, MechError> {
-        let (g, n) = (self.dof(), self.layout.model.bodies.len());
-        if q.len() != g || qd.len() != g || qdd.len() != g || bodies.len() != n {
-            return Err(MechError::InvalidInput(format!(
-                "a motion of `{}` has {g} input value(s) and {n} bodies; given {}, {}, {} values and {} bodies",
-                self.layout.model.name,
-                q.len(),
-                qd.len(),
-                qdd.len(),
-                bodies.len()
-            )));
-        }
-        Ok(SpatialMotion {
-            layout: self.layout.clone(),
-            q: q.to_vec(),
-            qd: qd.to_vec(),
-            qdd: qdd.to_vec(),
-            bodies: bodies.to_vec(),
-        })
-    }
-
     /// The body the point with index `p` moves with and the point's offset from that
     /// body's reference point (its cg when declared, else its first point) in the drawing, m:
     /// the point is at o + R s.
@@ -138,6 +113,12 @@ impl SpatialMechanism {
     /// The model as loaded.
     pub fn model(&self) -> &SpatialModel {
         &self.layout.model
+    }
+
+    /// The rows of the constraint Jacobian: the joints' Σ (6 − class), one per input, one
+    /// per idle spin (6(N − 1) unless constraints are redundant).
+    pub fn row_count(&self) -> usize {
+        self.layout.row_count()
     }
 
     /// G, the number of inputs.
@@ -199,10 +180,7 @@ impl SpatialMechanism {
     ) -> Result<SpatialForces, MechError> {
         self.owns(m)?;
         if self.layout.model.allow_redundant {
-            return Err(MechError::Redundant(format!(
-                "`{}` has redundant constraints (#[allow(redundant)]): its reactions are statically indeterminate; `driver_action` gives the motor actions by virtual power",
-                self.layout.model.name
-            )));
+            return Err(indeterminate(&self.layout));
         }
         kinetostatics(&self.layout, m, loads)
     }
@@ -214,17 +192,26 @@ impl SpatialMechanism {
         loads: &SpatialLoads,
     ) -> Result<Vec<f64>, MechError> {
         self.owns(m)?;
-        super::virtual_power::driver_actions(&self.layout, m, loads)
+        let mut out = vec![0.0; m.q.len()];
+        super::virtual_power::driver_actions_into(
+            &self.layout,
+            self.layout.dense(),
+            &m.bodies,
+            &m.q,
+            &loads.values,
+            &mut out,
+        )?;
+        Ok(out)
     }
 
     /// Zhukovski's I*(q) (kg·m² or kg) and dI*/dq; one input only.
     pub fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
-        super::zhukovski::reduced(&self.layout, q)
+        super::zhukovski::reduced(&self.layout, self.layout.dense(), q)
     }
 
     /// Zhukovski's M*(q) (N·m or N), loads and gravity; one input only.
     pub fn reduced_moment(&self, q: f64, loads: &SpatialLoads) -> Result<f64, MechError> {
-        super::zhukovski::reduced_moment(&self.layout, q, loads)
+        super::zhukovski::reduced_moment(&self.layout, self.layout.dense(), q, &loads.values)
     }
 
     /// q̈ = (driver + M* − ½ dI*/dq q̇²) / I* (rad/s² or m/s²); one input only.
@@ -235,6 +222,22 @@ impl SpatialMechanism {
         driver: f64,
         loads: &SpatialLoads,
     ) -> Result<f64, MechError> {
-        super::zhukovski::acceleration(&self.layout, q, qd, driver, loads)
+        super::zhukovski::acceleration(
+            &self.layout,
+            self.layout.dense(),
+            q,
+            qd,
+            driver,
+            &loads.values,
+        )
     }
+}
+
+/// The `Redundant` error of a mechanism accepted with `#[allow(redundant)]` asked for its
+/// reactions.
+pub(crate) fn indeterminate(layout: &Layout) -> MechError {
+    MechError::Redundant(format!(
+        "`{}` has redundant constraints (#[allow(redundant)]): its reactions are statically indeterminate; `driver_action` gives the motor actions by virtual power",
+        layout.model.name
+    ))
 }

@@ -9,6 +9,7 @@
 pub mod closed;
 pub mod constraints;
 pub mod dsl;
+pub mod frame;
 pub mod kinematics;
 pub mod kinetostatics;
 pub mod kutzbach;
@@ -18,6 +19,7 @@ pub mod model;
 mod rank;
 mod resolve;
 pub mod results;
+pub mod solver;
 mod virtual_power;
 mod zhukovski;
 
@@ -26,3 +28,4 @@ pub use kinetostatics::{Reaction, SpatialForces, SpatialLoads};
 pub use mechanism::SpatialMechanism;
 pub use model::{Body, Finding, Joint, JointKind, Load, LoadKind, Site, SpatialModel};
 pub use results::LinkMotion;
+pub use solver::Solver;

@@ -6,38 +6,64 @@
 //! wrenches of `kinetostatics::wrenches` (m a_G and I α + ω × (I ω) against each body's
 //! applied force and moment at its reference point).
 
-use super::kinematics::{solve, Layout, SpatialMotion};
-use super::kinetostatics::{wrenches, SpatialLoads};
+use super::frame::{Frame, RowBuffer};
+use super::kinematics::{BodyMotion, Layout};
+use super::kinetostatics::{states, wrenches};
 use crate::MechError;
-use nalgebra::DVector;
+use nalgebra::Vector3;
 
-/// The velocity coefficients at the motion's pose: one vector of 6(N − 1) per input.
-pub(crate) fn coefficients(
+/// The velocity coefficients x'_k at the pose of `bodies` (inputs `q`), each handed to
+/// `each(k, x'_k)` (6(N − 1) values), J factored once.
+pub(crate) fn coefficients<F: Frame>(
     layout: &Layout,
-    m: &SpatialMotion,
-) -> Result<Vec<DVector<f64>>, MechError> {
-    let s: Vec<_> = m.bodies.iter().map(|b| b.state).collect();
-    let (rows, owners) = layout.rows(&s, &m.q);
-    let j = layout.jacobian(&rows, &owners);
-    let first = rows.len() - m.q.len() - layout.spins.len();
-    (0..m.q.len())
-        .map(|k| {
-            let mut e = DVector::zeros(rows.len());
-            e[first + k] = 1.0;
-            solve(j.clone(), e)
-        })
-        .collect()
+    f: F,
+    bodies: &[BodyMotion],
+    q: &[f64],
+    mut each: impl FnMut(usize, &[f64]),
+) -> Result<(), MechError> {
+    let s = states(layout, f, bodies);
+    let mut rows = f.rows();
+    layout.rows_into(s.as_ref(), q, 1.0, &mut rows);
+    let first = rows.rows().len() - q.len() - layout.spins.len();
+    let j = f.factor(&rows)?;
+    for k in 0..q.len() {
+        let mut e = f.rhs();
+        e.as_mut()[first + k] = 1.0;
+        each(k, f.solve(&j, &e)?.as_ref());
+    }
+    Ok(())
 }
 
-/// τ_k = −(Q − inertia wrenches)·x'_k for every input k (N·m or N, by the input joint's
-/// first link on its second).
-pub(crate) fn driver_actions(
+/// τ_k = −(Q − inertia wrenches)·x'_k for every input k into `out` (N·m or N, by the input
+/// joint's first link on its second).
+pub(crate) fn driver_actions_into<F: Frame>(
     layout: &Layout,
-    m: &SpatialMotion,
-    loads: &SpatialLoads,
-) -> Result<Vec<f64>, MechError> {
-    let w = wrenches(layout, m, loads, true)?;
-    let out: Vec<f64> = coefficients(layout, m)?.iter().map(|x| -w.dot(x)).collect();
-    crate::kernel::finite::finite_few("the motor actions", &out)?;
-    Ok(out)
+    f: F,
+    bodies: &[BodyMotion],
+    q: &[f64],
+    loads: &[Vector3<f64>],
+    out: &mut [f64],
+) -> Result<(), MechError> {
+    if out.len() != q.len()
+        || q.len() != layout.model.inputs.len()
+        || bodies.len() != layout.o0.len()
+    {
+        return Err(MechError::InvalidInput(format!(
+            "`{}` has {} input(s) and {} bodies; given {} values, {} outputs and {} bodies",
+            layout.model.name,
+            layout.model.inputs.len(),
+            layout.o0.len(),
+            q.len(),
+            out.len(),
+            bodies.len()
+        )));
+    }
+    let w = wrenches(layout, f, bodies, loads, true)?;
+    coefficients(layout, f, bodies, q, |k, x| out[k] = -dot(w.as_ref(), x))?;
+    crate::kernel::finite::finite_few("the motor actions", out)
+}
+
+/// a·b.
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }

@@ -1,7 +1,7 @@
 //! A spatial mechanism's `Loads` (one 3-vector per declared load), `Forces` (one reaction
 //! per joint), `kinetostatics`, `driver_action`, the one-DOF methods (`reduced`,
-//! `reduced_moment`, `acceleration`) and the `Machine` / `OneDof` impls, each a call of the
-//! run-time solver.
+//! `reduced_moment`, `acceleration`) and the `Machine` / `OneDof` impls, each a call of
+//! mech-core's spatial `Solver` on the mechanism's stack frame.
 
 use super::Ctx;
 use crate::emit::id;
@@ -36,19 +36,20 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
         )
     });
     let k = 0..model.joints.len();
-    let driver = c.from_values(quote!(f.drivers));
+    let (n_loads, n_joints, n_idle) = (model.loads.len(), model.joints.len(), c.mech.idle_links().len());
+    let driver = c.from_values(quote!(drivers));
     let action = c.from_values(quote!(d));
     let one_dof = (*dof == 1).then(|| {
         quote! {
             impl #main {
                 /// Zhukovski's I*(q) (kg·m² or kg) and dI*/dq.
                 pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
-                    self.inner.reduced(q)
+                    self.__solver()?.reduced(q)
                 }
 
                 /// Zhukovski's M*(q) (N·m or N): the loads and gravity reduced to the input.
                 pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
-                    self.inner.reduced_moment(q, &self.__loads(loads))
+                    self.__solver()?.reduced_moment(q, &Self::__loads(loads))
                 }
 
                 /// The direct problem: q̈ = (driver + M* − ½ dI*/dq q̇²) / I*.
@@ -59,7 +60,7 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
                     driver: f64,
                     loads: &#loads,
                 ) -> Result<f64, #p::MechError> {
-                    self.inner.acceleration(q, qd, driver, &self.__loads(loads))
+                    self.__solver()?.acceleration(q, qd, driver, &Self::__loads(loads))
                 }
             }
 
@@ -106,28 +107,37 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
         }
 
         impl #main {
-            /// The run-time loads of the typed ones.
-            fn __loads(&self, l: &#loads) -> #s::SpatialLoads {
-                let mut out = self.inner.loads();
-                out.values = vec![#(l.#load_ids),*];
-                out
+            /// The loads' values in the order declared.
+            fn __loads(l: &#loads) -> [#s::Vector3<f64>; #n_loads] {
+                [#(l.#load_ids),*]
             }
 
             /// Every joint's reaction and every motor action at the motion `m` under `loads`:
             /// Newton–Euler (d'Alembert) with the full inertia tensor and the gyroscopic term.
             pub fn kinetostatics(&self, m: &#motion, loads: &#loads) -> Result<#forces, #p::MechError> {
-                let f = self.inner.kinetostatics(&self.__spatial(m)?, &self.__loads(loads))?;
+                let mut reactions = [#s::Reaction::default(); #n_joints];
+                let mut drivers = [0.0; #dof];
+                let mut spins = [#s::Vector3::zeros(); #n_idle];
+                self.__solver()?.kinetostatics(
+                    &m.bodies,
+                    &m.q,
+                    &Self::__loads(loads),
+                    &mut reactions,
+                    &mut drivers,
+                    &mut spins,
+                )?;
                 Ok(#forces {
                     driver: #driver,
                     joints: #forces_joints {
-                        #(#joint_ids: f.reactions[#k],)*
+                        #(#joint_ids: reactions[#k],)*
                     },
                 })
             }
 
             /// The motor actions by virtual power (no reaction computed).
             pub fn driver_action(&self, m: &#motion, loads: &#loads) -> Result<#q_ty, #p::MechError> {
-                let d = self.inner.driver_action(&self.__spatial(m)?, &self.__loads(loads))?;
+                let mut d = [0.0; #dof];
+                self.__solver()?.driver_actions(&m.bodies, &m.q, &Self::__loads(loads), &mut d)?;
                 Ok(#action)
             }
         }
@@ -159,22 +169,22 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
                 loads: &#loads,
                 out: &mut [f64],
             ) -> Result<(), #p::MechError> {
-                #p::traits::Machine::driver_actions(&self.inner, &self.__spatial(m)?, &self.__loads(loads), out)
+                self.__solver()?.driver_actions(&m.bodies, &m.q, &Self::__loads(loads), out)
             }
             fn link_kinetic_energies(&self, m: &#motion, out: &mut [f64]) {
-                match self.__spatial(m) {
-                    Ok(sm) => #p::traits::Machine::link_kinetic_energies(&self.inner, &sm, out),
+                match self.__solver() {
+                    Ok(s) => s.kinetic_energies(&m.bodies, out),
                     Err(_) => out.fill(f64::NAN),
                 }
             }
             fn potential_energy(&self, m: &#motion) -> f64 {
-                self.__spatial(m)
-                    .map(|sm| #p::traits::Machine::potential_energy(&self.inner, &sm))
+                self.__solver()
+                    .map(|s| s.potential_energy(&m.bodies))
                     .unwrap_or(f64::NAN)
             }
             fn shaking(&self, m: &#motion) -> #p::energy::Shaking {
-                self.__spatial(m)
-                    .map(|sm| #p::traits::Machine::shaking(&self.inner, &sm))
+                self.__solver()
+                    .map(|s| s.shaking(&m.bodies))
                     .unwrap_or_default()
             }
         }

@@ -1,6 +1,6 @@
 //! A spatial mechanism's `Pose` and `Motion` (one field per moving link and per point),
-//! `pose` and `kinematics`: the run-time solver's answer copied into them, each point moved
-//! with its body from a constant offset.
+//! `pose` and `kinematics`: the solver's bodies (on the mechanism's stack frame) copied into
+//! them, each point moved with its body from a constant offset.
 
 use super::{vec3, Ctx};
 use crate::emit::id;
@@ -31,7 +31,7 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
     let point_ids: Vec<&Ident> = pts.iter().map(|(i, _, _)| i).collect();
     let point_at: Vec<TokenStream> = pts
         .iter()
-        .map(|(_, b, offset)| quote!(m.bodies[#b].point(#offset)))
+        .map(|(_, b, offset)| quote!(m[#b].point(#offset)))
         .collect();
     let n = c.model.bodies.len();
     let all = 0..n;
@@ -88,10 +88,10 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
             /// (Newton in absolute coordinates, continued from the drawing to q).
             pub fn pose(&self, q: #q_ty) -> Result<#pose, #p::MechError> {
                 use #s::{LinkMotion, LinkPose, PointPose, Vector3};
-                let m = self.inner.pose(&#qa)?;
+                let m = self.__solver()?.pose(&#qa)?;
                 Ok(#pose {
                     links: #pose_links {
-                        #(#link_ids: LinkPose::from(LinkMotion::from(&m.bodies[#bodies])),)*
+                        #(#link_ids: LinkPose::from(LinkMotion::from(&m[#bodies])),)*
                     },
                     points: #pose_points {
                         #(#point_ids: PointPose { pos: #point_at[0] },)*
@@ -112,10 +112,10 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
                 qdd: [f64; #dof],
             ) -> Result<#motion, #p::MechError> {
                 use #s::{LinkMotion, PointMotion, Vector3};
-                let m = self.inner.kinematics(&q, &qd, &qdd)?;
+                let m = self.__solver()?.kinematics(&q, &qd, &qdd)?;
                 Ok(#motion {
                     links: #motion_links {
-                        #(#link_ids: LinkMotion::from(&m.bodies[#bodies]),)*
+                        #(#link_ids: LinkMotion::from(&m[#bodies]),)*
                     },
                     points: #motion_points {
                         #(#point_ids: PointMotion::from(#point_at),)*
@@ -123,13 +123,8 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
                     q,
                     qd,
                     qdd,
-                    bodies: [#(m.bodies[#all]),*],
+                    bodies: [#(m[#all]),*],
                 })
-            }
-
-            /// The run-time motion of a generated one (for the run-time solvers).
-            fn __spatial(&self, m: &#motion) -> Result<#s::SpatialMotion, #p::MechError> {
-                self.inner.motion_from(&m.q, &m.qd, &m.qdd, &m.bodies)
             }
         }
     }
