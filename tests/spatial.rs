@@ -269,6 +269,94 @@ fn a_planar_four_bar_declared_in_space_gives_the_planar_structs_numbers() {
     assert!(kin < 1e-12 && force < 1e-12 && out_of_plane < 1e-12, "{kin} {force} {out_of_plane}");
 }
 
+/// Coulomb friction: the four-bar declared in space with friction in every joint gives the
+/// planar generated struct's `kinetostatics_with_friction` (pins about z: the spatial
+/// revolute's radial load, the ball joint's and the cross's moments reduce to the planar
+/// pin's μ r |R|), over a turn in both senses of motion.
+#[test]
+fn friction_in_the_four_bar_in_space_is_the_planar_structs() {
+    use mech::friction::JointFriction;
+    let (plane, space) = (FourBar::new(), FourBar3::new());
+    let pl = FourBarLoads {
+        push: Vector2::new(3.0, -2.0),
+        tool: 1.5,
+    };
+    let sl = FourBar3Loads {
+        push: Vector3::new(3.0, -2.0, 0.0),
+        tool: Vector3::new(0.0, 0.0, 1.5),
+    };
+    let fr = [0.15, 0.1, 0.2, 0.12].map(|mu| JointFriction { mu, pin_radius: 0.01 });
+    let (mut worst, mut changed) = (0.0f64, 0.0f64);
+    for k in 0..36 {
+        let q = 2.0 * PI * k as f64 / 36.0;
+        let (qd, qdd) = (if k % 2 == 0 { 7.0 } else { -5.0 }, 3.0 - k as f64);
+        let a = plane.kinematics(q + 0.06f64.atan2(0.02), qd, qdd).unwrap();
+        let b = space.kinematics(q, qd, qdd).unwrap();
+        let fa = plane.kinetostatics_with_friction(&a, &pl, &fr).unwrap();
+        let fb = space.kinetostatics_with_friction(&b, &sl, &fr).unwrap();
+        let f0 = space.kinetostatics(&b, &sl).unwrap();
+        let pairs = [
+            (fa.joints.O2.force, fb.joints.O2),
+            (fa.joints.A.force, fb.joints.A),
+            (fa.joints.B.force, fb.joints.B),
+            (fa.joints.O4.force, fb.joints.O4),
+        ];
+        let scale = pairs.iter().map(|p| p.0.amax()).fold(fa.driver.abs(), f64::max);
+        worst = worst.max((fa.driver - fb.driver).abs() / scale);
+        for (ra, rb) in pairs {
+            worst = worst.max((ra - rb.force.xy()).amax() / scale);
+        }
+        changed = changed.max((fb.driver - f0.driver).abs() / scale);
+    }
+    eprintln!("friction, planar in space: {worst:.1e} relative (friction moves the torque by up to {changed:.1e} of the forces)");
+    assert!(worst < 1e-10, "{worst}");
+    assert!(changed > 1e-3, "the friction changes the driver torque: {changed}");
+}
+
+/// Friction in a truly spatial mechanism: the power the motor adds with friction is what
+/// the joints dissipate, (τ_f − τ_0) q̇ = Σ_joints (|M_f·ω_r| + |F_f·v_r|), each joint's
+/// friction written here from its law (the revolutes' radial load, the balls' whole force)
+/// and the reactions the solver returns, the relative motions from the links' ω; and a
+/// joint without relative motion (the crank at rest) gets none.
+#[test]
+fn friction_in_the_rssr_dissipates_what_the_motor_adds() {
+    use mech::friction::JointFriction;
+    let (m, l) = (Rssr::new(), rssr_loads());
+    let (mu, r) = ([0.12, 0.2, 0.15, 0.1], [0.008, 0.005, 0.006, 0.01]);
+    let fr: [JointFriction; 4] = std::array::from_fn(|j| JointFriction { mu: mu[j], pin_radius: r[j] });
+    let (x, z) = (Vector3::x(), Vector3::z());
+    let mut worst = 0.0f64;
+    for k in 0..24 {
+        let q = 2.0 * PI * k as f64 / 24.0 + 0.1;
+        let qd = if k % 3 == 0 { -6.0 } else { 9.0 };
+        let mo = m.kinematics(q, qd, 2.0).unwrap();
+        let f = m.kinetostatics_with_friction(&mo, &l, &fr).unwrap();
+        let f0 = m.kinetostatics(&mo, &l).unwrap();
+        let (crank, rod, rocker) = (mo.links.crank.omega, mo.links.rod.omega, mo.links.rocker.omega);
+        let radial = |f: Vector3<f64>, u: Vector3<f64>| (f - u * f.dot(&u)).norm();
+        let d = mu[0] * r[0] * radial(f.joints.O.force, x) * crank.dot(&x).abs()
+            + mu[1] * r[1] * f.joints.A.force.norm() * (rod - crank).norm()
+            + mu[2] * r[2] * f.joints.B.force.norm() * (rocker - rod).norm()
+            + mu[3] * r[3] * radial(f.joints.C.force, z) * rocker.dot(&z).abs();
+        let added = (f.driver - f0.driver) * qd;
+        worst = worst.max((added - d).abs() / d);
+        assert!(d > 0.0);
+    }
+    eprintln!("friction in the RSSR: motor power against dissipation {worst:.1e} relative");
+    assert!(worst < 1e-9, "{worst}");
+    let rest = m.kinematics(0.5, 0.0, 4.0).unwrap();
+    let (a, b) = (
+        m.kinetostatics_with_friction(&rest, &l, &fr).unwrap(),
+        m.kinetostatics(&rest, &l).unwrap(),
+    );
+    assert_eq!(a.driver, b.driver, "no relative motion, no friction");
+    let bad = [JointFriction { mu: -0.1, pin_radius: 0.01 }; 4];
+    assert!(matches!(
+        m.kinetostatics_with_friction(&rest, &l, &bad),
+        Err(MechError::InvalidInput(_))
+    ));
+}
+
 /// Two inputs: `Q` is `[f64; 2]`; with the slider held the machine is the RSSR, its
 /// rocker's pivot reaction along the guide is the slider's motor force (gravity on the
 /// slider added).
@@ -360,6 +448,8 @@ fn the_generated_spatial_solvers_do_not_allocate() {
         none!("RSSR pose", r.pose(q)).unwrap();
         let m = none!("RSSR kinematics", r.kinematics(q, 3.0, -2.0)).unwrap();
         none!("RSSR kinetostatics", r.kinetostatics(&m, &l)).unwrap();
+        let fr = [mech::friction::JointFriction { mu: 0.1, pin_radius: 0.01 }; 4];
+        none!("RSSR friction", r.kinetostatics_with_friction(&m, &l, &fr)).unwrap();
         none!("RSSR driver_action", r.driver_action(&m, &l)).unwrap();
         none!("RSSR reduced", r.reduced(q)).unwrap();
         none!("RSSR reduced_moment", r.reduced_moment(q, &l)).unwrap();

@@ -116,7 +116,7 @@ pub mod spatial {
     pub use crate::spatial::model::inertia_tensor;
     pub use crate::spatial::results::{LinkPose, PointMotion, PointPose};
     pub use crate::spatial::{
-        Body, Joint, JointKind, LinkMotion, Load, LoadKind, Reaction, Solver, SpatialForces,
+        Body, ForcesOut, Joint, JointKind, LinkMotion, Load, LoadKind, Reaction, Solver, SpatialForces,
         SpatialLoads, SpatialMechanism, SpatialModel, SpatialMotion,
     };
     pub use nalgebra::{UnitQuaternion, Vector3};

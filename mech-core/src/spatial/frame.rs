@@ -37,7 +37,7 @@ pub trait Frame: Copy {
     type Rows: RowBuffer;
     /// A vector of the rows' length (the right-hand sides, the multipliers) or of the
     /// unknowns' (6(N − 1)); both are one length for a square system.
-    type Vector: AsRef<[f64]> + AsMut<[f64]>;
+    type Vector: AsRef<[f64]> + AsMut<[f64]> + Clone;
     /// J factored.
     type Factored;
     /// `InvalidInput` unless the frame holds a mechanism of `bodies` bodies (the ground

@@ -9,7 +9,9 @@
 //! its rows, its moment moved to the joint's point P: M_P = M_o − (P − o_b) × F. A driver
 //! row's multiplier is the motor action (N·m about the axis, or N along it, by a on b).
 
+use super::constraints::{BodyState, Row};
 use super::frame::{Frame, RowBuffer};
+use crate::solvers::friction::JointFriction;
 use super::kinematics::{BodyMotion, Layout, SpatialMotion};
 use super::model::LoadKind;
 use crate::MechError;
@@ -153,27 +155,53 @@ pub(crate) fn states<F: Frame>(layout: &Layout, f: F, bodies: &[BodyMotion]) -> 
     s
 }
 
-/// Where [`reactions_into`] writes: one reaction per joint, one motor action per input, one
-/// moment per idle spin.
-pub(crate) struct Written<'a> {
+/// The reaction of joint `k` from its rows' multipliers in `lambda` (module docs): force
+/// and moment about the joint's point, by its first body on its second.
+fn reaction(layout: &Layout, s: &[BodyState], rows: &[Row], lambda: &[f64], k: usize) -> Reaction {
+    let class = |j: &super::model::Joint| 6 - j.kind.class();
+    let start: usize = layout.model.joints[..k].iter().map(class).sum();
+    let count = class(&layout.model.joints[k]);
+    let (mut f, mut mo) = (V3::zeros(), V3::zeros());
+    for (row, l) in rows[start..start + count].iter().zip(&lambda[start..]) {
+        f += row.b[0] * *l;
+        mo += row.b[1] * *l;
+    }
+    let g = &layout.joints[k];
+    let rho = s[g.b].rot * g.sb;
+    Reaction {
+        force: f,
+        moment: mo - rho.cross(&f),
+    }
+}
+
+/// Where the kinetostatics of a spatial [`Solver`](super::Solver) writes: one reaction per
+/// joint, one motor action per input, one moment per idle spin.
+#[derive(Debug)]
+pub struct ForcesOut<'a> {
+    /// Each joint's reaction, in the order written (N, N·m).
     pub reactions: &'a mut [Reaction],
+    /// Each input's motor action (N·m or N).
     pub drivers: &'a mut [f64],
+    /// Each idle spin's moment (N·m).
     pub spin_moments: &'a mut [V3],
 }
 
 /// Newton–Euler of every moving body at the motion (`bodies`, inputs `q`): Jᵀ λ =
 /// −(Q − inertia wrenches), then each joint's reaction from its rows' multipliers (module
 /// docs) into `reactions`, the drivers' multipliers into `drivers`, the spins' moments into
-/// `spin_moments`. `InvalidInput` when a buffer's length is not the mechanism's.
+/// `spin_moments`. With `friction` (one per joint), the joints' Coulomb friction as applied
+/// wrenches, iterated to a fixed point (`super::friction`). `InvalidInput` when a buffer's
+/// length is not the mechanism's.
 pub(crate) fn reactions_into<F: Frame>(
     layout: &Layout,
     f: F,
     bodies: &[BodyMotion],
     q: &[f64],
     loads: &[V3],
-    out: Written<'_>,
+    friction: Option<&[JointFriction]>,
+    out: ForcesOut<'_>,
 ) -> Result<(), MechError> {
-    let Written {
+    let ForcesOut {
         reactions,
         drivers,
         spin_moments,
@@ -198,6 +226,9 @@ pub(crate) fn reactions_into<F: Frame>(
             layout.model.name
         )));
     }
+    if let Some(fr) = friction {
+        super::friction::check(layout, fr)?;
+    }
     let w = wrenches(layout, f, bodies, loads, true)?;
     let s = states(layout, f, bodies);
     let s = s.as_ref();
@@ -207,25 +238,28 @@ pub(crate) fn reactions_into<F: Frame>(
     for (x, w) in rhs.as_mut().iter_mut().zip(w.as_ref()) {
         *x = -w;
     }
-    let lambda = f.solve_transpose(&f.factor(&rows)?, &rhs)?;
-    let (rows, lambda) = (rows.rows(), lambda.as_ref());
-    let mut r = 0;
-    for (k, (g, out)) in layout.joints.iter().zip(reactions.iter_mut()).enumerate() {
-        let count = 6 - layout.model.joints[k].kind.class();
-        let (mut f, mut mo) = (V3::zeros(), V3::zeros());
-        for (row, l) in rows[r..r + count].iter().zip(&lambda[r..]) {
-            f += row.b[0] * *l;
-            mo += row.b[1] * *l;
-        }
-        let rho = s[g.b].rot * g.sb;
-        *out = Reaction {
-            force: f,
-            moment: mo - rho.cross(&f),
-        };
-        r += count;
+    let j = f.factor(&rows)?;
+    let mut lambda = f.solve_transpose(&j, &rhs)?;
+    if let Some(fr) = friction {
+        lambda = crate::solvers::friction::iterate(lambda, |prev| {
+            // the friction is applied: b = −(Q + friction − inertia wrenches)
+            let mut e = f.unknowns();
+            let reaction = |k| reaction(layout, s, rows.rows(), prev.as_ref(), k);
+            super::friction::add_wrenches(layout, s, fr, reaction, e.as_mut());
+            let mut b = rhs.clone();
+            for (x, e) in b.as_mut().iter_mut().zip(e.as_ref()) {
+                *x -= e;
+            }
+            f.solve_transpose(&j, &b)
+        })?;
     }
+    let (rows, lambda) = (rows.rows(), lambda.as_ref());
+    for (k, out) in reactions.iter_mut().enumerate() {
+        *out = reaction(layout, s, rows, lambda, k);
+    }
+    let r = layout.row_count() - q.len() - layout.spins.len();
     drivers.copy_from_slice(&lambda[r..r + q.len()]);
-    r += q.len();
+    let r = r + q.len();
     for ((out, row), l) in spin_moments.iter_mut().zip(&rows[r..]).zip(&lambda[r..]) {
         *out = row.b[1] * *l;
     }
@@ -255,6 +289,7 @@ pub(crate) fn kinetostatics(
     layout: &Layout,
     m: &SpatialMotion,
     loads: &SpatialLoads,
+    friction: Option<&[JointFriction]>,
 ) -> Result<SpatialForces, MechError> {
     let mut out = SpatialForces {
         names: layout.model.joints.iter().map(|j| j.name.clone()).collect(),
@@ -273,7 +308,8 @@ pub(crate) fn kinetostatics(
         &m.bodies,
         &m.q,
         &loads.values,
-        Written {
+        friction,
+        ForcesOut {
             reactions: &mut out.reactions,
             drivers: &mut out.drivers,
             spin_moments: &mut out.spin_moments,

@@ -4,6 +4,7 @@ use super::kinematics::{kinematics, Layout, SpatialMotion};
 use super::kinetostatics::{kinetostatics, SpatialForces, SpatialLoads};
 use super::kutzbach::{self, Kutzbach};
 use super::model::{Finding, Site, SpatialModel};
+use crate::solvers::friction::JointFriction;
 use crate::solvers::zhukovski::Reduced;
 use crate::MechError;
 use std::sync::Arc;
@@ -182,7 +183,25 @@ impl SpatialMechanism {
         if self.layout.model.allow_redundant {
             return Err(indeterminate(&self.layout));
         }
-        kinetostatics(&self.layout, m, loads)
+        kinetostatics(&self.layout, m, loads, None)
+    }
+
+    /// [`SpatialMechanism::kinetostatics`] with Coulomb friction in the joints
+    /// (`friction[j]` for joint j in the order written: μ and the pin or ball radius, m):
+    /// Newton–Euler iterated to a fixed point from the frictionless reactions;
+    /// `SelfLocking` when no finite motor action moves the mechanism. The laws of each
+    /// joint kind are in `docs/spatial.md` ("Friction").
+    pub fn kinetostatics_with_friction(
+        &self,
+        m: &SpatialMotion,
+        loads: &SpatialLoads,
+        friction: &[JointFriction],
+    ) -> Result<SpatialForces, MechError> {
+        self.owns(m)?;
+        if self.layout.model.allow_redundant {
+            return Err(indeterminate(&self.layout));
+        }
+        kinetostatics(&self.layout, m, loads, Some(friction))
     }
 
     /// The motor actions by virtual power (N·m or N per input), no reactions computed.

@@ -10,6 +10,7 @@ pub mod closed;
 pub mod constraints;
 pub mod dsl;
 pub mod frame;
+mod friction;
 pub mod kinematics;
 pub mod kinetostatics;
 pub mod kutzbach;
@@ -24,7 +25,7 @@ mod virtual_power;
 mod zhukovski;
 
 pub use kinematics::{BodyMotion, SpatialMotion};
-pub use kinetostatics::{Reaction, SpatialForces, SpatialLoads};
+pub use kinetostatics::{ForcesOut, Reaction, SpatialForces, SpatialLoads};
 pub use mechanism::SpatialMechanism;
 pub use model::{Body, Finding, Joint, JointKind, Load, LoadKind, Site, SpatialModel};
 pub use results::LinkMotion;

@@ -5,7 +5,8 @@
 
 use super::frame::Frame;
 use super::kinematics::{BodyMotion, Layout};
-use super::kinetostatics::{reactions_into, Reaction, Written};
+use super::kinetostatics::{reactions_into, ForcesOut};
+use crate::solvers::friction::JointFriction;
 use super::mechanism::SpatialMechanism;
 use crate::kernel::energy::Shaking;
 use crate::solvers::zhukovski::Reduced;
@@ -51,26 +52,37 @@ impl<F: Frame> Solver<'_, F> {
 
     /// Every joint's reaction (by its first link on its second; N and N·m about the joint's
     /// point), every motor action and each idle spin's moment at the motion (`bodies` at
-    /// inputs `q`), Newton–Euler with the full inertia tensor; `Redundant` for a mechanism
-    /// accepted with `#[allow(redundant)]`.
+    /// inputs `q`) into `out`, Newton–Euler with the full inertia tensor; `Redundant` for a
+    /// mechanism accepted with `#[allow(redundant)]`.
     pub fn kinetostatics(
         &self,
         bodies: &[BodyMotion],
         q: &[f64],
         loads: &[V3],
-        reactions: &mut [Reaction],
-        drivers: &mut [f64],
-        spin_moments: &mut [V3],
+        out: ForcesOut<'_>,
     ) -> Result<(), MechError> {
         if self.layout.model.allow_redundant {
             return Err(super::mechanism::indeterminate(self.layout));
         }
-        let out = Written {
-            reactions,
-            drivers,
-            spin_moments,
-        };
-        reactions_into(self.layout, self.frame, bodies, q, loads, out)
+        reactions_into(self.layout, self.frame, bodies, q, loads, None, out)
+    }
+
+    /// [`Solver::kinetostatics`] with Coulomb friction in the joints (`friction[j]` for
+    /// joint j in the order written: μ and the pin or ball radius), Newton–Euler iterated to
+    /// a fixed point; `SelfLocking` when no finite motor action moves the mechanism. The
+    /// laws of each joint kind are in `docs/spatial.md` ("Friction").
+    pub fn kinetostatics_with_friction(
+        &self,
+        bodies: &[BodyMotion],
+        q: &[f64],
+        loads: &[V3],
+        friction: &[JointFriction],
+        out: ForcesOut<'_>,
+    ) -> Result<(), MechError> {
+        if self.layout.model.allow_redundant {
+            return Err(super::mechanism::indeterminate(self.layout));
+        }
+        reactions_into(self.layout, self.frame, bodies, q, loads, Some(friction), out)
     }
 
     /// The motor actions by virtual power into `out` (N·m or N per input), no reaction.

@@ -115,17 +115,40 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
             /// Every joint's reaction and every motor action at the motion `m` under `loads`:
             /// Newton–Euler (d'Alembert) with the full inertia tensor and the gyroscopic term.
             pub fn kinetostatics(&self, m: &#motion, loads: &#loads) -> Result<#forces, #p::MechError> {
+                self.__forces(m, loads, None)
+            }
+
+            /// `kinetostatics` with Coulomb friction in the joints (`friction[j]` for joint j
+            /// in the order declared: μ and the pin or ball radius, m), iterated to a fixed
+            /// point; `MechError::SelfLocking` when no finite motor action moves the mechanism.
+            pub fn kinetostatics_with_friction(
+                &self,
+                m: &#motion,
+                loads: &#loads,
+                friction: &[#p::friction::JointFriction; #n_joints],
+            ) -> Result<#forces, #p::MechError> {
+                self.__forces(m, loads, Some(friction))
+            }
+
+            fn __forces(
+                &self,
+                m: &#motion,
+                loads: &#loads,
+                friction: Option<&[#p::friction::JointFriction; #n_joints]>,
+            ) -> Result<#forces, #p::MechError> {
                 let mut reactions = [#s::Reaction::default(); #n_joints];
                 let mut drivers = [0.0; #dof];
                 let mut spins = [#s::Vector3::zeros(); #n_idle];
-                self.__solver()?.kinetostatics(
-                    &m.bodies,
-                    &m.q,
-                    &Self::__loads(loads),
-                    &mut reactions,
-                    &mut drivers,
-                    &mut spins,
-                )?;
+                let out = #s::ForcesOut {
+                    reactions: &mut reactions,
+                    drivers: &mut drivers,
+                    spin_moments: &mut spins,
+                };
+                let (solver, loads) = (self.__solver()?, Self::__loads(loads));
+                match friction {
+                    None => solver.kinetostatics(&m.bodies, &m.q, &loads, out)?,
+                    Some(f) => solver.kinetostatics_with_friction(&m.bodies, &m.q, &loads, f, out)?,
+                }
                 Ok(#forces {
                     driver: #driver,
                     joints: #forces_joints {
