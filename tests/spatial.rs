@@ -269,6 +269,41 @@ fn a_planar_four_bar_declared_in_space_gives_the_planar_structs_numbers() {
     assert!(kin < 1e-12 && force < 1e-12 && out_of_plane < 1e-12, "{kin} {force} {out_of_plane}");
 }
 
+/// The idle rod's spin moment (`Forces::spin_moments`) is what the rod's own axis needs:
+/// about the line AB through its two balls (whose forces pass through it), the moment
+/// balance about A gives M_s·ê = (I α + ω × I ω + (G − A) × m a_G − (G − A) × m g)·ê, I the
+/// declared tensor turned to the pose; and the generated value is the run-time one.
+#[test]
+fn the_idle_rods_spin_moment_balances_its_axis() {
+    let m = Rssr::new();
+    let rod = &Rssr::model().bodies[2];
+    let l = rssr_loads();
+    let mut rl = m.mechanism().loads();
+    rl.values = vec![l.tool, l.push];
+    let g = Vector3::new(0.0, 0.0, -9.81);
+    let mut worst = 0.0f64;
+    for k in 0..24 {
+        let q = 2.0 * PI * k as f64 / 24.0;
+        let mo = m.kinematics(q, 6.0, -4.0).unwrap();
+        let f = m.kinetostatics(&mo, &l).unwrap();
+        let r = mo.links.rod;
+        let (a, b) = (mo.points.A.pos, mo.points.B.pos);
+        let e = (b - a).normalize();
+        let rot = r.rotation.to_rotation_matrix();
+        let i = rot.matrix() * rod.inertia * rot.matrix().transpose();
+        let ga = r.cg - a;
+        let need = i * r.alpha + r.omega.cross(&(i * r.omega)) + ga.cross(&(r.cg_acceleration * rod.mass))
+            - ga.cross(&(g * rod.mass));
+        let scale = need.norm().max(1e-9);
+        worst = worst.max((f.spin_moments[0].dot(&e) - need.dot(&e)).abs() / scale);
+        let rt = m.mechanism().kinematics(&[q], &[6.0], &[-4.0]).unwrap();
+        let rf = m.mechanism().kinetostatics(&rt, &rl).unwrap();
+        worst = worst.max((rf.spin_moment("rod").unwrap() - f.spin_moments[0]).amax() / scale);
+    }
+    eprintln!("the idle rod's spin moment: {worst:.1e} relative");
+    assert!(worst < 1e-12, "{worst}");
+}
+
 /// Coulomb friction: the four-bar declared in space with friction in every joint gives the
 /// planar generated struct's `kinetostatics_with_friction` (pins about z: the spatial
 /// revolute's radial load, the ball joint's and the cross's moments reduce to the planar

@@ -104,6 +104,10 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
             pub driver: #q_ty,
             /// Every joint's reaction.
             pub joints: #forces_joints,
+            /// The moment (N·m) the spin convention of each idle link needs, in the order of
+            /// `mechanism().idle_links()`: zero for a thin rod loaded through its axis; it
+            /// does no work (docs/spatial.md).
+            pub spin_moments: [#s::Vector3<f64>; #n_idle],
         }
 
         impl #main {
@@ -154,6 +158,7 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
                     joints: #forces_joints {
                         #(#joint_ids: reactions[#k],)*
                     },
+                    spin_moments: spins,
                 })
             }
 
