@@ -1108,3 +1108,64 @@ fn a_spherical_four_bar_matches_its_closed_form() {
     eprintln!("spherical four-bar: positions {pos:.1e} m, routes {routes:.1e}");
     assert!(pos < 1e-12 && routes < 1e-10, "{pos} {routes}");
 }
+
+/// `set_param` gives the mechanism of the text with that number changed (the text edited
+/// and loaded is the reference): a point (the rod's far ball), a link's mass, cg and
+/// inertia, an axis, gravity — the same poses and driver torques to the bit; a refused
+/// change (unknown name, a count, a magnitude, a tensor that is not positive, an axis of
+/// no direction, a drawing whose constraint Jacobian loses rank) names the fix and leaves
+/// the mechanism as it was.
+#[test]
+fn set_param_is_the_edited_text() {
+    let text = include_str!("../../examples/mech/rssr.mech");
+    let base = SpatialMechanism::from_dsl(text).unwrap();
+    let cases: [(&str, &[f64], &str, &str); 6] = [
+        ("points.B", &[0.26, 0.03, 0.07], "B: (0.25, 0.02, 0.08)", "B: (0.26, 0.03, 0.07)"),
+        ("links.rod.mass", &[0.7], "mass: 0.5", "mass: 0.7"),
+        ("links.rocker.cg", &[0.24, 0.08, 0.1], "cg: (0.25, 0.07, 0.09)", "cg: (0.24, 0.08, 0.1)"),
+        (
+            "links.crank.inertia",
+            &[2e-3, 4e-4, 9e-4, 1e-4, -2e-5, 5e-5],
+            "inertia: (1e-3, 4e-4, 9e-4, 1e-4, -2e-5, 5e-5)",
+            "inertia: (2e-3, 4e-4, 9e-4, 1e-4, -2e-5, 5e-5)",
+        ),
+        ("axes.C", &[0.0, 0.1, 1.0], "axis (0.0, 0.0, 1.0)", "axis (0.0, 0.1, 1.0)"),
+        ("gravity", &[0.0, -9.81, 0.0], "gravity: (0.0, 0.0, -9.81)", "gravity: (0.0, -9.81, 0.0)"),
+    ];
+    for (path, value, from, to) in cases {
+        assert!(text.contains(from), "{from}");
+        let edited = SpatialMechanism::from_dsl(&text.replacen(from, to, 1)).unwrap();
+        let mut m = base.clone();
+        m.set_param(path, value).unwrap();
+        for q in [0.3, 2.0, -1.2] {
+            let (a, b) = (
+                m.kinematics(&[q], &[4.0], &[1.0]).unwrap(),
+                edited.kinematics(&[q], &[4.0], &[1.0]).unwrap(),
+            );
+            assert_eq!(a.bodies, b.bodies, "{path} at {q}");
+            let (la, lb) = (rssr_loads(&m), rssr_loads(&edited));
+            assert_eq!(
+                m.driver_action(&a, &la).unwrap(),
+                edited.driver_action(&b, &lb).unwrap(),
+                "{path} at {q}"
+            );
+        }
+    }
+    let refused: [(&str, &[f64], &str); 8] = [
+        ("points.Z", &[0.0, 0.0, 0.0], "unknown point"),
+        ("points.B", &[0.1, 0.2], "takes 3 number(s)"),
+        ("links.ground.mass", &[1.0], "unknown moving link"),
+        ("links.rod.mass", &[1e12], "a mass is 0 or within"),
+        ("links.rod.inertia", &[1e-3, 1e-3, 1e-3, 5e-3, 0.0, 0.0], "not positive semi-definite"),
+        ("axes.O", &[0.0, 0.0, 0.0], "has no direction"),
+        ("axes.A", &[0.0, 0.0, 1.0], "a spherical joint has no axis"),
+        // the rocker's axis through B: the rocker cannot move B (a rank deficiency)
+        ("axes.C", &[0.0, 1.0, 0.0], "rank"),
+    ];
+    for (path, value, says) in refused {
+        let mut m = base.clone();
+        let e = m.set_param(path, value).unwrap_err().to_string();
+        assert!(e.contains(says), "{path}: {e}");
+        assert_eq!(m.model(), base.model(), "{path}: unchanged on error");
+    }
+}

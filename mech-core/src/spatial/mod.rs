@@ -17,6 +17,7 @@ pub mod kutzbach;
 mod machine;
 pub mod mechanism;
 pub mod model;
+mod params;
 mod rank;
 mod resolve;
 pub mod results;
