@@ -858,7 +858,7 @@ fn animate_moves_the_isometric_picture() {
         .min(axis.find("</line>").unwrap_or(usize::MAX))];
     let axis_x1 = axis.split("attributeName=\"x1\" values=\"").nth(1);
     assert!(
-        axis_x1.map_or(true, |v| {
+        axis_x1.is_none_or(|v| {
             let vals: Vec<&str> = v.split('"').next().unwrap().split(';').collect();
             vals.iter().all(|x| *x == vals[0])
         }),
