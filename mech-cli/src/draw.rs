@@ -164,14 +164,7 @@ pub fn draw(args: DrawArgs) -> Result<(), Failure> {
     let m = match source::load_any(&args.file)? {
         source::Any::Planar(m) => m,
         source::Any::Spatial(m) => {
-            if !args.path.is_empty() || args.forces {
-                return Err(Failure::usage(
-                    "--path and --forces are not drawn for a spatial mechanism yet: draw it without them (`mech draw FILE --at Q -o out.svg`), or read the paths and reactions from `mech sweep`",
-                ));
-            }
-            let q = crate::spatial::per_input(&args.at, &m, 0, "--at", 0.0)?;
-            let text = crate::spatial::draw(&m, &q, args.width, args.height)?;
-            return write(&args.output, &text);
+            return write(&args.output, &crate::spatial::draw(&m, &args)?);
         }
     };
     let model = m.model();
@@ -212,7 +205,9 @@ pub fn animate(args: AnimateArgs) -> Result<(), Failure> {
     limits::writable(&args.output, "-o", "svg")?;
     let m = match source::load_any(&args.file)? {
         source::Any::Planar(m) => m,
-        source::Any::Spatial(m) => return write(&args.output, &crate::spatial::animate(&m, &args)?),
+        source::Any::Spatial(m) => {
+            return write(&args.output, &crate::spatial::animate(&m, &args)?)
+        }
     };
     let (a, b, q) = inputs(&m, &args.from, &args.to, &args.rest)?;
     let qs = range(&q, a, b, args.frames - 1);

@@ -367,13 +367,10 @@ pub fn held(solved: Vec<Option<Frame>>) -> Result<Vec<Frame>, Failure> {
 
 /// The path of point `name` over `qs` (the inputs where it assembles).
 pub fn path(m: &Mechanism, name: &str, qs: &[Vec<f64>]) -> Result<Shape, Failure> {
-    let i = m.model().point_index(name).ok_or_else(|| {
-        let names: Vec<&str> = m.model().points.iter().map(|p| p.name.as_str()).collect();
-        Failure::usage(format!(
-            "--path {name}: no such point; the points are {}",
-            names.join(", ")
-        ))
-    })?;
+    let i = m
+        .model()
+        .point_index(name)
+        .ok_or_else(|| no_such_point(name, m.model().points.iter().map(|p| p.name.as_str())))?;
     let points = qs
         .iter()
         .filter_map(|q| m.pose(q).ok())
@@ -398,14 +395,9 @@ pub fn arrows(
 ) -> Result<Vec<Shape>, Failure> {
     let motion = m.kinematics(q, qd, qdd)?;
     let forces = m.kinetostatics(&motion, loads)?;
-    let largest = forces
-        .joints
-        .iter()
-        .map(|r| r.force.norm())
-        .fold(0.0, f64::max);
-    if !(largest > 0.0) {
+    let Some(scale) = arrow_scale(forces.joints.iter().map(|r| r.force.norm()), length) else {
         return Ok(Vec::new());
-    }
+    };
     Ok(m.model()
         .joints
         .iter()
@@ -415,8 +407,25 @@ pub fn arrows(
             Shape {
                 role: Role::Arrow,
                 name: j.name.clone(),
-                points: vec![p, p + r.force * (length / largest)],
+                points: vec![p, p + r.force * scale],
             }
         })
         .collect())
+}
+
+/// The usage error of `--path NAME` when the mechanism has no point `name`, listing its
+/// `points` (planar and spatial).
+pub fn no_such_point<'a>(name: &str, points: impl Iterator<Item = &'a str>) -> Failure {
+    let names: Vec<&str> = points.collect();
+    Failure::usage(format!(
+        "--path {name}: no such point; the points are {} (name one of them)",
+        names.join(", ")
+    ))
+}
+
+/// The scale (m per N) of the reaction arrows with force magnitudes `norms`: the largest
+/// is drawn `length` m long; `None` when every force is zero (no arrow is drawn).
+pub fn arrow_scale(norms: impl Iterator<Item = f64>, length: f64) -> Option<f64> {
+    let largest = norms.fold(0.0, f64::max);
+    (largest > 0.0).then(|| length / largest)
 }

@@ -2,7 +2,9 @@
 //! ([`mech_core::runtime::spatial_columns::is_spatial`]) is loaded as a
 //! [`SpatialMechanism`]; `mech check` prints Kutzbach's count and the idle links, `mech
 //! solve` and `mech sweep` write the columns of
-//! [`mech_core::runtime::spatial_columns::SpatialColumns`], `mech draw` an isometric view.
+//! [`mech_core::runtime::spatial_columns::SpatialColumns`], `mech draw` and `mech animate`
+//! an isometric view, with the paths of chosen points ([`path`]) and the reaction arrows
+//! ([`arrows`]).
 
 use crate::columns::Level;
 use crate::output::{Format, Writer};
@@ -406,39 +408,123 @@ pub fn frame(m: &SpatialMechanism, q: &[f64]) -> Result<Frame, Failure> {
     })
 }
 
-/// The SVG of `m` at `q` ([`frame`], [`svg::still`]).
-pub fn draw(m: &SpatialMechanism, q: &[f64], width: f64, height: f64) -> Result<String, Failure> {
-    let frame = frame(m, q)?;
-    Ok(svg::still(&frame, &[], width, height).0)
+/// The size of `m`'s drawing (m): the largest distance between two of its points as
+/// drawn.
+pub fn size(m: &SpatialMechanism) -> f64 {
+    let points = &m.model().points;
+    points
+        .iter()
+        .flat_map(|(_, a)| points.iter().map(move |(_, b)| (a - b).norm()))
+        .fold(0.0, f64::max)
+}
+
+/// The default range of the first input, for `mech draw --path` and `mech animate`: a turn
+/// (0 to 2π) for a revolute or helical input, ± a tenth of the drawing's size ([`size`])
+/// for a prismatic one.
+pub fn default_range(m: &SpatialMechanism) -> (f64, f64) {
+    if input_dims(m, 0).0 == Dim::ANGLE {
+        (0.0, std::f64::consts::TAU)
+    } else {
+        let s = 0.1 * size(m);
+        (-s, s)
+    }
+}
+
+/// The path of the point `name` over `qs` in the isometric projection ([`isometric`]): its
+/// position at each input that assembles.
+pub fn path(m: &SpatialMechanism, name: &str, qs: &[Vec<f64>]) -> Result<Shape, Failure> {
+    let model = m.model();
+    if model.point_index(name).is_none() {
+        let names = model.points.iter().map(|(p, _)| p.as_str());
+        return Err(crate::scene::no_such_point(name, names));
+    }
+    let points = qs
+        .iter()
+        .filter_map(|q| m.pose(q).ok()?.point(name))
+        .map(isometric)
+        .collect();
+    Ok(Shape {
+        role: Role::Path,
+        name: name.to_string(),
+        points,
+    })
+}
+
+/// The reaction arrows of `m` at (q, q̇, q̈) under `loads`, in the isometric projection: at
+/// each joint's current point p, the force F by the joint's first link on its second, from
+/// p to p + F·s projected ([`isometric`]), s such that the largest force is `length` m in
+/// space. No arrow when every reaction is zero.
+pub fn arrows(
+    m: &SpatialMechanism,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    loads: &SpatialLoads,
+    length: f64,
+) -> Result<Vec<Shape>, Failure> {
+    let motion = m.kinematics(q, qd, qdd)?;
+    let forces = m.kinetostatics(&motion, loads)?;
+    let norms = forces.reactions.iter().map(|r| r.force.norm());
+    let Some(scale) = crate::scene::arrow_scale(norms, length) else {
+        return Ok(Vec::new());
+    };
+    m.model()
+        .joints
+        .iter()
+        .zip(&forces.reactions)
+        .map(|(j, r)| {
+            let [p, _, _] = motion.point_motion_at(j.point).ok_or_else(|| {
+                Failure::mechanism(format!("the joint `{}`'s point belongs to no link", j.name))
+            })?;
+            Ok(Shape {
+                role: Role::Arrow,
+                name: j.name.clone(),
+                points: vec![isometric(p), isometric(p + r.force * scale)],
+            })
+        })
+        .collect()
+}
+
+/// `mech draw` of a spatial mechanism: the isometric picture of [`frame`] at `--at`, with
+/// the `--path` of each point over the first input's [`default_range`] (361 values, the
+/// other inputs at `--at`) and, with `--forces`, the reaction arrows ([`arrows`]) at
+/// `--speed`, `--accel` and `--load`, the largest a quarter of the drawing's size. The SVG
+/// text.
+pub fn draw(m: &SpatialMechanism, args: &crate::draw::DrawArgs) -> Result<String, Failure> {
+    let q = per_input(&args.at, m, 0, "--at", 0.0)?;
+    let frame = frame(m, &q)?;
+    let mut extra = Vec::new();
+    if !args.path.is_empty() {
+        let (a, b) = default_range(m);
+        let turn = crate::draw::range(&q, a, b, 360);
+        for p in &args.path {
+            extra.push(path(m, p, &turn)?);
+        }
+    }
+    if args.forces {
+        let qd = per_input(&args.speed, m, 1, "--speed", 0.0)?;
+        let qdd = per_input(&args.accel, m, 2, "--accel", 0.0)?;
+        let loads = loads(&args.load, m)?.at(q[0]);
+        extra.extend(arrows(m, &q, &qd, &qdd, &loads, 0.25 * size(m))?);
+    }
+    Ok(svg::still(&frame, &extra, args.width, args.height).0)
 }
 
 /// `mech animate` of a spatial mechanism: the isometric picture of [`frame`] at `frames`
-/// values of the first input from `from` to `to` (defaults: a turn for a revolute or
-/// helical input, ± a tenth of the drawing's size for a prismatic one), the other inputs
-/// at `rest`; a value where it does not assemble shows the last one that did. The SVG text.
+/// values of the first input from `from` to `to` (defaults: [`default_range`]), the other
+/// inputs at `rest`, with the `--path` of each point over those values under it; a value
+/// where it does not assemble shows the last one that did. The SVG text.
 pub fn animate(m: &SpatialMechanism, args: &crate::draw::AnimateArgs) -> Result<String, Failure> {
-    if !args.path.is_empty() {
-        return Err(Failure::usage(
-            "--path is not drawn for a spatial mechanism yet: animate without it",
-        ));
-    }
     let (d, _) = input_dims(m, 0);
-    let size = m
-        .model()
-        .points
-        .iter()
-        .flat_map(|(_, a)| m.model().points.iter().map(move |(_, b)| (a - b).norm()))
-        .fold(0.0, f64::max);
-    let (a0, b0) = if d == Dim::ANGLE {
-        (0.0, std::f64::consts::TAU)
-    } else {
-        (-0.1 * size, 0.1 * size)
-    };
+    let (a0, b0) = default_range(m);
     let bound = |t: &Option<String>, default: f64, what: &str| match t {
         Some(t) => quantity::parse(t, d, what),
         None => Ok(default),
     };
-    let (a, b) = (bound(&args.from, a0, "--from")?, bound(&args.to, b0, "--to")?);
+    let (a, b) = (
+        bound(&args.from, a0, "--from")?,
+        bound(&args.to, b0, "--to")?,
+    );
     if !(b - a).is_finite() {
         return Err(Failure::usage(
             "--from and --to: the range overflows f64; give a narrower range",
@@ -457,5 +543,10 @@ pub fn animate(m: &SpatialMechanism, args: &crate::draw::AnimateArgs) -> Result<
     }
     let qs = crate::draw::range(&q, a, b, args.frames - 1);
     let frames = crate::scene::held(qs.iter().map(|q| frame(m, q).ok()).collect())?;
-    Ok(svg::animated(&frames, &[], args.width, args.height, args.seconds).0)
+    let extra: Vec<Shape> = args
+        .path
+        .iter()
+        .map(|p| path(m, p, &qs))
+        .collect::<Result<_, _>>()?;
+    Ok(svg::animated(&frames, &extra, args.width, args.height, args.seconds).0)
 }

@@ -2,7 +2,8 @@
 //! `SpatialMechanism` called directly (the RSSR of mech-core/tests/spatial.rs, written to a
 //! `.mech` file), against the 50-digit mpmath table of the double-wishbone suspension, and
 //! a load's effect on the driver against virtual work; `mech check`'s count and its
-//! messages; `mech draw`'s isometric picture; the errors for planar-style arguments.
+//! messages; `mech draw`'s isometric picture, its paths and reaction arrows, `mech animate`'s
+//! paths; the errors for planar-style arguments.
 
 use assert_cmd::Command;
 use mech_core::spatial::{SpatialLoads, SpatialMechanism};
@@ -737,7 +738,16 @@ fn simulate_keeps_the_energy_of_a_spatial_machine() {
     let out = mech()
         .arg("simulate")
         .arg(&file)
-        .args(["--q0", "0.3", "--speed", "8", "--t-end", "1", "--samples", "20"])
+        .args([
+            "--q0",
+            "0.3",
+            "--speed",
+            "8",
+            "--t-end",
+            "1",
+            "--samples",
+            "20",
+        ])
         .args(["--rtol", "1e-11", "--atol", "1e-11", "--format", "csv"])
         .assert()
         .success()
@@ -806,7 +816,7 @@ fn flywheel_sizes_a_spatial_machine() {
 
 /// `mech animate` on a spatial file: one frame per input value, each the isometric picture
 /// of `mech draw` at that value (the SMIL frames hold the projected points where the
-/// library puts them), and `--path` refused for now.
+/// library puts them).
 #[test]
 fn animate_moves_the_isometric_picture() {
     let dir = tempfile::tempdir().unwrap();
@@ -826,7 +836,14 @@ fn animate_moves_the_isometric_picture() {
     // takes as many values as the library's projected A over the eight inputs).
     let m = SpatialMechanism::from_dsl(&text).unwrap();
     let xs: Vec<f64> = (0..8)
-        .map(|k| iso(m.pose(&[std::f64::consts::TAU * k as f64 / 7.0]).unwrap().point("A").unwrap()).0)
+        .map(|k| {
+            iso(m
+                .pose(&[std::f64::consts::TAU * k as f64 / 7.0])
+                .unwrap()
+                .point("A")
+                .unwrap())
+            .0
+        })
         .collect();
     let distinct = |v: &[f64]| {
         let mut v = v.to_vec();
@@ -835,13 +852,22 @@ fn animate_moves_the_isometric_picture() {
         v.len()
     };
     let axis = svg.split("data-name=\"axis x\"").nth(1).unwrap();
-    let axis = &axis[..axis.find("/>").unwrap().min(axis.find("</line>").unwrap_or(usize::MAX))];
+    let axis = &axis[..axis
+        .find("/>")
+        .unwrap()
+        .min(axis.find("</line>").unwrap_or(usize::MAX))];
     let axis_x1 = axis.split("attributeName=\"x1\" values=\"").nth(1);
-    assert!(axis_x1.map_or(true, |v| {
-        let vals: Vec<&str> = v.split('"').next().unwrap().split(';').collect();
-        vals.iter().all(|x| *x == vals[0])
-    }), "the axes stay put");
-    let pin = svg.split("data-name=\"A\"").nth(1).expect("the pin A is drawn");
+    assert!(
+        axis_x1.is_none_or(|v| {
+            let vals: Vec<&str> = v.split('"').next().unwrap().split(';').collect();
+            vals.iter().all(|x| *x == vals[0])
+        }),
+        "the axes stay put"
+    );
+    let pin = svg
+        .split("data-name=\"A\"")
+        .nth(1)
+        .expect("the pin A is drawn");
     let cx: Vec<f64> = pin
         .split("values=\"")
         .nth(1)
@@ -854,18 +880,6 @@ fn animate_moves_the_isometric_picture() {
         .collect();
     assert_eq!(cx.len(), 8, "{pin:.300}");
     assert_eq!(distinct(&cx), distinct(&xs), "{cx:?} against {xs:?}");
-    let o = mech()
-        .arg("animate")
-        .arg(&file)
-        .arg("-o")
-        .arg(dir.path().join("p.svg"))
-        .args(["--path", "A"])
-        .assert()
-        .failure()
-        .get_output()
-        .stderr
-        .clone();
-    assert!(String::from_utf8(o).unwrap().contains("--path is not drawn"));
 }
 
 /// `--load NAME=@table.csv` on a spatial file: columns q, x, y, z, linear between rows. A
@@ -879,7 +893,10 @@ fn a_load_table_gives_each_row_its_load() {
     let table = dir.path().join("push.csv");
     // push = (10 q, −5, 2 q²) at q = 0, 0.5, …, 2π (sampled: linear between the rows)
     let mut csv = String::from("q,fx,fy,fz\n");
-    let nodes: Vec<f64> = (0..=12).map(|k| 0.5 * k as f64).chain([std::f64::consts::TAU]).collect();
+    let nodes: Vec<f64> = (0..=12)
+        .map(|k| 0.5 * k as f64)
+        .chain([std::f64::consts::TAU])
+        .collect();
     for &q in &nodes {
         csv.push_str(&format!("{q},{},{},{}\n", 10.0 * q, -5.0, 2.0 * q * q));
     }
@@ -887,7 +904,9 @@ fn a_load_table_gives_each_row_its_load() {
     let out = mech()
         .arg("sweep")
         .arg(&file)
-        .args(["--from", "0", "--to", "6", "--steps", "24", "--speed", "3", "--format", "csv"])
+        .args([
+            "--from", "0", "--to", "6", "--steps", "24", "--speed", "3", "--format", "csv",
+        ])
         .arg("--load")
         .arg(format!("push=@{}", table.display()))
         .assert()
@@ -901,7 +920,11 @@ fn a_load_table_gives_each_row_its_load() {
     for r in &rows {
         let q = r[0];
         // the table's linear interpolation at q
-        let k = nodes.iter().rposition(|&x| x <= q).unwrap().min(nodes.len() - 2);
+        let k = nodes
+            .iter()
+            .rposition(|&x| x <= q)
+            .unwrap()
+            .min(nodes.len() - 2);
         let t = (q - nodes[k]) / (nodes[k + 1] - nodes[k]);
         let lerp = |f: &dyn Fn(f64) -> f64| f(nodes[k]) + t * (f(nodes[k + 1]) - f(nodes[k]));
         let push = [lerp(&|x| 10.0 * x), -5.0, lerp(&|x| 2.0 * x * x)];
@@ -909,6 +932,293 @@ fn a_load_table_gives_each_row_its_load() {
         assert!(loads.set_by_name("push", &push));
         let motion = m.kinematics(&[q], &[3.0], &[0.0]).unwrap();
         let want = m.kinetostatics(&motion, &loads).unwrap().driver();
-        assert!((r[driver] - want).abs() < 1e-9 * want.abs().max(1.0), "q = {q}: {} against {want}", r[driver]);
+        assert!(
+            (r[driver] - want).abs() < 1e-9 * want.abs().max(1.0),
+            "q = {q}: {} against {want}",
+            r[driver]
+        );
+    }
+}
+
+/// The map from the projection of [`iso`] to the picture of `doc`: px = k·iso + o, read from
+/// the pins (their `cx`, `cy`: the first frame of an animation) against the library's joint
+/// points at `q`, and checked on every pin (the view is a scale and a shift).
+fn pin_map(doc: &roxmltree::Document, m: &SpatialMechanism, q: &[f64]) -> (f64, (f64, f64)) {
+    let model = m.model();
+    let pose = m.pose(q).unwrap();
+    let pins: Vec<((f64, f64), (f64, f64))> = model
+        .joints
+        .iter()
+        .map(|j| {
+            let e = doc
+                .descendants()
+                .find(|e| {
+                    e.attribute("class") == Some("pin")
+                        && e.attribute("data-name") == Some(j.name.as_str())
+                })
+                .unwrap();
+            let px = (
+                e.attribute("cx").unwrap().parse::<f64>().unwrap(),
+                e.attribute("cy").unwrap().parse::<f64>().unwrap(),
+            );
+            (px, iso(pose.point(&model.points[j.point].0).unwrap()))
+        })
+        .collect();
+    let mut best = (0.0, 0, 0);
+    for a in 0..pins.len() {
+        for b in 0..a {
+            let d = (pins[a].1 .0 - pins[b].1 .0).hypot(pins[a].1 .1 - pins[b].1 .1);
+            if d > best.0 {
+                best = (d, a, b);
+            }
+        }
+    }
+    let ((pa, wa), (pb, wb)) = (pins[best.1], pins[best.2]);
+    let k = (pa.0 - pb.0).hypot(pa.1 - pb.1) / (wa.0 - wb.0).hypot(wa.1 - wb.1);
+    let o = (pa.0 - k * wa.0, pa.1 - k * wa.1);
+    for ((x, y), (u, v)) in &pins {
+        assert!(
+            (x - (o.0 + k * u)).abs() < 0.05 && (y - (o.1 + k * v)).abs() < 0.05,
+            "pin at ({x}, {y}), the projection puts it at ({}, {})",
+            o.0 + k * u,
+            o.1 + k * v
+        );
+    }
+    (k, o)
+}
+
+/// The vertices of the `polyline` of class `path` named `name` in `doc`, px.
+fn path_points(doc: &roxmltree::Document, name: &str) -> Vec<(f64, f64)> {
+    let e = doc
+        .descendants()
+        .find(|e| e.attribute("class") == Some("path") && e.attribute("data-name") == Some(name))
+        .unwrap_or_else(|| panic!("no path of `{name}` drawn"));
+    e.attribute("points")
+        .unwrap()
+        .split_whitespace()
+        .map(|xy| {
+            let (x, y) = xy.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect()
+}
+
+/// The size of the drawing as the tool takes it: the largest distance between two points.
+fn drawing_size(m: &SpatialMechanism) -> f64 {
+    let points = &m.model().points;
+    points
+        .iter()
+        .flat_map(|(_, a)| points.iter().map(move |(_, b)| (a - b).norm()))
+        .fold(0.0, f64::max)
+}
+
+/// `mech draw --path B` on a spatial file: 361 vertices over a turn of the crank (the other
+/// inputs at `--at`), each the isometric projection of the library's B at that input,
+/// through the picture's own scale and shift (read from the pins).
+#[test]
+fn draw_path_is_the_projection_of_the_librarys_point_over_a_turn() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssr_text();
+    let file = rssr_file(&dir, &text);
+    let out = dir.path().join("path.svg");
+    mech()
+        .arg("draw")
+        .arg(&file)
+        .args(["--at=0.9", "--path", "B", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let (k, o) = pin_map(&doc, &m, &[0.9]);
+    let pts = path_points(&doc, "B");
+    assert_eq!(pts.len(), 361, "one vertex per degree of the turn");
+    let mut spread: f64 = 0.0;
+    for i in [0, 1, 45, 90, 137, 180, 225, 271, 333, 360] {
+        let q = std::f64::consts::TAU * i as f64 / 360.0;
+        let (u, v) = iso(m.pose(&[q]).unwrap().point("B").unwrap());
+        let (x, y) = pts[i];
+        let (ex, ey) = (o.0 + k * u, o.1 + k * v);
+        assert!(
+            (x - ex).abs() < 0.05 && (y - ey).abs() < 0.05,
+            "vertex {i}: ({x}, {y}), the library's B projects to ({ex}, {ey})"
+        );
+        spread = spread.max((x - pts[0].0).hypot(y - pts[0].1));
+    }
+    assert!(spread > 20.0, "B moves over the turn: {spread} px");
+}
+
+/// `mech draw --forces --speed 10 --load tool=0,0,2` on a spatial file: one arrow per joint,
+/// from the joint's pin along the projection of the library's reaction (by the first link
+/// on the second) at that joint, the largest force a quarter of the drawing's size long in
+/// space. In the SVG (coordinates to 0.01 px) the directions hold to the rounding; the
+/// shapes of `mech_cli::spatial::arrows` to 1e-6 rad.
+#[test]
+fn draw_forces_are_the_librarys_reactions_projected() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssr_text();
+    let file = rssr_file(&dir, &text);
+    let out = dir.path().join("forces.svg");
+    mech()
+        .arg("draw")
+        .arg(&file)
+        .args([
+            "--at=0.9",
+            "--forces",
+            "--speed",
+            "10",
+            "--load",
+            "tool=0,0,2",
+            "-o",
+        ])
+        .arg(&out)
+        .assert()
+        .success();
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let model = m.model();
+    let (k, o) = pin_map(&doc, &m, &[0.9]);
+    let motion = m.kinematics(&[0.9], &[10.0], &[0.0]).unwrap();
+    let mut loads = m.loads();
+    loads.set_by_name("tool", &[0.0, 0.0, 2.0]);
+    let forces = m.kinetostatics(&motion, &loads).unwrap();
+    let largest = forces
+        .reactions
+        .iter()
+        .map(|r| r.force.norm())
+        .fold(0.0, f64::max);
+    assert!(largest > 0.0);
+    let scale = 0.25 * drawing_size(&m) / largest;
+    let arrows: Vec<_> = doc
+        .descendants()
+        .filter(|e| e.attribute("class") == Some("arrow"))
+        .collect();
+    assert_eq!(arrows.len(), model.joints.len(), "one arrow per joint");
+    let angle = |a: (f64, f64), b: (f64, f64)| (a.0 * b.1 - a.1 * b.0).atan2(a.0 * b.0 + a.1 * b.1);
+    for (j, r) in model.joints.iter().zip(&forces.reactions) {
+        let e = arrows
+            .iter()
+            .find(|e| e.attribute("data-name") == Some(j.name.as_str()))
+            .unwrap_or_else(|| panic!("no arrow at joint `{}`", j.name));
+        let c = |a: &str| e.attribute(a).unwrap().parse::<f64>().unwrap();
+        let (x1, y1, x2, y2) = (c("x1"), c("y1"), c("x2"), c("y2"));
+        let (u, v) = iso(motion.point_motion_at(j.point).unwrap()[0]);
+        assert!(
+            (x1 - (o.0 + k * u)).abs() < 0.05 && (y1 - (o.1 + k * v)).abs() < 0.05,
+            "arrow `{}` starts at ({x1}, {y1}), its joint is at ({}, {})",
+            j.name,
+            o.0 + k * u,
+            o.1 + k * v
+        );
+        let f = iso(r.force);
+        let want = (k * scale * f.0, k * scale * f.1);
+        let got = (x2 - x1, y2 - y1);
+        let len = got.0.hypot(got.1);
+        let want_len = want.0.hypot(want.1);
+        // Each end rounded to 0.005 px: the direction within 0.015/len rad, the length
+        // within 0.015 px (with the scale's own error read from the pins).
+        assert!(
+            (len - want_len).abs() < 0.015 + 1e-4 * want_len,
+            "arrow `{}`: {len} px, the projected reaction {want_len} px",
+            j.name
+        );
+        if want_len > 1.0 {
+            let a = angle(got, want).abs();
+            assert!(
+                a < 0.015 / len,
+                "arrow `{}`: {a} rad from the projected reaction",
+                j.name
+            );
+        }
+    }
+    // The shapes themselves (drawing units, y up), against the library to 1e-6 rad and in
+    // the ratio of the projected forces.
+    let shapes = mech_cli::spatial::arrows(&m, &[0.9], &[10.0], &[0.0], &loads, 1.0).unwrap();
+    assert_eq!(shapes.len(), model.joints.len());
+    for ((s, j), r) in shapes.iter().zip(&model.joints).zip(&forces.reactions) {
+        assert_eq!(s.name, j.name);
+        let d = s.points[1] - s.points[0];
+        let f = iso(r.force);
+        let f = (f.0, -f.1);
+        let a = angle((d.x, d.y), f).abs();
+        assert!(
+            a < 1e-6,
+            "arrow `{}`: {a} rad from the projected reaction",
+            j.name
+        );
+        let ratio = d.norm() / f.0.hypot(f.1);
+        assert!(
+            (ratio - 1.0 / largest).abs() < 1e-9 / largest,
+            "arrow `{}`: {ratio} m per N, want 1/{largest}",
+            j.name
+        );
+    }
+}
+
+/// `mech animate --path A --frames 8` on a spatial file: the path of A under the animation,
+/// one vertex per frame, each the projection of the library's A at that frame's input.
+#[test]
+fn animate_draws_the_path_over_the_animated_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssr_text();
+    let file = rssr_file(&dir, &text);
+    let out = dir.path().join("anim.svg");
+    mech()
+        .arg("animate")
+        .arg(&file)
+        .args(["--path", "A", "--frames", "8", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let (k, o) = pin_map(&doc, &m, &[0.0]);
+    let pts = path_points(&doc, "A");
+    assert_eq!(pts.len(), 8, "one vertex per frame");
+    for (i, (x, y)) in pts.iter().enumerate() {
+        let q = std::f64::consts::TAU * i as f64 / 7.0;
+        let (u, v) = iso(m.pose(&[q]).unwrap().point("A").unwrap());
+        let (ex, ey) = (o.0 + k * u, o.1 + k * v);
+        assert!(
+            (x - ex).abs() < 0.05 && (y - ey).abs() < 0.05,
+            "frame {i}: ({x}, {y}), the library's A projects to ({ex}, {ey})"
+        );
+    }
+}
+
+/// `--path` of a point the spatial mechanism does not have: a usage error (status 2) that
+/// names the point and lists the mechanism's points, from `draw` and from `animate`.
+#[test]
+fn an_unknown_path_point_lists_the_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = rssr_text();
+    let file = rssr_file(&dir, &text);
+    let m = SpatialMechanism::from_dsl(&text).unwrap();
+    let names: Vec<&str> = m.model().points.iter().map(|(p, _)| p.as_str()).collect();
+    for command in ["draw", "animate"] {
+        let mut c = mech();
+        c.arg(command).arg(&file);
+        if command == "draw" {
+            c.arg("--at=0.3");
+        }
+        let o = c
+            .args(["--path", "Z", "-o"])
+            .arg(dir.path().join("z.svg"))
+            .assert()
+            .code(2)
+            .get_output()
+            .stderr
+            .clone();
+        let err = String::from_utf8(o).unwrap();
+        assert!(
+            err.contains(&format!(
+                "--path Z: no such point; the points are {}",
+                names.join(", ")
+            )),
+            "{command}: {err}"
+        );
     }
 }
