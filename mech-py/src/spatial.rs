@@ -8,6 +8,7 @@ use mech_core::spatial::{JointKind, LoadKind, SpatialMechanism};
 use mech_core::MechError as CoreError;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
+use rayon::prelude::*;
 
 /// True when `text` declares a spatial mechanism (its first item is `space`).
 #[pyfunction]
@@ -36,6 +37,80 @@ fn located(origin: Option<&str>, messages: &str) -> String {
         })
         .collect::<Vec<_>>()
         .join("\n")
+}
+
+type View<'a> = numpy::ndarray::ArrayView2<'a, f64>;
+
+/// The columns `cols` of `m` at every row of q, q̇, q̈ with the loads (each load's x, y, z;
+/// no columns: none): the data (n × C, row by row), ok per row and the first error.
+fn rows(
+    m: &SpatialMechanism,
+    cols: &SpatialColumns,
+    q: &View,
+    qd: &View,
+    qdd: &View,
+    loads: &View,
+) -> (Vec<f64>, Vec<bool>, Option<String>) {
+    let (n, width) = (q.nrows(), cols.names.len());
+    let mut data = vec![f64::NAN; n * width];
+    let mut ok = vec![false; n];
+    let mut first = None;
+    let names = m.loads().names;
+    for i in 0..n {
+        let row = |a: &View| a.row(i).to_vec();
+        let mut l = m.loads();
+        if loads.ncols() != 0 {
+            let v = row(loads);
+            for (k, name) in names.iter().enumerate() {
+                l.set_by_name(name, &v[3 * k..3 * k + 3]);
+            }
+        }
+        match cols.row(m, &row(q), &row(qd), &row(qdd), &l) {
+            Ok(r) => {
+                data[i * width..(i + 1) * width].copy_from_slice(&r);
+                ok[i] = true;
+            }
+            Err(e) => {
+                if first.is_none() {
+                    first = Some(e.to_string());
+                }
+            }
+        }
+    }
+    (data, ok, first)
+}
+
+/// `InvalidInput` unless q, q̇, q̈ are (n, G) each and the loads (n, 3 L) or empty.
+fn shapes<'a>(
+    m: &SpatialMechanism,
+    q: &View<'a>,
+    qd: &View<'a>,
+    qdd: &View<'a>,
+    loads: &View<'a>,
+) -> PyResult<()> {
+        let (n, g, nl) = (q.nrows(), m.dof(), 3 * m.model().loads.len());
+        for (a, what) in [(&qd, "qd"), (&qdd, "qdd")] {
+            if a.shape() != q.shape() {
+                return Err(invalid(format!(
+                    "{what} has shape {:?} and q {:?}: give the same shape (rows, {g})",
+                    a.shape(),
+                    q.shape()
+                )));
+            }
+        }
+        if q.ncols() != g {
+            return Err(invalid(format!(
+                "q has {} column(s) for {g} input(s): give one per input",
+                q.ncols()
+            )));
+        }
+        if loads.ncols() != 0 && (loads.nrows() != n || loads.ncols() != nl) {
+            return Err(invalid(format!(
+                "loads of shape {:?}: give ({n}, {nl}), the x, y, z of each load in order",
+                loads.shape()
+            )));
+        }
+    Ok(())
 }
 
 /// The native spatial mechanism (wrapped by `mech.SpatialMechanism`).
@@ -130,6 +205,70 @@ impl PySpatialMechanism {
         Ok(SpatialColumns::new(&self.inner, &parts_of(&parts)?).names)
     }
 
+    /// Change one number of the drawing by name, re-checked
+    /// (`SpatialMechanism::set_param`).
+    fn set_param(&mut self, py: Python<'_>, path: &str, value: Vec<f64>) -> PyResult<()> {
+        self.inner.set_param(path, &value).map_err(|e| py_err(py, e))
+    }
+
+    /// A parameter sweep: for each variant (a list of (path, values) given to `set_param`),
+    /// the columns of `parts` at every row of q (n, G): (names, data (V, n, C), ok (V, n)); a
+    /// variant that does not build (its drawing fails a check) is all NaN, a row that does
+    /// not solve NaN, ok false.
+    #[allow(clippy::too_many_arguments)]
+    fn sweep<'py>(
+        &self,
+        py: Python<'py>,
+        variants: Vec<Vec<(String, Vec<f64>)>>,
+        parts: Vec<String>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        loads: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<(
+        Vec<String>,
+        Bound<'py, numpy::PyArray3<f64>>,
+        Bound<'py, PyArray2<bool>>,
+    )> {
+        let cols = SpatialColumns::new(&self.inner, &parts_of(&parts)?);
+        let (q, qd, qdd, loads) = (q.as_array(), qd.as_array(), qdd.as_array(), loads.as_array());
+        shapes(&self.inner, &q, &qd, &qdd, &loads)?;
+        let (n, width, nv) = (q.nrows(), cols.names.len(), variants.len());
+        check_size(nv.saturating_mul(n), width, "the sweep")?;
+        let base = &self.inner;
+        let (q, qd, qdd, loads) = (q.view(), qd.view(), qdd.view(), loads.view());
+        let results: Vec<(Vec<f64>, Vec<bool>)> = py.allow_threads(|| {
+            crate::pool().install(|| {
+                variants
+                    .par_iter()
+                    .map(|v| {
+                        let mut m = base.clone();
+                        let built = v.iter().try_for_each(|(path, value)| m.set_param(path, value));
+                        if built.is_ok() {
+                            let (d, o, _) = rows(&m, &cols, &q, &qd, &qdd, &loads);
+                            (d, o)
+                        } else {
+                            (vec![f64::NAN; n * width], vec![false; n])
+                        }
+                    })
+                    .collect()
+            })
+        });
+        let mut data = Vec::with_capacity(nv * n * width);
+        let mut ok = Vec::with_capacity(nv * n);
+        for (d, o) in results {
+            data.extend(d);
+            ok.extend(o);
+        }
+        let data = numpy::ndarray::Array3::from_shape_vec((nv, n, width), data)
+            .expect("V × n × C values")
+            .into_pyarray(py);
+        let ok = numpy::ndarray::Array2::from_shape_vec((nv, n), ok)
+            .expect("V × n values")
+            .into_pyarray(py);
+        Ok((cols.names, data, ok))
+    }
+
     /// The columns of `parts` at every row of q, q̇, q̈ (n, G) with the loads (n, 3 L), each
     /// load's x, y, z in declaration order: (names, data (n, C), ok (n,), the first error).
     /// A failed row is NaN with ok false.
@@ -150,55 +289,11 @@ impl PySpatialMechanism {
             qdd.as_array(),
             loads.as_array(),
         );
-        let (n, g, nl) = (q.nrows(), m.dof(), 3 * m.model().loads.len());
-        for (a, what) in [(&qd, "qd"), (&qdd, "qdd")] {
-            if a.shape() != q.shape() {
-                return Err(invalid(format!(
-                    "{what} has shape {:?} and q {:?}: give the same shape (rows, {g})",
-                    a.shape(),
-                    q.shape()
-                )));
-            }
-        }
-        if q.ncols() != g {
-            return Err(invalid(format!(
-                "q has {} column(s) for {g} input(s): give one per input",
-                q.ncols()
-            )));
-        }
-        if loads.ncols() != 0 && (loads.nrows() != n || loads.ncols() != nl) {
-            return Err(invalid(format!(
-                "loads of shape {:?}: give ({n}, {nl}), the x, y, z of each load in order",
-                loads.shape()
-            )));
-        }
+        shapes(m, &q, &qd, &qdd, &loads)?;
+        let n = q.nrows();
         check_size(n, cols.names.len(), "the table")?;
         let width = cols.names.len();
-        let mut data = vec![f64::NAN; n * width];
-        let mut ok = vec![false; n];
-        let mut first = None;
-        let names = m.loads().names;
-        for i in 0..n {
-            let row = |a: &numpy::ndarray::ArrayView2<f64>| a.row(i).to_vec();
-            let mut l = m.loads();
-            if loads.ncols() != 0 {
-                let v = row(&loads);
-                for (k, name) in names.iter().enumerate() {
-                    l.set_by_name(name, &v[3 * k..3 * k + 3]);
-                }
-            }
-            match cols.row(m, &row(&q), &row(&qd), &row(&qdd), &l) {
-                Ok(r) => {
-                    data[i * width..(i + 1) * width].copy_from_slice(&r);
-                    ok[i] = true;
-                }
-                Err(e) => {
-                    if first.is_none() {
-                        first = Some(e.to_string());
-                    }
-                }
-            }
-        }
+        let (data, ok, first) = rows(m, &cols, &q, &qd, &qdd, &loads);
         let data = numpy::ndarray::Array2::from_shape_vec((n, width), data)
             .expect("n × width values")
             .into_pyarray(py);

@@ -132,3 +132,33 @@ def test_the_double_wishbone_matches_the_mpmath_table():
             for j, s in enumerate("xyz"):
                 assert abs(f["%s.f%s" % (jn, s)][i] - float(r["force"][j])) < 1e-12 * scale
                 assert abs(f["%s.m%s" % (jn, s)][i] - float(r["moment"][j])) < 1e-12 * scale
+
+
+def test_sweep_varies_a_spatial_mechanism_as_edited_texts():
+    """mech.sweep over a spatial mechanism: each variant's columns are those of the text
+    edited by hand (the rod's mass, the rocker's pivot C); a variant whose drawing fails a
+    check (the rocker's axis through B) is NaN with ok False; set_param pickles."""
+    m = mech.Mechanism.load(str(RSSR))
+    text = RSSR.read_text()
+    q = np.array([0.3, 1.7, 4.0])
+    loads = {"push": (4.0, -3.0, 2.5)}
+    masses = np.array([0.5, 0.8, 1.3])
+    out = mech.sweep(m, {"links.rod.mass": masses}, q, qd=3.0, qdd=-1.0, loads=loads, parts=["driver"])
+    assert out["driver"].shape == (3, 3) and out["ok"].all()
+    for v, mass in enumerate(masses):
+        edited = mech.Mechanism.from_dsl(text.replace("mass: 0.5", "mass: %r" % float(mass), 1))
+        want = edited.kinetostatics(q, qd=3.0, qdd=-1.0, loads=loads)["driver"]
+        np.testing.assert_allclose(out["driver"][v], want, rtol=1e-13, atol=0)
+    pivots = np.array([[0.25, 0.12, 0.08], [0.26, 0.12, 0.07]])
+    out = mech.sweep(m, [{"points.C": pivots[0]}, {"points.C": pivots[1]}, {"axes.C": (0.0, 1.0, 0.0)}], q, parts=["positions"])
+    edited = mech.Mechanism.from_dsl(text.replace("C: (250 mm, 120 mm, 80 mm)", "C: (0.26, 0.12, 0.07)", 1))
+    np.testing.assert_allclose(out["B.x"][1], edited.pose(q)["B.x"], rtol=1e-13, atol=1e-15)
+    np.testing.assert_allclose(out["B.x"][0], m.pose(q)["B.x"], rtol=1e-13, atol=1e-15)
+    assert list(out["ok"][2]) == [False] * 3 and np.isnan(out["B.x"][2]).all()
+    changed = mech.Mechanism.load(str(RSSR))
+    changed.set_param("links.rod.mass", 0.8)
+    back = pickle.loads(pickle.dumps(changed))
+    assert back.kinetostatics(0.7)["driver"] == changed.kinetostatics(0.7)["driver"]
+    assert back.kinetostatics(0.7)["driver"] != m.kinetostatics(0.7)["driver"]
+    with pytest.raises(mech.InvalidInput, match="unknown point"):
+        changed.set_param("points.Z", (0.0, 0.0, 0.0))

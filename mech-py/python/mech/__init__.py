@@ -638,9 +638,12 @@ class Mechanism:
         return out
 
 
-def _restore_spatial(text, origin):
-    """Rebuild a pickled SpatialMechanism from its text."""
-    return SpatialMechanism(text, origin=origin)
+def _restore_spatial(text, origin, params=()):
+    """Rebuild a pickled SpatialMechanism from its text and its changed parameters."""
+    m = SpatialMechanism(text, origin=origin)
+    for path, value in params:
+        m.set_param(path, value)
+    return m
 
 
 class SpatialMechanism:
@@ -663,6 +666,7 @@ class SpatialMechanism:
             raise TypeError("origin is %s: give a str (a file name for the messages) or None" % _kind(origin))
         self._text = text
         self._origin = origin
+        self._params = []
         self._core = _mech._SpatialMechanism.from_dsl(text, origin)
 
     @classmethod
@@ -679,7 +683,19 @@ class SpatialMechanism:
         return m
 
     def __reduce__(self):
-        return (_restore_spatial, (self._text, self._origin))
+        return (_restore_spatial, (self._text, self._origin, tuple(self._params)))
+
+    def set_param(self, path, value):
+        """Change one number of the drawing, re-checked like the text: ``points.B`` =
+        (x, y, z) m, ``links.rod.mass`` kg, ``links.rod.cg`` (x, y, z) m,
+        ``links.rod.inertia`` (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) kg·m², ``axes.C`` (ux, uy, uz)
+        (six numbers for a universal joint), ``pitch.nut`` m per turn, ``gravity``
+        (gx, gy, gz) m/s². ``mech.sweep`` varies these."""
+        if not isinstance(path, str):
+            raise TypeError("path is %s: give a parameter path as a str, e.g. \"links.rod.mass\"" % _kind(path))
+        value = [float(v) for v in np.atleast_1d(_floats(value, "value")).ravel()]
+        self._core.set_param(path, value)
+        self._params.append((path, value))
 
     # What both kinds share: the name, G, the text, the representation.
     __repr__ = Mechanism.__repr__
@@ -788,8 +804,8 @@ def optimize(mechanism, vary, minimize, subject_to=(), qd=0.0, loads=None, steps
     optimised Mechanism), ``text``, ``values`` (name -> SI), ``objective``, ``initial``
     (the objective as given), ``history`` (an (k, 2) array of evaluations and best
     objective) and ``evaluations``."""
-    if not isinstance(mechanism, Mechanism):
-        raise TypeError("mechanism is %s: give a mech.Mechanism" % _kind(mechanism))
+    if not isinstance(mechanism, (Mechanism, SpatialMechanism)):
+        raise TypeError("mechanism is %s: give a mech.Mechanism or a mech.SpatialMechanism" % _kind(mechanism))
     if not isinstance(vary, Mapping) or not vary:
         raise TypeError("vary is %s: give a dict name -> (lo, hi) or (lo, hi, unit)" % _kind(vary))
     spec = []
@@ -812,11 +828,12 @@ def optimize(mechanism, vary, minimize, subject_to=(), qd=0.0, loads=None, steps
 def sweep(mechanism, params, q, qd=0.0, qdd=0.0, loads=None, parts=None):
     """The columns of ``parts`` (default all) for every variant of the parameters and
     every input: ``params`` is a dict of parameter path -> array of V values (shape
-    ``(V,)``, or ``(V, 2)`` for points and vectors) or a list of V dicts. Returns a dict of
+    ``(V,)``, or ``(V, 2)`` for points and vectors — ``(V, 3)`` for a spatial mechanism's,
+    ``(V, 6)`` for its inertia tensors) or a list of V dicts (``set_param``'s paths). Returns a dict of
     arrays of shape ``(V, n)`` and ``ok`` (V, n): a variant whose drawing fails a check, or
     a configuration that does not assemble, is NaN with ``ok`` False, never an exception."""
-    if not isinstance(mechanism, Mechanism):
-        raise TypeError("mechanism is %s: give a mech.Mechanism" % _kind(mechanism))
+    if not isinstance(mechanism, (Mechanism, SpatialMechanism)):
+        raise TypeError("mechanism is %s: give a mech.Mechanism or a mech.SpatialMechanism" % _kind(mechanism))
     if isinstance(params, Mapping):
         for k in params:
             if not isinstance(k, str):
