@@ -16,6 +16,7 @@ pub mod kutzbach;
 mod machine;
 pub mod mechanism;
 pub mod model;
+mod pebble;
 mod rank;
 mod resolve;
 pub mod results;
