@@ -16,7 +16,7 @@
 //! overall Grübler count looks right. Redundancy that depends on the dimensions (parallel
 //! cranks) is found at the drawing by [`crate::checks::validate::geometric`].
 //!
-//! The game itself ([`over_constrained`]) takes the pebbles per body as a parameter: 3 in
+//! The game itself (`over_constrained`) takes the pebbles per body as a parameter: 3 in
 //! the plane, 6 in space, where a rigid set of k bodies can take at most 6k − 6 bars (Tay's
 //! theorem holds for body-bar frameworks in every dimension); the spatial check
 //! (`crate::spatial::pebble`) plays it with 6.
