@@ -15,15 +15,18 @@
 //! This count is topological (generic): it finds a rigid truss hidden in a mechanism whose
 //! overall Grübler count looks right. Redundancy that depends on the dimensions (parallel
 //! cranks) is found at the drawing by [`crate::checks::validate::geometric`].
+//!
+//! The game itself (`over_constrained`) takes the pebbles per body as a parameter: 3 in
+//! the plane, 6 in space, where a rigid set of k bodies can take at most 6k − 6 bars (Tay's
+//! theorem holds for body-bar frameworks in every dimension); the spatial check
+//! (`crate::spatial::pebble`) plays it with 6.
 
 use crate::front::resolve::{Culprit, Issue};
 use crate::model::Model;
 
-/// Pebbles of a body in the plane (its DOF).
+/// Pebbles of a body in the plane (its DOF), also its trivial motions: a rigid set of k
+/// bodies in the plane can take at most 3k − 3 independent bars.
 const K: usize = 3;
-/// Trivial motions of a rigid set of bodies (the DOF of one body): a set of k bodies can
-/// take at most 3k − 3 independent bars.
-const L: usize = 3;
 
 /// Where a bar comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,18 +37,23 @@ enum Source {
     Input(usize),
 }
 
-/// The directed pebble graph: free pebbles per body and the bars, each oriented away from
-/// the body whose pebble covers it.
+/// The directed pebble graph of the (k, k) game: free pebbles per body and the bars, each
+/// oriented away from the body whose pebble covers it.
 struct Game {
+    /// k: the pebbles of a body (its DOF) and the trivial motions of a rigid set (a set of
+    /// n bodies takes at most k·n − k bars).
+    k: usize,
     pebbles: Vec<usize>,
     /// Outgoing accepted bars of each body: (bar index, head).
     out: Vec<Vec<(usize, usize)>>,
 }
 
 impl Game {
-    fn new(bodies: usize) -> Self {
+    /// `bodies` bodies with `k` pebbles each and no bar.
+    fn new(bodies: usize, k: usize) -> Self {
         Game {
-            pebbles: vec![K; bodies],
+            k,
+            pebbles: vec![k; bodies],
             out: vec![Vec::new(); bodies],
         }
     }
@@ -88,9 +96,9 @@ impl Game {
         false
     }
 
-    /// Gather as many pebbles as possible (up to L + 1) on the two ends of a bar.
+    /// Gather as many pebbles as possible (up to k + 1) on the two ends of a bar.
     fn gather(&mut self, u: usize, v: usize) -> usize {
-        while self.pebbles[u] + self.pebbles[v] < L + 1 {
+        while self.pebbles[u] + self.pebbles[v] < self.k + 1 {
             if !(self.fetch(u, v) || self.fetch(v, u)) {
                 break;
             }
@@ -100,7 +108,7 @@ impl Game {
 
     /// Try to insert bar `bar` between `u` and `v`; true when it is independent.
     fn insert(&mut self, bar: usize, u: usize, v: usize) -> bool {
-        if self.gather(u, v) < L + 1 {
+        if self.gather(u, v) < self.k + 1 {
             return false;
         }
         let tail = if self.pebbles[u] > 0 { u } else { v };
@@ -146,23 +154,31 @@ fn bars(model: &Model) -> Vec<(usize, usize, Source)> {
 
 /// An over-constrained set of bodies found by the game.
 #[derive(Clone, Debug, PartialEq, Eq)]
-struct Block {
-    /// Membership, by link index.
-    links: Vec<bool>,
-    /// Bars among the links (from joints and inputs) minus the 3k − 3 they can take.
-    excess: usize,
+pub(crate) struct Block {
+    /// Membership, by body index.
+    pub(crate) links: Vec<bool>,
+    /// Bars among the bodies minus the k·n − k a rigid set of n bodies can take.
+    pub(crate) excess: usize,
+    /// The bars with both ends in the set (indices into the bars given), in order.
+    pub(crate) bars: Vec<usize>,
 }
 
-/// Run the game; return the over-constrained blocks, deduplicated, smallest first.
-fn blocks(model: &Model) -> Vec<Block> {
-    let n = model.n_links();
+/// The over-constrained sets of the body-bar graph of `bodies` bodies with k pebbles each
+/// (`k` = 3 in the plane, 6 in space) and the given bars (a, b), by the (k, k) pebble game:
+/// the bars are inserted in order; each one rejected (its ends cannot gather k + 1
+/// pebbles) gives the smallest rigid set containing its ends in the final graph (the
+/// bodies reachable from them), which with its bars exceeds k·n − k. Returns those sets,
+/// deduplicated, smallest first, each kept only when its excess is more than that of the
+/// smaller sets inside it. Bars with an end out of range or both ends on one body are
+/// skipped (a naming mistake reported elsewhere).
+pub(crate) fn over_constrained(bodies: usize, bars: &[(usize, usize)], k: usize) -> Vec<Block> {
+    let n = bodies;
     if n < 2 {
         return Vec::new();
     }
-    let bars = bars(model);
-    let mut game = Game::new(n);
+    let mut game = Game::new(n, k);
     let mut rejected = Vec::new();
-    for (i, &(a, b, _)) in bars.iter().enumerate() {
+    for (i, &(a, b)) in bars.iter().enumerate() {
         if a == b || a >= n || b >= n {
             continue; // reported by name resolution
         }
@@ -174,20 +190,23 @@ fn blocks(model: &Model) -> Vec<Block> {
     // ends (rigid sets only grow as bars are accepted).
     let mut cands: Vec<Block> = Vec::new();
     for &i in &rejected {
-        let (a, b, _) = bars[i];
+        let (a, b) = bars[i];
         game.gather(a, b);
         let links = game.reach(a, b);
         if cands.iter().any(|c| c.links == links) {
             continue;
         }
-        let k = links.iter().filter(|&&x| x).count();
-        let among = bars
-            .iter()
-            .filter(|&&(x, y, _)| x < n && y < n && links[x] && links[y])
-            .count();
+        let size = links.iter().filter(|&&x| x).count();
+        let among: Vec<usize> = (0..bars.len())
+            .filter(|&i| {
+                let (x, y) = bars[i];
+                x < n && y < n && links[x] && links[y]
+            })
+            .collect();
         cands.push(Block {
-            excess: among.saturating_sub(3 * k - 3),
+            excess: among.len().saturating_sub(k * size - k),
             links,
+            bars: among,
         });
     }
     cands.sort_by_key(|c| c.links.iter().filter(|&&x| x).count());
@@ -204,6 +223,13 @@ fn blocks(model: &Model) -> Vec<Block> {
         }
     }
     kept
+}
+
+/// The over-constrained blocks of a planar model: [`over_constrained`] with 3 pebbles on
+/// the bars of [`bars`].
+fn blocks(model: &Model) -> Vec<Block> {
+    let pairs: Vec<(usize, usize)> = bars(model).iter().map(|&(a, b, _)| (a, b)).collect();
+    over_constrained(model.n_links(), &pairs, K)
 }
 
 fn names(items: impl Iterator<Item = String>) -> String {
@@ -504,6 +530,78 @@ mod tests {
     }
 
     #[test]
+    fn independent_sets_respect_6k_minus_6_in_space() {
+        // The same exhaustive check with 6 pebbles: independent iff every subset of k
+        // bodies spans at most 6k − 6 accepted bars (bars of a spatial body-bar graph).
+        let n = 4;
+        let pairs: Vec<(usize, usize)> = (0..n)
+            .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+            .collect();
+        let mut seed = 987654321u64;
+        let mut rejected = 0;
+        for _ in 0..200 {
+            let mut game = Game::new(n, 6);
+            let mut accepted: Vec<(usize, usize)> = Vec::new();
+            for i in 0..24 {
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                let (a, b) = pairs[(seed >> 33) as usize % pairs.len()];
+                let ok = game.insert(i, a, b);
+                let mut trial = accepted.clone();
+                trial.push((a, b));
+                let sparse = (1u32..(1 << n)).all(|mask| {
+                    let k = mask.count_ones() as usize;
+                    let e = trial
+                        .iter()
+                        .filter(|&&(x, y)| mask & (1 << x) != 0 && mask & (1 << y) != 0)
+                        .count();
+                    e <= 6 * k - 6
+                });
+                assert_eq!(ok, sparse);
+                if ok {
+                    accepted = trial;
+                } else {
+                    rejected += 1;
+                }
+            }
+        }
+        assert!(rejected > 0, "the random graphs never reached the bound");
+    }
+
+    #[test]
+    fn blocks_name_their_bodies_excess_and_bars() {
+        // Space (6 pebbles): bodies 0 and 1 joined by 7 bars (one too many), body 2 hung
+        // from 1 by 3 bars, body 3 from 0 by 5 and to 2 by 1.
+        let mut bars = vec![(0, 1); 7];
+        bars.extend([(1, 2); 3]);
+        bars.extend([(0, 3); 5]);
+        bars.push((2, 3));
+        let found = over_constrained(4, &bars, 6);
+        assert_eq!(found.len(), 1, "{found:#?}");
+        assert_eq!(found[0].links, vec![true, true, false, false]);
+        assert_eq!(found[0].excess, 1);
+        assert_eq!(found[0].bars, (0..7).collect::<Vec<_>>());
+        // The same bars in the plane (3 pebbles): the pair {0, 1} is 4 bars over, {0, 3}
+        // (5 bars) 2 over, and {0, 1, 2, 3} (16 bars against 9) 7 in all, more than the
+        // 4 + 2 of the pairs inside it.
+        let found = over_constrained(4, &bars, 3);
+        assert_eq!(found.len(), 3, "{found:#?}");
+        assert_eq!(
+            (found[0].links.clone(), found[0].excess),
+            (vec![true, true, false, false], 4)
+        );
+        assert_eq!(
+            (found[1].links.clone(), found[1].excess),
+            (vec![true, false, false, true], 2)
+        );
+        assert_eq!(found[1].bars, (10..15).collect::<Vec<_>>());
+        assert_eq!(found[2].links, vec![true; 4]);
+        assert_eq!(found[2].excess, 7);
+        assert_eq!(found[2].bars.len(), bars.len());
+    }
+
+    #[test]
     fn independent_sets_respect_3k_minus_3() {
         // Exhaustive check of the game's verdict against the definition on small graphs:
         // independent iff every subset of k bodies spans at most 3k − 3 accepted bars.
@@ -513,7 +611,7 @@ mod tests {
             .collect();
         let mut seed = 12345u64;
         for _ in 0..300 {
-            let mut game = Game::new(n);
+            let mut game = Game::new(n, K);
             let mut accepted: Vec<(usize, usize)> = Vec::new();
             for i in 0..12 {
                 seed = seed

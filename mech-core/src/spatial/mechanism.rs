@@ -39,9 +39,15 @@ impl SpatialMechanism {
     }
 
     /// [`SpatialMechanism::from_model`] with each finding placed ([`Finding`]): Kutzbach's
-    /// count at the inputs (every link and joint involved), the rank at the drawing at the
-    /// first joint whose equations repeat (the others involved), an input of the wrong kind
-    /// at its joint, a degenerate idle link at the link. The `mechanism!` macro turns the findings into spanned errors.
+    /// count at the inputs (every link and joint involved), an over-constrained sub-chain
+    /// found by the (6,6) pebble game at its first moving link (its other links and joints
+    /// involved; a set of every link is left out when Kutzbach's count already failed, as it
+    /// restates the count), the rank at the drawing at the first joint whose equations
+    /// repeat (the others involved; not run when the game found a sub-chain, whose
+    /// redundancy it would repeat), an input of the wrong kind at its joint, a degenerate
+    /// idle link at the link. With `#[allow(redundant)]` neither Kutzbach's count nor the
+    /// game is run, and the rank gives the mobility. The `mechanism!` macro turns the
+    /// findings into spanned errors.
     pub fn checked(model: SpatialModel) -> Result<Self, Vec<Finding>> {
         let everything = || -> Vec<Site> {
             (0..model.bodies.len())
@@ -59,6 +65,19 @@ impl SpatialMechanism {
             })
             .into_iter()
             .collect();
+        let mut structural = super::pebble::check(&model);
+        if !found.is_empty() {
+            let n = model.bodies.len();
+            structural.retain(|f| {
+                std::iter::once(&f.site)
+                    .chain(&f.involved)
+                    .filter(|s| matches!(s, Site::Body(_)))
+                    .count()
+                    < n
+            });
+        }
+        let structural_ok = structural.is_empty();
+        found.extend(structural);
         let layout = match Layout::new(model) {
             Ok(layout) => layout,
             Err(more) => {
@@ -68,8 +87,10 @@ impl SpatialMechanism {
         };
         let rank = if layout.model.allow_redundant {
             super::rank::redundant(&layout).map(|m| (vec![Site::Inputs], m))
-        } else {
+        } else if structural_ok {
             super::rank::check(&layout)
+        } else {
+            None
         };
         if let Some((sites, message)) = rank {
             let mut sites = sites.into_iter();

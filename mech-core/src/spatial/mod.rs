@@ -18,6 +18,7 @@ mod machine;
 pub mod mechanism;
 pub mod model;
 mod params;
+mod pebble;
 mod rank;
 mod resolve;
 pub mod results;
