@@ -453,6 +453,27 @@ def triad():
     return "\n".join(rows)
 
 
+def spatial():
+    """The generated spatial struct against the run-time mechanism of the same declaration
+    (the stack frame against the heap frame), and the RSSR's pose by its closed form, by
+    Newton from the drawing and by the kernel alone (benches/spatial.rs)."""
+    sh(["cargo", "bench", "--bench", "spatial", "--", "--warm-up-time", "1", "--measurement-time", "3"])
+    med = criterion_medians()
+    rows = ["| operation | generated (ns) | run-time (ns) | run-time / generated |",
+            "|---|---:|---:|---:|"]
+    for op, label in [("kinematics", "RSSR `kinematics` (closed-form positions)"),
+                      ("kinetostatics", "RSSR `kinetostatics`"),
+                      ("fourbar_kinematics", "four-bar in space `kinematics` (Newton)")]:
+        g, r = med.get(f"spatial_generated/{op}_generated"), med.get(f"spatial_generated/{op}_runtime")
+        rows.append(f"| {label} | {ns(g)} | {ns(r)} | {r / g:.2f}× |" if g and r
+                    else f"| {label} | — | — | — |")
+    rows += ["", "| the RSSR's `pose`, run-time, mean over a turn | ns |", "|---|---:|"]
+    for key, label in [("closed", "closed form"), ("newton", "Newton continued from the drawing"),
+                       ("kernel", "the kernel alone (`Rssr::points`)")]:
+        rows.append(f"| {label} | {ns(med.get(f'spatial_rssr/{key}'))} |")
+    return "\n".join(rows)
+
+
 class Figure:
     def __init__(self, run, command, paths):
         self.run, self.command, self.paths = run, command, paths
@@ -467,6 +488,8 @@ FIGURES = {
     "triad": Figure(triad, "`cargo bench --bench triad -- --warm-up-time 1 --measurement-time 3`, medians "
                     "(a sweep: 64 crank angles over a turn)",
                     GENERATED + ["mech-core/src/runtime", "benches/triad.rs", "tests/common/triads.rs"]),
+    "spatial": Figure(spatial, "`cargo bench --bench spatial -- --warm-up-time 1 --measurement-time 3`, medians",
+                      GENERATED + ["mech-core/src/spatial", "benches/spatial.rs"]),
     "elements": Figure(elements, "`cargo bench --bench machine_elements`, medians",
                        CORE + ["benches/machine_elements.rs"]),
     "accuracy": Figure(accuracy, "`cargo run --release --example accuracy_report`",
