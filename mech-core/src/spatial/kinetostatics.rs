@@ -11,9 +11,9 @@
 
 use super::constraints::{BodyState, Row};
 use super::frame::{Frame, RowBuffer};
-use crate::solvers::friction::JointFriction;
 use super::kinematics::{BodyMotion, Layout, SpatialMotion};
 use super::model::LoadKind;
+use crate::solvers::friction::JointFriction;
 use crate::MechError;
 use nalgebra::Vector3;
 

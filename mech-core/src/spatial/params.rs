@@ -35,9 +35,8 @@ impl SpatialMechanism {
                 )))
             }
         };
-        let out_of_range = |what: String| {
-            MechError::InvalidInput(format!("`{path}`: {what} ({WHY})"))
-        };
+        let out_of_range =
+            |what: String| MechError::InvalidInput(format!("`{path}`: {what} ({WHY})"));
         let vec3 = |v: &[f64]| V3::new(v[0], v[1], v[2]);
         let place = |v: &[f64]| -> Result<V3, MechError> {
             count(3)?;

@@ -6,9 +6,9 @@
 use super::frame::Frame;
 use super::kinematics::{BodyMotion, Layout};
 use super::kinetostatics::{reactions_into, ForcesOut};
-use crate::solvers::friction::JointFriction;
 use super::mechanism::SpatialMechanism;
 use crate::kernel::energy::Shaking;
+use crate::solvers::friction::JointFriction;
 use crate::solvers::zhukovski::Reduced;
 use crate::MechError;
 use nalgebra::{Vector2, Vector3};
@@ -82,7 +82,15 @@ impl<F: Frame> Solver<'_, F> {
         if self.layout.model.allow_redundant {
             return Err(super::mechanism::indeterminate(self.layout));
         }
-        reactions_into(self.layout, self.frame, bodies, q, loads, Some(friction), out)
+        reactions_into(
+            self.layout,
+            self.frame,
+            bodies,
+            q,
+            loads,
+            Some(friction),
+            out,
+        )
     }
 
     /// The motor actions by virtual power into `out` (N·m or N per input), no reaction.
