@@ -39,6 +39,13 @@ fn located(origin: Option<&str>, messages: &str) -> String {
         .join("\n")
 }
 
+/// (names, data (V, n, C), ok (V, n)).
+type Sweep<'py> = (
+    Vec<String>,
+    Bound<'py, numpy::PyArray3<f64>>,
+    Bound<'py, PyArray2<bool>>,
+);
+
 type View<'a> = numpy::ndarray::ArrayView2<'a, f64>;
 
 /// The columns `cols` of `m` at every row of q, q̇, q̈ with the loads (each load's x, y, z;
@@ -225,11 +232,7 @@ impl PySpatialMechanism {
         qd: PyReadonlyArray2<'py, f64>,
         qdd: PyReadonlyArray2<'py, f64>,
         loads: PyReadonlyArray2<'py, f64>,
-    ) -> PyResult<(
-        Vec<String>,
-        Bound<'py, numpy::PyArray3<f64>>,
-        Bound<'py, PyArray2<bool>>,
-    )> {
+    ) -> PyResult<Sweep<'py>> {
         let cols = SpatialColumns::new(&self.inner, &parts_of(&parts)?);
         let (q, qd, qdd, loads) = (q.as_array(), qd.as_array(), qdd.as_array(), loads.as_array());
         shapes(&self.inner, &q, &qd, &qdd, &loads)?;
