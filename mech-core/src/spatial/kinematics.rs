@@ -8,7 +8,8 @@
 //! result depends on q alone and stays on the drawing's assembly. Velocities: J ẋ = q̇ on
 //! the driver rows, 0 elsewhere; accelerations: J ẍ = q̈ − γ. A mechanism that is one
 //! closed group (RSSR, RSSP, RSRC, the spherical four-bar: `closed`) takes its positions
-//! from the closed form instead, on the same assembly; its rates are the same linear solves.
+//! from the closed form instead, on the same assembly; an RSSR or RSSP its rates too
+//! (`Closed::motions`), the others the same linear solves.
 
 use super::closed::Closed;
 use super::constraints::{self, BodyState, JointGeom, Kind, Row};
@@ -322,8 +323,10 @@ impl Layout {
         Ok(())
     }
 
-    /// Kinematics at (q, q̇, q̈) into `out`: positions ([`Layout::positions_into`]), then
-    /// J ẋ = (q̇ on the driver rows) and J ẍ = (q̈ on the driver rows) − γ, J factored once.
+    /// Kinematics at (q, q̇, q̈) into `out`: an RSSR or RSSP entirely from its kernel
+    /// (`Closed::motions`: no linear solve); otherwise positions
+    /// ([`Layout::positions_into`]), then J ẋ = (q̇ on the driver rows) and
+    /// J ẍ = (q̈ on the driver rows) − γ, J factored once.
     pub fn kinematics_into<F: Frame>(
         &self,
         f: F,
@@ -333,6 +336,14 @@ impl Layout {
         out: &mut [BodyMotion],
     ) -> Result<(), MechError> {
         self.check_inputs(q, qd, qdd, out.len())?;
+        if let (Some(c), [q1], [qd1], [qdd1], [(_, e)]) = (&self.closed, q, qd, qdd, &self.spins[..]) {
+            if !NEWTON_ONLY.with(|n| n.get()) {
+                self.steps(q)?;
+                if let Some(done) = c.motions(*q1, *qd1, *qdd1, *e, out) {
+                    return done;
+                }
+            }
+        }
         let mut states = f.states(&self.o0);
         let s = states.as_mut();
         self.positions_into(f, q, s)?;

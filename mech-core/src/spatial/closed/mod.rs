@@ -34,6 +34,7 @@ pub use rssr::Rssr;
 pub use spherical::SphericalFourBar;
 
 use super::constraints::{self, BodyState};
+use super::kinematics::BodyMotion;
 use super::model::{Joint, JointKind, SpatialModel};
 use crate::MechError;
 use nalgebra::{Matrix3, Rotation3, Unit, UnitQuaternion, Vector3};
@@ -400,6 +401,128 @@ impl Closed {
             }
         }
         Ok(s)
+    }
+}
+
+impl Closed {
+    /// Every body's motion at (q, q̇, q̈) from the kernel's own rates, for the groups whose
+    /// coupler is a rod between two balls (RSSR, RSSP): the crank turns about its axis
+    /// (ω = ψ̇ u), the output about its axis (ω = φ̇ w) or along its guide (v = ṡ w), the rod
+    /// is carried by its pins A and B, ω = d × (v_B − v_A)/|d|² + λ ê and
+    /// α = d × (a_B − a_A − ω × (ω × d))/|d|² + μ ê (d = B − A), its rate along itself fixed
+    /// by the spin row about its drawing axis `spin` (Φ̇ = 0, Φ̈ = 0: `constraints::spin`).
+    /// `None` for the other groups (their rates come from the linear solves).
+    pub fn motions(
+        &self,
+        q: f64,
+        qd: f64,
+        qdd: f64,
+        spin: V3,
+        out: &mut [BodyMotion],
+    ) -> Option<Result<(), MechError>> {
+        let (psi, psid, psidd) = (self.sign * q, self.sign * qd, self.sign * qdd);
+        // the pins' motions, the crank's and the output's axes (a slider: no axis point)
+        type Axis = (V3, V3, Option<V3>, f64, f64);
+        let solved = |o: Result<Output, MechError>| o;
+        let (pa, pb, crank, output): ([V3; 3], [V3; 3], Axis, Axis) = match &self.group {
+            Group::Rssr(k) => {
+                let o = match solved(k.solve(psi, psid, psidd)) {
+                    Ok(o) => o,
+                    Err(e) => return Some(Err(e)),
+                };
+                (
+                    circle(k.centre, k.axis, k.a0, [psi, psid, psidd]),
+                    circle(k.rocker_centre, k.rocker_axis, k.b0, [o.x, o.xd, o.xdd]),
+                    (k.centre, k.axis, Some(k.centre), psid, psidd),
+                    (k.rocker_centre, k.rocker_axis, Some(k.rocker_centre), o.xd, o.xdd),
+                )
+            }
+            Group::Rssp(k) => {
+                let o = match solved(k.solve(psi, psid, psidd)) {
+                    Ok(o) => o,
+                    Err(e) => return Some(Err(e)),
+                };
+                let g = &k.geometry;
+                (
+                    circle(g.centre, g.axis, g.a0, [psi, psid, psidd]),
+                    [g.b0 + g.slide * o.x, g.slide * o.xd, g.slide * o.xdd],
+                    (g.centre, g.axis, Some(g.centre), psid, psidd),
+                    (g.b0, g.slide, None, o.xd, o.xdd),
+                )
+            }
+            _ => return None,
+        };
+        Some(self.carried(q, pa, pb, [crank, output], spin, out))
+    }
+
+    /// The bodies' motions from the pins' and the two outer bodies' motions
+    /// ([`Closed::motions`]).
+    fn carried(
+        &self,
+        q: f64,
+        pa: [V3; 3],
+        pb: [V3; 3],
+        outer: [(V3, V3, Option<V3>, f64, f64); 2],
+        spin: V3,
+        out: &mut [BodyMotion],
+    ) -> Result<(), MechError> {
+        let s = self.positions(q)?;
+        let [crank, coupler, output] = self.bodies;
+        if out.len() != s.len() {
+            return Err(MechError::InvalidInput(format!(
+                "{} motions for {} bodies",
+                out.len(),
+                s.len()
+            )));
+        }
+        for (m, &state) in out.iter_mut().zip(&s) {
+            *m = BodyMotion {
+                state,
+                ..BodyMotion::rest()
+            };
+        }
+        for (body, (_, u, centre, xd, xdd)) in [crank, output].into_iter().zip(outer) {
+            let m = &mut out[body];
+            match centre {
+                Some(c) => {
+                    let (w, al, r) = (u * xd, u * xdd, m.state.o - c);
+                    m.state.w = w;
+                    m.state.v = w.cross(&r);
+                    m.alpha = al;
+                    m.a = al.cross(&r) + w.cross(&w.cross(&r));
+                }
+                None => {
+                    m.state.v = u * xd;
+                    m.a = u * xdd;
+                }
+            }
+        }
+        let [a, va, aa] = pa;
+        let [b, vb, ab] = pb;
+        let d = b - a;
+        let (dd, e) = (d.norm_squared(), d.normalize());
+        let rod = out[coupler].state;
+        let along = |w: V3, perp: V3, extra: f64| -> Result<V3, MechError> {
+            let row = constraints::spin(&BodyState { w, ..rod }, spin);
+            let den = row.b[1].dot(&e);
+            if !(den.abs() > 1e-12 * row.b[1].norm()) {
+                return Err(MechError::Singular {
+                    condition: f64::INFINITY,
+                });
+            }
+            Ok(perp + e * (-(row.b[1].dot(&perp) + extra * row.gamma) / den))
+        };
+        let w_perp = d.cross(&(vb - va)) / dd;
+        let w = along(w_perp, w_perp, 0.0)?;
+        let al_perp = d.cross(&(ab - aa - w.cross(&w.cross(&d)))) / dd;
+        let al = along(w, al_perp, 1.0)?;
+        let r = rod.o - a;
+        let m = &mut out[coupler];
+        m.state.w = w;
+        m.state.v = va + w.cross(&r);
+        m.alpha = al;
+        m.a = aa + al.cross(&r) + w.cross(&w.cross(&r));
+        Ok(())
     }
 }
 
