@@ -522,7 +522,18 @@ impl Closed {
         m.state.v = va + w.cross(&r);
         m.alpha = al;
         m.a = aa + al.cross(&r) + w.cross(&w.cross(&r));
-        Ok(())
+        // an overflow (rates near f64's limit) is refused as the linear solves refuse it
+        let finite = out.iter().all(|m| {
+            let st = &m.state;
+            [st.v, st.w, m.a, m.alpha].iter().all(|v| v.iter().all(|x| x.is_finite()))
+        });
+        if finite {
+            Ok(())
+        } else {
+            Err(MechError::Singular {
+                condition: f64::INFINITY,
+            })
+        }
     }
 }
 
