@@ -146,6 +146,29 @@ fn py_err(py: Python<'_>, e: CoreError) -> PyErr {
 
 /// The rayon pool of the package: `MECH_NUM_THREADS` threads (default: rayon's choice,
 /// the number of cores), so that a Dask or Ray worker does not oversubscribe its cores.
+/// A sweep's per-variant (data n × C, ok n) stacked into (V, n, C) and (V, n) arrays.
+pub(crate) fn stack_variants<'py>(
+    py: Python<'py>,
+    results: Vec<(Vec<f64>, Vec<bool>)>,
+    n: usize,
+    width: usize,
+) -> (Bound<'py, PyArray3<f64>>, Bound<'py, numpy::PyArray2<bool>>) {
+    let nv = results.len();
+    let mut data = Vec::with_capacity(nv * n * width);
+    let mut ok = Vec::with_capacity(nv * n);
+    for (d, o) in results {
+        data.extend(d);
+        ok.extend(o);
+    }
+    let data = numpy::ndarray::Array3::from_shape_vec((nv, n, width), data)
+        .expect("V × n × C values")
+        .into_pyarray(py);
+    let ok = numpy::ndarray::Array2::from_shape_vec((nv, n), ok)
+        .expect("V × n values")
+        .into_pyarray(py);
+    (data, ok)
+}
+
 fn pool() -> &'static rayon::ThreadPool {
     static POOL: OnceLock<rayon::ThreadPool> = OnceLock::new();
     POOL.get_or_init(|| {
@@ -702,18 +725,7 @@ impl PyMechanism {
                     .collect()
             })
         });
-        let mut data = Vec::with_capacity(nv * n * width);
-        let mut ok = Vec::with_capacity(nv * n);
-        for (d, o) in results {
-            data.extend(d);
-            ok.extend(o);
-        }
-        let data = numpy::ndarray::Array3::from_shape_vec((nv, n, width), data)
-            .expect("shape")
-            .into_pyarray(py);
-        let ok = numpy::ndarray::Array2::from_shape_vec((nv, n), ok)
-            .expect("shape")
-            .into_pyarray(py);
+        let (data, ok) = stack_variants(py, results, n, width);
         Ok((cols.names, data, ok))
     }
 

@@ -257,18 +257,7 @@ impl PySpatialMechanism {
                     .collect()
             })
         });
-        let mut data = Vec::with_capacity(nv * n * width);
-        let mut ok = Vec::with_capacity(nv * n);
-        for (d, o) in results {
-            data.extend(d);
-            ok.extend(o);
-        }
-        let data = numpy::ndarray::Array3::from_shape_vec((nv, n, width), data)
-            .expect("V × n × C values")
-            .into_pyarray(py);
-        let ok = numpy::ndarray::Array2::from_shape_vec((nv, n), ok)
-            .expect("V × n values")
-            .into_pyarray(py);
+        let (data, ok) = crate::stack_variants(py, results, n, width);
         Ok((cols.names, data, ok))
     }
 
