@@ -238,6 +238,8 @@ fn cam_kernel(model: &Model, body: usize, joint: usize) -> Kernel {
         index: (0..joint)
             .filter(|&j| model.joints[j].kind == JointKind::Cam)
             .count(),
+        cam_tracked: false,
+        carrier_tracked: false,
     })
 }
 
@@ -326,11 +328,15 @@ fn train_kernel(model: &Model, bodies: &[usize], cons: &[Con]) -> Kernel {
 /// Which links' [`crate::kernel::link_state::LinkState::angle`] the plan keeps over turns: the
 /// ground, a driven link whose base has it, a link sliding on one that has it, and a
 /// meshing link (Willis from its partner and carrier); then each mesh group told whether
-/// its partner's and carrier's are kept.
+/// its partner's and carrier's are kept, and each cam group whether its cam's and
+/// carrier's are (the cam's turn is then their difference, not an `atan2`).
 fn track_angles(n: usize, groups: &mut [Group]) {
-    let meshes = groups
-        .iter()
-        .any(|g| matches!(g.kernel, Kernel::Mesh(_) | Kernel::Train(_)));
+    let meshes = groups.iter().any(|g| {
+        matches!(
+            g.kernel,
+            Kernel::Mesh(_) | Kernel::Train(_) | Kernel::Cam(_)
+        )
+    });
     let mut tracked = vec![false; n];
     tracked[0] = true;
     for g in groups.iter_mut() {
@@ -343,6 +349,10 @@ fn track_angles(n: usize, groups: &mut [Group]) {
                 m.partner_tracked = tracked[m.partner];
                 m.carrier_tracked = tracked[m.carrier];
                 tracked[m.body] = true;
+            }
+            Kernel::Cam(c) => {
+                c.cam_tracked = tracked[c.cam];
+                c.carrier_tracked = tracked[c.carrier];
             }
             Kernel::Train(t) => {
                 t.tracked = (0..n.min(64))

@@ -77,8 +77,10 @@ fn group_consts(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
                 cam,
                 carrier,
                 index,
+                cam_tracked,
+                carrier_tracked,
             } = *c;
-            quote!(const #kn: #p::cam::CamGroup = #p::cam::CamGroup { follower: #follower, slide: #slide, joint: #joint, cam: #cam, carrier: #carrier, index: #index };)
+            quote!(const #kn: #p::cam::CamGroup = #p::cam::CamGroup { follower: #follower, slide: #slide, joint: #joint, cam: #cam, carrier: #carrier, index: #index, cam_tracked: #cam_tracked, carrier_tracked: #carrier_tracked };)
         }
         Kernel::System => {
             let (bn, cn) = system_consts(gi);

@@ -234,9 +234,74 @@ pub struct Jump {
 #[derive(Clone, Debug, PartialEq)]
 pub enum MotionLaw {
     /// Segments, sorted, covering one turn.
-    Segments(Vec<Segment>),
+    Segments(SegmentLaw),
     /// A user table.
     Table(Spline),
+}
+
+/// Segments covering one turn end to end ([`MotionLaw::from_segments`]), each kept with
+/// the constants its evaluation needs, worked out once: 1/β, L/β, L/β², L/β³.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SegmentLaw {
+    /// The segments as declared.
+    segments: Vec<Segment>,
+    /// The same, ready to evaluate.
+    pieces: Vec<Piece>,
+}
+
+impl SegmentLaw {
+    /// The segments, sorted, as declared.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+}
+
+/// A [`Segment`] ready to evaluate: s − h₀ = L u(x), x = (θ − θ₀)/β, and the derivatives
+/// (L/βᵏ) u⁽ᵏ⁾(x).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Piece {
+    law: Law,
+    /// θ₀, 1/β, h₀, L, L/β, L/β², L/β³.
+    start: f64,
+    inv_beta: f64,
+    from: f64,
+    rise: f64,
+    k1: f64,
+    k2: f64,
+    k3: f64,
+}
+
+impl Piece {
+    fn new(g: &Segment) -> Self {
+        let inv_beta = 1.0 / (g.end - g.start);
+        let rise = g.to - g.from;
+        let k1 = rise * inv_beta;
+        let k2 = k1 * inv_beta;
+        Piece {
+            law: g.law,
+            start: g.start,
+            inv_beta,
+            from: g.from,
+            rise,
+            k1,
+            k2,
+            k3: k2 * inv_beta,
+        }
+    }
+
+    /// (s, s', s'', s''') at t in the segment (module docs).
+    #[inline(always)]
+    fn eval(&self, t: f64) -> [f64; 4] {
+        let u = self
+            .law
+            .unit(((t - self.start) * self.inv_beta).clamp(0.0, 1.0));
+        [
+            self.from + self.rise * u[0],
+            self.k1 * u[1],
+            self.k2 * u[2],
+            self.k3 * u[3],
+        ]
+    }
 }
 
 /// How closely segments must meet, rad.
@@ -289,41 +354,30 @@ impl MotionLaw {
                 last.end.to_degrees()
             ));
         }
-        Ok(MotionLaw::Segments(segments))
+        let pieces = segments.iter().map(Piece::new).collect();
+        Ok(MotionLaw::Segments(SegmentLaw { segments, pieces }))
     }
 
     /// (s, s', s'', s''') at cam angle θ (rad, any: taken modulo the turn); derivatives
     /// per unit cam angle (m/rad, m/rad², m/rad³ for a translating follower). At a joint
     /// of two segments the later one's values are taken. (Inline: the cam pair's kernels
     /// call it in the generated solvers, another crate.)
-    #[inline]
+    #[inline(always)]
     pub fn eval(&self, theta: f64) -> [f64; 4] {
         match self {
             MotionLaw::Table(sp) => sp.eval(theta),
-            MotionLaw::Segments(segs) => {
-                let t0 = segs[0].start;
+            MotionLaw::Segments(law) => {
+                let pieces = &law.pieces[..];
+                let t0 = pieces[0].start;
                 let t = t0 + within_turn(theta - t0);
-                let g = segs.iter().rev().find(|g| g.start <= t).unwrap_or(&segs[0]);
-                Self::segment(g, t)
+                let g = pieces
+                    .iter()
+                    .rev()
+                    .find(|g| g.start <= t)
+                    .unwrap_or(&pieces[0]);
+                g.eval(t)
             }
         }
-    }
-
-    /// One segment's (s, s', s'', s''') at t (module docs): one division, 1/β, for the
-    /// four values.
-    #[inline]
-    fn segment(g: &Segment, t: f64) -> [f64; 4] {
-        let inv_beta = 1.0 / (g.end - g.start);
-        let rise = g.to - g.from;
-        let u = g.law.unit(((t - g.start) * inv_beta).clamp(0.0, 1.0));
-        let k1 = rise * inv_beta;
-        let k2 = k1 * inv_beta;
-        [
-            g.from + rise * u[0],
-            k1 * u[1],
-            k2 * u[2],
-            k2 * inv_beta * u[3],
-        ]
     }
 
     /// Where s, s' or s'' jumps between consecutive segments (the last to the first
@@ -332,14 +386,15 @@ impl MotionLaw {
     /// corner), one in s'' an infinite jerk (simple harmonic motion between dwells), which
     /// a designer may accept knowingly.
     pub fn jumps(&self, tol: f64) -> Vec<Jump> {
-        let MotionLaw::Segments(segs) = self else {
+        let MotionLaw::Segments(law) = self else {
             return Vec::new();
         };
+        let (segs, pieces) = (&law.segments, &law.pieces);
         let n = segs.len();
         let mut scale = [0.0f64; 3];
-        for g in segs {
+        for (g, p) in segs.iter().zip(pieces) {
             for k in 0..=20 {
-                let v = Self::segment(g, g.start + (g.end - g.start) * k as f64 / 20.0);
+                let v = p.eval(g.start + (g.end - g.start) * k as f64 / 20.0);
                 for o in 0..3 {
                     scale[o] = scale[o].max(v[o].abs());
                 }
@@ -348,7 +403,7 @@ impl MotionLaw {
         let mut out = Vec::new();
         for k in 0..n {
             let (g, h) = (&segs[k], &segs[(k + 1) % n]);
-            let (a, b) = (Self::segment(g, g.end), Self::segment(h, h.start));
+            let (a, b) = (pieces[k].eval(g.end), pieces[(k + 1) % n].eval(h.start));
             for o in 0..3 {
                 if (a[o] - b[o]).abs() > tol * scale[o].max(f64::MIN_POSITIVE) {
                     out.push(Jump {

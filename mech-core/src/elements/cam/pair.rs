@@ -37,11 +37,18 @@ pub struct CamGroup {
     pub carrier: usize,
     /// Index into the mechanism's cams.
     pub index: usize,
+    /// The cam's [`LinkState::angle`] is exact over turns (a cam driven from the ground):
+    /// its turn θ is read from it instead of an `atan2` of its rotation.
+    pub cam_tracked: bool,
+    /// The carrier's angle is exact over turns (the ground, or a tracked driven link).
+    pub carrier_tracked: bool,
 }
 
 impl CamGroup {
     /// The cam's turn θ relative to the carrier since the drawing, its rate and
-    /// acceleration; the carrier's rotation, ω, α.
+    /// acceleration; the carrier's rotation, ω, α. θ is the difference of the two links'
+    /// tracked angles when both are tracked (exact over turns, no `atan2`), else the angle
+    /// of the relative rotation, in (−π, π].
     #[inline(always)]
     fn turn(&self, s: &[LinkState]) -> ([f64; 3], V2, f64, f64) {
         let (rc, wc, ac) = if self.carrier == 0 {
@@ -51,8 +58,17 @@ impl CamGroup {
             (c.rot, c.omega, c.alpha)
         };
         let k = &s[self.cam];
-        let rel = V2::new(rc.dot(&k.rot), cross(rc, k.rot));
-        ([rel.y.atan2(rel.x), k.omega - wc, k.alpha - ac], rc, wc, ac)
+        let theta = if self.cam_tracked && self.carrier_tracked {
+            if self.carrier == 0 {
+                k.angle
+            } else {
+                k.angle - s[self.carrier].angle
+            }
+        } else {
+            let rel = V2::new(rc.dot(&k.rot), cross(rc, k.rot));
+            rel.y.atan2(rel.x)
+        };
+        ([theta, k.omega - wc, k.alpha - ac], rc, wc, ac)
     }
 
     /// The follower's frame: û (world), the carrier's point of the follower's joint (the
