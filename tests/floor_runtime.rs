@@ -193,7 +193,10 @@ macro_rules! floor_runtime {
                     jf.push((rf, gff));
                     assert_eq!(rm.is_some(), gm_.is_some(), "{n}");
                     if let (Some(a), Some(b)) = (rm, gm_) {
-                        r.record("kinetostatics: prismatic moment", q, true, &[(a, b)], false);
+                        // One quantity per prismatic joint (the dyads of two sliders
+                        // have two).
+                        let name = format!("kinetostatics: prismatic moment ({n})");
+                        r.record(&name, q, true, &[(a, b)], false);
                     }
                 }
                 r.vecs("kinetostatics: joint force", q, &jf);
