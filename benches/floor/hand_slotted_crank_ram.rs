@@ -272,13 +272,13 @@ impl SlottedCrankRamHand {
     ///
     /// Per link k: F_k = m_k g − m_k a_Gk. The block and the ram together carry
     /// W = F₃ + F₄ + F_push, the slot's N n (by the crank) and the guide's force, normal to
-    /// u_g: along u_g, N n·u_g = −N s, so N = W·u_g/s (u and s from E − O2: u = c₀(E − O2)
-    /// + c₁ perp(E − O2), s = u_g × u). Then R_B = N n + F₃ (the block's forces), the
-    /// guide's force −(N n + W) (the ram's), the ram's moments about B
+    /// u_g: along u_g, N n·u_g = −N s, so N = W·u_g/s (u and s from E − O2:
+    /// u = c₀(E − O2) + c₁ perp(E − O2), s = u_g × u). Then R_B = N n + F₃ (the block's
+    /// forces), the guide's force −(N n + W) (the ram's), the ram's moments about B
     /// M_g = −(G₄ − B) × F₄ − (P − B) × F_push, the block's
     /// M_s = I₃α₂ − T_resist − (G₃ − B) × F₃, and the crank's about O2, with
-    /// (B − O2) × N n = N t (t = (B − O2)·u): T = N t + M_s − M₂, M₂ = (G₂ − O2) × F₂ − I₂α₂;
-    /// R_O2 = N n − F₂.
+    /// (B − O2) × N n = N t (t = (B − O2)·u): T = N t + M_s − M₂,
+    /// M₂ = (G₂ − O2) × F₂ − I₂α₂; R_O2 = N n − F₂.
     pub fn kinetostatics(
         &self,
         m: &SlottedCrankRamHandMotion,
