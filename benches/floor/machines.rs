@@ -195,7 +195,7 @@ mechanism! {
     /// Slotted crank driving a ram: the crank O2–E (θ₂ = 68.7° in the drawing) has a slot
     /// along (1.0, 3.0), 2.8° off its line O2→E and 7.9 mm off O2, in which the block
     /// slides; the block is pinned at B to the ram, which slides on a ground guide tilted by
-    /// −5.7° (`along (1.0, −0.1)`), 89 mm off O2, and is loaded at its tool point P. The
+    /// −5.7° (`along (1.0, -0.1)`), 89 mm off O2, and is loaded at its tool point P. The
     /// block and the ram are a PRP dyad (the slot, the pin B, the guide): the block turns
     /// with the crank, the ram does not, B is where the slot's line meets the guide's. The
     /// crank swings, it cannot turn: the ram runs to infinity where the slot is parallel to
