@@ -29,7 +29,14 @@
 //!   fall–dwell law; a cam group of one link), `roller_cam/<op>`;
 //! - the crank, rod and rolling wheel (`CrankRodWheel` of `benches/floor/machines.rs`: the
 //!   rod drives the centre of a wheel that rolls without slipping on a straight track; a
-//!   rolling group, the crank–rod–wheel dyad), `crank_rod_wheel/<op>`,
+//!   rolling group, the crank–rod–wheel dyad), `crank_rod_wheel/<op>`;
+//! - the Scotch yoke with a block (`BlockScotchYoke` of `benches/floor/machines.rs`: the
+//!   block pinned to the crank slides in the slanted slot of a yoke that slides on the
+//!   ground; an RPP dyad, the closed-form `Rpp` of `mech_core::kernel::dyad`),
+//!   `block_scotch_yoke/<op>`;
+//! - the slotted crank and ram (`SlottedCrankRam` of `benches/floor/machines.rs`: the block
+//!   sliding in the crank's slot is pinned to a ram that slides on a tilted ground guide off
+//!   the crank's pivot; a PRP dyad, the closed-form `Prp`), `slotted_crank_ram/<op>`,
 //!
 //! where `<op>` is each of `pose`, `kinematics`, `kinematics+kinetostatics`,
 //! `kinematics+driver_action`, `reduced`, `acceleration`. Inputs as in `benches/solvers.rs`:
@@ -43,8 +50,11 @@
 //! −4 N·m shaft torque on the gear (q, q̇, q̈ are the pinion's: the crank turns at −1/3 of
 //! them); the roller cam a force (20, −250) N on the follower at its top T and a −1.5 N·m
 //! drag on the cam; the crank, rod and wheel a pull (−150, 20) N on the wheel at its centre
-//! and a −0.8 N·m brake on the wheel; these six a 5 N·m driver (acceleration). All inputs, and the solver
-//! struct itself, go through `black_box` (no constant folding of the drawing).
+//! and a −0.8 N·m brake on the wheel; the Scotch yoke with a block a force (−150, 20) N on
+//! the yoke at its end T and a −0.6 N·m friction couple on the block; the slotted crank
+//! and ram a force (−400, 60) N on the ram at its tool point P and a 1.8 N·m torque on the
+//! block; these eight a 5 N·m driver (acceleration). All inputs, and the solver struct
+//! itself, go through `black_box` (no constant folding of the drawing).
 //!
 //! Run and tabulate:
 //!
@@ -112,8 +122,9 @@ mod runtime;
 use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hand::{
-    CrankRodWheelHand, FourBarHand, GearedSliderCrankHand, InvertedSliderCrankHand,
-    QuickReturnHand, RollerCamHand, ScotchYokeHand, SliderCrankHand,
+    BlockScotchYokeHand, CrankRodWheelHand, FourBarHand, GearedSliderCrankHand,
+    InvertedSliderCrankHand, QuickReturnHand, RollerCamHand, ScotchYokeHand, SliderCrankHand,
+    SlottedCrankRamHand,
 };
 use interleaved::Interleaved;
 use machines::*;
@@ -270,6 +281,41 @@ impl Case<CrankRodWheel, CrankRodWheelHand, CrankRodWheelLoads> {
         let mut loads = CrankRodWheelLoads::default();
         assert!(loads.set_by_name("pull", &[-150.0, 20.0]));
         assert!(loads.set_by_name("brake", &[-0.8]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<BlockScotchYoke, BlockScotchYokeHand, BlockScotchYokeLoads> {
+    /// A (−150, 20) N resisting force on the yoke at its end T, a −0.6 N·m friction couple
+    /// on the block.
+    fn block_scotch_yoke() -> Self {
+        let m = BlockScotchYoke::new();
+        let h = BlockScotchYokeHand::new(m.params());
+        let mut loads = BlockScotchYokeLoads::default();
+        assert!(loads.set_by_name("resist", &[-150.0, 20.0]));
+        assert!(loads.set_by_name("friction", &[-0.6]));
+        Case {
+            m,
+            h,
+            loads,
+            driver: 5.0,
+        }
+    }
+}
+
+impl Case<SlottedCrankRam, SlottedCrankRamHand, SlottedCrankRamLoads> {
+    /// A (−400, 60) N force on the ram at its tool point P, a 1.8 N·m torque on the block.
+    fn slotted_crank_ram() -> Self {
+        let m = SlottedCrankRam::new();
+        let h = SlottedCrankRamHand::new(m.params());
+        let mut loads = SlottedCrankRamLoads::default();
+        assert!(loads.set_by_name("push", &[-400.0, 60.0]));
+        assert!(loads.set_by_name("resist", &[1.8]));
         Case {
             m,
             h,
@@ -529,6 +575,22 @@ six_operations!(
     motion: CrankRodWheelMotion, hand::CrankRodWheelHandMotion,
     forces: CrankRodWheelForces, hand::CrankRodWheelHandForces,
 );
+six_operations!(
+    block_scotch_yoke_ops,
+    "block_scotch_yoke",
+    Case<BlockScotchYoke, BlockScotchYokeHand, BlockScotchYokeLoads>,
+    pose: BlockScotchYokePose, hand::BlockScotchYokeHandPose,
+    motion: BlockScotchYokeMotion, hand::BlockScotchYokeHandMotion,
+    forces: BlockScotchYokeForces, hand::BlockScotchYokeHandForces,
+);
+six_operations!(
+    slotted_crank_ram_ops,
+    "slotted_crank_ram",
+    Case<SlottedCrankRam, SlottedCrankRamHand, SlottedCrankRamLoads>,
+    pose: SlottedCrankRamPose, hand::SlottedCrankRamHandPose,
+    motion: SlottedCrankRamMotion, hand::SlottedCrankRamHandMotion,
+    forces: SlottedCrankRamForces, hand::SlottedCrankRamHandForces,
+);
 
 /// The group `name` with the functions `generated` and `hand`, timed one after the other.
 /// (Each function is passed as its own zero-sized type, so the calls are direct and inline
@@ -615,6 +677,14 @@ fn crank_rod_wheel(c: &mut Criterion) {
     crank_rod_wheel_ops::pairs(c, &Case::crank_rod_wheel());
 }
 
+fn block_scotch_yoke(c: &mut Criterion) {
+    block_scotch_yoke_ops::pairs(c, &Case::block_scotch_yoke());
+}
+
+fn slotted_crank_ram(c: &mut Criterion) {
+    slotted_crank_ram_ops::pairs(c, &Case::slotted_crank_ram());
+}
+
 fn ratios(c: &mut Criterion<Interleaved>) {
     let k = FourBarCase::new();
     ratio(c, "four_bar/pose", &k, pose_gen, pose_hand);
@@ -648,6 +718,8 @@ fn ratios(c: &mut Criterion<Interleaved>) {
     geared_slider_crank_ops::ratios(c, &Case::geared_slider_crank());
     roller_cam_ops::ratios(c, &Case::roller_cam());
     crank_rod_wheel_ops::ratios(c, &Case::crank_rod_wheel());
+    block_scotch_yoke_ops::ratios(c, &Case::block_scotch_yoke());
+    slotted_crank_ram_ops::ratios(c, &Case::slotted_crank_ram());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -841,6 +913,8 @@ criterion_group!(
     geared_slider_crank,
     roller_cam,
     crank_rod_wheel,
+    block_scotch_yoke,
+    slotted_crank_ram,
     batch,
     runtime::pairs
 );

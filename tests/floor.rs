@@ -1,9 +1,11 @@
 //! The hand-written floor (`benches/floor/hand.rs` and the `hand_*.rs` beside it) computes
 //! the same numbers as the generated solvers: every quantity of every operation timed in
 //! `benches/floor.rs` (the four-bar, the slider-crank, the quick-return, the Scotch yoke, and
-//! the inverted slider-crank, the geared slider-crank and the roller cam of
+//! the inverted slider-crank, the geared slider-crank, the roller cam, the crank, rod and
+//! wheel, the Scotch yoke with a block and the slotted crank and ram of
 //! `benches/floor/machines.rs`), on a sweep of 72 input angles over a full turn (three
-//! turns of the geared slider-crank's pinion: one of its crank), to 1e-13 relative (`TOL`:
+//! turns of the geared slider-crank's pinion: one of its crank; the slotted crank and ram,
+//! which cannot turn, over its swing `RAM_SWING`), to 1e-13 relative (`TOL`:
 //! at most 100× the worst error measured over the quantities; the new machines' worst, the
 //! quick-return's α, 1.4e-14), the roller cam to 1e-12 (`CAM_TOL`: its law's argument, an
 //! ulp apart on the two sides, amplified in the middle of the fall).
@@ -19,7 +21,8 @@
 //! central finite differences of positions against velocities and of velocities against
 //! accelerations, of I* against dI*/dq, and the inverse problem (the generated d'Alembert
 //! driver at the hand-written q̈ gives back the applied torque). For the quick-return, the
-//! Scotch yoke, the inverted slider-crank, the geared slider-crank and the roller cam, on
+//! Scotch yoke, the inverted slider-crank, the geared slider-crank, the roller cam, the
+//! crank, rod and wheel, the Scotch yoke with a block and the slotted crank and ram, on
 //! the hand-written side alone: finite
 //! differences of every point, cg and link angle (velocities, accelerations, q̈ entering
 //! linearly), every link's d'Alembert balance with the hand-written reactions, the driver
@@ -65,6 +68,16 @@ fn sweep() -> impl Iterator<Item = f64> {
 /// than once while its crank turns once).
 fn sweep_turns(turns: usize) -> impl Iterator<Item = f64> {
     (0..STEPS * turns).map(|k| 0.7 + TAU * k as f64 / STEPS as f64)
+}
+
+/// The slotted crank and ram's working range (rad): its crank swings, it cannot turn (the
+/// ram runs to infinity where the slot is parallel to the guide, q = −0.15 and 2.99 rad).
+pub(crate) const RAM_SWING: (f64, f64) = (0.45, 2.4);
+
+/// STEPS samples of q from `RAM_SWING.0` to `RAM_SWING.1`, both ends included.
+fn sweep_swing() -> impl Iterator<Item = f64> {
+    let (lo, hi) = RAM_SWING;
+    (0..STEPS).map(move |k| lo + (hi - lo) * k as f64 / (STEPS - 1) as f64)
 }
 
 fn wrap(a: f64) -> f64 {
@@ -581,6 +594,20 @@ fn crank_rod_wheel_loads() -> CrankRodWheelLoads {
     let mut l = CrankRodWheelLoads::default();
     assert!(l.set_by_name("pull", &[-150.0, 20.0]));
     assert!(l.set_by_name("brake", &[-0.8]));
+    l
+}
+
+fn block_scotch_yoke_loads() -> BlockScotchYokeLoads {
+    let mut l = BlockScotchYokeLoads::default();
+    assert!(l.set_by_name("resist", &[-150.0, 20.0]));
+    assert!(l.set_by_name("friction", &[-0.6]));
+    l
+}
+
+fn slotted_crank_ram_loads() -> SlottedCrankRamLoads {
+    let mut l = SlottedCrankRamLoads::default();
+    assert!(l.set_by_name("push", &[-400.0, 60.0]));
+    assert!(l.set_by_name("resist", &[1.8]));
     l
 }
 
@@ -1174,6 +1201,176 @@ fn crank_rod_wheel_hand_matches_generated() {
     ]));
 }
 
+/// The Scotch yoke with a block over a turn: every quantity as the other machines, the
+/// slot's and the guide's moments besides.
+#[test]
+fn block_scotch_yoke_hand_matches_generated() {
+    let m = BlockScotchYoke::new();
+    let h = BlockScotchYokeHand::new(m.params());
+    let loads = block_scotch_yoke_loads();
+    let none = BlockScotchYokeLoads::default();
+    let mut r = Report::default();
+    for q in sweep() {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[
+                (gl.crank, hp.crank),
+                (gl.block, hp.block),
+                (gl.yoke, hp.yoke),
+            ],
+            &[
+                (gpt.O2.pos, hp.o2),
+                (gpt.A.pos, hp.a),
+                (gpt.Y.pos, hp.y),
+                (gpt.T.pos, hp.t),
+            ],
+            &[(l.crank, hm.crank), (l.block, hm.block), (l.yoke, hm.yoke)],
+            &[(pt.O2, hm.o2), (pt.A, hm.a), (pt.Y, hm.y), (pt.T, hm.t)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O2.force, hf.o2),
+                (j.A.force, hf.a),
+                (j.slot.force, hf.slot),
+                (j.guide.force, hf.guide),
+            ],
+        );
+        r.scalar(
+            "kinetostatics: slot moment",
+            q,
+            j.slot.moment,
+            hf.slot_moment,
+        );
+        r.scalar(
+            "kinetostatics: guide moment",
+            q,
+            j.guide.moment,
+            hf.guide_moment,
+        );
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    r.check(&six_expected(&[
+        "kinetostatics: slot moment",
+        "kinetostatics: guide moment",
+    ]));
+}
+
+/// The slotted crank and ram over its working swing (`RAM_SWING`: it cannot turn): every
+/// quantity as the other machines, the slot's and the guide's moments besides.
+#[test]
+fn slotted_crank_ram_hand_matches_generated() {
+    let m = SlottedCrankRam::new();
+    let h = SlottedCrankRamHand::new(m.params());
+    let loads = slotted_crank_ram_loads();
+    let none = SlottedCrankRamLoads::default();
+    let mut r = Report::default();
+    for q in sweep_swing() {
+        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
+        let (gm, hm) = (
+            m.kinematics(q, QD, QDD).unwrap(),
+            h.kinematics(q, QD, QDD).unwrap(),
+        );
+        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+        record_motion(
+            &mut r,
+            q,
+            &[(gl.crank, hp.crank), (gl.block, hp.block), (gl.ram, hp.ram)],
+            &[
+                (gpt.O2.pos, hp.o2),
+                (gpt.E.pos, hp.e),
+                (gpt.B.pos, hp.b),
+                (gpt.P.pos, hp.p),
+            ],
+            &[(l.crank, hm.crank), (l.block, hm.block), (l.ram, hm.ram)],
+            &[(pt.O2, hm.o2), (pt.E, hm.e), (pt.B, hm.b), (pt.P, hm.p)],
+        );
+        let gf = m.kinetostatics(&gm, &loads).unwrap();
+        let hf = h.kinetostatics(&hm, &loads);
+        let j = &gf.joints;
+        r.vecs(
+            "kinetostatics: joint force",
+            q,
+            &[
+                (j.O2.force, hf.o2),
+                (j.slot.force, hf.slot),
+                (j.B.force, hf.b),
+                (j.guide.force, hf.guide),
+            ],
+        );
+        r.scalar(
+            "kinetostatics: slot moment",
+            q,
+            j.slot.moment,
+            hf.slot_moment,
+        );
+        r.scalar(
+            "kinetostatics: guide moment",
+            q,
+            j.guide.moment,
+            hf.guide_moment,
+        );
+        record_drivers(
+            &mut r,
+            q,
+            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+            (hf.driver, h.driver_action(&hm, &loads)),
+        );
+        record_reduced(
+            &mut r,
+            q,
+            (
+                m.reduced(q).unwrap(),
+                m.reduced_moment(q, &loads).unwrap(),
+                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                m.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+            (
+                h.reduced(q).unwrap(),
+                h.reduced_moment(q, &loads).unwrap(),
+                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
+                h.acceleration(q, QD, 0.0, &none).unwrap(),
+            ),
+        );
+    }
+    r.check(&six_expected(&[
+        "kinetostatics: slot moment",
+        "kinetostatics: guide moment",
+    ]));
+}
+
 /// (name, value, its rate, its second rate): a point's position, velocity and acceleration,
 /// or a link's angle, ω and α.
 type Track<T> = (&'static str, T, T, T);
@@ -1206,8 +1403,18 @@ fn check_by_finite_differences(
     turns: usize,
     motion: impl Fn(f64, f64, f64) -> Tracked,
 ) {
+    check_by_finite_differences_over(machine, sweep_turns(turns), motion)
+}
+
+/// [`check_by_finite_differences`] at the angles `qs` (a machine that cannot turn: its
+/// working range).
+fn check_by_finite_differences_over(
+    machine: &str,
+    qs: impl Iterator<Item = f64>,
+    motion: impl Fn(f64, f64, f64) -> Tracked,
+) {
     let h = 1e-5;
-    for q in sweep_turns(turns) {
+    for q in qs {
         let (k, lin) = (motion(q, 1.0, 0.0), motion(q, 0.0, 1.0));
         let (plus, minus) = (motion(q + h, 1.0, 0.0), motion(q - h, 1.0, 0.0));
         for (i, &(name, _, v, a)) in k.points.iter().enumerate() {
@@ -1271,7 +1478,12 @@ struct Dynamics {
 const FD_STEP: f64 = 1e-5;
 
 fn check_dynamics(machine: &str, turns: usize, at: impl Fn(f64) -> Dynamics) {
-    for q in sweep_turns(turns) {
+    check_dynamics_over(machine, sweep_turns(turns), at)
+}
+
+/// [`check_dynamics`] at the angles `qs` (a machine that cannot turn: its working range).
+fn check_dynamics_over(machine: &str, qs: impl Iterator<Item = f64>, at: impl Fn(f64) -> Dynamics) {
+    for q in qs {
         let d = at(q);
         let r = d.reduced;
         let zhukovski = r.inertia * QDD + 0.5 * r.inertia_derivative * QD * QD - d.reduced_moment;
@@ -1898,10 +2110,218 @@ fn crank_rod_wheel_hand_independent_checks() {
     });
 }
 
+/// The hand-written Scotch yoke with a block against itself: the block keeps the yoke's
+/// orientation and the yoke the ground's, A on the slot's line through A₀ carried by the
+/// yoke, Y on the guide, finite differences, every link's balance (the slot's and the
+/// guide's forces normal to their axes), the driver by three routes, dI*/dq, M* and the
+/// inverse problem.
+#[test]
+fn block_scotch_yoke_hand_independent_checks() {
+    let m = BlockScotchYoke::new();
+    let p = m.params().clone();
+    let h = BlockScotchYokeHand::new(&p);
+    check_by_finite_differences("block Scotch yoke", 1, |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("A", &k.a);
+        t.point("Y", &k.y);
+        t.point("T", &k.t);
+        t.link("crank", &k.crank);
+        t.link("block", &k.block);
+        t.link("yoke", &k.yoke);
+        t
+    });
+    let loads = block_scotch_yoke_loads();
+    let (l, g) = (&p.links, p.gravity);
+    let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
+    let (us, ug) = (p.axes.slot.normalize(), p.axes.guide.normalize());
+    let (a0, y0, t0) = (p.points.A, p.points.Y, p.points.T);
+    let theta4 = (t0.y - y0.y).atan2(t0.x - y0.x);
+    for q in sweep() {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let f = h.kinetostatics(&k, &loads);
+        let (o2, a, y, t) = (k.o2.pos, k.a.pos, k.y.pos, k.t.pos);
+        // The yoke translates along the guide, the block with A, neither turns.
+        let shift = y - y0;
+        assert!(cross(shift, ug).abs() < 1e-15, "Y off the guide at {q}");
+        assert!((t - t0 - shift).norm() < 1e-15, "the yoke turns at {q}");
+        assert!(
+            (k.block.cg - a - (p.links.block.cg - a0)).norm() < 1e-15,
+            "the block turns at {q}"
+        );
+        assert!(
+            cross(a - a0 - shift, us).abs() < 1e-15,
+            "A off the slot at {q}"
+        );
+        assert_eq!((k.block.angle, k.yoke.angle), (0.0, theta4));
+        assert!(f.slot.dot(&us).abs() <= 1e-12 * f.slot.norm().max(1.0));
+        assert!(f.guide.dot(&ug).abs() <= 1e-12 * f.guide.norm().max(1.0));
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "block Scotch yoke crank",
+            q,
+            body(&l.crank),
+            &k.crank,
+            &[(o2, f.o2), (a, -f.a)],
+            &[f.driver],
+        );
+        check_balance(
+            "block Scotch yoke block",
+            q,
+            body(&l.block),
+            &k.block,
+            &[(a, f.a), (a, f.slot)],
+            &[f.slot_moment, loads.friction],
+        );
+        check_balance(
+            "block Scotch yoke yoke",
+            q,
+            body(&l.yoke),
+            &k.yoke,
+            &[(y, f.guide), (a, -f.slot), (t, loads.resist)],
+            &[f.guide_moment, -f.slot_moment],
+        );
+    }
+    check_dynamics("block Scotch yoke", 1, |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        let block_turn =
+            wrap(pose(q + FD_STEP).block.angle - pose(q - FD_STEP).block.angle) / (2.0 * FD_STEP);
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
+                + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
+                + l.yoke.mass * g.dot(&d_dq(|q| pose(q).yoke.cg, q))
+                + loads.resist.dot(&d_dq(|q| pose(q).t, q))
+                + loads.friction * block_turn,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
+/// The hand-written slotted crank and ram against itself over its swing: the block turns
+/// with the crank and the ram not, B on the crank's slot (the line through B₀ along the
+/// slot's axis, both carried by the crank about O2) and on the ground's guide, finite
+/// differences, every link's balance (the slot's and the guide's forces normal to their
+/// axes), the driver by three routes, dI*/dq, M* and the inverse problem.
+#[test]
+fn slotted_crank_ram_hand_independent_checks() {
+    let m = SlottedCrankRam::new();
+    let p = m.params().clone();
+    let h = SlottedCrankRamHand::new(&p);
+    check_by_finite_differences_over("slotted crank and ram", sweep_swing(), |q, qd, qdd| {
+        let k = h.kinematics(q, qd, qdd).unwrap();
+        let mut t = Tracked::default();
+        t.point("E", &k.e);
+        t.point("B", &k.b);
+        t.point("P", &k.p);
+        t.link("crank", &k.crank);
+        t.link("block", &k.block);
+        t.link("ram", &k.ram);
+        t
+    });
+    let loads = slotted_crank_ram_loads();
+    let (l, g) = (&p.links, p.gravity);
+    let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
+    let (o20, e0, b0, p0) = (p.points.O2, p.points.E, p.points.B, p.points.P);
+    let ug = p.axes.guide.normalize();
+    let theta2 = (e0.y - o20.y).atan2(e0.x - o20.x);
+    let turn = |phi: f64, v: Vector2<f64>| {
+        let (sn, cs) = phi.sin_cos();
+        Vector2::new(cs * v.x - sn * v.y, sn * v.x + cs * v.y)
+    };
+    for q in sweep_swing() {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let f = h.kinetostatics(&k, &loads);
+        let (o2, b, pp) = (k.o2.pos, k.b.pos, k.p.pos);
+        // The crank turned by φ = q − θ₂(drawing) carries the slot's line and the block.
+        let phi = q - theta2;
+        let us = turn(phi, p.axes.slot.normalize());
+        let on_slot = o2 + turn(phi, b0 - o20);
+        assert!(
+            (k.e.pos - o2 - turn(phi, e0 - o20)).norm() < 1e-15,
+            "E at {q}"
+        );
+        assert!(
+            cross(b - on_slot, us).abs() < 1e-15,
+            "B off the slot at {q}"
+        );
+        assert!(cross(b - b0, ug).abs() < 1e-15, "B off the guide at {q}");
+        assert!(
+            (k.block.cg - b - turn(phi, l.block.cg - b0)).norm() < 1e-15,
+            "the block does not turn with the crank at {q}"
+        );
+        assert!((pp - b - (p0 - b0)).norm() < 1e-15, "the ram turns at {q}");
+        assert!(wrap(k.block.angle - phi).abs() < 1e-15);
+        assert!(f.slot.dot(&us).abs() <= 1e-12 * f.slot.norm().max(1.0));
+        assert!(f.guide.dot(&ug).abs() <= 1e-12 * f.guide.norm().max(1.0));
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
+        check_balance(
+            "slotted crank and ram crank",
+            q,
+            body(&l.crank),
+            &k.crank,
+            &[(o2, f.o2), (b, -f.slot)],
+            &[f.driver, -f.slot_moment],
+        );
+        check_balance(
+            "slotted crank and ram block",
+            q,
+            body(&l.block),
+            &k.block,
+            &[(b, f.slot), (b, -f.b)],
+            &[f.slot_moment, loads.resist],
+        );
+        check_balance(
+            "slotted crank and ram ram",
+            q,
+            body(&l.ram),
+            &k.ram,
+            &[(b, f.b), (b, f.guide), (pp, loads.push)],
+            &[f.guide_moment],
+        );
+    }
+    check_dynamics_over("slotted crank and ram", sweep_swing(), |q| {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let pose = |q| h.pose(q).unwrap();
+        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
+        let block_turn =
+            wrap(pose(q + FD_STEP).block.angle - pose(q - FD_STEP).block.angle) / (2.0 * FD_STEP);
+        Dynamics {
+            dalembert: h.kinetostatics(&k, &loads).driver,
+            virtual_power: h.driver_action(&k, &loads),
+            reduced: h.reduced(q).unwrap(),
+            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
+            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
+            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
+            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
+                + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
+                + l.ram.mass * g.dot(&d_dq(|q| pose(q).ram.cg, q))
+                + loads.push.dot(&d_dq(|q| pose(q).p, q))
+                + loads.resist * block_turn,
+            inverse: h
+                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
+                .driver,
+        }
+    });
+}
+
 /// The kinds of group the floor's machines exercise, as the macro's plan solves them
 /// (`mech_core::plan::assur`, the decomposition the generated code is emitted from): what
 /// each bench group measures. The Scotch yoke's yoke (a guide and a pin in a slot) is a
-/// `SlottedSlider`: one closed-form slide, its rates and reactions in that coordinate.
+/// `SlottedSlider`: one closed-form slide, its rates and reactions in that coordinate. The
+/// Scotch yoke with a block is an `Rpp` dyad (the block pinned to the crank, sliding in the
+/// yoke, the yoke on the ground), the slotted crank and ram a `Prp` (the block sliding on
+/// the crank, pinned to the ram, the ram on the ground): neither a `SlottedSlider` nor
+/// Newton.
 #[test]
 fn floor_machines_group_kinds() {
     use mech_core::plan::assur::plan;
@@ -1925,6 +2345,8 @@ fn floor_machines_group_kinds() {
         (REFERENCE, "QuickReturn", ["DrivenRevolute", "Rpr"]),
         (REFERENCE, "ScotchYoke", ["DrivenRevolute", "SlottedSlider"]),
         (FLOOR, "InvertedSliderCrank", ["DrivenRevolute", "Rpr"]),
+        (FLOOR, "BlockScotchYoke", ["DrivenRevolute", "Rpp"]),
+        (FLOOR, "SlottedCrankRam", ["DrivenRevolute", "Prp"]),
     ] {
         assert_eq!(kinds(source, name), expected, "{name}");
     }

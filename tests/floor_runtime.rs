@@ -3,7 +3,8 @@
 //! times the two): every quantity of every operation the floor times — pose, kinematics,
 //! kinetostatics (every reaction and the driver), the driver by virtual power, Zhukovski's
 //! I*, dI*/dq and M*, the direct problem's q̈ — with the floor's loads, on a sweep of 72
-//! crank angles over a full turn, through the run-time caller-buffer forms
+//! crank angles over a full turn (the slotted crank and ram, which cannot turn, over its
+//! swing `floor::RAM_SWING`), through the run-time caller-buffer forms
 //! (`pose_into`, `kinematics_into`, `kinetostatics_into`, `Machine::driver_actions`).
 //!
 //! Relative to the largest entry of the same kind at that q (angles absolute, rad; the
@@ -99,9 +100,19 @@ impl Report {
 }
 
 /// One machine: the generated `$ty` with `$loads` set by name, the run-time mechanism of
-/// the same name from `$source` with the same loads, compared over the sweep.
+/// the same name from `$source` with the same loads, compared over the sweep: a full turn
+/// from 0.7, or the angles `$q(k)`, k < STEPS (a machine that cannot turn).
 macro_rules! floor_runtime {
     ($test:ident, $source:expr, $ty:ident, $loads_ty:ident, [$(($ln:literal, $lv:expr)),*]) => {
+        floor_runtime!(
+            $test, $source, $ty, $loads_ty, [$(($ln, $lv)),*],
+            |k: usize| 0.7 + TAU * k as f64 / STEPS as f64
+        );
+    };
+    (
+        $test:ident, $source:expr, $ty:ident, $loads_ty:ident, [$(($ln:literal, $lv:expr)),*],
+        $q:expr
+    ) => {
         #[test]
         fn $test() {
             let gen = $ty::new();
@@ -120,8 +131,9 @@ macro_rules! floor_runtime {
             let mut motion = rt.kinematics(&[0.7], &[QD], &[QDD]).unwrap();
             let mut forces = rt.kinetostatics(&motion, &rl).unwrap();
             let mut r = Report::default();
+            let q_of = $q;
             for k in 0..STEPS {
-                let q = 0.7 + TAU * k as f64 / STEPS as f64;
+                let q: f64 = q_of(k);
                 let gp = gen.pose(q).unwrap();
                 rt.pose_into(&[q], &mut pose).unwrap();
                 let angles: Vec<_> = links
@@ -181,7 +193,10 @@ macro_rules! floor_runtime {
                     jf.push((rf, gff));
                     assert_eq!(rm.is_some(), gm_.is_some(), "{n}");
                     if let (Some(a), Some(b)) = (rm, gm_) {
-                        r.record("kinetostatics: prismatic moment", q, true, &[(a, b)], false);
+                        // One quantity per prismatic joint (the dyads of two sliders
+                        // have two).
+                        let name = format!("kinetostatics: prismatic moment ({n})");
+                        r.record(&name, q, true, &[(a, b)], false);
                     }
                 }
                 r.vecs("kinetostatics: joint force", q, &jf);
@@ -266,4 +281,22 @@ floor_runtime!(
     CrankRodWheel,
     CrankRodWheelLoads,
     [("pull", [-150.0, 20.0]), ("brake", [-0.8])]
+);
+floor_runtime!(
+    block_scotch_yoke,
+    FLOOR,
+    BlockScotchYoke,
+    BlockScotchYokeLoads,
+    [("resist", [-150.0, 20.0]), ("friction", [-0.6])]
+);
+floor_runtime!(
+    slotted_crank_ram,
+    FLOOR,
+    SlottedCrankRam,
+    SlottedCrankRamLoads,
+    [("push", [-400.0, 60.0]), ("resist", [1.8])],
+    |k: usize| {
+        let (lo, hi) = crate::floor::RAM_SWING;
+        lo + (hi - lo) * k as f64 / (STEPS - 1) as f64
+    }
 );

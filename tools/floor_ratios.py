@@ -48,6 +48,8 @@ GROUPS = [
         "geared_slider_crank",
         "roller_cam",
         "crank_rod_wheel",
+        "block_scotch_yoke",
+        "slotted_crank_ram",
     )
     for op in OPERATIONS
 ]

@@ -1,14 +1,17 @@
 //! Hand-written closed-form solvers of the crank-rocker `FourBar`, the offset
 //! `SliderCrank`, the crank-shaper `QuickReturn` and the `ScotchYoke` of
-//! `tests/common/mechanisms.rs` and of the `InvertedSliderCrank`, the `GearedSliderCrank`
-//! and the `RollerCam` of `benches/floor/machines.rs`: the code an engineer who knows these
-//! machines writes in an afternoon, used as the *floor* that the generated solvers are
-//! timed against (`benches/floor.rs`) and checked against (`tests/floor.rs`). The last five
-//! are in modules of their own (`hand_quick_return.rs`, `hand_scotch_yoke.rs`,
+//! `tests/common/mechanisms.rs` and of the `InvertedSliderCrank`, the `GearedSliderCrank`,
+//! the `RollerCam`, the `CrankRodWheel`, the `BlockScotchYoke` and the `SlottedCrankRam` of
+//! `benches/floor/machines.rs`: the code an engineer who knows these machines writes in an
+//! afternoon, used as the *floor* that the generated solvers are timed against
+//! (`benches/floor.rs`) and checked against (`tests/floor.rs`). All but the first two are
+//! in modules of their own (`hand_quick_return.rs`, `hand_scotch_yoke.rs`,
 //! `hand_inverted_slider_crank.rs`, `hand_geared_slider_crank.rs`, `hand_roller_cam.rs`,
+//! `hand_crank_rod_wheel.rs`, `hand_block_scotch_yoke.rs`, `hand_slotted_crank_ram.rs`,
 //! beside this file), re-exported here. (The gear pair's radii and pressure angle and the
-//! cam's law, base circle and roller are not generated parameters: the last two modules
-//! hold them as constants, which `tests/floor.rs` checks against the loaded model.)
+//! cam's law, base circle and roller are not generated parameters: the geared
+//! slider-crank's and the roller cam's modules hold them as constants, which
+//! `tests/floor.rs` checks against the loaded model.)
 //!
 //! Conventions are those of `docs/conventions.md`: x right, y up, angles CCW; a link's
 //! angle is the direction of its first listed point → second listed point (a link with one
@@ -33,8 +36,10 @@
 #![allow(dead_code)]
 
 use super::machines::{
-    CrankRodWheelLoads, CrankRodWheelParams, GearedSliderCrankLoads, GearedSliderCrankParams,
-    InvertedSliderCrankLoads, InvertedSliderCrankParams, RollerCamLoads, RollerCamParams,
+    BlockScotchYokeLoads, BlockScotchYokeParams, CrankRodWheelLoads, CrankRodWheelParams,
+    GearedSliderCrankLoads, GearedSliderCrankParams, InvertedSliderCrankLoads,
+    InvertedSliderCrankParams, RollerCamLoads, RollerCamParams, SlottedCrankRamLoads,
+    SlottedCrankRamParams,
 };
 use crate::mechanisms::{
     FourBarLoads, FourBarParams, QuickReturnLoads, QuickReturnParams, ScotchYokeLoads,
@@ -42,6 +47,8 @@ use crate::mechanisms::{
 };
 use mech::prelude::Vector2;
 
+#[path = "hand_block_scotch_yoke.rs"]
+mod block_scotch_yoke;
 #[path = "hand_crank_rod_wheel.rs"]
 mod crank_rod_wheel;
 #[path = "hand_geared_slider_crank.rs"]
@@ -54,13 +61,17 @@ mod quick_return;
 mod roller_cam;
 #[path = "hand_scotch_yoke.rs"]
 mod scotch_yoke;
+#[path = "hand_slotted_crank_ram.rs"]
+mod slotted_crank_ram;
 
+pub use block_scotch_yoke::*;
 pub use crank_rod_wheel::*;
 pub use geared_slider_crank::*;
 pub use inverted_slider_crank::*;
 pub use quick_return::*;
 pub use roller_cam::*;
 pub use scotch_yoke::*;
+pub use slotted_crank_ram::*;
 
 /// A plane vector (m, m/s, m/s², N).
 pub type V2 = Vector2<f64>;

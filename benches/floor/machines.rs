@@ -153,3 +153,78 @@ mechanism! {
         },
     }
 }
+
+mechanism! {
+    /// Scotch yoke with an explicit block: the crank O2–A (50 mm at 35°) carries the block
+    /// pinned at A, which slides in the yoke's slot (slanted 5.7° off the vertical,
+    /// `along (0.1, 1.0)`); the yoke slides on a horizontal ground guide at Y, 12 mm above
+    /// O2, and is loaded at its end T. The block and the yoke are an RPP dyad (the pin A,
+    /// the slot, the guide): neither turns, the yoke's place is where the slot's line
+    /// through A meets the guide's. The block's cg is off A and it carries a friction couple
+    /// of the slot (the torque load), which only the slot's and the guide's moments take.
+    pub struct BlockScotchYoke {
+        gravity: (0.0, -9.81),
+        ground { O2: (0.0, 0.0) },
+        link crank {
+            points { O2, A: (0.041, 0.029) },
+            mass: 0.7, inertia: 0.00031, cg: (0.012, 0.016),
+        },
+        link block {
+            points { A },
+            mass: 0.2, inertia: 0.00002, cg: (0.044, 0.027),
+        },
+        link yoke {
+            points { Y: (0.16, 0.012), T: (0.26, 0.02) },
+            mass: 1.7, inertia: 0.0075, cg: (0.12, 0.018),
+        },
+        joints {
+            O2: revolute(ground, crank),
+            A: revolute(crank, block),
+            slot: prismatic(yoke, block) at A along (0.1, 1.0),
+            guide: prismatic(ground, yoke) at Y along (1.0, 0.0),
+        },
+        input: O2,
+        loads {
+            resist: force on yoke at T,
+            friction: torque on block,
+        },
+    }
+}
+
+mechanism! {
+    /// Slotted crank driving a ram: the crank O2–E (θ₂ = 68.7° in the drawing) has a slot
+    /// along (1.0, 3.0), 2.8° off its line O2→E and 7.9 mm off O2, in which the block
+    /// slides; the block is pinned at B to the ram, which slides on a ground guide tilted by
+    /// −5.7° (`along (1.0, -0.1)`), 89 mm off O2, and is loaded at its tool point P. The
+    /// block and the ram are a PRP dyad (the slot, the pin B, the guide): the block turns
+    /// with the crank, the ram does not, B is where the slot's line meets the guide's. The
+    /// crank swings, it cannot turn: the ram runs to infinity where the slot is parallel to
+    /// the guide (q = −0.15 and 2.99 rad); q = 0.45…2.4 rad is a working stroke of 0.26 m.
+    pub struct SlottedCrankRam {
+        gravity: (0.0, -9.81),
+        ground { O2: (0.0, 0.0) },
+        link crank {
+            points { O2, E: (0.058, 0.149) },
+            mass: 1.1, inertia: 0.0035, cg: (0.03, 0.06),
+        },
+        link block {
+            points { B: (0.037, 0.086) },
+            mass: 0.3, inertia: 0.00006, cg: (0.039, 0.0885),
+        },
+        link ram {
+            points { B, P: (0.21, 0.095) },
+            mass: 2.2, inertia: 0.018, cg: (0.13, 0.085),
+        },
+        joints {
+            O2: revolute(ground, crank),
+            slot: prismatic(crank, block) at B along (1.0, 3.0),
+            B: revolute(block, ram),
+            guide: prismatic(ground, ram) at B along (1.0, -0.1),
+        },
+        input: O2,
+        loads {
+            push: force on ram at P,
+            resist: torque on block,
+        },
+    }
+}

@@ -290,6 +290,22 @@ runtime_machine!(
     "CrankRodWheel",
     loads: &[("pull", &[-150.0, 20.0]), ("brake", &[-0.8])]
 );
+runtime_machine!(
+    block_scotch_yoke,
+    "block_scotch_yoke",
+    Case::block_scotch_yoke(),
+    FLOOR,
+    "BlockScotchYoke",
+    loads: &[("resist", &[-150.0, 20.0]), ("friction", &[-0.6])]
+);
+runtime_machine!(
+    slotted_crank_ram,
+    "slotted_crank_ram",
+    Case::slotted_crank_ram(),
+    FLOOR,
+    "SlottedCrankRam",
+    loads: &[("push", &[-400.0, 60.0]), ("resist", &[1.8])]
+);
 
 /// The groups `runtime/<machine>/<op>`.
 pub fn pairs(c: &mut Criterion) {
@@ -301,6 +317,8 @@ pub fn pairs(c: &mut Criterion) {
     geared_slider_crank::pairs(c);
     roller_cam::pairs(c);
     crank_rod_wheel::pairs(c);
+    block_scotch_yoke::pairs(c);
+    slotted_crank_ram::pairs(c);
 }
 
 /// The entries `runtime_ratio/<machine>/<op>`.
@@ -313,4 +331,6 @@ pub fn ratios(c: &mut Criterion<Interleaved>) {
     geared_slider_crank::ratios(c);
     roller_cam::ratios(c);
     crank_rod_wheel::ratios(c);
+    block_scotch_yoke::ratios(c);
+    slotted_crank_ram::ratios(c);
 }
