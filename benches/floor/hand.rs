@@ -13,6 +13,14 @@
 //! slider-crank's and the roller cam's modules hold them as constants, which
 //! `tests/floor.rs` checks against the loaded model.)
 //!
+//! Every operation (`pose`, `kinematics`, `kinetostatics`, `driver_action`, `reduced`,
+//! `reduced_moment`, `acceleration`) is `#[inline(never)]`: the bench compares one call
+//! with one call, as a user calls either, whatever the compiler decides. Left to it,
+//! whether a hand-written operation is inlined into the bench's loop turns on how the
+//! crate happens to be split into codegen units, which moves with any unrelated edit of
+//! the bench (a machine added elsewhere moved the Scotch yoke's hand-written `pose` into
+//! the loop and its ratio by a third), while the generated operations stay calls.
+//!
 //! Conventions are those of `docs/conventions.md`: x right, y up, angles CCW; a link's
 //! angle is the direction of its first listed point → second listed point (a link with one
 //! point: its rotation since the drawing); the reaction at a joint declared `(a, b)` is the
@@ -311,6 +319,7 @@ impl FourBarHand {
 
     /// Position analysis: θ₂ = q, θ₃ = atan2(B − A), θ₄ = atan2(B − O4), the three cgs
     /// and the points O2, O4, A, B, P (P and the cgs from their scaled local offsets).
+    #[inline(never)]
     pub fn pose(&self, q: f64) -> Option<FourBarHandPose> {
         let (a2, a, b) = self.close(q)?;
         let a3 = b - a;
@@ -346,6 +355,7 @@ impl FourBarHand {
     /// c = ω₂² a₂ + ω₃² a₃ − ω₄² a₄ − α₂ perp(a₂), so α₃ = (c·a₄)/Δ, α₄ = (c·a₃)/Δ.
     /// A point at r from a point Q of link k moves with v = v_Q + ω_k perp(r),
     /// a = a_Q + α_k perp(r) − ω_k² r.
+    #[inline(never)]
     pub fn kinematics(&self, q: f64, qd: f64, qdd: f64) -> Option<FourBarHandMotion> {
         let (a2, a, b) = self.close(q)?;
         let a3 = b - a;
@@ -437,6 +447,7 @@ impl FourBarHand {
     /// R_B = ((M₃ a₄ₓ + M₄ a₃ₓ)/Δ, (M₃ a₄ᵧ + M₄ a₃ᵧ)/Δ).
     /// Then the force balances R_A = R_B − W₃, R_O4 = −R_B − W₄, R_O2 = R_A − W₂, and the
     /// crank's moments about O2: T = a₂ × R_A − M₂.
+    #[inline(never)]
     pub fn kinetostatics(&self, m: &FourBarHandMotion, loads: &FourBarLoads) -> FourBarHandForces {
         let a2 = m.a.pos - self.o2;
         let a3 = m.b.pos - m.a.pos;
@@ -470,6 +481,7 @@ impl FourBarHand {
     /// T ω₂ + Σ_k [(m_k g − m_k a_Gk)·v_Gk − I_k α_k ω_k] + F_P·v_P + T₄ ω₄ = 0,
     /// so T = −(…)/ω₂. Needs q̇ = ω₂ ≠ 0 (the motion's velocities are used as the
     /// virtual ones).
+    #[inline(never)]
     pub fn driver_action(&self, m: &FourBarHandMotion, loads: &FourBarLoads) -> f64 {
         let p2 = (self.w2 - m.crank.cg_acc * self.m2).dot(&m.crank.cg_vel)
             - self.i2 * m.crank.alpha * m.crank.omega;
@@ -495,6 +507,7 @@ impl FourBarHand {
     /// c = a₂ + k₃² a₃ − k₄² a₄. The coupler's cg, at r₃ from A: g_G3 = perp(a₂) + k₃ perp(r₃),
     /// g'_G3 = −a₂ + k₃' perp(r₃) − k₃² r₃. The crank and the rocker turn about fixed pins:
     /// I* = I_O2 + m₃|g_G3|² + I₃k₃² + I_O4 k₄², dI*/dq = 2 (m₃ g_G3·g'_G3 + I₃k₃k₃' + I_O4 k₄k₄').
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         let k = self.coefficients(q)?;
         Some(self.inertia_of(&k))
@@ -502,6 +515,7 @@ impl FourBarHand {
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*, with
     /// M* = w₂·perp(r₂) + w₃·g_G3 + w₄·k₄ perp(r₄) + F_tool·g_P + T_resist k₄.
+    #[inline(never)]
     pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &FourBarLoads) -> Option<f64> {
         let k = self.coefficients(q)?;
         let r = self.inertia_of(&k);
@@ -731,16 +745,19 @@ impl SliderCrankHand {
     }
 
     /// Zhukovski's I*(q) and dI*/dq; `None` when the rod cannot reach the guide.
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         Some(self.inertia_of(&self.coefficients(q)?))
     }
 
     /// Zhukovski's reduced moment M*(q) of the loads and gravity (N·m).
+    #[inline(never)]
     pub fn reduced_moment(&self, q: f64, loads: &SliderCrankLoads) -> Option<f64> {
         Some(self.moment_of(&self.coefficients(q)?, loads))
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
+    #[inline(never)]
     pub fn acceleration(
         &self,
         q: f64,

@@ -158,6 +158,7 @@ impl BlockScotchYokeHand {
     /// Position analysis: θ₂ = q, the yoke's travel x = k·a₂, the cgs, A, Y, T.
     /// (`Option` as the other machines; the dyad always assembles, the slot not being
     /// parallel to the guide.)
+    #[inline(never)]
     pub fn pose(&self, q: f64) -> Option<BlockScotchYokeHandPose> {
         let a2 = self.crank(q);
         let a = self.o2 + a2;
@@ -183,6 +184,7 @@ impl BlockScotchYokeHand {
     }
 
     /// Position, velocity and acceleration analysis at (q, q̇, q̈) (see the type's docs).
+    #[inline(never)]
     pub fn kinematics(&self, q: f64, qd: f64, qdd: f64) -> Option<BlockScotchYokeHandMotion> {
         let a2 = self.crank(q);
         let a = self.o2 + a2;
@@ -242,6 +244,7 @@ impl BlockScotchYokeHand {
     /// and its moments about A (it does not turn) M_s = −T_friction − (G₃ − A) × F₃. The
     /// yoke's about Y: M_g = M_s + (A − Y) × S − (G₄ − Y) × F₄ − (T − Y) × F_resist. The
     /// crank: R_O2 = R_A − F₂ and T = a₂ × R_A − M₂, M₂ = (G₂ − O2) × F₂ − I₂α₂.
+    #[inline(never)]
     pub fn kinetostatics(
         &self,
         m: &BlockScotchYokeHandMotion,
@@ -272,6 +275,7 @@ impl BlockScotchYokeHand {
     /// T ω₂ + F₂·v_G2 − I₂α₂ω₂ + F₃·v_A + (F₄ + F_resist)·v_Y = 0 (q̇ ≠ 0; the block's
     /// points all move at v_A, the yoke's at v_Y, and the friction couple on the block,
     /// which does not turn, does no work).
+    #[inline(never)]
     pub fn driver_action(
         &self,
         m: &BlockScotchYokeHandMotion,
@@ -286,6 +290,7 @@ impl BlockScotchYokeHand {
 
     /// Zhukovski's I* = I_O2 + m₃r₂² + m₄x'², dI*/dq = 2 m₄ x' x'', with x' = k·perp(a₂),
     /// x'' = −k·a₂.
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         let a2 = self.crank(q);
         let xd = self.k.dot(&perp(a2));
@@ -305,12 +310,14 @@ impl BlockScotchYokeHand {
     }
 
     /// Zhukovski's reduced moment M*(q) of the loads and gravity (N·m).
+    #[inline(never)]
     pub fn reduced_moment(&self, q: f64, loads: &BlockScotchYokeLoads) -> Option<f64> {
         let a2 = self.crank(q);
         Some(self.moment_of(a2, self.k.dot(&perp(a2)), loads))
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
+    #[inline(never)]
     pub fn acceleration(
         &self,
         q: f64,

@@ -193,6 +193,7 @@ impl CrankRodWheelHand {
     }
 
     /// Position analysis: θ₂ = q, θ₃ = atan2(d), φ₄ = −s/r, the cgs, A and C.
+    #[inline(never)]
     pub fn pose(&self, q: f64) -> Option<CrankRodWheelHandPose> {
         let c = self.pose_of(q)?;
         let a2 = self.global(V2::new(c.xa, c.ya));
@@ -219,6 +220,7 @@ impl CrankRodWheelHand {
     }
 
     /// Position, velocity and acceleration analysis at (q, q̇, q̈) (see the type's docs).
+    #[inline(never)]
     pub fn kinematics(&self, q: f64, qd: f64, qdd: f64) -> Option<CrankRodWheelHandMotion> {
         let c = self.pose_of(q)?;
         let a2 = self.global(V2::new(c.xa, c.ya));
@@ -290,6 +292,7 @@ impl CrankRodWheelHand {
     /// R_C = a_C u + b_C n, b_C = (M₃ + a_C Y)/X; R_A = R_C − F₃; the contact force
     /// −R_C − F₄ (its u part is f, its n part the normal). The crank: T = a₂ × R_A − M₂,
     /// M₂ = (G₂ − O2) × F₂ − I₂α₂, and R_O2 = R_A − F₂.
+    #[inline(never)]
     pub fn kinetostatics(
         &self,
         m: &CrankRodWheelHandMotion,
@@ -322,6 +325,7 @@ impl CrankRodWheelHand {
 
     /// The driver torque by virtual power, no reaction computed:
     /// T q̇ + Σ_k [F_k·v_Gk − I_k α_k ω_k] + F_pull·v_C + T_brake ω₄ = 0 (q̇ ≠ 0).
+    #[inline(never)]
     pub fn driver_action(&self, m: &CrankRodWheelHandMotion, loads: &CrankRodWheelLoads) -> f64 {
         let p2 = (self.w2 - m.crank.cg_acc * self.m2).dot(&m.crank.cg_vel)
             - self.i2 * m.crank.alpha * m.crank.omega;
@@ -377,6 +381,7 @@ impl CrankRodWheelHand {
     }
 
     /// Zhukovski's I* and dI*/dq (see `coefficients`); `None` without assembly.
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         let (inertia, inertia_derivative, ..) = self.coefficients(&self.pose_of(q)?);
         Some(HandReduced {
@@ -402,6 +407,7 @@ impl CrankRodWheelHand {
     }
 
     /// Zhukovski's reduced moment M*(q) of the loads and gravity (N·m).
+    #[inline(never)]
     pub fn reduced_moment(&self, q: f64, loads: &CrankRodWheelLoads) -> Option<f64> {
         let c = self.pose_of(q)?;
         let (_, _, ks, k4, g3, g4) = self.coefficients(&c);
@@ -409,6 +415,7 @@ impl CrankRodWheelHand {
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
+    #[inline(never)]
     pub fn acceleration(
         &self,
         q: f64,

@@ -245,6 +245,7 @@ impl GearedSliderCrankHand {
     }
 
     /// Position analysis: θ₁ = q, θ₂ = θ_u + ψ, θ₃ = atan2(d), the cgs, A and B.
+    #[inline(never)]
     pub fn pose(&self, q: f64) -> Option<GearedSliderCrankHandPose> {
         let c = self.crank(q)?;
         let a2 = self.global(c.xa, c.ya);
@@ -276,6 +277,7 @@ impl GearedSliderCrankHand {
     }
 
     /// Position, velocity and acceleration analysis at (q, q̇, q̈) (see the type's docs).
+    #[inline(never)]
     pub fn kinematics(&self, q: f64, qd: f64, qdd: f64) -> Option<GearedSliderCrankHandMotion> {
         let c = self.crank(q)?;
         let a2 = self.global(c.xa, c.ya);
@@ -356,6 +358,7 @@ impl GearedSliderCrankHand {
     /// with P − O2 = −r_b w: f_t = M_O/r_b, F_m = f_t t + |f_t| tan α w,
     /// R_O2 = R_A − F₂ − F_m. The pinion's about O1 (P − O1 = r_a w):
     /// T = r_a f_t − (G₁ − O1) × F₁ + I₁α₁, R_O1 = F_m − F₁.
+    #[inline(never)]
     pub fn kinetostatics(
         &self,
         m: &GearedSliderCrankHandMotion,
@@ -394,6 +397,7 @@ impl GearedSliderCrankHand {
     /// The driver torque by virtual power, no reaction computed:
     /// T q̇ + Σ_k [F_k·v_Gk − I_k α_k ω_k] + F_gas·v_B + T_shaft ω₂ = 0 (q̇ ≠ 0; the
     /// piston's points all move at v_B).
+    #[inline(never)]
     pub fn driver_action(
         &self,
         m: &GearedSliderCrankHandMotion,
@@ -436,6 +440,7 @@ impl GearedSliderCrankHand {
 
     /// Zhukovski's I* = I_O1 + k² J(ψ) and dI*/dq = −k³ dJ/dψ (dψ/dq = −k);
     /// `None` without assembly.
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         let c = self.crank(q)?;
         let (j, jd, ..) = self.crank_level(&c);
@@ -459,6 +464,7 @@ impl GearedSliderCrankHand {
     }
 
     /// Zhukovski's reduced moment M*(q) of the loads and gravity (N·m).
+    #[inline(never)]
     pub fn reduced_moment(&self, q: f64, loads: &GearedSliderCrankLoads) -> Option<f64> {
         let c = self.crank(q)?;
         let (_, _, ks, g3) = self.crank_level(&c);
@@ -466,6 +472,7 @@ impl GearedSliderCrankHand {
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
+    #[inline(never)]
     pub fn acceleration(
         &self,
         q: f64,

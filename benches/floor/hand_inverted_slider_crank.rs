@@ -186,6 +186,7 @@ impl InvertedSliderCrankHand {
     }
 
     /// Position analysis: θ₂ = q, θ₃ = atan2(P − A), the block's rotation, the cgs, A, P.
+    #[inline(never)]
     pub fn pose(&self, q: f64) -> Option<InvertedSliderCrankHandPose> {
         let RodFrame { a2, a, u, .. } = self.close(q)?;
         let rp = at(V2::zeros(), u, self.p3);
@@ -211,6 +212,7 @@ impl InvertedSliderCrankHand {
     }
 
     /// Position, velocity and acceleration analysis at (q, q̇, q̈) (see the type's docs).
+    #[inline(never)]
     pub fn kinematics(&self, q: f64, qd: f64, qdd: f64) -> Option<InvertedSliderCrankHandMotion> {
         let RodFrame { a2, a, t, u } = self.close(q)?;
         let n = perp(u);
@@ -284,6 +286,7 @@ impl InvertedSliderCrankHand {
     /// (O4 − A) × (−N n) = −N t, give N = (M₃ + M₄)/t. u comes from P − A (no square root),
     /// t = u·(O4 − A). Then the force balances R_A = N n − F₃ − F_push, R_O4 = −N n − F₄,
     /// R_O2 = R_A − F₂, and the crank's moments about O2: T = a₂ × R_A − M₂.
+    #[inline(never)]
     pub fn kinetostatics(
         &self,
         m: &InvertedSliderCrankHandMotion,
@@ -313,6 +316,7 @@ impl InvertedSliderCrankHand {
 
     /// The driver torque by virtual power, no reaction computed:
     /// T ω₂ + Σ_k [F_k·v_Gk − I_k α_k ω_k] + F_push·v_P + T_resist ω = 0 (q̇ ≠ 0).
+    #[inline(never)]
     pub fn driver_action(
         &self,
         m: &InvertedSliderCrankHandMotion,
@@ -349,6 +353,7 @@ impl InvertedSliderCrankHand {
 
     /// Zhukovski's I* = I_O2 + (I_O4 + I₃) k² + m₃|g_G3|² and
     /// dI*/dq = 2 ((I_O4 + I₃) k k' + m₃ g_G3·g'_G3); `None` without assembly.
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         let (k, kd, g3, g3d, ..) = self.coefficients(q)?;
         Some(HandReduced {
@@ -371,12 +376,14 @@ impl InvertedSliderCrankHand {
     }
 
     /// Zhukovski's reduced moment M*(q) of the loads and gravity (N·m).
+    #[inline(never)]
     pub fn reduced_moment(&self, q: f64, loads: &InvertedSliderCrankLoads) -> Option<f64> {
         let (k, _, g3, _, a2, u) = self.coefficients(q)?;
         Some(self.moment_of(k, g3, a2, u, loads))
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
+    #[inline(never)]
     pub fn acceleration(
         &self,
         q: f64,

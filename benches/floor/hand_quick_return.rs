@@ -179,6 +179,7 @@ impl QuickReturnHand {
     }
 
     /// Position analysis: θ₂ = q, the block's rotation, θ₄ = atan2(C − O4), the cgs, A, C.
+    #[inline(never)]
     pub fn pose(&self, q: f64) -> Option<QuickReturnHandPose> {
         let Slot { a2, a, u, .. } = self.slot(q)?;
         let rc = at(V2::zeros(), u, self.c4);
@@ -204,6 +205,7 @@ impl QuickReturnHand {
     }
 
     /// Position, velocity and acceleration analysis at (q, q̇, q̈) (see the type's docs).
+    #[inline(never)]
     pub fn kinematics(&self, q: f64, qd: f64, qdd: f64) -> Option<QuickReturnHandMotion> {
         let Slot { a2, a, inv_s, u } = self.slot(q)?;
         let (w2, al2) = (qd, qdd);
@@ -275,6 +277,7 @@ impl QuickReturnHand {
     /// −N s − M_s + M₄ = 0, give N = (M₃ + M₄)/s, so N n = (M₃ + M₄) perp(d)/s² with
     /// d = A − O4. Then the force balances R_A = −N n − F₃, R_O4 = N n − F₄ − F_cut,
     /// R_O2 = R_A − F₂, and the crank's moments about O2: T = a₂ × R_A − M₂.
+    #[inline(never)]
     pub fn kinetostatics(
         &self,
         m: &QuickReturnHandMotion,
@@ -303,6 +306,7 @@ impl QuickReturnHand {
 
     /// The driver torque by virtual power, no reaction computed:
     /// T ω₂ + Σ_k [F_k·v_Gk − I_k α_k ω_k] + F_cut·v_C + T_friction ω₂ = 0 (q̇ ≠ 0).
+    #[inline(never)]
     pub fn driver_action(&self, m: &QuickReturnHandMotion, loads: &QuickReturnLoads) -> f64 {
         let p2 = (self.w2 - m.crank.cg_acc * self.m2).dot(&m.crank.cg_vel)
             - self.i2 * m.crank.alpha * m.crank.omega;
@@ -333,6 +337,7 @@ impl QuickReturnHand {
 
     /// Zhukovski's I* = I_O2 + (I_O4 + I₃) k₄² + m₃|g_G3|² and
     /// dI*/dq = 2 ((I_O4 + I₃) k₄ k₄' + m₃ g_G3·g'_G3); `None` without assembly.
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         let (k4, k4d, g3, g3d, ..) = self.coefficients(q)?;
         Some(HandReduced {
@@ -355,12 +360,14 @@ impl QuickReturnHand {
     }
 
     /// Zhukovski's reduced moment M*(q) of the loads and gravity (N·m).
+    #[inline(never)]
     pub fn reduced_moment(&self, q: f64, loads: &QuickReturnLoads) -> Option<f64> {
         let (k4, _, g3, _, a2, u) = self.coefficients(q)?;
         Some(self.moment_of(k4, g3, a2, u, loads))
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
+    #[inline(never)]
     pub fn acceleration(
         &self,
         q: f64,

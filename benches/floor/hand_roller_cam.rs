@@ -222,6 +222,7 @@ impl RollerCamHand {
 
     /// Position analysis: θ₂ = q, the follower at s(θ) along u, the cgs, P and T.
     /// (`Option` as the other machines; the cam always drives its follower.)
+    #[inline(never)]
     pub fn pose(&self, q: f64) -> Option<RollerCamHandPose> {
         let [s, ..] = self.law(q);
         let lift = self.u * s;
@@ -241,6 +242,7 @@ impl RollerCamHand {
     }
 
     /// Position, velocity and acceleration analysis at (q, q̇, q̈) (see the type's docs).
+    #[inline(never)]
     pub fn kinematics(&self, q: f64, qd: f64, qdd: f64) -> Option<RollerCamHandMotion> {
         let lift = self.law(q);
         let [s, s1, s2] = lift;
@@ -293,6 +295,7 @@ impl RollerCamHand {
     /// M_slide = −(G₃ − P) × (m₃g − m₃a_P) − (T − P) × F_push. The cam:
     /// (F − O) × F_lobe = λ(d + s)s′ = −(W·u) s′ (F the roller's centre), so
     /// T = −(W·u) s′ − (G₂ − O) × F₂ + I₂α₂ − T_drag and R_O = F_lobe − F₂.
+    #[inline(never)]
     pub fn kinetostatics(
         &self,
         m: &RollerCamHandMotion,
@@ -319,6 +322,7 @@ impl RollerCamHand {
     /// The driver torque by virtual power, no reaction computed:
     /// T q̇ + F₂·v_G2 − I₂α₂q̇ + T_drag q̇ + (m₃g − m₃a_P + F_push)·v_P = 0 (q̇ ≠ 0; the
     /// follower's points all move at v_P).
+    #[inline(never)]
     pub fn driver_action(&self, m: &RollerCamHandMotion, loads: &RollerCamLoads) -> f64 {
         let p2 = (self.w2 - m.cam.cg_acc * self.m2).dot(&m.cam.cg_vel)
             + (loads.drag - self.i2 * m.cam.alpha) * m.cam.omega;
@@ -327,6 +331,7 @@ impl RollerCamHand {
     }
 
     /// Zhukovski's I* = I_O + m₃ s′², dI*/dq = 2 m₃ s′ s″.
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         let [_, s1, s2] = self.law(q);
         let m3s1 = self.m3 * s1;
@@ -343,12 +348,14 @@ impl RollerCamHand {
     }
 
     /// Zhukovski's reduced moment M*(q) of the loads and gravity (N·m).
+    #[inline(never)]
     pub fn reduced_moment(&self, q: f64, loads: &RollerCamLoads) -> Option<f64> {
         let [_, s1, _] = self.law(q);
         Some(self.moment_of(q, s1, loads))
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
+    #[inline(never)]
     pub fn acceleration(
         &self,
         q: f64,

@@ -120,6 +120,7 @@ impl ScotchYokeHand {
 
     /// Position analysis: θ₂ = q, the yoke's travel x = k·a₂ − x₀, the cgs, A and Y.
     /// (`Option` as the other machines; a Scotch yoke always assembles.)
+    #[inline(never)]
     pub fn pose(&self, q: f64) -> Option<ScotchYokeHandPose> {
         let a2 = self.crank(q);
         let x = self.k.dot(&a2) - self.x0;
@@ -139,6 +140,7 @@ impl ScotchYokeHand {
     }
 
     /// Position, velocity and acceleration analysis at (q, q̇, q̈) (see the type's docs).
+    #[inline(never)]
     pub fn kinematics(&self, q: f64, qd: f64, qdd: f64) -> Option<ScotchYokeHandMotion> {
         let a2 = self.crank(q);
         let (w2, al2) = (qd, qdd);
@@ -191,6 +193,7 @@ impl ScotchYokeHand {
     /// M_g = (A − Y) × S n_s − (G₅ − Y) × F₅ (F_resist acts at Y; the yoke does not turn).
     /// The crank: R_O2 = −S n_s − F₂ and T = −a₂ × S n_s − M₂ with
     /// M₂ = (G₂ − O2) × F₂ − I₂α₂ + T_drag.
+    #[inline(never)]
     pub fn kinetostatics(
         &self,
         m: &ScotchYokeHandMotion,
@@ -214,6 +217,7 @@ impl ScotchYokeHand {
     /// The driver torque by virtual power, no reaction computed:
     /// T ω₂ + F₂·v_G2 − I₂α₂ω₂ + (F₅ + F_resist)·v_Y + T_drag ω₂ = 0 (q̇ ≠ 0; the yoke's
     /// points all move at v_Y).
+    #[inline(never)]
     pub fn driver_action(&self, m: &ScotchYokeHandMotion, loads: &ScotchYokeLoads) -> f64 {
         let p2 = (self.w2 - m.crank.cg_acc * self.m2).dot(&m.crank.cg_vel)
             - self.i2 * m.crank.alpha * m.crank.omega;
@@ -223,6 +227,7 @@ impl ScotchYokeHand {
 
     /// Zhukovski's I* = I_O2 + m₅ x'², dI*/dq = 2 m₅ x' x'', with x' = k·perp(a₂),
     /// x'' = −k·a₂.
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         let a2 = self.crank(q);
         let xd = self.k.dot(&perp(a2));
@@ -242,12 +247,14 @@ impl ScotchYokeHand {
     }
 
     /// Zhukovski's reduced moment M*(q) of the loads and gravity (N·m).
+    #[inline(never)]
     pub fn reduced_moment(&self, q: f64, loads: &ScotchYokeLoads) -> Option<f64> {
         let a2 = self.crank(q);
         Some(self.moment_of(a2, self.k.dot(&perp(a2)), loads))
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
+    #[inline(never)]
     pub fn acceleration(
         &self,
         q: f64,

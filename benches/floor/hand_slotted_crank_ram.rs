@@ -188,6 +188,7 @@ impl SlottedCrankRamHand {
 
     /// Position analysis: θ₂ = q, the block's rotation, the ram's constant angle, the cgs,
     /// E, B, P.
+    #[inline(never)]
     pub fn pose(&self, q: f64) -> Option<SlottedCrankRamHandPose> {
         let k = self.slide(q)?;
         let b = self.pin(k.x);
@@ -212,6 +213,7 @@ impl SlottedCrankRamHand {
     }
 
     /// Position, velocity and acceleration analysis at (q, q̇, q̈) (see the type's docs).
+    #[inline(never)]
     pub fn kinematics(&self, q: f64, qd: f64, qdd: f64) -> Option<SlottedCrankRamHandMotion> {
         let k = self.slide(q)?;
         let (xd, xdd) = self.rates(&k);
@@ -279,6 +281,7 @@ impl SlottedCrankRamHand {
     /// M_s = I₃α₂ − T_resist − (G₃ − B) × F₃, and the crank's about O2, with
     /// (B − O2) × N n = N t (t = (B − O2)·u): T = N t + M_s − M₂,
     /// M₂ = (G₂ − O2) × F₂ − I₂α₂; R_O2 = N n − F₂.
+    #[inline(never)]
     pub fn kinetostatics(
         &self,
         m: &SlottedCrankRamHandMotion,
@@ -308,6 +311,7 @@ impl SlottedCrankRamHand {
     /// The driver torque by virtual power, no reaction computed:
     /// T ω₂ + Σ_k [F_k·v_Gk − I_k α_k ω_k] + T_resist ω₂ + F_push·v_B = 0 (q̇ ≠ 0; the
     /// ram's points all move at v_B).
+    #[inline(never)]
     pub fn driver_action(
         &self,
         m: &SlottedCrankRamHandMotion,
@@ -333,6 +337,7 @@ impl SlottedCrankRamHand {
 
     /// Zhukovski's I* = I_O2 + I₃ + m₃|g_G3|² + m₄x'² and
     /// dI*/dq = 2 (m₃ g_G3·g'_G3 + m₄x'x''); `None` where the slot is parallel to the guide.
+    #[inline(never)]
     pub fn reduced(&self, q: f64) -> Option<HandReduced> {
         let (xd, xdd, g3, g3d, _) = self.coefficients(q)?;
         Some(HandReduced {
@@ -351,12 +356,14 @@ impl SlottedCrankRamHand {
     }
 
     /// Zhukovski's reduced moment M*(q) of the loads and gravity (N·m).
+    #[inline(never)]
     pub fn reduced_moment(&self, q: f64, loads: &SlottedCrankRamLoads) -> Option<f64> {
         let (xd, _, g3, _, u) = self.coefficients(q)?;
         Some(self.moment_of(xd, g3, u, loads))
     }
 
     /// The direct problem: q̈ = (T + M* − ½ dI*/dq q̇²)/I*.
+    #[inline(never)]
     pub fn acceleration(
         &self,
         q: f64,

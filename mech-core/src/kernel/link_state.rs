@@ -294,6 +294,13 @@ impl LinkGeom {
             a
         }
     }
+    /// The angle θ (rad, in (−π, π]) of a link whose turn since the drawing its state
+    /// keeps exact over turns ([`LinkState::angle`], a meshing link's): θ = θ_ref + φ
+    /// brought into (−π, π] ([`wrap`]). No atan2.
+    #[inline(always)]
+    pub fn angle_tracked(&self, s: &LinkState) -> f64 {
+        wrap(self.angle_ref + s.angle)
+    }
     /// The pose of a link that slides on the ground and never turns
     /// ([`crate::model::Model::translates`]): its angle the drawing's, its cg at its
     /// anchor plus the drawn offset (m); nothing is rotated.

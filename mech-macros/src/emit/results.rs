@@ -273,6 +273,9 @@ enum Angle {
     Translating,
     /// A link that turns with this (earlier) link: `LinkGeom::angle_with`, no atan2.
     With(usize),
+    /// A link whose turn since the drawing the plan keeps over turns (a meshing link:
+    /// Willis from its partner): `LinkGeom::angle_tracked`, no atan2.
+    Tracked,
     /// Any other link: the atan2 of its turned reference direction.
     Own,
 }
@@ -288,10 +291,24 @@ fn angle_of(cx: &Ctx, l: usize) -> Angle {
     if cx.model.translates(l) {
         return Angle::Translating;
     }
+    if tracked(cx, l) {
+        return Angle::Tracked;
+    }
     match rotation_partner(cx, l) {
         Some(m) => Angle::With(m),
         None => Angle::Own,
     }
+}
+
+/// Whether the plan keeps link `l`'s turn since the drawing exact over turns
+/// ([`mech_core::kernel::link_state::LinkState::angle`]): a meshing link, whose turn is
+/// Willis' from its partner's (`plan::assur`'s `track_angles`).
+fn tracked(cx: &Ctx, l: usize) -> bool {
+    cx.plan.iter().any(|g| match &g.kernel {
+        Kernel::Mesh(m) => m.body == l,
+        Kernel::Train(t) => t.bodies[..t.n].contains(&l),
+        _ => false,
+    })
 }
 
 /// The link that link `l` turns with and whose angle is found before `l`'s, from the plan:
@@ -349,6 +366,7 @@ fn angle_lets(cx: &Ctx) -> TokenStream {
                 let am = angle_id(m);
                 quote!(self.links[#l].angle_with(&self.links[#m], #am))
             }
+            Angle::Tracked => quote!(self.links[#l].angle_tracked(&s[#l])),
             Angle::Own => quote!(self.links[#l].angle(&s[#l])),
         };
         quote!(let #a = #value;)
