@@ -11,7 +11,7 @@ pub mod branches {
 }
 pub mod cam {
     pub use crate::elements::cam::{
-        cam_reactions, solve_cam, CamGeom, CamGroup, Face, Law, Segment,
+        cam_reactions, solve_cam, CamGeom, CamGroup, CamLaw, Face, Law, Segment,
     };
 }
 pub mod dyad {

@@ -700,7 +700,9 @@ impl Mechanism {
             Kernel::Rolling(r) => crate::elements::rolling::solve_rolling(
                 r, joints, s, drive, sign, scale, upto, true,
             )?,
-            Kernel::Cam(c) => crate::elements::cam::solve_cam(c, &self.inst.cams, joints, s, upto)?,
+            Kernel::Cam(c) => {
+                crate::elements::cam::solve_cam(c, &self.inst.cams, joints, s, upto)?;
+            }
             Kernel::System => match &g.triad {
                 Some(t) => crate::kernel::triad::triad_solve::<12>(
                     t,
@@ -749,7 +751,7 @@ impl Mechanism {
                 Level::Velocity,
             )?,
             Kernel::Cam(c) => {
-                crate::elements::cam::solve_cam(c, &self.inst.cams, joints, v, Level::Velocity)?
+                crate::elements::cam::solve_cam(c, &self.inst.cams, joints, v, Level::Velocity)?;
             }
             Kernel::Rolling(r) => crate::elements::rolling::solve_rolling(
                 r,
@@ -797,7 +799,7 @@ impl Mechanism {
                 crate::elements::gears::train_reactions(t, &self.inst.meshes, joints, s, f, r)?
             }
             Kernel::Cam(c) => {
-                crate::elements::cam::cam_reactions(c, &self.inst.cams, joints, s, f, r)?
+                crate::elements::cam::cam_reactions(c, &self.inst.cams, joints, s, None, f, r)?
             }
             Kernel::Rolling(k) => {
                 crate::elements::rolling::rolling_reactions(k, joints, s, f, scale, r, driver)?

@@ -269,7 +269,7 @@ fn reaction_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         }
         Kernel::Cam(_) => {
             let kn = plan::mesh_const(gi);
-            quote!(#p::cam::cam_reactions(&Self::#kn, &self.cams, &joints, s, &mut f, &mut r)?;)
+            quote!(#p::cam::cam_reactions(&Self::#kn, &self.cams, &joints, s, Some(&m.systems #path), &mut f, &mut r)?;)
         }
         Kernel::Rolling(_) => {
             let kn = plan::mesh_const(gi);

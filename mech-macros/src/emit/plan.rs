@@ -212,7 +212,7 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
         }
         Kernel::Cam(_) => {
             let kn = mesh_const(gi);
-            quote!(#p::cam::solve_cam(&Self::#kn, &self.cams, &joints, &mut s, upto)?; let #sys = ();)
+            quote!(let #sys = #p::cam::solve_cam(&Self::#kn, &self.cams, &joints, &mut s, upto)?;)
         }
         Kernel::System if g.redundant() => {
             let m = g.rows();
@@ -284,13 +284,16 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
 }
 
 /// The type of what group `g` keeps in the motion for the reactions and velocity fields:
-/// its factored system (Newton groups), a dyad's 2×2 system (closed-form chains),
-/// nothing for the others.
+/// its factored system (Newton groups), a dyad's 2×2 system (closed-form chains), a cam
+/// group's law values at the cam's turn (`mech_core::elements::cam::CamLaw`), nothing for
+/// the others.
 fn system_type(cx: &Ctx, g: &Group) -> TokenStream {
     let p = &cx.p;
     let n = 3 * g.bodies.len();
     if keeps_system(g) {
         quote!(#p::kinematics::DyadSystem)
+    } else if let Kernel::Cam(_) = g.kernel {
+        quote!(#p::cam::CamLaw)
     } else if let Kernel::Chain(_) = g.kernel {
         quote!(())
     } else if g.kernel != Kernel::System {

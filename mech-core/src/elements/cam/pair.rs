@@ -85,10 +85,16 @@ impl CamGroup {
     }
 }
 
+/// The law's (s, s′, s″, s‴) at the cam's turn, as [`solve_cam`] evaluated it: what a
+/// motion keeps of a cam group, so that [`cam_reactions`] finds the contact without
+/// evaluating the law again.
+pub type CamLaw = [f64; 4];
+
 /// Solve a cam-driven follower up to `upto` from the cam's turn θ relative to the carrier
-/// (the law is periodic: θ is taken in (−π, π]). Translating: its slide along û is s(θ),
-/// ṡ = s′ θ̇, s̈ = s″ θ̇² + s′ θ̈. A rocker turns about its pivot by σψ(θ) relative to the
-/// carrier: ω = ω_c + σψ′ θ̇, α = α_c + σ(ψ″ θ̇² + ψ′ θ̈).
+/// (the law is periodic: any θ is taken modulo the turn). Translating: its slide along û
+/// is s(θ), ṡ = s′ θ̇, s̈ = s″ θ̇² + s′ θ̈. A rocker turns about its pivot by σψ(θ)
+/// relative to the carrier: ω = ω_c + σψ′ θ̇, α = α_c + σ(ψ″ θ̇² + ψ′ θ̈). Returns the
+/// law's values at θ ([`CamLaw`]).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn solve_cam(
@@ -97,11 +103,12 @@ pub fn solve_cam(
     joints: &[JointGeom],
     s: &mut [LinkState],
     upto: Level,
-) -> Result<(), MechError> {
+) -> Result<CamLaw, MechError> {
     let geom = &cams[grp.index];
     let g = &joints[grp.slide];
     let (th, rc, wc, ac) = grp.turn(s);
-    let [x, x1, x2, _] = geom.profile.law.eval(th[0]);
+    let law = geom.profile.law.eval(th[0]);
+    let [x, x1, x2, _] = law;
     let (u, q, df) = grp.frame(g, geom, s, rc);
     let fl = grp.follower;
     let carrier_angle = if grp.carrier == 0 {
@@ -129,7 +136,7 @@ pub fn solve_cam(
     s[fl].angle = carrier_angle + turn;
     s[fl].pos = p - rotate(rot, df);
     if upto == Level::Position {
-        return Ok(());
+        return Ok(law);
     }
     let (vq, aq) = if grp.carrier == 0 {
         (V2::zeros(), V2::zeros())
@@ -142,7 +149,7 @@ pub fn solve_cam(
         if upto == Level::Acceleration {
             s[fl].set_acceleration_through(p, aq, ac + accel);
         }
-        return Ok(());
+        return Ok(law);
     }
     let xd = x1 * th[1];
     s[fl].set_velocity_through(p, vq + u * xd, wc);
@@ -150,7 +157,7 @@ pub fn solve_cam(
         let xdd = x2 * th[1] * th[1] + x1 * th[2];
         s[fl].set_acceleration_through(p, aq + perp(u) * (2.0 * wc * xd) + u * xdd, ac);
     }
-    Ok(())
+    Ok(law)
 }
 
 /// d'Alembert for a cam-driven follower: the contact force F_n n at the contact point K
@@ -158,14 +165,17 @@ pub fn solve_cam(
 /// F_n = −(F·û)/(n·û) (the slide takes the rest: a force normal to û and a moment); about
 /// its pivot A for a rocker, F_n = −M_A/((K − A) × n) (the pin takes the rest). `out[joint]`
 /// holds the force by the cam on the follower and, as its `moment`, F_n (N, > 0 while the
-/// cam pushes: a negative value is the follower leaving the cam, a jump).
+/// cam pushes: a negative value is the follower leaving the cam, a jump). `law`: the
+/// law's values the motion kept ([`solve_cam`]'s), else the law is evaluated again.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
+#[allow(clippy::too_many_arguments)]
 pub fn cam_reactions(
     grp: &CamGroup,
     cams: &[CamGeom],
     joints: &[JointGeom],
     s: &[LinkState],
+    law: Option<&CamLaw>,
     f: &mut [Wrench],
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
@@ -175,7 +185,11 @@ pub fn cam_reactions(
     let (u, _, df) = grp.frame(g, geom, s, rc);
     let xh = V2::new(u.y, -u.x);
     let o = point_of(s, grp.cam, geom.centre);
-    let (kc, nc) = geom.profile.contact_normal(th[0]);
+    let law = match law {
+        Some(l) => *l,
+        None => geom.profile.law.eval(th[0]),
+    };
+    let (kc, nc) = geom.profile.contact_normal_of(th[0], law);
     let kw = o + xh * kc.x + u * kc.y;
     let nw = xh * nc.x + u * nc.y;
     let fl = grp.follower;

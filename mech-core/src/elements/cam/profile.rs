@@ -208,9 +208,16 @@ impl Profile {
     /// ([`crate::elements::cam::cam_reactions`]), an `atan2` and a division less.
     #[inline]
     pub fn contact_normal(&self, theta: f64) -> (V2, V2) {
+        self.contact_normal_of(theta, self.law.eval(theta))
+    }
+
+    /// [`Profile::contact_normal`] at cam angle θ with the law's values there, `law`
+    /// (`self.law.eval(θ)`, which a motion keeps: [`crate::elements::cam::CamLaw`]), given.
+    #[inline]
+    pub fn contact_normal_of(&self, theta: f64, law: [f64; 4]) -> (V2, V2) {
         match (self.face, self.rocker) {
             (Face::Flat, None) => {
-                let [s, s1, _, _] = self.law.eval(theta);
+                let [s, s1, _, _] = law;
                 (V2::new(s1, self.base_radius + s), V2::new(0.0, 1.0))
             }
             (Face::Flat, Some(_)) => {
@@ -219,7 +226,7 @@ impl Profile {
             }
             _ => {
                 let r = self.roller();
-                let [f, f1, _, _] = self.pitch_motion(self.law.eval(theta));
+                let [f, f1, _, _] = self.pitch_motion(law);
                 let v = f1 - perp(f);
                 let n = perp(v) / v.norm();
                 (f - n * r, n)
