@@ -69,11 +69,15 @@ fn travel(g: &JointGeom, s: &[LinkState], c: V2) -> (V2, V2, f64) {
 }
 
 /// Turn the wheel `w` (centre `c`, local vector of its centre `dc`) to the track's
-/// rotation less s/r and place it by its centre.
+/// rotation less s/r and place it by its centre. On a track of the ground its turn since
+/// the drawing, −s/r, is exact over turns: it is kept as the wheel's
+/// [`LinkState::angle`] (which its published angle reads, no `atan2`).
 #[inline(always)]
 fn turn_wheel(g: &JointGeom, s: &mut [LinkState], w: usize, c: V2, dc: V2, travel: f64) {
-    let (sn, cs) = (-travel / g.radius).sin_cos();
+    let turn = -travel / g.radius;
+    let (sn, cs) = turn.sin_cos();
     let base = if g.a == 0 {
+        s[w].angle = turn;
         V2::new(1.0, 0.0)
     } else {
         s[g.a].rot

@@ -2,6 +2,7 @@
 //! accessors, and the methods that make them, `pose` and `kinematics`.
 
 use super::{plan, Ctx};
+use mech_core::elements::rolling::RollingGroup;
 use mech_core::kernel::dyad::Solver;
 use mech_core::plan::assur::Kernel;
 use proc_macro2::TokenStream;
@@ -302,11 +303,20 @@ fn angle_of(cx: &Ctx, l: usize) -> Angle {
 
 /// Whether the plan keeps link `l`'s turn since the drawing exact over turns
 /// ([`mech_core::kernel::link_state::LinkState::angle`]): a meshing link, whose turn is
-/// Willis' from its partner's (`plan::assur`'s `track_angles`).
+/// Willis' from its partner's (`plan::assur`'s `track_angles`), and a wheel rolling on a
+/// straight track of the ground, whose turn is −s/r (`mech_core::elements::rolling`).
 fn tracked(cx: &Ctx, l: usize) -> bool {
+    let on_ground_line = |j: usize| {
+        let jt = &cx.model.joints[j];
+        jt.a == 0 && jt.around.is_none()
+    };
     cx.plan.iter().any(|g| match &g.kernel {
         Kernel::Mesh(m) => m.body == l,
         Kernel::Train(t) => t.bodies[..t.n].contains(&l),
+        Kernel::Rolling(RollingGroup::Driven { body, joint, .. }) => {
+            *body == l && on_ground_line(*joint)
+        }
+        Kernel::Rolling(RollingGroup::Dyad { b2, jr, .. }) => *b2 == l && on_ground_line(*jr),
         _ => false,
     })
 }
