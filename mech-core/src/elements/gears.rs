@@ -48,6 +48,9 @@ pub struct MeshGeom {
     pub cb: V2,
     /// The carrier link.
     pub carrier: usize,
+    /// The ratios of Willis' relation, worked out once ([`MeshGeom::ratios`]):
+    /// [r_b/r_a, r_a/r_b] for a gear pair, [r_a, 1/r_a] for a rack.
+    pub ratios: [f64; 2],
 }
 
 /// The pitch point of a mesh and its tangent in the states `s`: P (m), t (unit) and the
@@ -63,6 +66,15 @@ pub struct Pitch {
 }
 
 impl MeshGeom {
+    /// [`MeshGeom::ratios`] of a pair of pitch radii r_a, r_b (m; a rack's r_b unused).
+    pub fn ratios(rack: bool, ra: f64, rb: f64) -> [f64; 2] {
+        if rack {
+            [ra, 1.0 / ra]
+        } else {
+            [rb / ra, ra / rb]
+        }
+    }
+
     /// The pitch point, tangent and separating direction (module docs) in the states `s`;
     /// `u` is the rack's axis (unused for a gear pair).
     #[inline(always)]
@@ -147,10 +159,8 @@ impl MeshGroup {
     fn ratio(&self, m: &MeshGeom, joints: &[JointGeom]) -> f64 {
         let body_is_a = joints[self.joint].a == self.body;
         match (m.rack, self.body_slides, body_is_a) {
-            (true, true, _) => m.sign * m.ra,
-            (true, false, _) => m.sign / m.ra,
-            (false, _, true) => m.sign * m.rb / m.ra,
-            (false, _, false) => m.sign * m.ra / m.rb,
+            (true, true, _) | (false, _, true) => m.sign * m.ratios[0],
+            (true, false, _) | (false, _, false) => m.sign * m.ratios[1],
         }
     }
 

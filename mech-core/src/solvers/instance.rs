@@ -142,10 +142,12 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
             } else {
                 1.0
             };
+            let rack = jt.kind == crate::model::JointKind::Rack;
             Some(crate::elements::gears::MeshGeom {
-                rack: jt.kind == crate::model::JointKind::Rack,
+                rack,
                 ra: m.ra,
                 rb: m.rb,
+                ratios: crate::elements::gears::MeshGeom::ratios(rack, m.ra, m.rb),
                 sign,
                 tan_pressure: m.pressure_angle.tan(),
                 ca: local(model, jt.a, oa),
