@@ -6,7 +6,7 @@
 //! (`natural/rrr.rs`, `rrp.rs`, `rpr.rs`, `prp.rs`, `rpp.rs`). Each is one 2×2 system
 //! written out, its matrix the same for velocities and accelerations, its transpose that
 //! of the reactions (d'Alembert); the other closed-form groups go through the joint screws
-//! of [`crate::kernel::screw`] (but the slotted slider, `kernel::dyad`).
+//! of [`crate::kernel::screw`] (except the slotted slider, in `kernel::dyad`).
 //!
 //! **RRR.** Link b₁ is pinned to a solved link at A, b₂ at C, and b₁ to b₂ at B. With
 //! e₁ = B − A, e₂ = B − C, the velocity of B seen from both sides,
