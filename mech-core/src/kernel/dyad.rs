@@ -464,7 +464,8 @@ pub fn branch_quantity(solver: Solver, joints: &[JointGeom], s: &[LinkState]) ->
 /// an RRP dyad's [A, C, (x, y)] (b₁'s pin, the slider's pin, and C − A = x u + y perp(u)
 /// in the guide's frame, x straight from the square root), an RPR dyad's [A, B, (x, y)]
 /// (the guide's pin, the slider's pin, and B − A = x u + y perp(u) in the frame of the
-/// guide's turned axis u, x straight from the square root), a slotted slider's
+/// guide's turned axis u, x straight from the square root), a PRP dyad's [C, 0, 0] (the
+/// sliders' pin), an RPP dyad's [A, 0, 0] (b₁'s pin), a slotted slider's
 /// [(1/(u × w), 0), 0, 0] ([`slotted_slider`]); zeros for the other kinds.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
@@ -503,8 +504,8 @@ pub fn position(
             jp1,
             jc,
             jp2,
-        } => prp(joints, s, b1, b2, [jp1, jc, jp2])?,
-        Solver::Rpp { b1, b2, ja, jp, jq } => rpp(joints, s, b1, b2, [ja, jp, jq])?,
+        } => points[0] = prp(joints, s, b1, b2, [jp1, jc, jp2])?,
+        Solver::Rpp { b1, b2, ja, jp, jq } => points[0] = rpp(joints, s, b1, b2, [ja, jp, jq])?,
         Solver::PinInFixedSlot { body, ja, js } => {
             let (a, da) = pin(&joints[ja], s, body);
             let g = &joints[js];
@@ -656,7 +657,7 @@ fn rpr(
     Ok([pa.0, pb.0, V2::new(x, y)])
 }
 
-/// [`position`] of a PRP dyad, joints [jp1, jc, jp2].
+/// [`position`] of a PRP dyad, joints [jp1, jc, jp2]; its pin C.
 #[inline(always)]
 fn prp(
     joints: &[JointGeom],
@@ -664,7 +665,7 @@ fn prp(
     b1: usize,
     b2: usize,
     [jp1, jc, jp2]: [usize; 3],
-) -> Result<(), MechError> {
+) -> Result<V2, MechError> {
     let (g1, g2) = (&joints[jp1], &joints[jp2]);
     let rot1 = if g1.b == b1 { s[g1.a].rot } else { s[g1.b].rot };
     let rot2 = if g2.b == b2 { s[g2.a].rot } else { s[g2.b].rot };
@@ -679,10 +680,10 @@ fn prp(
     let c = line_line(p1, u1, p2, u2)?;
     place_by_point(&mut s[b1], rot1, dc1, c);
     place_by_point(&mut s[b2], rot2, dc2, c);
-    Ok(())
+    Ok(c)
 }
 
-/// [`position`] of an RPP dyad, joints [ja, jp, jq].
+/// [`position`] of an RPP dyad, joints [ja, jp, jq]; b₁'s pin A.
 #[inline(always)]
 fn rpp(
     joints: &[JointGeom],
@@ -690,7 +691,7 @@ fn rpp(
     b1: usize,
     b2: usize,
     [ja, jp, jq]: [usize; 3],
-) -> Result<(), MechError> {
+) -> Result<V2, MechError> {
     let gq = &joints[jq];
     let rot = if gq.b == b2 { s[gq.a].rot } else { s[gq.b].rot };
     let (a, da) = pin(&joints[ja], s, b1);
@@ -701,7 +702,7 @@ fn rpp(
     let (p2, u2) = slide_line(&joints[jp], s, b2, rot, dq);
     let c = line_line(p1, u1, p2, u2)?;
     place_by_point(&mut s[b2], rot, dq, c);
-    Ok(())
+    Ok(a)
 }
 
 /// The lines of a [`Solver::SlottedSlider`] group, the body's rotation being G's:

@@ -2,7 +2,7 @@
 //! group with the topology as constants (`docs/theory.md` §3):
 //! - a driven crank or slider: [`solve_driven`],
 //! - a closed-form dyad or slot group: [`solve_chain`] (positions by [`crate::kernel::dyad`],
-//!   rates in natural coordinates for the RRR, RRP and RPR dyads,
+//!   rates in natural coordinates for the RRR, RRP, RPR, PRP and RPP dyads,
 //!   [`crate::kernel::natural`], by joint screws for the others, [`crate::kernel::screw`]),
 //! - a group with no closed form (triads, dyads with slots, redundant groups):
 //!   [`crate::kernel::group::group_solve`] and [`crate::kernel::group::group_solve_ls`] (Newton and LU).
@@ -29,7 +29,8 @@ use crate::MechError;
 
 /// Solve a closed-form group up to `upto`: place its links by `solver` on the drawing's
 /// branch `sign`, then its velocities and accelerations in natural coordinates for an RRR,
-/// RRP or RPR dyad ([`crate::kernel::natural`]), by the chain's joint screws for the others.
+/// RRP, RPR, PRP or RPP dyad ([`crate::kernel::natural`]) and a slotted slider, by the
+/// chain's joint screws for the others.
 /// `Singular` near a change point, `NoAssembly` where the group does not close. Returns
 /// what the dyad keeps for its reactions ([`DyadSystem`]).
 #[cfg_attr(debug_assertions, inline)]
@@ -56,6 +57,16 @@ pub fn solve_chain(
         Solver::Rpr { b1, b2, ja, jp, jb } => {
             crate::kernel::natural::rpr_rates(joints, s, b1, b2, ja, jp, jb, points, scale, upto)
         }
+        Solver::Prp {
+            b1,
+            b2,
+            jp1,
+            jc,
+            jp2,
+        } => crate::kernel::natural::prp_rates(joints, s, b1, b2, jp1, jc, jp2, points, upto),
+        Solver::Rpp { b1, b2, ja, jp, jq } => {
+            crate::kernel::natural::rpp_rates(joints, s, b1, b2, ja, jp, jq, points, upto)
+        }
         Solver::SlottedSlider { body, jq, js } => crate::kernel::dyad::slotted_slider_rates(
             &joints[jq],
             &joints[js],
@@ -72,8 +83,9 @@ pub fn solve_chain(
 /// d'Alembert for a closed-form group: the reaction at each of its joints into `out`
 /// (joint order), and the reactions on the solved links it is jointed to added to their
 /// wrenches in `f` (every link's applied and inertia wrench about its anchor, plus the
-/// reactions of the groups solved before). In natural coordinates for an RRR, RRP or RPR
-/// dyad ([`crate::kernel::natural`]), by the chain's joint screws for the others. Called from the
+/// reactions of the groups solved before). In natural coordinates for an RRR, RRP, RPR,
+/// PRP or RPP dyad ([`crate::kernel::natural`]) and a slotted slider, by the chain's joint
+/// screws for the others. Called from the
 /// outermost group inward. `kept` is what [`solve_chain`] returned for the motion.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
@@ -98,6 +110,16 @@ pub fn chain_reactions(
         Solver::Rpr { b1, b2, ja, jp, jb } => crate::kernel::natural::rpr_reactions(
             joints, s, f, b1, b2, ja, jp, jb, scale, kept, out,
         ),
+        Solver::Prp {
+            b1,
+            b2,
+            jp1,
+            jc,
+            jp2,
+        } => crate::kernel::natural::prp_reactions(joints, s, f, b1, b2, jp1, jc, jp2, out),
+        Solver::Rpp { b1, b2, ja, jp, jq } => {
+            crate::kernel::natural::rpp_reactions(joints, s, f, b1, b2, ja, jp, jq, out)
+        }
         Solver::SlottedSlider { body, jq, js } => {
             crate::kernel::dyad::slotted_slider_reactions(joints, s, f, body, jq, js, out)
         }

@@ -1,10 +1,12 @@
-//! Velocities, accelerations and reactions of the three commonest dyads in their natural
+//! Velocities, accelerations and reactions of the closed-form dyads in their natural
 //! coordinates (`docs/theory.md` §3.5): the two link angles of an RRR dyad ([`rrr_rates`]),
 //! the link angle and the slide of an RRP dyad ([`rrp_rates`]), the common angle and the
-//! slide of an RPR dyad ([`rpr_rates`]); one file each (`natural/rrr.rs`, `rrp.rs`,
-//! `rpr.rs`). Each is one 2×2 system written out, its matrix the same for velocities and
-//! accelerations, its transpose that of the reactions (d'Alembert); the other closed-form
-//! groups go through the joint screws of [`crate::kernel::screw`].
+//! slide of an RPR dyad ([`rpr_rates`]), the two slides of a PRP dyad ([`prp_rates`]) and
+//! of an RPP dyad ([`rpp_rates`]), whose rotations are their guides'; one file each
+//! (`natural/rrr.rs`, `rrp.rs`, `rpr.rs`, `prp.rs`, `rpp.rs`). Each is one 2×2 system
+//! written out, its matrix the same for velocities and accelerations, its transpose that
+//! of the reactions (d'Alembert); the other closed-form groups go through the joint screws
+//! of [`crate::kernel::screw`] (except the slotted slider, in `kernel::dyad`).
 //!
 //! **RRR.** Link b₁ is pinned to a solved link at A, b₂ at C, and b₁ to b₂ at B. With
 //! e₁ = B − A, e₂ = B − C, the velocity of B seen from both sides,
@@ -72,16 +74,74 @@
 //! R_B = −X − F_S, and the prismatic's couple about its point P on S,
 //! M_P = −M_S(B) + (B − P) × X.
 //!
+//! **PRP.** The slider b₁ slides on a solved link L₁ along its unit axis u₁, the slider
+//! b₂ on a solved link L₂ along u₂ (each axis turning with its guide), and b₁ is pinned
+//! to b₂ at C, where the two slide lines cross. Each slider turns with its guide
+//! (ω₁ = ω_L₁, ω₂ = ω_L₂, and the α's), so the unknowns are the two slides s₁, s₂.
+//! With v_Lₖ, a_Lₖ the velocity and acceleration of Lₖ's material point at C, the
+//! velocity of C seen from both sides, v_L₁ + ṡ₁ u₁ = v_L₂ + ṡ₂ u₂, and its derivative
+//! (the relative motion of each slider a slide along a turning axis: Coriolis' 2 ω ṡ
+//! perp(u)) give
+//!
+//! [u₁  −u₂] (ṡ₁, ṡ₂)ᵀ = v_L₂ − v_L₁,
+//! [u₁  −u₂] (s̈₁, s̈₂)ᵀ = a_L₂ − a_L₁ + 2 ω₂ ṡ₂ perp(u₂) − 2 ω₁ ṡ₁ perp(u₁).
+//!
+//! Crossing with u₂ and u₁ (Cramer) solves it, det = u₁ × u₂:
+//!
+//! ṡ₁ = (b × u₂)/(u₁ × u₂),  ṡ₂ = (b × u₁)/(u₁ × u₂),
+//!
+//! and C moves as v_L₁ + ṡ₁ u₁, a_L₁ + s̈₁ u₁ + 2 ω₁ ṡ₁ perp(u₁) (s̈₂ is not needed).
+//! Both columns are unit vectors, lengths ratios: no length scale enters, and the
+//! condition estimate is that of the joint screws' reduced block [u₁ u₂]
+//! (`ChainSystem`, pivot at C), κ_F = 2/|u₁ × u₂|: `Singular` near parallel axes, where
+//! the pin runs to infinity.
+//!
+//! d'Alembert: let X be the force of b₁ on b₂ at C, Fₖ the force of bₖ's applied and
+//! inertia wrench. Each guide's force on its slider, R₁ = X − F₁ and R₂ = −X − F₂, is
+//! normal to its axis: X·u₁ = F₁·u₁ and −X·u₂ = F₂·u₂, the transpose
+//! [u₁ −u₂]ᵀ X = (F₁·u₁, F₂·u₂), so
+//! X = ((−F₂·u₂) perp(u₁) − (F₁·u₁) perp(u₂))/(u₁ × u₂) (perp(uₖ)·uₖ = 0,
+//! perp(u₁)·u₂ = u₁ × u₂). Each prismatic's couple about its point Pₖ then balances its
+//! slider's moments: M₁ = −M₁(P₁) + (C − P₁) × X, M₂ = −M₂(P₂) − (C − P₂) × X.
+//!
+//! **RPP.** The link b₁ is pinned to a solved link at A and slides on b₂ along u_p (the
+//! prismatic jp); b₂ slides on a solved link G along u_q (jq). b₂ turns with G, and b₁,
+//! sliding on b₂, with b₂: all three share ω = ω_G and α = α_G, both axes turn with G,
+//! and the position ([`crate::kernel::dyad::position`]) places b₁ by its pin A, b₂ where
+//! the slide line of b₁ through b₂'s point C meets G's. With ṡ_p the slide of b₂ on b₁
+//! and ṡ_q that of b₂ on G, the velocity of b₂'s point C from both sides,
+//! v₁(C) + ṡ_p u_p = v_G(C) + ṡ_q u_q, and its derivative give
+//!
+//! [u_p  −u_q] (ṡ_p, ṡ_q)ᵀ = v_G(C) − v₁(C) = v_G(A) − v_A,
+//! [u_p  −u_q] (s̈_p, s̈_q)ᵀ = a_G(A) − a_A + 2 ω (ṡ_q perp(u_q) − ṡ_p perp(u_p)),
+//!
+//! the two rigid fields of the same ω and α differing by a translation (so C is not
+//! needed); ṡ_q = (b × u_p)/(u_p × u_q), ṡ_p = (b × u_q)/(u_p × u_q). b₁ moves as its pin
+//! A with ω, α; b₂ as G plus the slide: v₂ = v_G + ṡ_q u_q,
+//! a₂ = a_G + s̈_q u_q + 2 ω ṡ_q perp(u_q) at its anchor. Unit columns again: the joint
+//! screws' block (pivot at A) is [u_p u_q], κ_F = 2/|u_p × u_q|.
+//!
+//! d'Alembert: let Y be the force of b₁ on b₂ through jp (normal to u_p) and
+//! R_q = −Y − F₂ that of G on b₂ (normal to u_q): Y·u_p = 0, −Y·u_q = F₂·u_q, the
+//! transpose [u_p −u_q]ᵀ Y = (0, F₂·u_q), so Y = −perp(u_p) (F₂·u_q)/(u_p × u_q). Then
+//! R_A = Y − F₁ on b₁ at A, and the couples about jp's point P and jq's point Q from the
+//! moments of b₁ about A and of b₂ about Q: M_p = M₁(A) − (P − A) × Y,
+//! M_q = −M₂(Q) − M_p − (P − Q) × Y.
+//!
 //! In each, a link's anchor then moves as the material point it is
 //! (`LinkState::set_velocity_at`, `set_acceleration_at`): v = v_P + ω perp(r),
 //! a = a_P + α perp(r) − ω² r, with P the dyad's point on that link and r = anchor − P.
 
 // One file per dyad, its derivation above; its kernels are public here, at the folder's
 // path.
+mod prp;
+mod rpp;
 mod rpr;
 mod rrp;
 mod rrr;
 
+pub use prp::{prp_rates, prp_reactions};
+pub use rpp::{rpp_rates, rpp_reactions};
 pub use rpr::{rpr_rates, rpr_reactions};
 pub use rrp::{rrp_rates, rrp_reactions};
 pub use rrr::{rrr_rates, rrr_reactions};
