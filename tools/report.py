@@ -58,6 +58,11 @@ def code_hash(paths):
     """FNV-1a 64 over every file under `paths` (sorted by its path relative to the
     repository, '/'-separated): path bytes, NUL, content bytes, NUL. The Rust test
     `docs_figures` computes the same."""
+    # Files git ignores (an insta `.snap.new` left by a failed run, say) are not code and
+    # are not in a clean clone, where `docs_figures` recomputes the hash: left out.
+    ignored = set(subprocess.run(
+        ["git", "ls-files", "--others", "--ignored", "--exclude-standard", "--", *paths],
+        cwd=ROOT, capture_output=True, text=True, check=True).stdout.split("\n"))
     files = []
     for p in paths:
         full = ROOT / p
@@ -67,6 +72,7 @@ def code_hash(paths):
             for f in full.rglob("*"):
                 if f.is_file():
                     files.append(f.relative_to(ROOT).as_posix())
+    files = [f for f in files if f not in ignored]
     h = 0xCBF29CE484222325
     for rel in sorted(set(files)):
         for byte in rel.encode() + b"\0" + (ROOT / rel).read_bytes() + b"\0":
