@@ -594,13 +594,29 @@ impl Model {
     pub fn n_links(&self) -> usize {
         self.links.len()
     }
-    /// True when moving link `l` slides on the ground (a prismatic joint with link 0):
-    /// it never turns (ω = α = 0, its rotation the ground's), so its cg moves as its anchor.
+    /// True when moving link `l` never turns: it slides on the ground (a prismatic joint
+    /// with link 0), or on a link that never turns (a block in the slot of a yoke that
+    /// slides on the ground): a prismatic joint keeps its two links' relative rotation,
+    /// so ω = α = 0, the rotation the drawing's, and the cg moves as the anchor.
     pub fn translates(&self, l: usize) -> bool {
-        l != 0
-            && self.joints.iter().any(|j| {
-                j.kind == JointKind::Prismatic && ((j.a == 0 && j.b == l) || (j.a == l && j.b == 0))
-            })
+        if l == 0 || l >= self.links.len() {
+            return false;
+        }
+        // The links reached from the ground through prismatic joints alone.
+        let mut fixed = vec![false; self.links.len()];
+        fixed[0] = true;
+        let mut grew = true;
+        while grew && !fixed[l] {
+            grew = false;
+            for j in self.joints.iter().filter(|j| j.kind == JointKind::Prismatic) {
+                if fixed[j.a] != fixed[j.b] {
+                    fixed[j.a] = true;
+                    fixed[j.b] = true;
+                    grew = true;
+                }
+            }
+        }
+        fixed[l]
     }
     /// True when moving link `l` turns about its anchor (its first point) on a revolute
     /// joint with the ground: that point never moves, so the link's inertia about it,
@@ -740,6 +756,28 @@ mod tests {
         assert_eq!(m.at_anchor(j("guide")), [false, true]);
         assert_eq!(m.at_anchor(j("O4")), [false, false]);
         assert_eq!(m.at_anchor(j("O4b")), [false, true]);
+    }
+
+    /// A link sliding on a link that slides on the ground never turns either (the block
+    /// in a Scotch yoke's slanted slot); a block sliding in a turning crank's slot does.
+    #[test]
+    fn sliding_on_a_translating_link_translates() {
+        let m = model_of(
+            "pub struct S { ground { O2: (0.0, 0.0) },
+              link crank { points { O2, A: (0.04, 0.03) } },
+              link block { points { A } },
+              link yoke { points { Y: (0.16, 0.01), E } },
+              link slider { points { E: (0.02, 0.05) } },
+              joints { O2: revolute(ground, crank), A: revolute(crank, block),
+                       slot: prismatic(yoke, block) at A along (0.1, 1.0),
+                       guide: prismatic(ground, yoke) at Y along (1.0, 0.0),
+                       rail: prismatic(crank, slider) at E along (1.0, 0.0),
+                       E: revolute(slider, yoke) },
+              input: O2 }",
+        );
+        let l = |name: &str| m.link_index(name).unwrap();
+        assert!(m.translates(l("yoke")) && m.translates(l("block")));
+        assert!(!m.translates(l("crank")) && !m.translates(l("slider")));
     }
 
     /// A link's cg from its span (the vector between its first two points) equals the cg

@@ -323,7 +323,8 @@ fn tracked(cx: &Ctx, l: usize) -> bool {
 
 /// The link that link `l` turns with and whose angle is found before `l`'s, from the plan:
 /// the lower-numbered link of an RPR dyad for the other, the moving guide of an RRP dyad's
-/// slider, of a slotted slider or of a driven slider.
+/// slider, of a slotted slider or of a driven slider, each slider's guide in a PRP dyad,
+/// and for both links of an RPP dyad the outer slider's guide.
 fn rotation_partner(cx: &Ctx, l: usize) -> Option<usize> {
     let other = |j: usize, b: usize| {
         let jt = &cx.model.joints[j];
@@ -338,6 +339,9 @@ fn rotation_partner(cx: &Ctx, l: usize) -> Option<usize> {
             Solver::Rpr { b1, b2, .. } if l == b1.max(b2) => b1.min(b2),
             Solver::Rrp { b2, jp, .. } if b2 == l => other(jp, l),
             Solver::SlottedSlider { body, jq, .. } if body == l => other(jq, l),
+            Solver::Prp { b1, jp1, .. } if b1 == l => other(jp1, l),
+            Solver::Prp { b2, jp2, .. } if b2 == l => other(jp2, l),
+            Solver::Rpp { b1, b2, jq, .. } if b1 == l || b2 == l => other(jq, b2),
             Solver::DrivenPrismatic { body, joint, .. } if body == l => other(joint, l),
             _ => return None,
         };
