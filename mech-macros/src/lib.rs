@@ -350,7 +350,7 @@ mod snapshots {
             "add_inertia_of(&mutf[2usize]",
             "add_gravity_of(&mutf[2usize]",
             "z.inertia(&self.links[2usize]",
-            "z.inertia_about_anchor(&self.links[2usize]",
+            "z.inertia_about_pivot(&self.links[2usize]",
             "z.gravity(&self.links[2usize]",
             "energy::kinetic(&self.links[2usize]",
             "energy::potential(&self.links[2usize]",
@@ -365,7 +365,7 @@ mod snapshots {
             "LinkTerms::InertiaOnly.check(\"rocker\",&p.links.rocker)?",
             "add_inertia_of(&mutf[3usize]",
             // The rocker turns about its anchor O4, a ground pin: its inertia about O4.
-            "z.inertia_about_anchor(&self.links[3usize]",
+            "z.inertia_about_pivot(&self.links[3usize]",
             "energy::kinetic(&self.links[3usize]",
         ] {
             assert!(code.contains(present), "{present}");

@@ -89,7 +89,7 @@ mod tests {
             dcg: V2::new(0.3, 0.1),
             mass: 2.0,
             inertia: 0.05,
-            inertia_anchor: 0.05 + 2.0 * 0.1,
+            inertia_pivot: 0.05 + 2.0 * 0.1,
             cg_span: V2::zeros(),
             plane: 0.0,
             product: V2::zeros(),

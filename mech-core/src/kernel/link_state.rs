@@ -200,10 +200,11 @@ pub struct LinkGeom {
     pub mass: f64,
     /// Moment of inertia about the cg (kg·m²).
     pub inertia: f64,
-    /// Moment of inertia about the anchor, I_O = I_G + m |d_cg|² (kg·m²): a drawing
-    /// constant, kept so that the solvers do not recompute it per call
-    /// ([`crate::solvers::zhukovski::ZhukovskiSums::inertia_about_anchor`]).
-    pub inertia_anchor: f64,
+    /// Moment of inertia about the link's ground pivot O when it turns on one
+    /// ([`crate::model::Model::ground_pivot`]), else about its anchor:
+    /// I_O = I_G + m |G − O|² (kg·m²), a drawing constant kept so that the solvers do not
+    /// recompute it per call ([`crate::solvers::zhukovski::ZhukovskiSums::inertia_about_pivot`]).
+    pub inertia_pivot: f64,
     /// The cg in the frame of the link's first two points P₁ (the anchor) and P₂, drawn:
     /// κ = (a·g, a × g)/|a|² with a = P₂ − P₁ and g = G − P₁, so that in any pose
     /// G − P₁ = κ₁ e + κ₂ perp(e), e = P₂ − P₁ now ([`LinkGeom::cg_by_span`]); zero for a

@@ -608,7 +608,11 @@ impl Model {
         let mut grew = true;
         while grew && !fixed[l] {
             grew = false;
-            for j in self.joints.iter().filter(|j| j.kind == JointKind::Prismatic) {
+            for j in self
+                .joints
+                .iter()
+                .filter(|j| j.kind == JointKind::Prismatic)
+            {
                 if fixed[j.a] != fixed[j.b] {
                     fixed[j.a] = true;
                     fixed[j.b] = true;
@@ -631,6 +635,25 @@ impl Model {
                     && ((j.a == 0 && j.b == l) || (j.a == l && j.b == 0))
                     && j.point == first
             })
+    }
+    /// The point about which moving link `l` turns on a revolute joint with the ground
+    /// (a plain pin: no cam, no rolling, no mesh), if it has one: that point never moves,
+    /// so Zhukovski's route needs only the link's inertia about it, I_O = I_G + m |G − O|²
+    /// ([`crate::kernel::link_state::LinkGeom::inertia_pivot`]), at any anchor.
+    pub fn ground_pivot(&self, l: usize) -> Option<usize> {
+        if l == 0 {
+            return None;
+        }
+        self.joints
+            .iter()
+            .find(|j| {
+                j.kind == JointKind::Revolute
+                    && ((j.a == 0 && j.b == l) || (j.a == l && j.b == 0))
+                    && j.cam.is_none()
+                    && j.around.is_none()
+                    && j.mesh.is_none()
+            })
+            .map(|j| j.point)
     }
     /// A moving link whose anchor (first point) is the second point of moving link `l`:
     /// its state's position minus `l`'s is then `l`'s span P₂ − P₁
@@ -734,6 +757,11 @@ mod tests {
         assert!(m.pinned_at_anchor(l("arm")));
         // The lever turns about O4 too, but its anchor is C, its first point.
         assert!(!m.pinned_at_anchor(l("lever")));
+        // ... and so about a ground pivot, as the crank and the arm.
+        let o4 = m.points.iter().position(|p| p.name == "O4");
+        assert_eq!(m.ground_pivot(l("lever")), o4);
+        assert_eq!(m.ground_pivot(l("arm")), o4);
+        assert!(m.ground_pivot(l("crank")).is_some() && m.ground_pivot(l("rod")).is_none());
         assert!(
             !m.pinned_at_anchor(l("rod"))
                 && !m.pinned_at_anchor(l("piston"))

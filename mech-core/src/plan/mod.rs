@@ -3,3 +3,4 @@
 
 pub mod assur;
 pub mod geometry;
+pub mod rotation;

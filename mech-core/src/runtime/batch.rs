@@ -479,7 +479,7 @@ impl Mechanism {
             let geom = &self.inst.links[l];
             if t.inertia() {
                 if self.pinned[l] {
-                    z.inertia_about_anchor(geom, &s[l]);
+                    z.inertia_about_pivot(geom, &s[l]);
                 } else if self.translates[l] {
                     z.inertia_translating(geom, &s[l]);
                 } else {

@@ -407,7 +407,8 @@ impl Mechanism {
         q: &[f64],
     ) -> f64 {
         match *rule {
-            Angle::Turned => geom.angle(s),
+            // A partner's angle is read by the caller; here from the rotation.
+            Angle::Turned | Angle::With(_) => geom.angle(s),
             Angle::Crank { input, sign, zero } => kinematics::crank_angle(
                 match zero {
                     None => q[input],
@@ -483,20 +484,22 @@ impl Mechanism {
         // the points and cgs derived from them; an anchor point is its link's state).
         let mut bad = false;
         out.links[0] = p.ground;
-        for (((o, st), geom), rule) in out.links[1..]
-            .iter_mut()
-            .zip(&s[1..])
-            .zip(&self.inst.links[1..])
-            .zip(&p.angles)
-        {
+        for (l, rule) in (1..n).zip(&p.angles) {
+            let (st, geom) = (&s[l], &self.inst.links[l]);
             bad |= nf(st.pos)
                 | nf(st.rot)
                 | nf(st.vel)
                 | nf(st.acc)
                 | non_finite(st.omega)
                 | non_finite(st.alpha);
-            *o = geom.motion_at(st, self.angle(rule, st, geom, q));
+            let angle = match *rule {
+                // The partner (a lower link) is published already.
+                Angle::With(m) => geom.angle_with(&self.inst.links[m], out.links[m].angle),
+                _ => self.angle(rule, st, geom, q),
+            };
+            let o = geom.motion_at(st, angle);
             bad |= nf(o.cg) | nf(o.cg_vel) | nf(o.cg_acc);
+            out.links[l] = o;
         }
         for (o, owner) in out.points.iter_mut().zip(&p.owners) {
             *o = match *owner {

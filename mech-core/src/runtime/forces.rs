@@ -385,7 +385,7 @@ impl Mechanism {
         if inertia {
             for &(l, share) in &self.program.inertial {
                 match share {
-                    Share::AboutAnchor => z.inertia_about_anchor(&links[l], &s[l]),
+                    Share::AboutPivot => z.inertia_about_pivot(&links[l], &s[l]),
                     Share::Translating => z.inertia_translating(&links[l], &s[l]),
                     Share::Spanned(n) => z.inertia_spanned(&links[l], &s[l], &s[n]),
                     Share::General => z.inertia(&links[l], &s[l]),

@@ -55,7 +55,7 @@ pub struct Mechanism {
     pub(super) plan: Vec<Group>,
     pub(super) branches: Vec<f64>,
     pub(super) terms: Vec<LinkTerms>,
-    /// Per link: it turns about its anchor on a ground pin ([`Model::pinned_at_anchor`]).
+    /// Per link: it turns about a ground pin ([`Model::ground_pivot`]).
     pub(super) pinned: Vec<bool>,
     /// Per link: it slides on the ground ([`Model::translates`]).
     pub(super) translates: Vec<bool>,
@@ -86,6 +86,10 @@ pub(super) enum Angle {
     },
     /// A link that never turns (sliding on the ground): its drawing's angle.
     Fixed(f64),
+    /// A link that turns with this lower-numbered link
+    /// ([`crate::plan::rotation::rotation_partner`]): that link's published angle plus the
+    /// drawing's difference; no `atan2`.
+    With(usize),
 }
 
 /// How a point is published, as the generated code does (`emit/results.rs`, `owners`).
@@ -102,8 +106,8 @@ pub(super) enum Owner {
 /// A link's share of Zhukovski's I* or M*, by what the link does (`emit/traits.rs`).
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Share {
-    /// Turning about its anchor on a ground pin (inertia only).
-    AboutAnchor,
+    /// Turning about a ground pin (inertia only).
+    AboutPivot,
     /// Sliding on the ground.
     Translating,
     /// Its cg from the span to this link's anchor ([`Model::span_partner`]).
@@ -158,7 +162,10 @@ impl Program {
                 crank.unwrap_or(if model.translates(l) {
                     Angle::Fixed(inst.links[l].angle_ref)
                 } else {
-                    Angle::Turned
+                    match crate::plan::rotation::rotation_partner(model, plan, l) {
+                        Some(m) if m < l => Angle::With(m),
+                        _ => Angle::Turned,
+                    }
                 })
             })
             .collect();
@@ -177,8 +184,8 @@ impl Program {
             .collect();
         let terms: Vec<LinkTerms> = model.links.iter().map(LinkTerms::of).collect();
         let share = |l: usize, inertia: bool| {
-            if inertia && model.pinned_at_anchor(l) {
-                Share::AboutAnchor
+            if inertia && model.ground_pivot(l).is_some() {
+                Share::AboutPivot
             } else if model.translates(l) {
                 Share::Translating
             } else if let Some(m) = model.span_partner(l) {
@@ -282,7 +289,7 @@ impl Mechanism {
         let branches = inst.branches(&solvers);
         let terms = model.links.iter().map(LinkTerms::of).collect();
         let pinned = (0..model.links.len())
-            .map(|l| model.pinned_at_anchor(l))
+            .map(|l| model.ground_pivot(l).is_some())
             .collect();
         let translates = (0..model.links.len())
             .map(|l| model.translates(l))

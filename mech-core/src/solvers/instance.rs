@@ -64,7 +64,15 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
                 dcg,
                 mass,
                 inertia,
-                inertia_anchor: inertia + mass * dcg.norm_squared(),
+                inertia_pivot: inertia
+                    + mass
+                        * match model.ground_pivot(l) {
+                            Some(o) => {
+                                let (g, o) = (link.cg, model.points[o].pos);
+                                (g[0] - o[0]).powi(2) + (g[1] - o[1]).powi(2)
+                            }
+                            None => dcg.norm_squared(),
+                        },
                 cg_span: match link.points.get(1) {
                     Some(&p2) => {
                         let a = local(model, l, model.points[p2].pos);

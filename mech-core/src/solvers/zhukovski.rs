@@ -115,13 +115,13 @@ impl ZhukovskiSums {
         let per_alpha = m2 * v.dot(&perp(r)) + 2.0 * l.inertia * s.omega;
         self.reduced.inertia_derivative += without_alpha + per_alpha * s.alpha;
     }
-    /// Add the inertia of a link turning about its anchor O, a fixed pin
-    /// ([`crate::model::Model::pinned_at_anchor`]): there v_G = ω perp(r) and
-    /// v_G·a_G = ω α |r|² (r = G − O), so I* += I_O ω² and dI*/dq += 2 I_O ω α with
-    /// I_O = I_G + m |r|² (kg·m²); no cg is placed.
+    /// Add the inertia of a link turning about a fixed pin O, its ground pivot
+    /// ([`crate::model::Model::ground_pivot`], at the anchor or not): there v_G = ω perp(r)
+    /// and v_G·a_G = ω α |r|² (r = G − O), so I* += I_O ω² and dI*/dq += 2 I_O ω α with
+    /// I_O = I_G + m |r|² ([`LinkGeom::inertia_pivot`], kg·m²); no cg is placed.
     #[inline(always)]
-    pub fn inertia_about_anchor(&mut self, l: &LinkGeom, s: &LinkState) {
-        let io = l.inertia_anchor;
+    pub fn inertia_about_pivot(&mut self, l: &LinkGeom, s: &LinkState) {
+        let io = l.inertia_pivot;
         self.reduced.inertia += io * s.omega * s.omega;
         self.reduced.inertia_derivative += (2.0 * io * s.omega) * s.alpha;
     }

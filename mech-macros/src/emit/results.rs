@@ -144,16 +144,20 @@ enum Rotation {
     Of(usize),
 }
 
-/// [`Rotation`] of moving link `l`: unrotated when it slides on the ground and a closed
-/// form places it (an RRP dyad's slider, a slotted slider, a driven slider: their
-/// rotation is written (1, 0)); that of the link it turns with ([`rotation_partner`]),
+/// [`Rotation`] of moving link `l`: unrotated when it never turns and a closed form
+/// places it (an RRP dyad's slider, a slotted slider, a driven slider, PRP and RPP
+/// sliders: their rotation is copied from the ground's, (1, 0)); that of the link it turns with ([`rotation_partner`]),
 /// whose rotation the kernels copy; else its own.
 fn rotation_of(cx: &Ctx, l: usize) -> Rotation {
     let closed = cx.plan.iter().any(|g| {
         g.bodies.contains(&l)
             && matches!(
                 g.solver,
-                Solver::Rrp { .. } | Solver::SlottedSlider { .. } | Solver::DrivenPrismatic { .. }
+                Solver::Rrp { .. }
+                    | Solver::SlottedSlider { .. }
+                    | Solver::DrivenPrismatic { .. }
+                    | Solver::Prp { .. }
+                    | Solver::Rpp { .. }
             )
     });
     match angle_of(cx, l) {
@@ -321,32 +325,10 @@ fn tracked(cx: &Ctx, l: usize) -> bool {
     })
 }
 
-/// The link that link `l` turns with and whose angle is found before `l`'s, from the plan:
-/// the lower-numbered link of an RPR dyad for the other, the moving guide of an RRP dyad's
-/// slider, of a slotted slider or of a driven slider, each slider's guide in a PRP dyad,
-/// and for both links of an RPP dyad the outer slider's guide.
+/// The link that link `l` turns with and whose angle is found before `l`'s
+/// ([`mech_core::plan::rotation::rotation_partner`]).
 fn rotation_partner(cx: &Ctx, l: usize) -> Option<usize> {
-    let other = |j: usize, b: usize| {
-        let jt = &cx.model.joints[j];
-        if jt.b == b {
-            jt.a
-        } else {
-            jt.b
-        }
-    };
-    cx.plan.iter().find_map(|g| {
-        let m = match g.solver {
-            Solver::Rpr { b1, b2, .. } if l == b1.max(b2) => b1.min(b2),
-            Solver::Rrp { b2, jp, .. } if b2 == l => other(jp, l),
-            Solver::SlottedSlider { body, jq, .. } if body == l => other(jq, l),
-            Solver::Prp { b1, jp1, .. } if b1 == l => other(jp1, l),
-            Solver::Prp { b2, jp2, .. } if b2 == l => other(jp2, l),
-            Solver::Rpp { b1, b2, jq, .. } if b1 == l || b2 == l => other(jq, b2),
-            Solver::DrivenPrismatic { body, joint, .. } if body == l => other(joint, l),
-            _ => return None,
-        };
-        (m != 0).then_some(m)
-    })
+    mech_core::plan::rotation::rotation_partner(cx.model, cx.plan, l)
 }
 
 /// The name of the binding of link `l`'s angle.

@@ -135,8 +135,8 @@ pub(crate) fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
     let inertial = cx.inertial();
     let weighed = cx.weighed();
     let inertia = inertial.iter().map(|&l| {
-        if cx.model.pinned_at_anchor(l) {
-            quote!(z.inertia_about_anchor(&self.links[#l], &s[#l]);)
+        if cx.model.ground_pivot(l).is_some() {
+            quote!(z.inertia_about_pivot(&self.links[#l], &s[#l]);)
         } else if cx.model.translates(l) {
             quote!(z.inertia_translating(&self.links[#l], &s[#l]);)
         } else if let Some(m) = cx.model.span_partner(l) {

@@ -452,8 +452,8 @@ fn compare(rig: &Rig, sa: &[LinkState], sl: &[LinkLanes], i: usize, upto: Level,
                 |z, l, s, n, _, _| z.inertia_spanned(l, s, n),
             ),
             (
-                |z, l, s, _, _, _| z.inertia_about_anchor(l, s),
-                |z, l, s, _, _, _| z.inertia_about_anchor(l, s),
+                |z, l, s, _, _, _| z.inertia_about_pivot(l, s),
+                |z, l, s, _, _, _| z.inertia_about_pivot(l, s),
             ),
             (
                 |z, l, s, _, _, _| z.inertia_translating(l, s),
@@ -944,9 +944,9 @@ mod four_bar {
             Level::Acceleration,
         )?;
         let mut z = ZhukovskiSums::new();
-        z.inertia_about_anchor(&n.links[1], &s[1]);
+        z.inertia_about_pivot(&n.links[1], &s[1]);
         z.inertia(&n.links[2], &s[2]);
-        z.inertia_about_anchor(&n.links[3], &s[3]);
+        z.inertia_about_pivot(&n.links[3], &s[3]);
         Ok((z.reduced.inertia, z.reduced.inertia_derivative))
     }
 
@@ -974,9 +974,9 @@ mod four_bar {
         );
         let m1 = solve_chain_lanes(S1, &j, &mut s, n.sign, n.scale, Level::Acceleration);
         let mut z = ZhukovskiLanes::new();
-        z.inertia_about_anchor(&n.links[1], &s[1]);
+        z.inertia_about_pivot(&n.links[1], &s[1]);
         z.inertia(&n.links[2], &s[2]);
-        z.inertia_about_anchor(&n.links[3], &s[3]);
+        z.inertia_about_pivot(&n.links[3], &s[3]);
         (z.inertia, z.inertia_derivative, or(m0, m1))
     }
 

@@ -63,11 +63,11 @@ impl<B: Backend> ZhukovskiLanes<B> {
         let per_alpha = v.dot(r.perp()) * m2 + s.omega * (2.0 * l.inertia);
         self.inertia_derivative += without_alpha + per_alpha * s.alpha;
     }
-    /// Add the inertia of a link turning about its anchor, a fixed pin: I* += I_O ω²,
-    /// dI*/dq += 2 I_O ω α, I_O = `l.inertia_anchor` (kg·m²).
+    /// Add the inertia of a link turning about its ground pivot, a fixed pin: I* += I_O ω²,
+    /// dI*/dq += 2 I_O ω α, I_O = `l.inertia_pivot` (kg·m²).
     #[inline(always)]
-    pub fn inertia_about_anchor(&mut self, l: &LinkGeom, s: &LinkLanes<B>) {
-        let io = l.inertia_anchor;
+    pub fn inertia_about_pivot(&mut self, l: &LinkGeom, s: &LinkLanes<B>) {
+        let io = l.inertia_pivot;
         self.inertia += s.omega * io * s.omega;
         self.inertia_derivative += (s.omega * (2.0 * io)) * s.alpha;
     }
