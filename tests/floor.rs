@@ -1198,6 +1198,28 @@ fn declared_joint(machine: &str, joint: &str) -> mech::model::Joint {
         .clone()
 }
 
+/// Each link's balance ([`check_balance`]) at `$q`, named "`$machine` `$name`": the link
+/// `$link` of the hand-written parameters `$l` and motion `$k`, under gravity `$g`, with
+/// its forces (point of application, force) and pure moments.
+macro_rules! check_balances {
+    (
+        $machine:literal, $q:ident, ($l:ident, $g:ident, $k:ident);
+        $($name:literal $link:ident: [$($force:expr),*], [$($moment:expr),*];)+
+    ) => {
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, $g);
+        $(
+            check_balance(
+                concat!($machine, " ", $name),
+                $q,
+                body(&$l.$link),
+                &$k.$link,
+                &[$($force),*],
+                &[$($moment),*],
+            );
+        )+
+    };
+}
+
 /// dX/dq by a central difference of `f` (step `FD_STEP`).
 fn d_dq(f: impl Fn(f64) -> Vector2<f64>, q: f64) -> Vector2<f64> {
     (f(q + FD_STEP) - f(q - FD_STEP)) / (2.0 * FD_STEP)
@@ -1268,30 +1290,10 @@ fn quick_return_hand_independent_checks() {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let f = h.kinetostatics(&k, &loads);
         let (o2, o4, a, c) = (k.o2.pos, k.o4.pos, k.a.pos, k.c.pos);
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "quick-return crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, -f.a)],
-            &[f.driver, loads.friction],
-        );
-        check_balance(
-            "quick-return block",
-            q,
-            body(&l.block),
-            &k.block,
-            &[(a, f.a), (a, f.slot)],
-            &[f.slot_moment],
-        );
-        check_balance(
-            "quick-return lever",
-            q,
-            body(&l.lever),
-            &k.lever,
-            &[(o4, f.o4), (a, -f.slot), (c, loads.cut)],
-            &[-f.slot_moment],
+        check_balances!("quick-return", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, -f.a)], [f.driver, loads.friction];
+            "block" block: [(a, f.a), (a, f.slot)], [f.slot_moment];
+            "lever" lever: [(o4, f.o4), (a, -f.slot), (c, loads.cut)], [-f.slot_moment];
         );
     }
     check_dynamics(
@@ -1323,22 +1325,9 @@ fn scotch_yoke_hand_independent_checks() {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let f = h.kinetostatics(&k, &loads);
         let (o2, a, y) = (k.o2.pos, k.a.pos, k.y.pos);
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "Scotch yoke crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, f.slot)],
-            &[f.driver, loads.drag],
-        );
-        check_balance(
-            "Scotch yoke yoke",
-            q,
-            body(&l.yoke),
-            &k.yoke,
-            &[(y, f.guide), (a, -f.slot), (y, loads.resist)],
-            &[f.guide_moment],
+        check_balances!("Scotch yoke", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, f.slot)], [f.driver, loads.drag];
+            "yoke" yoke: [(y, f.guide), (a, -f.slot), (y, loads.resist)], [f.guide_moment];
         );
     }
     check_dynamics(
@@ -1370,30 +1359,10 @@ fn inverted_slider_crank_hand_independent_checks() {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let f = h.kinetostatics(&k, &loads);
         let (o2, o4, a, pp) = (k.o2.pos, k.o4.pos, k.a.pos, k.p.pos);
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "inverted slider-crank crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, -f.a)],
-            &[f.driver],
-        );
-        check_balance(
-            "inverted slider-crank rod",
-            q,
-            body(&l.rod),
-            &k.rod,
-            &[(a, f.a), (o4, -f.slide), (pp, loads.push)],
-            &[-f.slide_moment],
-        );
-        check_balance(
-            "inverted slider-crank block",
-            q,
-            body(&l.block),
-            &k.block,
-            &[(o4, f.o4), (o4, f.slide)],
-            &[f.slide_moment, loads.resist],
+        check_balances!("inverted slider-crank", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, -f.a)], [f.driver];
+            "rod" rod: [(a, f.a), (o4, -f.slide), (pp, loads.push)], [-f.slide_moment];
+            "block" block: [(o4, f.o4), (o4, f.slide)], [f.slide_moment, loads.resist];
         );
     }
     check_dynamics(
@@ -1452,38 +1421,11 @@ fn geared_slider_crank_hand_independent_checks() {
         );
         assert!((f.mesh.norm() - f.tooth_load).abs() <= 1e-12 * f.tooth_load);
         assert_eq!(f.flank, ft.signum());
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "geared slider-crank pinion",
-            q,
-            body(&l.pinion),
-            &k.pinion,
-            &[(o1, f.o1), (pitch, -f.mesh)],
-            &[f.driver],
-        );
-        check_balance(
-            "geared slider-crank gear",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (pitch, f.mesh), (a, -f.a)],
-            &[loads.shaft],
-        );
-        check_balance(
-            "geared slider-crank rod",
-            q,
-            body(&l.rod),
-            &k.rod,
-            &[(a, f.a), (b, -f.b)],
-            &[],
-        );
-        check_balance(
-            "geared slider-crank piston",
-            q,
-            body(&l.piston),
-            &k.piston,
-            &[(b, f.b), (b, f.guide), (b, loads.gas)],
-            &[f.guide_moment],
+        check_balances!("geared slider-crank", q, (l, g, k);
+            "pinion" pinion: [(o1, f.o1), (pitch, -f.mesh)], [f.driver];
+            "gear" crank: [(o2, f.o2), (pitch, f.mesh), (a, -f.a)], [loads.shaft];
+            "rod" rod: [(a, f.a), (b, -f.b)], [];
+            "piston" piston: [(b, f.b), (b, f.guide), (b, loads.gas)], [f.guide_moment];
         );
         assert!(f.guide.dot(&p.axes.guide).abs() <= 1e-12 * f.guide.norm().max(1.0));
     }
@@ -1567,22 +1509,10 @@ fn roller_cam_hand_independent_checks() {
             "normal not outward at {q} (the pitch curve runs clockwise)"
         );
         let contact = pp - n * r;
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "roller cam cam",
-            q,
-            body(&l.cam),
-            &k.cam,
-            &[(o, f.o), (contact, -f.lobe)],
-            &[f.driver, loads.drag],
-        );
-        check_balance(
-            "roller cam follower",
-            q,
-            body(&l.follower),
-            &k.follower,
-            &[(pp, f.slide), (contact, f.lobe), (k.t.pos, loads.push)],
-            &[f.slide_moment],
+        check_balances!("roller cam", q, (l, g, k);
+            "cam" cam: [(o, f.o), (contact, -f.lobe)], [f.driver, loads.drag];
+            "follower" follower: [(pp, f.slide), (contact, f.lobe), (k.t.pos, loads.push)],
+                [f.slide_moment];
         );
         assert!(f.slide.dot(&p.axes.slide).abs() <= 1e-12 * f.slide.norm().max(1.0));
     }
@@ -1635,30 +1565,10 @@ fn crank_rod_wheel_hand_independent_checks() {
             (f.roll - (n * f.normal + u * f.friction)).norm() <= 1e-12 * f.roll.norm(),
             "contact parts at {q}"
         );
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "crank-rod-wheel crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, -f.a)],
-            &[f.driver],
-        );
-        check_balance(
-            "crank-rod-wheel rod",
-            q,
-            body(&l.rod),
-            &k.rod,
-            &[(a, f.a), (c, -f.c)],
-            &[],
-        );
-        check_balance(
-            "crank-rod-wheel wheel",
-            q,
-            body(&l.wheel),
-            &k.wheel,
-            &[(c, f.c), (contact, f.roll), (c, loads.pull)],
-            &[loads.brake],
+        check_balances!("crank-rod-wheel", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, -f.a)], [f.driver];
+            "rod" rod: [(a, f.a), (c, -f.c)], [];
+            "wheel" wheel: [(c, f.c), (contact, f.roll), (c, loads.pull)], [loads.brake];
         );
     }
     check_dynamics(
@@ -1714,30 +1624,11 @@ fn block_scotch_yoke_hand_independent_checks() {
         assert_eq!((k.block.angle, k.yoke.angle), (0.0, theta4));
         assert!(f.slot.dot(&us).abs() <= 1e-12 * f.slot.norm().max(1.0));
         assert!(f.guide.dot(&ug).abs() <= 1e-12 * f.guide.norm().max(1.0));
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "block Scotch yoke crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, -f.a)],
-            &[f.driver],
-        );
-        check_balance(
-            "block Scotch yoke block",
-            q,
-            body(&l.block),
-            &k.block,
-            &[(a, f.a), (a, f.slot)],
-            &[f.slot_moment, loads.friction],
-        );
-        check_balance(
-            "block Scotch yoke yoke",
-            q,
-            body(&l.yoke),
-            &k.yoke,
-            &[(y, f.guide), (a, -f.slot), (t, loads.resist)],
-            &[f.guide_moment, -f.slot_moment],
+        check_balances!("block Scotch yoke", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, -f.a)], [f.driver];
+            "block" block: [(a, f.a), (a, f.slot)], [f.slot_moment, loads.friction];
+            "yoke" yoke: [(y, f.guide), (a, -f.slot), (t, loads.resist)],
+                [f.guide_moment, -f.slot_moment];
         );
     }
     check_dynamics(
@@ -1803,30 +1694,10 @@ fn slotted_crank_ram_hand_independent_checks() {
         assert!(wrap(k.block.angle - phi).abs() < 1e-15);
         assert!(f.slot.dot(&us).abs() <= 1e-12 * f.slot.norm().max(1.0));
         assert!(f.guide.dot(&ug).abs() <= 1e-12 * f.guide.norm().max(1.0));
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "slotted crank and ram crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (b, -f.slot)],
-            &[f.driver, -f.slot_moment],
-        );
-        check_balance(
-            "slotted crank and ram block",
-            q,
-            body(&l.block),
-            &k.block,
-            &[(b, f.slot), (b, -f.b)],
-            &[f.slot_moment, loads.resist],
-        );
-        check_balance(
-            "slotted crank and ram ram",
-            q,
-            body(&l.ram),
-            &k.ram,
-            &[(b, f.b), (b, f.guide), (pp, loads.push)],
-            &[f.guide_moment],
+        check_balances!("slotted crank and ram", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (b, -f.slot)], [f.driver, -f.slot_moment];
+            "block" block: [(b, f.slot), (b, -f.b)], [f.slot_moment, loads.resist];
+            "ram" ram: [(b, f.b), (b, f.guide), (pp, loads.push)], [f.guide_moment];
         );
     }
     check_dynamics_over(
