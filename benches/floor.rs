@@ -267,72 +267,116 @@ case!(
 
 // One function per operation and side; every input through `black_box`.
 
-fn pose_gen(c: &FourBarCase) -> FourBarPose {
-    black_box(&c.m).pose(black_box(Q)).unwrap()
-}
-fn pose_hand(c: &FourBarCase) -> hand::FourBarHandPose {
-    black_box(&c.h).pose(black_box(Q)).unwrap()
-}
-fn kin_gen(c: &FourBarCase) -> FourBarMotion {
-    black_box(&c.m)
-        .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-        .unwrap()
-}
-fn kin_hand(c: &FourBarCase) -> hand::FourBarHandMotion {
-    black_box(&c.h)
-        .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-        .unwrap()
-}
-fn kinetostatics_gen(c: &FourBarCase) -> FourBarForces {
-    let mo = kin_gen(c);
-    black_box(&c.m)
-        .kinetostatics(&mo, black_box(&c.loads))
-        .unwrap()
-}
-fn kinetostatics_hand(c: &FourBarCase) -> hand::FourBarHandForces {
-    let mo = kin_hand(c);
-    black_box(&c.h).kinetostatics(&mo, black_box(&c.loads))
-}
-fn driver_gen(c: &FourBarCase) -> f64 {
-    let mo = kin_gen(c);
-    black_box(&c.m)
-        .driver_action(&mo, black_box(&c.loads))
-        .unwrap()
-}
-fn driver_hand(c: &FourBarCase) -> f64 {
-    let mo = kin_hand(c);
-    black_box(&c.h).driver_action(&mo, black_box(&c.loads))
-}
-fn reduced_gen(c: &SliderCrankCase) -> mech::Reduced {
-    black_box(&c.m).reduced(black_box(Q)).unwrap()
-}
-fn reduced_hand(c: &SliderCrankCase) -> hand::HandReduced {
-    black_box(&c.h).reduced(black_box(Q)).unwrap()
-}
-fn acceleration_gen(c: &SliderCrankCase) -> f64 {
-    black_box(&c.m)
-        .acceleration(
-            black_box(Q),
-            black_box(QD),
-            black_box(c.driver),
-            black_box(&c.loads),
-        )
-        .unwrap()
-}
-fn acceleration_hand(c: &SliderCrankCase) -> f64 {
-    black_box(&c.h)
-        .acceleration(
-            black_box(Q),
-            black_box(QD),
-            black_box(c.driver),
-            black_box(&c.loads),
-        )
-        .unwrap()
+/// The functions of the four operations on a pose and its motion, both sides, for the case
+/// type `C` (the one of the scope): `pose_gen`, `pose_hand`, `kin_gen`, `kin_hand`,
+/// `kinetostatics_gen`, `kinetostatics_hand`, `driver_gen`, `driver_hand`.
+macro_rules! motion_functions {
+    (
+        pose: $pose:ty, $hand_pose:ty,
+        motion: $motion:ty, $hand_motion:ty,
+        forces: $forces:ty, $hand_forces:ty $(,)?
+    ) => {
+        pub(crate) fn pose_gen(c: &C) -> $pose {
+            black_box(&c.m).pose(black_box(Q)).unwrap()
+        }
+        pub(crate) fn pose_hand(c: &C) -> $hand_pose {
+            black_box(&c.h).pose(black_box(Q)).unwrap()
+        }
+        pub(crate) fn kin_gen(c: &C) -> $motion {
+            black_box(&c.m)
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap()
+        }
+        pub(crate) fn kin_hand(c: &C) -> $hand_motion {
+            black_box(&c.h)
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap()
+        }
+        pub(crate) fn kinetostatics_gen(c: &C) -> $forces {
+            let mo = kin_gen(c);
+            black_box(&c.m)
+                .kinetostatics(&mo, black_box(&c.loads))
+                .unwrap()
+        }
+        pub(crate) fn kinetostatics_hand(c: &C) -> $hand_forces {
+            let mo = kin_hand(c);
+            black_box(&c.h).kinetostatics(&mo, black_box(&c.loads))
+        }
+        pub(crate) fn driver_gen(c: &C) -> f64 {
+            let mo = kin_gen(c);
+            black_box(&c.m)
+                .driver_action(&mo, black_box(&c.loads))
+                .unwrap()
+        }
+        pub(crate) fn driver_hand(c: &C) -> f64 {
+            let mo = kin_hand(c);
+            black_box(&c.h).driver_action(&mo, black_box(&c.loads))
+        }
+    };
 }
 
-/// `$run($c, "$name/<op>", $k, <op>_gen, <op>_hand)` for each of the six operations of
-/// [`six_operations`], in order: `$run` is `pair` or `ratio`.
-macro_rules! each_operation {
+/// The functions of the two operations of the direct dynamics, both sides, for the case
+/// type `C` (the one of the scope, with a `driver`): `reduced_gen`, `reduced_hand`,
+/// `acceleration_gen`, `acceleration_hand`.
+macro_rules! dynamics_functions {
+    () => {
+        pub(crate) fn reduced_gen(c: &C) -> mech::Reduced {
+            black_box(&c.m).reduced(black_box(Q)).unwrap()
+        }
+        pub(crate) fn reduced_hand(c: &C) -> hand::HandReduced {
+            black_box(&c.h).reduced(black_box(Q)).unwrap()
+        }
+        pub(crate) fn acceleration_gen(c: &C) -> f64 {
+            black_box(&c.m)
+                .acceleration(
+                    black_box(Q),
+                    black_box(QD),
+                    black_box(c.driver),
+                    black_box(&c.loads),
+                )
+                .unwrap()
+        }
+        pub(crate) fn acceleration_hand(c: &C) -> f64 {
+            black_box(&c.h)
+                .acceleration(
+                    black_box(Q),
+                    black_box(QD),
+                    black_box(c.driver),
+                    black_box(&c.loads),
+                )
+                .unwrap()
+        }
+    };
+}
+
+/// The four-bar's [`motion_functions`].
+mod four_bar_ops {
+    use super::*;
+
+    type C = FourBarCase;
+    motion_functions!(
+        pose: FourBarPose, hand::FourBarHandPose,
+        motion: FourBarMotion, hand::FourBarHandMotion,
+        forces: FourBarForces, hand::FourBarHandForces,
+    );
+}
+use four_bar_ops::{
+    driver_gen, driver_hand, kin_gen, kin_hand, kinetostatics_gen, kinetostatics_hand, pose_gen,
+    pose_hand,
+};
+
+/// The slider-crank's [`dynamics_functions`].
+mod slider_crank_ops {
+    use super::*;
+
+    type C = SliderCrankCase;
+    dynamics_functions!();
+}
+use slider_crank_ops::{acceleration_gen, acceleration_hand, reduced_gen, reduced_hand};
+
+/// `$run($c, "$name/<op>", $k, <op>_gen, <op>_hand)` for each of the four operations on a
+/// pose and its motion, in order: `$run` is `pair` or `ratio`.
+macro_rules! motion_operations {
     ($run:ident, $c:ident, $name:literal, $k:ident) => {
         $run($c, concat!($name, "/pose"), $k, pose_gen, pose_hand);
         $run($c, concat!($name, "/kinematics"), $k, kin_gen, kin_hand);
@@ -350,6 +394,12 @@ macro_rules! each_operation {
             driver_gen,
             driver_hand,
         );
+    };
+}
+
+/// [`motion_operations`] for the two operations of the direct dynamics.
+macro_rules! dynamics_operations {
+    ($run:ident, $c:ident, $name:literal, $k:ident) => {
         $run(
             $c,
             concat!($name, "/reduced"),
@@ -367,9 +417,9 @@ macro_rules! each_operation {
     };
 }
 
-/// The six operations of one machine of [`Case`], both sides, as the functions above
-/// (every input through `black_box`), in the module `$module`, with `pairs` (the groups
-/// `$name/<op>`) and `ratios` (the entries `ratio/$name/<op>`).
+/// The six operations of one machine of [`Case`], both sides ([`motion_functions`] and
+/// [`dynamics_functions`]: every input through `black_box`), in the module `$module`, with
+/// `pairs` (the groups `$name/<op>`) and `ratios` (the entries `ratio/$name/<op>`).
 macro_rules! six_operations {
     (
         $module:ident, $name:literal, $case:ty,
@@ -381,78 +431,23 @@ macro_rules! six_operations {
             use super::*;
 
             type C = $case;
-
-            fn pose_gen(c: &C) -> $pose {
-                black_box(&c.m).pose(black_box(Q)).unwrap()
-            }
-            fn pose_hand(c: &C) -> $hand_pose {
-                black_box(&c.h).pose(black_box(Q)).unwrap()
-            }
-            fn kin_gen(c: &C) -> $motion {
-                black_box(&c.m)
-                    .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                    .unwrap()
-            }
-            fn kin_hand(c: &C) -> $hand_motion {
-                black_box(&c.h)
-                    .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                    .unwrap()
-            }
-            fn kinetostatics_gen(c: &C) -> $forces {
-                let mo = kin_gen(c);
-                black_box(&c.m)
-                    .kinetostatics(&mo, black_box(&c.loads))
-                    .unwrap()
-            }
-            fn kinetostatics_hand(c: &C) -> $hand_forces {
-                let mo = kin_hand(c);
-                black_box(&c.h).kinetostatics(&mo, black_box(&c.loads))
-            }
-            fn driver_gen(c: &C) -> f64 {
-                let mo = kin_gen(c);
-                black_box(&c.m)
-                    .driver_action(&mo, black_box(&c.loads))
-                    .unwrap()
-            }
-            fn driver_hand(c: &C) -> f64 {
-                let mo = kin_hand(c);
-                black_box(&c.h).driver_action(&mo, black_box(&c.loads))
-            }
-            fn reduced_gen(c: &C) -> mech::Reduced {
-                black_box(&c.m).reduced(black_box(Q)).unwrap()
-            }
-            fn reduced_hand(c: &C) -> hand::HandReduced {
-                black_box(&c.h).reduced(black_box(Q)).unwrap()
-            }
-            fn acceleration_gen(c: &C) -> f64 {
-                black_box(&c.m)
-                    .acceleration(
-                        black_box(Q),
-                        black_box(QD),
-                        black_box(c.driver),
-                        black_box(&c.loads),
-                    )
-                    .unwrap()
-            }
-            fn acceleration_hand(c: &C) -> f64 {
-                black_box(&c.h)
-                    .acceleration(
-                        black_box(Q),
-                        black_box(QD),
-                        black_box(c.driver),
-                        black_box(&c.loads),
-                    )
-                    .unwrap()
-            }
+            motion_functions!(
+                pose: $pose, $hand_pose,
+                motion: $motion, $hand_motion,
+                forces: $forces, $hand_forces,
+            );
+            dynamics_functions!();
 
             /// The groups `$name/<op>`, generated then hand.
             pub fn pairs(c: &mut Criterion, k: &C) {
-                each_operation!(pair, c, $name, k);
+                motion_operations!(pair, c, $name, k);
+                dynamics_operations!(pair, c, $name, k);
             }
 
             /// The entries `ratio/$name/<op>`, interleaved.
             pub fn ratios(c: &mut Criterion<Interleaved>, k: &C) {
-                each_operation!(ratio, c, $name, k);
+                motion_operations!(ratio, c, $name, k);
+                dynamics_operations!(ratio, c, $name, k);
             }
         }
     };
@@ -553,35 +548,13 @@ fn ratio<C, A, B, M: Measurement<Value = f64>>(
 }
 
 fn four_bar(c: &mut Criterion) {
-    let k = FourBarCase::new();
-    pair(c, "four_bar/pose", &k, pose_gen, pose_hand);
-    pair(c, "four_bar/kinematics", &k, kin_gen, kin_hand);
-    pair(
-        c,
-        "four_bar/kinematics+kinetostatics",
-        &k,
-        kinetostatics_gen,
-        kinetostatics_hand,
-    );
-    pair(
-        c,
-        "four_bar/kinematics+driver_action",
-        &k,
-        driver_gen,
-        driver_hand,
-    );
+    let k = &FourBarCase::new();
+    motion_operations!(pair, c, "four_bar", k);
 }
 
 fn slider_crank(c: &mut Criterion) {
-    let k = SliderCrankCase::new();
-    pair(c, "slider_crank/reduced", &k, reduced_gen, reduced_hand);
-    pair(
-        c,
-        "slider_crank/acceleration",
-        &k,
-        acceleration_gen,
-        acceleration_hand,
-    );
+    let k = &SliderCrankCase::new();
+    dynamics_operations!(pair, c, "slider_crank", k);
 }
 
 fn quick_return(c: &mut Criterion) {
@@ -617,32 +590,10 @@ fn slotted_crank_ram(c: &mut Criterion) {
 }
 
 fn ratios(c: &mut Criterion<Interleaved>) {
-    let k = FourBarCase::new();
-    ratio(c, "four_bar/pose", &k, pose_gen, pose_hand);
-    ratio(c, "four_bar/kinematics", &k, kin_gen, kin_hand);
-    ratio(
-        c,
-        "four_bar/kinematics+kinetostatics",
-        &k,
-        kinetostatics_gen,
-        kinetostatics_hand,
-    );
-    ratio(
-        c,
-        "four_bar/kinematics+driver_action",
-        &k,
-        driver_gen,
-        driver_hand,
-    );
-    let k = SliderCrankCase::new();
-    ratio(c, "slider_crank/reduced", &k, reduced_gen, reduced_hand);
-    ratio(
-        c,
-        "slider_crank/acceleration",
-        &k,
-        acceleration_gen,
-        acceleration_hand,
-    );
+    let k = &FourBarCase::new();
+    motion_operations!(ratio, c, "four_bar", k);
+    let k = &SliderCrankCase::new();
+    dynamics_operations!(ratio, c, "slider_crank", k);
     quick_return_ops::ratios(c, &Case::quick_return());
     scotch_yoke_ops::ratios(c, &Case::scotch_yoke());
     inverted_slider_crank_ops::ratios(c, &Case::inverted_slider_crank());
