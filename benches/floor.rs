@@ -185,214 +185,241 @@ struct Case<M, H, L> {
     driver: f64,
 }
 
-impl Case<QuickReturn, QuickReturnHand, QuickReturnLoads> {
+/// The constructor `Case::$ctor` of one machine of the six operations: the generated
+/// `$machine`, its hand-written twin `$hand` on the same parameters, the loads `$loads` with
+/// a force and a torque set by name, and a 5 N·m driver.
+macro_rules! case {
+    (
+        $(#[$attr:meta])*
+        $ctor:ident: $machine:ident, $hand:ident, $loads:ident,
+        $force:literal = $force_value:expr, $torque:literal = $torque_value:expr $(,)?
+    ) => {
+        impl Case<$machine, $hand, $loads> {
+            $(#[$attr])*
+            fn $ctor() -> Self {
+                let m = $machine::new();
+                let h = $hand::new(m.params());
+                let mut loads = $loads::default();
+                assert!(loads.set_by_name($force, &$force_value));
+                assert!(loads.set_by_name($torque, &$torque_value));
+                Case {
+                    m,
+                    h,
+                    loads,
+                    driver: 5.0,
+                }
+            }
+        }
+    };
+}
+
+case!(
     /// A cutting force (−250, 30) N on the ram's end C of the lever, a −1.5 N·m friction
     /// torque on the crank.
-    fn quick_return() -> Self {
-        let m = QuickReturn::new();
-        let h = QuickReturnHand::new(m.params());
-        let mut loads = QuickReturnLoads::default();
-        assert!(loads.set_by_name("cut", &[-250.0, 30.0]));
-        assert!(loads.set_by_name("friction", &[-1.5]));
-        Case {
-            m,
-            h,
-            loads,
-            driver: 5.0,
-        }
-    }
-}
+    quick_return: QuickReturn, QuickReturnHand, QuickReturnLoads,
+    "cut" = [-250.0, 30.0], "friction" = [-1.5],
+);
 
-impl Case<ScotchYoke, ScotchYokeHand, ScotchYokeLoads> {
+case!(
     /// A resisting force (−120, 15) N on the yoke at Y, a −1.5 N·m drag on the crank.
-    fn scotch_yoke() -> Self {
-        let m = ScotchYoke::new();
-        let h = ScotchYokeHand::new(m.params());
-        let mut loads = ScotchYokeLoads::default();
-        assert!(loads.set_by_name("resist", &[-120.0, 15.0]));
-        assert!(loads.set_by_name("drag", &[-1.5]));
-        Case {
-            m,
-            h,
-            loads,
-            driver: 5.0,
-        }
-    }
-}
+    scotch_yoke: ScotchYoke, ScotchYokeHand, ScotchYokeLoads,
+    "resist" = [-120.0, 15.0], "drag" = [-1.5],
+);
 
-impl Case<InvertedSliderCrank, InvertedSliderCrankHand, InvertedSliderCrankLoads> {
+case!(
     /// A force (−300, 40) N on the rod at P, a 2.5 N·m resisting torque on the block.
-    fn inverted_slider_crank() -> Self {
-        let m = InvertedSliderCrank::new();
-        let h = InvertedSliderCrankHand::new(m.params());
-        let mut loads = InvertedSliderCrankLoads::default();
-        assert!(loads.set_by_name("push", &[-300.0, 40.0]));
-        assert!(loads.set_by_name("resist", &[2.5]));
-        Case {
-            m,
-            h,
-            loads,
-            driver: 5.0,
-        }
-    }
-}
+    inverted_slider_crank: InvertedSliderCrank, InvertedSliderCrankHand, InvertedSliderCrankLoads,
+    "push" = [-300.0, 40.0], "resist" = [2.5],
+);
 
-impl Case<GearedSliderCrank, GearedSliderCrankHand, GearedSliderCrankLoads> {
+case!(
     /// A −900 N gas force on the piston at B (along the guide, mostly), a −4 N·m shaft
     /// torque on the gear.
-    fn geared_slider_crank() -> Self {
-        let m = GearedSliderCrank::new();
-        let h = GearedSliderCrankHand::new(m.params());
-        let mut loads = GearedSliderCrankLoads::default();
-        assert!(loads.set_by_name("gas", &[-900.0, -90.0]));
-        assert!(loads.set_by_name("shaft", &[-4.0]));
-        Case {
-            m,
-            h,
-            loads,
-            driver: 5.0,
-        }
-    }
-}
+    geared_slider_crank: GearedSliderCrank, GearedSliderCrankHand, GearedSliderCrankLoads,
+    "gas" = [-900.0, -90.0], "shaft" = [-4.0],
+);
 
-impl Case<RollerCam, RollerCamHand, RollerCamLoads> {
+case!(
     /// A (20, −250) N force on the follower at its top T (a valve spring and the gas
     /// load, mostly along the axis), a −1.5 N·m drag on the cam.
-    fn roller_cam() -> Self {
-        let m = RollerCam::new();
-        let h = RollerCamHand::new(m.params());
-        let mut loads = RollerCamLoads::default();
-        assert!(loads.set_by_name("push", &[20.0, -250.0]));
-        assert!(loads.set_by_name("drag", &[-1.5]));
-        Case {
-            m,
-            h,
-            loads,
-            driver: 5.0,
-        }
-    }
-}
+    roller_cam: RollerCam, RollerCamHand, RollerCamLoads,
+    "push" = [20.0, -250.0], "drag" = [-1.5],
+);
 
-impl Case<CrankRodWheel, CrankRodWheelHand, CrankRodWheelLoads> {
+case!(
     /// A (−150, 20) N pull on the wheel at its centre C, a −0.8 N·m brake on the wheel.
-    fn crank_rod_wheel() -> Self {
-        let m = CrankRodWheel::new();
-        let h = CrankRodWheelHand::new(m.params());
-        let mut loads = CrankRodWheelLoads::default();
-        assert!(loads.set_by_name("pull", &[-150.0, 20.0]));
-        assert!(loads.set_by_name("brake", &[-0.8]));
-        Case {
-            m,
-            h,
-            loads,
-            driver: 5.0,
-        }
-    }
-}
+    crank_rod_wheel: CrankRodWheel, CrankRodWheelHand, CrankRodWheelLoads,
+    "pull" = [-150.0, 20.0], "brake" = [-0.8],
+);
 
-impl Case<BlockScotchYoke, BlockScotchYokeHand, BlockScotchYokeLoads> {
+case!(
     /// A (−150, 20) N resisting force on the yoke at its end T, a −0.6 N·m friction couple
     /// on the block.
-    fn block_scotch_yoke() -> Self {
-        let m = BlockScotchYoke::new();
-        let h = BlockScotchYokeHand::new(m.params());
-        let mut loads = BlockScotchYokeLoads::default();
-        assert!(loads.set_by_name("resist", &[-150.0, 20.0]));
-        assert!(loads.set_by_name("friction", &[-0.6]));
-        Case {
-            m,
-            h,
-            loads,
-            driver: 5.0,
-        }
-    }
-}
+    block_scotch_yoke: BlockScotchYoke, BlockScotchYokeHand, BlockScotchYokeLoads,
+    "resist" = [-150.0, 20.0], "friction" = [-0.6],
+);
 
-impl Case<SlottedCrankRam, SlottedCrankRamHand, SlottedCrankRamLoads> {
+case!(
     /// A (−400, 60) N force on the ram at its tool point P, a 1.8 N·m torque on the block.
-    fn slotted_crank_ram() -> Self {
-        let m = SlottedCrankRam::new();
-        let h = SlottedCrankRamHand::new(m.params());
-        let mut loads = SlottedCrankRamLoads::default();
-        assert!(loads.set_by_name("push", &[-400.0, 60.0]));
-        assert!(loads.set_by_name("resist", &[1.8]));
-        Case {
-            m,
-            h,
-            loads,
-            driver: 5.0,
-        }
-    }
-}
+    slotted_crank_ram: SlottedCrankRam, SlottedCrankRamHand, SlottedCrankRamLoads,
+    "push" = [-400.0, 60.0], "resist" = [1.8],
+);
 
 // One function per operation and side; every input through `black_box`.
 
-fn pose_gen(c: &FourBarCase) -> FourBarPose {
-    black_box(&c.m).pose(black_box(Q)).unwrap()
-}
-fn pose_hand(c: &FourBarCase) -> hand::FourBarHandPose {
-    black_box(&c.h).pose(black_box(Q)).unwrap()
-}
-fn kin_gen(c: &FourBarCase) -> FourBarMotion {
-    black_box(&c.m)
-        .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-        .unwrap()
-}
-fn kin_hand(c: &FourBarCase) -> hand::FourBarHandMotion {
-    black_box(&c.h)
-        .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-        .unwrap()
-}
-fn kinetostatics_gen(c: &FourBarCase) -> FourBarForces {
-    let mo = kin_gen(c);
-    black_box(&c.m)
-        .kinetostatics(&mo, black_box(&c.loads))
-        .unwrap()
-}
-fn kinetostatics_hand(c: &FourBarCase) -> hand::FourBarHandForces {
-    let mo = kin_hand(c);
-    black_box(&c.h).kinetostatics(&mo, black_box(&c.loads))
-}
-fn driver_gen(c: &FourBarCase) -> f64 {
-    let mo = kin_gen(c);
-    black_box(&c.m)
-        .driver_action(&mo, black_box(&c.loads))
-        .unwrap()
-}
-fn driver_hand(c: &FourBarCase) -> f64 {
-    let mo = kin_hand(c);
-    black_box(&c.h).driver_action(&mo, black_box(&c.loads))
-}
-fn reduced_gen(c: &SliderCrankCase) -> mech::Reduced {
-    black_box(&c.m).reduced(black_box(Q)).unwrap()
-}
-fn reduced_hand(c: &SliderCrankCase) -> hand::HandReduced {
-    black_box(&c.h).reduced(black_box(Q)).unwrap()
-}
-fn acceleration_gen(c: &SliderCrankCase) -> f64 {
-    black_box(&c.m)
-        .acceleration(
-            black_box(Q),
-            black_box(QD),
-            black_box(c.driver),
-            black_box(&c.loads),
-        )
-        .unwrap()
-}
-fn acceleration_hand(c: &SliderCrankCase) -> f64 {
-    black_box(&c.h)
-        .acceleration(
-            black_box(Q),
-            black_box(QD),
-            black_box(c.driver),
-            black_box(&c.loads),
-        )
-        .unwrap()
+/// The functions of the four operations on a pose and its motion, both sides, for the case
+/// type `C` (the one of the scope): `pose_gen`, `pose_hand`, `kin_gen`, `kin_hand`,
+/// `kinetostatics_gen`, `kinetostatics_hand`, `driver_gen`, `driver_hand`.
+macro_rules! motion_functions {
+    (
+        pose: $pose:ty, $hand_pose:ty,
+        motion: $motion:ty, $hand_motion:ty,
+        forces: $forces:ty, $hand_forces:ty $(,)?
+    ) => {
+        pub(crate) fn pose_gen(c: &C) -> $pose {
+            black_box(&c.m).pose(black_box(Q)).unwrap()
+        }
+        pub(crate) fn pose_hand(c: &C) -> $hand_pose {
+            black_box(&c.h).pose(black_box(Q)).unwrap()
+        }
+        pub(crate) fn kin_gen(c: &C) -> $motion {
+            black_box(&c.m)
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap()
+        }
+        pub(crate) fn kin_hand(c: &C) -> $hand_motion {
+            black_box(&c.h)
+                .kinematics(black_box(Q), black_box(QD), black_box(QDD))
+                .unwrap()
+        }
+        pub(crate) fn kinetostatics_gen(c: &C) -> $forces {
+            let mo = kin_gen(c);
+            black_box(&c.m)
+                .kinetostatics(&mo, black_box(&c.loads))
+                .unwrap()
+        }
+        pub(crate) fn kinetostatics_hand(c: &C) -> $hand_forces {
+            let mo = kin_hand(c);
+            black_box(&c.h).kinetostatics(&mo, black_box(&c.loads))
+        }
+        pub(crate) fn driver_gen(c: &C) -> f64 {
+            let mo = kin_gen(c);
+            black_box(&c.m)
+                .driver_action(&mo, black_box(&c.loads))
+                .unwrap()
+        }
+        pub(crate) fn driver_hand(c: &C) -> f64 {
+            let mo = kin_hand(c);
+            black_box(&c.h).driver_action(&mo, black_box(&c.loads))
+        }
+    };
 }
 
-/// The six operations of one machine of [`Case`], both sides, as the functions above
-/// (every input through `black_box`), in the module `$module`, with `pairs` (the groups
-/// `$name/<op>`) and `ratios` (the entries `ratio/$name/<op>`).
+/// The functions of the two operations of the direct dynamics, both sides, for the case
+/// type `C` (the one of the scope, with a `driver`): `reduced_gen`, `reduced_hand`,
+/// `acceleration_gen`, `acceleration_hand`.
+macro_rules! dynamics_functions {
+    () => {
+        pub(crate) fn reduced_gen(c: &C) -> mech::Reduced {
+            black_box(&c.m).reduced(black_box(Q)).unwrap()
+        }
+        pub(crate) fn reduced_hand(c: &C) -> hand::HandReduced {
+            black_box(&c.h).reduced(black_box(Q)).unwrap()
+        }
+        pub(crate) fn acceleration_gen(c: &C) -> f64 {
+            black_box(&c.m)
+                .acceleration(
+                    black_box(Q),
+                    black_box(QD),
+                    black_box(c.driver),
+                    black_box(&c.loads),
+                )
+                .unwrap()
+        }
+        pub(crate) fn acceleration_hand(c: &C) -> f64 {
+            black_box(&c.h)
+                .acceleration(
+                    black_box(Q),
+                    black_box(QD),
+                    black_box(c.driver),
+                    black_box(&c.loads),
+                )
+                .unwrap()
+        }
+    };
+}
+
+/// The four-bar's [`motion_functions`].
+mod four_bar_ops {
+    use super::*;
+
+    type C = FourBarCase;
+    motion_functions!(
+        pose: FourBarPose, hand::FourBarHandPose,
+        motion: FourBarMotion, hand::FourBarHandMotion,
+        forces: FourBarForces, hand::FourBarHandForces,
+    );
+}
+use four_bar_ops::{
+    driver_gen, driver_hand, kin_gen, kin_hand, kinetostatics_gen, kinetostatics_hand, pose_gen,
+    pose_hand,
+};
+
+/// The slider-crank's [`dynamics_functions`].
+mod slider_crank_ops {
+    use super::*;
+
+    type C = SliderCrankCase;
+    dynamics_functions!();
+}
+use slider_crank_ops::{acceleration_gen, acceleration_hand, reduced_gen, reduced_hand};
+
+/// `$run($c, "$name/<op>", $k, <op>_gen, <op>_hand)` for each of the four operations on a
+/// pose and its motion, in order: `$run` is `pair` or `ratio`.
+macro_rules! motion_operations {
+    ($run:ident, $c:ident, $name:literal, $k:ident) => {
+        $run($c, concat!($name, "/pose"), $k, pose_gen, pose_hand);
+        $run($c, concat!($name, "/kinematics"), $k, kin_gen, kin_hand);
+        $run(
+            $c,
+            concat!($name, "/kinematics+kinetostatics"),
+            $k,
+            kinetostatics_gen,
+            kinetostatics_hand,
+        );
+        $run(
+            $c,
+            concat!($name, "/kinematics+driver_action"),
+            $k,
+            driver_gen,
+            driver_hand,
+        );
+    };
+}
+
+/// [`motion_operations`] for the two operations of the direct dynamics.
+macro_rules! dynamics_operations {
+    ($run:ident, $c:ident, $name:literal, $k:ident) => {
+        $run(
+            $c,
+            concat!($name, "/reduced"),
+            $k,
+            reduced_gen,
+            reduced_hand,
+        );
+        $run(
+            $c,
+            concat!($name, "/acceleration"),
+            $k,
+            acceleration_gen,
+            acceleration_hand,
+        );
+    };
+}
+
+/// The six operations of one machine of [`Case`], both sides ([`motion_functions`] and
+/// [`dynamics_functions`]: every input through `black_box`), in the module `$module`, with
+/// `pairs` (the groups `$name/<op>`) and `ratios` (the entries `ratio/$name/<op>`).
 macro_rules! six_operations {
     (
         $module:ident, $name:literal, $case:ty,
@@ -404,124 +431,23 @@ macro_rules! six_operations {
             use super::*;
 
             type C = $case;
-
-            fn pose_gen(c: &C) -> $pose {
-                black_box(&c.m).pose(black_box(Q)).unwrap()
-            }
-            fn pose_hand(c: &C) -> $hand_pose {
-                black_box(&c.h).pose(black_box(Q)).unwrap()
-            }
-            fn kin_gen(c: &C) -> $motion {
-                black_box(&c.m)
-                    .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                    .unwrap()
-            }
-            fn kin_hand(c: &C) -> $hand_motion {
-                black_box(&c.h)
-                    .kinematics(black_box(Q), black_box(QD), black_box(QDD))
-                    .unwrap()
-            }
-            fn kinetostatics_gen(c: &C) -> $forces {
-                let mo = kin_gen(c);
-                black_box(&c.m)
-                    .kinetostatics(&mo, black_box(&c.loads))
-                    .unwrap()
-            }
-            fn kinetostatics_hand(c: &C) -> $hand_forces {
-                let mo = kin_hand(c);
-                black_box(&c.h).kinetostatics(&mo, black_box(&c.loads))
-            }
-            fn driver_gen(c: &C) -> f64 {
-                let mo = kin_gen(c);
-                black_box(&c.m)
-                    .driver_action(&mo, black_box(&c.loads))
-                    .unwrap()
-            }
-            fn driver_hand(c: &C) -> f64 {
-                let mo = kin_hand(c);
-                black_box(&c.h).driver_action(&mo, black_box(&c.loads))
-            }
-            fn reduced_gen(c: &C) -> mech::Reduced {
-                black_box(&c.m).reduced(black_box(Q)).unwrap()
-            }
-            fn reduced_hand(c: &C) -> hand::HandReduced {
-                black_box(&c.h).reduced(black_box(Q)).unwrap()
-            }
-            fn acceleration_gen(c: &C) -> f64 {
-                black_box(&c.m)
-                    .acceleration(
-                        black_box(Q),
-                        black_box(QD),
-                        black_box(c.driver),
-                        black_box(&c.loads),
-                    )
-                    .unwrap()
-            }
-            fn acceleration_hand(c: &C) -> f64 {
-                black_box(&c.h)
-                    .acceleration(
-                        black_box(Q),
-                        black_box(QD),
-                        black_box(c.driver),
-                        black_box(&c.loads),
-                    )
-                    .unwrap()
-            }
+            motion_functions!(
+                pose: $pose, $hand_pose,
+                motion: $motion, $hand_motion,
+                forces: $forces, $hand_forces,
+            );
+            dynamics_functions!();
 
             /// The groups `$name/<op>`, generated then hand.
             pub fn pairs(c: &mut Criterion, k: &C) {
-                pair(c, concat!($name, "/pose"), k, pose_gen, pose_hand);
-                pair(c, concat!($name, "/kinematics"), k, kin_gen, kin_hand);
-                pair(
-                    c,
-                    concat!($name, "/kinematics+kinetostatics"),
-                    k,
-                    kinetostatics_gen,
-                    kinetostatics_hand,
-                );
-                pair(
-                    c,
-                    concat!($name, "/kinematics+driver_action"),
-                    k,
-                    driver_gen,
-                    driver_hand,
-                );
-                pair(c, concat!($name, "/reduced"), k, reduced_gen, reduced_hand);
-                pair(
-                    c,
-                    concat!($name, "/acceleration"),
-                    k,
-                    acceleration_gen,
-                    acceleration_hand,
-                );
+                motion_operations!(pair, c, $name, k);
+                dynamics_operations!(pair, c, $name, k);
             }
 
             /// The entries `ratio/$name/<op>`, interleaved.
             pub fn ratios(c: &mut Criterion<Interleaved>, k: &C) {
-                ratio(c, concat!($name, "/pose"), k, pose_gen, pose_hand);
-                ratio(c, concat!($name, "/kinematics"), k, kin_gen, kin_hand);
-                ratio(
-                    c,
-                    concat!($name, "/kinematics+kinetostatics"),
-                    k,
-                    kinetostatics_gen,
-                    kinetostatics_hand,
-                );
-                ratio(
-                    c,
-                    concat!($name, "/kinematics+driver_action"),
-                    k,
-                    driver_gen,
-                    driver_hand,
-                );
-                ratio(c, concat!($name, "/reduced"), k, reduced_gen, reduced_hand);
-                ratio(
-                    c,
-                    concat!($name, "/acceleration"),
-                    k,
-                    acceleration_gen,
-                    acceleration_hand,
-                );
+                motion_operations!(ratio, c, $name, k);
+                dynamics_operations!(ratio, c, $name, k);
             }
         }
     };
@@ -622,35 +548,13 @@ fn ratio<C, A, B, M: Measurement<Value = f64>>(
 }
 
 fn four_bar(c: &mut Criterion) {
-    let k = FourBarCase::new();
-    pair(c, "four_bar/pose", &k, pose_gen, pose_hand);
-    pair(c, "four_bar/kinematics", &k, kin_gen, kin_hand);
-    pair(
-        c,
-        "four_bar/kinematics+kinetostatics",
-        &k,
-        kinetostatics_gen,
-        kinetostatics_hand,
-    );
-    pair(
-        c,
-        "four_bar/kinematics+driver_action",
-        &k,
-        driver_gen,
-        driver_hand,
-    );
+    let k = &FourBarCase::new();
+    motion_operations!(pair, c, "four_bar", k);
 }
 
 fn slider_crank(c: &mut Criterion) {
-    let k = SliderCrankCase::new();
-    pair(c, "slider_crank/reduced", &k, reduced_gen, reduced_hand);
-    pair(
-        c,
-        "slider_crank/acceleration",
-        &k,
-        acceleration_gen,
-        acceleration_hand,
-    );
+    let k = &SliderCrankCase::new();
+    dynamics_operations!(pair, c, "slider_crank", k);
 }
 
 fn quick_return(c: &mut Criterion) {
@@ -686,32 +590,10 @@ fn slotted_crank_ram(c: &mut Criterion) {
 }
 
 fn ratios(c: &mut Criterion<Interleaved>) {
-    let k = FourBarCase::new();
-    ratio(c, "four_bar/pose", &k, pose_gen, pose_hand);
-    ratio(c, "four_bar/kinematics", &k, kin_gen, kin_hand);
-    ratio(
-        c,
-        "four_bar/kinematics+kinetostatics",
-        &k,
-        kinetostatics_gen,
-        kinetostatics_hand,
-    );
-    ratio(
-        c,
-        "four_bar/kinematics+driver_action",
-        &k,
-        driver_gen,
-        driver_hand,
-    );
-    let k = SliderCrankCase::new();
-    ratio(c, "slider_crank/reduced", &k, reduced_gen, reduced_hand);
-    ratio(
-        c,
-        "slider_crank/acceleration",
-        &k,
-        acceleration_gen,
-        acceleration_hand,
-    );
+    let k = &FourBarCase::new();
+    motion_operations!(ratio, c, "four_bar", k);
+    let k = &SliderCrankCase::new();
+    dynamics_operations!(ratio, c, "slider_crank", k);
     quick_return_ops::ratios(c, &Case::quick_return());
     scotch_yoke_ops::ratios(c, &Case::scotch_yoke());
     inverted_slider_crank_ops::ratios(c, &Case::inverted_slider_crank());

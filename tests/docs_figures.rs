@@ -12,6 +12,7 @@
 //!   files it names, recomputed here exactly as the script computes it) fails: the README's
 //!   tables are the command's output on the code they describe.
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 fn root() -> PathBuf {
@@ -154,8 +155,36 @@ fn provenance(b: &Block) -> (String, String, Vec<String>) {
     (commit, hash.to_string(), paths)
 }
 
-/// FNV-1a 64 over every file under `paths`, sorted by repository-relative '/' path: path
-/// bytes, NUL, content, NUL — `code_hash` of tools/report.py.
+/// The files under `paths` that git ignores (an insta `.snap.new` left by a failed run,
+/// say), as repository-relative '/' paths: `git ls-files --others --ignored
+/// --exclude-standard -- paths`, as `code_hash` of tools/report.py leaves them out. None
+/// where git is missing or this is not a checkout (then every file counts).
+fn ignored(paths: &[String]) -> HashSet<String> {
+    let out = std::process::Command::new("git")
+        .args([
+            "ls-files",
+            "-z",
+            "--others",
+            "--ignored",
+            "--exclude-standard",
+            "--",
+        ])
+        .args(paths)
+        .current_dir(root())
+        .output();
+    match out {
+        Ok(o) if o.status.success() => String::from_utf8_lossy(&o.stdout)
+            .split('\0')
+            .filter(|f| !f.is_empty())
+            .map(str::to_string)
+            .collect(),
+        _ => HashSet::new(),
+    }
+}
+
+/// FNV-1a 64 over every file under `paths` but those git ignores ([`ignored`]), sorted by
+/// repository-relative '/' path: path bytes, NUL, content, NUL — `code_hash` of
+/// tools/report.py.
 fn code_hash(paths: &[String]) -> String {
     fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
         for e in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
@@ -188,6 +217,8 @@ fn code_hash(paths: &[String]) -> String {
             (s, f)
         })
         .collect();
+    let ignored = ignored(paths);
+    rel.retain(|(r, _)| !ignored.contains(r));
     rel.sort();
     rel.dedup_by(|a, b| a.0 == b.0);
     let mut h: u64 = 0xCBF2_9CE4_8422_2325;

@@ -735,640 +735,262 @@ fn record_reduced(
     );
 }
 
-#[test]
-fn quick_return_hand_matches_generated() {
-    let m = QuickReturn::new();
-    let h = QuickReturnHand::new(m.params());
-    let loads = quick_return_loads();
-    let none = QuickReturnLoads::default();
-    let mut r = Report::default();
-    for q in sweep() {
-        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
-        let (gm, hm) = (
-            m.kinematics(q, QD, QDD).unwrap(),
-            h.kinematics(q, QD, QDD).unwrap(),
-        );
-        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
-        record_motion(
-            &mut r,
-            q,
-            &[
-                (gl.crank, hp.crank),
-                (gl.block, hp.block),
-                (gl.lever, hp.lever),
-            ],
-            &[
-                (gpt.O2.pos, hp.o2),
-                (gpt.O4.pos, hp.o4),
-                (gpt.A.pos, hp.a),
-                (gpt.C.pos, hp.c),
-            ],
-            &[
-                (l.crank, hm.crank),
-                (l.block, hm.block),
-                (l.lever, hm.lever),
-            ],
-            &[(pt.O2, hm.o2), (pt.O4, hm.o4), (pt.A, hm.a), (pt.C, hm.c)],
-        );
-        let gf = m.kinetostatics(&gm, &loads).unwrap();
-        let hf = h.kinetostatics(&hm, &loads);
-        let j = &gf.joints;
-        r.vecs(
-            "kinetostatics: joint force",
-            q,
-            &[
-                (j.O2.force, hf.o2),
-                (j.A.force, hf.a),
-                (j.slot.force, hf.slot),
-                (j.O4.force, hf.o4),
-            ],
-        );
-        r.scalar(
-            "kinetostatics: slot moment",
-            q,
-            j.slot.moment,
-            hf.slot_moment,
-        );
-        record_drivers(
-            &mut r,
-            q,
-            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
-            (hf.driver, h.driver_action(&hm, &loads)),
-        );
-        record_reduced(
-            &mut r,
-            q,
-            (
-                m.reduced(q).unwrap(),
-                m.reduced_moment(q, &loads).unwrap(),
-                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                m.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-            (
-                h.reduced(q).unwrap(),
-                h.reduced_moment(q, &loads).unwrap(),
-                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                h.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-        );
-    }
-    r.check(&six_expected(&["kinetostatics: slot moment"]));
+/// One machine's `*_hand_matches_generated` test: the generated `$machine` against its
+/// hand-written `$hand` at every q of `sweep`, with the loads `$loads` (and with none):
+/// pose and kinematics of `links` and `points` (generated name, hand-written name), the
+/// forces of `joints`, the drivers and the reduced quantities (`record_motion`,
+/// `record_drivers`, `record_reduced`). `setup` binds what `each` and `finish` share;
+/// `each` records the machine's own quantities at every q, between the joint forces and the
+/// drivers, with the report, q, the generated joints and the hand-written forces named as
+/// its closure's arguments; `finish` checks the report.
+macro_rules! hand_matches_generated {
+    (
+        $(#[$attr:meta])*
+        fn $name:ident {
+            machine: $machine:ident, $hand:ident, $loads_ty:ident = $loads:expr;
+            sweep: $sweep:expr;
+            links: $($link:ident),+;
+            points: $($gpt:ident $hpt:ident),+;
+            joints: $($gj:ident $hj:ident),+;
+            setup: $(let $pat:pat = $init:expr;)*
+            each |$r:ident, $q:ident, $j:ident, $hf:ident| $each:block
+            finish $finish:block
+        }
+    ) => {
+        $(#[$attr])*
+        #[test]
+        fn $name() {
+            let m = $machine::new();
+            let h = $hand::new(m.params());
+            let loads = $loads;
+            let none = $loads_ty::default();
+            let mut $r = Report::default();
+            $(let $pat = $init;)*
+            for $q in $sweep {
+                let (gp, hp) = (m.pose($q).unwrap(), h.pose($q).unwrap());
+                let (gm, hm) = (
+                    m.kinematics($q, QD, QDD).unwrap(),
+                    h.kinematics($q, QD, QDD).unwrap(),
+                );
+                let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
+                record_motion(
+                    &mut $r,
+                    $q,
+                    &[$((gl.$link, hp.$link)),+],
+                    &[$((gpt.$gpt.pos, hp.$hpt)),+],
+                    &[$((l.$link, hm.$link)),+],
+                    &[$((pt.$gpt, hm.$hpt)),+],
+                );
+                let gf = m.kinetostatics(&gm, &loads).unwrap();
+                let $hf = h.kinetostatics(&hm, &loads);
+                let $j = &gf.joints;
+                $r.vecs(
+                    "kinetostatics: joint force",
+                    $q,
+                    &[$(($j.$gj.force, $hf.$hj)),+],
+                );
+                $each
+                record_drivers(
+                    &mut $r,
+                    $q,
+                    (gf.driver, m.driver_action(&gm, &loads).unwrap()),
+                    ($hf.driver, h.driver_action(&hm, &loads)),
+                );
+                record_reduced(
+                    &mut $r,
+                    $q,
+                    (
+                        m.reduced($q).unwrap(),
+                        m.reduced_moment($q, &loads).unwrap(),
+                        m.acceleration($q, QD, DRIVER, &loads).unwrap(),
+                        m.acceleration($q, QD, 0.0, &none).unwrap(),
+                    ),
+                    (
+                        h.reduced($q).unwrap(),
+                        h.reduced_moment($q, &loads).unwrap(),
+                        h.acceleration($q, QD, DRIVER, &loads).unwrap(),
+                        h.acceleration($q, QD, 0.0, &none).unwrap(),
+                    ),
+                );
+            }
+            $finish
+        }
+    };
 }
 
-#[test]
-fn scotch_yoke_hand_matches_generated() {
-    let m = ScotchYoke::new();
-    let h = ScotchYokeHand::new(m.params());
-    let loads = scotch_yoke_loads();
-    let none = ScotchYokeLoads::default();
-    let mut r = Report::default();
-    for q in sweep() {
-        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
-        let (gm, hm) = (
-            m.kinematics(q, QD, QDD).unwrap(),
-            h.kinematics(q, QD, QDD).unwrap(),
-        );
-        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
-        record_motion(
-            &mut r,
-            q,
-            &[(gl.crank, hp.crank), (gl.yoke, hp.yoke)],
-            &[(gpt.O2.pos, hp.o2), (gpt.A.pos, hp.a), (gpt.Y.pos, hp.y)],
-            &[(l.crank, hm.crank), (l.yoke, hm.yoke)],
-            &[(pt.O2, hm.o2), (pt.A, hm.a), (pt.Y, hm.y)],
-        );
-        let gf = m.kinetostatics(&gm, &loads).unwrap();
-        let hf = h.kinetostatics(&hm, &loads);
-        let j = &gf.joints;
-        r.vecs(
-            "kinetostatics: joint force",
-            q,
-            &[
-                (j.O2.force, hf.o2),
-                (j.guide.force, hf.guide),
-                (j.slot.force, hf.slot),
-            ],
-        );
-        r.scalar(
-            "kinetostatics: guide moment",
-            q,
-            j.guide.moment,
-            hf.guide_moment,
-        );
-        record_drivers(
-            &mut r,
-            q,
-            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
-            (hf.driver, h.driver_action(&hm, &loads)),
-        );
-        record_reduced(
-            &mut r,
-            q,
-            (
-                m.reduced(q).unwrap(),
-                m.reduced_moment(q, &loads).unwrap(),
-                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                m.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-            (
-                h.reduced(q).unwrap(),
-                h.reduced_moment(q, &loads).unwrap(),
-                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                h.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-        );
+hand_matches_generated! {
+    fn quick_return_hand_matches_generated {
+        machine: QuickReturn, QuickReturnHand, QuickReturnLoads = quick_return_loads();
+        sweep: sweep();
+        links: crank, block, lever;
+        points: O2 o2, O4 o4, A a, C c;
+        joints: O2 o2, A a, slot slot, O4 o4;
+        setup:
+        each |r, q, j, hf| {
+            r.scalar("kinetostatics: slot moment", q, j.slot.moment, hf.slot_moment);
+        }
+        finish {
+            r.check(&six_expected(&["kinetostatics: slot moment"]));
+        }
     }
-    r.check(&six_expected(&["kinetostatics: guide moment"]));
 }
 
-#[test]
-fn inverted_slider_crank_hand_matches_generated() {
-    let m = InvertedSliderCrank::new();
-    let h = InvertedSliderCrankHand::new(m.params());
-    let loads = inverted_slider_crank_loads();
-    let none = InvertedSliderCrankLoads::default();
-    let mut r = Report::default();
-    for q in sweep() {
-        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
-        let (gm, hm) = (
-            m.kinematics(q, QD, QDD).unwrap(),
-            h.kinematics(q, QD, QDD).unwrap(),
-        );
-        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
-        record_motion(
-            &mut r,
-            q,
-            &[(gl.crank, hp.crank), (gl.rod, hp.rod), (gl.block, hp.block)],
-            &[
-                (gpt.O2.pos, hp.o2),
-                (gpt.O4.pos, hp.o4),
-                (gpt.A.pos, hp.a),
-                (gpt.P.pos, hp.p),
-            ],
-            &[(l.crank, hm.crank), (l.rod, hm.rod), (l.block, hm.block)],
-            &[(pt.O2, hm.o2), (pt.O4, hm.o4), (pt.A, hm.a), (pt.P, hm.p)],
-        );
-        let gf = m.kinetostatics(&gm, &loads).unwrap();
-        let hf = h.kinetostatics(&hm, &loads);
-        let j = &gf.joints;
-        r.vecs(
-            "kinetostatics: joint force",
-            q,
-            &[
-                (j.O2.force, hf.o2),
-                (j.A.force, hf.a),
-                (j.slide.force, hf.slide),
-                (j.O4.force, hf.o4),
-            ],
-        );
-        r.scalar(
-            "kinetostatics: slide moment",
-            q,
-            j.slide.moment,
-            hf.slide_moment,
-        );
-        record_drivers(
-            &mut r,
-            q,
-            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
-            (hf.driver, h.driver_action(&hm, &loads)),
-        );
-        record_reduced(
-            &mut r,
-            q,
-            (
-                m.reduced(q).unwrap(),
-                m.reduced_moment(q, &loads).unwrap(),
-                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                m.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-            (
-                h.reduced(q).unwrap(),
-                h.reduced_moment(q, &loads).unwrap(),
-                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                h.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-        );
+hand_matches_generated! {
+    fn scotch_yoke_hand_matches_generated {
+        machine: ScotchYoke, ScotchYokeHand, ScotchYokeLoads = scotch_yoke_loads();
+        sweep: sweep();
+        links: crank, yoke;
+        points: O2 o2, A a, Y y;
+        joints: O2 o2, guide guide, slot slot;
+        setup:
+        each |r, q, j, hf| {
+            r.scalar("kinetostatics: guide moment", q, j.guide.moment, hf.guide_moment);
+        }
+        finish {
+            r.check(&six_expected(&["kinetostatics: guide moment"]));
+        }
     }
-    r.check(&six_expected(&["kinetostatics: slide moment"]));
 }
 
-/// The geared slider-crank over three turns of the pinion (one of the crank): every
-/// quantity as the other machines, the mesh's tooth force, tooth load and flank besides.
-#[test]
-fn geared_slider_crank_hand_matches_generated() {
-    let m = GearedSliderCrank::new();
-    let h = GearedSliderCrankHand::new(m.params());
-    let loads = geared_slider_crank_loads();
-    let none = GearedSliderCrankLoads::default();
-    let mut r = Report::default();
-    let mut flanks = [0usize; 2];
-    for q in sweep_turns(3) {
-        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
-        let (gm, hm) = (
-            m.kinematics(q, QD, QDD).unwrap(),
-            h.kinematics(q, QD, QDD).unwrap(),
-        );
-        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
-        record_motion(
-            &mut r,
-            q,
-            &[
-                (gl.pinion, hp.pinion),
-                (gl.crank, hp.crank),
-                (gl.rod, hp.rod),
-                (gl.piston, hp.piston),
-            ],
-            &[
-                (gpt.O1.pos, hp.o1),
-                (gpt.O2.pos, hp.o2),
-                (gpt.A.pos, hp.a),
-                (gpt.B.pos, hp.b),
-            ],
-            &[
-                (l.pinion, hm.pinion),
-                (l.crank, hm.crank),
-                (l.rod, hm.rod),
-                (l.piston, hm.piston),
-            ],
-            &[(pt.O1, hm.o1), (pt.O2, hm.o2), (pt.A, hm.a), (pt.B, hm.b)],
-        );
-        let gf = m.kinetostatics(&gm, &loads).unwrap();
-        let hf = h.kinetostatics(&hm, &loads);
-        let j = &gf.joints;
-        r.vecs(
-            "kinetostatics: joint force",
-            q,
-            &[
-                (j.O1.force, hf.o1),
-                (j.O2.force, hf.o2),
-                (j.A.force, hf.a),
-                (j.B.force, hf.b),
-                (j.guide.force, hf.guide),
-                (j.mesh.force, hf.mesh),
-            ],
-        );
-        r.scalar(
-            "kinetostatics: guide moment",
-            q,
-            j.guide.moment,
-            hf.guide_moment,
-        );
-        r.scalar(
-            "kinetostatics: tooth load",
-            q,
-            j.mesh.tooth_load,
-            hf.tooth_load,
-        );
-        assert_eq!(j.mesh.flank, hf.flank, "flank at q = {q}");
-        flanks[(hf.flank > 0.0) as usize] += 1;
-        record_drivers(
-            &mut r,
-            q,
-            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
-            (hf.driver, h.driver_action(&hm, &loads)),
-        );
-        record_reduced(
-            &mut r,
-            q,
-            (
-                m.reduced(q).unwrap(),
-                m.reduced_moment(q, &loads).unwrap(),
-                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                m.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-            (
-                h.reduced(q).unwrap(),
-                h.reduced_moment(q, &loads).unwrap(),
-                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                h.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-        );
+hand_matches_generated! {
+    fn inverted_slider_crank_hand_matches_generated {
+        machine: InvertedSliderCrank, InvertedSliderCrankHand, InvertedSliderCrankLoads =
+            inverted_slider_crank_loads();
+        sweep: sweep();
+        links: crank, rod, block;
+        points: O2 o2, O4 o4, A a, P p;
+        joints: O2 o2, A a, slide slide, O4 o4;
+        setup:
+        each |r, q, j, hf| {
+            r.scalar("kinetostatics: slide moment", q, j.slide.moment, hf.slide_moment);
+        }
+        finish {
+            r.check(&six_expected(&["kinetostatics: slide moment"]));
+        }
     }
-    // Both flanks are in contact during the turn (the comparison covers the sign of the
-    // tooth force's radial part).
-    assert!(flanks[0] > 0 && flanks[1] > 0, "flanks {flanks:?}");
-    r.check(&six_expected(&[
-        "kinetostatics: guide moment",
-        "kinetostatics: tooth load",
-    ]));
 }
 
-/// The roller cam over a turn of the cam: every quantity as the other machines, the
-/// contact force's signed magnitude besides.
-#[test]
-fn roller_cam_hand_matches_generated() {
-    let m = RollerCam::new();
-    let h = RollerCamHand::new(m.params());
-    let loads = roller_cam_loads();
-    let none = RollerCamLoads::default();
-    let mut r = Report::default();
-    for q in sweep() {
-        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
-        let (gm, hm) = (
-            m.kinematics(q, QD, QDD).unwrap(),
-            h.kinematics(q, QD, QDD).unwrap(),
-        );
-        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
-        record_motion(
-            &mut r,
-            q,
-            &[(gl.cam, hp.cam), (gl.follower, hp.follower)],
-            &[(gpt.O.pos, hp.o), (gpt.P.pos, hp.p), (gpt.T.pos, hp.t)],
-            &[(l.cam, hm.cam), (l.follower, hm.follower)],
-            &[(pt.O, hm.o), (pt.P, hm.p), (pt.T, hm.t)],
-        );
-        let gf = m.kinetostatics(&gm, &loads).unwrap();
-        let hf = h.kinetostatics(&hm, &loads);
-        let j = &gf.joints;
-        r.vecs(
-            "kinetostatics: joint force",
-            q,
-            &[
-                (j.O.force, hf.o),
-                (j.slide.force, hf.slide),
-                (j.lobe.force, hf.lobe),
-            ],
-        );
-        r.scalar(
-            "kinetostatics: slide moment",
-            q,
-            j.slide.moment,
-            hf.slide_moment,
-        );
-        r.scalar(
-            "kinetostatics: normal force",
-            q,
-            j.lobe.normal_force,
-            hf.normal_force,
-        );
-        record_drivers(
-            &mut r,
-            q,
-            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
-            (hf.driver, h.driver_action(&hm, &loads)),
-        );
-        record_reduced(
-            &mut r,
-            q,
-            (
-                m.reduced(q).unwrap(),
-                m.reduced_moment(q, &loads).unwrap(),
-                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                m.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-            (
-                h.reduced(q).unwrap(),
-                h.reduced_moment(q, &loads).unwrap(),
-                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                h.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-        );
+hand_matches_generated! {
+    /// The geared slider-crank over three turns of the pinion (one of the crank): every
+    /// quantity as the other machines, the mesh's tooth force, tooth load and flank besides.
+    fn geared_slider_crank_hand_matches_generated {
+        machine: GearedSliderCrank, GearedSliderCrankHand, GearedSliderCrankLoads =
+            geared_slider_crank_loads();
+        sweep: sweep_turns(3);
+        links: pinion, crank, rod, piston;
+        points: O1 o1, O2 o2, A a, B b;
+        joints: O1 o1, O2 o2, A a, B b, guide guide, mesh mesh;
+        setup: let mut flanks = [0usize; 2];
+        each |r, q, j, hf| {
+            r.scalar("kinetostatics: guide moment", q, j.guide.moment, hf.guide_moment);
+            r.scalar("kinetostatics: tooth load", q, j.mesh.tooth_load, hf.tooth_load);
+            assert_eq!(j.mesh.flank, hf.flank, "flank at q = {q}");
+            flanks[(hf.flank > 0.0) as usize] += 1;
+        }
+        finish {
+            // Both flanks are in contact during the turn (the comparison covers the sign of
+            // the tooth force's radial part).
+            assert!(flanks[0] > 0 && flanks[1] > 0, "flanks {flanks:?}");
+            r.check(&six_expected(&[
+                "kinetostatics: guide moment",
+                "kinetostatics: tooth load",
+            ]));
+        }
     }
-    r.check_to(
-        &six_expected(&["kinetostatics: slide moment", "kinetostatics: normal force"]),
-        CAM_TOL,
-    );
 }
 
-/// The crank, rod and rolling wheel over a turn: every quantity as the other machines, the
-/// contact force's normal and friction parts besides.
-#[test]
-fn crank_rod_wheel_hand_matches_generated() {
-    let m = CrankRodWheel::new();
-    let h = CrankRodWheelHand::new(m.params());
-    let loads = crank_rod_wheel_loads();
-    let none = CrankRodWheelLoads::default();
-    let mut r = Report::default();
-    for q in sweep() {
-        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
-        let (gm, hm) = (
-            m.kinematics(q, QD, QDD).unwrap(),
-            h.kinematics(q, QD, QDD).unwrap(),
-        );
-        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
-        record_motion(
-            &mut r,
-            q,
-            &[(gl.crank, hp.crank), (gl.rod, hp.rod), (gl.wheel, hp.wheel)],
-            &[(gpt.O2.pos, hp.o2), (gpt.A.pos, hp.a), (gpt.C.pos, hp.c)],
-            &[(l.crank, hm.crank), (l.rod, hm.rod), (l.wheel, hm.wheel)],
-            &[(pt.O2, hm.o2), (pt.A, hm.a), (pt.C, hm.c)],
-        );
-        let gf = m.kinetostatics(&gm, &loads).unwrap();
-        let hf = h.kinetostatics(&hm, &loads);
-        let j = &gf.joints;
-        r.vecs(
-            "kinetostatics: joint force",
-            q,
-            &[
-                (j.O2.force, hf.o2),
-                (j.A.force, hf.a),
-                (j.C.force, hf.c),
-                (j.roll.force, hf.roll),
-            ],
-        );
-        r.scalars(
-            "kinetostatics: contact normal and friction",
-            q,
-            &[(j.roll.normal, hf.normal), (j.roll.friction, hf.friction)],
-        );
-        record_drivers(
-            &mut r,
-            q,
-            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
-            (hf.driver, h.driver_action(&hm, &loads)),
-        );
-        record_reduced(
-            &mut r,
-            q,
-            (
-                m.reduced(q).unwrap(),
-                m.reduced_moment(q, &loads).unwrap(),
-                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                m.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-            (
-                h.reduced(q).unwrap(),
-                h.reduced_moment(q, &loads).unwrap(),
-                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                h.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-        );
+hand_matches_generated! {
+    /// The roller cam over a turn of the cam: every quantity as the other machines, the
+    /// contact force's signed magnitude besides.
+    fn roller_cam_hand_matches_generated {
+        machine: RollerCam, RollerCamHand, RollerCamLoads = roller_cam_loads();
+        sweep: sweep();
+        links: cam, follower;
+        points: O o, P p, T t;
+        joints: O o, slide slide, lobe lobe;
+        setup:
+        each |r, q, j, hf| {
+            r.scalar("kinetostatics: slide moment", q, j.slide.moment, hf.slide_moment);
+            r.scalar("kinetostatics: normal force", q, j.lobe.normal_force, hf.normal_force);
+        }
+        finish {
+            r.check_to(
+                &six_expected(&["kinetostatics: slide moment", "kinetostatics: normal force"]),
+                CAM_TOL,
+            );
+        }
     }
-    r.check(&six_expected(&[
-        "kinetostatics: contact normal and friction",
-    ]));
 }
 
-/// The Scotch yoke with a block over a turn: every quantity as the other machines, the
-/// slot's and the guide's moments besides.
-#[test]
-fn block_scotch_yoke_hand_matches_generated() {
-    let m = BlockScotchYoke::new();
-    let h = BlockScotchYokeHand::new(m.params());
-    let loads = block_scotch_yoke_loads();
-    let none = BlockScotchYokeLoads::default();
-    let mut r = Report::default();
-    for q in sweep() {
-        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
-        let (gm, hm) = (
-            m.kinematics(q, QD, QDD).unwrap(),
-            h.kinematics(q, QD, QDD).unwrap(),
-        );
-        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
-        record_motion(
-            &mut r,
-            q,
-            &[
-                (gl.crank, hp.crank),
-                (gl.block, hp.block),
-                (gl.yoke, hp.yoke),
-            ],
-            &[
-                (gpt.O2.pos, hp.o2),
-                (gpt.A.pos, hp.a),
-                (gpt.Y.pos, hp.y),
-                (gpt.T.pos, hp.t),
-            ],
-            &[(l.crank, hm.crank), (l.block, hm.block), (l.yoke, hm.yoke)],
-            &[(pt.O2, hm.o2), (pt.A, hm.a), (pt.Y, hm.y), (pt.T, hm.t)],
-        );
-        let gf = m.kinetostatics(&gm, &loads).unwrap();
-        let hf = h.kinetostatics(&hm, &loads);
-        let j = &gf.joints;
-        r.vecs(
-            "kinetostatics: joint force",
-            q,
-            &[
-                (j.O2.force, hf.o2),
-                (j.A.force, hf.a),
-                (j.slot.force, hf.slot),
-                (j.guide.force, hf.guide),
-            ],
-        );
-        r.scalar(
-            "kinetostatics: slot moment",
-            q,
-            j.slot.moment,
-            hf.slot_moment,
-        );
-        r.scalar(
-            "kinetostatics: guide moment",
-            q,
-            j.guide.moment,
-            hf.guide_moment,
-        );
-        record_drivers(
-            &mut r,
-            q,
-            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
-            (hf.driver, h.driver_action(&hm, &loads)),
-        );
-        record_reduced(
-            &mut r,
-            q,
-            (
-                m.reduced(q).unwrap(),
-                m.reduced_moment(q, &loads).unwrap(),
-                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                m.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-            (
-                h.reduced(q).unwrap(),
-                h.reduced_moment(q, &loads).unwrap(),
-                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                h.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-        );
+hand_matches_generated! {
+    /// The crank, rod and rolling wheel over a turn: every quantity as the other machines,
+    /// the contact force's normal and friction parts besides.
+    fn crank_rod_wheel_hand_matches_generated {
+        machine: CrankRodWheel, CrankRodWheelHand, CrankRodWheelLoads = crank_rod_wheel_loads();
+        sweep: sweep();
+        links: crank, rod, wheel;
+        points: O2 o2, A a, C c;
+        joints: O2 o2, A a, C c, roll roll;
+        setup:
+        each |r, q, j, hf| {
+            r.scalars(
+                "kinetostatics: contact normal and friction",
+                q,
+                &[(j.roll.normal, hf.normal), (j.roll.friction, hf.friction)],
+            );
+        }
+        finish {
+            r.check(&six_expected(&["kinetostatics: contact normal and friction"]));
+        }
     }
-    r.check(&six_expected(&[
-        "kinetostatics: slot moment",
-        "kinetostatics: guide moment",
-    ]));
 }
 
-/// The slotted crank and ram over its working swing (`RAM_SWING`: it cannot turn): every
-/// quantity as the other machines, the slot's and the guide's moments besides.
-#[test]
-fn slotted_crank_ram_hand_matches_generated() {
-    let m = SlottedCrankRam::new();
-    let h = SlottedCrankRamHand::new(m.params());
-    let loads = slotted_crank_ram_loads();
-    let none = SlottedCrankRamLoads::default();
-    let mut r = Report::default();
-    for q in sweep_swing() {
-        let (gp, hp) = (m.pose(q).unwrap(), h.pose(q).unwrap());
-        let (gm, hm) = (
-            m.kinematics(q, QD, QDD).unwrap(),
-            h.kinematics(q, QD, QDD).unwrap(),
-        );
-        let (gl, gpt, l, pt) = (&gp.links, &gp.points, &gm.links, &gm.points);
-        record_motion(
-            &mut r,
-            q,
-            &[(gl.crank, hp.crank), (gl.block, hp.block), (gl.ram, hp.ram)],
-            &[
-                (gpt.O2.pos, hp.o2),
-                (gpt.E.pos, hp.e),
-                (gpt.B.pos, hp.b),
-                (gpt.P.pos, hp.p),
-            ],
-            &[(l.crank, hm.crank), (l.block, hm.block), (l.ram, hm.ram)],
-            &[(pt.O2, hm.o2), (pt.E, hm.e), (pt.B, hm.b), (pt.P, hm.p)],
-        );
-        let gf = m.kinetostatics(&gm, &loads).unwrap();
-        let hf = h.kinetostatics(&hm, &loads);
-        let j = &gf.joints;
-        r.vecs(
-            "kinetostatics: joint force",
-            q,
-            &[
-                (j.O2.force, hf.o2),
-                (j.slot.force, hf.slot),
-                (j.B.force, hf.b),
-                (j.guide.force, hf.guide),
-            ],
-        );
-        r.scalar(
-            "kinetostatics: slot moment",
-            q,
-            j.slot.moment,
-            hf.slot_moment,
-        );
-        r.scalar(
-            "kinetostatics: guide moment",
-            q,
-            j.guide.moment,
-            hf.guide_moment,
-        );
-        record_drivers(
-            &mut r,
-            q,
-            (gf.driver, m.driver_action(&gm, &loads).unwrap()),
-            (hf.driver, h.driver_action(&hm, &loads)),
-        );
-        record_reduced(
-            &mut r,
-            q,
-            (
-                m.reduced(q).unwrap(),
-                m.reduced_moment(q, &loads).unwrap(),
-                m.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                m.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-            (
-                h.reduced(q).unwrap(),
-                h.reduced_moment(q, &loads).unwrap(),
-                h.acceleration(q, QD, DRIVER, &loads).unwrap(),
-                h.acceleration(q, QD, 0.0, &none).unwrap(),
-            ),
-        );
+hand_matches_generated! {
+    /// The Scotch yoke with a block over a turn: every quantity as the other machines, the
+    /// slot's and the guide's moments besides.
+    fn block_scotch_yoke_hand_matches_generated {
+        machine: BlockScotchYoke, BlockScotchYokeHand, BlockScotchYokeLoads =
+            block_scotch_yoke_loads();
+        sweep: sweep();
+        links: crank, block, yoke;
+        points: O2 o2, A a, Y y, T t;
+        joints: O2 o2, A a, slot slot, guide guide;
+        setup:
+        each |r, q, j, hf| {
+            r.scalar("kinetostatics: slot moment", q, j.slot.moment, hf.slot_moment);
+            r.scalar("kinetostatics: guide moment", q, j.guide.moment, hf.guide_moment);
+        }
+        finish {
+            r.check(&six_expected(&[
+                "kinetostatics: slot moment",
+                "kinetostatics: guide moment",
+            ]));
+        }
     }
-    r.check(&six_expected(&[
-        "kinetostatics: slot moment",
-        "kinetostatics: guide moment",
-    ]));
+}
+
+hand_matches_generated! {
+    /// The slotted crank and ram over its working swing (`RAM_SWING`: it cannot turn):
+    /// every quantity as the other machines, the slot's and the guide's moments besides.
+    fn slotted_crank_ram_hand_matches_generated {
+        machine: SlottedCrankRam, SlottedCrankRamHand, SlottedCrankRamLoads =
+            slotted_crank_ram_loads();
+        sweep: sweep_swing();
+        links: crank, block, ram;
+        points: O2 o2, E e, B b, P p;
+        joints: O2 o2, slot slot, B b, guide guide;
+        setup:
+        each |r, q, j, hf| {
+            r.scalar("kinetostatics: slot moment", q, j.slot.moment, hf.slot_moment);
+            r.scalar("kinetostatics: guide moment", q, j.guide.moment, hf.guide_moment);
+        }
+        finish {
+            r.check(&six_expected(&[
+                "kinetostatics: slot moment",
+                "kinetostatics: guide moment",
+            ]));
+        }
+    }
 }
 
 /// (name, value, its rate, its second rate): a point's position, velocity and acceleration,
@@ -1562,9 +1184,94 @@ fn check_balance(
     );
 }
 
+/// The joint `joint` of the floor's machine `machine` as the run-time `Mechanism` loads it
+/// from `benches/floor/machines.rs`: what its declaration says.
+fn declared_joint(machine: &str, joint: &str) -> mech::model::Joint {
+    let rt =
+        mech::Mechanism::from_rust_source(include_str!("../benches/floor/machines.rs"), machine)
+            .unwrap();
+    rt.model()
+        .joints
+        .iter()
+        .find(|j| j.name == joint)
+        .unwrap()
+        .clone()
+}
+
+/// Each link's balance ([`check_balance`]) at `$q`, named "`$machine` `$name`": the link
+/// `$link` of the hand-written parameters `$l` and motion `$k`, under gravity `$g`, with
+/// its forces (point of application, force) and pure moments.
+macro_rules! check_balances {
+    (
+        $machine:literal, $q:ident, ($l:ident, $g:ident, $k:ident);
+        $($name:literal $link:ident: [$($force:expr),*], [$($moment:expr),*];)+
+    ) => {
+        let body = |l: &mech::LinkParams| (l.mass, l.inertia, $g);
+        $(
+            check_balance(
+                concat!($machine, " ", $name),
+                $q,
+                body(&$l.$link),
+                &$k.$link,
+                &[$($force),*],
+                &[$($moment),*],
+            );
+        )+
+    };
+}
+
 /// dX/dq by a central difference of `f` (step `FD_STEP`).
 fn d_dq(f: impl Fn(f64) -> Vector2<f64>, q: f64) -> Vector2<f64> {
     (f(q + FD_STEP) - f(q - FD_STEP)) / (2.0 * FD_STEP)
+}
+
+/// The closure `|q, q̇, q̈| Tracked` of [`check_by_finite_differences`] for the hand-written
+/// machine `$h`: its points (name, field of its kinematics) and links (field).
+macro_rules! tracked {
+    ($h:ident; points: $($name:ident $point:ident),+; links: $($link:ident),+) => {
+        |q, qd, qdd| {
+            let k = $h.kinematics(q, qd, qdd).unwrap();
+            let mut t = Tracked::default();
+            $(t.point(stringify!($name), &k.$point);)+
+            $(t.link(stringify!($link), &k.$link);)+
+            t
+        }
+    };
+}
+
+/// The closure `|q| Dynamics` of [`check_dynamics`] for the hand-written machine `$h` under
+/// `$loads`: M* by the positions is `$moment`, with q and the hand-written pose at an angle
+/// (`|q| h.pose(q).unwrap()`) named as its closure's arguments.
+macro_rules! hand_dynamics {
+    ($h:ident, $loads:ident, |$q:ident, $pose:ident| $moment:expr) => {
+        |$q| {
+            let k = $h.kinematics($q, QD, QDD).unwrap();
+            let $pose = |q| $h.pose(q).unwrap();
+            let qdd = $h.acceleration($q, QD, DRIVER, &$loads).unwrap();
+            Dynamics {
+                dalembert: $h.kinetostatics(&k, &$loads).driver,
+                virtual_power: $h.driver_action(&k, &$loads),
+                reduced: $h.reduced($q).unwrap(),
+                reduced_moment: $h.reduced_moment($q, &$loads).unwrap(),
+                inertia_plus: $h.reduced($q + FD_STEP).unwrap().inertia,
+                inertia_minus: $h.reduced($q - FD_STEP).unwrap().inertia,
+                moment_by_positions: $moment,
+                inverse: $h
+                    .kinetostatics(&$h.kinematics($q, QD, qdd).unwrap(), &$loads)
+                    .driver,
+            }
+        }
+    };
+}
+
+/// The power of gravity on the cgs of `links` at q̇ = 1: Σ m g · d(cg)/dq, each cg's rate a
+/// central difference of `$pose` at `$q` (the links' parameters `$l`, gravity `$g`), summed
+/// in the order given.
+macro_rules! gravity_power {
+    ($l:ident, $g:ident, $pose:ident, $q:ident; $first:ident $(, $link:ident)*) => {
+        $l.$first.mass * $g.dot(&d_dq(|q| $pose(q).$first.cg, $q))
+            $(+ $l.$link.mass * $g.dot(&d_dq(|q| $pose(q).$link.cg, $q)))*
+    };
 }
 
 #[test]
@@ -1572,69 +1279,34 @@ fn quick_return_hand_independent_checks() {
     let m = QuickReturn::new();
     let p = m.params().clone();
     let h = QuickReturnHand::new(&p);
-    check_by_finite_differences("quick-return", 1, |q, qd, qdd| {
-        let k = h.kinematics(q, qd, qdd).unwrap();
-        let mut t = Tracked::default();
-        t.point("A", &k.a);
-        t.point("C", &k.c);
-        t.link("crank", &k.crank);
-        t.link("block", &k.block);
-        t.link("lever", &k.lever);
-        t
-    });
+    check_by_finite_differences(
+        "quick-return",
+        1,
+        tracked!(h; points: A a, C c; links: crank, block, lever),
+    );
     let loads = quick_return_loads();
     let (l, g) = (&p.links, p.gravity);
     for q in sweep() {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let f = h.kinetostatics(&k, &loads);
         let (o2, o4, a, c) = (k.o2.pos, k.o4.pos, k.a.pos, k.c.pos);
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "quick-return crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, -f.a)],
-            &[f.driver, loads.friction],
-        );
-        check_balance(
-            "quick-return block",
-            q,
-            body(&l.block),
-            &k.block,
-            &[(a, f.a), (a, f.slot)],
-            &[f.slot_moment],
-        );
-        check_balance(
-            "quick-return lever",
-            q,
-            body(&l.lever),
-            &k.lever,
-            &[(o4, f.o4), (a, -f.slot), (c, loads.cut)],
-            &[-f.slot_moment],
+        check_balances!("quick-return", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, -f.a)], [f.driver, loads.friction];
+            "block" block: [(a, f.a), (a, f.slot)], [f.slot_moment];
+            "lever" lever: [(o4, f.o4), (a, -f.slot), (c, loads.cut)], [-f.slot_moment];
         );
     }
-    check_dynamics("quick-return", 1, |q| {
-        let k = h.kinematics(q, QD, QDD).unwrap();
-        let pose = |q| h.pose(q).unwrap();
-        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
-        Dynamics {
-            dalembert: h.kinetostatics(&k, &loads).driver,
-            virtual_power: h.driver_action(&k, &loads),
-            reduced: h.reduced(q).unwrap(),
-            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
-            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
-            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
-            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
-                + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
-                + l.lever.mass * g.dot(&d_dq(|q| pose(q).lever.cg, q))
+    check_dynamics(
+        "quick-return",
+        1,
+        hand_dynamics!(
+            h,
+            loads,
+            |q, pose| gravity_power!(l, g, pose, q; crank, block, lever)
                 + loads.cut.dot(&d_dq(|q| pose(q).c, q))
-                + loads.friction,
-            inverse: h
-                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
-                .driver,
-        }
-    });
+                + loads.friction
+        ),
+    );
 }
 
 #[test]
@@ -1642,59 +1314,33 @@ fn scotch_yoke_hand_independent_checks() {
     let m = ScotchYoke::new();
     let p = m.params().clone();
     let h = ScotchYokeHand::new(&p);
-    check_by_finite_differences("Scotch yoke", 1, |q, qd, qdd| {
-        let k = h.kinematics(q, qd, qdd).unwrap();
-        let mut t = Tracked::default();
-        t.point("A", &k.a);
-        t.point("Y", &k.y);
-        t.link("crank", &k.crank);
-        t.link("yoke", &k.yoke);
-        t
-    });
+    check_by_finite_differences(
+        "Scotch yoke",
+        1,
+        tracked!(h; points: A a, Y y; links: crank, yoke),
+    );
     let loads = scotch_yoke_loads();
     let (l, g) = (&p.links, p.gravity);
     for q in sweep() {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let f = h.kinetostatics(&k, &loads);
         let (o2, a, y) = (k.o2.pos, k.a.pos, k.y.pos);
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "Scotch yoke crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, f.slot)],
-            &[f.driver, loads.drag],
-        );
-        check_balance(
-            "Scotch yoke yoke",
-            q,
-            body(&l.yoke),
-            &k.yoke,
-            &[(y, f.guide), (a, -f.slot), (y, loads.resist)],
-            &[f.guide_moment],
+        check_balances!("Scotch yoke", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, f.slot)], [f.driver, loads.drag];
+            "yoke" yoke: [(y, f.guide), (a, -f.slot), (y, loads.resist)], [f.guide_moment];
         );
     }
-    check_dynamics("Scotch yoke", 1, |q| {
-        let k = h.kinematics(q, QD, QDD).unwrap();
-        let pose = |q| h.pose(q).unwrap();
-        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
-        Dynamics {
-            dalembert: h.kinetostatics(&k, &loads).driver,
-            virtual_power: h.driver_action(&k, &loads),
-            reduced: h.reduced(q).unwrap(),
-            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
-            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
-            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
-            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
-                + l.yoke.mass * g.dot(&d_dq(|q| pose(q).yoke.cg, q))
+    check_dynamics(
+        "Scotch yoke",
+        1,
+        hand_dynamics!(
+            h,
+            loads,
+            |q, pose| gravity_power!(l, g, pose, q; crank, yoke)
                 + loads.resist.dot(&d_dq(|q| pose(q).y, q))
-                + loads.drag,
-            inverse: h
-                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
-                .driver,
-        }
-    });
+                + loads.drag
+        ),
+    );
 }
 
 #[test]
@@ -1702,71 +1348,34 @@ fn inverted_slider_crank_hand_independent_checks() {
     let m = InvertedSliderCrank::new();
     let p = m.params().clone();
     let h = InvertedSliderCrankHand::new(&p);
-    check_by_finite_differences("inverted slider-crank", 1, |q, qd, qdd| {
-        let k = h.kinematics(q, qd, qdd).unwrap();
-        let mut t = Tracked::default();
-        t.point("A", &k.a);
-        t.point("P", &k.p);
-        t.link("crank", &k.crank);
-        t.link("rod", &k.rod);
-        t.link("block", &k.block);
-        t
-    });
+    check_by_finite_differences(
+        "inverted slider-crank",
+        1,
+        tracked!(h; points: A a, P p; links: crank, rod, block),
+    );
     let loads = inverted_slider_crank_loads();
     let (l, g) = (&p.links, p.gravity);
     for q in sweep() {
         let k = h.kinematics(q, QD, QDD).unwrap();
         let f = h.kinetostatics(&k, &loads);
         let (o2, o4, a, pp) = (k.o2.pos, k.o4.pos, k.a.pos, k.p.pos);
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "inverted slider-crank crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, -f.a)],
-            &[f.driver],
-        );
-        check_balance(
-            "inverted slider-crank rod",
-            q,
-            body(&l.rod),
-            &k.rod,
-            &[(a, f.a), (o4, -f.slide), (pp, loads.push)],
-            &[-f.slide_moment],
-        );
-        check_balance(
-            "inverted slider-crank block",
-            q,
-            body(&l.block),
-            &k.block,
-            &[(o4, f.o4), (o4, f.slide)],
-            &[f.slide_moment, loads.resist],
+        check_balances!("inverted slider-crank", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, -f.a)], [f.driver];
+            "rod" rod: [(a, f.a), (o4, -f.slide), (pp, loads.push)], [-f.slide_moment];
+            "block" block: [(o4, f.o4), (o4, f.slide)], [f.slide_moment, loads.resist];
         );
     }
-    check_dynamics("inverted slider-crank", 1, |q| {
-        let k = h.kinematics(q, QD, QDD).unwrap();
-        let pose = |q| h.pose(q).unwrap();
-        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
-        let block_turn =
-            wrap(pose(q + FD_STEP).block.angle - pose(q - FD_STEP).block.angle) / (2.0 * FD_STEP);
-        Dynamics {
-            dalembert: h.kinetostatics(&k, &loads).driver,
-            virtual_power: h.driver_action(&k, &loads),
-            reduced: h.reduced(q).unwrap(),
-            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
-            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
-            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
-            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
-                + l.rod.mass * g.dot(&d_dq(|q| pose(q).rod.cg, q))
-                + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
+    check_dynamics(
+        "inverted slider-crank",
+        1,
+        hand_dynamics!(h, loads, |q, pose| {
+            let block_turn = wrap(pose(q + FD_STEP).block.angle - pose(q - FD_STEP).block.angle)
+                / (2.0 * FD_STEP);
+            gravity_power!(l, g, pose, q; crank, rod, block)
                 + loads.push.dot(&d_dq(|q| pose(q).p, q))
-                + loads.resist * block_turn,
-            inverse: h
-                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
-                .driver,
-        }
-    });
+                + loads.resist * block_turn
+        }),
+    );
 }
 
 /// The hand-written geared slider-crank against itself: the mesh's radii and pressure
@@ -1776,18 +1385,7 @@ fn inverted_slider_crank_hand_independent_checks() {
 /// pinion), the driver by three routes, dI*/dq, M* and the inverse problem.
 #[test]
 fn geared_slider_crank_hand_independent_checks() {
-    let rt = mech::Mechanism::from_rust_source(
-        include_str!("../benches/floor/machines.rs"),
-        "GearedSliderCrank",
-    )
-    .unwrap();
-    let mesh = rt
-        .model()
-        .joints
-        .iter()
-        .find(|j| j.name == "mesh")
-        .and_then(|j| j.mesh.clone())
-        .unwrap();
+    let mesh = declared_joint("GearedSliderCrank", "mesh").mesh.unwrap();
     assert_eq!(
         (mesh.ra, mesh.rb, mesh.internal),
         (GEARED_PINION_RADIUS, GEARED_GEAR_RADIUS, false)
@@ -1800,17 +1398,11 @@ fn geared_slider_crank_hand_independent_checks() {
     let w = (p.points.O2 - p.points.O1).normalize();
     let pitch = p.points.O1 + w * ra;
     let tangent = Vector2::new(-w.y, w.x);
-    check_by_finite_differences("geared slider-crank", 3, |q, qd, qdd| {
-        let k = h.kinematics(q, qd, qdd).unwrap();
-        let mut t = Tracked::default();
-        t.point("A", &k.a);
-        t.point("B", &k.b);
-        t.link("pinion", &k.pinion);
-        t.link("crank", &k.crank);
-        t.link("rod", &k.rod);
-        t.link("piston", &k.piston);
-        t
-    });
+    check_by_finite_differences(
+        "geared slider-crank",
+        3,
+        tracked!(h; points: A a, B b; links: pinion, crank, rod, piston),
+    );
     let loads = geared_slider_crank_loads();
     let (l, g) = (&p.links, p.gravity);
     for q in sweep_turns(3) {
@@ -1829,65 +1421,25 @@ fn geared_slider_crank_hand_independent_checks() {
         );
         assert!((f.mesh.norm() - f.tooth_load).abs() <= 1e-12 * f.tooth_load);
         assert_eq!(f.flank, ft.signum());
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "geared slider-crank pinion",
-            q,
-            body(&l.pinion),
-            &k.pinion,
-            &[(o1, f.o1), (pitch, -f.mesh)],
-            &[f.driver],
-        );
-        check_balance(
-            "geared slider-crank gear",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (pitch, f.mesh), (a, -f.a)],
-            &[loads.shaft],
-        );
-        check_balance(
-            "geared slider-crank rod",
-            q,
-            body(&l.rod),
-            &k.rod,
-            &[(a, f.a), (b, -f.b)],
-            &[],
-        );
-        check_balance(
-            "geared slider-crank piston",
-            q,
-            body(&l.piston),
-            &k.piston,
-            &[(b, f.b), (b, f.guide), (b, loads.gas)],
-            &[f.guide_moment],
+        check_balances!("geared slider-crank", q, (l, g, k);
+            "pinion" pinion: [(o1, f.o1), (pitch, -f.mesh)], [f.driver];
+            "gear" crank: [(o2, f.o2), (pitch, f.mesh), (a, -f.a)], [loads.shaft];
+            "rod" rod: [(a, f.a), (b, -f.b)], [];
+            "piston" piston: [(b, f.b), (b, f.guide), (b, loads.gas)], [f.guide_moment];
         );
         assert!(f.guide.dot(&p.axes.guide).abs() <= 1e-12 * f.guide.norm().max(1.0));
     }
-    check_dynamics("geared slider-crank", 3, |q| {
-        let k = h.kinematics(q, QD, QDD).unwrap();
-        let pose = |q| h.pose(q).unwrap();
-        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
-        let crank_turn =
-            wrap(pose(q + FD_STEP).crank.angle - pose(q - FD_STEP).crank.angle) / (2.0 * FD_STEP);
-        Dynamics {
-            dalembert: h.kinetostatics(&k, &loads).driver,
-            virtual_power: h.driver_action(&k, &loads),
-            reduced: h.reduced(q).unwrap(),
-            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
-            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
-            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
-            moment_by_positions: l.pinion.mass * g.dot(&d_dq(|q| pose(q).pinion.cg, q))
-                + l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
-                + l.rod.mass * g.dot(&d_dq(|q| pose(q).rod.cg, q))
-                + l.piston.mass * g.dot(&d_dq(|q| pose(q).piston.cg, q))
+    check_dynamics(
+        "geared slider-crank",
+        3,
+        hand_dynamics!(h, loads, |q, pose| {
+            let crank_turn = wrap(pose(q + FD_STEP).crank.angle - pose(q - FD_STEP).crank.angle)
+                / (2.0 * FD_STEP);
+            gravity_power!(l, g, pose, q; pinion, crank, rod, piston)
                 + loads.gas.dot(&d_dq(|q| pose(q).b, q))
-                + loads.shaft * crank_turn,
-            inverse: h
-                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
-                .driver,
-        }
-    });
+                + loads.shaft * crank_turn
+        }),
+    );
 }
 
 /// The hand-written roller cam against itself: its law, base circle and roller are the
@@ -1899,18 +1451,7 @@ fn geared_slider_crank_hand_independent_checks() {
 #[test]
 fn roller_cam_hand_independent_checks() {
     use mech::cam::{Face, Law};
-    let rt = mech::Mechanism::from_rust_source(
-        include_str!("../benches/floor/machines.rs"),
-        "RollerCam",
-    )
-    .unwrap();
-    let spec = rt
-        .model()
-        .joints
-        .iter()
-        .find(|j| j.name == "lobe")
-        .and_then(|j| j.cam.clone())
-        .unwrap();
+    let spec = declared_joint("RollerCam", "lobe").cam.unwrap();
     assert_eq!(spec.base_radius, CAM_BASE_RADIUS);
     assert_eq!(spec.face, Face::Roller(CAM_ROLLER_RADIUS));
     let laws: Vec<_> = spec.segments.iter().map(|g| g.law).collect();
@@ -1936,15 +1477,11 @@ fn roller_cam_hand_independent_checks() {
     let p = m.params().clone();
     let h = RollerCamHand::new(&p);
     let r = CAM_ROLLER_RADIUS;
-    check_by_finite_differences("roller cam", 1, |q, qd, qdd| {
-        let k = h.kinematics(q, qd, qdd).unwrap();
-        let mut t = Tracked::default();
-        t.point("P", &k.p);
-        t.point("T", &k.t);
-        t.link("cam", &k.cam);
-        t.link("follower", &k.follower);
-        t
-    });
+    check_by_finite_differences(
+        "roller cam",
+        1,
+        tracked!(h; points: P p, T t; links: cam, follower),
+    );
     let loads = roller_cam_loads();
     let (l, g) = (&p.links, p.gravity);
     let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
@@ -1972,45 +1509,24 @@ fn roller_cam_hand_independent_checks() {
             "normal not outward at {q} (the pitch curve runs clockwise)"
         );
         let contact = pp - n * r;
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "roller cam cam",
-            q,
-            body(&l.cam),
-            &k.cam,
-            &[(o, f.o), (contact, -f.lobe)],
-            &[f.driver, loads.drag],
-        );
-        check_balance(
-            "roller cam follower",
-            q,
-            body(&l.follower),
-            &k.follower,
-            &[(pp, f.slide), (contact, f.lobe), (k.t.pos, loads.push)],
-            &[f.slide_moment],
+        check_balances!("roller cam", q, (l, g, k);
+            "cam" cam: [(o, f.o), (contact, -f.lobe)], [f.driver, loads.drag];
+            "follower" follower: [(pp, f.slide), (contact, f.lobe), (k.t.pos, loads.push)],
+                [f.slide_moment];
         );
         assert!(f.slide.dot(&p.axes.slide).abs() <= 1e-12 * f.slide.norm().max(1.0));
     }
-    check_dynamics("roller cam", 1, |q| {
-        let k = h.kinematics(q, QD, QDD).unwrap();
-        let pose = |q| h.pose(q).unwrap();
-        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
-        Dynamics {
-            dalembert: h.kinetostatics(&k, &loads).driver,
-            virtual_power: h.driver_action(&k, &loads),
-            reduced: h.reduced(q).unwrap(),
-            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
-            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
-            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
-            moment_by_positions: l.cam.mass * g.dot(&d_dq(|q| pose(q).cam.cg, q))
-                + l.follower.mass * g.dot(&d_dq(|q| pose(q).follower.cg, q))
+    check_dynamics(
+        "roller cam",
+        1,
+        hand_dynamics!(
+            h,
+            loads,
+            |q, pose| gravity_power!(l, g, pose, q; cam, follower)
                 + loads.push.dot(&d_dq(|q| pose(q).t, q))
-                + loads.drag,
-            inverse: h
-                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
-                .driver,
-        }
-    });
+                + loads.drag
+        ),
+    );
 }
 
 /// The hand-written crank, rod and wheel against itself: the wheel's radius is the
@@ -2020,26 +1536,16 @@ fn roller_cam_hand_independent_checks() {
 /// routes, dI*/dq, M* and the inverse problem.
 #[test]
 fn crank_rod_wheel_hand_independent_checks() {
-    let rt = mech::Mechanism::from_rust_source(
-        include_str!("../benches/floor/machines.rs"),
-        "CrankRodWheel",
-    )
-    .unwrap();
-    let roll = rt.model().joints.iter().find(|j| j.name == "roll").unwrap();
+    let roll = declared_joint("CrankRodWheel", "roll");
     assert_eq!(roll.radius, WHEEL_RADIUS);
     let m = CrankRodWheel::new();
     let p = m.params().clone();
     let h = CrankRodWheelHand::new(&p);
-    check_by_finite_differences("crank-rod-wheel", 1, |q, qd, qdd| {
-        let k = h.kinematics(q, qd, qdd).unwrap();
-        let mut t = Tracked::default();
-        t.point("A", &k.a);
-        t.point("C", &k.c);
-        t.link("crank", &k.crank);
-        t.link("rod", &k.rod);
-        t.link("wheel", &k.wheel);
-        t
-    });
+    check_by_finite_differences(
+        "crank-rod-wheel",
+        1,
+        tracked!(h; points: A a, C c; links: crank, rod, wheel),
+    );
     let loads = crank_rod_wheel_loads();
     let (l, g) = (&p.links, p.gravity);
     let u = p.axes.roll.normalize();
@@ -2059,55 +1565,23 @@ fn crank_rod_wheel_hand_independent_checks() {
             (f.roll - (n * f.normal + u * f.friction)).norm() <= 1e-12 * f.roll.norm(),
             "contact parts at {q}"
         );
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "crank-rod-wheel crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, -f.a)],
-            &[f.driver],
-        );
-        check_balance(
-            "crank-rod-wheel rod",
-            q,
-            body(&l.rod),
-            &k.rod,
-            &[(a, f.a), (c, -f.c)],
-            &[],
-        );
-        check_balance(
-            "crank-rod-wheel wheel",
-            q,
-            body(&l.wheel),
-            &k.wheel,
-            &[(c, f.c), (contact, f.roll), (c, loads.pull)],
-            &[loads.brake],
+        check_balances!("crank-rod-wheel", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, -f.a)], [f.driver];
+            "rod" rod: [(a, f.a), (c, -f.c)], [];
+            "wheel" wheel: [(c, f.c), (contact, f.roll), (c, loads.pull)], [loads.brake];
         );
     }
-    check_dynamics("crank-rod-wheel", 1, |q| {
-        let k = h.kinematics(q, QD, QDD).unwrap();
-        let pose = |q| h.pose(q).unwrap();
-        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
-        let wheel_turn =
-            (pose(q + FD_STEP).wheel.angle - pose(q - FD_STEP).wheel.angle) / (2.0 * FD_STEP);
-        Dynamics {
-            dalembert: h.kinetostatics(&k, &loads).driver,
-            virtual_power: h.driver_action(&k, &loads),
-            reduced: h.reduced(q).unwrap(),
-            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
-            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
-            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
-            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
-                + l.rod.mass * g.dot(&d_dq(|q| pose(q).rod.cg, q))
-                + l.wheel.mass * g.dot(&d_dq(|q| pose(q).wheel.cg, q))
+    check_dynamics(
+        "crank-rod-wheel",
+        1,
+        hand_dynamics!(h, loads, |q, pose| {
+            let wheel_turn =
+                (pose(q + FD_STEP).wheel.angle - pose(q - FD_STEP).wheel.angle) / (2.0 * FD_STEP);
+            gravity_power!(l, g, pose, q; crank, rod, wheel)
                 + loads.pull.dot(&d_dq(|q| pose(q).c, q))
-                + loads.brake * wheel_turn,
-            inverse: h
-                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
-                .driver,
-        }
-    });
+                + loads.brake * wheel_turn
+        }),
+    );
 }
 
 /// The hand-written Scotch yoke with a block against itself: the block keeps the yoke's
@@ -2120,17 +1594,11 @@ fn block_scotch_yoke_hand_independent_checks() {
     let m = BlockScotchYoke::new();
     let p = m.params().clone();
     let h = BlockScotchYokeHand::new(&p);
-    check_by_finite_differences("block Scotch yoke", 1, |q, qd, qdd| {
-        let k = h.kinematics(q, qd, qdd).unwrap();
-        let mut t = Tracked::default();
-        t.point("A", &k.a);
-        t.point("Y", &k.y);
-        t.point("T", &k.t);
-        t.link("crank", &k.crank);
-        t.link("block", &k.block);
-        t.link("yoke", &k.yoke);
-        t
-    });
+    check_by_finite_differences(
+        "block Scotch yoke",
+        1,
+        tracked!(h; points: A a, Y y, T t; links: crank, block, yoke),
+    );
     let loads = block_scotch_yoke_loads();
     let (l, g) = (&p.links, p.gravity);
     let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
@@ -2156,55 +1624,24 @@ fn block_scotch_yoke_hand_independent_checks() {
         assert_eq!((k.block.angle, k.yoke.angle), (0.0, theta4));
         assert!(f.slot.dot(&us).abs() <= 1e-12 * f.slot.norm().max(1.0));
         assert!(f.guide.dot(&ug).abs() <= 1e-12 * f.guide.norm().max(1.0));
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "block Scotch yoke crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (a, -f.a)],
-            &[f.driver],
-        );
-        check_balance(
-            "block Scotch yoke block",
-            q,
-            body(&l.block),
-            &k.block,
-            &[(a, f.a), (a, f.slot)],
-            &[f.slot_moment, loads.friction],
-        );
-        check_balance(
-            "block Scotch yoke yoke",
-            q,
-            body(&l.yoke),
-            &k.yoke,
-            &[(y, f.guide), (a, -f.slot), (t, loads.resist)],
-            &[f.guide_moment, -f.slot_moment],
+        check_balances!("block Scotch yoke", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (a, -f.a)], [f.driver];
+            "block" block: [(a, f.a), (a, f.slot)], [f.slot_moment, loads.friction];
+            "yoke" yoke: [(y, f.guide), (a, -f.slot), (t, loads.resist)],
+                [f.guide_moment, -f.slot_moment];
         );
     }
-    check_dynamics("block Scotch yoke", 1, |q| {
-        let k = h.kinematics(q, QD, QDD).unwrap();
-        let pose = |q| h.pose(q).unwrap();
-        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
-        let block_turn =
-            wrap(pose(q + FD_STEP).block.angle - pose(q - FD_STEP).block.angle) / (2.0 * FD_STEP);
-        Dynamics {
-            dalembert: h.kinetostatics(&k, &loads).driver,
-            virtual_power: h.driver_action(&k, &loads),
-            reduced: h.reduced(q).unwrap(),
-            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
-            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
-            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
-            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
-                + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
-                + l.yoke.mass * g.dot(&d_dq(|q| pose(q).yoke.cg, q))
+    check_dynamics(
+        "block Scotch yoke",
+        1,
+        hand_dynamics!(h, loads, |q, pose| {
+            let block_turn = wrap(pose(q + FD_STEP).block.angle - pose(q - FD_STEP).block.angle)
+                / (2.0 * FD_STEP);
+            gravity_power!(l, g, pose, q; crank, block, yoke)
                 + loads.resist.dot(&d_dq(|q| pose(q).t, q))
-                + loads.friction * block_turn,
-            inverse: h
-                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
-                .driver,
-        }
-    });
+                + loads.friction * block_turn
+        }),
+    );
 }
 
 /// The hand-written slotted crank and ram against itself over its swing: the block turns
@@ -2217,17 +1654,11 @@ fn slotted_crank_ram_hand_independent_checks() {
     let m = SlottedCrankRam::new();
     let p = m.params().clone();
     let h = SlottedCrankRamHand::new(&p);
-    check_by_finite_differences_over("slotted crank and ram", sweep_swing(), |q, qd, qdd| {
-        let k = h.kinematics(q, qd, qdd).unwrap();
-        let mut t = Tracked::default();
-        t.point("E", &k.e);
-        t.point("B", &k.b);
-        t.point("P", &k.p);
-        t.link("crank", &k.crank);
-        t.link("block", &k.block);
-        t.link("ram", &k.ram);
-        t
-    });
+    check_by_finite_differences_over(
+        "slotted crank and ram",
+        sweep_swing(),
+        tracked!(h; points: E e, B b, P p; links: crank, block, ram),
+    );
     let loads = slotted_crank_ram_loads();
     let (l, g) = (&p.links, p.gravity);
     let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
@@ -2263,55 +1694,23 @@ fn slotted_crank_ram_hand_independent_checks() {
         assert!(wrap(k.block.angle - phi).abs() < 1e-15);
         assert!(f.slot.dot(&us).abs() <= 1e-12 * f.slot.norm().max(1.0));
         assert!(f.guide.dot(&ug).abs() <= 1e-12 * f.guide.norm().max(1.0));
-        let body = |l: &mech::LinkParams| (l.mass, l.inertia, g);
-        check_balance(
-            "slotted crank and ram crank",
-            q,
-            body(&l.crank),
-            &k.crank,
-            &[(o2, f.o2), (b, -f.slot)],
-            &[f.driver, -f.slot_moment],
-        );
-        check_balance(
-            "slotted crank and ram block",
-            q,
-            body(&l.block),
-            &k.block,
-            &[(b, f.slot), (b, -f.b)],
-            &[f.slot_moment, loads.resist],
-        );
-        check_balance(
-            "slotted crank and ram ram",
-            q,
-            body(&l.ram),
-            &k.ram,
-            &[(b, f.b), (b, f.guide), (pp, loads.push)],
-            &[f.guide_moment],
+        check_balances!("slotted crank and ram", q, (l, g, k);
+            "crank" crank: [(o2, f.o2), (b, -f.slot)], [f.driver, -f.slot_moment];
+            "block" block: [(b, f.slot), (b, -f.b)], [f.slot_moment, loads.resist];
+            "ram" ram: [(b, f.b), (b, f.guide), (pp, loads.push)], [f.guide_moment];
         );
     }
-    check_dynamics_over("slotted crank and ram", sweep_swing(), |q| {
-        let k = h.kinematics(q, QD, QDD).unwrap();
-        let pose = |q| h.pose(q).unwrap();
-        let qdd = h.acceleration(q, QD, DRIVER, &loads).unwrap();
-        let block_turn =
-            wrap(pose(q + FD_STEP).block.angle - pose(q - FD_STEP).block.angle) / (2.0 * FD_STEP);
-        Dynamics {
-            dalembert: h.kinetostatics(&k, &loads).driver,
-            virtual_power: h.driver_action(&k, &loads),
-            reduced: h.reduced(q).unwrap(),
-            reduced_moment: h.reduced_moment(q, &loads).unwrap(),
-            inertia_plus: h.reduced(q + FD_STEP).unwrap().inertia,
-            inertia_minus: h.reduced(q - FD_STEP).unwrap().inertia,
-            moment_by_positions: l.crank.mass * g.dot(&d_dq(|q| pose(q).crank.cg, q))
-                + l.block.mass * g.dot(&d_dq(|q| pose(q).block.cg, q))
-                + l.ram.mass * g.dot(&d_dq(|q| pose(q).ram.cg, q))
+    check_dynamics_over(
+        "slotted crank and ram",
+        sweep_swing(),
+        hand_dynamics!(h, loads, |q, pose| {
+            let block_turn = wrap(pose(q + FD_STEP).block.angle - pose(q - FD_STEP).block.angle)
+                / (2.0 * FD_STEP);
+            gravity_power!(l, g, pose, q; crank, block, ram)
                 + loads.push.dot(&d_dq(|q| pose(q).p, q))
-                + loads.resist * block_turn,
-            inverse: h
-                .kinetostatics(&h.kinematics(q, QD, qdd).unwrap(), &loads)
-                .driver,
-        }
-    });
+                + loads.resist * block_turn
+        }),
+    );
 }
 
 /// The kinds of group the floor's machines exercise, as the macro's plan solves them
