@@ -38,6 +38,11 @@ pub fn reduced(links: &[LinkGeom], s: &[LinkState]) -> Reduced {
 }
 
 /// The generalised acceleration q̈ = (driver + M* − ½ dI*/dq q̇²) / I*.
+///
+/// Errors: an I*, dI*/dq or M* that is not finite, an I* that is not positive
+/// (`NonPositiveInertia`), a q̈ that overflows. The common path tests two things only:
+/// 0 < 1/I* < ∞ (I* positive and finite) and q̈ finite, which a non-finite dI*/dq or M*
+/// reaches (IEEE arithmetic: even ∞·0 is a NaN); which error it is is sorted out after.
 #[inline]
 pub fn acceleration(
     r: Reduced,
@@ -45,6 +50,24 @@ pub fn acceleration(
     qd: f64,
     driver: f64,
 ) -> Result<f64, crate::MechError> {
+    // 1/I* needs only the velocities, so it is computed while the accelerations (dI*/dq)
+    // are: a multiplication, not a division, ends the chain (the direct problem's steps
+    // wait for each q̈); ½q̇² is ready before dI*/dq too. (Each term of dI*/dq is written
+    // (2m) v·a + (2Iω) α for the same reason: the doublings, exact, leave the chain.)
+    let inv = 1.0 / r.inertia;
+    let qdd = (driver + moment - r.inertia_derivative * (0.5 * qd * qd)) * inv;
+    if inv > 0.0 && inv < f64::INFINITY && qdd * 0.0 == 0.0 {
+        Ok(qdd)
+    } else {
+        acceleration_error(r, moment, qdd)
+    }
+}
+
+/// [`acceleration`]'s error, in the order of its checks: I*, dI*/dq, M* finite, I* > 0,
+/// then q̈ finite.
+#[cold]
+#[inline(never)]
+fn acceleration_error(r: Reduced, moment: f64, qdd: f64) -> Result<f64, crate::MechError> {
     crate::kernel::finite::finite_few(
         "reduced inertia and moment",
         &[r.inertia, r.inertia_derivative, moment],
@@ -52,12 +75,6 @@ pub fn acceleration(
     if !(r.inertia > 0.0) {
         return Err(crate::MechError::NonPositiveInertia(r.inertia));
     }
-    // 1/I* needs only the velocities, so it is computed while the accelerations (dI*/dq)
-    // are: a multiplication, not a division, ends the chain (the direct problem's steps
-    // wait for each q̈); ½q̇² is ready before dI*/dq too. (Each term of dI*/dq is written
-    // (2m) v·a + (2Iω) α for the same reason: the doublings, exact, leave the chain.)
-    let inv = 1.0 / r.inertia;
-    let qdd = (driver + moment - r.inertia_derivative * (0.5 * qd * qd)) * inv;
     crate::kernel::finite::finite_few("acceleration q̈ (with I*, M* and the driver)", &[qdd])?;
     Ok(qdd)
 }
