@@ -200,3 +200,54 @@ impl ZhukovskiSums {
         self.moment += crate::elements::springs::reduced_moment(e, s, qd);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! [`acceleration`]: its one test on the common path gives the errors of the checks it
+    //! replaces, in their order.
+    use super::{acceleration, Reduced};
+    use crate::MechError;
+
+    fn at(inertia: f64, inertia_derivative: f64) -> Reduced {
+        Reduced {
+            inertia,
+            inertia_derivative,
+        }
+    }
+
+    #[test]
+    fn every_bad_reduced_quantity_is_an_error_of_its_kind() {
+        let (inf, nan) = (f64::INFINITY, f64::NAN);
+        // q̈ = (5 + 1 − ½·0.5·2²)/2 = 2.5.
+        assert_eq!(acceleration(at(2.0, 0.5), 1.0, 2.0, 5.0).unwrap(), 2.5);
+        let overflow = |r: Result<f64, MechError>| matches!(r, Err(MechError::InvalidInput(ref m)) if m.contains("reduced inertia and moment"));
+        for (i, d, m, qd) in [
+            (inf, 0.5, 1.0, 2.0),
+            (nan, 0.5, 1.0, 2.0),
+            (-inf, 0.5, 1.0, 2.0),
+            (2.0, inf, 1.0, 2.0),
+            (2.0, inf, 1.0, 0.0),
+            (2.0, nan, 1.0, 2.0),
+            (2.0, 0.5, -inf, 2.0),
+            (2.0, 0.5, nan, 0.0),
+            // Not finite wins over not positive, as before.
+            (-1.0, nan, 1.0, 2.0),
+        ] {
+            assert!(
+                overflow(acceleration(at(i, d), m, qd, 5.0)),
+                "{i} {d} {m} {qd}"
+            );
+        }
+        for i in [0.0, -0.0, -3.0] {
+            assert!(matches!(
+                acceleration(at(i, 0.5), 1.0, 2.0, 5.0),
+                Err(MechError::NonPositiveInertia(v)) if v == i
+            ));
+        }
+        // Finite and positive I*, but q̈ overflows.
+        assert!(matches!(
+            acceleration(at(1e-300, 0.5), 1e300, 2.0, 5.0),
+            Err(MechError::InvalidInput(ref m)) if m.contains("acceleration q̈")
+        ));
+    }
+}
