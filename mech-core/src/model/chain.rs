@@ -462,6 +462,18 @@ pub struct Joint {
     pub pin: Option<Pin>,
 }
 
+impl Joint {
+    /// The link on the other side of the joint from `link` (one of its two links).
+    #[inline]
+    pub fn across(&self, link: usize) -> usize {
+        if self.a == link {
+            self.b
+        } else {
+            self.a
+        }
+    }
+}
+
 /// The pin of a revolute joint (`pin 12 mm` or `pin 12 mm double`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pin {

@@ -65,14 +65,7 @@ fn pivot(screws: &[JointScrew; 3]) -> usize {
 /// The screw kernel of a closed-form solver ([`crate::kernel::screw`] docs): the chain of joint
 /// screws from a solved link through the group's links to a solved link.
 pub fn kernel(model: &Model, solver: Solver) -> Kernel {
-    let other = |j: usize, body: usize| {
-        let jt = &model.joints[j];
-        if jt.a == body {
-            jt.b
-        } else {
-            jt.a
-        }
-    };
+    let other = |j: usize, body: usize| model.joints[j].across(body);
     let rot = |joint| JointScrew {
         joint,
         slide: false,
@@ -181,7 +174,7 @@ fn mesh_kernel(model: &Model, body: usize, joint: usize) -> Kernel {
     let Some(m) = jt.mesh.as_ref() else {
         return Kernel::System;
     };
-    let partner = if jt.a == body { jt.b } else { jt.a };
+    let partner = jt.across(body);
     let rack_link = (jt.kind == JointKind::Rack).then_some(jt.b);
     let slide = rack_link.and_then(|r| {
         (0..model.joints.len()).find(|&j| {

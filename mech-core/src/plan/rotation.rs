@@ -1,11 +1,13 @@
 //! Links that turn together: a prismatic joint keeps its two links' relative rotation, so a
 //! slider turns with its guide. The published angle of such a link is its partner's plus
 //! the drawing's difference ([`crate::kernel::link_state::LinkGeom::angle_with`]), no
-//! `atan2`; the generated code and the run-time mechanism both read it from here.
+//! `atan2`; the generated code and the run-time mechanism both read it from here, and
+//! which links keep their turn exact over turns ([`tracked`]).
 
+use crate::elements::rolling::RollingGroup;
 use crate::kernel::dyad::Solver;
 use crate::model::Model;
-use crate::plan::assur::Group;
+use crate::plan::assur::{Group, Kernel};
 
 /// The moving link that link `l` turns with and whose angle is found before `l`'s, from the
 /// plan: the lower-numbered link of an RPR dyad for the other, the moving guide of an RRP
@@ -13,14 +15,7 @@ use crate::plan::assur::Group;
 /// dyad, and for both links of an RPP dyad the outer slider's guide. `None` when the
 /// partner is the ground (the link never turns: [`Model::translates`]) or there is none.
 pub fn rotation_partner(model: &Model, plan: &[Group], l: usize) -> Option<usize> {
-    let other = |j: usize, b: usize| {
-        let jt = &model.joints[j];
-        if jt.b == b {
-            jt.a
-        } else {
-            jt.b
-        }
-    };
+    let other = |j: usize, b: usize| model.joints[j].across(b);
     plan.iter().find_map(|g| {
         let m = match g.solver {
             Solver::Rpr { b1, b2, .. } if l == b1.max(b2) => b1.min(b2),
@@ -33,6 +28,28 @@ pub fn rotation_partner(model: &Model, plan: &[Group], l: usize) -> Option<usize
             _ => return None,
         };
         (m != 0).then_some(m)
+    })
+}
+
+/// Whether the plan keeps link `l`'s turn since the drawing exact over turns
+/// ([`crate::kernel::link_state::LinkState::angle`]): a meshing link, whose turn is
+/// Willis' from its partner's (`plan::assur`'s `track_angles`), and a wheel rolling on a
+/// straight track of the ground, whose turn is −s/r (`crate::elements::rolling`). Such a
+/// link publishes its angle from that turn
+/// ([`crate::kernel::link_state::LinkGeom::angle_tracked`]), no `atan2`.
+pub fn tracked(model: &Model, plan: &[Group], l: usize) -> bool {
+    let on_ground_line = |j: usize| {
+        let jt = &model.joints[j];
+        jt.a == 0 && jt.around.is_none()
+    };
+    plan.iter().any(|g| match &g.kernel {
+        Kernel::Mesh(m) => m.body == l,
+        Kernel::Train(t) => t.bodies[..t.n].contains(&l),
+        Kernel::Rolling(RollingGroup::Driven { body, joint, .. }) => {
+            *body == l && on_ground_line(*joint)
+        }
+        Kernel::Rolling(RollingGroup::Dyad { b2, jr, .. }) => *b2 == l && on_ground_line(*jr),
+        _ => false,
     })
 }
 

@@ -13,7 +13,7 @@ use crate::kernel::lanes::{
     acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, Backend, Base,
     LinkLanes, Mask, Wide, ZhukovskiLanes, L, NONE,
 };
-use crate::kernel::link_state::{point_pose, LinkState};
+use crate::kernel::link_state::{LinkState, PointPose};
 use crate::plan::assur::Kernel;
 use crate::solvers::batch::{
     each, each_lanes, each_with, kinematics_columns, kinetostatics_columns, put_kinematics,
@@ -89,20 +89,21 @@ impl Mechanism {
             rows.1,
             Vec::<LinkState>::new,
             |i, r: &mut Block<Pose>, s| {
-                self.solve_into(inputs(q, g, i), &zero, &zero, Level::Position, s)?;
+                let qi = inputs(q, g, i);
+                self.solve_into(qi, &zero, &zero, Level::Position, s)?;
                 crate::kernel::finite::finite_states(s, Level::Position)?;
                 let p = r.at(i);
                 p.links.clear();
-                p.links.extend(
-                    self.inst
-                        .links
-                        .iter()
-                        .zip(s.iter())
-                        .map(|(l, st)| l.pose(st)),
-                );
+                p.links.push(self.inst.links[0].pose(&s[0]));
+                for l in 1..s.len() {
+                    let o = self.link_pose(l, &s[l], qi, |m| p.links[m].angle);
+                    p.links.push(o);
+                }
                 p.points.clear();
                 p.points
-                    .extend(self.inst.points.iter().map(|&(o, d)| point_pose(s, o, d)));
+                    .extend((0..self.inst.points.len()).map(|k| PointPose {
+                        pos: self.point_at(s, k),
+                    }));
                 p.model = self.model.clone();
                 Ok(())
             },

@@ -275,8 +275,10 @@ impl Mechanism {
     ) -> Result<(), MechError> {
         let np = self.inst.points.len();
         self.points_from(q, s, &mut out[..2 * np], start)?;
-        for (k, (l, st)) in self.inst.links.iter().zip(s.iter()).enumerate().skip(1) {
-            out[2 * np + k - 1] = l.pose(st).angle;
+        let angles = &mut out[2 * np..];
+        for l in 1..s.len() {
+            let a = self.link_angle(l, &s[l], q, |m| angles[m - 1]);
+            angles[l - 1] = a;
         }
         crate::kernel::finite::finite_result("link angles", &out[2 * np..])
     }
@@ -310,8 +312,8 @@ impl Mechanism {
         };
         self.solve_into_from(q, &zero, &zero, Level::Position, s, start)?;
         let np = self.inst.points.len();
-        for (xy, &(o, d)) in out[..2 * np].chunks_exact_mut(2).zip(&self.inst.points) {
-            let p = point_pose(s, o, d).pos;
+        for (k, xy) in out[..2 * np].chunks_exact_mut(2).enumerate() {
+            let p = self.point_at(s, k);
             xy[0] = p.x;
             xy[1] = p.y;
         }
@@ -373,19 +375,17 @@ impl Mechanism {
             angle: p.ground.angle,
             cg: p.ground.cg,
         };
-        // As `positions_into`, `pose_many` and the columns (the same numbers bit for bit):
-        // every angle from the rotation, every point from its owner of the instance.
-        for ((o, st), geom) in out.links[1..]
-            .iter_mut()
-            .zip(&s[1..])
-            .zip(&self.inst.links[1..])
-        {
+        // As `positions_into`, `pose_many`, the columns and `kinematics` (the same numbers
+        // bit for bit): every angle by its rule, every point from its owner.
+        for l in 1..n {
+            let st = &s[l];
             bad |= nf(st.pos) | nf(st.rot);
-            *o = geom.pose(st);
+            let o = self.link_pose(l, st, q, |m| out.links[m].angle);
             bad |= nf(o.cg);
+            out.links[l] = o;
         }
-        for (o, &(l, d)) in out.points.iter_mut().zip(&self.inst.points) {
-            *o = point_pose(s, l, d);
+        for (k, o) in out.points.iter_mut().enumerate() {
+            o.pos = self.point_at(s, k);
             bad |= nf(o.pos);
         }
         if bad {
@@ -397,18 +397,71 @@ impl Mechanism {
         Ok(())
     }
 
-    /// The angle of a moving link by its rule (`Program::angles`).
+    /// The position (m) of point `k` in the states `s`, from its owner (`Program::owners`,
+    /// as the generated code publishes it): a ground point's drawn place, a link's anchor
+    /// its state's position (no rotation), any other point through its link's rotation.
     #[inline(always)]
-    fn angle(
+    pub(super) fn point_at(&self, s: &[LinkState], k: usize) -> V2 {
+        match self.program.owners[k] {
+            Owner::Ground(d) => d,
+            Owner::Anchor(l) => s[l].pos,
+            Owner::Local(l, d) => point_pose(s, l, d).pos,
+        }
+    }
+
+    /// The pose of moving link `l` in the state `s`: its angle by its rule
+    /// ([`Mechanism::link_angle`]), its cg not rotated when it never turns
+    /// ([`crate::kernel::link_state::LinkGeom::pose_translating`]), as the generated code.
+    #[inline(always)]
+    pub(super) fn link_pose(
         &self,
-        rule: &Angle,
+        l: usize,
         s: &LinkState,
-        geom: &crate::kernel::link_state::LinkGeom,
         q: &[f64],
+        published: impl FnOnce(usize) -> f64,
+    ) -> LinkPose {
+        let geom = &self.inst.links[l];
+        match self.program.angles[l - 1] {
+            Angle::Fixed(_) => geom.pose_translating(s),
+            _ => geom.pose_at(s, self.link_angle(l, s, q, published)),
+        }
+    }
+
+    /// The motion of moving link `l` in the state `s`, as [`Mechanism::link_pose`] (a link
+    /// that never turns: [`crate::kernel::link_state::LinkGeom::motion_translating`]).
+    #[inline(always)]
+    fn link_motion(
+        &self,
+        l: usize,
+        s: &LinkState,
+        q: &[f64],
+        published: impl FnOnce(usize) -> f64,
+    ) -> crate::kernel::link_state::LinkMotion {
+        let geom = &self.inst.links[l];
+        match self.program.angles[l - 1] {
+            Angle::Fixed(_) => geom.motion_translating(s),
+            _ => geom.motion_at(s, self.link_angle(l, s, q, published)),
+        }
+    }
+
+    /// The angle θ (rad) of moving link `l` in the state `s` by its rule
+    /// (`Program::angles`, as the generated code publishes it): a crank's from its input,
+    /// a translating link's the drawing's, a tracked link's from its turn, a partner's
+    /// from `published(m)` (the angle already published for the lower link m, no
+    /// `atan2`), else from the rotation.
+    #[inline(always)]
+    pub(super) fn link_angle(
+        &self,
+        l: usize,
+        s: &LinkState,
+        q: &[f64],
+        published: impl FnOnce(usize) -> f64,
     ) -> f64 {
-        match *rule {
-            // A partner's angle is read by the caller; here from the rotation.
-            Angle::Turned | Angle::With(_) => geom.angle(s),
+        let geom = &self.inst.links[l];
+        match self.program.angles[l - 1] {
+            Angle::Turned => geom.angle(s),
+            Angle::Tracked => geom.angle_tracked(s),
+            Angle::With(m) => geom.angle_with(&self.inst.links[m], published(m)),
             Angle::Crank { input, sign, zero } => kinematics::crank_angle(
                 match zero {
                     None => q[input],
@@ -484,20 +537,15 @@ impl Mechanism {
         // the points and cgs derived from them; an anchor point is its link's state).
         let mut bad = false;
         out.links[0] = p.ground;
-        for (l, rule) in (1..n).zip(&p.angles) {
-            let (st, geom) = (&s[l], &self.inst.links[l]);
+        for l in 1..n {
+            let st = &s[l];
             bad |= nf(st.pos)
                 | nf(st.rot)
                 | nf(st.vel)
                 | nf(st.acc)
                 | non_finite(st.omega)
                 | non_finite(st.alpha);
-            let angle = match *rule {
-                // The partner (a lower link) is published already.
-                Angle::With(m) => geom.angle_with(&self.inst.links[m], out.links[m].angle),
-                _ => self.angle(rule, st, geom, q),
-            };
-            let o = geom.motion_at(st, angle);
+            let o = self.link_motion(l, st, q, |m| out.links[m].angle);
             bad |= nf(o.cg) | nf(o.cg_vel) | nf(o.cg_acc);
             out.links[l] = o;
         }
@@ -547,6 +595,55 @@ fn overflow() -> MechError {
     crate::kernel::finite::states_overflow()
 }
 
+/// `$call` with the closed-form dyad `$solver` (a [`crate::kernel::dyad::Solver`]) bound
+/// to `$name` as a literal of its variant, for each dyad the dispatch writes out (RRR,
+/// RRP, RPR, the slotted slider, PRP, RPP), so that the kernel's own `match` on the
+/// solver folds in each arm; `$other` for any other.
+macro_rules! written_out {
+    ($solver:expr, |$name:ident| $call:expr, $other:expr) => {{
+        use crate::kernel::dyad::Solver;
+        match $solver {
+            Solver::Rrr { b1, b2, ja, jc, jb } => {
+                let $name = Solver::Rrr { b1, b2, ja, jc, jb };
+                $call
+            }
+            Solver::Rrp { b1, b2, ja, jc, jp } => {
+                let $name = Solver::Rrp { b1, b2, ja, jc, jp };
+                $call
+            }
+            Solver::Rpr { b1, b2, ja, jp, jb } => {
+                let $name = Solver::Rpr { b1, b2, ja, jp, jb };
+                $call
+            }
+            Solver::SlottedSlider { body, jq, js } => {
+                let $name = Solver::SlottedSlider { body, jq, js };
+                $call
+            }
+            Solver::Prp {
+                b1,
+                b2,
+                jp1,
+                jc,
+                jp2,
+            } => {
+                let $name = Solver::Prp {
+                    b1,
+                    b2,
+                    jp1,
+                    jc,
+                    jp2,
+                };
+                $call
+            }
+            Solver::Rpp { b1, b2, ja, jp, jq } => {
+                let $name = Solver::Rpp { b1, b2, ja, jp, jq };
+                $call
+            }
+            _ => $other,
+        }
+    }};
+}
+
 /// The specialised dispatch of the common closed forms: each group's solver variant
 /// matched once, the kernel called with that variant written out, so that the kernels'
 /// own `match` on the solver folds (as in the generated code, where it is a constant).
@@ -563,30 +660,18 @@ impl Mechanism {
         start: Option<&[LinkState]>,
     ) -> Result<kinematics::DyadSystem, MechError> {
         use crate::kernel::dyad::Solver;
-        use kinematics::DyadSystem;
         let (joints, scale, upto) = (&self.inst.joints[..], self.inst.scale, level(UPTO));
         match (&g.kernel, g.solver) {
             (Kernel::Driven(d), Solver::DrivenRevolute { body, joint, input }) => {
                 let solver = Solver::DrivenRevolute { body, joint, input };
                 kinematics::solve_driven(solver, d, joints, s, drive, upto)?;
-                Ok(DyadSystem::None)
+                Ok(kinematics::DyadSystem::None)
             }
-            (Kernel::Chain(c), Solver::Rrr { b1, b2, ja, jc, jb }) => {
-                let solver = Solver::Rrr { b1, b2, ja, jc, jb };
-                kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto)
-            }
-            (Kernel::Chain(c), Solver::Rrp { b1, b2, ja, jc, jp }) => {
-                let solver = Solver::Rrp { b1, b2, ja, jc, jp };
-                kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto)
-            }
-            (Kernel::Chain(c), Solver::Rpr { b1, b2, ja, jp, jb }) => {
-                let solver = Solver::Rpr { b1, b2, ja, jp, jb };
-                kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto)
-            }
-            (Kernel::Chain(c), Solver::SlottedSlider { body, jq, js }) => {
-                let solver = Solver::SlottedSlider { body, jq, js };
-                kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto)
-            }
+            (Kernel::Chain(c), solver) => written_out!(
+                solver,
+                |solver| kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto),
+                self.other_step(g, sign, drive, upto, s, start)
+            ),
             _ => self.other_step(g, sign, drive, upto, s, start),
         }
     }
@@ -605,26 +690,14 @@ impl Mechanism {
         r: &mut [Reaction],
         driver: &mut [f64],
     ) -> Result<(), MechError> {
-        use crate::kernel::dyad::Solver;
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
-        match (&g.kernel, g.solver) {
-            (Kernel::Driven(k), _) => screw::driven_reactions(k, joints, s, f, r, driver),
-            (Kernel::Chain(c), Solver::Rrr { b1, b2, ja, jc, jb }) => {
-                let solver = Solver::Rrr { b1, b2, ja, jc, jb };
-                kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?
-            }
-            (Kernel::Chain(c), Solver::Rrp { b1, b2, ja, jc, jp }) => {
-                let solver = Solver::Rrp { b1, b2, ja, jc, jp };
-                kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?
-            }
-            (Kernel::Chain(c), Solver::Rpr { b1, b2, ja, jp, jb }) => {
-                let solver = Solver::Rpr { b1, b2, ja, jp, jb };
-                kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?
-            }
-            (Kernel::Chain(c), Solver::SlottedSlider { body, jq, js }) => {
-                let solver = Solver::SlottedSlider { body, jq, js };
-                kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?
-            }
+        match &g.kernel {
+            Kernel::Driven(k) => screw::driven_reactions(k, joints, s, f, r, driver),
+            Kernel::Chain(c) => written_out!(
+                g.solver,
+                |solver| kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?,
+                self.other_reactions(g, kept, s, f, r, driver)?
+            ),
             _ => self.other_reactions(g, kept, s, f, r, driver)?,
         }
         Ok(())

@@ -86,6 +86,11 @@ pub(super) enum Angle {
     },
     /// A link that never turns (sliding on the ground): its drawing's angle.
     Fixed(f64),
+    /// A link whose turn the plan keeps exact over turns
+    /// ([`crate::plan::rotation::tracked`]: a meshing link, a wheel rolling on a straight
+    /// track of the ground): [`crate::kernel::link_state::LinkGeom::angle_tracked`], no
+    /// `atan2`.
+    Tracked,
     /// A link that turns with this lower-numbered link
     /// ([`crate::plan::rotation::rotation_partner`]): that link's published angle plus the
     /// drawing's difference; no `atan2`.
@@ -161,6 +166,8 @@ impl Program {
                 });
                 crank.unwrap_or(if model.translates(l) {
                     Angle::Fixed(inst.links[l].angle_ref)
+                } else if crate::plan::rotation::tracked(model, plan, l) {
+                    Angle::Tracked
                 } else {
                     match crate::plan::rotation::rotation_partner(model, plan, l) {
                         Some(m) if m < l => Angle::With(m),

@@ -2,7 +2,6 @@
 //! accessors, and the methods that make them, `pose` and `kinematics`.
 
 use super::{plan, Ctx};
-use mech_core::elements::rolling::RollingGroup;
 use mech_core::kernel::dyad::Solver;
 use mech_core::plan::assur::Kernel;
 use proc_macro2::TokenStream;
@@ -146,8 +145,8 @@ enum Rotation {
 
 /// [`Rotation`] of moving link `l`: unrotated when it never turns and a closed form
 /// places it (an RRP dyad's slider, a slotted slider, a driven slider, PRP and RPP
-/// sliders: their rotation is copied from the ground's, (1, 0)); that of the link it turns with ([`rotation_partner`]),
-/// whose rotation the kernels copy; else its own.
+/// sliders: their rotation is copied from the ground's, (1, 0)); that of the link it
+/// turns with ([`rotation_partner`]), whose rotation the kernels copy; else its own.
 fn rotation_of(cx: &Ctx, l: usize) -> Rotation {
     let closed = cx.plan.iter().any(|g| {
         g.bodies.contains(&l)
@@ -305,24 +304,10 @@ fn angle_of(cx: &Ctx, l: usize) -> Angle {
     }
 }
 
-/// Whether the plan keeps link `l`'s turn since the drawing exact over turns
-/// ([`mech_core::kernel::link_state::LinkState::angle`]): a meshing link, whose turn is
-/// Willis' from its partner's (`plan::assur`'s `track_angles`), and a wheel rolling on a
-/// straight track of the ground, whose turn is −s/r (`mech_core::elements::rolling`).
+/// Whether the plan keeps link `l`'s turn exact over turns
+/// ([`mech_core::plan::rotation::tracked`]).
 fn tracked(cx: &Ctx, l: usize) -> bool {
-    let on_ground_line = |j: usize| {
-        let jt = &cx.model.joints[j];
-        jt.a == 0 && jt.around.is_none()
-    };
-    cx.plan.iter().any(|g| match &g.kernel {
-        Kernel::Mesh(m) => m.body == l,
-        Kernel::Train(t) => t.bodies[..t.n].contains(&l),
-        Kernel::Rolling(RollingGroup::Driven { body, joint, .. }) => {
-            *body == l && on_ground_line(*joint)
-        }
-        Kernel::Rolling(RollingGroup::Dyad { b2, jr, .. }) => *b2 == l && on_ground_line(*jr),
-        _ => false,
-    })
+    mech_core::plan::rotation::tracked(cx.model, cx.plan, l)
 }
 
 /// The link that link `l` turns with and whose angle is found before `l`'s

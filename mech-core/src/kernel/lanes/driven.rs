@@ -2,7 +2,7 @@
 //! [`crate::kernel::kinematics::solve_driven`] (positions as `kernel::dyad`'s
 //! `driven_revolute` and `driven_prismatic`, rates as [`crate::kernel::screw::driven_rates`]).
 
-use super::simd::{sin_cos, Backend, Mask, ALL, L, V2L};
+use super::simd::{sin_cos, Backend, Mask, ALL, L, NONE, V2L};
 use super::{dir_of, pin, place_by_point, point_of, LinkLanes};
 use crate::kernel::constraints::{JointGeom, Level};
 use crate::kernel::dyad::Solver;
@@ -20,7 +20,8 @@ use crate::kernel::screw::Driven;
 ///   the joint point O: t = t₀ + σ q̇ $, â = â₀ + σ (q̈ $ + q̇ t₀ × $);
 /// - with `driven.track`, φ over turns: the base's plus ±(q − q_ref) for a crank.
 ///
-/// The scalar kernel never fails here: the mask holds the lanes with a non-finite result,
+/// The scalar kernel never fails here: the mask holds the lanes with a non-finite result
+/// from [`Level::Velocity`] on (positions alone are tested by their caller, on the points),
 /// and every lane for another solver kind.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
@@ -59,17 +60,15 @@ pub fn solve_driven_lanes<B: Backend>(
         };
         s[body].angle = base + if g.b == driven.body { turn } else { -turn };
     }
-    let rates = matches!(upto, Level::Velocity | Level::Acceleration);
-    if rates {
-        driven_rates(driven, g, s, qd[driven.input], qdd[driven.input], upto);
+    if !matches!(upto, Level::Velocity | Level::Acceleration) {
+        // As `solve_chain_lanes`: positions alone are tested on the points published.
+        return NONE;
     }
+    driven_rates(driven, g, s, qd[driven.input], qdd[driven.input], upto);
     let b = &s[body];
-    let mut sum = b.pos.x + b.pos.y + b.rot.x + b.rot.y;
-    if rates {
-        sum += b.vel.x + b.vel.y + b.omega;
-        if upto == Level::Acceleration {
-            sum += b.acc.x + b.acc.y + b.alpha;
-        }
+    let mut sum = b.pos.x + b.pos.y + b.rot.x + b.rot.y + b.vel.x + b.vel.y + b.omega;
+    if upto == Level::Acceleration {
+        sum += b.acc.x + b.acc.y + b.alpha;
     }
     sum.non_finite().mask()
 }

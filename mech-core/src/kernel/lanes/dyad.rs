@@ -50,7 +50,8 @@ pub const PRECISE_CONDITION: f64 = 30.0;
 ///   [`crate::kernel::linalg::Inverse2::new`] at [`SINGULAR_CONDITION`]); RRP, the test of
 ///   [`crate::kernel::natural::SlideFrame::new`], |e₁|² + L² ≥ κ |x L| with
 ///   κ = [`SINGULAR_CONDITION`]·(1 − 10⁻⁶), and 2|e₁| ≥ 30 |x|; either not finite;
-/// - a non-finite position, velocity or acceleration of either link;
+/// - from [`Level::Velocity`] on, a non-finite position, velocity or acceleration of
+///   either link (positions alone are tested by their caller, on the points it publishes);
 /// - every lane for another solver kind.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
@@ -73,6 +74,12 @@ pub fn solve_chain_lanes<B: Backend>(
         ),
         _ => return ALL,
     };
+    if !matches!(upto, Level::Velocity | Level::Acceleration) {
+        // Positions alone feed the points (`points_many`), which test what they publish
+        // as the scalar `points` does: the states are not tested here, so that a link no
+        // point lies on is not placed at all (its placement folds away unread).
+        return mask.mask();
+    }
     let mut sum = L::splat(0.0);
     for b in [&s[b1], &s[b2]] {
         sum += b.pos.x + b.pos.y + b.rot.x + b.rot.y;
