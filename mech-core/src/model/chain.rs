@@ -131,6 +131,17 @@ pub struct MaterialDecl<S> {
     pub span: S,
 }
 
+/// How a point is published ([`Model::point_owner`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PointOwner {
+    /// A point of the ground: at rest at its drawn place.
+    Ground,
+    /// The anchor (first point) of this moving link: its state's own position and motion.
+    Anchor(usize),
+    /// The material point of this moving link at the point's local vector.
+    Local(usize),
+}
+
 /// The kind of a joint as written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JointKind {
@@ -676,6 +687,24 @@ impl Model {
             return None;
         }
         (1..self.links.len()).find(|&m| m != l && self.links[m].points.first() == Some(&p2))
+    }
+    /// How point `pt` is published, the one rule of the generated code and the run-time
+    /// mechanism ([`PointOwner`]): a point of the ground at rest; else the anchor (first
+    /// point) of a moving link, that link's state itself (nothing rotated); else the
+    /// material point of the first link that carries it.
+    pub fn point_owner(&self, pt: usize) -> PointOwner {
+        if self.links.first().is_some_and(|g| g.points.contains(&pt)) {
+            return PointOwner::Ground;
+        }
+        if let Some(l) = (1..self.links.len()).find(|&l| self.links[l].points.first() == Some(&pt))
+        {
+            return PointOwner::Anchor(l);
+        }
+        PointOwner::Local(
+            (0..self.links.len())
+                .find(|&l| self.links[l].points.contains(&pt))
+                .unwrap_or(0),
+        )
     }
     /// For joint `j`, whether its point is the anchor (first point) of link a and of
     /// link b: there its local vector ([`crate::plan::geometry::joint_geom`]) is exactly zero,

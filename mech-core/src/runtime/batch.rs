@@ -13,7 +13,7 @@ use crate::kernel::lanes::{
     acceleration_lanes, or, point_lanes, solve_chain_lanes, solve_driven_lanes, Backend, Base,
     LinkLanes, Mask, Wide, ZhukovskiLanes, L, NONE,
 };
-use crate::kernel::link_state::{LinkState, PointPose};
+use crate::kernel::link_state::{LinkPose, LinkState, PointPose};
 use crate::plan::assur::Kernel;
 use crate::solvers::batch::{
     each, each_lanes, each_with, kinematics_columns, kinetostatics_columns, put_kinematics,
@@ -93,11 +93,14 @@ impl Mechanism {
                 self.solve_into(qi, &zero, &zero, Level::Position, s)?;
                 crate::kernel::finite::finite_states(s, Level::Position)?;
                 let p = r.at(i);
-                p.links.clear();
-                p.links.push(self.inst.links[0].pose(&s[0]));
-                for l in 1..s.len() {
+                p.links.resize(s.len(), Default::default());
+                p.links[0] = LinkPose {
+                    angle: self.program.ground.angle,
+                    cg: self.program.ground.cg,
+                };
+                for &l in &self.program.angle_order {
                     let o = self.link_pose(l, &s[l], qi, |m| p.links[m].angle);
-                    p.links.push(o);
+                    p.links[l] = o;
                 }
                 p.points.clear();
                 p.points

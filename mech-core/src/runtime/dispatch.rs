@@ -16,9 +16,10 @@ use smallvec::SmallVec;
 use std::sync::Arc;
 
 use super::mechanism::Mechanism;
-use super::mechanism::{Angle, Owner, Scratch};
+use super::mechanism::{Owner, Scratch};
 use super::newton::system;
 use super::results::*;
+use crate::plan::rotation::AngleRule;
 
 /// The levels as constants of the solvers' const generic (`Level` itself cannot be one):
 /// a solve specialised to its level has every `upto` test of the kernels folded.
@@ -276,7 +277,7 @@ impl Mechanism {
         let np = self.inst.points.len();
         self.points_from(q, s, &mut out[..2 * np], start)?;
         let angles = &mut out[2 * np..];
-        for l in 1..s.len() {
+        for &l in &self.program.angle_order {
             let a = self.link_angle(l, &s[l], q, |m| angles[m - 1]);
             angles[l - 1] = a;
         }
@@ -377,7 +378,7 @@ impl Mechanism {
         };
         // As `positions_into`, `pose_many`, the columns and `kinematics` (the same numbers
         // bit for bit): every angle by its rule, every point from its owner.
-        for l in 1..n {
+        for &l in &p.angle_order {
             let st = &s[l];
             bad |= nf(st.pos) | nf(st.rot);
             let o = self.link_pose(l, st, q, |m| out.links[m].angle);
@@ -422,7 +423,7 @@ impl Mechanism {
     ) -> LinkPose {
         let geom = &self.inst.links[l];
         match self.program.angles[l - 1] {
-            Angle::Fixed(_) => geom.pose_translating(s),
+            AngleRule::Translating => geom.pose_translating(s),
             _ => geom.pose_at(s, self.link_angle(l, s, q, published)),
         }
     }
@@ -439,16 +440,16 @@ impl Mechanism {
     ) -> crate::kernel::link_state::LinkMotion {
         let geom = &self.inst.links[l];
         match self.program.angles[l - 1] {
-            Angle::Fixed(_) => geom.motion_translating(s),
+            AngleRule::Translating => geom.motion_translating(s),
             _ => geom.motion_at(s, self.link_angle(l, s, q, published)),
         }
     }
 
     /// The angle θ (rad) of moving link `l` in the state `s` by its rule
-    /// (`Program::angles`, as the generated code publishes it): a crank's from its input,
-    /// a translating link's the drawing's, a tracked link's from its turn, a partner's
-    /// from `published(m)` (the angle already published for the lower link m, no
-    /// `atan2`), else from the rotation.
+    /// ([`crate::plan::rotation::angle_rule`], as the generated code publishes it): a
+    /// crank's from its input, a translating link's the drawing's, a tracked link's from its
+    /// turn, a partner's from `published(m)` (the angle of its partner m, published before
+    /// it in `Program::angle_order`; no `atan2`), else from the rotation.
     #[inline(always)]
     pub(super) fn link_angle(
         &self,
@@ -459,17 +460,17 @@ impl Mechanism {
     ) -> f64 {
         let geom = &self.inst.links[l];
         match self.program.angles[l - 1] {
-            Angle::Turned => geom.angle(s),
-            Angle::Tracked => geom.angle_tracked(s),
-            Angle::With(m) => geom.angle_with(&self.inst.links[m], published(m)),
-            Angle::Crank { input, sign, zero } => kinematics::crank_angle(
+            AngleRule::Own => geom.angle(s),
+            AngleRule::Tracked => geom.angle_tracked(s),
+            AngleRule::With(m) => geom.angle_with(&self.inst.links[m], published(m)),
+            AngleRule::Crank { input, sign, zero } => kinematics::crank_angle(
                 match zero {
                     None => q[input],
                     Some(z) => q[input] + z,
                 },
                 sign,
             ),
-            Angle::Fixed(a) => a,
+            AngleRule::Translating => geom.angle_ref,
         }
     }
 
@@ -537,7 +538,7 @@ impl Mechanism {
         // the points and cgs derived from them; an anchor point is its link's state).
         let mut bad = false;
         out.links[0] = p.ground;
-        for l in 1..n {
+        for &l in &p.angle_order {
             let st = &s[l];
             bad |= nf(st.pos)
                 | nf(st.rot)

@@ -25,8 +25,9 @@
 pub use super::results::{Forces, JointReaction, LoadValue, Loads, Motion, Pose};
 use crate::kernel::constraints::Level;
 use crate::kernel::link_state::V2;
-use crate::model::{JointKind, Load, Model};
+use crate::model::{JointKind, Load, Model, PointOwner};
 use crate::plan::assur::{Group, Kernel};
+use crate::plan::rotation::AngleRule;
 use crate::solvers::batch::BatchErrors;
 use crate::solvers::instance::{instance, Instance};
 use crate::solvers::params::LinkTerms;
@@ -72,31 +73,6 @@ pub struct Mechanism {
     pub(super) program: Program,
 }
 
-/// How a link's angle is published, as the generated code does (`emit/results.rs`).
-#[derive(Clone, Copy, Debug)]
-pub(super) enum Angle {
-    /// From the link's rotation (an `atan2`).
-    Turned,
-    /// A crank driven on the ground: [`crate::kernel::kinematics::crank_angle`] of input
-    /// `input` (plus its zero, when it has one) with `sign`; no `atan2`.
-    Crank {
-        input: usize,
-        sign: f64,
-        zero: Option<f64>,
-    },
-    /// A link that never turns (sliding on the ground): its drawing's angle.
-    Fixed(f64),
-    /// A link whose turn the plan keeps exact over turns
-    /// ([`crate::plan::rotation::tracked`]: a meshing link, a wheel rolling on a straight
-    /// track of the ground): [`crate::kernel::link_state::LinkGeom::angle_tracked`], no
-    /// `atan2`.
-    Tracked,
-    /// A link that turns with this lower-numbered link
-    /// ([`crate::plan::rotation::rotation_partner`]): that link's published angle plus the
-    /// drawing's difference; no `atan2`.
-    With(usize),
-}
-
 /// How a point is published, as the generated code does (`emit/results.rs`, `owners`).
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Owner {
@@ -126,8 +102,12 @@ pub(super) enum Share {
 /// shape.
 #[derive(Clone, Debug)]
 pub(super) struct Program {
-    /// Per moving link (link l at l − 1): how its angle is published.
-    pub(super) angles: Vec<Angle>,
+    /// Per moving link (link l at l − 1): how its angle is published
+    /// ([`crate::plan::rotation::angle_rule`], the generated code's rule).
+    pub(super) angles: Vec<AngleRule>,
+    /// The moving links in the order their angles are published (a link turning with a
+    /// partner after it: [`crate::plan::rotation::angle_order`]).
+    pub(super) angle_order: Vec<usize>,
     /// Per point: how it is published.
     pub(super) owners: Vec<Owner>,
     /// The ground's motion (constant).
@@ -144,48 +124,16 @@ impl Program {
     fn new(model: &Model, plan: &[Group], inst: &Instance) -> Self {
         let n = model.links.len();
         let angles = (1..n)
-            .map(|l| {
-                let crank = plan.iter().find_map(|g| match g.kernel {
-                    Kernel::Driven(d) if d.body == l && d.from == 0 && !d.screw.slide => {
-                        let sign = if model.joints[d.screw.joint].b == l {
-                            1.0
-                        } else {
-                            -1.0
-                        };
-                        let zero = match model.input_zero.get(d.input).copied().unwrap_or(0.0) {
-                            0.0 => None,
-                            z => Some(z),
-                        };
-                        Some(Angle::Crank {
-                            input: d.input,
-                            sign,
-                            zero,
-                        })
-                    }
-                    _ => None,
-                });
-                crank.unwrap_or(if model.translates(l) {
-                    Angle::Fixed(inst.links[l].angle_ref)
-                } else if crate::plan::rotation::tracked(model, plan, l) {
-                    Angle::Tracked
-                } else {
-                    match crate::plan::rotation::rotation_partner(model, plan, l) {
-                        Some(m) if m < l => Angle::With(m),
-                        _ => Angle::Turned,
-                    }
-                })
-            })
+            .map(|l| crate::plan::rotation::angle_rule(model, plan, l))
             .collect();
+        let angle_order = crate::plan::rotation::angle_order(plan, n);
         let owners = (0..model.points.len())
             .map(|pt| {
-                let (owner, d) = inst.points[pt];
-                if owner == 0 {
-                    Owner::Ground(d)
-                } else if let Some(l) = (1..n).find(|&l| model.links[l].points.first() == Some(&pt))
-                {
-                    Owner::Anchor(l)
-                } else {
-                    Owner::Local(owner, d)
+                let d = inst.points[pt].1;
+                match model.point_owner(pt) {
+                    PointOwner::Ground => Owner::Ground(d),
+                    PointOwner::Anchor(l) => Owner::Anchor(l),
+                    PointOwner::Local(l) => Owner::Local(l, d),
                 }
             })
             .collect();
@@ -215,6 +163,7 @@ impl Program {
             .collect();
         Program {
             angles,
+            angle_order,
             owners,
             ground: inst.links[0].motion(&inst.drawing[0]),
             weighed,

@@ -3,7 +3,9 @@
 
 use super::{plan, Ctx};
 use mech_core::kernel::dyad::Solver;
+use mech_core::model::PointOwner;
 use mech_core::plan::assur::Kernel;
+use mech_core::plan::rotation::AngleRule as Angle;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 use syn::Ident;
@@ -239,20 +241,11 @@ pub(crate) enum Owner {
 }
 
 pub(crate) fn owners(cx: &Ctx) -> Vec<Owner> {
-    let links = &cx.model.links;
     (0..cx.n_points)
-        .map(|pt| {
-            if links[0].points.contains(&pt) {
-                return Owner::Local(0);
-            }
-            if let Some(l) = (1..cx.n_links).find(|&l| links[l].points.first() == Some(&pt)) {
-                return Owner::Anchor(l);
-            }
-            Owner::Local(
-                (0..cx.n_links)
-                    .find(|&l| links[l].points.contains(&pt))
-                    .unwrap_or(0),
-            )
+        .map(|pt| match cx.model.point_owner(pt) {
+            PointOwner::Ground => Owner::Local(0),
+            PointOwner::Anchor(l) => Owner::Anchor(l),
+            PointOwner::Local(l) => Owner::Local(l),
         })
         .collect()
 }
@@ -267,53 +260,10 @@ pub(crate) fn to_array(cx: &Ctx, v: &str) -> TokenStream {
     }
 }
 
-/// How the angle of a moving link is found.
-#[derive(Clone, Copy)]
-enum Angle {
-    /// A crank driven on the ground: `crank_angle(±q)`, no atan2.
-    Crank,
-    /// A link sliding on the ground: its drawing's angle, and its cg not rotated
-    /// (`LinkGeom::pose_translating`, `motion_translating`).
-    Translating,
-    /// A link that turns with this (earlier) link: `LinkGeom::angle_with`, no atan2.
-    With(usize),
-    /// A link whose turn since the drawing the plan keeps over turns (a meshing link:
-    /// Willis from its partner): `LinkGeom::angle_tracked`, no atan2.
-    Tracked,
-    /// Any other link: the atan2 of its turned reference direction.
-    Own,
-}
-
-/// How the angle of moving link `l` is found ([`Angle`]): a driven crank or a link
-/// sliding on the ground first; then a link that shares its rotation with a link placed
-/// before it (the second of an RPR dyad's two links, a slider on a moving guide, a driven
-/// slider on a moving link), which takes that link's angle plus the drawing's difference.
+/// How the angle of moving link `l` is found: the rule the run-time mechanism follows too
+/// ([`mech_core::plan::rotation::angle_rule`]).
 fn angle_of(cx: &Ctx, l: usize) -> Angle {
-    if crank_angle(cx, l).is_some() {
-        return Angle::Crank;
-    }
-    if cx.model.translates(l) {
-        return Angle::Translating;
-    }
-    if tracked(cx, l) {
-        return Angle::Tracked;
-    }
-    match rotation_partner(cx, l) {
-        Some(m) => Angle::With(m),
-        None => Angle::Own,
-    }
-}
-
-/// Whether the plan keeps link `l`'s turn exact over turns
-/// ([`mech_core::plan::rotation::tracked`]).
-fn tracked(cx: &Ctx, l: usize) -> bool {
-    mech_core::plan::rotation::tracked(cx.model, cx.plan, l)
-}
-
-/// The link that link `l` turns with and whose angle is found before `l`'s
-/// ([`mech_core::plan::rotation::rotation_partner`]).
-fn rotation_partner(cx: &Ctx, l: usize) -> Option<usize> {
-    mech_core::plan::rotation::rotation_partner(cx.model, cx.plan, l)
+    mech_core::plan::rotation::angle_rule(cx.model, cx.plan, l)
 }
 
 /// The name of the binding of link `l`'s angle.
@@ -325,15 +275,7 @@ fn angle_id(l: usize) -> Ident {
 /// sliding on the ground, unless another turns with them), in plan order so that a link
 /// turning with another comes after it.
 fn angle_lets(cx: &Ctx) -> TokenStream {
-    let mut order: Vec<usize> = Vec::new();
-    for g in cx.plan {
-        let mut bodies = g.bodies.clone();
-        bodies.sort_unstable();
-        order.extend(bodies);
-    }
-    order.extend(1..cx.n_links);
-    let mut seen = vec![false; cx.n_links];
-    order.retain(|&l| l != 0 && !std::mem::replace(&mut seen[l], true));
+    let order = mech_core::plan::rotation::angle_order(cx.plan, cx.n_links);
     let needed = |l: usize| {
         !matches!(angle_of(cx, l), Angle::Translating)
             || (1..cx.n_links).any(|k| matches!(angle_of(cx, k), Angle::With(m) if m == l))
@@ -341,7 +283,7 @@ fn angle_lets(cx: &Ctx) -> TokenStream {
     let lets = order.into_iter().filter(|&l| needed(l)).map(|l| {
         let a = angle_id(l);
         let value = match angle_of(cx, l) {
-            Angle::Crank => crank_angle(cx, l).unwrap_or_default(),
+            Angle::Crank { input, sign, zero } => crank_angle(cx, input, sign, zero),
             Angle::Translating => quote!(self.links[#l].angle_ref),
             Angle::With(m) => {
                 let am = angle_id(m);
@@ -355,32 +297,18 @@ fn angle_lets(cx: &Ctx) -> TokenStream {
     quote!(#(#lets)*)
 }
 
-/// The angle of link `l` when it is known without an atan2: a crank driven on the ground,
-/// `crank_angle(q[k], ±1)` (or `crank_angle(q[k] + zero, ±1)` for an input declared `from
-/// zero`).
-fn crank_angle(cx: &Ctx, l: usize) -> Option<TokenStream> {
+/// `crank_angle(q[input], sign)`, or `crank_angle(q[input] + zero, sign)` for an input
+/// declared `from zero`: the angle of a crank driven on the ground, no atan2.
+fn crank_angle(cx: &Ctx, input: usize, sign: f64, zero: Option<f64>) -> TokenStream {
     let p = &cx.p;
-    cx.plan.iter().find_map(|g| match g.kernel {
-        Kernel::Driven(d) if d.body == l && d.from == 0 && !d.screw.slide => {
-            let (k, sign) = (
-                d.input,
-                if cx.model.joints[d.screw.joint].b == l {
-                    1.0f64
-                } else {
-                    -1.0
-                },
-            );
-            let sign = crate::emit::f64s(sign);
-            match cx.model.input_zero[k] {
-                0.0 => Some(quote!(#p::kinematics::crank_angle(q[#k], #sign))),
-                z => {
-                    let z = crate::emit::f64s(z);
-                    Some(quote!(#p::kinematics::crank_angle(q[#k] + #z, #sign)))
-                }
-            }
+    let sign = crate::emit::f64s(sign);
+    match zero {
+        None => quote!(#p::kinematics::crank_angle(q[#input], #sign)),
+        Some(z) => {
+            let z = crate::emit::f64s(z);
+            quote!(#p::kinematics::crank_angle(q[#input] + #z, #sign))
         }
-        _ => None,
-    })
+    }
 }
 
 /// `pose`: positions only.
