@@ -645,6 +645,68 @@ macro_rules! written_out {
     }};
 }
 
+/// A crank driven on the ground (`g` its joint, `d.body` ≠ 0 the crank) as the generated
+/// code sees it: its joint rebuilt alone, as joint 0, with its sides as literals
+/// (`JointGeom::with_links`: the ground on side a when `GROUND_A`, the crank's local vector
+/// a literal zero when `PINNED`, the pin then its anchor), so that every side and "is it
+/// the ground" test of the kernels folds; the kernels then run on the same numbers.
+#[inline(always)]
+fn crank_alone<const GROUND_A: bool, const PINNED: bool>(
+    d: &crate::kernel::screw::Driven,
+    g: &crate::kernel::constraints::JointGeom,
+) -> (
+    crate::kernel::screw::Driven,
+    [crate::kernel::constraints::JointGeom; 1],
+) {
+    let joint = if GROUND_A {
+        g.with_links(0, d.body, [false, PINNED])
+    } else {
+        g.with_links(d.body, 0, [PINNED, false])
+    };
+    let driven = crate::kernel::screw::Driven {
+        from: 0,
+        screw: crate::kernel::screw::JointScrew {
+            joint: 0,
+            slide: false,
+        },
+        pinned: PINNED,
+        ..*d
+    };
+    (driven, [joint])
+}
+
+/// `$call` with `$d` and `$joints` bound to [`crank_alone`]'s crank when the driven group
+/// `$d` (joint geometry `$joints`) is a crank on the ground (the four combinations of its
+/// side and its anchor, each a literal), else `$other`.
+macro_rules! crank_alone {
+    ($d:expr, $joints:expr, |$dn:ident, $jn:ident| $call:expr, $other:expr) => {{
+        let (d0, joints0) = ($d, $joints);
+        if d0.from == 0 && !d0.screw.slide && d0.body != 0 {
+            let g = &joints0[d0.screw.joint];
+            match (g.a == 0, d0.pinned) {
+                (true, true) => {
+                    let ($dn, $jn) = crank_alone::<true, true>(d0, g);
+                    $call
+                }
+                (true, false) => {
+                    let ($dn, $jn) = crank_alone::<true, false>(d0, g);
+                    $call
+                }
+                (false, true) => {
+                    let ($dn, $jn) = crank_alone::<false, true>(d0, g);
+                    $call
+                }
+                (false, false) => {
+                    let ($dn, $jn) = crank_alone::<false, false>(d0, g);
+                    $call
+                }
+            }
+        } else {
+            $other
+        }
+    }};
+}
+
 /// The specialised dispatch of the common closed forms: each group's solver variant
 /// matched once, the kernel called with that variant written out, so that the kernels'
 /// own `match` on the solver folds (as in the generated code, where it is a constant).
@@ -664,8 +726,22 @@ impl Mechanism {
         let (joints, scale, upto) = (&self.inst.joints[..], self.inst.scale, level(UPTO));
         match (&g.kernel, g.solver) {
             (Kernel::Driven(d), Solver::DrivenRevolute { body, joint, input }) => {
-                let solver = Solver::DrivenRevolute { body, joint, input };
-                kinematics::solve_driven(solver, d, joints, s, drive, upto)?;
+                crank_alone!(
+                    d,
+                    joints,
+                    |dn, jn| {
+                        let solver = Solver::DrivenRevolute {
+                            body: dn.body,
+                            joint: 0,
+                            input,
+                        };
+                        kinematics::solve_driven(solver, &dn, &jn, s, drive, upto)?
+                    },
+                    {
+                        let solver = Solver::DrivenRevolute { body, joint, input };
+                        kinematics::solve_driven(solver, d, joints, s, drive, upto)?
+                    }
+                );
                 Ok(kinematics::DyadSystem::None)
             }
             (Kernel::Chain(c), solver) => written_out!(
@@ -693,7 +769,16 @@ impl Mechanism {
     ) -> Result<(), MechError> {
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
         match &g.kernel {
-            Kernel::Driven(k) => screw::driven_reactions(k, joints, s, f, r, driver),
+            Kernel::Driven(k) => crank_alone!(
+                k,
+                joints,
+                |dn, jn| {
+                    let mut one = [r[k.screw.joint]];
+                    screw::driven_reactions(&dn, &jn, s, f, &mut one, driver);
+                    r[k.screw.joint] = one[0];
+                },
+                screw::driven_reactions(k, joints, s, f, r, driver)
+            ),
             Kernel::Chain(c) => written_out!(
                 g.solver,
                 |solver| kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?,
@@ -811,7 +896,12 @@ impl Mechanism {
     ) -> Result<(), MechError> {
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
         match &grp.kernel {
-            Kernel::Driven(d) => screw::driven_rates(d, joints, v, drive, Level::Velocity)?,
+            Kernel::Driven(d) => crank_alone!(
+                d,
+                joints,
+                |dn, jn| screw::driven_rates(&dn, &jn, v, drive, Level::Velocity)?,
+                screw::driven_rates(d, joints, v, drive, Level::Velocity)?
+            ),
             Kernel::Chain(c) => screw::chain_rates(c, joints, v, scale, Level::Velocity)?,
             Kernel::Mesh(m) => crate::elements::gears::solve_mesh(
                 m,
