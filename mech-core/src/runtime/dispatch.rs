@@ -707,6 +707,71 @@ macro_rules! crank_alone {
     }};
 }
 
+/// `$m!(b₁, …, bₙ,)` with each bᵢ the literal `true` or `false` of the condition `$c`ᵢ,
+/// as nested `if`s: in each of the 2ⁿ leaves every condition is known, both as the
+/// literal passed to `$m` and, to the compiler, as a branch taken (so that a kernel's
+/// own test of the same condition folds).
+macro_rules! by_conditions {
+    ($m:ident [$($acc:tt)*]) => { $m!($($acc)*) };
+    ($m:ident [$($acc:tt)*] $c:expr $(, $rest:expr)*) => {
+        if $c {
+            by_conditions!($m [$($acc)* true,] $($rest),*)
+        } else {
+            by_conditions!($m [$($acc)* false,] $($rest),*)
+        }
+    };
+}
+
+/// A slotted slider's two joints (its guide `gq`, its slot joint `gs`; `body` the link,
+/// `guide` and `k` the solved links across them) rebuilt as joints 0 and 1 with their
+/// sides as literals: `body` on side b of the guide when `GQ_B`, on side a of the slot
+/// joint when `GS_A`, the guide and K the ground (a literal 0) when `G0`, `K0`. The
+/// kernels' side and ground tests then fold, as in the generated code, on the same numbers.
+#[inline(always)]
+fn slotted_alone<const GQ_B: bool, const GS_A: bool, const G0: bool, const K0: bool>(
+    gq: &crate::kernel::constraints::JointGeom,
+    gs: &crate::kernel::constraints::JointGeom,
+    body: usize,
+    guide: usize,
+    k: usize,
+) -> [crate::kernel::constraints::JointGeom; 2] {
+    let (guide, k) = (if G0 { 0 } else { guide }, if K0 { 0 } else { k });
+    [
+        if GQ_B {
+            gq.with_links(guide, body, [false; 2])
+        } else {
+            gq.with_links(body, guide, [false; 2])
+        },
+        if GS_A {
+            gs.with_links(body, k, [false; 2])
+        } else {
+            gs.with_links(k, body, [false; 2])
+        },
+    ]
+}
+
+/// `$call` with `$local` bound to [`slotted_alone`]'s joints of the slotted slider
+/// (`$body`, joints `$jq`, `$js` of `$joints`), the sixteen combinations of its sides and
+/// grounds each an instance; `$other` if the joints are not a slotted slider's.
+macro_rules! slotted_alone {
+    ($joints:expr, $body:expr, $jq:expr, $js:expr, |$local:ident| $call:expr, $other:expr) => {{
+        let (body, gq, gs) = ($body, &$joints[$jq], &$joints[$js]);
+        let guide = if gq.b == body { gq.a } else { gq.b };
+        let k = if gs.a == body { gs.b } else { gs.a };
+        if guide == body || k == body || body == 0 {
+            $other
+        } else {
+            macro_rules! leaf {
+                ($qb:expr, $sa:expr, $g0:expr, $k0:expr,) => {{
+                    let $local = slotted_alone::<$qb, $sa, $g0, $k0>(gq, gs, body, guide, k);
+                    $call
+                }};
+            }
+            by_conditions!(leaf [] gq.b == body, gs.a == body, guide == 0, k == 0)
+        }
+    }};
+}
+
 /// The specialised dispatch of the common closed forms: each group's solver variant
 /// matched once, the kernel called with that variant written out, so that the kernels'
 /// own `match` on the solver folds (as in the generated code, where it is a constant).
@@ -744,6 +809,17 @@ impl Mechanism {
                 );
                 Ok(kinematics::DyadSystem::None)
             }
+            (Kernel::Chain(c), Solver::SlottedSlider { body, jq, js }) => slotted_alone!(
+                joints,
+                body,
+                jq,
+                js,
+                |local| {
+                    let solver = Solver::SlottedSlider { body, jq: 0, js: 1 };
+                    kinematics::solve_chain(solver, c, &local, s, drive, sign, scale, upto)
+                },
+                self.other_step(g, sign, drive, upto, s, start)
+            ),
             (Kernel::Chain(c), solver) => written_out!(
                 solver,
                 |solver| kinematics::solve_chain(solver, c, joints, s, drive, sign, scale, upto),
@@ -767,6 +843,7 @@ impl Mechanism {
         r: &mut [Reaction],
         driver: &mut [f64],
     ) -> Result<(), MechError> {
+        use crate::kernel::dyad::Solver::SlottedSlider;
         let (joints, scale) = (&self.inst.joints[..], self.inst.scale);
         match &g.kernel {
             Kernel::Driven(k) => crank_alone!(
@@ -779,6 +856,26 @@ impl Mechanism {
                 },
                 screw::driven_reactions(k, joints, s, f, r, driver)
             ),
+            Kernel::Chain(c) if matches!(g.solver, SlottedSlider { .. }) => {
+                let SlottedSlider { body, jq, js } = g.solver else {
+                    unreachable!()
+                };
+                slotted_alone!(
+                    joints,
+                    body,
+                    jq,
+                    js,
+                    |local| {
+                        let solver = SlottedSlider { body, jq: 0, js: 1 };
+                        let mut two = [r[jq], r[js]];
+                        kinematics::chain_reactions(
+                            solver, c, &local, s, f, scale, kept, &mut two,
+                        )?;
+                        (r[jq], r[js]) = (two[0], two[1]);
+                    },
+                    self.other_reactions(g, kept, s, f, r, driver)?
+                )
+            }
             Kernel::Chain(c) => written_out!(
                 g.solver,
                 |solver| kinematics::chain_reactions(solver, c, joints, s, f, scale, kept, r)?,
