@@ -324,8 +324,8 @@ mech::mechanism! {
 #[test]
 fn a_partner_declared_after_its_link_gives_the_same_bits() {
     let gen = BlockBeforeCrank::new();
-    let rt = Mechanism::from_rust_source(include_str!("runtime_peer.rs"), "BlockBeforeCrank")
-        .unwrap();
+    let rt =
+        Mechanism::from_rust_source(include_str!("runtime_peer.rs"), "BlockBeforeCrank").unwrap();
     let mut compared = 0;
     let mut states = Vec::new();
     let (np, nl) = (rt.model().points.len(), rt.model().links.len());
@@ -347,8 +347,16 @@ fn a_partner_declared_after_its_link_gives_the_same_bits() {
             let l = rt.model().link_index(name).unwrap();
             let (ra, rma) = (r.link(name).unwrap().angle, rm.link(name).unwrap().angle);
             assert_eq!(ra.to_bits(), ga.to_bits(), "{name} pose angle at q = {q}");
-            assert_eq!(rma.to_bits(), gma.to_bits(), "{name} motion angle at q = {q}");
-            assert_eq!(row[2 * np + l - 1].to_bits(), ga.to_bits(), "{name} row at q = {q}");
+            assert_eq!(
+                rma.to_bits(),
+                gma.to_bits(),
+                "{name} motion angle at q = {q}"
+            );
+            assert_eq!(
+                row[2 * np + l - 1].to_bits(),
+                ga.to_bits(),
+                "{name} row at q = {q}"
+            );
         }
         let c = g.points.C.pos;
         assert_eq!(r.point("C").unwrap().pos, c, "C at q = {q}");
@@ -471,7 +479,11 @@ fn every_crank_instance_gives_the_generated_bits() {
             let mut rl = rt.loads();
             assert!(rl.set_by_name("tool", &[80.0, -60.0]) && rl.set_by_name("resist", &[2.0]));
             let bits = |a: f64, b: f64, what: &str, q: f64| {
-                assert_eq!(a.to_bits(), b.to_bits(), "{name} {what} at q = {q}: {a} vs {b}")
+                assert_eq!(
+                    a.to_bits(),
+                    b.to_bits(),
+                    "{name} {what} at q = {q}: {a} vs {b}"
+                )
             };
             for k in 0..36 {
                 let q = 0.3 + k as f64 * std::f64::consts::TAU / 36.0;
@@ -503,7 +515,12 @@ fn every_crank_instance_gives_the_generated_bits() {
                     bits(r.y, g.y, j, q);
                 }
                 let gd = gen.driver_action(&gm, &gl).unwrap();
-                bits(rt.driver_action(&rm, &rl).unwrap()[0], gd, "virtual power", q);
+                bits(
+                    rt.driver_action(&rm, &rl).unwrap()[0],
+                    gd,
+                    "virtual power",
+                    q,
+                );
                 let (gr, rr) = (gen.reduced(q).unwrap(), OneDof::reduced(&rt, q).unwrap());
                 bits(rr.inertia, gr.inertia, "I*", q);
                 bits(rr.inertia_derivative, gr.inertia_derivative, "dI*/dq", q);
@@ -574,16 +591,55 @@ mech::mechanism! {
     }
 }
 
+mech::mechanism! {
+    /// The four-bar with a slide on its rocker whose slot takes a peg S of the ground: a
+    /// slotted slider on a moving guide, its slot's other link the ground.
+    pub struct RockerSlide {
+        gravity: (0.0, -9.81),
+        ground { O2: (0.0, 0.0), O4: (0.3, 0.04), S: (0.3, 0.106) },
+        link crank {
+            points { O2, A: (0.04, 0.06928203230275509) },
+            mass: 0.65, inertia: 0.00052, cg: (0.011803847577293369, 0.03244486372867091),
+        },
+        link coupler {
+            points { A, B: (0.2430191330116403, 0.23171119111114735), P: (0.08528408845676129, 0.22077246544174978) },
+            mass: 1.45, inertia: 0.0112, cg: (0.11823879885921107, 0.17157910143510077),
+        },
+        link rocker {
+            points { O4, B },
+            mass: 0.95, inertia: 0.0036, cg: (0.28088744015991685, 0.13238349450177364),
+        },
+        link slide {
+            points { R: (0.27, 0.11) },
+            mass: 0.4, inertia: 0.0003, cg: (0.27, 0.11),
+        },
+        joints {
+            O2: revolute(ground, crank),
+            along: prismatic(rocker, slide) at R along (-0.08088744015991685, 0.27133119111114735),
+            peg: pin_in_slot(slide, ground) at S along (1.0, 0.2),
+            A: revolute(crank, coupler),
+            B: revolute(coupler, rocker),
+            O4: revolute(ground, rocker),
+        },
+        input: O2,
+        loads {
+            tool: force on coupler at P,
+            resist: torque on rocker,
+        },
+    }
+}
+
 /// A slotted slider (the Scotch yoke's group) is solved by the run-time mechanism on its
 /// two joints rebuilt with literal sides (`slotted_alone` in `mech_core::runtime::dispatch`,
 /// an instance per side of each joint and per ground). The floor's yoke takes one; the yoke
-/// with its guide reversed and the yoke with the slot in the crank take two others, and
-/// give the generated struct's numbers bit for bit: pose, kinematics, every reaction and
+/// with its guide reversed, the yoke with the slot in the crank and a slide on a
+/// four-bar's rocker with a ground peg in its slot (a moving guide, the ground across the
+/// slot) take three others, and give the generated struct's numbers bit for bit: pose, kinematics, every reaction and
 /// the driver, I*, dI*/dq and q̈, where each assembles (both fail together elsewhere).
 #[test]
 fn every_slotted_slider_instance_gives_the_generated_bits() {
     macro_rules! same_bits {
-        ($ty:ident, $loads:ident) => {{
+        ($ty:ident, $loads:ident, $force:literal, $torque:literal, [$($link:literal),*], [$($joint:literal),*]) => {{
             let name = stringify!($ty);
             let gen = $ty::new();
             let rt = Mechanism::from_rust_source(include_str!("runtime_peer.rs"), name).unwrap();
@@ -596,9 +652,9 @@ fn every_slotted_slider_instance_gives_the_generated_bits() {
                 )),
                 "{name} is solved as a slotted slider"
             );
-            assert!(gl.set_by_name("resist", &[-120.0, 15.0]) && gl.set_by_name("drag", &[-1.5]));
+            assert!(gl.set_by_name($force, &[-120.0, 15.0]) && gl.set_by_name($torque, &[-1.5]));
             let mut rl = rt.loads();
-            assert!(rl.set_by_name("resist", &[-120.0, 15.0]) && rl.set_by_name("drag", &[-1.5]));
+            assert!(rl.set_by_name($force, &[-120.0, 15.0]) && rl.set_by_name($torque, &[-1.5]));
             let bits = |a: f64, b: f64, what: &str, q: f64| {
                 assert_eq!(a.to_bits(), b.to_bits(), "{name} {what} at q = {q}: {a} vs {b}")
             };
@@ -608,14 +664,15 @@ fn every_slotted_slider_instance_gives_the_generated_bits() {
                 let (gp, rp) = (gen.pose(q), rt.pose(&[q]));
                 assert_eq!(gp.is_ok(), rp.is_ok(), "{name} assembles alike at q = {q}");
                 let (Ok(gp), Ok(rp)) = (gp, rp) else { continue };
-                for p in ["T"] {
-                    let (g, r) = (gp.point(p).unwrap().pos, rp.point(p).unwrap().pos);
-                    bits(r.x, g.x, p, q);
-                    bits(r.y, g.y, p, q);
+                for l in [$($link),*] {
+                    let (g, r) = (gp.link(l).unwrap(), rp.link(l).unwrap());
+                    bits(r.cg.x, g.cg.x, l, q);
+                    bits(r.cg.y, g.cg.y, l, q);
+                    bits(r.angle, g.angle, l, q);
                 }
                 let gm = gen.kinematics(q, 12.0, -3.0).unwrap();
                 let rm = rt.kinematics(&[q], &[12.0], &[-3.0]).unwrap();
-                for l in ["crank", "yoke"] {
+                for l in [$($link),*] {
                     let (g, r) = (gm.link(l).unwrap(), rm.link(l).unwrap());
                     bits(r.cg_vel.x, g.cg_vel.x, "v_G", q);
                     bits(r.cg_acc.x, g.cg_acc.x, "a_G", q);
@@ -626,7 +683,7 @@ fn every_slotted_slider_instance_gives_the_generated_bits() {
                     rt.kinetostatics(&rm, &rl).unwrap(),
                 );
                 bits(rf.driver[0], gf.driver, "driver", q);
-                for j in ["O2", "guide", "slot"] {
+                for j in [$($joint),*] {
                     let (g, r) = (gf.reaction(j).unwrap(), rf.reaction(j).unwrap());
                     bits(r.0.x, g.0.x, j, q);
                     bits(r.0.y, g.0.y, j, q);
@@ -642,6 +699,28 @@ fn every_slotted_slider_instance_gives_the_generated_bits() {
             assert!(compared >= 36, "{name}: {compared} configurations");
         }};
     }
-    same_bits!(YokeGuideReversed, YokeGuideReversedLoads);
-    same_bits!(YokeSlotInCrank, YokeSlotInCrankLoads);
+    same_bits!(
+        YokeGuideReversed,
+        YokeGuideReversedLoads,
+        "resist",
+        "drag",
+        ["crank", "yoke"],
+        ["O2", "guide", "slot"]
+    );
+    same_bits!(
+        YokeSlotInCrank,
+        YokeSlotInCrankLoads,
+        "resist",
+        "drag",
+        ["crank", "yoke"],
+        ["O2", "guide", "slot"]
+    );
+    same_bits!(
+        RockerSlide,
+        RockerSlideLoads,
+        "tool",
+        "resist",
+        ["crank", "coupler", "rocker", "slide"],
+        ["O2", "A", "B", "O4", "along", "peg"]
+    );
 }
