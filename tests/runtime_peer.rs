@@ -367,6 +367,79 @@ fn a_partner_declared_after_its_link_gives_the_same_bits() {
     assert!(gen.pose(1.0).is_err() && rt.pose(&[1.0]).is_err());
 }
 
+/// The run-time mechanism loaded from this file's text of `$ty` against the generated
+/// `$ty`, bit for bit, at 72 crank angles over a turn (both fail together where it does not
+/// assemble; at least `$least` assemble): every link's pose (angle, cg), ω, α, v_G, a_G,
+/// every reaction (force and moment) and the driver by d'Alembert, the driver by virtual
+/// power, I*, dI*/dq, M* and q̈, with the force load `$force` and the torque load `$torque`.
+macro_rules! same_bits {
+    ($ty:ident, $loads:ident, $force:literal, $torque:literal, $links:expr, $joints:expr, $least:expr) => {{
+        let name = stringify!($ty);
+        let gen = $ty::new();
+        let rt = Mechanism::from_rust_source(include_str!("runtime_peer.rs"), name).unwrap();
+        let mut gl = $loads::default();
+        assert!(gl.set_by_name($force, &[-120.0, 15.0]) && gl.set_by_name($torque, &[-1.5]));
+        let mut rl = rt.loads();
+        assert!(rl.set_by_name($force, &[-120.0, 15.0]) && rl.set_by_name($torque, &[-1.5]));
+        let bits = |a: f64, b: f64, what: &str, q: f64| {
+            assert_eq!(
+                a.to_bits(),
+                b.to_bits(),
+                "{name} {what} at q = {q}: {a} vs {b}"
+            )
+        };
+        let mut compared = 0;
+        for k in 0..72 {
+            let q = k as f64 * std::f64::consts::TAU / 72.0;
+            let (gp, rp) = (gen.pose(q), rt.pose(&[q]));
+            assert_eq!(gp.is_ok(), rp.is_ok(), "{name} assembles alike at q = {q}");
+            let (Ok(gp), Ok(rp)) = (gp, rp) else { continue };
+            for l in $links {
+                let (g, r) = (gp.link(l).unwrap(), rp.link(l).unwrap());
+                bits(r.angle, g.angle, l, q);
+                bits(r.cg.x, g.cg.x, l, q);
+                bits(r.cg.y, g.cg.y, l, q);
+            }
+            let gm = gen.kinematics(q, 12.0, -3.0).unwrap();
+            let rm = rt.kinematics(&[q], &[12.0], &[-3.0]).unwrap();
+            for l in $links {
+                let (g, r) = (gm.link(l).unwrap(), rm.link(l).unwrap());
+                bits(r.omega, g.omega, "ω", q);
+                bits(r.alpha, g.alpha, "α", q);
+                bits(r.cg_vel.x, g.cg_vel.x, "v_G", q);
+                bits(r.cg_acc.x, g.cg_acc.x, "a_G", q);
+            }
+            let (gf, rf) = (
+                gen.kinetostatics(&gm, &gl).unwrap(),
+                rt.kinetostatics(&rm, &rl).unwrap(),
+            );
+            bits(rf.driver[0], gf.driver, "driver", q);
+            for j in $joints {
+                let (g, r) = (gf.reaction(j).unwrap(), rf.reaction(j).unwrap());
+                bits(r.0.x, g.0.x, j, q);
+                bits(r.0.y, g.0.y, j, q);
+                bits(r.1.unwrap_or(0.0), g.1.unwrap_or(0.0), j, q);
+            }
+            let gd = gen.driver_action(&gm, &gl).unwrap();
+            bits(
+                rt.driver_action(&rm, &rl).unwrap()[0],
+                gd,
+                "virtual power",
+                q,
+            );
+            let (gr, rr) = (gen.reduced(q).unwrap(), OneDof::reduced(&rt, q).unwrap());
+            bits(rr.inertia, gr.inertia, "I*", q);
+            bits(rr.inertia_derivative, gr.inertia_derivative, "dI*/dq", q);
+            let gmm = gen.reduced_moment(q, &gl).unwrap();
+            bits(rt.reduced_moment(q, &rl).unwrap(), gmm, "M*", q);
+            let ga = gen.acceleration(q, 12.0, 5.0, &gl).unwrap();
+            bits(rt.acceleration(q, 12.0, 5.0, &rl).unwrap(), ga, "q̈", q);
+            compared += 1;
+        }
+        assert!(compared >= $least, "{name}: {compared} configurations");
+    }};
+}
+
 mech::mechanism! {
     /// The four-bar of `tests/common/mechanisms.rs` with its crank's joint written `revolute(crank, ground)`: the ground on the joint's side b.
     pub struct CrankGroundSecond {
@@ -469,71 +542,34 @@ mech::mechanism! {
 /// virtual power, I*, dI*/dq, M* and q̈, over a turn.
 #[test]
 fn every_crank_instance_gives_the_generated_bits() {
-    macro_rules! same_bits {
-        ($ty:ident, $loads:ident) => {{
-            let name = stringify!($ty);
-            let gen = $ty::new();
-            let rt = Mechanism::from_rust_source(include_str!("runtime_peer.rs"), name).unwrap();
-            let mut gl = $loads::default();
-            assert!(gl.set_by_name("tool", &[80.0, -60.0]) && gl.set_by_name("resist", &[2.0]));
-            let mut rl = rt.loads();
-            assert!(rl.set_by_name("tool", &[80.0, -60.0]) && rl.set_by_name("resist", &[2.0]));
-            let bits = |a: f64, b: f64, what: &str, q: f64| {
-                assert_eq!(
-                    a.to_bits(),
-                    b.to_bits(),
-                    "{name} {what} at q = {q}: {a} vs {b}"
-                )
-            };
-            for k in 0..36 {
-                let q = 0.3 + k as f64 * std::f64::consts::TAU / 36.0;
-                let (gp, rp) = (gen.pose(q).unwrap(), rt.pose(&[q]).unwrap());
-                for l in ["crank", "coupler", "rocker"] {
-                    bits(rp.link(l).unwrap().angle, gp.link(l).unwrap().angle, l, q);
-                }
-                for p in ["A", "B", "P"] {
-                    let (g, r) = (gp.point(p).unwrap().pos, rp.point(p).unwrap().pos);
-                    bits(r.x, g.x, p, q);
-                    bits(r.y, g.y, p, q);
-                }
-                let gm = gen.kinematics(q, 12.0, -3.0).unwrap();
-                let rm = rt.kinematics(&[q], &[12.0], &[-3.0]).unwrap();
-                for l in ["crank", "coupler", "rocker"] {
-                    let (g, r) = (gm.link(l).unwrap(), rm.link(l).unwrap());
-                    bits(r.omega, g.omega, "ω", q);
-                    bits(r.alpha, g.alpha, "α", q);
-                    bits(r.cg_acc.x, g.cg_acc.x, "a_G", q);
-                }
-                let (gf, rf) = (
-                    gen.kinetostatics(&gm, &gl).unwrap(),
-                    rt.kinetostatics(&rm, &rl).unwrap(),
-                );
-                bits(rf.driver[0], gf.driver, "driver", q);
-                for j in ["O2", "A", "B", "O4"] {
-                    let (g, r) = (gf.reaction(j).unwrap().0, rf.reaction(j).unwrap().0);
-                    bits(r.x, g.x, j, q);
-                    bits(r.y, g.y, j, q);
-                }
-                let gd = gen.driver_action(&gm, &gl).unwrap();
-                bits(
-                    rt.driver_action(&rm, &rl).unwrap()[0],
-                    gd,
-                    "virtual power",
-                    q,
-                );
-                let (gr, rr) = (gen.reduced(q).unwrap(), OneDof::reduced(&rt, q).unwrap());
-                bits(rr.inertia, gr.inertia, "I*", q);
-                bits(rr.inertia_derivative, gr.inertia_derivative, "dI*/dq", q);
-                let gmm = gen.reduced_moment(q, &gl).unwrap();
-                bits(rt.reduced_moment(q, &rl).unwrap(), gmm, "M*", q);
-                let ga = gen.acceleration(q, 12.0, 5.0, &gl).unwrap();
-                bits(rt.acceleration(q, 12.0, 5.0, &rl).unwrap(), ga, "q̈", q);
-            }
-        }};
-    }
-    same_bits!(CrankGroundSecond, CrankGroundSecondLoads);
-    same_bits!(CrankOffAnchor, CrankOffAnchorLoads);
-    same_bits!(CrankBoth, CrankBothLoads);
+    let (links, joints) = (["crank", "coupler", "rocker"], ["O2", "A", "B", "O4"]);
+    same_bits!(
+        CrankGroundSecond,
+        CrankGroundSecondLoads,
+        "tool",
+        "resist",
+        links,
+        joints,
+        36
+    );
+    same_bits!(
+        CrankOffAnchor,
+        CrankOffAnchorLoads,
+        "tool",
+        "resist",
+        links,
+        joints,
+        36
+    );
+    same_bits!(
+        CrankBoth,
+        CrankBothLoads,
+        "tool",
+        "resist",
+        links,
+        joints,
+        36
+    );
 }
 
 mech::mechanism! {
@@ -638,89 +674,45 @@ mech::mechanism! {
 /// the driver, I*, dI*/dq and q̈, where each assembles (both fail together elsewhere).
 #[test]
 fn every_slotted_slider_instance_gives_the_generated_bits() {
-    macro_rules! same_bits {
-        ($ty:ident, $loads:ident, $force:literal, $torque:literal, [$($link:literal),*], [$($joint:literal),*]) => {{
-            let name = stringify!($ty);
-            let gen = $ty::new();
-            let rt = Mechanism::from_rust_source(include_str!("runtime_peer.rs"), name).unwrap();
-            let mut gl = $loads::default();
-            let groups = mech_core::plan::assur::plan(rt.model()).unwrap();
-            assert!(
-                groups.iter().any(|g| matches!(
-                    g.solver,
-                    mech_core::kernel::dyad::Solver::SlottedSlider { .. }
-                )),
-                "{name} is solved as a slotted slider"
-            );
-            assert!(gl.set_by_name($force, &[-120.0, 15.0]) && gl.set_by_name($torque, &[-1.5]));
-            let mut rl = rt.loads();
-            assert!(rl.set_by_name($force, &[-120.0, 15.0]) && rl.set_by_name($torque, &[-1.5]));
-            let bits = |a: f64, b: f64, what: &str, q: f64| {
-                assert_eq!(a.to_bits(), b.to_bits(), "{name} {what} at q = {q}: {a} vs {b}")
-            };
-            let mut compared = 0;
-            for k in 0..72 {
-                let q = k as f64 * std::f64::consts::TAU / 72.0;
-                let (gp, rp) = (gen.pose(q), rt.pose(&[q]));
-                assert_eq!(gp.is_ok(), rp.is_ok(), "{name} assembles alike at q = {q}");
-                let (Ok(gp), Ok(rp)) = (gp, rp) else { continue };
-                for l in [$($link),*] {
-                    let (g, r) = (gp.link(l).unwrap(), rp.link(l).unwrap());
-                    bits(r.cg.x, g.cg.x, l, q);
-                    bits(r.cg.y, g.cg.y, l, q);
-                    bits(r.angle, g.angle, l, q);
-                }
-                let gm = gen.kinematics(q, 12.0, -3.0).unwrap();
-                let rm = rt.kinematics(&[q], &[12.0], &[-3.0]).unwrap();
-                for l in [$($link),*] {
-                    let (g, r) = (gm.link(l).unwrap(), rm.link(l).unwrap());
-                    bits(r.cg_vel.x, g.cg_vel.x, "v_G", q);
-                    bits(r.cg_acc.x, g.cg_acc.x, "a_G", q);
-                    bits(r.alpha, g.alpha, "α", q);
-                }
-                let (gf, rf) = (
-                    gen.kinetostatics(&gm, &gl).unwrap(),
-                    rt.kinetostatics(&rm, &rl).unwrap(),
-                );
-                bits(rf.driver[0], gf.driver, "driver", q);
-                for j in [$($joint),*] {
-                    let (g, r) = (gf.reaction(j).unwrap(), rf.reaction(j).unwrap());
-                    bits(r.0.x, g.0.x, j, q);
-                    bits(r.0.y, g.0.y, j, q);
-                    bits(r.1.unwrap_or(0.0), g.1.unwrap_or(0.0), j, q);
-                }
-                let (gr, rr) = (gen.reduced(q).unwrap(), OneDof::reduced(&rt, q).unwrap());
-                bits(rr.inertia, gr.inertia, "I*", q);
-                bits(rr.inertia_derivative, gr.inertia_derivative, "dI*/dq", q);
-                let ga = gen.acceleration(q, 12.0, 5.0, &gl).unwrap();
-                bits(rt.acceleration(q, 12.0, 5.0, &rl).unwrap(), ga, "q̈", q);
-                compared += 1;
-            }
-            assert!(compared >= 36, "{name}: {compared} configurations");
-        }};
+    for name in ["YokeGuideReversed", "YokeSlotInCrank", "RockerSlide"] {
+        let rt = Mechanism::from_rust_source(include_str!("runtime_peer.rs"), name).unwrap();
+        let groups = mech_core::plan::assur::plan(rt.model()).unwrap();
+        assert!(
+            groups.iter().any(|g| matches!(
+                g.solver,
+                mech_core::kernel::dyad::Solver::SlottedSlider { .. }
+            )),
+            "{name} is solved as a slotted slider"
+        );
     }
+    let (links, joints) = (["crank", "yoke"], ["O2", "guide", "slot"]);
     same_bits!(
         YokeGuideReversed,
         YokeGuideReversedLoads,
         "resist",
         "drag",
-        ["crank", "yoke"],
-        ["O2", "guide", "slot"]
+        links,
+        joints,
+        36
     );
     same_bits!(
         YokeSlotInCrank,
         YokeSlotInCrankLoads,
         "resist",
         "drag",
-        ["crank", "yoke"],
-        ["O2", "guide", "slot"]
+        links,
+        joints,
+        36
     );
+    let links = ["crank", "coupler", "rocker", "slide"];
+    let joints = ["O2", "A", "B", "O4", "along", "peg"];
     same_bits!(
         RockerSlide,
         RockerSlideLoads,
         "tool",
         "resist",
-        ["crank", "coupler", "rocker", "slide"],
-        ["O2", "A", "B", "O4", "along", "peg"]
+        links,
+        joints,
+        36
     );
 }
