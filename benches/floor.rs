@@ -36,7 +36,10 @@
 //!   `block_scotch_yoke/<op>`;
 //! - the slotted crank and ram (`SlottedCrankRam` of `benches/floor/machines.rs`: the block
 //!   sliding in the crank's slot is pinned to a ram that slides on a tilted ground guide off
-//!   the crank's pivot; a PRP dyad, the closed-form `Prp`), `slotted_crank_ram/<op>`,
+//!   the crank's pivot; a PRP dyad, the closed-form `Prp`), `slotted_crank_ram/<op>`;
+//! - the planetary reducer (`Planetary` of `benches/floor/machines.rs`: the input sun
+//!   drives a planet, pinned to an arm, that rolls inside a fixed ring; the arm and the
+//!   planet one gear-train group, Willis' relations of both meshes), `planetary/<op>`,
 //!
 //! where `<op>` is each of `pose`, `kinematics`, `kinematics+kinetostatics`,
 //! `kinematics+driver_action`, `reduced`, `acceleration`. Inputs as in `benches/solvers.rs`:
@@ -53,7 +56,9 @@
 //! and a −0.8 N·m brake on the wheel; the Scotch yoke with a block a force (−150, 20) N on
 //! the yoke at its end T and a −0.6 N·m friction couple on the block; the slotted crank
 //! and ram a force (−400, 60) N on the ram at its tool point P and a 1.8 N·m torque on the
-//! block; these eight a 5 N·m driver (acceleration). All inputs, and the solver struct
+//! block; the planetary a pull (40, −60) N on the arm's lever end T and a −2 N·m brake on the
+//! arm (q, q̇, q̈ are the sun's: the arm turns at 2/9 of them); these nine a 5 N·m driver
+//! (acceleration). All inputs, and the solver struct
 //! itself, go through `black_box` (no constant folding of the drawing).
 //!
 //! Run and tabulate:
@@ -123,8 +128,8 @@ use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hand::{
     BlockScotchYokeHand, CrankRodWheelHand, FourBarHand, GearedSliderCrankHand,
-    InvertedSliderCrankHand, QuickReturnHand, RollerCamHand, ScotchYokeHand, SliderCrankHand,
-    SlottedCrankRamHand,
+    InvertedSliderCrankHand, PlanetaryHand, QuickReturnHand, RollerCamHand, ScotchYokeHand,
+    SliderCrankHand, SlottedCrankRamHand,
 };
 use interleaved::Interleaved;
 use machines::*;
@@ -263,6 +268,12 @@ case!(
     /// A (−400, 60) N force on the ram at its tool point P, a 1.8 N·m torque on the block.
     slotted_crank_ram: SlottedCrankRam, SlottedCrankRamHand, SlottedCrankRamLoads,
     "push" = [-400.0, 60.0], "resist" = [1.8],
+);
+
+case!(
+    /// A (40, −60) N pull on the arm at its lever end T, a −2 N·m brake on the arm.
+    planetary: Planetary, PlanetaryHand, PlanetaryLoads,
+    "pull" = [40.0, -60.0], "brake" = [-2.0],
 );
 
 // One function per operation and side; every input through `black_box`.
@@ -517,6 +528,14 @@ six_operations!(
     motion: SlottedCrankRamMotion, hand::SlottedCrankRamHandMotion,
     forces: SlottedCrankRamForces, hand::SlottedCrankRamHandForces,
 );
+six_operations!(
+    planetary_ops,
+    "planetary",
+    Case<Planetary, PlanetaryHand, PlanetaryLoads>,
+    pose: PlanetaryPose, hand::PlanetaryHandPose,
+    motion: PlanetaryMotion, hand::PlanetaryHandMotion,
+    forces: PlanetaryForces, hand::PlanetaryHandForces,
+);
 
 /// The group `name` with the functions `generated` and `hand`, timed one after the other.
 /// (Each function is passed as its own zero-sized type, so the calls are direct and inline
@@ -589,6 +608,10 @@ fn slotted_crank_ram(c: &mut Criterion) {
     slotted_crank_ram_ops::pairs(c, &Case::slotted_crank_ram());
 }
 
+fn planetary(c: &mut Criterion) {
+    planetary_ops::pairs(c, &Case::planetary());
+}
+
 fn ratios(c: &mut Criterion<Interleaved>) {
     let k = &FourBarCase::new();
     motion_operations!(ratio, c, "four_bar", k);
@@ -602,6 +625,7 @@ fn ratios(c: &mut Criterion<Interleaved>) {
     crank_rod_wheel_ops::ratios(c, &Case::crank_rod_wheel());
     block_scotch_yoke_ops::ratios(c, &Case::block_scotch_yoke());
     slotted_crank_ram_ops::ratios(c, &Case::slotted_crank_ram());
+    planetary_ops::ratios(c, &Case::planetary());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -797,6 +821,7 @@ criterion_group!(
     crank_rod_wheel,
     block_scotch_yoke,
     slotted_crank_ram,
+    planetary,
     batch,
     runtime::pairs
 );

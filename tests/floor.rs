@@ -2,10 +2,11 @@
 //! the same numbers as the generated solvers: every quantity of every operation timed in
 //! `benches/floor.rs` (the four-bar, the slider-crank, the quick-return, the Scotch yoke, and
 //! the inverted slider-crank, the geared slider-crank, the roller cam, the crank, rod and
-//! wheel, the Scotch yoke with a block and the slotted crank and ram of
-//! `benches/floor/machines.rs`), on a sweep of 72 input angles over a full turn (three
-//! turns of the geared slider-crank's pinion: one of its crank; the slotted crank and ram,
-//! which cannot turn, over its swing `RAM_SWING`), to 1e-13 relative (`TOL`:
+//! wheel, the Scotch yoke with a block, the slotted crank and ram and the planetary reducer
+//! of `benches/floor/machines.rs`), on a sweep of 72 input angles over a full turn (three
+//! turns of the geared slider-crank's pinion: one of its crank; five of the planetary's
+//! sun: more than one of its arm; the slotted crank and ram, which cannot turn, over its
+//! swing `RAM_SWING`), to 1e-13 relative (`TOL`:
 //! at most 100× the worst error measured over the quantities; the new machines' worst, the
 //! quick-return's α, 1.4e-14), the roller cam to 1e-12 (`CAM_TOL`: its law's argument, an
 //! ulp apart on the two sides, amplified in the middle of the fall).
@@ -22,14 +23,14 @@
 //! accelerations, of I* against dI*/dq, and the inverse problem (the generated d'Alembert
 //! driver at the hand-written q̈ gives back the applied torque). For the quick-return, the
 //! Scotch yoke, the inverted slider-crank, the geared slider-crank, the roller cam, the
-//! crank, rod and wheel, the Scotch yoke with a block and the slotted crank and ram, on
-//! the hand-written side alone: finite
+//! crank, rod and wheel, the Scotch yoke with a block, the slotted crank and ram and the
+//! planetary, on the hand-written side alone: finite
 //! differences of every point, cg and link angle (velocities, accelerations, q̈ entering
 //! linearly), every link's d'Alembert balance with the hand-written reactions, the driver
 //! torque by d'Alembert, by virtual power and by Zhukovski, dI*/dq against I*, M* against
 //! the power of gravity and the loads on the positions, and the inverse problem; for the
-//! geared slider-crank also the mesh's data against the model, Willis' relation and the
-//! tooth force on the line of action, for the roller cam the law's data against the model
+//! geared slider-crank and the planetary also the meshes' data against the model, Willis'
+//! relations and the tooth forces on their lines of action, for the roller cam the law's data against the model
 //! and the contact normal against the pitch curve.
 
 use crate::measure::{within, within_at};
@@ -604,6 +605,13 @@ fn block_scotch_yoke_loads() -> BlockScotchYokeLoads {
     l
 }
 
+fn planetary_loads() -> PlanetaryLoads {
+    let mut l = PlanetaryLoads::default();
+    assert!(l.set_by_name("pull", &[40.0, -60.0]));
+    assert!(l.set_by_name("brake", &[-2.0]));
+    l
+}
+
 fn slotted_crank_ram_loads() -> SlottedCrankRamLoads {
     let mut l = SlottedCrankRamLoads::default();
     assert!(l.set_by_name("push", &[-400.0, 60.0]));
@@ -989,6 +997,35 @@ hand_matches_generated! {
                 "kinetostatics: slot moment",
                 "kinetostatics: guide moment",
             ]));
+        }
+    }
+}
+
+hand_matches_generated! {
+    /// The planetary reducer over five turns of the sun (more than one of the arm): every
+    /// quantity as the other machines, both meshes' tooth loads and flanks besides.
+    fn planetary_hand_matches_generated {
+        machine: Planetary, PlanetaryHand, PlanetaryLoads = planetary_loads();
+        sweep: sweep_turns(5);
+        links: sun, arm, planet;
+        points: O o, P p, T t;
+        joints: S s, O o, P p, sp sp, pr pr;
+        setup: let mut flanks = [[0usize; 2]; 2];
+        each |r, q, j, hf| {
+            r.scalars(
+                "kinetostatics: tooth loads",
+                q,
+                &[(j.sp.tooth_load, hf.sp_load), (j.pr.tooth_load, hf.pr_load)],
+            );
+            assert_eq!((j.sp.flank, j.pr.flank), (hf.sp_flank, hf.pr_flank), "flanks at q = {q}");
+            flanks[0][(hf.sp_flank > 0.0) as usize] += 1;
+            flanks[1][(hf.pr_flank > 0.0) as usize] += 1;
+        }
+        finish {
+            // Both flanks of both meshes are in contact during the sweep (the comparison
+            // covers the sign of each tooth force's radial part).
+            assert!(flanks.iter().flatten().all(|&n| n > 0), "flanks {flanks:?}");
+            r.check(&six_expected(&["kinetostatics: tooth loads"]));
         }
     }
 }
@@ -1442,6 +1479,103 @@ fn geared_slider_crank_hand_independent_checks() {
     );
 }
 
+/// The hand-written planetary against itself: both meshes' radii, kinds and pressure
+/// angles are the declared ones (the loaded model's), no slip at either pitch point (the
+/// sun's and the planet's teeth move together at K₁, the planet's are at rest on the
+/// ring's at K₂), finite differences, every link's balance (each tooth force at its pitch
+/// point on its line of action, its radial part pushing the planet away from the sun and
+/// the ring outward), the driver by three routes, dI*/dq, M* and the inverse problem.
+#[test]
+fn planetary_hand_independent_checks() {
+    let (sp, pr) = (
+        declared_joint("Planetary", "sp").mesh.unwrap(),
+        declared_joint("Planetary", "pr").mesh.unwrap(),
+    );
+    let (rs, rp, rr) = (
+        PLANETARY_SUN_RADIUS,
+        PLANETARY_PLANET_RADIUS,
+        PLANETARY_RING_RADIUS,
+    );
+    assert_eq!((sp.ra, sp.rb, sp.internal), (rs, rp, false));
+    assert_eq!((pr.ra, pr.rb, pr.internal), (rp, rr, true));
+    assert!((sp.pressure_angle - PLANETARY_SUN_PRESSURE_ANGLE).abs() < 1e-15);
+    assert!((pr.pressure_angle - PLANETARY_RING_PRESSURE_ANGLE).abs() < 1e-15);
+    let m = Planetary::new();
+    let p = m.params().clone();
+    let h = PlanetaryHand::new(&p);
+    check_by_finite_differences(
+        "planetary",
+        5,
+        tracked!(h; points: P p, T t; links: sun, arm, planet),
+    );
+    let perp = |v: Vector2<f64>| Vector2::new(-v.y, v.x);
+    let loads = planetary_loads();
+    let (l, g) = (&p.links, p.gravity);
+    for q in sweep_turns(5) {
+        let k = h.kinematics(q, QD, QDD).unwrap();
+        let (o, pp) = (k.o.pos, k.p.pos);
+        let e = (pp - o).normalize();
+        let (k1, k2) = (o + e * rs, o + e * rr);
+        // Willis: the pitch circles roll on one another.
+        let scale = k.sun.omega.abs() * rs;
+        let v_sun = perp(k1 - o) * k.sun.omega;
+        let v_planet_k1 = k.p.vel + perp(k1 - pp) * k.planet.omega;
+        let v_planet_k2 = k.p.vel + perp(k2 - pp) * k.planet.omega;
+        assert!(
+            (v_sun - v_planet_k1).norm() <= 1e-15 * scale,
+            "sun–planet slip at {q}"
+        );
+        assert!(
+            v_planet_k2.norm() <= 1e-15 * scale,
+            "planet–ring slip at {q}"
+        );
+        let f = h.kinetostatics(&k, &loads);
+        let t = perp(e);
+        for (what, force, tangent, tan, load, flank) in [
+            (
+                "sun–planet",
+                f.sp,
+                t,
+                PLANETARY_SUN_PRESSURE_ANGLE.tan(),
+                f.sp_load,
+                f.sp_flank,
+            ),
+            (
+                "planet–ring",
+                f.pr,
+                -t,
+                PLANETARY_RING_PRESSURE_ANGLE.tan(),
+                f.pr_load,
+                f.pr_flank,
+            ),
+        ] {
+            let (ft, fr) = (force.dot(&tangent), force.dot(&e));
+            assert!(
+                fr >= 0.0 && (fr - ft.abs() * tan).abs() <= 1e-12 * load,
+                "{what} line of action at {q}: tangential {ft}, radial {fr}"
+            );
+            assert!((force.norm() - load).abs() <= 1e-12 * load);
+            assert_eq!(flank, ft.signum());
+        }
+        check_balances!("planetary", q, (l, g, k);
+            "sun" sun: [(o, f.s), (k1, -f.sp)], [f.driver];
+            "arm" arm: [(o, f.o), (pp, -f.p), (k.t.pos, loads.pull)], [loads.brake];
+            "planet" planet: [(pp, f.p), (k1, f.sp), (k2, -f.pr)], [];
+        );
+    }
+    check_dynamics(
+        "planetary",
+        5,
+        hand_dynamics!(h, loads, |q, pose| {
+            let arm_turn =
+                wrap(pose(q + FD_STEP).arm.angle - pose(q - FD_STEP).arm.angle) / (2.0 * FD_STEP);
+            gravity_power!(l, g, pose, q; sun, arm, planet)
+                + loads.pull.dot(&d_dq(|q| pose(q).t, q))
+                + loads.brake * arm_turn
+        }),
+    );
+}
+
 /// The hand-written roller cam against itself: its law, base circle and roller are the
 /// declared ones (the loaded model's), the lift by finite differences, the contact normal
 /// perpendicular to the pitch curve as the cam sees it (a central difference of the
@@ -1766,6 +1900,7 @@ fn floor_machines_group_kinds() {
         ("GearedSliderCrank", &["DrivenRevolute", "Mesh", "Rrp"][..]),
         ("RollerCam", &["DrivenRevolute", "Cam"][..]),
         ("CrankRodWheel", &["DrivenRevolute", "Rrl"][..]),
+        ("Planetary", &["DrivenRevolute", "Train"][..]),
     ] {
         assert_eq!(element_kinds(name), expected, "{name}");
     }

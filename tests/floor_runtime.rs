@@ -301,6 +301,13 @@ floor_runtime!(
     [("resist", [-150.0, 20.0]), ("friction", [-0.6])]
 );
 floor_runtime!(
+    planetary,
+    FLOOR,
+    Planetary,
+    PlanetaryLoads,
+    [("pull", [40.0, -60.0]), ("brake", [-2.0])]
+);
+floor_runtime!(
     slotted_crank_ram,
     FLOOR,
     SlottedCrankRam,

@@ -50,6 +50,7 @@ GROUPS = [
         "crank_rod_wheel",
         "block_scotch_yoke",
         "slotted_crank_ram",
+        "planetary",
     )
     for op in OPERATIONS
 ]

@@ -1,17 +1,17 @@
 //! Hand-written closed-form solvers of the crank-rocker `FourBar`, the offset
 //! `SliderCrank`, the crank-shaper `QuickReturn` and the `ScotchYoke` of
 //! `tests/common/mechanisms.rs` and of the `InvertedSliderCrank`, the `GearedSliderCrank`,
-//! the `RollerCam`, the `CrankRodWheel`, the `BlockScotchYoke` and the `SlottedCrankRam` of
-//! `benches/floor/machines.rs`: the code an engineer who knows these machines writes in an
+//! the `RollerCam`, the `CrankRodWheel`, the `BlockScotchYoke`, the `SlottedCrankRam` and the
+//! `Planetary` of `benches/floor/machines.rs`: the code an engineer who knows these machines writes in an
 //! afternoon, used as the *floor* that the generated solvers are timed against
 //! (`benches/floor.rs`) and checked against (`tests/floor.rs`). All but the first two are
 //! in modules of their own (`hand_quick_return.rs`, `hand_scotch_yoke.rs`,
 //! `hand_inverted_slider_crank.rs`, `hand_geared_slider_crank.rs`, `hand_roller_cam.rs`,
 //! `hand_crank_rod_wheel.rs`, `hand_block_scotch_yoke.rs`, `hand_slotted_crank_ram.rs`,
-//! beside this file), re-exported here. (The gear pair's radii and pressure angle and the
-//! cam's law, base circle and roller are not generated parameters: the geared
-//! slider-crank's and the roller cam's modules hold them as constants, which
-//! `tests/floor.rs` checks against the loaded model.)
+//! `hand_planetary.rs`, beside this file), re-exported here. (The gear pairs' radii and
+//! pressure angles and the cam's law, base circle and roller are not generated parameters:
+//! the geared slider-crank's, the planetary's and the roller cam's modules hold them as
+//! constants, which `tests/floor.rs` checks against the loaded model.)
 //!
 //! Every operation (`pose`, `kinematics`, `kinetostatics`, `driver_action`, `reduced`,
 //! `reduced_moment`, `acceleration`) is `#[inline(never)]`: the bench compares one call
@@ -46,8 +46,8 @@
 use super::machines::{
     BlockScotchYokeLoads, BlockScotchYokeParams, CrankRodWheelLoads, CrankRodWheelParams,
     GearedSliderCrankLoads, GearedSliderCrankParams, InvertedSliderCrankLoads,
-    InvertedSliderCrankParams, RollerCamLoads, RollerCamParams, SlottedCrankRamLoads,
-    SlottedCrankRamParams,
+    InvertedSliderCrankParams, PlanetaryLoads, PlanetaryParams, RollerCamLoads, RollerCamParams,
+    SlottedCrankRamLoads, SlottedCrankRamParams,
 };
 use crate::mechanisms::{
     FourBarLoads, FourBarParams, QuickReturnLoads, QuickReturnParams, ScotchYokeLoads,
@@ -63,6 +63,8 @@ mod crank_rod_wheel;
 mod geared_slider_crank;
 #[path = "hand_inverted_slider_crank.rs"]
 mod inverted_slider_crank;
+#[path = "hand_planetary.rs"]
+mod planetary;
 #[path = "hand_quick_return.rs"]
 mod quick_return;
 #[path = "hand_roller_cam.rs"]
@@ -76,6 +78,7 @@ pub use block_scotch_yoke::*;
 pub use crank_rod_wheel::*;
 pub use geared_slider_crank::*;
 pub use inverted_slider_crank::*;
+pub use planetary::*;
 pub use quick_return::*;
 pub use roller_cam::*;
 pub use scotch_yoke::*;

@@ -228,3 +228,44 @@ mechanism! {
         },
     }
 }
+
+mechanism! {
+    /// Planetary reducer driven by its sun: the sun (pitch radius 20 mm, the input) turns
+    /// about O and meshes with the planet (25 mm), pinned at P to the arm 45 mm out (at 30°
+    /// in the drawing), which rolls inside the fixed ring (70 mm, internal teeth, the
+    /// ground): the arm turns at r_s/(r_s + r_r) = 2/9 of the sun, the planet at −2/5. The
+    /// sun–planet mesh has the default 20° pressure angle, the planet–ring mesh 25°. The arm
+    /// and the planet are one gear-train group (Willis' relations of both meshes solved
+    /// together); every cg is off its centre (the sun's and the planet's by a fraction of a
+    /// millimetre), the arm carries a lever end T, pulled, and a brake. The radii and the
+    /// pressure angles are those of the hand-written `PlanetaryHand`
+    /// (`benches/floor/hand_planetary.rs`).
+    pub struct Planetary {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0) },
+        link sun {
+            points { O },
+            mass: 0.35, inertia: 0.00006, cg: (0.0005, -0.0003),
+        },
+        link arm {
+            points { O, P: (0.03897114317029974, 0.0225), T: (-0.03, 0.05) },
+            mass: 1.1, inertia: 0.0015, cg: (0.012, 0.009),
+        },
+        link planet {
+            points { P },
+            mass: 0.3, inertia: 0.00009, cg: (0.0400, 0.0230),
+        },
+        joints {
+            S: revolute(ground, sun) at O,
+            O: revolute(ground, arm),
+            P: revolute(arm, planet),
+            sp: gear(sun, planet) radii (20 mm, 25 mm),
+            pr: gear(planet, ground) radii (25 mm, 70 mm) internal pressure_angle 25 deg,
+        },
+        input: S,
+        loads {
+            pull: force on arm at T,
+            brake: torque on arm,
+        },
+    }
+}

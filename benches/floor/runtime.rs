@@ -306,6 +306,14 @@ runtime_machine!(
     "SlottedCrankRam",
     loads: &[("push", &[-400.0, 60.0]), ("resist", &[1.8])]
 );
+runtime_machine!(
+    planetary,
+    "planetary",
+    Case::planetary(),
+    FLOOR,
+    "Planetary",
+    loads: &[("pull", &[40.0, -60.0]), ("brake", &[-2.0])]
+);
 
 /// The groups `runtime/<machine>/<op>`.
 pub fn pairs(c: &mut Criterion) {
@@ -319,6 +327,7 @@ pub fn pairs(c: &mut Criterion) {
     crank_rod_wheel::pairs(c);
     block_scotch_yoke::pairs(c);
     slotted_crank_ram::pairs(c);
+    planetary::pairs(c);
 }
 
 /// The entries `runtime_ratio/<machine>/<op>`.
@@ -333,4 +342,5 @@ pub fn ratios(c: &mut Criterion<Interleaved>) {
     crank_rod_wheel::ratios(c);
     block_scotch_yoke::ratios(c);
     slotted_crank_ram::ratios(c);
+    planetary::ratios(c);
 }
