@@ -1901,6 +1901,7 @@ fn floor_machines_group_kinds() {
         ("RollerCam", &["DrivenRevolute", "Cam"][..]),
         ("CrankRodWheel", &["DrivenRevolute", "Rrl"][..]),
         ("Planetary", &["DrivenRevolute", "Train"][..]),
+        ("RackPinion", &["DrivenRevolute", "Mesh"][..]),
     ] {
         assert_eq!(element_kinds(name), expected, "{name}");
     }

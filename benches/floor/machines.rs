@@ -269,3 +269,37 @@ mechanism! {
         },
     }
 }
+
+mechanism! {
+    /// Rack and pinion: the pinion (the input, pitch radius 30 mm, 20° teeth, centre O, its
+    /// cg 3.2 mm off O) turns on the ground and drives the rack, which slides on a ground
+    /// guide tilted by 4.0° (`along (1.0, 0.07)`); the rack's pitch line runs 30 mm below O
+    /// through its sliding point R (the foot of the perpendicular from O), so the pinion
+    /// turning q moves it r q along the guide. The rack is loaded at L, 120.4 mm along the
+    /// guide from R and 25 mm below its pitch line, its cg off the line too. A meshing
+    /// group of one link (the rack, its slide and `mesh`); the pitch radius and pressure
+    /// angle are declared here only (no hand-written twin yet: the machine is planned in
+    /// `tests/floor.rs`, its rack's guide moment checked there).
+    pub struct RackPinion {
+        gravity: (0.0, -9.81),
+        ground { O: (0.0, 0.0) },
+        link pinion {
+            points { O },
+            mass: 0.4, inertia: 0.00012, cg: (0.003, 0.001),
+        },
+        link rack {
+            points { R: (0.002094873830997416, -0.0299267690142488), L: (0.124, -0.0465) },
+            mass: 1.4, cg: (0.063, -0.038),
+        },
+        joints {
+            O: revolute(ground, pinion),
+            guide: prismatic(ground, rack) at R along (1.0, 0.07),
+            mesh: rack(pinion, rack) radius 30 mm pressure_angle 20 deg,
+        },
+        input: O,
+        loads {
+            push: force on rack at L,
+            resist: torque on pinion,
+        },
+    }
+}
