@@ -1576,6 +1576,51 @@ fn planetary_hand_independent_checks() {
     );
 }
 
+/// The rack-and-pinion's guide moment is taken about the rack's own point R where it is
+/// now (the convention of every prismatic joint, `docs/conventions.md`, Reactions), not
+/// about R's drawing place: the rack's balance from the generated reactions alone, the
+/// tooth force at the pitch point K = O + r n (n the unit normal from O to the rack's pitch
+/// line), over a turn of the pinion (at q = 0 the two points coincide, elsewhere they are
+/// r q apart: the moment reported about the drawing place was off by r q (u × R_guide)).
+#[test]
+fn rack_pinion_guide_moment_is_about_the_racks_point() {
+    let m = RackPinion::new();
+    let p = m.params().clone();
+    let mut loads = RackPinionLoads::default();
+    assert!(loads.set_by_name("push", &[-250.0, 30.0]));
+    assert!(loads.set_by_name("resist", &[-2.0]));
+    let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
+    let u = p.axes.guide.normalize();
+    let (o, r0) = (p.points.O, p.points.R);
+    let n = Vector2::new(-u.y, u.x) * Vector2::new(-u.y, u.x).dot(&(r0 - o)).signum();
+    let pitch = o + n * declared_joint("RackPinion", "mesh").mesh.unwrap().ra;
+    let mut travel = 0.0f64;
+    for q in sweep() {
+        let k = m.kinematics(q, QD, QDD).unwrap();
+        let f = m.kinetostatics(&k, &loads).unwrap();
+        let (rack, at_r, at_l) = (&k.links.rack, k.points.R.pos, k.points.L.pos);
+        let (guide, mesh) = (&f.joints.guide, &f.joints.mesh);
+        let w = (p.gravity - rack.cg_acc) * p.links.rack.mass;
+        let force = guide.force + mesh.force + w + loads.push;
+        let moment = guide.moment
+            + cross(pitch - at_r, mesh.force)
+            + cross(rack.cg - at_r, w)
+            + cross(at_l - at_r, loads.push);
+        let scale = mesh.force.norm() + w.norm() + loads.push.norm();
+        assert!(
+            force.norm() <= 1e-12 * scale,
+            "rack's forces at {q}: {force}"
+        );
+        assert!(
+            moment.abs() <= 1e-12 * scale * 0.2,
+            "rack's moments about R at {q}: {moment} (guide moment {})",
+            guide.moment
+        );
+        travel = travel.max((at_r - r0).norm());
+    }
+    assert!(travel > 0.1, "the rack travelled {travel} m");
+}
+
 /// The hand-written roller cam against itself: its law, base circle and roller are the
 /// declared ones (the loaded model's), the lift by finite differences, the contact normal
 /// perpendicular to the pitch curve as the cam sees it (a central difference of the

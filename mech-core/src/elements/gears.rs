@@ -360,13 +360,19 @@ pub fn mesh_reactions(
         }
         -mo / lever
     };
-    // The force of the partner on the body, and the pin's (or slide's) reaction.
+    // The force of the partner on the body, and the pin's (or slide's) reaction: a
+    // slide's at the joint point as its second link carries it now, the moment about it
+    // (docs/conventions.md, Reactions), not about the point the slide's other link holds.
     let force = pitch.t * ft + sep * (ft.abs() * m.tan_pressure);
     let r = -(fb + force);
-    let moment = if grp.body_slides {
-        -(wb.z + cross(anchor - joint_point, fb) + cross(pitch.p - joint_point, force))
+    let (joint_point, moment) = if grp.body_slides {
+        let p = point_of(s, g.b, g.db);
+        (
+            p,
+            -(wb.z + cross(anchor - p, fb) + cross(pitch.p - p, force)),
+        )
     } else {
-        0.0
+        (joint_point, 0.0)
     };
     let on_b = if body_is_b { force } else { -force };
     out[grp.joint] = Reaction {
@@ -426,20 +432,17 @@ impl TrainGroup {
     }
 
     /// Willis' relations as A x = rhs for the links' angle (`level` 0), rate (1) or
-    /// acceleration (2), with the solved links' values from `s`.
+    /// acceleration (2), with the solved links' values from `s` (`N` = `self.n`).
     #[inline(always)]
-    fn willis(
+    fn willis<const N: usize>(
         &self,
         meshes: &[MeshGeom],
         joints: &[JointGeom],
         s: &[LinkState],
         level: usize,
-    ) -> (
-        nalgebra::SMatrix<f64, TRAIN_MAX, TRAIN_MAX>,
-        nalgebra::SVector<f64, TRAIN_MAX>,
-    ) {
-        let mut a = nalgebra::SMatrix::<f64, TRAIN_MAX, TRAIN_MAX>::identity();
-        let mut rhs = nalgebra::SVector::<f64, TRAIN_MAX>::zeros();
+    ) -> (nalgebra::SMatrix<f64, N, N>, nalgebra::SVector<f64, N>) {
+        let mut a = nalgebra::SMatrix::<f64, N, N>::zeros();
+        let mut rhs = nalgebra::SVector::<f64, N>::zeros();
         let value = |l: usize| -> f64 {
             if l == 0 {
                 return 0.0;
@@ -450,9 +453,8 @@ impl TrainGroup {
                 _ => s[l].alpha,
             }
         };
-        for (r, &(j, mi)) in self.meshes[..self.n].iter().enumerate() {
+        for (r, &(j, mi)) in self.meshes[..N].iter().enumerate() {
             let (g, m) = (&joints[j], &meshes[mi]);
-            a[(r, r)] = 0.0;
             // r_a x_a + σ r_b x_b − (r_a + σ r_b) x_c = 0.
             for (l, k) in [
                 (g.a, m.ra),
@@ -472,6 +474,9 @@ impl TrainGroup {
 /// Solve a gear-train group up to `upto` ([`TrainGroup`]): the angles from Willis'
 /// relations, the links placed about their centres in `order`, then the rates and
 /// accelerations from the same matrix. `Singular` when the relations do not fix the angles.
+///
+/// The systems are exactly n × n (one instance per size, chosen by `grp.n`: a constant in
+/// the generated code, so the choice folds away).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn solve_train(
@@ -481,7 +486,24 @@ pub fn solve_train(
     s: &mut [LinkState],
     upto: Level,
 ) -> Result<(), MechError> {
-    let (a, rhs) = grp.willis(meshes, joints, s, 0);
+    match grp.n {
+        1 => solve_train_sized::<1>(grp, meshes, joints, s, upto),
+        2 => solve_train_sized::<2>(grp, meshes, joints, s, upto),
+        _ => solve_train_sized::<TRAIN_MAX>(grp, meshes, joints, s, upto),
+    }
+}
+
+/// [`solve_train`] for a group of `N` = `grp.n` links.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn solve_train_sized<const N: usize>(
+    grp: &TrainGroup,
+    meshes: &[MeshGeom],
+    joints: &[JointGeom],
+    s: &mut [LinkState],
+    upto: Level,
+) -> Result<(), MechError> {
+    let (a, rhs) = grp.willis::<N>(meshes, joints, s, 0);
     let lu = crate::kernel::linalg::Lu::new(a);
     let cond = lu.condition();
     if !(cond < crate::kernel::linalg::SINGULAR_CONDITION) {
@@ -509,7 +531,7 @@ pub fn solve_train(
     if upto == Level::Position {
         return Ok(());
     }
-    let w = lu.solve(&grp.willis(meshes, joints, s, 1).1);
+    let w = lu.solve(&grp.willis::<N>(meshes, joints, s, 1).1);
     for &k in &grp.order[..grp.n] {
         let (other, o, _) = centre(s, k);
         let vo = if other == 0 {
@@ -520,7 +542,7 @@ pub fn solve_train(
         s[grp.bodies[k]].set_velocity_through(o, vo, w[k]);
     }
     if upto == Level::Acceleration {
-        let al = lu.solve(&grp.willis(meshes, joints, s, 2).1);
+        let al = lu.solve(&grp.willis::<N>(meshes, joints, s, 2).1);
         for &k in &grp.order[..grp.n] {
             let (other, o, _) = centre(s, k);
             let ao = if other == 0 {
@@ -538,6 +560,8 @@ pub fn solve_train(
 /// force of each pin on its link (2 each) and each mesh's tangential tooth force (1
 /// each) — one 3n × 3n system; the tooth forces' radial parts follow the flanks, which are
 /// settled by solving again until every flank agrees with the sign of its tangential force.
+///
+/// The system is exactly 3n × 3n (one instance per size, as [`solve_train`]).
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn train_reactions(
@@ -548,47 +572,47 @@ pub fn train_reactions(
     f: &mut [Wrench],
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
-    const M: usize = 3 * TRAIN_MAX;
-    let n = grp.n;
-    let pitch: [Pitch; TRAIN_MAX] = core::array::from_fn(|r| {
-        if r < n {
-            let (j, mi) = grp.meshes[r];
-            let g = &joints[j];
-            meshes[mi].pitch(s, g.a, g.b, V2::zeros())
-        } else {
-            Pitch {
-                p: V2::zeros(),
-                t: V2::zeros(),
-                sep_b: V2::zeros(),
-            }
-        }
+    match grp.n {
+        1 => train_reactions_sized::<1, 3>(grp, meshes, joints, s, f, out),
+        2 => train_reactions_sized::<2, 6>(grp, meshes, joints, s, f, out),
+        _ => train_reactions_sized::<TRAIN_MAX, { 3 * TRAIN_MAX }>(grp, meshes, joints, s, f, out),
+    }
+}
+
+/// [`train_reactions`] for a group of `N` = `grp.n` links, `M` = 3N unknowns.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn train_reactions_sized<const N: usize, const M: usize>(
+    grp: &TrainGroup,
+    meshes: &[MeshGeom],
+    joints: &[JointGeom],
+    s: &[LinkState],
+    f: &mut [Wrench],
+    out: &mut [Reaction],
+) -> Result<(), MechError> {
+    let n = N;
+    let pitch: [Pitch; N] = core::array::from_fn(|r| {
+        let (j, mi) = grp.meshes[r];
+        let g = &joints[j];
+        meshes[mi].pitch(s, g.a, g.b, V2::zeros())
     });
-    let pin_point: [V2; TRAIN_MAX] = core::array::from_fn(|k| {
-        if k < n {
-            let g = &joints[grp.pins[k]];
-            if g.b == grp.bodies[k] {
-                point_of(s, g.a, g.da)
-            } else {
-                point_of(s, g.b, g.db)
-            }
+    let pin_point: [V2; N] = core::array::from_fn(|k| {
+        let g = &joints[grp.pins[k]];
+        if g.b == grp.bodies[k] {
+            point_of(s, g.a, g.da)
         } else {
-            V2::zeros()
+            point_of(s, g.b, g.db)
         }
     });
     // The tooth force on b of mesh r per unit tangential force, for the flanks `fl`.
     let unit = |r: usize, fl: f64| {
         pitch[r].t + pitch[r].sep_b * (fl * meshes[grp.meshes[r].1].tan_pressure)
     };
-    let mut flanks = [1.0; TRAIN_MAX];
+    let mut flanks = [1.0; N];
     let mut x = nalgebra::SVector::<f64, M>::zeros();
-    for _ in 0..=(1 << TRAIN_MAX) {
-        let mut a = nalgebra::SMatrix::<f64, M, M>::identity();
+    for _ in 0..=(1 << N) {
+        let mut a = nalgebra::SMatrix::<f64, M, M>::zeros();
         let mut b = nalgebra::SVector::<f64, M>::zeros();
-        for k in 0..n {
-            for c in 0..3 {
-                a[(3 * k + c, 3 * k + c)] = 0.0;
-            }
-        }
         // Add the force `dir` × unknown `col` at point `p` to link `l`'s rows.
         let put = |a: &mut nalgebra::SMatrix<f64, M, M>, l: usize, p: V2, dir: V2, col: usize| {
             if let Some(k) = grp.col(l) {
@@ -618,13 +642,8 @@ pub fn train_reactions(
             put(&mut a, g.a, pitch[r].p, -d, 2 * n + r);
         }
         x = crate::kernel::linalg::Lu::new(a).solve(&b);
-        let settled: [f64; TRAIN_MAX] = core::array::from_fn(|r| {
-            if r < n && x[2 * n + r] < 0.0 {
-                -1.0
-            } else {
-                1.0
-            }
-        });
+        let settled: [f64; N] =
+            core::array::from_fn(|r| if x[2 * n + r] < 0.0 { -1.0 } else { 1.0 });
         if settled == flanks {
             break;
         }
