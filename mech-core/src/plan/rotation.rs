@@ -142,13 +142,13 @@ pub fn angle_order(plan: &[Group], n_links: usize) -> Vec<usize> {
 mod tests {
     use super::{angle_order, angle_rule, rotation_partner, AngleRule};
     use crate::front::resolve::model_of;
+    use crate::model::Model;
     use crate::plan::assur::plan;
 
-    /// The slotted crank and ram: the block turns with the crank (a PRP dyad's first
-    /// slider), the ram slides on the ground (no partner); the crank has none.
-    #[test]
-    fn a_prp_slider_turns_with_its_guide() {
-        let m = model_of(
+    /// A slotted crank and ram: the block slides in the crank's slot and is pinned to the
+    /// ram, which slides on the ground (a PRP dyad).
+    fn slotted_crank_and_ram() -> Model {
+        model_of(
             "pub struct S { ground { O2: (0.0, 0.0) },
               link crank { points { O2, E: (0.03, 0.08) } },
               link block { points { B: (0.05, 0.09) } },
@@ -158,7 +158,14 @@ mod tests {
                        B: revolute(block, ram),
                        guide: prismatic(ground, ram) at P along (1.0, -0.1) },
               input: O2 }",
-        );
+        )
+    }
+
+    /// The slotted crank and ram: the block turns with the crank (a PRP dyad's first
+    /// slider), the ram slides on the ground (no partner); the crank has none.
+    #[test]
+    fn a_prp_slider_turns_with_its_guide() {
+        let m = slotted_crank_and_ram();
         let p = plan(&m).unwrap();
         let l = |name: &str| m.link_index(name).unwrap();
         assert_eq!(rotation_partner(&m, &p, l("block")), Some(l("crank")));
@@ -170,17 +177,7 @@ mod tests {
     /// second link: sign +1), the block with the crank, the ram never turns.
     #[test]
     fn the_slotted_crank_and_ram_publish_by_three_rules() {
-        let m = model_of(
-            "pub struct S { ground { O2: (0.0, 0.0) },
-              link crank { points { O2, E: (0.03, 0.08) } },
-              link block { points { B: (0.05, 0.09) } },
-              link ram { points { B, P: (0.2, 0.1) } },
-              joints { O2: revolute(ground, crank),
-                       slot: prismatic(crank, block) at B along (1.0, 3.0),
-                       B: revolute(block, ram),
-                       guide: prismatic(ground, ram) at P along (1.0, -0.1) },
-              input: O2 }",
-        );
+        let m = slotted_crank_and_ram();
         let p = plan(&m).unwrap();
         let l = |name: &str| m.link_index(name).unwrap();
         let crank = AngleRule::Crank {
@@ -219,6 +216,9 @@ mod tests {
         assert_eq!(order.len(), 3);
         assert_eq!(angle_rule(&m, &p, block), AngleRule::With(crank));
         assert_eq!(angle_rule(&m, &p, rod), AngleRule::Own);
-        assert!(matches!(angle_rule(&m, &p, crank), AngleRule::Crank { input: 0, .. }));
+        assert!(matches!(
+            angle_rule(&m, &p, crank),
+            AngleRule::Crank { input: 0, .. }
+        ));
     }
 }

@@ -3,6 +3,8 @@
 
 mod batch;
 pub mod columns;
+#[macro_use]
+mod instances;
 mod dispatch;
 mod forces;
 pub mod mechanism;
