@@ -556,12 +556,15 @@ fn solve_train_sized<const N: usize>(
     Ok(())
 }
 
-/// d'Alembert for a gear-train group: every link's three equations in the unknowns — the
-/// force of each pin on its link (2 each) and each mesh's tangential tooth force (1
-/// each) — one 3n × 3n system; the tooth forces' radial parts follow the flanks, which are
-/// settled by solving again until every flank agrees with the sign of its tangential force.
+/// d'Alembert for a gear-train group, reduced to its tooth forces: every pin passes a
+/// force alone, so the moments about each link's pin of the link and of everything pinned
+/// to it, further out in the group (each load carried to the pin through which it enters),
+/// are n equations in the n tangential tooth forces alone, an n × n system; each pin's
+/// force is then minus the sum of the forces on the links it carries. The tooth forces'
+/// radial parts follow the flanks, which are settled by solving again until every flank
+/// agrees with the sign of its tangential force.
 ///
-/// The system is exactly 3n × 3n (one instance per size, as [`solve_train`]).
+/// One instance per size, as [`solve_train`].
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn train_reactions(
@@ -573,16 +576,16 @@ pub fn train_reactions(
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
     match grp.n {
-        1 => train_reactions_sized::<1, 3>(grp, meshes, joints, s, f, out),
-        2 => train_reactions_sized::<2, 6>(grp, meshes, joints, s, f, out),
-        _ => train_reactions_sized::<TRAIN_MAX, { 3 * TRAIN_MAX }>(grp, meshes, joints, s, f, out),
+        1 => train_reactions_sized::<1>(grp, meshes, joints, s, f, out),
+        2 => train_reactions_sized::<2>(grp, meshes, joints, s, f, out),
+        _ => train_reactions_sized::<TRAIN_MAX>(grp, meshes, joints, s, f, out),
     }
 }
 
-/// [`train_reactions`] for a group of `N` = `grp.n` links, `M` = 3N unknowns.
+/// [`train_reactions`] for a group of `N` = `grp.n` links.
 #[cfg_attr(debug_assertions, inline)]
 #[cfg_attr(not(debug_assertions), inline(always))]
-fn train_reactions_sized<const N: usize, const M: usize>(
+fn train_reactions_sized<const N: usize>(
     grp: &TrainGroup,
     meshes: &[MeshGeom],
     joints: &[JointGeom],
@@ -604,55 +607,95 @@ fn train_reactions_sized<const N: usize, const M: usize>(
             point_of(s, g.b, g.db)
         }
     });
+    // The group link each link is pinned to, if any.
+    let parent: [Option<usize>; N] = core::array::from_fn(|k| {
+        let g = &joints[grp.pins[k]];
+        grp.col(if g.b == grp.bodies[k] { g.a } else { g.b })
+    });
+    // Where a force on group link `j` at `p` enters link `k`'s moments: at `p` itself when
+    // j = k, at the pin of k's child that carries j when j is further out, nowhere else.
+    let enters = |j: usize, k: usize, p: V2| -> Option<V2> {
+        if j == k {
+            return Some(p);
+        }
+        let mut c = j;
+        for _ in 0..N {
+            match parent[c] {
+                Some(up) if up == k => return Some(pin_point[c]),
+                Some(up) => c = up,
+                None => return None,
+            }
+        }
+        None
+    };
+    // The links a group link carries (itself included).
+    let carries = |k: usize, j: usize| enters(j, k, V2::zeros()).is_some();
     // The tooth force on b of mesh r per unit tangential force, for the flanks `fl`.
     let unit = |r: usize, fl: f64| {
         pitch[r].t + pitch[r].sep_b * (fl * meshes[grp.meshes[r].1].tan_pressure)
     };
-    let mut flanks = [1.0; N];
-    let mut x = nalgebra::SVector::<f64, M>::zeros();
-    for _ in 0..=(1 << N) {
-        let mut a = nalgebra::SMatrix::<f64, M, M>::zeros();
-        let mut b = nalgebra::SVector::<f64, M>::zeros();
-        // Add the force `dir` × unknown `col` at point `p` to link `l`'s rows.
-        let put = |a: &mut nalgebra::SMatrix<f64, M, M>, l: usize, p: V2, dir: V2, col: usize| {
-            if let Some(k) = grp.col(l) {
-                let r = p - s[l].pos;
-                a[(3 * k, col)] += dir.x;
-                a[(3 * k + 1, col)] += dir.y;
-                a[(3 * k + 2, col)] += cross(r, dir);
+    // The right-hand side: minus the loads' moments (each link's wrench `f`) about each
+    // pin, the flanks aside.
+    let rhs = nalgebra::SVector::<f64, N>::from_fn(|k, _| {
+        let mut m = 0.0;
+        for j in 0..n {
+            let w = f[grp.bodies[j]];
+            let pos = s[grp.bodies[j]].pos;
+            if let Some(p) = enters(j, k, pos) {
+                m += cross(p - pin_point[k], V2::new(w.x, w.y)) + if j == k { w.z } else { 0.0 };
             }
-        };
-        for k in 0..n {
-            let body = grp.bodies[k];
-            let g = &joints[grp.pins[k]];
-            let other = if g.b == body { g.a } else { g.b };
-            for (c, dir) in [(0, V2::new(1.0, 0.0)), (1, V2::new(0.0, 1.0))] {
-                put(&mut a, body, pin_point[k], dir, 2 * k + c);
-                put(&mut a, other, pin_point[k], -dir, 2 * k + c);
-            }
-            let w = f[body];
-            b[3 * k] = -w.x;
-            b[3 * k + 1] = -w.y;
-            b[3 * k + 2] = -w.z;
         }
+        -m
+    });
+    let mut flanks = [1.0; N];
+    let mut ft = nalgebra::SVector::<f64, N>::zeros();
+    for _ in 0..=(1 << N) {
+        let mut a = nalgebra::SMatrix::<f64, N, N>::zeros();
         for r in 0..n {
             let g = &joints[grp.meshes[r].0];
             let d = unit(r, flanks[r]);
-            put(&mut a, g.b, pitch[r].p, d, 2 * n + r);
-            put(&mut a, g.a, pitch[r].p, -d, 2 * n + r);
+            for (l, dir) in [(g.b, d), (g.a, -d)] {
+                if let Some(j) = grp.col(l) {
+                    for k in 0..n {
+                        if let Some(p) = enters(j, k, pitch[r].p) {
+                            a[(k, r)] += cross(p - pin_point[k], dir);
+                        }
+                    }
+                }
+            }
         }
-        x = crate::kernel::linalg::Lu::new(a).solve(&b);
-        let settled: [f64; N] =
-            core::array::from_fn(|r| if x[2 * n + r] < 0.0 { -1.0 } else { 1.0 });
+        ft = crate::kernel::linalg::Lu::new(a).solve(&rhs);
+        let settled: [f64; N] = core::array::from_fn(|r| if ft[r] < 0.0 { -1.0 } else { 1.0 });
         if settled == flanks {
             break;
         }
         flanks = settled;
     }
+    // Each pin's force on its link: minus every force on the links it carries.
+    let pin_force = |k: usize| -> V2 {
+        let mut sum = V2::zeros();
+        for j in 0..n {
+            if carries(k, j) {
+                let w = f[grp.bodies[j]];
+                sum += V2::new(w.x, w.y);
+            }
+        }
+        for r in 0..n {
+            let g = &joints[grp.meshes[r].0];
+            let d = unit(r, flanks[r]) * ft[r];
+            for (l, force) in [(g.b, d), (g.a, -d)] {
+                if grp.col(l).is_some_and(|j| carries(k, j)) {
+                    sum += force;
+                }
+            }
+        }
+        -sum
+    };
+    let pin_forces: [V2; N] = core::array::from_fn(pin_force);
     for k in 0..n {
         let body = grp.bodies[k];
         let g = &joints[grp.pins[k]];
-        let r = V2::new(x[2 * k], x[2 * k + 1]);
+        let r = pin_forces[k];
         let other = if g.b == body { g.a } else { g.b };
         out[grp.pins[k]] = Reaction {
             force: if g.b == body { r } else { -r },
@@ -670,7 +713,7 @@ fn train_reactions_sized<const N: usize, const M: usize>(
     for r in 0..n {
         let (j, _) = grp.meshes[r];
         let g = &joints[j];
-        let force = unit(r, flanks[r]) * x[2 * n + r];
+        let force = unit(r, flanks[r]) * ft[r];
         out[j] = Reaction {
             force,
             moment: if force.dot(&pitch[r].t) >= 0.0 {
