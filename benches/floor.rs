@@ -39,7 +39,10 @@
 //!   the crank's pivot; a PRP dyad, the closed-form `Prp`), `slotted_crank_ram/<op>`;
 //! - the planetary reducer (`Planetary` of `benches/floor/machines.rs`: the input sun
 //!   drives a planet, pinned to an arm, that rolls inside a fixed ring; the arm and the
-//!   planet one gear-train group, Willis' relations of both meshes), `planetary/<op>`,
+//!   planet one gear-train group, Willis' relations of both meshes), `planetary/<op>`;
+//! - the rack and pinion (`RackPinion` of `benches/floor/machines.rs`: the input pinion
+//!   drives a rack on a tilted ground guide; a meshing group of one link, the rack's slide
+//!   and the mesh), `rack_pinion/<op>`,
 //!
 //! where `<op>` is each of `pose`, `kinematics`, `kinematics+kinetostatics`,
 //! `kinematics+driver_action`, `reduced`, `acceleration`. Inputs as in `benches/solvers.rs`:
@@ -57,9 +60,11 @@
 //! the yoke at its end T and a −0.6 N·m friction couple on the block; the slotted crank
 //! and ram a force (−400, 60) N on the ram at its tool point P and a 1.8 N·m torque on the
 //! block; the planetary a pull (40, −60) N on the arm's lever end T and a −2 N·m brake on the
-//! arm (q, q̇, q̈ are the sun's: the arm turns at 2/9 of them); these nine a 5 N·m driver
-//! (acceleration). All inputs, and the solver struct
-//! itself, go through `black_box` (no constant folding of the drawing).
+//! arm (q, q̇, q̈ are the sun's: the arm turns at 2/9 of them); the rack and pinion a push
+//! (−250, 30) N on the rack at L and a −2 N·m torque on the pinion (q, q̇, q̈ are the
+//! pinion's: the rack travels 30 mm per radian); these ten a 5 N·m driver (acceleration).
+//! All inputs, and the solver struct itself, go through `black_box` (no constant folding of
+//! the drawing).
 //!
 //! Run and tabulate:
 //!
@@ -128,8 +133,8 @@ use criterion::measurement::Measurement;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use hand::{
     BlockScotchYokeHand, CrankRodWheelHand, FourBarHand, GearedSliderCrankHand,
-    InvertedSliderCrankHand, PlanetaryHand, QuickReturnHand, RollerCamHand, ScotchYokeHand,
-    SliderCrankHand, SlottedCrankRamHand,
+    InvertedSliderCrankHand, PlanetaryHand, QuickReturnHand, RackPinionHand, RollerCamHand,
+    ScotchYokeHand, SliderCrankHand, SlottedCrankRamHand,
 };
 use interleaved::Interleaved;
 use machines::*;
@@ -274,6 +279,12 @@ case!(
     /// A (40, −60) N pull on the arm at its lever end T, a −2 N·m brake on the arm.
     planetary: Planetary, PlanetaryHand, PlanetaryLoads,
     "pull" = [40.0, -60.0], "brake" = [-2.0],
+);
+
+case!(
+    /// A (−250, 30) N push on the rack at L, a −2 N·m torque on the pinion.
+    rack_pinion: RackPinion, RackPinionHand, RackPinionLoads,
+    "push" = [-250.0, 30.0], "resist" = [-2.0],
 );
 
 // One function per operation and side; every input through `black_box`.
@@ -536,6 +547,14 @@ six_operations!(
     motion: PlanetaryMotion, hand::PlanetaryHandMotion,
     forces: PlanetaryForces, hand::PlanetaryHandForces,
 );
+six_operations!(
+    rack_pinion_ops,
+    "rack_pinion",
+    Case<RackPinion, RackPinionHand, RackPinionLoads>,
+    pose: RackPinionPose, hand::RackPinionHandPose,
+    motion: RackPinionMotion, hand::RackPinionHandMotion,
+    forces: RackPinionForces, hand::RackPinionHandForces,
+);
 
 /// The group `name` with the functions `generated` and `hand`, timed one after the other.
 /// (Each function is passed as its own zero-sized type, so the calls are direct and inline
@@ -612,6 +631,10 @@ fn planetary(c: &mut Criterion) {
     planetary_ops::pairs(c, &Case::planetary());
 }
 
+fn rack_pinion(c: &mut Criterion) {
+    rack_pinion_ops::pairs(c, &Case::rack_pinion());
+}
+
 fn ratios(c: &mut Criterion<Interleaved>) {
     let k = &FourBarCase::new();
     motion_operations!(ratio, c, "four_bar", k);
@@ -626,6 +649,7 @@ fn ratios(c: &mut Criterion<Interleaved>) {
     block_scotch_yoke_ops::ratios(c, &Case::block_scotch_yoke());
     slotted_crank_ram_ops::ratios(c, &Case::slotted_crank_ram());
     planetary_ops::ratios(c, &Case::planetary());
+    rack_pinion_ops::ratios(c, &Case::rack_pinion());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -822,6 +846,7 @@ criterion_group!(
     block_scotch_yoke,
     slotted_crank_ram,
     planetary,
+    rack_pinion,
     batch,
     runtime::pairs
 );

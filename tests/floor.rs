@@ -2,11 +2,11 @@
 //! the same numbers as the generated solvers: every quantity of every operation timed in
 //! `benches/floor.rs` (the four-bar, the slider-crank, the quick-return, the Scotch yoke, and
 //! the inverted slider-crank, the geared slider-crank, the roller cam, the crank, rod and
-//! wheel, the Scotch yoke with a block, the slotted crank and ram and the planetary reducer
-//! of `benches/floor/machines.rs`), on a sweep of 72 input angles over a full turn (three
-//! turns of the geared slider-crank's pinion: one of its crank; five of the planetary's
-//! sun: more than one of its arm; the slotted crank and ram, which cannot turn, over its
-//! swing `RAM_SWING`), to 1e-13 relative (`TOL`:
+//! wheel, the Scotch yoke with a block, the slotted crank and ram, the planetary reducer and
+//! the rack and pinion of `benches/floor/machines.rs`), on a sweep of 72 input angles over
+//! a full turn (three turns of the geared slider-crank's pinion: one of its crank; five of
+//! the planetary's sun: more than one of its arm; the slotted crank and ram, which cannot
+//! turn, over its swing `RAM_SWING`), to 1e-13 relative (`TOL`:
 //! at most 100× the worst error measured over the quantities; the new machines' worst, the
 //! quick-return's α, 1.4e-14), the roller cam to 1e-12 (`CAM_TOL`: its law's argument, an
 //! ulp apart on the two sides, amplified in the middle of the fall).
@@ -23,15 +23,16 @@
 //! accelerations, of I* against dI*/dq, and the inverse problem (the generated d'Alembert
 //! driver at the hand-written q̈ gives back the applied torque). For the quick-return, the
 //! Scotch yoke, the inverted slider-crank, the geared slider-crank, the roller cam, the
-//! crank, rod and wheel, the Scotch yoke with a block, the slotted crank and ram and the
-//! planetary, on the hand-written side alone: finite
+//! crank, rod and wheel, the Scotch yoke with a block, the slotted crank and ram, the
+//! planetary and the rack and pinion, on the hand-written side alone: finite
 //! differences of every point, cg and link angle (velocities, accelerations, q̈ entering
 //! linearly), every link's d'Alembert balance with the hand-written reactions, the driver
 //! torque by d'Alembert, by virtual power and by Zhukovski, dI*/dq against I*, M* against
 //! the power of gravity and the loads on the positions, and the inverse problem; for the
-//! geared slider-crank and the planetary also the meshes' data against the model, Willis'
-//! relations and the tooth forces on their lines of action, for the roller cam the law's data against the model
-//! and the contact normal against the pitch curve.
+//! geared slider-crank, the planetary and the rack and pinion also the meshes' data against
+//! the model, Willis' relations (no slip at the pitch points) and the tooth forces on their
+//! lines of action, for the roller cam the law's data against the model and the contact
+//! normal against the pitch curve.
 
 use crate::measure::{within, within_at};
 use crate::mechanisms;
@@ -612,6 +613,21 @@ fn planetary_loads() -> PlanetaryLoads {
     l
 }
 
+fn rack_pinion_loads() -> RackPinionLoads {
+    let mut l = RackPinionLoads::default();
+    assert!(l.set_by_name("push", &[-250.0, 30.0]));
+    assert!(l.set_by_name("resist", &[-2.0]));
+    l
+}
+
+/// The rack and pinion's loads with the push on the rack reversed: the tooth force's
+/// tangential part changes sign, the other flank in contact.
+fn rack_pinion_loads_reversed() -> RackPinionLoads {
+    let mut l = rack_pinion_loads();
+    l.push = -l.push;
+    l
+}
+
 fn slotted_crank_ram_loads() -> SlottedCrankRamLoads {
     let mut l = SlottedCrankRamLoads::default();
     assert!(l.set_by_name("push", &[-400.0, 60.0]));
@@ -1026,6 +1042,75 @@ hand_matches_generated! {
             // covers the sign of each tooth force's radial part).
             assert!(flanks.iter().flatten().all(|&n| n > 0), "flanks {flanks:?}");
             r.check(&six_expected(&["kinetostatics: tooth loads"]));
+        }
+    }
+}
+
+hand_matches_generated! {
+    /// The rack and pinion over a turn of the pinion: every quantity as the other machines,
+    /// the guide's moment (about R where it is now), the tooth load and the flank besides.
+    /// The rack only translates, so at a fixed q̈ the tooth force's tangential part
+    /// f_t = −(W + F_push)·u does not depend on q: one flank is in contact over the whole
+    /// sweep. The kinetostatics are therefore compared again with the push reversed, where
+    /// the other flank carries the load (the comparison then covers both signs of the tooth
+    /// force's tangential part).
+    fn rack_pinion_hand_matches_generated {
+        machine: RackPinion, RackPinionHand, RackPinionLoads = rack_pinion_loads();
+        sweep: sweep();
+        links: pinion, rack;
+        points: O o, R r, L l;
+        joints: O o, guide guide, mesh mesh;
+        setup:
+            let gen = RackPinion::new();
+            let hand = RackPinionHand::new(gen.params());
+            let reversed = rack_pinion_loads_reversed();
+            let mut flanks = [0usize; 2];
+        each |r, q, j, hf| {
+            r.scalar("kinetostatics: guide moment", q, j.guide.moment, hf.guide_moment);
+            r.scalar("kinetostatics: tooth load", q, j.mesh.tooth_load, hf.tooth_load);
+            assert_eq!(j.mesh.flank, hf.flank, "flank at q = {q}");
+            flanks[(hf.flank > 0.0) as usize] += 1;
+            let (gk, hk) = (
+                gen.kinematics(q, QD, QDD).unwrap(),
+                hand.kinematics(q, QD, QDD).unwrap(),
+            );
+            let (gb, hb) = (
+                gen.kinetostatics(&gk, &reversed).unwrap(),
+                hand.kinetostatics(&hk, &reversed),
+            );
+            let jb = &gb.joints;
+            r.vecs(
+                "kinetostatics (push reversed): joint force",
+                q,
+                &[(jb.O.force, hb.o), (jb.guide.force, hb.guide), (jb.mesh.force, hb.mesh)],
+            );
+            r.scalar(
+                "kinetostatics (push reversed): guide moment",
+                q,
+                jb.guide.moment,
+                hb.guide_moment,
+            );
+            r.scalar(
+                "kinetostatics (push reversed): tooth load",
+                q,
+                jb.mesh.tooth_load,
+                hb.tooth_load,
+            );
+            r.scalar("kinetostatics (push reversed): driver", q, gb.driver, hb.driver);
+            assert_eq!(jb.mesh.flank, hb.flank, "flank (push reversed) at q = {q}");
+            flanks[(hb.flank > 0.0) as usize] += 1;
+        }
+        finish {
+            // Both flanks compared: one under the floor's push, the other reversed.
+            assert!(flanks[0] > 0 && flanks[1] > 0, "flanks {flanks:?}");
+            r.check(&six_expected(&[
+                "kinetostatics: guide moment",
+                "kinetostatics: tooth load",
+                "kinetostatics (push reversed): joint force",
+                "kinetostatics (push reversed): guide moment",
+                "kinetostatics (push reversed): tooth load",
+                "kinetostatics (push reversed): driver",
+            ]));
         }
     }
 }
@@ -1586,9 +1671,7 @@ fn planetary_hand_independent_checks() {
 fn rack_pinion_guide_moment_is_about_the_racks_point() {
     let m = RackPinion::new();
     let p = m.params().clone();
-    let mut loads = RackPinionLoads::default();
-    assert!(loads.set_by_name("push", &[-250.0, 30.0]));
-    assert!(loads.set_by_name("resist", &[-2.0]));
+    let loads = rack_pinion_loads();
     let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
     let u = p.axes.guide.normalize();
     let (o, r0) = (p.points.O, p.points.R);
@@ -1619,6 +1702,93 @@ fn rack_pinion_guide_moment_is_about_the_racks_point() {
         travel = travel.max((at_r - r0).norm());
     }
     assert!(travel > 0.1, "the rack travelled {travel} m");
+}
+
+/// The hand-written rack and pinion against itself: the mesh's radius, kind and pressure
+/// angle are the declared ones (the loaded model's), no slip at the pitch point (the
+/// pinion's teeth at K move with the rack, along its axis u), finite differences, every
+/// link's balance (the tooth force at the pitch point K = O + r n on its line of action, at
+/// α from u and pushing the rack away from the pinion, the guide's force normal to u and
+/// its moment about R where it is now), on both flanks (the floor's push and the push
+/// reversed), the driver by three routes, dI*/dq, M* and the inverse problem.
+#[test]
+fn rack_pinion_hand_independent_checks() {
+    let mesh = declared_joint("RackPinion", "mesh").mesh.unwrap();
+    assert_eq!(
+        (mesh.ra, mesh.rb, mesh.internal),
+        (RACK_PINION_RADIUS, 0.0, false)
+    );
+    assert!((mesh.pressure_angle - RACK_PRESSURE_ANGLE).abs() < 1e-15);
+    let m = RackPinion::new();
+    let p = m.params().clone();
+    let h = RackPinionHand::new(&p);
+    let r = RACK_PINION_RADIUS;
+    check_by_finite_differences(
+        "rack and pinion",
+        1,
+        tracked!(h; points: R r, L l; links: pinion, rack),
+    );
+    let perp = |v: Vector2<f64>| Vector2::new(-v.y, v.x);
+    let u = p.axes.guide.normalize();
+    let (o, r0, l0) = (p.points.O, p.points.R, p.points.L);
+    // The pitch line is parallel to u at r from O, on R's side: n from O towards it.
+    let n = perp(u) * perp(u).dot(&(r0 - o)).signum();
+    let pitch = o + n * r;
+    let (l, g) = (&p.links, p.gravity);
+    let mut flanks = [0usize; 2];
+    for loads in [rack_pinion_loads(), rack_pinion_loads_reversed()] {
+        for q in sweep() {
+            let k = h.kinematics(q, QD, QDD).unwrap();
+            let (rr, ll) = (k.r.pos, k.l.pos);
+            // The rack translates along its guide: R stays on the guide's line, L and the
+            // cg keep their offsets from R.
+            assert!(
+                (rr - r0).dot(&perp(u)).abs() < 1e-15,
+                "R off the guide at {q}"
+            );
+            assert!(
+                (ll - rr - (l0 - r0)).norm() < 1e-15,
+                "the rack turns at {q}"
+            );
+            assert!((k.rack.cg - rr - (l.rack.cg - r0)).norm() < 1e-15);
+            // No slip: the pinion's point at K moves with the rack.
+            let v_pinion = perp(pitch - o) * k.pinion.omega;
+            let scale = k.pinion.omega.abs() * r;
+            assert!(
+                (v_pinion - k.r.vel).norm() <= 1e-15 * scale,
+                "slip at {q}: pinion {v_pinion:?}, rack {:?}",
+                k.r.vel
+            );
+            let f = h.kinetostatics(&k, &loads);
+            let (ft, fr) = (f.mesh.dot(&u), f.mesh.dot(&n));
+            assert!(
+                fr >= 0.0
+                    && (fr - ft.abs() * RACK_PRESSURE_ANGLE.tan()).abs() <= 1e-12 * f.tooth_load,
+                "line of action at {q}: tangential {ft}, radial {fr}"
+            );
+            assert!((f.mesh.norm() - f.tooth_load).abs() <= 1e-12 * f.tooth_load);
+            assert_eq!(f.flank, ft.signum());
+            flanks[(f.flank > 0.0) as usize] += 1;
+            assert!(f.guide.dot(&u).abs() <= 1e-12 * f.guide.norm().max(1.0));
+            check_balances!("rack and pinion", q, (l, g, k);
+                "pinion" pinion: [(o, f.o), (pitch, -f.mesh)], [f.driver, loads.resist];
+                "rack" rack: [(rr, f.guide), (pitch, f.mesh), (ll, loads.push)], [f.guide_moment];
+            );
+        }
+        check_dynamics(
+            "rack and pinion",
+            1,
+            hand_dynamics!(h, loads, |q, pose| {
+                let pinion_turn =
+                    wrap(pose(q + FD_STEP).pinion.angle - pose(q - FD_STEP).pinion.angle)
+                        / (2.0 * FD_STEP);
+                gravity_power!(l, g, pose, q; pinion, rack)
+                    + loads.push.dot(&d_dq(|q| pose(q).l, q))
+                    + loads.resist * pinion_turn
+            }),
+        );
+    }
+    assert!(flanks[0] > 0 && flanks[1] > 0, "flanks {flanks:?}");
 }
 
 /// The hand-written roller cam against itself: its law, base circle and roller are the

@@ -308,6 +308,13 @@ floor_runtime!(
     [("pull", [40.0, -60.0]), ("brake", [-2.0])]
 );
 floor_runtime!(
+    rack_pinion,
+    FLOOR,
+    RackPinion,
+    RackPinionLoads,
+    [("push", [-250.0, 30.0]), ("resist", [-2.0])]
+);
+floor_runtime!(
     slotted_crank_ram,
     FLOOR,
     SlottedCrankRam,

@@ -51,6 +51,7 @@ GROUPS = [
         "block_scotch_yoke",
         "slotted_crank_ram",
         "planetary",
+        "rack_pinion",
     )
     for op in OPERATIONS
 ]

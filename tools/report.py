@@ -143,7 +143,8 @@ def ns(v):
 
 
 FLOOR_MACHINES = ("four_bar|slider_crank|quick_return|scotch_yoke|inverted_slider_crank|geared_slider_crank"
-                  "|roller_cam|crank_rod_wheel|block_scotch_yoke|slotted_crank_ram|planetary")
+                  "|roller_cam|crank_rod_wheel|block_scotch_yoke|slotted_crank_ram|planetary"
+                  "|rack_pinion")
 
 
 def floor():

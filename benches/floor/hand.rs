@@ -1,17 +1,18 @@
 //! Hand-written closed-form solvers of the crank-rocker `FourBar`, the offset
 //! `SliderCrank`, the crank-shaper `QuickReturn` and the `ScotchYoke` of
 //! `tests/common/mechanisms.rs` and of the `InvertedSliderCrank`, the `GearedSliderCrank`,
-//! the `RollerCam`, the `CrankRodWheel`, the `BlockScotchYoke`, the `SlottedCrankRam` and the
-//! `Planetary` of `benches/floor/machines.rs`: the code an engineer who knows these machines writes in an
-//! afternoon, used as the *floor* that the generated solvers are timed against
-//! (`benches/floor.rs`) and checked against (`tests/floor.rs`). All but the first two are
-//! in modules of their own (`hand_quick_return.rs`, `hand_scotch_yoke.rs`,
-//! `hand_inverted_slider_crank.rs`, `hand_geared_slider_crank.rs`, `hand_roller_cam.rs`,
-//! `hand_crank_rod_wheel.rs`, `hand_block_scotch_yoke.rs`, `hand_slotted_crank_ram.rs`,
-//! `hand_planetary.rs`, beside this file), re-exported here. (The gear pairs' radii and
-//! pressure angles and the cam's law, base circle and roller are not generated parameters:
-//! the geared slider-crank's, the planetary's and the roller cam's modules hold them as
-//! constants, which `tests/floor.rs` checks against the loaded model.)
+//! the `RollerCam`, the `CrankRodWheel`, the `BlockScotchYoke`, the `SlottedCrankRam`, the
+//! `Planetary` and the `RackPinion` of `benches/floor/machines.rs`: the code an engineer who
+//! knows these machines writes in an afternoon, used as the *floor* that the generated
+//! solvers are timed against (`benches/floor.rs`) and checked against (`tests/floor.rs`).
+//! All but the first two are in modules of their own (`hand_quick_return.rs`,
+//! `hand_scotch_yoke.rs`, `hand_inverted_slider_crank.rs`, `hand_geared_slider_crank.rs`,
+//! `hand_roller_cam.rs`, `hand_crank_rod_wheel.rs`, `hand_block_scotch_yoke.rs`,
+//! `hand_slotted_crank_ram.rs`, `hand_planetary.rs`, `hand_rack_pinion.rs`, beside this
+//! file), re-exported here. (The gear pairs' radii and pressure angles and the cam's law,
+//! base circle and roller are not generated parameters: the geared slider-crank's, the
+//! planetary's, the rack and pinion's and the roller cam's modules hold them as constants,
+//! which `tests/floor.rs` checks against the loaded model.)
 //!
 //! Every operation (`pose`, `kinematics`, `kinetostatics`, `driver_action`, `reduced`,
 //! `reduced_moment`, `acceleration`) is `#[inline(never)]`: the bench compares one call
@@ -46,8 +47,8 @@
 use super::machines::{
     BlockScotchYokeLoads, BlockScotchYokeParams, CrankRodWheelLoads, CrankRodWheelParams,
     GearedSliderCrankLoads, GearedSliderCrankParams, InvertedSliderCrankLoads,
-    InvertedSliderCrankParams, PlanetaryLoads, PlanetaryParams, RollerCamLoads, RollerCamParams,
-    SlottedCrankRamLoads, SlottedCrankRamParams,
+    InvertedSliderCrankParams, PlanetaryLoads, PlanetaryParams, RackPinionLoads, RackPinionParams,
+    RollerCamLoads, RollerCamParams, SlottedCrankRamLoads, SlottedCrankRamParams,
 };
 use crate::mechanisms::{
     FourBarLoads, FourBarParams, QuickReturnLoads, QuickReturnParams, ScotchYokeLoads,
@@ -67,6 +68,8 @@ mod inverted_slider_crank;
 mod planetary;
 #[path = "hand_quick_return.rs"]
 mod quick_return;
+#[path = "hand_rack_pinion.rs"]
+mod rack_pinion;
 #[path = "hand_roller_cam.rs"]
 mod roller_cam;
 #[path = "hand_scotch_yoke.rs"]
@@ -80,6 +83,7 @@ pub use geared_slider_crank::*;
 pub use inverted_slider_crank::*;
 pub use planetary::*;
 pub use quick_return::*;
+pub use rack_pinion::*;
 pub use roller_cam::*;
 pub use scotch_yoke::*;
 pub use slotted_crank_ram::*;

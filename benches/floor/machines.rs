@@ -277,9 +277,9 @@ mechanism! {
     /// through its sliding point R (the foot of the perpendicular from O), so the pinion
     /// turning q moves it r q along the guide. The rack is loaded at L, 120.4 mm along the
     /// guide from R and 25 mm below its pitch line, its cg off the line too. A meshing
-    /// group of one link (the rack, its slide and `mesh`); the pitch radius and pressure
-    /// angle are declared here only (no hand-written twin yet: the machine is planned in
-    /// `tests/floor.rs`, its rack's guide moment checked there).
+    /// group of one link (the rack, its slide and `mesh`). The pitch radius and the
+    /// pressure angle are those of the hand-written `RackPinionHand`
+    /// (`benches/floor/hand_rack_pinion.rs`).
     pub struct RackPinion {
         gravity: (0.0, -9.81),
         ground { O: (0.0, 0.0) },

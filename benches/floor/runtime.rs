@@ -314,6 +314,14 @@ runtime_machine!(
     "Planetary",
     loads: &[("pull", &[40.0, -60.0]), ("brake", &[-2.0])]
 );
+runtime_machine!(
+    rack_pinion,
+    "rack_pinion",
+    Case::rack_pinion(),
+    FLOOR,
+    "RackPinion",
+    loads: &[("push", &[-250.0, 30.0]), ("resist", &[-2.0])]
+);
 
 /// The groups `runtime/<machine>/<op>`.
 pub fn pairs(c: &mut Criterion) {
@@ -328,6 +336,7 @@ pub fn pairs(c: &mut Criterion) {
     block_scotch_yoke::pairs(c);
     slotted_crank_ram::pairs(c);
     planetary::pairs(c);
+    rack_pinion::pairs(c);
 }
 
 /// The entries `runtime_ratio/<machine>/<op>`.
@@ -343,4 +352,5 @@ pub fn ratios(c: &mut Criterion<Interleaved>) {
     block_scotch_yoke::ratios(c);
     slotted_crank_ram::ratios(c);
     planetary::ratios(c);
+    rack_pinion::ratios(c);
 }
