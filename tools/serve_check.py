@@ -156,10 +156,15 @@ class Check:
     def drag(self, page):
         page.click("#home")
         page.wait_for_timeout(300)
+        # The handle is drawn again once the previous check's file is back (on a loaded
+        # machine after the fixed pause): wait for it, then take its box.
+        handle = page.locator('#handles circle[data-point="A"]')
+        handle.wait_for(state="visible", timeout=5000)
         v0 = self.version(page)
         v = self.api("/api/model")["view"]  # the view the drag is made in
         before = open(self.file).read()
-        h = page.locator('#handles circle[data-point="A"]').bounding_box()
+        h = handle.bounding_box()
+        assert h, "no box for the handle of A"
         cx, cy = h["x"] + h["width"] / 2, h["y"] + h["height"] / 2
         page.mouse.move(cx, cy)
         page.mouse.down()
@@ -173,7 +178,10 @@ class Check:
         assert new, after
         assert after == before[:old.start()] + new.group(0) + before[old.end():], "more than A's numbers changed"
         # Where the pointer was released, in the drawing's coordinates.
-        svg = page.locator("#drawing svg").bounding_box()
+        drawing = page.locator("#drawing svg")
+        drawing.wait_for(state="visible", timeout=5000)  # redrawn after the new version
+        svg = drawing.bounding_box()
+        assert svg, "no box for the drawing"
         px, py = cx + 30 - svg["x"], cy - 20 - svg["y"]
         want = ((px - v["pad"]) / v["k"] + v["x_min"], v["y_max"] - (py - v["pad"]) / v["k"])
         got = (float(new.group(1)), float(new.group(2)))
