@@ -328,6 +328,26 @@ fn check_train<M: OneDof>(
 
 type V = mech::Vector2<f64>;
 
+/// Gears on fixed axes have constant velocity coefficients: I* is one number, worked out
+/// when the struct (or the run-time mechanism) is built, and dI*/dq is exactly 0. The
+/// number is the 50-digit tables' I* at every one of their configurations (each worked
+/// out there from that configuration's rates), and the direct problem with it gives the
+/// tables' q̈ (`check_train`).
+#[test]
+fn a_gear_train_s_reduced_inertia_is_one_number() {
+    let m = GearTrain::new();
+    let rt = runtime("GearTrain");
+    for c in reference()["gear_train"].as_array().unwrap() {
+        let (q, want) = (num(&c["q"]), num(&c["I_star"]));
+        for r in [m.reduced(q).unwrap(), rt.reduced(q).unwrap()] {
+            assert_eq!(r.inertia_derivative, 0.0, "dI*/dq at q = {q}");
+            close(&format!("I* at q = {q}"), r.inertia, want, 2e-14 * want);
+        }
+    }
+    // Not a number at all is still refused.
+    assert!(m.reduced(f64::NAN).is_err() && rt.reduced(f64::NAN).is_err());
+}
+
 #[test]
 fn compound_gear_train_matches_newton_euler() {
     let m = GearTrain::new();

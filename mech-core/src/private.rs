@@ -34,6 +34,7 @@ pub mod friction {
 pub mod gears {
     pub use crate::elements::gears::{
         mesh_reactions, solve_mesh, solve_train, train_reactions, MeshGeom, MeshGroup, TrainGroup,
+        Willis,
     };
 }
 pub mod group {
@@ -116,8 +117,8 @@ pub mod spatial {
     pub use crate::spatial::model::inertia_tensor;
     pub use crate::spatial::results::{LinkPose, PointMotion, PointPose};
     pub use crate::spatial::{
-        Body, ForcesOut, Joint, JointKind, LinkMotion, Load, LoadKind, Reaction, Solver, SpatialForces,
-        SpatialLoads, SpatialMechanism, SpatialModel, SpatialMotion,
+        Body, ForcesOut, Joint, JointKind, LinkMotion, Load, LoadKind, Reaction, Solver,
+        SpatialForces, SpatialLoads, SpatialMechanism, SpatialModel, SpatialMotion,
     };
     pub use nalgebra::{UnitQuaternion, Vector3};
 }

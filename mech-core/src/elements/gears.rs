@@ -431,17 +431,37 @@ impl TrainGroup {
         self.bodies[..self.n].iter().position(|&b| b == l)
     }
 
-    /// Willis' relations as A x = rhs for the links' angle (`level` 0), rate (1) or
-    /// acceleration (2), with the solved links' values from `s` (`N` = `self.n`).
+    /// Willis' matrix A: row r is mesh r's relation r_a x_a + σ r_b x_b − (r_a + σ r_b) x_c
+    /// = 0 in the group's links' columns; it depends on the pitch radii alone (`N` =
+    /// `self.n`).
     #[inline(always)]
-    fn willis<const N: usize>(
+    fn willis_matrix<const N: usize>(
+        &self,
+        meshes: &[MeshGeom],
+        joints: &[JointGeom],
+    ) -> nalgebra::SMatrix<f64, N, N> {
+        let mut a = nalgebra::SMatrix::<f64, N, N>::zeros();
+        for (r, &(j, mi)) in self.meshes[..N].iter().enumerate() {
+            for (l, k) in willis_terms(&joints[j], &meshes[mi]) {
+                if let Some(c) = self.col(l) {
+                    a[(r, c)] += k;
+                }
+            }
+        }
+        a
+    }
+
+    /// The right-hand side of Willis' relations A x = rhs for the links' angle (`level`
+    /// 0), rate (1) or acceleration (2): minus the terms of the solved links, their values
+    /// from `s` (`N` = `self.n`).
+    #[inline(always)]
+    fn willis_rhs<const N: usize>(
         &self,
         meshes: &[MeshGeom],
         joints: &[JointGeom],
         s: &[LinkState],
         level: usize,
-    ) -> (nalgebra::SMatrix<f64, N, N>, nalgebra::SVector<f64, N>) {
-        let mut a = nalgebra::SMatrix::<f64, N, N>::zeros();
+    ) -> nalgebra::SVector<f64, N> {
         let mut rhs = nalgebra::SVector::<f64, N>::zeros();
         let value = |l: usize| -> f64 {
             if l == 0 {
@@ -454,26 +474,90 @@ impl TrainGroup {
             }
         };
         for (r, &(j, mi)) in self.meshes[..N].iter().enumerate() {
-            let (g, m) = (&joints[j], &meshes[mi]);
-            // r_a x_a + σ r_b x_b − (r_a + σ r_b) x_c = 0.
-            for (l, k) in [
-                (g.a, m.ra),
-                (g.b, m.sign * m.rb),
-                (m.carrier, -(m.ra + m.sign * m.rb)),
-            ] {
-                match self.col(l) {
-                    Some(c) => a[(r, c)] += k,
-                    None => rhs[r] -= k * value(l),
+            for (l, k) in willis_terms(&joints[j], &meshes[mi]) {
+                if self.col(l).is_none() {
+                    rhs[r] -= k * value(l);
                 }
             }
         }
-        (a, rhs)
+        rhs
+    }
+}
+
+/// The three terms of a mesh's Willis relation r_a x_a + σ r_b x_b − (r_a + σ r_b) x_c = 0:
+/// (link, coefficient) for a, b and the carrier c.
+#[inline(always)]
+fn willis_terms(g: &JointGeom, m: &MeshGeom) -> [(usize, f64); 3] {
+    [
+        (g.a, m.ra),
+        (g.b, m.sign * m.rb),
+        (m.carrier, -(m.ra + m.sign * m.rb)),
+    ]
+}
+
+/// Willis' relations of a gear-train group worked out once ([`TrainGroup`]): their
+/// matrix A depends on the pitch radii alone, so its inverse and its condition estimate
+/// are constants of the drawing, kept beside the meshes (the generated struct holds one
+/// per gear-train group, built with the struct). Each solve is then x = A⁻¹ rhs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Willis {
+    /// A⁻¹, its first n rows and columns.
+    inverse: [[f64; TRAIN_MAX]; TRAIN_MAX],
+    /// The pivot ratio of A's LU factors ([`crate::kernel::linalg::Lu::condition`]).
+    condition: f64,
+}
+
+impl Willis {
+    /// The inverse of the group's Willis matrix and its condition estimate, from the
+    /// meshes' pitch radii.
+    pub fn new(grp: &TrainGroup, meshes: &[MeshGeom], joints: &[JointGeom]) -> Self {
+        match grp.n {
+            1 => Self::sized::<1>(grp, meshes, joints),
+            2 => Self::sized::<2>(grp, meshes, joints),
+            _ => Self::sized::<TRAIN_MAX>(grp, meshes, joints),
+        }
+    }
+
+    /// [`Willis::new`] for a group of `N` = `grp.n` links: A⁻¹ column by column from its
+    /// LU factors.
+    fn sized<const N: usize>(grp: &TrainGroup, meshes: &[MeshGeom], joints: &[JointGeom]) -> Self {
+        let lu = crate::kernel::linalg::Lu::new(grp.willis_matrix::<N>(meshes, joints));
+        let mut inverse = [[0.0; TRAIN_MAX]; TRAIN_MAX];
+        for c in 0..N {
+            let x = lu.solve(&nalgebra::SVector::<f64, N>::from_fn(|r, _| {
+                if r == c {
+                    1.0
+                } else {
+                    0.0
+                }
+            }));
+            for r in 0..N {
+                inverse[r][c] = x[r];
+            }
+        }
+        Willis {
+            inverse,
+            condition: lu.condition(),
+        }
+    }
+
+    /// x = A⁻¹ rhs.
+    #[inline(always)]
+    fn apply<const N: usize>(&self, rhs: &nalgebra::SVector<f64, N>) -> nalgebra::SVector<f64, N> {
+        nalgebra::SVector::<f64, N>::from_fn(|r, _| {
+            let mut x = 0.0;
+            for c in 0..N {
+                x += self.inverse[r][c] * rhs[c];
+            }
+            x
+        })
     }
 }
 
 /// Solve a gear-train group up to `upto` ([`TrainGroup`]): the angles from Willis'
 /// relations, the links placed about their centres in `order`, then the rates and
-/// accelerations from the same matrix. `Singular` when the relations do not fix the angles.
+/// accelerations, each x = A⁻¹ rhs with the inverse worked out once (`willis`, of this
+/// group and these meshes). `Singular` when the relations do not fix the angles.
 ///
 /// The systems are exactly n × n (one instance per size, chosen by `grp.n`: a constant in
 /// the generated code, so the choice folds away).
@@ -481,15 +565,16 @@ impl TrainGroup {
 #[cfg_attr(not(debug_assertions), inline(always))]
 pub fn solve_train(
     grp: &TrainGroup,
+    willis: &Willis,
     meshes: &[MeshGeom],
     joints: &[JointGeom],
     s: &mut [LinkState],
     upto: Level,
 ) -> Result<(), MechError> {
     match grp.n {
-        1 => solve_train_sized::<1>(grp, meshes, joints, s, upto),
-        2 => solve_train_sized::<2>(grp, meshes, joints, s, upto),
-        _ => solve_train_sized::<TRAIN_MAX>(grp, meshes, joints, s, upto),
+        1 => solve_train_sized::<1>(grp, willis, meshes, joints, s, upto),
+        2 => solve_train_sized::<2>(grp, willis, meshes, joints, s, upto),
+        _ => solve_train_sized::<TRAIN_MAX>(grp, willis, meshes, joints, s, upto),
     }
 }
 
@@ -498,18 +583,17 @@ pub fn solve_train(
 #[cfg_attr(not(debug_assertions), inline(always))]
 fn solve_train_sized<const N: usize>(
     grp: &TrainGroup,
+    willis: &Willis,
     meshes: &[MeshGeom],
     joints: &[JointGeom],
     s: &mut [LinkState],
     upto: Level,
 ) -> Result<(), MechError> {
-    let (a, rhs) = grp.willis::<N>(meshes, joints, s, 0);
-    let lu = crate::kernel::linalg::Lu::new(a);
-    let cond = lu.condition();
+    let cond = willis.condition;
     if !(cond < crate::kernel::linalg::SINGULAR_CONDITION) {
         return Err(MechError::Singular { condition: cond });
     }
-    let phi = lu.solve(&rhs);
+    let phi = willis.apply(&grp.willis_rhs::<N>(meshes, joints, s, 0));
     let centre = |s: &[LinkState], k: usize| {
         let g = &joints[grp.pins[k]];
         let body = grp.bodies[k];
@@ -531,7 +615,7 @@ fn solve_train_sized<const N: usize>(
     if upto == Level::Position {
         return Ok(());
     }
-    let w = lu.solve(&grp.willis::<N>(meshes, joints, s, 1).1);
+    let w = willis.apply(&grp.willis_rhs::<N>(meshes, joints, s, 1));
     for &k in &grp.order[..grp.n] {
         let (other, o, _) = centre(s, k);
         let vo = if other == 0 {
@@ -542,7 +626,7 @@ fn solve_train_sized<const N: usize>(
         s[grp.bodies[k]].set_velocity_through(o, vo, w[k]);
     }
     if upto == Level::Acceleration {
-        let al = lu.solve(&grp.willis::<N>(meshes, joints, s, 2).1);
+        let al = willis.apply(&grp.willis_rhs::<N>(meshes, joints, s, 2));
         for &k in &grp.order[..grp.n] {
             let (other, o, _) = centre(s, k);
             let ao = if other == 0 {

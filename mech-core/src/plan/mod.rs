@@ -3,4 +3,5 @@
 
 pub mod assur;
 pub mod geometry;
+pub mod ratios;
 pub mod rotation;

@@ -779,7 +779,8 @@ impl Mechanism {
                 crate::elements::gears::solve_mesh(m, &self.inst.meshes, joints, s, upto)?
             }
             Kernel::Train(t) => {
-                crate::elements::gears::solve_train(t, &self.inst.meshes, joints, s, upto)?
+                let willis = self.willis_of(t);
+                crate::elements::gears::solve_train(t, &willis, &self.inst.meshes, joints, s, upto)?
             }
             Kernel::Rolling(r) => crate::elements::rolling::solve_rolling(
                 r, joints, s, drive, sign, scale, upto, true,
@@ -834,6 +835,7 @@ impl Mechanism {
             )?,
             Kernel::Train(t) => crate::elements::gears::solve_train(
                 t,
+                &self.willis_of(t),
                 &self.inst.meshes,
                 joints,
                 v,

@@ -330,6 +330,19 @@ impl Mechanism {
         }
         crate::error::check_finite("q, qd, qdd", &[q])?;
         let drive: Drive = (&[q], &[1.0], &[0.0]);
+        if let (Some(r), Level::Acceleration) = (self.reduced_constant, upto) {
+            // Constant velocity coefficients: I* was worked out at loading, M* needs the
+            // rates alone, I* alone nothing.
+            let mut z = match loads {
+                None => ZhukovskiSums::new(),
+                Some(_) => self.with_states(|s| {
+                    self.solve_at::<VELOCITY>(drive, s, &mut [])?;
+                    self.sums(s, loads, qd, false)
+                })?,
+            };
+            z.reduced = r;
+            return Ok(z);
+        }
         self.with_states(|s| {
             match upto {
                 Level::Acceleration => self.solve_at::<ACCELERATION>(drive, s, &mut [])?,

@@ -71,6 +71,12 @@ pub struct Mechanism {
     pub(super) redundant: bool,
     /// What the solvers read per call, resolved from the plan and the model once at loading.
     pub(super) program: Program,
+    /// Each gear-train group's Willis inverse, by the group's first link.
+    pub(super) willis: Vec<(usize, crate::elements::gears::Willis)>,
+    /// Zhukovski's I* when every velocity coefficient is a constant
+    /// ([`crate::plan::ratios`]: gears on fixed axes, racks on fixed guides), worked out
+    /// at loading; `None` for the others.
+    pub(super) reduced_constant: Option<Reduced>,
 }
 
 /// How a point is published, as the generated code does (`emit/results.rs`, `owners`).
@@ -259,7 +265,18 @@ impl Mechanism {
             });
         let redundant = model.allow_redundant && plan.iter().any(|g| g.redundant());
         let program = Program::new(&model, &plan, &inst);
-        Ok(Mechanism {
+        let willis = plan
+            .iter()
+            .filter_map(|g| match &g.kernel {
+                Kernel::Train(t) => Some((
+                    t.bodies[0],
+                    crate::elements::gears::Willis::new(t, &inst.meshes, &inst.joints),
+                )),
+                _ => None,
+            })
+            .collect();
+        let constant = crate::plan::ratios::constant_ratios(&model, &plan);
+        let mut m = Mechanism {
             model: Arc::new(model),
             inst,
             plan,
@@ -271,7 +288,32 @@ impl Mechanism {
             newton,
             redundant,
             program,
-        })
+            willis,
+            reduced_constant: None,
+        };
+        if constant && m.dof() == 1 {
+            // I* at any q (the drawing's input), its derivative exactly 0.
+            let r = m
+                .zhukovski_sums(0.0, 0.0, None, Level::Acceleration)?
+                .reduced;
+            m.reduced_constant = Some(Reduced {
+                inertia: r.inertia,
+                inertia_derivative: 0.0,
+            });
+        }
+        Ok(m)
+    }
+
+    /// The Willis inverse of the gear-train group `t` (worked out at loading).
+    #[inline]
+    pub(super) fn willis_of(
+        &self,
+        t: &crate::elements::gears::TrainGroup,
+    ) -> crate::elements::gears::Willis {
+        match self.willis.iter().find(|(b, _)| *b == t.bodies[0]) {
+            Some(&(_, w)) => w,
+            None => crate::elements::gears::Willis::new(t, &self.inst.meshes, &self.inst.joints),
+        }
     }
 
     /// Change one number of the drawing by name, re-validated by every check of the

@@ -28,7 +28,7 @@ mod traits;
 pub use outline::outline;
 
 use mech_core::model::{Description, JointKind, Model};
-use mech_core::plan::assur::Group;
+use mech_core::plan::assur::{Group, Kernel};
 use mech_core::solvers::params::LinkTerms;
 use names::Names;
 use proc_macro2::{Span, TokenStream};
@@ -143,6 +143,25 @@ impl<'a> Ctx<'a> {
     /// The number of gear pairs and racks (the struct keeps their tooth data).
     pub fn n_meshes(&self) -> usize {
         self.model.joints.iter().filter(|j| j.kind.mesh()).count()
+    }
+
+    /// The gear-train groups (their indices in the plan), in solve order: the struct
+    /// keeps each one's Willis inverse (`willis[t]` for the t-th).
+    pub fn trains(&self) -> Vec<usize> {
+        (0..self.n_groups)
+            .filter(|&gi| matches!(self.plan[gi].kernel, Kernel::Train(_)))
+            .collect()
+    }
+
+    /// Every velocity coefficient is a constant (gears on fixed axes, racks on fixed
+    /// guides: `mech_core::plan::ratios`): the struct keeps I* (`reduced_constant`).
+    pub fn constant_ratios(&self) -> bool {
+        self.one_dof() && mech_core::plan::ratios::constant_ratios(self.model, self.plan)
+    }
+
+    /// The slot of gear-train group `gi` in the struct's `willis`.
+    pub fn train_slot(&self, gi: usize) -> usize {
+        self.trains().iter().position(|&t| t == gi).unwrap_or(0)
     }
 
     /// The moving links declared by their shape and material (`shape:`), in order.

@@ -203,8 +203,8 @@ fn solve_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             quote!(#p::gears::solve_mesh(&Self::#kn, &self.meshes, &joints, &mut s, upto)?; let #sys = ();)
         }
         Kernel::Train(_) => {
-            let kn = mesh_const(gi);
-            quote!(#p::gears::solve_train(&Self::#kn, &self.meshes, &joints, &mut s, upto)?; let #sys = ();)
+            let (kn, t) = (mesh_const(gi), cx.train_slot(gi));
+            quote!(#p::gears::solve_train(&Self::#kn, &self.willis[#t], &self.meshes, &joints, &mut s, upto)?; let #sys = ();)
         }
         Kernel::Rolling(_) => {
             let kn = mesh_const(gi);
@@ -262,8 +262,8 @@ fn velocity_call(cx: &Ctx, gi: usize, g: &Group) -> TokenStream {
             quote!(#p::gears::solve_mesh(&Self::#kn, &self.meshes, &joints, &mut v, #level)?;)
         }
         Kernel::Train(_) => {
-            let kn = mesh_const(gi);
-            quote!(#p::gears::solve_train(&Self::#kn, &self.meshes, &joints, &mut v, #level)?;)
+            let (kn, t) = (mesh_const(gi), cx.train_slot(gi));
+            quote!(#p::gears::solve_train(&Self::#kn, &self.willis[#t], &self.meshes, &joints, &mut v, #level)?;)
         }
         Kernel::Rolling(_) => {
             let kn = mesh_const(gi);

@@ -194,17 +194,51 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
     } else {
         (quote!(), quote!())
     };
+    let solved = quote! {
+        let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
+        let mut z = #p::zhukovski::ZhukovskiSums::new();
+        #inertia
+        #p::magnitudes::finite_few("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
+        Ok(z.reduced)
+    };
+    // Constant velocity coefficients (`mech_core::plan::ratios`): I* is kept in the
+    // struct, and the direct problem needs the rates alone (for M*).
+    let (reduced, solved_fn, acceleration_solve) = if cx.constant_ratios() {
+        (
+            quote! {
+                #p::error::check_finite("q", &[q])?;
+                Ok(self.reduced_constant)
+            },
+            quote! {
+                /// I* and dI*/dq solved at `q` (`from_params` keeps I*: it is a constant).
+                fn __reduced_solved(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
+                    #solved
+                }
+            },
+            quote! {
+                let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity, false)?;
+                let mut z = #p::zhukovski::ZhukovskiSums::new();
+                z.reduced = self.reduced_constant;
+            },
+        )
+    } else {
+        (
+            quote! { #p::error::check_finite("q", &[q])?; #solved },
+            quote!(),
+            quote! {
+                let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
+                let mut z = #p::zhukovski::ZhukovskiSums::new();
+                #inertia
+            },
+        )
+    };
     quote! {
         /// Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad), in closed
         /// form from the velocity coefficients and their derivatives.
         pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
-            #p::error::check_finite("q", &[q])?;
-            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
-            let mut z = #p::zhukovski::ZhukovskiSums::new();
-            #inertia
-            #p::magnitudes::finite_few("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
-            Ok(z.reduced)
+            #reduced
         }
+        #solved_fn
         /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads, gravity and
         /// springs per unit input rate, M* = Σ F·g + Σ M·g − Σ T x' (a damper's part,
         /// −c x'² q̇, depends on q̇: `acceleration` adds it, M*(q) is at q̇ = 0).
@@ -223,9 +257,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         #(#[doc = #inputs])*
         pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
             #p::error::check_finite("q, qd, driver and the loads", &[q, qd, driver, #values])?;
-            let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
-            let mut z = #p::zhukovski::ZhukovskiSums::new();
-            #inertia
+            #acceleration_solve
             #moment
             #elements_moving
             #p::zhukovski::acceleration(z.reduced, z.moment, qd, driver)
