@@ -332,20 +332,10 @@ fn constructors(cx: &Ctx) -> TokenStream {
     };
     // A machine of constant velocity coefficients: I* once, at any q (the drawing's), its
     // derivative exactly 0.
-    let (reduced_constant, finish) = if cx.constant_ratios() {
-        (
-            quote!(reduced_constant: #p::zhukovski::Reduced::default(),),
-            quote! {
-                let mut m = m;
-                m.reduced_constant = #p::zhukovski::Reduced {
-                    inertia: m.__reduced_solved(0.0)?.inertia,
-                    inertia_derivative: 0.0,
-                };
-                Ok(m)
-            },
-        )
+    let reduced_constant = if cx.constant_ratios() {
+        quote!(reduced_constant: #p::zhukovski::Reduced::default(),)
     } else {
-        (quote!(), quote!(Ok(m)))
+        quote!()
     };
     let cams_accessor = if cx.n_cams() > 0 {
         quote! {
@@ -361,6 +351,36 @@ fn constructors(cx: &Ctx) -> TokenStream {
     };
     let branches = (0..n_groups).map(|g| quote!(branches[#g]));
     let model = model_expr(cx);
+    let value = quote! {
+        #main {
+                joints: [#(#joints,)*],
+                links: [#(#links,)*],
+                drawing: [#(#drawing,)*],
+                points: [#(#points,)*],
+                loads: [#(#loads,)*],
+                #elements
+                #meshes
+                #cams
+                #willis
+                #reduced_constant
+                branches: [#(#branches,)*],
+                scale: inst.scale,
+                gravity: inst.gravity,
+                params: p,
+        }
+    };
+    let finish = if cx.constant_ratios() {
+        quote! {
+            let mut m = #value;
+            m.reduced_constant = #p::zhukovski::Reduced {
+                inertia: m.__reduced_solved(0.0)?.inertia,
+                inertia_derivative: 0.0,
+            };
+            Ok(m)
+        }
+    } else {
+        quote!(Ok(#value))
+    };
     quote! {
         impl #main {
             /// The mechanism as drawn.
@@ -381,22 +401,6 @@ fn constructors(cx: &Ctx) -> TokenStream {
                 let model = Self::__model(&p);
                 let inst = #p::instance::instance(&model)?;
                 let branches = inst.branches(&[#(#solvers),*]);
-                let m = #main {
-                    joints: [#(#joints,)*],
-                    links: [#(#links,)*],
-                    drawing: [#(#drawing,)*],
-                    points: [#(#points,)*],
-                    loads: [#(#loads,)*],
-                    #elements
-                    #meshes
-                    #cams
-                    #willis
-                    #reduced_constant
-                    branches: [#(#branches,)*],
-                    scale: inst.scale,
-                    gravity: inst.gravity,
-                    params: p,
-                };
                 #finish
             }
 
