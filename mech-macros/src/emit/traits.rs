@@ -232,9 +232,21 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
             },
         )
     };
+    let reduced_doc: &[&str] = if cx.constant_ratios() {
+        &[
+            " Zhukovski's reduced inertia I* (kg·m²) and dI*/dq (kg·m²/rad): every velocity",
+            " coefficient of this machine is a constant (gears on fixed axes, racks on fixed",
+            " guides), so I* is a constant of the drawing, worked out by `from_params`, and",
+            " dI*/dq = 0.",
+        ]
+    } else {
+        &[
+            " Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad), in closed",
+            " form from the velocity coefficients and their derivatives.",
+        ]
+    };
     quote! {
-        /// Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad), in closed
-        /// form from the velocity coefficients and their derivatives.
+        #(#[doc = #reduced_doc])*
         pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
             #reduced
         }
