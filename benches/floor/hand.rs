@@ -103,6 +103,19 @@ fn cross(a: V2, b: V2) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// (cos, sin) of an angle as the rotation (x, y).
+#[inline(always)]
+fn turn(angle: f64) -> V2 {
+    let (sn, cs) = angle.sin_cos();
+    V2::new(cs, sn)
+}
+
+/// v turned by the rotation `r` = (cos, sin).
+#[inline(always)]
+fn rotate(r: V2, v: V2) -> V2 {
+    V2::new(r.x * v.x - r.y * v.y, r.y * v.x + r.x * v.y)
+}
+
 /// A difference of two angles in (−π, π] (of two atan2) brought into (−π, π]: one
 /// correction by 2π at most, no division.
 #[inline(always)]

@@ -128,19 +128,6 @@ pub struct PlanetaryHandForces {
     pub pr_flank: f64,
 }
 
-/// (cos, sin) of an angle as the rotation (x, y).
-#[inline(always)]
-fn turn(angle: f64) -> V2 {
-    let (sn, cs) = angle.sin_cos();
-    V2::new(cs, sn)
-}
-
-/// v turned by the rotation `r` = (cos, sin).
-#[inline(always)]
-fn rotate(r: V2, v: V2) -> V2 {
-    V2::new(r.x * v.x - r.y * v.y, r.y * v.x + r.x * v.y)
-}
-
 impl PlanetaryHand {
     /// Precompute the drawing's constants from `p` and the meshes' radii and pressure
     /// angles (`PLANETARY_*`).

@@ -105,19 +105,6 @@ pub struct RackPinionHandForces {
     pub flank: f64,
 }
 
-/// (cos, sin) of an angle as the rotation (x, y).
-#[inline(always)]
-fn turn(angle: f64) -> V2 {
-    let (sn, cs) = angle.sin_cos();
-    V2::new(cs, sn)
-}
-
-/// v turned by the rotation `r` = (cos, sin).
-#[inline(always)]
-fn rotate(r: V2, v: V2) -> V2 {
-    V2::new(r.x * v.x - r.y * v.y, r.y * v.x + r.x * v.y)
-}
-
 impl RackPinionHand {
     /// Precompute the drawing's constants from `p`, the pitch radius and the pressure angle
     /// (`RACK_PINION_RADIUS`, `RACK_PRESSURE_ANGLE`).
