@@ -348,6 +348,25 @@ fn a_gear_train_s_reduced_inertia_is_one_number() {
     assert!(m.reduced(f64::NAN).is_err() && rt.reduced(f64::NAN).is_err());
 }
 
+/// The kept I* follows the drawing's numbers: a flywheel of 0.81 kg·m² keyed to the output
+/// gear g4, which turns at (20/60)(25/75) = 1/9 of the pinion, adds 0.81/81 = 0.01 kg·m²
+/// to I*, through `from_params` (generated) and `set_param` (run-time) alike.
+#[test]
+fn a_gear_train_s_kept_inertia_follows_its_flywheel() {
+    let q = 0.3;
+    let before = GearTrain::new().reduced(q).unwrap().inertia;
+    let mut p = GearTrainParams::default();
+    p.links.g4.flywheel = 0.81;
+    let generated = GearTrain::from_params(p).unwrap().reduced(q).unwrap();
+    let mut rt = runtime("GearTrain");
+    rt.set_param("links.g4.flywheel", &[0.81]).unwrap();
+    let run_time = rt.reduced(q).unwrap();
+    for r in [generated, run_time] {
+        close("I* with the flywheel", r.inertia - before, 0.01, 1e-15);
+        assert_eq!(r.inertia_derivative, 0.0);
+    }
+}
+
 #[test]
 fn compound_gear_train_matches_newton_euler() {
     let m = GearTrain::new();
