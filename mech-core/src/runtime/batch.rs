@@ -127,10 +127,11 @@ impl Mechanism {
             return each_lanes(
                 rows.0,
                 rows.1,
+                &(),
                 #[inline(always)]
-                |i, r: &mut Block<f64>| self.points_four::<Base>(q, i, r),
+                |_: &(), i, r: &mut Block<f64>| self.points_four::<Base>(q, i, r),
                 #[inline(always)]
-                |i, r: &mut Block<f64>| self.points_four::<Wide>(q, i, r),
+                |_: &(), i, r: &mut Block<f64>| self.points_four::<Wide>(q, i, r),
                 |i, r: &mut Block<f64>| self.points_into(&q[i..i + 1], &mut Vec::new(), r.row(i)),
             );
         }
@@ -206,10 +207,11 @@ impl Mechanism {
         each_lanes(
             n,
             rows,
+            &(),
             #[inline(always)]
-            |i, r: &mut (Block<f64>, Block<f64>)| self.reduced_four::<Base>(q, i, r),
+            |_: &(), i, r: &mut (Block<f64>, Block<f64>)| self.reduced_four::<Base>(q, i, r),
             #[inline(always)]
-            |i, r: &mut (Block<f64>, Block<f64>)| self.reduced_four::<Wide>(q, i, r),
+            |_: &(), i, r: &mut (Block<f64>, Block<f64>)| self.reduced_four::<Wide>(q, i, r),
             one,
         )
     }
@@ -244,10 +246,11 @@ impl Mechanism {
         each_lanes(
             n,
             rows,
+            &(),
             #[inline(always)]
-            |i, r: &mut Block<f64>| self.acceleration_four::<Base>(four, i, r),
+            |_: &(), i, r: &mut Block<f64>| self.acceleration_four::<Base>(four, i, r),
             #[inline(always)]
-            |i, r: &mut Block<f64>| self.acceleration_four::<Wide>(four, i, r),
+            |_: &(), i, r: &mut Block<f64>| self.acceleration_four::<Wide>(four, i, r),
             one,
         )
     }
@@ -387,7 +390,7 @@ impl Mechanism {
         }
         // A NaN or infinite coordinate makes the sum non-finite.
         mask = or(mask, sum.not_finite());
-        for (lane, &masked) in mask.iter().enumerate() {
+        for (lane, masked) in mask.lanes().into_iter().enumerate() {
             if !masked {
                 let row = r.row(i + lane);
                 for (k, p) in xy[..np].iter().enumerate() {
@@ -412,7 +415,7 @@ impl Mechanism {
         let z = self.sums_lanes(&s, None);
         let bad = or(z.inertia.not_finite(), z.inertia_derivative.not_finite());
         let mask = or(mask, bad);
-        for (lane, &masked) in mask.iter().enumerate() {
+        for (lane, masked) in mask.lanes().into_iter().enumerate() {
             if !masked {
                 *a.at(i + lane) = z.inertia.0[lane];
                 *b.at(i + lane) = z.inertia_derivative.0[lane];
@@ -435,7 +438,7 @@ impl Mechanism {
         let z = self.sums_lanes(&s, Some(loads));
         let (acc, failed) = acceleration_lanes(&z, four(qd, i), four(driver, i));
         let mask = or(mask, failed);
-        for (lane, &masked) in mask.iter().enumerate() {
+        for (lane, masked) in mask.lanes().into_iter().enumerate() {
             if !masked {
                 *r.at(i + lane) = acc.0[lane];
             }

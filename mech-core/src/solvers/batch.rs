@@ -577,7 +577,7 @@ pub fn put_kinematics_lanes<B: Backend>(
         if all {
             r.set4(i, c, v.0);
         } else {
-            for (k, &masked) in mask.iter().enumerate() {
+            for (k, masked) in mask.lanes().into_iter().enumerate() {
                 if !masked {
                     r.set(i + k, c, v.0[k]);
                 }
@@ -696,34 +696,46 @@ pub fn each_with<R: Rows, S>(
 /// the one-configuration solver, whose answer (a value or an error) is then the batch's.
 /// A chunk runs `wide` where the processor has AVX2 and FMA
 /// ([`crate::kernel::lanes::with_simd`]), `four` otherwise.
-pub fn each_lanes<R: Rows>(
+///
+/// `four` and `wide` read the mechanism from `drawing`'s copy, made once per chunk (a
+/// generated struct is plain arrays of numbers: the copy is a `memcpy`, no allocation).
+/// The copy is the chunk's own, so the compiler knows the rows written between two
+/// blocks of four cannot change it: what the kernels compute from the drawing alone (a
+/// dyad's squared lengths, the inverse of a link's squared pin distance) is worked out
+/// once per chunk, not once per block. Callgrind, instructions per configuration (1 024
+/// per call, AVX2): the four-bar `points_many` 81 → 72, `reduced_many` 128 → 114,
+/// `acceleration_many` 160 → 138, the slider-crank `acceleration_many` 138 → 126.
+pub fn each_lanes<R: Rows, C: Clone + Sync>(
     n: usize,
     rows: R,
-    four: impl Fn(usize, &mut R) -> Mask + Sync,
-    wide: impl Fn(usize, &mut R) -> Mask + Sync,
+    drawing: &C,
+    four: impl Fn(&C, usize, &mut R) -> Mask + Sync,
+    wide: impl Fn(&C, usize, &mut R) -> Mask + Sync,
     one: impl Fn(usize, &mut R) -> Result<(), MechError> + Sync,
 ) -> BatchErrors {
     chunks(n, rows, &|range, rows: &mut R, errors: &mut BatchErrors| {
         with_simd(
             (rows, errors),
             #[inline(always)]
-            |(rows, errors)| lanes_chunk(range.clone(), rows, errors, &four, &one),
+            |(rows, errors)| lanes_chunk(range.clone(), rows, errors, drawing, &four, &one),
             #[inline(always)]
-            |(rows, errors)| lanes_chunk(range.clone(), rows, errors, &wide, &one),
+            |(rows, errors)| lanes_chunk(range.clone(), rows, errors, drawing, &wide, &one),
         )
     })
 }
 
-/// The configurations `range` four by four through `four`, the masked lanes and the tail
-/// through `one`.
+/// The configurations `range` four by four through `four` on a copy of `drawing`, the
+/// masked lanes and the tail through `one`.
 #[inline(always)]
-fn lanes_chunk<R: Rows>(
+fn lanes_chunk<R: Rows, C: Clone>(
     range: std::ops::Range<usize>,
     rows: &mut R,
     errors: &mut BatchErrors,
-    four: &impl Fn(usize, &mut R) -> Mask,
+    drawing: &C,
+    four: &impl Fn(&C, usize, &mut R) -> Mask,
     one: &impl Fn(usize, &mut R) -> Result<(), MechError>,
 ) {
+    let drawing = drawing.clone();
     let mut scalar = |i: usize, rows: &mut R| {
         if let Err(e) = one(i, rows) {
             rows.fail(i);
@@ -732,9 +744,9 @@ fn lanes_chunk<R: Rows>(
     };
     let mut i = range.start;
     while i + LANES <= range.end {
-        let mask = four(i, rows);
-        for (k, &masked) in mask.iter().enumerate() {
-            if masked {
+        let mask = four(&drawing, i, rows);
+        if any(mask) {
+            for k in mask.set() {
                 scalar(i + k, rows);
             }
         }

@@ -231,16 +231,16 @@ fn one_dof_many_fns(cx: &Ctx) -> TokenStream {
     let (reduced_body, acceleration_body) = if lanes(cx) {
         (
             quote! {
-                #b::each_lanes(q.len(), rows,
-                    #[inline(always)] |i, r: &mut (#b::Block<f64>, #b::Block<f64>)| self.__reduced_four::<#l::Base>(q, i, r),
-                    #[inline(always)] |i, r: &mut (#b::Block<f64>, #b::Block<f64>)| self.__reduced_four::<#l::Wide>(q, i, r),
+                #b::each_lanes(q.len(), rows, self,
+                    #[inline(always)] |copy: &Self, i, r: &mut (#b::Block<f64>, #b::Block<f64>)| copy.__reduced_four::<#l::Base>(q, i, r),
+                    #[inline(always)] |copy: &Self, i, r: &mut (#b::Block<f64>, #b::Block<f64>)| copy.__reduced_four::<#l::Wide>(q, i, r),
                     #red_one)
             },
             quote! {
                 let x = (q, qd, driver);
-                #b::each_lanes(q.len(), rows,
-                    #[inline(always)] |i, r: &mut #b::Block<f64>| self.__acceleration_four::<#l::Base>(x, loads, i, r),
-                    #[inline(always)] |i, r: &mut #b::Block<f64>| self.__acceleration_four::<#l::Wide>(x, loads, i, r),
+                #b::each_lanes(q.len(), rows, &(self.clone(), *loads),
+                    #[inline(always)] |(copy, loads): &(Self, #loads), i, r: &mut #b::Block<f64>| copy.__acceleration_four::<#l::Base>(x, loads, i, r),
+                    #[inline(always)] |(copy, loads): &(Self, #loads), i, r: &mut #b::Block<f64>| copy.__acceleration_four::<#l::Wide>(x, loads, i, r),
                     #acc_one)
             },
         )
@@ -286,9 +286,9 @@ fn points_lanes(cx: &Ctx) -> TokenStream {
     let p = &cx.p;
     let (b, l) = (quote!(#p::batch), quote!(#p::lanes));
     quote! {
-        #b::each_lanes(q.len(), rows,
-            #[inline(always)] |i, r: &mut #b::Block<f64>| self.__points_four::<#l::Base>(q, i, r),
-            #[inline(always)] |i, r: &mut #b::Block<f64>| self.__points_four::<#l::Wide>(q, i, r),
+        #b::each_lanes(q.len(), rows, self,
+            #[inline(always)] |copy: &Self, i, r: &mut #b::Block<f64>| copy.__points_four::<#l::Base>(q, i, r),
+            #[inline(always)] |copy: &Self, i, r: &mut #b::Block<f64>| copy.__points_four::<#l::Wide>(q, i, r),
             |i, r| self.__points(q[i], r.row(i)))
     }
 }
@@ -423,9 +423,9 @@ fn table_fns(cx: &Ctx) -> TokenStream {
         (
             quote! {
                 let x = (q, qd, qdd);
-                #b::each_lanes(q.len(), rows,
-                    #[inline(always)] |i, r: &mut #b::Strided<'_>| self.__kinematics_four::<#l::Base>(x, i, r),
-                    #[inline(always)] |i, r: &mut #b::Strided<'_>| self.__kinematics_four::<#l::Wide>(x, i, r),
+                #b::each_lanes(q.len(), rows, self,
+                    #[inline(always)] |copy: &Self, i, r: &mut #b::Strided<'_>| copy.__kinematics_four::<#l::Base>(x, i, r),
+                    #[inline(always)] |copy: &Self, i, r: &mut #b::Strided<'_>| copy.__kinematics_four::<#l::Wide>(x, i, r),
                     #one)
             },
             kinematics_four_fn(cx),
