@@ -67,7 +67,7 @@ pub fn solve_chain(
         Solver::Rpp { b1, b2, ja, jp, jq } => {
             crate::kernel::natural::rpp_rates(joints, s, b1, b2, ja, jp, jq, points, upto)
         }
-        Solver::SlottedSlider { body, jq, js } => crate::kernel::dyad::slotted_slider_rates(
+        Solver::SlottedSlider { body, jq, js } => crate::kernel::slotted::slotted_slider_rates(
             &joints[jq],
             &joints[js],
             s,
@@ -121,7 +121,7 @@ pub fn chain_reactions(
             crate::kernel::natural::rpp_reactions(joints, s, f, b1, b2, ja, jp, jq, out)
         }
         Solver::SlottedSlider { body, jq, js } => {
-            crate::kernel::dyad::slotted_slider_reactions(joints, s, f, body, jq, js, out)
+            crate::kernel::slotted::slotted_slider_reactions(joints, s, f, body, jq, js, out)
         }
         _ => crate::kernel::screw::chain_reactions(chain, joints, s, f, scale, out),
     }

@@ -15,6 +15,7 @@ pub mod linalg;
 pub mod link_state;
 pub mod natural;
 pub mod screw;
+pub mod slotted;
 pub mod triad;
 
 /// The tolerance check of the tests (`within`, `MECH_MEASURE=1`: tests/README.md): the root
