@@ -2,10 +2,10 @@
 //! the Scotch yoke's yoke. One unknown, its slide, with no branch: its position
 //! ([`slotted_slider`]), its rates ([`slotted_slider_rates`]) and its reactions
 //! ([`slotted_slider_reactions`]) in that one coordinate.
+//!
+//! [`Solver::SlottedSlider`]: crate::kernel::dyad::Solver::SlottedSlider
 
 use crate::kernel::constraints::{JointGeom, Level};
-#[cfg(doc)]
-use crate::kernel::dyad::{position, Solver};
 use crate::kernel::kinetostatics::{Reaction, Wrench};
 use crate::kernel::link_state::{cross, dir_of, perp, point_of, zero, LinkState, V2};
 use crate::MechError;
@@ -14,6 +14,8 @@ use crate::MechError;
 /// (G, K, u, w) with G the guide's solved link, K the slot joint's solved link, u the
 /// guide's unit axis and w the slot's, both current. (The guide's axis is in the frame of
 /// the prismatic's first link, G's or the body's: the same rotation.)
+///
+/// [`Solver::SlottedSlider`]: crate::kernel::dyad::Solver::SlottedSlider
 #[inline(always)]
 fn slider_axes(
     gq: &JointGeom,
@@ -45,6 +47,9 @@ fn slider_axes(
 /// κ_F = 2/|u × w| ≥ [`crate::kernel::linalg::SINGULAR_CONDITION`], the test the joint-screw
 /// chain applies to the same matrix. Otherwise it always assembles. Returns 1/(u × w),
 /// which the rates reuse ([`slotted_slider_rates`]).
+///
+/// [`Solver::SlottedSlider`]: crate::kernel::dyad::Solver::SlottedSlider
+/// [`position`]: crate::kernel::dyad::position
 #[inline(always)]
 pub fn slotted_slider(
     gq: &JointGeom,
@@ -116,6 +121,8 @@ fn point_acc(s: &[LinkState], l: usize, p: V2) -> V2 {
 ///
 /// n·u = −(u × w). Every term of a ground G or K folds away (the Scotch yoke:
 /// ṡ = n·v_C/(n·u), s̈ = n·a_C/(n·u)).
+///
+/// [`Solver::SlottedSlider`]: crate::kernel::dyad::Solver::SlottedSlider
 #[inline(always)]
 pub fn slotted_slider_rates(
     gq: &JointGeom,
@@ -187,6 +194,8 @@ pub fn slotted_slider_rates(
 /// R = −F − S n (N); M_J = −M − (B − J) × F − (C − J) × S n (N·m).
 ///
 /// `Singular` as [`slotted_slider`].
+///
+/// [`Solver::SlottedSlider`]: crate::kernel::dyad::Solver::SlottedSlider
 #[inline(always)]
 pub fn slotted_slider_reactions(
     joints: &[JointGeom],
@@ -227,6 +236,8 @@ mod tests {
     //! [`Solver::SlottedSlider`] against the Newton route it replaces: positions by
     //! Newton from the drawing, rates from the group's scaled Jacobian (LU), reactions
     //! from its transpose; and its `Singular` near u ∥ w.
+    //!
+    //! [`Solver::SlottedSlider`]: crate::kernel::dyad::Solver::SlottedSlider
 
     use super::*;
     use crate::front::resolve::model_of;
