@@ -8,6 +8,11 @@
 //! next of 64 crank angles over a full turn, so that the count is the mean over a turn
 //! (a triad's Newton starts from the drawing, and its cost grows with the distance).
 //!
+//! The group `triad_ratio` measures each triad machine's `pose` against the Watt II's as
+//! one ratio, the two alternated in blocks within every sample (`benches/floor/interleaved.rs`,
+//! as the floor's `ratio` group): `triad_ratio/<machine>`, the figure the target (at most
+//! 3×) is read on, free of the drift of a shared core between two criterion functions.
+//!
 //! The group `triad_sweep` times a sweep of the run-time `Mechanism` over the same 64
 //! angles: the rows of `mech sweep` (each triad started from the previous configuration)
 //! against 64 one-configuration calls (each from the drawing).
@@ -27,7 +32,11 @@ mod mechanisms;
 #[path = "../tests/common/triads.rs"]
 mod triads;
 
+#[path = "floor/interleaved.rs"]
+mod interleaved;
+
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use interleaved::Interleaved;
 use mechanisms::Watt2;
 use triads::{Stephenson2, StephensonIII};
 
@@ -99,5 +108,35 @@ fn triad(c: &mut Criterion) {
     g.finish();
 }
 
+/// `pose` at the next of the 64 angles, each call: the closure the pose entries time.
+fn poses<M, R>(m: M, pose: impl Fn(&M, f64) -> R) -> impl FnMut() -> R {
+    let (qs, mut k) = (angles(), 0);
+    move || {
+        k = (k + 1) & 63;
+        pose(black_box(&m), black_box(qs[k]))
+    }
+}
+
+/// `triad_ratio/<machine>`: the triad machine's `pose` over the Watt II's, interleaved.
+fn triad_ratios(c: &mut Criterion<Interleaved>) {
+    let mut g = c.benchmark_group("triad_ratio");
+    g.bench_function("stephenson3", |b| {
+        let mut triad = poses(StephensonIII::new(), |m, q| m.pose(q).unwrap());
+        let mut watt = poses(Watt2::new(), |m, q| m.pose(q).unwrap());
+        b.iter_custom(|n| interleaved::ratio(n, &mut triad, &mut watt))
+    });
+    g.bench_function("stephenson2", |b| {
+        let mut triad = poses(Stephenson2::new(), |m, q| m.pose(q).unwrap());
+        let mut watt = poses(Watt2::new(), |m, q| m.pose(q).unwrap());
+        b.iter_custom(|n| interleaved::ratio(n, &mut triad, &mut watt))
+    });
+    g.finish();
+}
+
 criterion_group!(benches, triad, sweep);
-criterion_main!(benches);
+criterion_group! {
+    name = ratios;
+    config = Criterion::default().with_measurement(Interleaved);
+    targets = triad_ratios
+}
+criterion_main!(benches, ratios);

@@ -443,20 +443,26 @@ SYNTH_CMD = ("`mech synth path FILE --seed S` (200 000 evaluations unless the ro
 
 
 def triad():
-    """A triad machine's pose against the Watt II dyad chain (issue 35: at most 3×), and a
-    run-time sweep with the triads' warm start against one call per configuration."""
+    """A triad machine's pose against the Watt II dyad chain (issue 35: at most 3×), as the
+    ratio of two medians and interleaved (`triad_ratio/<machine>`, the figure to read), and
+    a run-time sweep with the triads' warm start against one call per configuration."""
     sh(["cargo", "bench", "--bench", "triad", "--", "--warm-up-time", "1", "--measurement-time", "3"])
     med = criterion_medians()
     watt = med.get("triad/pose/watt2")
-    rows = ["| machine | `pose` (ns) | / Watt II | run-time sweep, warm (ns per configuration) "
+    rows = ["| machine | `pose` (ns) | / Watt II (medians) | / Watt II (interleaved) "
+            "| run-time sweep, warm (ns per configuration) "
             "| one call each (ns per configuration) | warm / one call |",
-            "|---|---:|---:|---:|---:|---:|"]
+            "|---|---:|---:|---:|---:|---:|---:|"]
     for name in ["stephenson3", "stephenson2", "watt2"]:
         pose = med.get(f"triad/pose/{name}")
+        inter = med.get(f"triad_ratio/{name}")
+        if name != "watt2" and inter is None:
+            sys.exit(f"no result for triad_ratio/{name}")
         warm, cold = med.get(f"triad_sweep/{name}/warm"), med.get(f"triad_sweep/{name}/cold")
         sweep = (f"{ns(warm / 64)} | {ns(cold / 64)} | {warm / cold:.2f}×" if warm and cold
                  else "— | — | —")
-        rows.append(f"| {name} | {ns(pose)} | {pose / watt:.2f}× | {sweep} |")
+        ratio = f"{inter:.2f}×" if inter is not None else "1.00×"
+        rows.append(f"| {name} | {ns(pose)} | {pose / watt:.2f}× | {ratio} | {sweep} |")
     return "\n".join(rows)
 
 
@@ -493,7 +499,7 @@ FIGURES = {
                                                                           "benches/floor"]),
     "runtime": Figure(runtime, RUNTIME_CMD, CORE + ["mech-oracle/src", "benches/generated_vs_generic.rs"]),
     "triad": Figure(triad, "`cargo bench --bench triad -- --warm-up-time 1 --measurement-time 3`, medians "
-                    "(a sweep: 64 crank angles over a turn)",
+                    "(a sweep: 64 crank angles over a turn; the interleaved ratio: `triad_ratio/<machine>`)",
                     GENERATED + ["mech-core/src/runtime", "benches/triad.rs", "tests/common/triads.rs"]),
     "spatial": Figure(spatial, "`cargo bench --bench spatial -- --warm-up-time 1 --measurement-time 3`, medians",
                       GENERATED + ["mech-core/src/spatial", "benches/spatial.rs"]),

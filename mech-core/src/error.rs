@@ -89,6 +89,25 @@ pub fn check_finite(what: &str, values: &[f64]) -> Result<(), MechError> {
     }
 }
 
+/// [`check_finite`] on the values of an array: the same test, with the values kept in
+/// registers on the success path (they are stored for the message on the error path only,
+/// where a slice's values are stored before the test because its error path reads them).
+#[inline(always)]
+pub fn check_inputs<const N: usize>(what: &str, values: [f64; N]) -> Result<(), MechError> {
+    if all_finite_inputs(&values) {
+        Ok(())
+    } else {
+        Err(inputs_not_finite(what, values))
+    }
+}
+
+/// The error of [`check_inputs`], out of line, the values passed by value.
+#[cold]
+#[inline(never)]
+fn inputs_not_finite<const N: usize>(what: &str, values: [f64; N]) -> MechError {
+    not_finite(what, &values)
+}
+
 /// The error to report for a solve that failed with `e`, whose inputs are `values`
 /// (named `what`): `InvalidInput` "… must be finite" when one of them is not finite, else
 /// `e` itself. A NaN or an infinity among the inputs reaches every result it touches (IEEE

@@ -24,7 +24,7 @@ pub mod energy {
     pub use crate::kernel::energy::{kinetic, potential, Shaking};
 }
 pub mod error {
-    pub use crate::error::{blame, check_finite};
+    pub use crate::error::{blame, check_finite, check_inputs};
 }
 pub mod friction {
     pub use crate::solvers::friction::{

@@ -265,7 +265,8 @@ pub fn solve_mesh(
         let st = &mut s[body];
         st.rot = ca_rot;
         st.angle = car[0];
-        st.pos = b - rotate(ca_rot, dr);
+        // On the ground the carrier's rotation is the identity: no rotation by it.
+        st.pos = b - if c == 0 { dr } else { rotate(ca_rot, dr) };
         if upto == Level::Position {
             return Ok(());
         }

@@ -76,13 +76,13 @@ fn travel(g: &JointGeom, s: &[LinkState], c: V2) -> (V2, V2, f64) {
 fn turn_wheel(g: &JointGeom, s: &mut [LinkState], w: usize, c: V2, dc: V2, travel: f64) {
     let turn = -travel / g.radius;
     let (sn, cs) = turn.sin_cos();
-    let base = if g.a == 0 {
+    // On the ground the track's rotation is the identity: no rotation by it.
+    let rot = if g.a == 0 {
         s[w].angle = turn;
-        V2::new(1.0, 0.0)
+        V2::new(cs, sn)
     } else {
-        s[g.a].rot
+        rotate(s[g.a].rot, V2::new(cs, sn))
     };
-    let rot = rotate(base, V2::new(cs, sn));
     s[w].rot = rot;
     s[w].pos = c - rotate(rot, dc);
 }
@@ -162,10 +162,12 @@ fn around_dyad(
         let c =
             crate::kernel::dyad::circle_circle(a, (dc1 - da).norm_squared(), d, rho * rho, sign)?;
         crate::kernel::dyad::place_by_two_points(&mut s[b1], da, dc1, a, c);
-        let d0 = rotate(rot_t, g.axis);
+        // On the ground the track's rotation is the identity: no rotation by it.
+        let turned = |v: V2| if g.a == 0 { v } else { rotate(rot_t, v) };
+        let d0 = turned(g.axis);
         let psi = cross(d0, c - d).atan2(d0.dot(&(c - d)));
         let (sn, cs) = (k * psi).sin_cos();
-        let rot = rotate(rot_t, V2::new(cs, sn));
+        let rot = turned(V2::new(cs, sn));
         s[b2].rot = rot;
         s[b2].pos = c - rotate(rot, dc2);
         c

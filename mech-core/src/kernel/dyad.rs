@@ -304,15 +304,28 @@ pub fn pin(g: &JointGeom, s: &[LinkState], body: usize) -> (V2, V2) {
     }
 }
 
-/// The line along which a point (local `d` in `body`) moves when `body` slides on the
-/// solved link by the prismatic `g`, with `body`'s rotation `rot`: (a point of it, unit direction).
+/// The line along which a point (local `d` in `body`) moves when `body` slides by the
+/// prismatic `g` on the solved link `l` (its other side), `body` turned as `l`: (a point of
+/// it, unit direction). Unturned on the ground ([`dir_of`]: no rotation by the identity).
 #[inline(always)]
-fn slide_line(g: &JointGeom, s: &[LinkState], body: usize, rot: V2, d: V2) -> (V2, V2) {
-    let u = rotate(rot, g.axis);
+fn slide_line(g: &JointGeom, s: &[LinkState], body: usize, l: usize, d: V2) -> (V2, V2) {
+    let u = dir_of(s, l, g.axis);
     if g.b == body {
-        (point_of(s, g.a, g.da) + rotate(rot, d - g.db), u)
+        (point_of(s, g.a, g.da) + dir_of(s, l, d - g.db), u)
     } else {
-        (point_of(s, g.b, g.db) + rotate(rot, d - g.da), u)
+        (point_of(s, g.b, g.db) + dir_of(s, l, d - g.da), u)
+    }
+}
+
+/// Place `body`, turned as link `l` (the identity on the ground, a literal), with its point
+/// of local vector `d` at `p`: [`place_by_point`] with no rotation by the ground's identity.
+#[inline(always)]
+fn place_as(s: &mut [LinkState], body: usize, l: usize, d: V2, p: V2) {
+    if l == 0 {
+        place_by_point(&mut s[body], V2::new(1.0, 0.0), V2::zeros(), p - d);
+    } else {
+        let rot = s[l].rot;
+        place_by_point(&mut s[body], rot, d, p);
     }
 }
 
@@ -556,13 +569,11 @@ fn driven_revolute(g: &JointGeom, s: &mut [LinkState], body: usize, q: f64) {
 fn driven_prismatic(g: &JointGeom, s: &mut [LinkState], body: usize, q: f64) {
     let q = q - g.q_ref;
     if g.b == body {
-        let rot = s[g.a].rot;
-        let p = point_of(s, g.a, g.da) + rotate(rot, g.axis) * q;
-        place_by_point(&mut s[body], rot, g.db, p);
+        let p = point_of(s, g.a, g.da) + dir_of(s, g.a, g.axis) * q;
+        place_as(s, body, g.a, g.db, p);
     } else {
-        let rot = s[g.b].rot;
-        let p = point_of(s, g.b, g.db) - rotate(rot, g.axis) * q;
-        place_by_point(&mut s[body], rot, g.da, p);
+        let p = point_of(s, g.b, g.db) - dir_of(s, g.b, g.axis) * q;
+        place_as(s, body, g.b, g.da, p);
     }
 }
 
@@ -665,19 +676,20 @@ fn prp(
     [jp1, jc, jp2]: [usize; 3],
 ) -> Result<V2, MechError> {
     let (g1, g2) = (&joints[jp1], &joints[jp2]);
-    let rot1 = if g1.b == b1 { s[g1.a].rot } else { s[g1.b].rot };
-    let rot2 = if g2.b == b2 { s[g2.a].rot } else { s[g2.b].rot };
+    // Each slider turns with the link it slides on.
+    let l1 = if g1.b == b1 { g1.a } else { g1.b };
+    let l2 = if g2.b == b2 { g2.a } else { g2.b };
     let gc = &joints[jc];
     let (dc1, dc2) = if gc.a == b1 {
         (gc.da, gc.db)
     } else {
         (gc.db, gc.da)
     };
-    let (p1, u1) = slide_line(g1, s, b1, rot1, dc1);
-    let (p2, u2) = slide_line(g2, s, b2, rot2, dc2);
+    let (p1, u1) = slide_line(g1, s, b1, l1, dc1);
+    let (p2, u2) = slide_line(g2, s, b2, l2, dc2);
     let c = line_line(p1, u1, p2, u2)?;
-    place_by_point(&mut s[b1], rot1, dc1, c);
-    place_by_point(&mut s[b2], rot2, dc2, c);
+    place_as(s, b1, l1, dc1, c);
+    place_as(s, b2, l2, dc2, c);
     Ok(c)
 }
 
@@ -691,14 +703,15 @@ fn rpp(
     [ja, jp, jq]: [usize; 3],
 ) -> Result<V2, MechError> {
     let gq = &joints[jq];
-    let rot = if gq.b == b2 { s[gq.a].rot } else { s[gq.b].rot };
+    // Both links turn with the one b₂ slides on.
+    let l = if gq.b == b2 { gq.a } else { gq.b };
     let (a, da) = pin(&joints[ja], s, b1);
-    place_by_point(&mut s[b1], rot, da, a);
+    place_as(s, b1, l, da, a);
     // The sliding point of b2 on the solved link, on both lines.
     let dq = if gq.b == b2 { gq.db } else { gq.da };
-    let (p1, u1) = slide_line(gq, s, b2, rot, dq);
-    let (p2, u2) = slide_line(&joints[jp], s, b2, rot, dq);
+    let (p1, u1) = slide_line(gq, s, b2, l, dq);
+    let (p2, u2) = slide_line(&joints[jp], s, b2, l, dq);
     let c = line_line(p1, u1, p2, u2)?;
-    place_by_point(&mut s[b2], rot, dq, c);
+    place_as(s, b2, l, dq, c);
     Ok(a)
 }

@@ -500,17 +500,20 @@ fn positions(
     start: Option<&[LinkState]>,
 ) -> (bool, f64) {
     let g = Geom::new(t, joints);
-    let drawn = assembly(t, &g, drawing);
+    // The drawing's pins: its assembly sign, and the start of a call without `start`.
+    let drawn_pins = pins_of(t, &g, drawing);
+    let drawn = det_sign(&drawn_pins);
     // From `start`, then (a warm start that found nothing) from the drawing, as a call
     // without one would: a warm start never fails where the drawing's start succeeds.
-    let attempt = |s: &mut [LinkState], from: &[LinkState]| {
-        let (pins, u) = (pins_of(t, &g, from), from[t.links[0]].rot);
-        triad_pose(t, &g, joints, s, &pins, u, drawn, scale).is_ok()
+    let attempt = |s: &mut [LinkState], pins: &Pins, from: &[LinkState]| {
+        triad_pose(t, &g, joints, s, pins, from[t.links[0]].rot, drawn, scale).is_ok()
             || other_leads(t, joints, s, drawing, from, scale).is_ok()
     };
     let solved = match start {
-        Some(from) => attempt(s, from) || attempt(s, drawing),
-        None => attempt(s, drawing),
+        Some(from) => {
+            attempt(s, &pins_of(t, &g, from), from) || attempt(s, &drawn_pins, drawing)
+        }
+        None => attempt(s, &drawn_pins, drawing),
     };
     (solved, drawn)
 }

@@ -558,6 +558,11 @@ impl Machine for Mechanism {
 
 impl OneDof for Mechanism {
     fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
+        if let Some(r) = self.reduced_constant {
+            // Constant velocity coefficients: I* was worked out at loading.
+            crate::error::check_finite("q, qd, qdd", &[q])?;
+            return Ok(r);
+        }
         Ok(self
             .zhukovski_sums(q, 0.0, None, Level::Acceleration)?
             .reduced)

@@ -186,6 +186,13 @@ impl ZhukovskiSums {
         };
         self.moment += f.dot(&v);
     }
+    /// Add the power of a force `f` (N) on a link that slides on the ground
+    /// ([`crate::model::Model::translates`]), f·v: every point of it moves as its anchor,
+    /// wherever the force acts.
+    #[inline(always)]
+    pub fn force_translating(&mut self, s: &LinkState, f: V2) {
+        self.moment += f.dot(&s.vel);
+    }
     /// Add the power of a torque `t` (N·m) on a link, t g.
     #[inline(always)]
     pub fn torque(&mut self, s: &LinkState, t: f64) {

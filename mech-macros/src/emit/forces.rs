@@ -75,7 +75,7 @@ fn loads_type(cx: &Ctx) -> TokenStream {
     }
 }
 
-/// The components of every load, for `check_finite`.
+/// The components of every load, for `check_inputs`.
 pub(crate) fn load_values(cx: &Ctx) -> TokenStream {
     let values = cx.model.loads.iter().map(|l| {
         let lid = id(l.name());

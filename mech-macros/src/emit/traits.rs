@@ -149,6 +149,12 @@ pub(crate) fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
     let loads = cx.model.loads.iter().enumerate().map(|(k, l)| {
         let (lid, link) = (id(l.name()), l.link());
         match l {
+            // A link that slides on the ground moves every point alike, and a torque on
+            // it does no work (ω = 0: its term would add a zero).
+            Load::Force { .. } if cx.model.translates(link) => {
+                quote!(z.force_translating(&s[#link], loads.#lid);)
+            }
+            Load::Torque { .. } if cx.model.translates(link) => quote!(),
             // At the link's first point the load's local vector is zero for any drawing:
             // written as a literal, the kernel's "at the anchor" test folds.
             Load::Force { point, .. } if cx.model.links[link].points.first() == Some(point) => {
@@ -175,7 +181,7 @@ pub(crate) fn zhukovski_terms(cx: &Ctx) -> (TokenStream, TokenStream) {
 }
 
 /// `reduced`, `reduced_moment`, `acceleration`. These check their inputs first
-/// (`error::check_finite`), where `kinematics` and `kinetostatics` look at theirs only
+/// (`error::check_inputs`), where `kinematics` and `kinetostatics` look at theirs only
 /// when a solve fails (`error::blame`): measured, the short Zhukovski routes lost time to
 /// the deferred form (interleaved against the hand-written floor, `reduced` 1.22× with
 /// the check first, 1.36–1.39× deferred), the long ones gained.
@@ -206,7 +212,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
     let (reduced, solved_fn, acceleration_solve) = if cx.constant_ratios() {
         (
             quote! {
-                #p::error::check_finite("q", &[q])?;
+                #p::error::check_inputs("q", [q])?;
                 Ok(self.reduced_constant)
             },
             quote! {
@@ -223,7 +229,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         )
     } else {
         (
-            quote! { #p::error::check_finite("q", &[q])?; #solved },
+            quote! { #p::error::check_inputs("q", [q])?; #solved },
             quote!(),
             quote! {
                 let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Acceleration, false)?;
@@ -255,7 +261,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         /// springs per unit input rate, M* = Σ F·g + Σ M·g − Σ T x' (a damper's part,
         /// −c x'² q̇, depends on q̇: `acceleration` adds it, M*(q) is at q̇ = 0).
         pub fn reduced_moment(&self, q: f64, loads: &#loads) -> Result<f64, #p::MechError> {
-            #p::error::check_finite("q and the loads", &[q, #values])?;
+            #p::error::check_inputs("q and the loads", [q, #values])?;
             let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity, false)?;
             let mut z = #p::zhukovski::ZhukovskiSums::new();
             #moment
@@ -268,7 +274,7 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         ///
         #(#[doc = #inputs])*
         pub fn acceleration(&self, q: f64, qd: f64, driver: f64, loads: &#loads) -> Result<f64, #p::MechError> {
-            #p::error::check_finite("q, qd, driver and the loads", &[q, qd, driver, #values])?;
+            #p::error::check_inputs("q, qd, driver and the loads", [q, qd, driver, #values])?;
             #acceleration_solve
             #moment
             #elements_moving

@@ -112,6 +112,12 @@ impl<B: Backend> ZhukovskiLanes<B> {
         let v = point_velocity(s, d);
         self.moment += f[0] * v.x + f[1] * v.y;
     }
+    /// Add the power of a force `f` (N, the same in every lane) on a link that slides on
+    /// the ground, f·v (every point of it moves as its anchor), to M*.
+    #[inline(always)]
+    pub fn force_translating(&mut self, s: &LinkLanes<B>, f: V2) {
+        self.moment += s.vel.dot_v(f);
+    }
     /// Add the power of a torque `t` (N·m, the same in every lane) on a link, t ω, to M*.
     #[inline(always)]
     pub fn torque(&mut self, s: &LinkLanes<B>, t: f64) {
