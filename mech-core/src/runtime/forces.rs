@@ -416,9 +416,12 @@ impl Mechanism {
             }
             for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
                 let link = load.link();
-                match *value {
-                    LoadValue::Force(v) => z.force(&s[link], self.inst.loads[k], v),
-                    LoadValue::Torque(t) => z.torque(&s[link], t),
+                match (*value, self.program.on_translating[k]) {
+                    (LoadValue::Force(v), true) => z.force_translating(&s[link], v),
+                    (LoadValue::Force(v), false) => z.force(&s[link], self.inst.loads[k], v),
+                    // A torque on a link sliding on the ground does no work.
+                    (LoadValue::Torque(_), true) => {}
+                    (LoadValue::Torque(t), false) => z.torque(&s[link], t),
                 }
             }
             if !self.inst.elements.is_empty() {

@@ -124,6 +124,9 @@ pub(super) struct Program {
     pub(super) inertial: Vec<(usize, Share)>,
     /// Per joint: it is prismatic (its reaction has a moment).
     pub(super) prismatic: Vec<bool>,
+    /// Per load: its link slides on the ground (a force's power is its anchor's, a
+    /// torque's nothing: the generated code's Zhukovski terms).
+    pub(super) on_translating: Vec<bool>,
 }
 
 impl Program {
@@ -167,7 +170,13 @@ impl Program {
             .filter(|&l| terms[l].inertia())
             .map(|l| (l, share(l, true)))
             .collect();
+        let on_translating = model
+            .loads
+            .iter()
+            .map(|load| model.translates(load.link()))
+            .collect();
         Program {
+            on_translating,
             angles,
             angle_order,
             owners,
