@@ -2133,3 +2133,57 @@ fn floor_machines_group_kinds() {
         assert_eq!(element_kinds(name), expected, "{name}");
     }
 }
+
+/// A load on a link that slides on the ground: the block Scotch yoke's friction couple on
+/// its block (the block slides in the yoke, the yoke on the ground: it never turns). Its
+/// Zhukovski term is left out, generated and at run time (a torque on a link with ω = 0
+/// does no work), so M* and q̈ do not change with it; and a non-finite value of it is still
+/// refused as an input, not passed over with its term.
+#[test]
+fn a_torque_on_a_sliding_link_does_no_work_and_is_still_checked() {
+    let gen = BlockScotchYoke::new();
+    let rt = mech::Mechanism::from_rust_source(
+        include_str!("../benches/floor/machines.rs"),
+        "BlockScotchYoke",
+    )
+    .unwrap();
+    let with = |t: f64| {
+        let mut g = block_scotch_yoke_loads();
+        assert!(g.set_by_name("friction", &[t]));
+        let mut r = rt.loads();
+        assert!(r.set_by_name("resist", &[-150.0, 20.0]));
+        assert!(r.set_by_name("friction", &[t]));
+        (g, r)
+    };
+    for q in [0.3, 1.7, 4.0] {
+        // The block does not turn: its angular velocity and acceleration are zero.
+        let mo = gen.kinematics(q, 12.0, -3.0).unwrap();
+        let block = mo.links.block;
+        assert_eq!((block.omega, block.alpha), (0.0, 0.0), "q = {q}");
+        let (g0, r0) = with(-0.6);
+        let (g1, r1) = with(250.0);
+        let m0 = gen.reduced_moment(q, &g0).unwrap();
+        assert_eq!(gen.reduced_moment(q, &g1).unwrap(), m0, "q = {q}");
+        assert_eq!(
+            gen.acceleration(q, 12.0, 5.0, &g1).unwrap(),
+            gen.acceleration(q, 12.0, 5.0, &g0).unwrap()
+        );
+        let rm0 = rt.reduced_moment(q, &r0).unwrap();
+        assert_eq!(rt.reduced_moment(q, &r1).unwrap(), rm0, "q = {q}");
+        assert!(within((rm0 - m0).abs() / m0.abs(), 1e-12), "run-time {rm0}, generated {m0}");
+        for x in [f64::NAN, f64::INFINITY] {
+            let (g, r) = with(x);
+            for e in [
+                gen.reduced_moment(q, &g).err(),
+                gen.acceleration(q, 12.0, 5.0, &g).err(),
+                rt.reduced_moment(q, &r).err(),
+                rt.acceleration(q, 12.0, 5.0, &r).err(),
+            ] {
+                assert!(
+                    matches!(&e, Some(MechError::InvalidInput(m)) if m.contains("must be finite")),
+                    "friction {x} at q = {q}: {e:?}"
+                );
+            }
+        }
+    }
+}
