@@ -107,7 +107,7 @@ fn fuzz(seconds: Option<f64>, cases: Option<u64>, seed: u64, dense: bool) -> Sum
         if !findings.is_empty() {
             let head: String = findings.iter().map(|f| format!("// {f:?}\n")).collect();
             let _ = std::fs::create_dir_all(&out);
-            let _ = std::fs::write(out.join(format!("case-{n}.txt")), head + &text);
+            let _ = std::fs::write(out.join(format!("case-{seed:x}-{n}.txt")), head + &text);
         }
         n += 1;
         if n % 100_000 == 0 {
@@ -230,23 +230,36 @@ fn main() {
 #[cfg(test)]
 mod tests {
     /// The minute of fuzzing that `cargo test --workspace` (the README's test command,
-    /// which CI runs) includes: mutated mechanisms through the run-time loader and every
-    /// solver, no panic, no non-finite number inside `Ok` and no call over 1 s. (An
-    /// unoptimised test build tries fewer cases in the minute than the release run of
-    /// `cargo run --release -p mech-fuzz -- --seconds 60`; a finding is written under
-    /// target/fuzz.)
+    /// which CI runs) includes, as two streams of mutations of 30 s side by side (one per
+    /// core of a CI machine, each from its own seed): mutated mechanisms through the
+    /// run-time loader and every solver, no panic, no non-finite number inside `Ok` and no
+    /// call over 1 s. (An unoptimised test build tries fewer cases in the minute than the
+    /// release run of `cargo run --release -p mech-fuzz -- --seconds 60`; a finding is
+    /// written under target/fuzz.)
     #[test]
     fn a_minute_of_mutations_finds_no_panic_no_non_finite_result_and_no_slow_call() {
-        let s = super::fuzz(Some(60.0), None, 0x9E37_79B9_7F4A_7C15, false);
-        eprintln!(
-            "{} cases, {} loaded, the longest call {:?} ({})",
-            s.cases, s.loaded, s.slowest.0, s.slowest.1
-        );
-        assert_eq!(s.bad, 0, "{s:?}: see target/fuzz");
-        assert_eq!(s.slow, 0, "{s:?}: see target/fuzz");
-        assert!(
-            s.cases >= 200 && s.loaded > 0,
-            "{s:?}: too few cases to mean anything"
-        );
+        const SEEDS: [u64; 2] = [0x9E37_79B9_7F4A_7C15, 0xD1B5_4A32_D192_ED03];
+        let runs: Vec<super::Summary> = std::thread::scope(|scope| {
+            let streams: Vec<_> = SEEDS
+                .iter()
+                .map(|&seed| scope.spawn(move || super::fuzz(Some(30.0), None, seed, false)))
+                .collect();
+            streams
+                .into_iter()
+                .map(|h| h.join().expect("a fuzzing stream panicked"))
+                .collect()
+        });
+        for (s, seed) in runs.iter().zip(SEEDS) {
+            eprintln!(
+                "seed {seed:#x}: {} cases, {} loaded, the longest call {:?} ({})",
+                s.cases, s.loaded, s.slowest.0, s.slowest.1
+            );
+            assert_eq!(s.bad, 0, "{s:?}: see target/fuzz");
+            assert_eq!(s.slow, 0, "{s:?}: see target/fuzz");
+            assert!(
+                s.cases >= 100 && s.loaded > 0,
+                "{s:?}: too few cases to mean anything"
+            );
+        }
     }
 }
