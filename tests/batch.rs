@@ -838,3 +838,44 @@ fn the_batch_example_equals_one_by_one() {
         same("P y", i, b.points[2 * np * i + 9], p.y, top(&b.points));
     }
 }
+
+/// Loads on a link that slides on the ground (the slider-crank's gas force on its piston)
+/// in the run-time lanes: `acceleration_many` takes them by the anchor's velocity
+/// (`ZhukovskiLanes::force_translating`), as the scalar `acceleration` and the generated
+/// struct do, and equals both configuration by configuration (the reference tests above
+/// run with zero loads, which every term takes alike).
+#[test]
+fn loads_on_a_sliding_link_in_the_lanes_equal_one_by_one() {
+    let m = SliderCrank::new();
+    let mut loads = SliderCrankLoads::default();
+    assert!(loads.set_by_name("gas", &[-1500.0, 35.0]));
+    assert!(loads.set_by_name("shaft", &[-4.0]));
+    let rt = Mechanism::from_rust_source(MECHANISMS, "SliderCrank").unwrap();
+    let mut rl = rt.loads();
+    assert!(rl.set_by_name("gas", &[-1500.0, 35.0]));
+    assert!(rl.set_by_name("shaft", &[-4.0]));
+    let x = inputs(64, 41);
+    let mut racc = vec![0.0; x.q.len()];
+    let _ = rt.acceleration_many(&x.q, &x.qd, &x.driver, &rl, &mut racc);
+    let mut compared = 0;
+    for i in 0..x.q.len() {
+        let one = rt.acceleration(x.q[i], x.qd[i], x.driver[i], &rl);
+        let generated = m.acceleration(x.q[i], x.qd[i], x.driver[i], &loads);
+        match (one, generated) {
+            (Ok(a), Ok(g)) => {
+                same(
+                    "run-time acceleration_many",
+                    i,
+                    racc[i],
+                    a,
+                    a.abs().max(1.0),
+                );
+                same("generated acceleration", i, g, a, a.abs().max(1.0));
+                compared += 1;
+            }
+            (Err(_), Err(_)) => assert!(racc[i].is_nan(), "configuration {i}: {}", racc[i]),
+            (a, g) => panic!("configuration {i}: run time {a:?}, generated {g:?}"),
+        }
+    }
+    assert!(compared >= 32, "only {compared} configurations solved");
+}

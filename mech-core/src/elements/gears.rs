@@ -400,6 +400,18 @@ pub fn mesh_reactions(
 /// The most links a gear-train group may have ([`TrainGroup`]).
 pub const TRAIN_MAX: usize = 3;
 
+/// `$f::<N>($args)` with N the gear-train group's size `$n` as a constant (1, 2, else
+/// [`TRAIN_MAX`]): each size its own instance, the choice folded where `$n` is a constant.
+macro_rules! by_train_size {
+    ($n:expr, $($f:ident)::+ ($($arg:expr),* $(,)?)) => {
+        match $n {
+            1 => $($f)::+::<1>($($arg),*),
+            2 => $($f)::+::<2>($($arg),*),
+            _ => $($f)::+::<TRAIN_MAX>($($arg),*),
+        }
+    };
+}
+
 /// A group of up to [`TRAIN_MAX`] links turning about their centres and meshing with one
 /// another and with solved links, as many meshes as links (for instance the arm and the
 /// planet of an epicyclic train driven by its sun against a fixed ring): Willis' relation
@@ -512,11 +524,7 @@ impl Willis {
     /// The inverse of the group's Willis matrix and its condition estimate, from the
     /// meshes' pitch radii.
     pub fn new(grp: &TrainGroup, meshes: &[MeshGeom], joints: &[JointGeom]) -> Self {
-        match grp.n {
-            1 => Self::sized::<1>(grp, meshes, joints),
-            2 => Self::sized::<2>(grp, meshes, joints),
-            _ => Self::sized::<TRAIN_MAX>(grp, meshes, joints),
-        }
+        by_train_size!(grp.n, Self::sized(grp, meshes, joints))
     }
 
     /// [`Willis::new`] for a group of `N` = `grp.n` links: A⁻¹ column by column from its
@@ -572,11 +580,10 @@ pub fn solve_train(
     s: &mut [LinkState],
     upto: Level,
 ) -> Result<(), MechError> {
-    match grp.n {
-        1 => solve_train_sized::<1>(grp, willis, meshes, joints, s, upto),
-        2 => solve_train_sized::<2>(grp, willis, meshes, joints, s, upto),
-        _ => solve_train_sized::<TRAIN_MAX>(grp, willis, meshes, joints, s, upto),
-    }
+    by_train_size!(
+        grp.n,
+        solve_train_sized(grp, willis, meshes, joints, s, upto)
+    )
 }
 
 /// [`solve_train`] for a group of `N` = `grp.n` links.
@@ -660,11 +667,7 @@ pub fn train_reactions(
     f: &mut [Wrench],
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
-    match grp.n {
-        1 => train_reactions_sized::<1>(grp, meshes, joints, s, f, out),
-        2 => train_reactions_sized::<2>(grp, meshes, joints, s, f, out),
-        _ => train_reactions_sized::<TRAIN_MAX>(grp, meshes, joints, s, f, out),
-    }
+    by_train_size!(grp.n, train_reactions_sized(grp, meshes, joints, s, f, out))
 }
 
 /// [`train_reactions`] for a group of `N` = `grp.n` links.

@@ -503,9 +503,13 @@ impl Mechanism {
         }
         if let Some(loads) = loads {
             for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
-                match *value {
-                    LoadValue::Force(v) => z.force(&s[load.link()], self.inst.loads[k], v),
-                    LoadValue::Torque(t) => z.torque(&s[load.link()], t),
+                // As the scalar `sums`: a load on a link sliding on the ground by its
+                // anchor's velocity, a torque on it doing no work.
+                match (*value, self.program.on_translating[k]) {
+                    (LoadValue::Force(v), true) => z.force_translating(&s[load.link()], v),
+                    (LoadValue::Force(v), false) => z.force(&s[load.link()], self.inst.loads[k], v),
+                    (LoadValue::Torque(_), true) => {}
+                    (LoadValue::Torque(t), false) => z.torque(&s[load.link()], t),
                 }
             }
         }

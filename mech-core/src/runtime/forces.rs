@@ -330,16 +330,13 @@ impl Mechanism {
         }
         crate::error::check_finite("q, qd, qdd", &[q])?;
         let drive: Drive = (&[q], &[1.0], &[0.0]);
-        if let (Some(r), Level::Acceleration) = (self.reduced_constant, upto) {
+        if let (Some(r), Level::Acceleration, Some(_)) = (self.reduced_constant, upto, loads) {
             // Constant velocity coefficients: I* was worked out at loading, M* needs the
-            // rates alone, I* alone nothing.
-            let mut z = match loads {
-                None => ZhukovskiSums::new(),
-                Some(_) => self.with_states(|s| {
-                    self.solve_at::<VELOCITY>(drive, s, &mut [])?;
-                    self.sums(s, loads, qd, false)
-                })?,
-            };
+            // rates alone (I* alone is `OneDof::reduced`'s, without solving).
+            let mut z = self.with_states(|s| {
+                self.solve_at::<VELOCITY>(drive, s, &mut [])?;
+                self.sums(s, loads, qd, false)
+            })?;
             z.reduced = r;
             return Ok(z);
         }

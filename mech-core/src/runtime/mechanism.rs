@@ -313,15 +313,20 @@ impl Mechanism {
         Ok(m)
     }
 
-    /// The Willis inverse of the gear-train group `t` (worked out at loading).
+    /// The Willis inverse of the gear-train group `t`, worked out at loading (kept by the
+    /// group's first link: a mechanism has a few gear-train groups at most), borrowed.
     #[inline]
     pub(super) fn willis_of(
         &self,
         t: &crate::elements::gears::TrainGroup,
-    ) -> crate::elements::gears::Willis {
+    ) -> std::borrow::Cow<'_, crate::elements::gears::Willis> {
         match self.willis.iter().find(|(b, _)| *b == t.bodies[0]) {
-            Some(&(_, w)) => w,
-            None => crate::elements::gears::Willis::new(t, &self.inst.meshes, &self.inst.joints),
+            Some((_, w)) => std::borrow::Cow::Borrowed(w),
+            None => std::borrow::Cow::Owned(crate::elements::gears::Willis::new(
+                t,
+                &self.inst.meshes,
+                &self.inst.joints,
+            )),
         }
     }
 
