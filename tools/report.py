@@ -182,10 +182,12 @@ BATCH_OPS = ["four_bar/points", "four_bar/reduced", "four_bar/acceleration", "sl
 BATCH_SIZE = 1024  # benches/floor.rs, BATCH
 
 
-def instructions(bench_bin, name, simd="1"):
+def instructions(bench_bin, name, simd="1", required=True):
     """Instructions per call of the criterion function `name` (callgrind; the recipe of the
     header of benches/floor.rs). `simd="0"` sets MECH_SIMD=0: the lanes' baseline path (two
-    128-bit registers per lane value) instead of the 256-bit one chosen at run time."""
+    128-bit registers per lane value) instead of the 256-bit one chosen at run time. A
+    function timed otherwise than by `Bencher::iter` (a setup per batch) is an error, or
+    None when not `required`."""
     out = Path(tempfile.mkdtemp()) / "cg.out"
     subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", bench_bin,
                     "--bench", "--profile-time", "1", f"^{re.escape(name)}$"],
@@ -201,17 +203,46 @@ def instructions(bench_bin, name, simd="1"):
         if m:
             k = float(m.group(1).replace(",", ""))
     if not n or not k:
+        if not required:
+            return None
         sys.exit(f"callgrind found no timing loop for {name}")
     return n / k
+
+
+def floor_bench_bin():
+    """The path of the floor's criterion binary, built (release) if needed."""
+    exe = sh(["cargo", "bench", "--bench", "floor", "--no-run", "--message-format", "json"])
+    return next(json.loads(l)["executable"] for l in exe.splitlines()
+                if '"executable":"' in l and json.loads(l).get("target", {}).get("name") == "floor")
+
+
+def floor_instructions():
+    """Instructions per call (callgrind) of every floor operation timed by `Bencher::iter`:
+    generated, hand-written and their ratio, and the run-time mechanism's with its ratio to
+    the generated struct. Stable where the timings are noisy; a dash where callgrind finds
+    no `Bencher::iter` loop."""
+    bench_bin = floor_bench_bin()
+    rows = ["| operation | generated | hand | generated / hand | run-time | run-time / generated |",
+            "|---|---:|---:|---:|---:|---:|"]
+    for m in FLOOR_MACHINES.split("|"):
+        for op in FLOOR_OPS:
+            g = instructions(bench_bin, f"{m}/{op}/generated", required=False)
+            if g is None:
+                continue
+            h = instructions(bench_bin, f"{m}/{op}/hand", required=False)
+            r = instructions(bench_bin, f"runtime/{m}/{op}/runtime", required=False)
+            g2 = instructions(bench_bin, f"runtime/{m}/{op}/generated", required=False)
+            cells = [f"{g:.0f}", "—" if h is None else f"{h:.0f}", "—" if h is None else f"{g / h:.2f}×",
+                     "—" if r is None else f"{r:.0f}", "—" if r is None or g2 is None else f"{r / g2:.2f}×"]
+            rows.append(f"| `{m}/{op}` | " + " | ".join(cells) + " |")
+    return "\n".join(rows)
 
 
 def batch():
     sh(["cargo", "bench", "--bench", "floor", "--", "--warm-up-time", "1", "--measurement-time", "3",
         "^batch/|^ratio/batch/"])
     med = criterion_medians()
-    exe = sh(["cargo", "bench", "--bench", "floor", "--no-run", "--message-format", "json"])
-    bench_bin = next(json.loads(l)["executable"] for l in exe.splitlines()
-                     if '"executable":"' in l and json.loads(l).get("target", {}).get("name") == "floor")
+    bench_bin = floor_bench_bin()
     rows = ["| operation | batched (ns per configuration) | hand-written (ns per configuration) "
             "| interleaved ratio | batched (instructions per configuration) "
             "| batched, `MECH_SIMD=0` (instructions per configuration) | hand-written (instructions per configuration) |",
@@ -494,6 +525,10 @@ class Figure:
 
 FIGURES = {
     "floor": Figure(floor, FLOOR_CMD, GENERATED + ["benches/floor.rs", "benches/floor"]),
+    "floor_instructions": Figure(floor_instructions, "callgrind on `cargo bench --bench floor --no-run`'s binary "
+                                 "(`--profile-time 1` per function, the recipe of `benches/floor.rs`'s header), "
+                                 "instructions per call", GENERATED + ["mech-core/src/runtime", "benches/floor.rs",
+                                                                      "benches/floor"]),
     "batch": Figure(batch, BATCH_CMD, GENERATED + ["benches/floor.rs", "benches/floor"]),
     "runtime_floor": Figure(runtime_floor, RUNTIME_FLOOR_CMD, GENERATED + ["mech-core/src/runtime", "benches/floor.rs",
                                                                           "benches/floor"]),
