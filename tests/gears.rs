@@ -223,6 +223,59 @@ fn a_three_link_train_balances_by_both_routes() {
     }
 }
 
+/// A planet on a moving arm: I*(q) is a constant and a cosine per pair of links on a chain
+/// of pins (`mech_core::solvers::zhukovski_series`, worked out once), which must agree with
+/// the routes that solve the motion at q: I* = 2T at q̇ = 1 (each link's kinetic energy
+/// from the solved motion), ½ dI*/dq = driver(q, 1, 0) − driver(q, 0, 0) (d'Alembert's
+/// kinetostatics, no load), and the direct problem returns the q̈ the kinetostatics was
+/// given, generated and run-time, over four turns of the sun.
+#[test]
+fn an_epicyclic_s_reduced_inertia_is_a_sum_of_cosines_equal_to_the_solved_motion() {
+    let m = DoublePlanet::new();
+    let rt = runtime("DoublePlanet");
+    let loads = DoublePlanetLoads::default();
+    let rl = rt.loads();
+    let mut energies = [0.0; 5];
+    let mut varied = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in 0..48 {
+        let q = -0.7 + 4.0 * std::f64::consts::TAU * k as f64 / 48.0;
+        let r = m.reduced(q).unwrap();
+        varied = (varied.0.min(r.inertia), varied.1.max(r.inertia));
+        // I* = 2T of the motion at q̇ = 1.
+        let unit = m.kinematics(q, 1.0, 0.0).unwrap();
+        m.link_kinetic_energies(&unit, &mut energies);
+        let by_energy = 2.0 * energies.iter().sum::<f64>();
+        close("I* against 2T", r.inertia, by_energy, 1e-14 * by_energy);
+        // ½ dI*/dq from d'Alembert's driver (gravity's M* cancels in the difference).
+        let at_rest = m.kinematics(q, 0.0, 0.0).unwrap();
+        let half = m.kinetostatics(&unit, &loads).unwrap().driver
+            - m.kinetostatics(&at_rest, &loads).unwrap().driver;
+        let scale = m.kinetostatics(&at_rest, &loads).unwrap().driver.abs() + r.inertia;
+        close("dI*/dq against d'Alembert", 0.5 * r.inertia_derivative, half, 1e-12 * scale);
+        // The direct problem returns the q̈ the kinetostatics was given.
+        let (qd, qdd) = (9.0, -4.0);
+        let driver = m
+            .kinetostatics(&m.kinematics(q, qd, qdd).unwrap(), &loads)
+            .unwrap()
+            .driver;
+        let back = m.acceleration(q, qd, driver, &loads).unwrap();
+        close("q̈ by the direct problem", back, qdd, 1e-11 * qdd.abs());
+        // The run-time mechanism keeps the same sum.
+        let rr = OneDof::reduced(&rt, q).unwrap();
+        close("run-time I*", rr.inertia, r.inertia, 1e-14 * r.inertia);
+        close(
+            "run-time dI*/dq",
+            rr.inertia_derivative,
+            r.inertia_derivative,
+            1e-14 * r.inertia,
+        );
+        let rback = OneDof::acceleration(&rt, q, qd, driver, &rl).unwrap();
+        close("run-time q̈", rback, qdd, 1e-11 * qdd.abs());
+    }
+    // The cgs off the planets' centres make I* vary with q: the cosines are not idle.
+    assert!(varied.1 - varied.0 > 1e-9 * varied.1, "I* varies: {varied:?}");
+}
+
 fn reference() -> Value {
     data::load("gears.json")
 }

@@ -96,7 +96,9 @@ pub mod virtual_power {
     pub use crate::solvers::virtual_power::{driver_actions, Power};
 }
 pub mod zhukovski {
+    pub use crate::plan::ratios::Pin;
     pub use crate::solvers::zhukovski::{acceleration, Reduced, ZhukovskiSums};
+    pub use crate::solvers::zhukovski_series::{Series, Term};
 }
 pub mod batch {
     pub use crate::solvers::batch::{

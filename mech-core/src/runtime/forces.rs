@@ -13,6 +13,7 @@ use crate::kernel::link_state::{point_motion, LinkState, V2};
 use crate::model::{JointKind, Load};
 use crate::solvers::friction::{add_joint_friction, flat_len, iterate, Flattener, JointFriction};
 use crate::solvers::zhukovski::ZhukovskiSums;
+use crate::solvers::zhukovski_series::{Series, Term};
 use crate::MechError;
 use smallvec::{smallvec, SmallVec};
 use std::sync::Arc;
@@ -330,14 +331,15 @@ impl Mechanism {
         }
         crate::error::check_finite("q, qd, qdd", &[q])?;
         let drive: Drive = (&[q], &[1.0], &[0.0]);
-        if let (Some(r), Level::Acceleration, Some(_)) = (self.reduced_constant, upto, loads) {
-            // Constant velocity coefficients: I* was worked out at loading, M* needs the
-            // rates alone (I* alone is `OneDof::reduced`'s, without solving).
+        if let (Some(series), Level::Acceleration, Some(_)) = (&self.reduced_series, upto, loads)
+        {
+            // Constant ratios: I*(q) was worked out at loading, M* needs the rates alone
+            // (I* alone is `OneDof::reduced`'s, without solving).
             let mut z = self.with_states(|s| {
                 self.solve_at::<VELOCITY>(drive, s, &mut [])?;
                 self.sums(s, loads, qd, false)
             })?;
-            z.reduced = r;
+            z.reduced = series.at(q);
             return Ok(z);
         }
         self.with_states(|s| {
@@ -346,6 +348,21 @@ impl Mechanism {
                 _ => self.solve_at::<VELOCITY>(drive, s, &mut [])?,
             }
             self.sums(s, loads, qd, upto == Level::Acceleration)
+        })
+    }
+
+    /// Zhukovski's I*(q) of a machine of constant ratios as a sum of cosines
+    /// ([`crate::solvers::zhukovski_series`]), from the motion at q₀ = 0 with q̇ = 1 and
+    /// each link's [`Pin`](crate::plan::ratios::Pin).
+    pub(super) fn series(
+        &self,
+        pins: &[crate::plan::ratios::Pin],
+    ) -> Result<Series<Vec<Term>>, MechError> {
+        let terms = vec![Term::default(); crate::plan::ratios::series_len(pins)];
+        let drive: Drive = (&[0.0], &[1.0], &[0.0]);
+        self.with_states(|s| {
+            self.solve_at::<VELOCITY>(drive, s, &mut [])?;
+            Series::from_motion(0.0, terms, &self.inst.links, s, &self.inst.joints, pins)
         })
     }
 

@@ -33,6 +33,7 @@ use crate::solvers::instance::{instance, Instance};
 use crate::solvers::params::LinkTerms;
 use crate::solvers::traits::{Machine, OneDof};
 use crate::solvers::zhukovski::Reduced;
+use crate::solvers::zhukovski_series::{Series, Term};
 use crate::MechError;
 use smallvec::SmallVec;
 use std::path::Path;
@@ -73,10 +74,11 @@ pub struct Mechanism {
     pub(super) program: Program,
     /// Each gear-train group's Willis inverse, by the group's first link.
     pub(super) willis: Vec<(usize, crate::elements::gears::Willis)>,
-    /// Zhukovski's I* when every velocity coefficient is a constant
-    /// ([`crate::plan::ratios`]: gears on fixed axes, racks on fixed guides), worked out
-    /// at loading; `None` for the others.
-    pub(super) reduced_constant: Option<Reduced>,
+    /// Zhukovski's I*(q) as a constant and a few cosines when every angular velocity
+    /// coefficient is a constant ([`crate::plan::ratios`]: a machine of gears; no cosine
+    /// when every gear turns on a fixed axis), worked out at loading
+    /// ([`crate::solvers::zhukovski_series`]); `None` for the others.
+    pub(super) reduced_series: Option<Series<Vec<Term>>>,
 }
 
 /// How a point is published, as the generated code does (`emit/results.rs`, `owners`).
@@ -284,7 +286,7 @@ impl Mechanism {
                 _ => None,
             })
             .collect();
-        let constant = crate::plan::ratios::constant_ratios(&model, &plan);
+        let pins = crate::plan::ratios::pins(&model, &plan);
         let mut m = Mechanism {
             model: Arc::new(model),
             inst,
@@ -298,17 +300,10 @@ impl Mechanism {
             redundant,
             program,
             willis,
-            reduced_constant: None,
+            reduced_series: None,
         };
-        if constant && m.dof() == 1 {
-            // I* at any q (the drawing's input), its derivative exactly 0.
-            let r = m
-                .zhukovski_sums(0.0, 0.0, None, Level::Acceleration)?
-                .reduced;
-            m.reduced_constant = Some(Reduced {
-                inertia: r.inertia,
-                inertia_derivative: 0.0,
-            });
+        if let (Some(pins), 1) = (pins, m.dof()) {
+            m.reduced_series = Some(m.series(&pins)?);
         }
         Ok(m)
     }
@@ -572,10 +567,10 @@ impl Machine for Mechanism {
 
 impl OneDof for Mechanism {
     fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
-        if let Some(r) = self.reduced_constant {
-            // Constant velocity coefficients: I* was worked out at loading.
+        if let Some(series) = &self.reduced_series {
+            // Constant ratios: I*(q) was worked out at loading, as a sum of cosines.
             crate::error::check_finite("q, qd, qdd", &[q])?;
-            return Ok(r);
+            return Ok(series.at(q));
         }
         Ok(self
             .zhukovski_sums(q, 0.0, None, Level::Acceleration)?

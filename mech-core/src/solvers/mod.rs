@@ -8,3 +8,4 @@ pub mod params;
 pub mod traits;
 pub(crate) mod virtual_power;
 pub mod zhukovski;
+pub mod zhukovski_series;

@@ -153,10 +153,22 @@ impl<'a> Ctx<'a> {
             .collect()
     }
 
-    /// Every velocity coefficient is a constant (gears on fixed axes, racks on fixed
-    /// guides: `mech_core::plan::ratios`): the struct keeps I* (`reduced_constant`).
-    pub fn constant_ratios(&self) -> bool {
-        self.one_dof() && mech_core::plan::ratios::constant_ratios(self.model, self.plan)
+    /// Every angular velocity coefficient is a constant (a machine of gears:
+    /// `mech_core::plan::ratios`), one input: each link's pin, from which the struct works
+    /// out I*(q) as a constant and a few cosines (`reduced_series`).
+    pub fn ratio_pins(&self) -> Option<Vec<mech_core::plan::ratios::Pin>> {
+        if self.one_dof() {
+            mech_core::plan::ratios::pins(self.model, self.plan)
+        } else {
+            None
+        }
+    }
+
+    /// The number of cosines of I*(q) when [`Ctx::ratio_pins`] (0: gears on fixed axes,
+    /// racks on fixed guides, I* a constant).
+    pub fn series_len(&self) -> Option<usize> {
+        self.ratio_pins()
+            .map(|p| mech_core::plan::ratios::series_len(&p))
     }
 
     /// The slot of gear-train group `gi` in the struct's `willis`.

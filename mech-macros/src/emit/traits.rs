@@ -207,28 +207,32 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         #p::magnitudes::finite_few("reduced inertia", &[z.reduced.inertia, z.reduced.inertia_derivative])?;
         Ok(z.reduced)
     };
-    // Constant velocity coefficients (`mech_core::plan::ratios`): I* is kept in the
-    // struct, and the direct problem needs the rates alone (for M*).
-    let (reduced, solved_fn, acceleration_solve) = if cx.constant_ratios() {
-        (
-            quote! {
-                #p::error::check_inputs("q", [q])?;
-                Ok(self.reduced_constant)
-            },
-            quote! {
-                /// I* and dI*/dq solved at `q` (`from_params` keeps I*: it is a constant).
-                fn __reduced_solved(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
-                    #solved
-                }
-            },
-            quote! {
-                let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity, false)?;
-                let mut z = #p::zhukovski::ZhukovskiSums::new();
-                z.reduced = self.reduced_constant;
-            },
-        )
-    } else {
-        (
+    // Constant ratios (`mech_core::plan::ratios`): I*(q) is kept in the struct as a
+    // constant and a few cosines, and the direct problem needs the rates alone (for M*).
+    let (reduced, series_items, acceleration_solve) = match cx.ratio_pins() {
+        Some(pins) => {
+            let n_links = cx.n_links;
+            let pins = pins.iter().map(|pin| {
+                let (parent, joint, slides) = (pin.parent, pin.joint, pin.slides);
+                quote!(#p::zhukovski::Pin { parent: #parent, joint: #joint, slides: #slides })
+            });
+            (
+                quote! {
+                    #p::error::check_inputs("q", [q])?;
+                    Ok(self.reduced_series.at(q))
+                },
+                quote! {
+                    /// Each link's pin in the machine of constant ratios (the ground's unused).
+                    const __PINS: [#p::zhukovski::Pin; #n_links] = [#(#pins),*];
+                },
+                quote! {
+                    let (s, _) = self.__solve(&[q], &[1.0], &[0.0], #p::kinematics::Level::Velocity, false)?;
+                    let mut z = #p::zhukovski::ZhukovskiSums::new();
+                    z.reduced = self.reduced_series.at(q);
+                },
+            )
+        }
+        None => (
             quote! { #p::error::check_inputs("q", [q])?; #solved },
             quote!(),
             quote! {
@@ -236,27 +240,32 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
                 let mut z = #p::zhukovski::ZhukovskiSums::new();
                 #inertia
             },
-        )
+        ),
     };
-    let reduced_doc: &[&str] = if cx.constant_ratios() {
-        &[
+    let reduced_doc: &[&str] = match cx.series_len() {
+        Some(0) => &[
             " Zhukovski's reduced inertia I* (kg·m²) and dI*/dq (kg·m²/rad): every velocity",
             " coefficient of this machine is a constant (gears on fixed axes, racks on fixed",
             " guides), so I* is a constant of the drawing, worked out by `from_params`, and",
             " dI*/dq = 0.",
-        ]
-    } else {
-        &[
+        ],
+        Some(_) => &[
+            " Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad): every link of",
+            " this machine of gears turns at a constant ratio to the input, so I* is a",
+            " constant and a few cosines of q, I* = C + Σ (A cos Δ(q − q₀) + B sin Δ(q − q₀)),",
+            " one per pair of links on a chain of pins, worked out by `from_params`.",
+        ],
+        None => &[
             " Zhukovski's reduced inertia I*(q) (kg·m²) and dI*/dq (kg·m²/rad), in closed",
             " form from the velocity coefficients and their derivatives.",
-        ]
+        ],
     };
     quote! {
         #(#[doc = #reduced_doc])*
         pub fn reduced(&self, q: f64) -> Result<#p::zhukovski::Reduced, #p::MechError> {
             #reduced
         }
-        #solved_fn
+        #series_items
         /// Zhukovski's reduced moment M*(q) (N·m): the power of the loads, gravity and
         /// springs per unit input rate, M* = Σ F·g + Σ M·g − Σ T x' (a damper's part,
         /// −c x'² q̇, depends on q̇: `acceleration` adds it, M*(q) is at q̇ = 0).
