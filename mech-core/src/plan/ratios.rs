@@ -75,7 +75,7 @@ pub fn pins(model: &Model, groups: &[Group]) -> Option<Vec<Pin>> {
 
 /// The links from `l` down to the one held by the ground, `l` first (`pins` of
 /// [`pins`]; at most as many as the links, so that a malformed table cannot loop).
-pub fn chain(pins: &[Pin], l: usize) -> impl Iterator<Item = usize> + '_ {
+pub(crate) fn chain(pins: &[Pin], l: usize) -> impl Iterator<Item = usize> + '_ {
     let mut next = (l != 0).then_some(l);
     (0..pins.len()).map_while(move |_| {
         let here = next?;

@@ -98,7 +98,7 @@ impl<T: AsRef<[Term]> + AsMut<[Term]>> Series<T> {
 /// chains: `crate::plan::ratios::series_len` of them) and return C, from the motion `s` at
 /// q₀ with q̇ = 1 (each state's `omega` its k_l, `vel` its velocity coefficient), the
 /// links' mass data `links`, the joints `joints` and each link's [`Pin`].
-pub fn fill(
+fn fill(
     links: &[LinkGeom],
     s: &[LinkState],
     joints: &[JointGeom],
