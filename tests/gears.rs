@@ -251,7 +251,12 @@ fn an_epicyclic_s_reduced_inertia_is_a_sum_of_cosines_equal_to_the_solved_motion
         let half = m.kinetostatics(&unit, &loads).unwrap().driver
             - m.kinetostatics(&at_rest, &loads).unwrap().driver;
         let scale = m.kinetostatics(&at_rest, &loads).unwrap().driver.abs() + r.inertia;
-        close("dI*/dq against d'Alembert", 0.5 * r.inertia_derivative, half, 1e-12 * scale);
+        close(
+            "dI*/dq against d'Alembert",
+            0.5 * r.inertia_derivative,
+            half,
+            1e-12 * scale,
+        );
         // The direct problem returns the q̈ the kinetostatics was given.
         let (qd, qdd) = (9.0, -4.0);
         let driver = m
@@ -273,7 +278,10 @@ fn an_epicyclic_s_reduced_inertia_is_a_sum_of_cosines_equal_to_the_solved_motion
         close("run-time q̈", rback, qdd, 1e-11 * qdd.abs());
     }
     // The cgs off the planets' centres make I* vary with q: the cosines are not idle.
-    assert!(varied.1 - varied.0 > 1e-9 * varied.1, "I* varies: {varied:?}");
+    assert!(
+        varied.1 - varied.0 > 1e-9 * varied.1,
+        "I* varies: {varied:?}"
+    );
 }
 
 fn reference() -> Value {

@@ -435,6 +435,14 @@ pub struct TrainGroup {
     /// Per link of the mechanism up to the 64th: its [`LinkState::angle`] is tracked
     /// (bit l), for the solved links the meshes reach.
     pub tracked: u64,
+    /// The link each link's pin holds it to (solved, or of the group), read from the model
+    /// with the plan like every field here, so that the generated code's choices of side
+    /// and column are constants.
+    pub outer: [usize; TRAIN_MAX],
+    /// Each link is its pin's second link (`b`).
+    pub pin_b: [bool; TRAIN_MAX],
+    /// Each mesh's links a and b and its carrier.
+    pub ends: [[usize; 3]; TRAIN_MAX],
 }
 
 impl TrainGroup {
@@ -448,14 +456,10 @@ impl TrainGroup {
     /// = 0 in the group's links' columns; it depends on the pitch radii alone (`N` =
     /// `self.n`).
     #[inline(always)]
-    fn willis_matrix<const N: usize>(
-        &self,
-        meshes: &[MeshGeom],
-        joints: &[JointGeom],
-    ) -> nalgebra::SMatrix<f64, N, N> {
+    fn willis_matrix<const N: usize>(&self, meshes: &[MeshGeom]) -> nalgebra::SMatrix<f64, N, N> {
         let mut a = nalgebra::SMatrix::<f64, N, N>::zeros();
-        for (r, &(j, mi)) in self.meshes[..N].iter().enumerate() {
-            for (l, k) in willis_terms(&joints[j], &meshes[mi]) {
+        for (r, &(_, mi)) in self.meshes[..N].iter().enumerate() {
+            for (l, k) in willis_terms(self.ends[r], &meshes[mi]) {
                 if let Some(c) = self.col(l) {
                     a[(r, c)] += k;
                 }
@@ -471,7 +475,6 @@ impl TrainGroup {
     fn willis_rhs<const N: usize>(
         &self,
         meshes: &[MeshGeom],
-        joints: &[JointGeom],
         s: &[LinkState],
         level: usize,
     ) -> nalgebra::SVector<f64, N> {
@@ -486,8 +489,8 @@ impl TrainGroup {
                 _ => s[l].alpha,
             }
         };
-        for (r, &(j, mi)) in self.meshes[..N].iter().enumerate() {
-            for (l, k) in willis_terms(&joints[j], &meshes[mi]) {
+        for (r, &(_, mi)) in self.meshes[..N].iter().enumerate() {
+            for (l, k) in willis_terms(self.ends[r], &meshes[mi]) {
                 if self.col(l).is_none() {
                     rhs[r] -= k * value(l);
                 }
@@ -498,13 +501,13 @@ impl TrainGroup {
 }
 
 /// The three terms of a mesh's Willis relation r_a x_a + σ r_b x_b − (r_a + σ r_b) x_c = 0:
-/// (link, coefficient) for a, b and the carrier c.
+/// (link, coefficient) for a, b and the carrier c (`ends`, [`TrainGroup::ends`]).
 #[inline(always)]
-fn willis_terms(g: &JointGeom, m: &MeshGeom) -> [(usize, f64); 3] {
+fn willis_terms(ends: [usize; 3], m: &MeshGeom) -> [(usize, f64); 3] {
     [
-        (g.a, m.ra),
-        (g.b, m.sign * m.rb),
-        (m.carrier, -(m.ra + m.sign * m.rb)),
+        (ends[0], m.ra),
+        (ends[1], m.sign * m.rb),
+        (ends[2], -(m.ra + m.sign * m.rb)),
     ]
 }
 
@@ -523,14 +526,14 @@ pub struct Willis {
 impl Willis {
     /// The inverse of the group's Willis matrix and its condition estimate, from the
     /// meshes' pitch radii.
-    pub fn new(grp: &TrainGroup, meshes: &[MeshGeom], joints: &[JointGeom]) -> Self {
-        by_train_size!(grp.n, Self::sized(grp, meshes, joints))
+    pub fn new(grp: &TrainGroup, meshes: &[MeshGeom]) -> Self {
+        by_train_size!(grp.n, Self::sized(grp, meshes))
     }
 
     /// [`Willis::new`] for a group of `N` = `grp.n` links: A⁻¹ column by column from its
     /// LU factors.
-    fn sized<const N: usize>(grp: &TrainGroup, meshes: &[MeshGeom], joints: &[JointGeom]) -> Self {
-        let lu = crate::kernel::linalg::Lu::new(grp.willis_matrix::<N>(meshes, joints));
+    fn sized<const N: usize>(grp: &TrainGroup, meshes: &[MeshGeom]) -> Self {
+        let lu = crate::kernel::linalg::Lu::new(grp.willis_matrix::<N>(meshes));
         let mut inverse = [[0.0; TRAIN_MAX]; TRAIN_MAX];
         for c in 0..N {
             let x = lu.solve(&nalgebra::SVector::<f64, N>::from_fn(|r, _| {
@@ -601,14 +604,14 @@ fn solve_train_sized<const N: usize>(
     if !(cond < crate::kernel::linalg::SINGULAR_CONDITION) {
         return Err(MechError::Singular { condition: cond });
     }
-    let phi = willis.apply(&grp.willis_rhs::<N>(meshes, joints, s, 0));
+    let phi = willis.apply(&grp.willis_rhs::<N>(meshes, s, 0));
     let centre = |s: &[LinkState], k: usize| {
         let g = &joints[grp.pins[k]];
-        let body = grp.bodies[k];
-        let (other, d_other, d_body) = if g.b == body {
-            (g.a, g.da, g.db)
+        let other = grp.outer[k];
+        let (d_other, d_body) = if grp.pin_b[k] {
+            (g.da, g.db)
         } else {
-            (g.b, g.db, g.da)
+            (g.db, g.da)
         };
         (other, point_of(s, other, d_other), d_body)
     };
@@ -623,7 +626,7 @@ fn solve_train_sized<const N: usize>(
     if upto == Level::Position {
         return Ok(());
     }
-    let w = willis.apply(&grp.willis_rhs::<N>(meshes, joints, s, 1));
+    let w = willis.apply(&grp.willis_rhs::<N>(meshes, s, 1));
     for &k in &grp.order[..grp.n] {
         let (other, o, _) = centre(s, k);
         let vo = if other == 0 {
@@ -634,7 +637,7 @@ fn solve_train_sized<const N: usize>(
         s[grp.bodies[k]].set_velocity_through(o, vo, w[k]);
     }
     if upto == Level::Acceleration {
-        let al = willis.apply(&grp.willis_rhs::<N>(meshes, joints, s, 2));
+        let al = willis.apply(&grp.willis_rhs::<N>(meshes, s, 2));
         for &k in &grp.order[..grp.n] {
             let (other, o, _) = centre(s, k);
             let ao = if other == 0 {
@@ -682,24 +685,25 @@ fn train_reactions_sized<const N: usize>(
     out: &mut [Reaction],
 ) -> Result<(), MechError> {
     let n = N;
-    let pitch: [Pitch; N] = core::array::from_fn(|r| {
-        let (j, mi) = grp.meshes[r];
-        let g = &joints[j];
-        meshes[mi].pitch(s, g.a, g.b, V2::zeros())
-    });
-    let pin_point: [V2; N] = core::array::from_fn(|k| {
-        let g = &joints[grp.pins[k]];
-        if g.b == grp.bodies[k] {
-            point_of(s, g.a, g.da)
-        } else {
-            point_of(s, g.b, g.db)
-        }
-    });
+    // (Arrays filled by loops, not `core::array::from_fn`, whose closures were measured
+    // to stay calls, with the group's constants read as data.)
+    let mut pitch = [Pitch {
+        p: V2::zeros(),
+        t: V2::zeros(),
+        sep_b: V2::zeros(),
+    }; N];
+    let mut pin_point = [V2::zeros(); N];
     // The group link each link is pinned to, if any.
-    let parent: [Option<usize>; N] = core::array::from_fn(|k| {
+    let mut parent: [Option<usize>; N] = [None; N];
+    for r in 0..n {
+        let [a, b, _] = grp.ends[r];
+        pitch[r] = meshes[grp.meshes[r].1].pitch(s, a, b, V2::zeros());
+    }
+    for k in 0..n {
         let g = &joints[grp.pins[k]];
-        grp.col(if g.b == grp.bodies[k] { g.a } else { g.b })
-    });
+        pin_point[k] = point_of(s, grp.outer[k], if grp.pin_b[k] { g.da } else { g.db });
+        parent[k] = grp.col(grp.outer[k]);
+    }
     // Where a force on group link `j` at `p` enters link `k`'s moments: at `p` itself when
     // j = k, at the pin of k's child that carries j when j is further out, nowhere else.
     let enters = |j: usize, k: usize, p: V2| -> Option<V2> {
@@ -740,9 +744,9 @@ fn train_reactions_sized<const N: usize>(
     for _ in 0..=(1 << N) {
         let mut a = nalgebra::SMatrix::<f64, N, N>::zeros();
         for r in 0..n {
-            let g = &joints[grp.meshes[r].0];
+            let [ea, eb, _] = grp.ends[r];
             let d = unit(r, flanks[r]);
-            for (l, dir) in [(g.b, d), (g.a, -d)] {
+            for (l, dir) in [(eb, d), (ea, -d)] {
                 if let Some(j) = grp.col(l) {
                     for k in 0..n {
                         if let Some(p) = enters(j, k, pitch[r].p) {
@@ -753,7 +757,12 @@ fn train_reactions_sized<const N: usize>(
             }
         }
         ft = crate::kernel::linalg::Lu::new(a).solve(&rhs);
-        let settled: [f64; N] = core::array::from_fn(|r| if ft[r] < 0.0 { -1.0 } else { 1.0 });
+        let mut settled = [1.0; N];
+        for r in 0..n {
+            if ft[r] < 0.0 {
+                settled[r] = -1.0;
+            }
+        }
         if settled == flanks {
             break;
         }
@@ -769,9 +778,9 @@ fn train_reactions_sized<const N: usize>(
             }
         }
         for r in 0..n {
-            let g = &joints[grp.meshes[r].0];
+            let [ea, eb, _] = grp.ends[r];
             let d = unit(r, flanks[r]) * ft[r];
-            for (l, force) in [(g.b, d), (g.a, -d)] {
+            for (l, force) in [(eb, d), (ea, -d)] {
                 if grp.col(l).is_some_and(|j| carries(k, j)) {
                     sum += force;
                 }
@@ -779,14 +788,15 @@ fn train_reactions_sized<const N: usize>(
         }
         -sum
     };
-    let pin_forces: [V2; N] = core::array::from_fn(pin_force);
+    let mut pin_forces = [V2::zeros(); N];
+    for (k, force) in pin_forces.iter_mut().enumerate() {
+        *force = pin_force(k);
+    }
     for k in 0..n {
-        let body = grp.bodies[k];
-        let g = &joints[grp.pins[k]];
         let r = pin_forces[k];
-        let other = if g.b == body { g.a } else { g.b };
+        let other = grp.outer[k];
         out[grp.pins[k]] = Reaction {
-            force: if g.b == body { r } else { -r },
+            force: if grp.pin_b[k] { r } else { -r },
             moment: 0.0,
         };
         if grp.col(other).is_none() {
@@ -800,7 +810,7 @@ fn train_reactions_sized<const N: usize>(
     }
     for r in 0..n {
         let (j, _) = grp.meshes[r];
-        let g = &joints[j];
+        let [ea, eb, _] = grp.ends[r];
         let force = unit(r, flanks[r]) * ft[r];
         out[j] = Reaction {
             force,
@@ -810,7 +820,7 @@ fn train_reactions_sized<const N: usize>(
                 -1.0
             },
         };
-        for (l, fl) in [(g.a, -force), (g.b, force)] {
+        for (l, fl) in [(ea, -force), (eb, force)] {
             if grp.col(l).is_none() {
                 let pos = if l == 0 { V2::zeros() } else { s[l].pos };
                 f[l] += Wrench::new(fl.x, fl.y, cross(pitch[r].p - pos, fl));

@@ -247,6 +247,9 @@ fn train_kernel(model: &Model, bodies: &[usize], cons: &[Con]) -> Kernel {
         meshes: [(0, 0); TRAIN_MAX],
         order: [0; TRAIN_MAX],
         tracked: 0,
+        outer: [0; TRAIN_MAX],
+        pin_b: [false; TRAIN_MAX],
+        ends: [[0; 3]; TRAIN_MAX],
     };
     grp.bodies[..n].copy_from_slice(bodies);
     let mut k_mesh = 0;
@@ -281,12 +284,13 @@ fn train_kernel(model: &Model, bodies: &[usize], cons: &[Con]) -> Kernel {
             .filter(|&j| model.joints[j].kind.mesh())
             .count();
         grp.meshes[k_mesh] = (c.joint, index);
-        k_mesh += 1;
         // Each meshing link of the group turns about its pin: the pin is at its centre.
         let jt = &model.joints[c.joint];
         let Some(m) = jt.mesh.as_ref() else {
             return Kernel::System;
         };
+        grp.ends[k_mesh] = [jt.a, jt.b, m.carrier];
+        k_mesh += 1;
         for (l, centre) in [(jt.a, m.centres[0]), (jt.b, m.centres[1])] {
             if let Some(k) = inside(l) {
                 if model.joints[grp.pins[k]].point != centre {
@@ -297,6 +301,11 @@ fn train_kernel(model: &Model, bodies: &[usize], cons: &[Con]) -> Kernel {
     }
     if has_pin[..n].iter().any(|h| !h) {
         return Kernel::System;
+    }
+    for k in 0..n {
+        let jt = &model.joints[grp.pins[k]];
+        grp.pin_b[k] = jt.b == bodies[k];
+        grp.outer[k] = if grp.pin_b[k] { jt.a } else { jt.b };
     }
     let mut placed = vec![false; n];
     for slot in 0..n {

@@ -163,7 +163,10 @@ mod tests {
               input: A }",
         );
         let p = pins(&m, &plan(&m).unwrap()).expect("a gear train");
-        let (arm, planet) = (m.link_index("arm").unwrap(), m.link_index("planet").unwrap());
+        let (arm, planet) = (
+            m.link_index("arm").unwrap(),
+            m.link_index("planet").unwrap(),
+        );
         assert_eq!((p[arm].parent, p[planet].parent), (0, arm));
         assert!(!p[arm].slides && !p[planet].slides);
         assert_eq!(chain(&p, planet).collect::<Vec<_>>(), vec![planet, arm]);

@@ -331,8 +331,7 @@ impl Mechanism {
         }
         crate::error::check_finite("q, qd, qdd", &[q])?;
         let drive: Drive = (&[q], &[1.0], &[0.0]);
-        if let (Some(series), Level::Acceleration, Some(_)) = (&self.reduced_series, upto, loads)
-        {
+        if let (Some(series), Level::Acceleration, Some(_)) = (&self.reduced_series, upto, loads) {
             // Constant ratios: I*(q) was worked out at loading, M* needs the rates alone
             // (I* alone is `OneDof::reduced`'s, without solving).
             let mut z = self.with_states(|s| {

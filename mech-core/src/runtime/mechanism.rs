@@ -281,7 +281,7 @@ impl Mechanism {
             .filter_map(|g| match &g.kernel {
                 Kernel::Train(t) => Some((
                     t.bodies[0],
-                    crate::elements::gears::Willis::new(t, &inst.meshes, &inst.joints),
+                    crate::elements::gears::Willis::new(t, &inst.meshes),
                 )),
                 _ => None,
             })
@@ -317,11 +317,9 @@ impl Mechanism {
     ) -> std::borrow::Cow<'_, crate::elements::gears::Willis> {
         match self.willis.iter().find(|(b, _)| *b == t.bodies[0]) {
             Some((_, w)) => std::borrow::Cow::Borrowed(w),
-            None => std::borrow::Cow::Owned(crate::elements::gears::Willis::new(
-                t,
-                &self.inst.meshes,
-                &self.inst.joints,
-            )),
+            None => {
+                std::borrow::Cow::Owned(crate::elements::gears::Willis::new(t, &self.inst.meshes))
+            }
         }
     }
 

@@ -327,7 +327,7 @@ fn constructors(cx: &Ctx) -> TokenStream {
         quote!()
     } else {
         let kn = trains.iter().map(|&gi| super::plan::mesh_const(gi));
-        quote!(willis: [#(#p::gears::Willis::new(&Self::#kn, &inst.meshes, &inst.joints),)*],)
+        quote!(willis: [#(#p::gears::Willis::new(&Self::#kn, &inst.meshes),)*],)
     };
     // A machine of constant ratios: I*(q) once, as a constant and a few cosines.
     let reduced_series = match cx.series_len() {

@@ -126,8 +126,13 @@ fn rolling_tokens(r: &mech_core::elements::rolling::RollingGroup) -> TokenStream
 
 fn train_tokens(t: &mech_core::elements::gears::TrainGroup) -> TokenStream {
     let (n, bodies, pins, order, tracked) = (t.n, t.bodies, t.pins, t.order, t.tracked);
+    let (outer, pin_b) = (t.outer, t.pin_b);
     let meshes = t.meshes.iter().map(|&(j, m)| quote!((#j, #m)));
-    quote!(::mech::__private::gears::TrainGroup { n: #n, bodies: [#(#bodies),*], pins: [#(#pins),*], meshes: [#(#meshes),*], order: [#(#order),*], tracked: #tracked })
+    let ends = t.ends.iter().map(|[a, b, c]| quote!([#a, #b, #c]));
+    quote!(::mech::__private::gears::TrainGroup {
+        n: #n, bodies: [#(#bodies),*], pins: [#(#pins),*], meshes: [#(#meshes),*], order: [#(#order),*], tracked: #tracked,
+        outer: [#(#outer),*], pin_b: [#(#pin_b),*], ends: [#(#ends),*],
+    })
 }
 
 fn mesh_tokens(m: &mech_core::elements::gears::MeshGroup) -> TokenStream {

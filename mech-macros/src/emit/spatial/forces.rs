@@ -10,9 +10,20 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 pub(super) fn emit(c: &Ctx) -> TokenStream {
-    let Ctx { main, s, p, q_ty, dof, .. } = c;
-    let (loads, forces, forces_joints, motion) =
-        (c.name("Loads"), c.name("Forces"), c.name("ForcesJoints"), c.name("Motion"));
+    let Ctx {
+        main,
+        s,
+        p,
+        q_ty,
+        dof,
+        ..
+    } = c;
+    let (loads, forces, forces_joints, motion) = (
+        c.name("Loads"),
+        c.name("Forces"),
+        c.name("ForcesJoints"),
+        c.name("Motion"),
+    );
     let model = c.model;
     let load_ids: Vec<_> = model.loads.iter().map(|l| id(&l.name)).collect();
     let load_docs = model.loads.iter().map(|l| match l.kind {
@@ -36,7 +47,11 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
         )
     });
     let k = 0..model.joints.len();
-    let (n_loads, n_joints, n_idle) = (model.loads.len(), model.joints.len(), c.mech.idle_links().len());
+    let (n_loads, n_joints, n_idle) = (
+        model.loads.len(),
+        model.joints.len(),
+        c.mech.idle_links().len(),
+    );
     let driver = c.from_values(quote!(drivers));
     let action = c.from_values(quote!(d));
     let one_dof = (*dof == 1).then(|| {

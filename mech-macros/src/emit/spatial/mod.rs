@@ -167,7 +167,14 @@ fn model_literal(m: &SpatialModel, s: &TokenStream) -> TokenStream {
         let (name, pts, mass, cg) = (&b.name, &b.points, f64s(b.mass), some_vec3(&b.cg));
         // the DSL's six numbers (Ixx, Iyy, Izz, Ixy, Ixz, Iyz), products Ixy = Σ m x y
         let t = &b.inertia;
-        let six = [t[(0, 0)], t[(1, 1)], t[(2, 2)], -t[(0, 1)], -t[(0, 2)], -t[(1, 2)]];
+        let six = [
+            t[(0, 0)],
+            t[(1, 1)],
+            t[(2, 2)],
+            -t[(0, 1)],
+            -t[(0, 2)],
+            -t[(1, 2)],
+        ];
         let i = six.iter().map(|&x| f64s(x + 0.0));
         quote!(Body {
             name: #name.to_string(),
@@ -208,7 +215,9 @@ fn model_literal(m: &SpatialModel, s: &TokenStream) -> TokenStream {
     let loads = m.loads.iter().map(|l| {
         let name = &l.name;
         let kind = match l.kind {
-            LoadKind::Force { body, point } => quote!(LoadKind::Force { body: #body, point: #point }),
+            LoadKind::Force { body, point } => {
+                quote!(LoadKind::Force { body: #body, point: #point })
+            }
             LoadKind::Torque { body } => quote!(LoadKind::Torque { body: #body }),
         };
         quote!(Load { name: #name.to_string(), kind: #kind })
@@ -231,7 +240,9 @@ fn model_literal(m: &SpatialModel, s: &TokenStream) -> TokenStream {
 
 /// The struct, its constants, `new`, `model`, `mechanism` and `Default`.
 fn main(c: &Ctx) -> TokenStream {
-    let Ctx { main, s, docs, dof, .. } = c;
+    let Ctx {
+        main, s, docs, dof, ..
+    } = c;
     let k = c.mech.kutzbach();
     let n = k.n;
     let equations = k.equations();
@@ -243,7 +254,9 @@ fn main(c: &Ctx) -> TokenStream {
         (
             quote!(#s::Dense),
             quote!(#s::Dense { bodies: #n, rows: #rows }),
-            format!(" The solvers on the heap ({rows} rows for {equations} unknowns: least squares)."),
+            format!(
+                " The solvers on the heap ({rows} rows for {equations} unknowns: least squares)."
+            ),
         )
     } else {
         (

@@ -22,10 +22,21 @@ fn points(c: &Ctx) -> Vec<(Ident, usize, TokenStream)> {
 }
 
 pub(super) fn emit(c: &Ctx) -> TokenStream {
-    let Ctx { main, s, p, q_ty, dof, .. } = c;
-    let (pose, pose_links, pose_points) = (c.name("Pose"), c.name("PoseLinks"), c.name("PosePoints"));
-    let (motion, motion_links, motion_points) =
-        (c.name("Motion"), c.name("MotionLinks"), c.name("MotionPoints"));
+    let Ctx {
+        main,
+        s,
+        p,
+        q_ty,
+        dof,
+        ..
+    } = c;
+    let (pose, pose_links, pose_points) =
+        (c.name("Pose"), c.name("PoseLinks"), c.name("PosePoints"));
+    let (motion, motion_links, motion_points) = (
+        c.name("Motion"),
+        c.name("MotionLinks"),
+        c.name("MotionPoints"),
+    );
     let (bodies, link_ids): (Vec<usize>, Vec<Ident>) = c.links().into_iter().unzip();
     let pts = points(c);
     let point_ids: Vec<&Ident> = pts.iter().map(|(i, _, _)| i).collect();
@@ -36,7 +47,11 @@ pub(super) fn emit(c: &Ctx) -> TokenStream {
     let n = c.model.bodies.len();
     let all = 0..n;
     let q = id("q");
-    let (qa, qda, qdda) = (c.to_array(&q), c.to_array(&id("qd")), c.to_array(&id("qdd")));
+    let (qa, qda, qdda) = (
+        c.to_array(&q),
+        c.to_array(&id("qd")),
+        c.to_array(&id("qdd")),
+    );
     quote! {
         /// Pose of every moving link.
         #[allow(non_snake_case)]
