@@ -6,7 +6,6 @@
 //! allocates a few buffers per thread, not one per configuration.
 
 use super::mechanism::{Mechanism, Scratch};
-use super::results::LoadValue;
 use super::results::{Forces, Loads, Motion, Pose};
 use crate::kernel::constraints::Level;
 use crate::kernel::lanes::{
@@ -502,16 +501,8 @@ impl Mechanism {
             }
         }
         if let Some(loads) = loads {
-            for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
-                // As the scalar `sums`: a load on a link sliding on the ground by its
-                // anchor's velocity, a torque on it doing no work.
-                match (*value, self.program.on_translating[k]) {
-                    (LoadValue::Force(v), true) => z.force_translating(&s[load.link()], v),
-                    (LoadValue::Force(v), false) => z.force(&s[load.link()], self.inst.loads[k], v),
-                    (LoadValue::Torque(_), true) => {}
-                    (LoadValue::Torque(t), false) => z.torque(&s[load.link()], t),
-                }
-            }
+            // As the scalar `sums`.
+            self.load_terms(&mut z, s, loads);
         }
         z
     }
@@ -523,5 +514,25 @@ impl Mechanism {
                 "Zhukovski's reduction needs one input, the mechanism has {g}: use driver_action_many"
             ))),
         }
+    }
+}
+
+impl<B: Backend> super::forces::LoadTerms<LinkLanes<B>> for ZhukovskiLanes<B> {
+    #[inline(always)]
+    fn force(
+        &mut self,
+        s: &LinkLanes<B>,
+        d: crate::kernel::link_state::V2,
+        f: crate::kernel::link_state::V2,
+    ) {
+        ZhukovskiLanes::force(self, s, d, f)
+    }
+    #[inline(always)]
+    fn force_translating(&mut self, s: &LinkLanes<B>, f: crate::kernel::link_state::V2) {
+        ZhukovskiLanes::force_translating(self, s, f)
+    }
+    #[inline(always)]
+    fn torque(&mut self, s: &LinkLanes<B>, t: f64) {
+        ZhukovskiLanes::torque(self, s, t)
     }
 }

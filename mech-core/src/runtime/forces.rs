@@ -427,16 +427,7 @@ impl Mechanism {
                     _ => z.gravity(&links[l], &s[l], gravity),
                 }
             }
-            for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
-                let link = load.link();
-                match (*value, self.program.on_translating[k]) {
-                    (LoadValue::Force(v), true) => z.force_translating(&s[link], v),
-                    (LoadValue::Force(v), false) => z.force(&s[link], self.inst.loads[k], v),
-                    // A torque on a link sliding on the ground does no work.
-                    (LoadValue::Torque(_), true) => {}
-                    (LoadValue::Torque(t), false) => z.torque(&s[link], t),
-                }
-            }
+            self.load_terms(&mut z, s, loads);
             if !self.inst.elements.is_empty() {
                 z.elements(&self.inst.elements, s, qd);
             }
@@ -447,6 +438,52 @@ impl Mechanism {
         )
         .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
         Ok(z)
+    }
+}
+
+/// The load terms of Zhukovski's M*, which the scalar sums ([`ZhukovskiSums`]) and the
+/// lanes (`crate::kernel::lanes::ZhukovskiLanes`) both take, over their own link states
+/// `S`: [`Mechanism::load_terms`] chooses among them once for both.
+pub(super) trait LoadTerms<S> {
+    /// A force `f` at the local vector `d` of the link in state `s`.
+    fn force(&mut self, s: &S, d: V2, f: V2);
+    /// A force `f` on a link sliding on the ground (every point at its anchor's velocity).
+    fn force_translating(&mut self, s: &S, f: V2);
+    /// A torque `t` on the link in state `s`.
+    fn torque(&mut self, s: &S, t: f64);
+}
+
+impl LoadTerms<LinkState> for ZhukovskiSums {
+    #[inline(always)]
+    fn force(&mut self, s: &LinkState, d: V2, f: V2) {
+        ZhukovskiSums::force(self, s, d, f)
+    }
+    #[inline(always)]
+    fn force_translating(&mut self, s: &LinkState, f: V2) {
+        ZhukovskiSums::force_translating(self, s, f)
+    }
+    #[inline(always)]
+    fn torque(&mut self, s: &LinkState, t: f64) {
+        ZhukovskiSums::torque(self, s, t)
+    }
+}
+
+impl Mechanism {
+    /// Every load's power per unit input rate into `z`, as the generated code takes it: a
+    /// force on a link sliding on the ground by its anchor's velocity, a torque on such a
+    /// link left out (ω = 0: it does no work), any other force at its point, any other
+    /// torque by the link's ω.
+    #[inline(always)]
+    pub(super) fn load_terms<S, Z: LoadTerms<S>>(&self, z: &mut Z, s: &[S], loads: &Loads) {
+        for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
+            let link = load.link();
+            match (*value, self.program.on_translating[k]) {
+                (LoadValue::Force(v), true) => z.force_translating(&s[link], v),
+                (LoadValue::Force(v), false) => z.force(&s[link], self.inst.loads[k], v),
+                (LoadValue::Torque(_), true) => {}
+                (LoadValue::Torque(t), false) => z.torque(&s[link], t),
+            }
+        }
     }
 }
 

@@ -70,8 +70,9 @@ impl<T: AsRef<[Term]>> Series<T> {
 }
 
 impl<T: AsRef<[Term]> + AsMut<[Term]>> Series<T> {
-    /// The series about q₀ from the motion `s` at q₀ with q̇ = 1 ([`fill`]), its terms
-    /// written into `terms` (`crate::plan::ratios::series_len` long). `Overflow` when a
+    /// The series about q₀ from the motion `s` at q₀ with q̇ = 1 (the module's formulas),
+    /// its terms written into `terms` (`crate::plan::ratios::series_len` long): the links'
+    /// mass data `links`, the joints `joints`, each link's [`Pin`]. `Overflow` when a
     /// coefficient is not finite.
     pub fn from_motion(
         q0: f64,
