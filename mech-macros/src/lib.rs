@@ -227,6 +227,41 @@ mod snapshots {
         );
     }
 
+    /// An epicyclic train: a planet, its cg off its pin, on an arm driven on the ground,
+    /// rolling on a fixed sun.
+    const EPICYCLIC: &str = r#"
+        /// A planet on a driven arm.
+        pub struct Epicyclic {
+            gravity: (0.0, -9.81),
+            ground { O: (0.0, 0.0) },
+            link arm { points { O, P: (45 mm, 0.0) }, mass: 0.8, inertia: 9.0e-4, cg: (20 mm, 3 mm) },
+            link planet { points { P }, mass: 0.2, inertia: 2.0e-5, cg: (46 mm, 1 mm) },
+            joints {
+                A: revolute(ground, arm) at O,
+                P: revolute(arm, planet),
+                sp: gear(ground, planet) radii (20 mm, 25 mm),
+            },
+            input: A,
+        }
+    "#;
+
+    /// The one-DOF part of an epicyclic train: I*(q) kept as a constant and one cosine
+    /// (`reduced_series`, one term: the planet's chain), the direct problem solving to the
+    /// rates alone.
+    #[test]
+    fn epicyclic_reduced_is_a_kept_series() {
+        let parts = pretty_parts(EPICYCLIC);
+        let traits = &parts
+            .iter()
+            .find(|(name, _)| *name == "traits")
+            .expect("a traits part")
+            .1;
+        insta::assert_snapshot!("epicyclic_traits", traits);
+        let code = flat(&parts);
+        assert!(code.contains("reduced_series:::mech::__private::zhukovski::Series<[::mech::__private::zhukovski::Term;1usize],>"), "{code}");
+        assert!(code.contains("Ok(self.reduced_series.at(q))"), "{code}");
+    }
+
     /// The plan part of a triad machine: its constant and the call of its kernel.
     #[test]
     fn stephenson_triad_plan() {

@@ -213,7 +213,12 @@ fn zhukovski_fns(cx: &Ctx) -> TokenStream {
         Some(pins) => {
             let n_links = cx.n_links;
             let pins = pins.iter().map(|pin| {
-                let (parent, joint, slides) = (pin.parent, pin.joint, pin.slides);
+                let (parent, slides) = (pin.parent, pin.slides);
+                // The ground hangs from nothing: its entry's joint is never read.
+                let joint = match pin.joint {
+                    usize::MAX => quote!(usize::MAX),
+                    j => quote!(#j),
+                };
                 quote!(#p::zhukovski::Pin { parent: #parent, joint: #joint, slides: #slides })
             });
             (
