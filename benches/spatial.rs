@@ -142,8 +142,14 @@ fn generated(c: &mut Criterion) {
             rt.kinematics(black_box(&[qs[k]]), &[3.0], &[-2.0]).unwrap()
         })
     });
-    let gm: Vec<_> = qs.iter().map(|&q| g.kinematics(q, 3.0, -2.0).unwrap()).collect();
-    let rm: Vec<_> = qs.iter().map(|&q| rt.kinematics(&[q], &[3.0], &[-2.0]).unwrap()).collect();
+    let gm: Vec<_> = qs
+        .iter()
+        .map(|&q| g.kinematics(q, 3.0, -2.0).unwrap())
+        .collect();
+    let rm: Vec<_> = qs
+        .iter()
+        .map(|&q| rt.kinematics(&[q], &[3.0], &[-2.0]).unwrap())
+        .collect();
     grp.bench_function("kinetostatics_generated", |b| {
         b.iter(|| {
             k = (k + 1) & 63;
@@ -161,13 +167,15 @@ fn generated(c: &mut Criterion) {
     grp.bench_function("fourbar_kinematics_generated", |b| {
         b.iter(|| {
             k = (k + 1) & 63;
-            f.kinematics(black_box(0.2 * qs[k] / 6.3), 3.0, -2.0).unwrap()
+            f.kinematics(black_box(0.2 * qs[k] / 6.3), 3.0, -2.0)
+                .unwrap()
         })
     });
     grp.bench_function("fourbar_kinematics_runtime", |b| {
         b.iter(|| {
             k = (k + 1) & 63;
-            frt.kinematics(black_box(&[0.2 * qs[k] / 6.3]), &[3.0], &[-2.0]).unwrap()
+            frt.kinematics(black_box(&[0.2 * qs[k] / 6.3]), &[3.0], &[-2.0])
+                .unwrap()
         })
     });
     grp.finish();

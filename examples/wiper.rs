@@ -101,14 +101,20 @@ fn run(dir: &Path) -> Result<Vec<PathBuf>, Box<dyn Error>> {
         "Wiper: the spindle's turn",
         "crank angle, °",
         "spindle, °",
-        &[Series { label: "spindle".into(), points: angle }],
+        &[Series {
+            label: "spindle".into(),
+            points: angle,
+        }],
     )?;
     plot::line_chart(
         &t,
         "Wiper: the motor torque at 60 rpm",
         "crank angle, °",
         "torque, N·m",
-        &[Series { label: "d'Alembert".into(), points: torque }],
+        &[Series {
+            label: "d'Alembert".into(),
+            points: torque,
+        }],
     )?;
     println!("figures: {} {}", a.display(), t.display());
     Ok(vec![a, t])

@@ -2170,7 +2170,10 @@ fn a_torque_on_a_sliding_link_does_no_work_and_is_still_checked() {
         );
         let rm0 = rt.reduced_moment(q, &r0).unwrap();
         assert_eq!(rt.reduced_moment(q, &r1).unwrap(), rm0, "q = {q}");
-        assert!(within((rm0 - m0).abs() / m0.abs(), 1e-12), "run-time {rm0}, generated {m0}");
+        assert!(
+            within((rm0 - m0).abs() / m0.abs(), 1e-12),
+            "run-time {rm0}, generated {m0}"
+        );
         for x in [f64::NAN, f64::INFINITY] {
             let (g, r) = with(x);
             for e in [

@@ -115,7 +115,8 @@ fn spatial_case(file: &str, source: &str, expected: &[(String, usize, usize)]) {
     };
     for (text, line, col) in expected {
         let found = msg.lines().find(|l| l.contains(text.as_str()));
-        let found = found.unwrap_or_else(|| panic!("{file}: the macro's message\n  {text}\nis not in\n{msg}"));
+        let found = found
+            .unwrap_or_else(|| panic!("{file}: the macro's message\n  {text}\nis not in\n{msg}"));
         if found.starts_with("line ") {
             let at = format!("line {}, column {col}: {text}", line - offset);
             assert_eq!(found, at, "{file}: not at the macro's place");

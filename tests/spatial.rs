@@ -129,7 +129,11 @@ fn the_generated_declaration_is_the_loaders() {
     assert_eq!(Rssr::UNKNOWNS, 1 + 2 * 5 + 2 * 3 + 1);
     assert_eq!(Rssr::EQUATIONS, Rssr::UNKNOWNS);
     let b = &Rssr::model().bodies[1];
-    assert_eq!(b.inertia[(0, 1)], -1e-4, "Ixy = Σ m x y enters the tensor negated");
+    assert_eq!(
+        b.inertia[(0, 1)],
+        -1e-4,
+        "Ixy = Σ m x y enters the tensor negated"
+    );
 }
 
 /// The RSSR's loop equations hold at every position over a full turn (A on the crank's
@@ -234,7 +238,14 @@ fn a_planar_four_bar_declared_in_space_gives_the_planar_structs_numbers() {
                 .max((pa.pos - pb.pos.xy()).amax() / 0.3)
                 .max((pa.vel - pb.vel.xy()).amax() / (0.3 * qd))
                 .max((pa.acc - pb.acc.xy()).amax() / acc)
-                .max(pb.pos.z.abs().max(pb.vel.z.abs() / qd).max(pb.acc.z.abs() / acc) / 0.3);
+                .max(
+                    pb.pos
+                        .z
+                        .abs()
+                        .max(pb.vel.z.abs() / qd)
+                        .max(pb.acc.z.abs() / acc)
+                        / 0.3,
+                );
         }
         for (la, lb) in [
             (a.links.crank, b.links.crank),
@@ -256,7 +267,10 @@ fn a_planar_four_bar_declared_in_space_gives_the_planar_structs_numbers() {
             (fa.joints.B.force, fb.joints.B),
             (fa.joints.O4.force, fb.joints.O4),
         ];
-        let scale = pairs.iter().map(|p| p.0.amax()).fold(fa.driver.abs(), f64::max);
+        let scale = pairs
+            .iter()
+            .map(|p| p.0.amax())
+            .fold(fa.driver.abs(), f64::max);
         force = force.max((fa.driver - fb.driver).abs() / scale);
         for (ra, rb) in pairs {
             force = force.max((ra - rb.force.xy()).amax() / scale);
@@ -264,10 +278,16 @@ fn a_planar_four_bar_declared_in_space_gives_the_planar_structs_numbers() {
                 .max(rb.force.z.abs() / scale)
                 .max(rb.moment.xy().amax() / (0.3 * scale));
         }
-        assert!(fb.joints.A.moment.amax() < 1e-12 * scale, "a ball joint carries no moment");
+        assert!(
+            fb.joints.A.moment.amax() < 1e-12 * scale,
+            "a ball joint carries no moment"
+        );
     }
     eprintln!("planar in space (macro): kinematics {kin:.1e}, forces {force:.1e}, out of plane {out_of_plane:.1e}");
-    assert!(kin < 1e-12 && force < 1e-12 && out_of_plane < 1e-12, "{kin} {force} {out_of_plane}");
+    assert!(
+        kin < 1e-12 && force < 1e-12 && out_of_plane < 1e-12,
+        "{kin} {force} {out_of_plane}"
+    );
 }
 
 /// The idle rod's spin moment (`Forces::spin_moments`) is what the rod's own axis needs:
@@ -293,8 +313,9 @@ fn the_idle_rods_spin_moment_balances_its_axis() {
         let rot = r.rotation.to_rotation_matrix();
         let i = rot.matrix() * rod.inertia * rot.matrix().transpose();
         let ga = r.cg - a;
-        let need = i * r.alpha + r.omega.cross(&(i * r.omega)) + ga.cross(&(r.cg_acceleration * rod.mass))
-            - ga.cross(&(g * rod.mass));
+        let need =
+            i * r.alpha + r.omega.cross(&(i * r.omega)) + ga.cross(&(r.cg_acceleration * rod.mass))
+                - ga.cross(&(g * rod.mass));
         let scale = need.norm().max(1e-9);
         worst = worst.max((f.spin_moments[0].dot(&e) - need.dot(&e)).abs() / scale);
         let rt = m.mechanism().kinematics(&[q], &[6.0], &[-4.0]).unwrap();
@@ -321,7 +342,10 @@ fn friction_in_the_four_bar_in_space_is_the_planar_structs() {
         push: Vector3::new(3.0, -2.0, 0.0),
         tool: Vector3::new(0.0, 0.0, 1.5),
     };
-    let fr = [0.15, 0.1, 0.2, 0.12].map(|mu| JointFriction { mu, pin_radius: 0.01 });
+    let fr = [0.15, 0.1, 0.2, 0.12].map(|mu| JointFriction {
+        mu,
+        pin_radius: 0.01,
+    });
     let (mut worst, mut changed) = (0.0f64, 0.0f64);
     for k in 0..36 {
         let q = 2.0 * PI * k as f64 / 36.0;
@@ -337,7 +361,10 @@ fn friction_in_the_four_bar_in_space_is_the_planar_structs() {
             (fa.joints.B.force, fb.joints.B),
             (fa.joints.O4.force, fb.joints.O4),
         ];
-        let scale = pairs.iter().map(|p| p.0.amax()).fold(fa.driver.abs(), f64::max);
+        let scale = pairs
+            .iter()
+            .map(|p| p.0.amax())
+            .fold(fa.driver.abs(), f64::max);
         worst = worst.max((fa.driver - fb.driver).abs() / scale);
         for (ra, rb) in pairs {
             worst = worst.max((ra - rb.force.xy()).amax() / scale);
@@ -346,7 +373,10 @@ fn friction_in_the_four_bar_in_space_is_the_planar_structs() {
     }
     eprintln!("friction, planar in space: {worst:.1e} relative (friction moves the torque by up to {changed:.1e} of the forces)");
     assert!(worst < 1e-10, "{worst}");
-    assert!(changed > 1e-3, "the friction changes the driver torque: {changed}");
+    assert!(
+        changed > 1e-3,
+        "the friction changes the driver torque: {changed}"
+    );
 }
 
 /// Friction in a truly spatial mechanism: the power the motor adds with friction is what
@@ -359,7 +389,10 @@ fn friction_in_the_rssr_dissipates_what_the_motor_adds() {
     use mech::friction::JointFriction;
     let (m, l) = (Rssr::new(), rssr_loads());
     let (mu, r) = ([0.12, 0.2, 0.15, 0.1], [0.008, 0.005, 0.006, 0.01]);
-    let fr: [JointFriction; 4] = std::array::from_fn(|j| JointFriction { mu: mu[j], pin_radius: r[j] });
+    let fr: [JointFriction; 4] = std::array::from_fn(|j| JointFriction {
+        mu: mu[j],
+        pin_radius: r[j],
+    });
     let (x, z) = (Vector3::x(), Vector3::z());
     let mut worst = 0.0f64;
     for k in 0..24 {
@@ -368,7 +401,11 @@ fn friction_in_the_rssr_dissipates_what_the_motor_adds() {
         let mo = m.kinematics(q, qd, 2.0).unwrap();
         let f = m.kinetostatics_with_friction(&mo, &l, &fr).unwrap();
         let f0 = m.kinetostatics(&mo, &l).unwrap();
-        let (crank, rod, rocker) = (mo.links.crank.omega, mo.links.rod.omega, mo.links.rocker.omega);
+        let (crank, rod, rocker) = (
+            mo.links.crank.omega,
+            mo.links.rod.omega,
+            mo.links.rocker.omega,
+        );
         let radial = |f: Vector3<f64>, u: Vector3<f64>| (f - u * f.dot(&u)).norm();
         let d = mu[0] * r[0] * radial(f.joints.O.force, x) * crank.dot(&x).abs()
             + mu[1] * r[1] * f.joints.A.force.norm() * (rod - crank).norm()
@@ -386,7 +423,10 @@ fn friction_in_the_rssr_dissipates_what_the_motor_adds() {
         m.kinetostatics(&rest, &l).unwrap(),
     );
     assert_eq!(a.driver, b.driver, "no relative motion, no friction");
-    let bad = [JointFriction { mu: -0.1, pin_radius: 0.01 }; 4];
+    let bad = [JointFriction {
+        mu: -0.1,
+        pin_radius: 0.01,
+    }; 4];
     assert!(matches!(
         m.kinetostatics_with_friction(&rest, &l, &bad),
         Err(MechError::InvalidInput(_))
@@ -449,7 +489,10 @@ fn the_direct_problem_keeps_the_energy_of_the_generated_rssr() {
     .unwrap();
     let e1 = total_energy(&m, &[out.y[0]], &[out.y[1]]).unwrap();
     let turns = (out.y[0] - q0) / (2.0 * PI);
-    eprintln!("generated RSSR energy: |ΔE| = {:.1e} J of {e0:.4} J over {turns:.1} turns", (e1 - e0).abs());
+    eprintln!(
+        "generated RSSR energy: |ΔE| = {:.1e} J of {e0:.4} J over {turns:.1} turns",
+        (e1 - e0).abs()
+    );
     assert!(turns > 8.0, "it turns many times: {turns}");
     assert!((e1 - e0).abs() < 1e-8 * e0.abs().max(1.0), "{e0} {e1}");
 }
@@ -486,19 +529,33 @@ fn the_generated_spatial_solvers_do_not_allocate() {
         none!("RSSR pose", r.pose(q)).unwrap();
         let m = none!("RSSR kinematics", r.kinematics(q, 3.0, -2.0)).unwrap();
         none!("RSSR kinetostatics", r.kinetostatics(&m, &l)).unwrap();
-        let fr = [mech::friction::JointFriction { mu: 0.1, pin_radius: 0.01 }; 4];
+        let fr = [mech::friction::JointFriction {
+            mu: 0.1,
+            pin_radius: 0.01,
+        }; 4];
         none!("RSSR friction", r.kinetostatics_with_friction(&m, &l, &fr)).unwrap();
         none!("RSSR driver_action", r.driver_action(&m, &l)).unwrap();
         none!("RSSR reduced", r.reduced(q)).unwrap();
         none!("RSSR reduced_moment", r.reduced_moment(q, &l)).unwrap();
         none!("RSSR acceleration", r.acceleration(q, 3.0, 1.0, &l)).unwrap();
         let mut out = [0.0; 1];
-        none!("RSSR Machine::driver_actions", Machine::driver_actions(&r, &m, &l, &mut out)).unwrap();
+        none!(
+            "RSSR Machine::driver_actions",
+            Machine::driver_actions(&r, &m, &l, &mut out)
+        )
+        .unwrap();
         let mut e = [0.0; 4];
-        none!("RSSR energies", Machine::link_kinetic_energies(&r, &m, &mut e));
+        none!(
+            "RSSR energies",
+            Machine::link_kinetic_energies(&r, &m, &mut e)
+        );
         none!("RSSR potential", Machine::potential_energy(&r, &m));
         none!("RSSR shaking", Machine::shaking(&r, &m));
-        none!("RSSR OneDof::acceleration", OneDof::acceleration(&r, q, 3.0, 1.0, &l)).unwrap();
+        none!(
+            "RSSR OneDof::acceleration",
+            OneDof::acceleration(&r, q, 3.0, 1.0, &l)
+        )
+        .unwrap();
 
         none!("four-bar pose", f.pose(q)).unwrap();
         let m = none!("four-bar kinematics", f.kinematics(q, 3.0, -2.0)).unwrap();
@@ -509,7 +566,11 @@ fn the_generated_spatial_solvers_do_not_allocate() {
     }
     let s = RssrOnSlider::new();
     let sl = RssrOnSliderLoads::default();
-    let m = none!("two inputs kinematics", s.kinematics([0.4, 0.02], [3.0, 0.1], [-2.0, 0.0])).unwrap();
+    let m = none!(
+        "two inputs kinematics",
+        s.kinematics([0.4, 0.02], [3.0, 0.1], [-2.0, 0.0])
+    )
+    .unwrap();
     none!("two inputs kinetostatics", s.kinetostatics(&m, &sl)).unwrap();
     none!("two inputs driver_action", s.driver_action(&m, &sl)).unwrap();
     // a failure allocates its message only

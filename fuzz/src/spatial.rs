@@ -9,7 +9,9 @@ use crate::watchdog::Watchdog;
 use mech_core::runtime::columns::Part;
 use mech_core::runtime::spatial_columns::SpatialColumns;
 use mech_core::solvers::traits::OneDof;
-use mech_core::spatial::{BodyMotion, Reaction, SpatialForces, SpatialLoads, SpatialMechanism, SpatialMotion};
+use mech_core::spatial::{
+    BodyMotion, Reaction, SpatialForces, SpatialLoads, SpatialMechanism, SpatialMotion,
+};
 use mech_core::{UnitQuaternion, Vector3};
 
 impl Numbers for Vector3<f64> {
@@ -93,11 +95,15 @@ pub fn run(text: &str, dog: &Watchdog) -> (Vec<Finding>, bool) {
             c.solve("spatial kinetostatics", || m.kinetostatics(&mo, &loads));
             c.solve("spatial driver_action", || m.driver_action(&mo, &loads));
         }
-        c.solve("spatial columns row", || columns.row(&m, &q, &qd, &qdd, &loads));
+        c.solve("spatial columns row", || {
+            columns.row(&m, &q, &qd, &qdd, &loads)
+        });
         if g == 1 {
             c.solve("spatial reduced", || OneDof::reduced(&m, q[0]));
             c.solve("spatial reduced_moment", || m.reduced_moment(q[0], &loads));
-            c.solve("spatial acceleration", || m.acceleration(q[0], qd[0], 1e3, &loads));
+            c.solve("spatial acceleration", || {
+                m.acceleration(q[0], qd[0], 1e3, &loads)
+            });
         }
     }
     c.at.clear();

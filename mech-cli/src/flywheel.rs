@@ -113,14 +113,9 @@ fn cycle<M: OneDof>(
         Some(d) => Some(quantity::parse(d, Dim::TORQUE, "--driver")?),
         None => None,
     };
-    let cycle = Cycle::new(
-        m,
-        start,
-        period,
-        &breakpoints,
-        loads,
-        move |_| driver.unwrap_or(0.0),
-    )?;
+    let cycle = Cycle::new(m, start, period, &breakpoints, loads, move |_| {
+        driver.unwrap_or(0.0)
+    })?;
     let net = cycle.net_work();
     let (cycle, torque) = if driver.is_some() {
         (cycle, 0.0)

@@ -1122,17 +1122,37 @@ fn set_param_is_the_edited_text() {
     let text = include_str!("../../examples/mech/rssr.mech");
     let base = SpatialMechanism::from_dsl(text).unwrap();
     let cases: [(&str, &[f64], &str, &str); 6] = [
-        ("points.B", &[0.26, 0.03, 0.07], "B: (0.25, 0.02, 0.08)", "B: (0.26, 0.03, 0.07)"),
+        (
+            "points.B",
+            &[0.26, 0.03, 0.07],
+            "B: (0.25, 0.02, 0.08)",
+            "B: (0.26, 0.03, 0.07)",
+        ),
         ("links.rod.mass", &[0.7], "mass: 0.5", "mass: 0.7"),
-        ("links.rocker.cg", &[0.24, 0.08, 0.1], "cg: (0.25, 0.07, 0.09)", "cg: (0.24, 0.08, 0.1)"),
+        (
+            "links.rocker.cg",
+            &[0.24, 0.08, 0.1],
+            "cg: (0.25, 0.07, 0.09)",
+            "cg: (0.24, 0.08, 0.1)",
+        ),
         (
             "links.crank.inertia",
             &[2e-3, 4e-4, 9e-4, 1e-4, -2e-5, 5e-5],
             "inertia: (1e-3, 4e-4, 9e-4, 1e-4, -2e-5, 5e-5)",
             "inertia: (2e-3, 4e-4, 9e-4, 1e-4, -2e-5, 5e-5)",
         ),
-        ("axes.C", &[0.0, 0.1, 1.0], "axis (0.0, 0.0, 1.0)", "axis (0.0, 0.1, 1.0)"),
-        ("gravity", &[0.0, -9.81, 0.0], "gravity: (0.0, 0.0, -9.81)", "gravity: (0.0, -9.81, 0.0)"),
+        (
+            "axes.C",
+            &[0.0, 0.1, 1.0],
+            "axis (0.0, 0.0, 1.0)",
+            "axis (0.0, 0.1, 1.0)",
+        ),
+        (
+            "gravity",
+            &[0.0, -9.81, 0.0],
+            "gravity: (0.0, 0.0, -9.81)",
+            "gravity: (0.0, -9.81, 0.0)",
+        ),
     ];
     for (path, value, from, to) in cases {
         assert!(text.contains(from), "{from}");
@@ -1158,7 +1178,11 @@ fn set_param_is_the_edited_text() {
         ("points.B", &[0.1, 0.2], "takes 3 number(s)"),
         ("links.ground.mass", &[1.0], "unknown moving link"),
         ("links.rod.mass", &[1e12], "a mass is 0 or within"),
-        ("links.rod.inertia", &[1e-3, 1e-3, 1e-3, 5e-3, 0.0, 0.0], "not positive semi-definite"),
+        (
+            "links.rod.inertia",
+            &[1e-3, 1e-3, 1e-3, 5e-3, 0.0, 0.0],
+            "not positive semi-definite",
+        ),
         ("axes.O", &[0.0, 0.0, 0.0], "has no direction"),
         ("axes.A", &[0.0, 0.0, 1.0], "a spherical joint has no axis"),
         // the rocker's axis through B: the rocker cannot move B (a rank deficiency)

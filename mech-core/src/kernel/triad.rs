@@ -510,9 +510,7 @@ fn positions(
             || other_leads(t, joints, s, drawing, from, scale).is_ok()
     };
     let solved = match start {
-        Some(from) => {
-            attempt(s, &pins_of(t, &g, from), from) || attempt(s, &drawn_pins, drawing)
-        }
+        Some(from) => attempt(s, &pins_of(t, &g, from), from) || attempt(s, &drawn_pins, drawing),
         None => attempt(s, &drawn_pins, drawing),
     };
     (solved, drawn)

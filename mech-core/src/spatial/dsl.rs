@@ -336,9 +336,11 @@ fn located(e: &syn::Error) -> String {
 /// starting with where it was written.
 pub fn parse(text: &str) -> Result<SpatialModel, MechError> {
     let w = syn::parse_str::<Written>(text).map_err(|e| MechError::Invalid(located(&e)))?;
-    super::resolve::resolve(w).map(|(m, _)| m).map_err(|errors| {
-        MechError::Invalid(errors.iter().map(located).collect::<Vec<_>>().join("\n"))
-    })
+    super::resolve::resolve(w)
+        .map(|(m, _)| m)
+        .map_err(|errors| {
+            MechError::Invalid(errors.iter().map(located).collect::<Vec<_>>().join("\n"))
+        })
 }
 
 /// Where the parts of a `space` declaration were written, for the macro's spanned errors.
@@ -500,10 +502,18 @@ mod tests {
         assert!(m.contains("not positive semi-definite"), "{m}");
         // magnitudes (docs/conventions.md#magnitudes): an infinity never reaches the solvers
         let m = message(&TEXT.replace("G: (1 m, 0.0, h)", "G: (1 m, 0.0, 1e999)"));
-        assert!(m.contains("point `G` is at (1e0, 0e0, inf) m: coordinates must be finite and within ±1e6 m"), "{m}");
+        assert!(
+            m.contains(
+                "point `G` is at (1e0, 0e0, inf) m: coordinates must be finite and within ±1e6 m"
+            ),
+            "{m}"
+        );
         let m = message(&TEXT.replace("mass: 500 g", "mass: 1e12"));
         assert!(m.contains("a mass is 0 or within 1e-18 to 1e9 kg"), "{m}");
-        let m = message(&TEXT.replace("(1.0, 2.0, 3.0, 0.1, 0.2, 0.3)", "(1.0, 2.0, 3.0, 1e300, 0.2, 0.3)"));
+        let m = message(&TEXT.replace(
+            "(1.0, 2.0, 3.0, 0.1, 0.2, 0.3)",
+            "(1.0, 2.0, 3.0, 1e300, 0.2, 0.3)",
+        ));
         assert!(m.contains("products within ±1e15"), "{m}");
         let m = message(&TEXT.replace("(0.0, 0.0, -9.81)", "(0.0, 0.0, -1e5)"));
         assert!(m.contains("gravity is (0e0, 0e0, -1e5) m/s²"), "{m}");

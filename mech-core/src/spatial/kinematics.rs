@@ -336,7 +336,9 @@ impl Layout {
         out: &mut [BodyMotion],
     ) -> Result<(), MechError> {
         self.check_inputs(q, qd, qdd, out.len())?;
-        if let (Some(c), [q1], [qd1], [qdd1], [(_, e)]) = (&self.closed, q, qd, qdd, &self.spins[..]) {
+        if let (Some(c), [q1], [qd1], [qdd1], [(_, e)]) =
+            (&self.closed, q, qd, qdd, &self.spins[..])
+        {
             if !NEWTON_ONLY.with(|n| n.get()) {
                 self.steps(q)?;
                 if let Some(done) = c.motions(*q1, *qd1, *qdd1, *e, out) {

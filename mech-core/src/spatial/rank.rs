@@ -78,12 +78,13 @@ pub(crate) fn check(layout: &Layout) -> Option<(Vec<Site>, String)> {
             )
         })
         .collect();
-    groups.extend(
-        model
-            .inputs
-            .iter()
-            .map(|&k| (format!("input `{}`", model.joints[k].name), 1, Site::Joint(k))),
-    );
+    groups.extend(model.inputs.iter().map(|&k| {
+        (
+            format!("input `{}`", model.joints[k].name),
+            1,
+            Site::Joint(k),
+        )
+    }));
     groups.extend(layout.spins.iter().map(|&(b, _)| {
         (
             format!("the spin fix of link `{}`", model.bodies[b].name),

@@ -6,12 +6,12 @@
 //! inertia tensor checked positive semi-definite. Every mistake is collected and reported at
 //! once.
 
+use super::dsl::Spans;
 use super::dsl::Written;
 use super::model::{inertia_tensor, Body, Joint, JointKind, Load, LoadKind, SpatialModel};
-use super::dsl::Spans;
 use crate::checks::magnitudes::{in_range, COORDINATE, GRAVITY, INERTIA, MASS, SIZE, WHY};
-use proc_macro2::Span;
 use nalgebra::{Matrix3, Vector3};
+use proc_macro2::Span;
 use syn::Ident;
 
 /// The message `m` at where `id` was written.
@@ -73,12 +73,17 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
         }
         let six = l.inertia.unwrap_or_default();
         let sized = six[..3].iter().all(|&x| in_range(x, INERTIA))
-            && six[3..].iter().all(|&x| x.is_finite() && x.abs() <= INERTIA.1);
+            && six[3..]
+                .iter()
+                .all(|&x| x.is_finite() && x.abs() <= INERTIA.1);
         if !sized {
             errors.push(err(&l.name, format!("the inertia of link `{}` is {six:?} kg·m²: moments are 0 or within {:e} to {:e} kg·m², products within ±{:e} ({WHY})", l.name, INERTIA.0, INERTIA.1, INERTIA.1)));
         }
         let inertia = l.inertia.map(inertia_tensor).unwrap_or_else(Matrix3::zeros);
-        if sized && l.inertia.is_some() && inertia.symmetric_eigenvalues().min() < -1e-12 * inertia.norm() {
+        if sized
+            && l.inertia.is_some()
+            && inertia.symmetric_eigenvalues().min() < -1e-12 * inertia.norm()
+        {
             errors.push(err(&l.name, format!("the inertia tensor of link `{}` is not positive semi-definite (eigenvalues {:?} kg·m²): check the signs of the products Ixy, Ixz, Iyz (Ixy = Σ m x y)", l.name, inertia.symmetric_eigenvalues().as_slice())));
         }
         bodies.push(Body {
@@ -106,16 +111,17 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
             .iter()
             .position(|b| *id == b.name)
             .unwrap_or_else(|| {
-                errors.push(
-                    err(id, format!(
-                            "unknown link `{id}`: the links are {}",
-                            bodies
-                                .iter()
-                                .map(|b| format!("`{}`", b.name))
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        )),
-                );
+                errors.push(err(
+                    id,
+                    format!(
+                        "unknown link `{id}`: the links are {}",
+                        bodies
+                            .iter()
+                            .map(|b| format!("`{}`", b.name))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                ));
                 0
             })
     };
@@ -139,19 +145,20 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
             }
         };
         if j.axes.len() != want {
-            errors.push(
-                err(&j.name, format!(
-                        "joint `{}`: a {} joint takes {want} direction(s), {} given (e.g. `{}`)",
-                        j.name,
-                        j.kind,
-                        j.axes.len(),
-                        [
-                            "`spherical(a, b)`",
-                            "`axis (0.0, 0.0, 1.0)`",
-                            "`axes (1.0, 0.0, 0.0) (0.0, 1.0, 0.0)`"
-                        ][want]
-                    )),
-            );
+            errors.push(err(
+                &j.name,
+                format!(
+                    "joint `{}`: a {} joint takes {want} direction(s), {} given (e.g. `{}`)",
+                    j.name,
+                    j.kind,
+                    j.axes.len(),
+                    [
+                        "`spherical(a, b)`",
+                        "`axis (0.0, 0.0, 1.0)`",
+                        "`axes (1.0, 0.0, 0.0) (0.0, 1.0, 0.0)`"
+                    ][want]
+                ),
+            ));
             continue;
         }
         let what = |k: usize| format!("the {} of joint `{}`", ["axis", "second axis"][k], j.name);
@@ -163,12 +170,13 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
             .collect();
         let kind = match (j.kind.to_string().as_str(), j.pitch) {
             ("helical", None) => {
-                errors.push(
-                    err(&j.name, format!(
-                            "joint `{}`: a helical joint needs its lead: `pitch 5 mm` (m per turn)",
-                            j.name
-                        )),
-                );
+                errors.push(err(
+                    &j.name,
+                    format!(
+                        "joint `{}`: a helical joint needs its lead: `pitch 5 mm` (m per turn)",
+                        j.name
+                    ),
+                ));
                 continue;
             }
             ("helical", Some(pitch)) if !(pitch.abs() <= COORDINATE) => {
@@ -177,12 +185,13 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
             }
             ("helical", Some(pitch)) => JointKind::Helical { axis: u[0], pitch },
             (k, Some(_)) => {
-                errors.push(
-                    err(&j.name, format!(
-                            "joint `{}`: only a helical joint takes `pitch`, not a {k} one",
-                            j.name
-                        )),
-                );
+                errors.push(err(
+                    &j.name,
+                    format!(
+                        "joint `{}`: only a helical joint takes `pitch`, not a {k} one",
+                        j.name
+                    ),
+                ));
                 continue;
             }
             ("revolute", _) => JointKind::Revolute { axis: u[0] },
@@ -201,12 +210,13 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
             _ => JointKind::Spherical,
         };
         if named && a == b {
-            errors.push(
-                err(&j.name, format!(
-                        "joint `{}` joins link `{}` to itself: name two different links",
-                        j.name, j.a
-                    )),
-            );
+            errors.push(err(
+                &j.name,
+                format!(
+                    "joint `{}` joins link `{}` to itself: name two different links",
+                    j.name, j.a
+                ),
+            ));
         }
         let owns = |x: usize| bodies[x].points.contains(&point);
         let shared = !matches!(
@@ -228,11 +238,10 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
     for id in &w.inputs {
         match joints.iter().position(|j| *id == j.name) {
             Some(k) => inputs.push(k),
-            None => errors.push(
-                err(id, format!(
-                        "input `{id}` is not a joint: name a revolute, prismatic or helical joint"
-                    )),
-            ),
+            None => errors.push(err(
+                id,
+                format!("input `{id}` is not a joint: name a revolute, prismatic or helical joint"),
+            )),
         }
     }
     let mut loads = Vec::new();
@@ -250,9 +259,10 @@ pub(super) fn resolve(w: Written) -> Result<(SpatialModel, Spans), Vec<syn::Erro
                 }
             },
             _ => {
-                errors.push(
-                    err(n, format!("load `{n}`: expected `force on LINK at P` or `torque on LINK`")),
-                );
+                errors.push(err(
+                    n,
+                    format!("load `{n}`: expected `force on LINK at P` or `torque on LINK`"),
+                ));
                 continue;
             }
         };

@@ -18,8 +18,6 @@ pub mod law;
 pub mod pair;
 pub mod profile;
 
-pub use law::{
-    law_of, lift_text, Jump, Law, MotionLaw, Segment, SegmentLaw, Spline, ANGLE_TOL,
-};
+pub use law::{law_of, lift_text, Jump, Law, MotionLaw, Segment, SegmentLaw, Spline, ANGLE_TOL};
 pub use pair::{cam_reactions, solve_cam, CamGeom, CamGroup, CamLaw};
 pub use profile::{Contact, Face, Profile, ProfileCheck, ProfilePoint, Rocker};

@@ -434,7 +434,13 @@ impl Closed {
                     circle(k.centre, k.axis, k.a0, [psi, psid, psidd]),
                     circle(k.rocker_centre, k.rocker_axis, k.b0, [o.x, o.xd, o.xdd]),
                     (k.centre, k.axis, Some(k.centre), psid, psidd),
-                    (k.rocker_centre, k.rocker_axis, Some(k.rocker_centre), o.xd, o.xdd),
+                    (
+                        k.rocker_centre,
+                        k.rocker_axis,
+                        Some(k.rocker_centre),
+                        o.xd,
+                        o.xdd,
+                    ),
                 )
             }
             Group::Rssp(k) => {
@@ -525,7 +531,9 @@ impl Closed {
         // an overflow (rates near f64's limit) is refused as the linear solves refuse it
         let finite = out.iter().all(|m| {
             let st = &m.state;
-            [st.v, st.w, m.a, m.alpha].iter().all(|v| v.iter().all(|x| x.is_finite()))
+            [st.v, st.w, m.a, m.alpha]
+                .iter()
+                .all(|v| v.iter().all(|x| x.is_finite()))
         });
         if finite {
             Ok(())

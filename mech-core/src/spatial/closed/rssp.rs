@@ -88,8 +88,18 @@ impl Rssp {
     /// (A, B, s) at ψ: the pins (m) and the travel (m).
     #[inline]
     pub fn points(&self, psi: f64) -> Result<(V3, V3, f64), MechError> {
-        let a = circle(self.geometry.centre, self.geometry.axis, self.geometry.a0, [psi, 0.0, 0.0])[0];
-        let s = travel(a - self.geometry.b0, self.geometry.slide, self.geometry.length, self.sign)?;
+        let a = circle(
+            self.geometry.centre,
+            self.geometry.axis,
+            self.geometry.a0,
+            [psi, 0.0, 0.0],
+        )[0];
+        let s = travel(
+            a - self.geometry.b0,
+            self.geometry.slide,
+            self.geometry.length,
+            self.sign,
+        )?;
         Ok((a, self.geometry.b0 + self.geometry.slide * s, s))
     }
 
@@ -97,7 +107,12 @@ impl Rssp {
     #[inline]
     pub fn solve(&self, psi: f64, psid: f64, psidd: f64) -> Result<Output, MechError> {
         let (_, b, s) = self.points(psi)?;
-        let [a, ad, add] = circle(self.geometry.centre, self.geometry.axis, self.geometry.a0, [psi, psid, psidd]);
+        let [a, ad, add] = circle(
+            self.geometry.centre,
+            self.geometry.axis,
+            self.geometry.a0,
+            [psi, psid, psidd],
+        );
         let (xd, xdd) = keep_length(a - b, ad, add, self.geometry.slide, V3::zeros())?;
         Ok(Output { x: s, xd, xdd })
     }
@@ -137,10 +152,18 @@ impl RsspSlide {
     #[inline]
     pub fn points(&self, s: f64) -> Result<(V3, V3, f64), MechError> {
         let b = self.geometry.b0 + self.geometry.slide * s;
-        let (d, a) = (b - self.geometry.centre, self.geometry.a0 - self.geometry.centre);
-        let c = 0.5 * (d.norm_squared() + a.norm_squared() - self.geometry.length * self.geometry.length);
+        let (d, a) = (
+            b - self.geometry.centre,
+            self.geometry.a0 - self.geometry.centre,
+        );
+        let c = 0.5
+            * (d.norm_squared() + a.norm_squared() - self.geometry.length * self.geometry.length);
         let psi = dot_angle(d, self.geometry.axis, a, c, self.sign)?;
-        Ok((self.geometry.centre + turn(self.geometry.axis, psi) * a, b, psi))
+        Ok((
+            self.geometry.centre + turn(self.geometry.axis, psi) * a,
+            b,
+            psi,
+        ))
     }
 
     /// ψ, ψ̇, ψ̈ at (s, ṡ, s̈) (rad, rad/s, rad/s²); `Singular` with the rod ⊥ the pin's
