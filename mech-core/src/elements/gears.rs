@@ -51,6 +51,10 @@ pub struct MeshGeom {
     /// The ratios of Willis' relation, worked out once ([`MeshGeom::ratios`]):
     /// [r_b/r_a, r_a/r_b] for a gear pair, [r_a, 1/r_a] for a rack.
     pub ratios: [f64; 2],
+    /// 1/|O_b − O_a|, the centres' distance in the drawing inverted (1/m; 0 for a rack):
+    /// both centres ride the carrier, so the distance never changes and the line of
+    /// centres is normalised by a product, not a square root and a division.
+    pub inv_centre: f64,
 }
 
 /// The pitch point of a mesh and its tangent in the states `s`: P (m), t (unit) and the
@@ -89,8 +93,7 @@ impl MeshGeom {
             };
         }
         let ob = point_of(s, b, self.cb);
-        let d = ob - oa;
-        let w = d / d.norm();
+        let w = (ob - oa) * self.inv_centre;
         let (p, sep_b) = if self.sign > 0.0 {
             (oa + w * self.ra, w)
         } else if self.ra < self.rb {

@@ -97,71 +97,78 @@ pub fn series_len(pins: &[Pin]) -> usize {
         .sum()
 }
 
-/// Whether every velocity coefficient of the plan `groups` is a constant (gears on fixed
-/// axes, racks on fixed guides): I* is then a constant of the drawing.
-pub fn constant_ratios(model: &Model, groups: &[Group]) -> bool {
-    pins(model, groups).is_some_and(|p| series_len(&p) == 0)
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{chain, constant_ratios, pins, series_len};
+    use super::{chain, pins, series_len};
     use crate::front::resolve::model_of;
     use crate::plan::assur::plan;
 
-    fn constant(text: &str) -> bool {
+    /// A planet on a driven arm, rolling on a fixed sun: it turns about a moving pin.
+    const EPICYCLIC: &str = "pub struct E { ground { O: (0.0, 0.0) },
+          link arm { points { O, P: (0.045, 0.0) } },
+          link planet { points { P } },
+          joints { A: revolute(ground, arm) at O,
+                   P: revolute(arm, planet),
+                   sp: gear(ground, planet) radii (20 mm, 25 mm) },
+          input: A }";
+
+    /// The number of terms of I* of `text`, `None` when it is not a machine of gears.
+    fn terms(text: &str) -> Option<usize> {
         let m = model_of(text);
-        constant_ratios(&m, &plan(&m).unwrap())
+        pins(&m, &plan(&m).unwrap()).map(|p| series_len(&p))
     }
 
     #[test]
-    fn a_gearbox_and_a_rack_have_constant_ratios_a_linkage_and_an_epicyclic_have_not() {
-        // A pinion driving a gear on a fixed axis and a rack on a fixed guide.
-        assert!(constant(
-            "pub struct G { ground { O: (0.0, 0.0), C: (0.05, 0.0) },
-              link pinion { points { O } },
-              link gear { points { C } },
-              link rack { points { R: (0.0, -0.02) } },
-              joints { O: revolute(ground, pinion),
-                       C: revolute(ground, gear),
-                       pg: gear(pinion, gear) radii (20 mm, 30 mm),
-                       guide: prismatic(ground, rack) at R along (1.0, 0.0),
-                       pr: rack(pinion, rack) radius 20 mm },
-              input: O }"
-        ));
-        // The four-bar: its coupler's and rocker's coefficients change with q.
-        assert!(!constant(
-            "pub struct F { ground { O2: (0.0, 0.0), O4: (0.1, 0.0) },
-              link crank { points { O2, A: (0.0, 0.03) } },
-              link coupler { points { A, B: (0.09, 0.06) } },
-              link rocker { points { O4, B } },
-              joints { O2: revolute(ground, crank), A: revolute(crank, coupler),
-                       B: revolute(coupler, rocker), O4: revolute(ground, rocker) },
-              input: O2 }"
-        ));
-        // A planet on a driven arm, rolling on a fixed sun: it turns about a moving pin.
-        assert!(!constant(
-            "pub struct E { ground { O: (0.0, 0.0) },
-              link arm { points { O, P: (0.045, 0.0) } },
-              link planet { points { P } },
-              joints { A: revolute(ground, arm) at O,
-                       P: revolute(arm, planet),
-                       sp: gear(ground, planet) radii (20 mm, 25 mm) },
-              input: A }"
-        ));
-    }
-
-    #[test]
-    fn an_epicyclic_hangs_its_planet_from_the_arm_one_term_per_pair_of_a_chain() {
-        let m = model_of(
-            "pub struct E { ground { O: (0.0, 0.0) },
-              link arm { points { O, P: (0.045, 0.0) } },
-              link planet { points { P } },
-              joints { A: revolute(ground, arm) at O,
-                       P: revolute(arm, planet),
-                       sp: gear(ground, planet) radii (20 mm, 25 mm) },
-              input: A }",
+    fn a_gearbox_and_a_rack_leave_no_term_an_epicyclic_one_a_linkage_no_series() {
+        // A pinion driving a gear on a fixed axis and a rack on a fixed guide: I* constant.
+        assert_eq!(
+            terms(
+                "pub struct G { ground { O: (0.0, 0.0), C: (0.05, 0.0) },
+                  link pinion { points { O } },
+                  link gear { points { C } },
+                  link rack { points { R: (0.0, -0.02) } },
+                  joints { O: revolute(ground, pinion),
+                           C: revolute(ground, gear),
+                           pg: gear(pinion, gear) radii (20 mm, 30 mm),
+                           guide: prismatic(ground, rack) at R along (1.0, 0.0),
+                           pr: rack(pinion, rack) radius 20 mm },
+                  input: O }"
+            ),
+            Some(0)
         );
+        // The planet's chain (planet, arm) is one pair; the arm's a single link.
+        assert_eq!(terms(EPICYCLIC), Some(1));
+        // The four-bar and the slider-crank: their coefficients are not sums of turns.
+        assert_eq!(
+            terms(
+                "pub struct F { ground { O2: (0.0, 0.0), O4: (0.1, 0.0) },
+                  link crank { points { O2, A: (0.0, 0.03) } },
+                  link coupler { points { A, B: (0.09, 0.06) } },
+                  link rocker { points { O4, B } },
+                  joints { O2: revolute(ground, crank), A: revolute(crank, coupler),
+                           B: revolute(coupler, rocker), O4: revolute(ground, rocker) },
+                  input: O2 }"
+            ),
+            None
+        );
+        assert_eq!(
+            terms(
+                "pub struct S { ground { O: (0.0, 0.0) },
+                  link crank { points { O, A: (0.03, 0.0) } },
+                  link rod { points { A, B: (0.12, 0.0) } },
+                  link piston { points { B } },
+                  joints { O: revolute(ground, crank), A: revolute(crank, rod),
+                           B: revolute(rod, piston),
+                           guide: prismatic(ground, piston) at B along (1.0, 0.0) },
+                  input: O }"
+            ),
+            None
+        );
+    }
+
+    #[test]
+    fn an_epicyclic_hangs_its_planet_from_the_arm() {
+        let m = model_of(EPICYCLIC);
         let p = pins(&m, &plan(&m).unwrap()).expect("a gear train");
         let (arm, planet) = (
             m.link_index("arm").unwrap(),
@@ -171,19 +178,5 @@ mod tests {
         assert!(!p[arm].slides && !p[planet].slides);
         assert_eq!(chain(&p, planet).collect::<Vec<_>>(), vec![planet, arm]);
         assert_eq!(chain(&p, 0).count(), 0);
-        // The planet's chain (planet, arm) is one pair; the arm's a single link.
-        assert_eq!(series_len(&p), 1);
-        // A linkage has no pins table.
-        let f = model_of(
-            "pub struct S { ground { O: (0.0, 0.0) },
-              link crank { points { O, A: (0.03, 0.0) } },
-              link rod { points { A, B: (0.12, 0.0) } },
-              link piston { points { B } },
-              joints { O: revolute(ground, crank), A: revolute(crank, rod),
-                       B: revolute(rod, piston),
-                       guide: prismatic(ground, piston) at B along (1.0, 0.0) },
-              input: O }",
-        );
-        assert!(pins(&f, &plan(&f).unwrap()).is_none());
     }
 }

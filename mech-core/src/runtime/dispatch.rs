@@ -306,12 +306,7 @@ impl Mechanism {
         out: &mut [f64],
         start: Option<&[LinkState]>,
     ) -> Result<(), MechError> {
-        const ZEROS: [f64; 16] = [0.0; 16];
-        let zero: Scratch<f64> = if q.len() <= ZEROS.len() {
-            SmallVec::from_slice(&ZEROS[..q.len()])
-        } else {
-            SmallVec::from_elem(0.0, q.len())
-        };
+        let zero = zeros(q.len());
         self.solve_into_from(q, &zero, &zero, Level::Position, s, start)?;
         let np = self.inst.points.len();
         for (k, xy) in out[..2 * np].chunks_exact_mut(2).enumerate() {
@@ -338,13 +333,7 @@ impl Mechanism {
     /// grown (`out` from an earlier call, on this or another mechanism), for mechanisms of
     /// up to 8 links.
     pub fn pose_into(&self, q: &[f64], out: &mut Pose) -> Result<(), MechError> {
-        let g = self.dof();
-        const ZEROS: [f64; 16] = [0.0; 16];
-        let zero: Scratch<f64> = if g <= ZEROS.len() {
-            SmallVec::from_slice(&ZEROS[..g])
-        } else {
-            SmallVec::from_elem(0.0, g)
-        };
+        let zero = zeros(self.dof());
         self.with_states(|s| self.pose_from(q, &zero, s, out))
     }
 
@@ -370,8 +359,8 @@ impl Mechanism {
         let s = &*s;
         let p = &self.program;
         let (n, np) = (s.len(), p.owners.len());
-        out.links.resize(n, Default::default());
-        out.points.resize(np, Default::default());
+        fit(&mut out.links, n, Default::default());
+        fit(&mut out.points, np, Default::default());
         let mut bad = false;
         out.links[0] = LinkPose {
             angle: p.ground.angle,
@@ -513,8 +502,8 @@ impl Mechanism {
     ) -> Result<(), MechError> {
         let v: [&[f64]; 3] = [q, qd, qdd];
         let (n, ng) = (self.inst.drawing.len(), self.plan.len());
-        out.states.resize(n, LinkState::default());
-        out.systems.resize(ng, kinematics::DyadSystem::None);
+        fit(&mut out.states, n, LinkState::default());
+        fit(&mut out.systems, ng, kinematics::DyadSystem::None);
         let solved = if self.newton || self.redundant {
             // Newton and the branch search are given finite inputs only.
             self.check_inputs(&v).and_then(|()| {
@@ -532,8 +521,8 @@ impl Mechanism {
         let s = &out.states[..];
         let p = &self.program;
         let np = p.owners.len();
-        out.links.resize(n, Default::default());
-        out.points.resize(np, Default::default());
+        fit(&mut out.links, n, Default::default());
+        fit(&mut out.points, np, Default::default());
         // Every state and every published value derived from them checked finite, flags
         // joined by OR, one test at the end (the states as `finite_states`, the rest as
         // the points and cgs derived from them; an anchor point is its link's state).
@@ -587,6 +576,26 @@ impl Mechanism {
 #[inline(always)]
 fn nf(v: V2) -> bool {
     non_finite(v.x) | non_finite(v.y)
+}
+
+/// `g` zeros (the rates and accelerations of a pose): a slice of a constant up to 16
+/// inputs, no copy.
+#[inline(always)]
+pub(super) fn zeros(g: usize) -> std::borrow::Cow<'static, [f64]> {
+    const ZEROS: [f64; 16] = [0.0; 16];
+    match ZEROS.get(..g) {
+        Some(z) => std::borrow::Cow::Borrowed(z),
+        None => std::borrow::Cow::Owned(vec![0.0; g]),
+    }
+}
+
+/// `v` made `n` long, new entries `zero`; nothing but a comparison when it already is
+/// (a caller's buffer from an earlier call).
+#[inline(always)]
+pub(super) fn fit<T: Clone>(v: &mut Vec<T>, n: usize, zero: T) {
+    if v.len() != n {
+        v.resize(n, zero);
+    }
 }
 
 /// The error of a non-finite state or published value:

@@ -70,8 +70,8 @@ impl Mechanism {
         }
         let (mut r_stack, mut r_heap) = ([Reaction::default(); 8], Vec::new());
         let r = stack_or_heap(&mut r_stack, &mut r_heap, nj, Reaction::default());
-        out.driver.clear();
-        out.driver.resize(self.dof(), 0.0);
+        super::dispatch::fit(&mut out.driver, self.dof(), 0.0);
+        out.driver.fill(0.0);
         // The dyads' systems kept by the kinematics of this mechanism (a motion of another
         // has its systems rebuilt).
         let kept = Arc::ptr_eq(&m.model, &self.model) && m.systems.len() == self.plan.len();
@@ -85,7 +85,7 @@ impl Mechanism {
         }
         crate::kernel::finite::finite_reactions(r, &out.driver)
             .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
-        out.joints.resize(nj, JointReaction::default());
+        super::dispatch::fit(&mut out.joints, nj, JointReaction::default());
         for ((o, r), &prismatic) in out.joints.iter_mut().zip(&*r).zip(&self.program.prismatic) {
             *o = JointReaction {
                 force: r.force,

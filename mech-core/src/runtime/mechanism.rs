@@ -563,16 +563,28 @@ impl Machine for Mechanism {
     }
 }
 
+impl Mechanism {
+    /// I* and dI*/dq from the motion with q̇ = 1, q̈ = 0 solved at `q`.
+    #[inline(never)]
+    fn reduced_solved(&self, q: f64) -> Result<Reduced, MechError> {
+        Ok(self
+            .zhukovski_sums(q, 0.0, None, Level::Acceleration)?
+            .reduced)
+    }
+}
+
 impl OneDof for Mechanism {
+    /// Inline, so that a machine of gears' I*, a sum worked out at loading, is evaluated
+    /// in the caller; any other machine's is solved out of line
+    /// ([`Mechanism::reduced_solved`]).
+    #[inline]
     fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
         if let Some(series) = &self.reduced_series {
             // Constant ratios: I*(q) was worked out at loading, as a sum of cosines.
             crate::error::check_finite("q, qd, qdd", &[q])?;
             return Ok(series.at(q));
         }
-        Ok(self
-            .zhukovski_sums(q, 0.0, None, Level::Acceleration)?
-            .reduced)
+        self.reduced_solved(q)
     }
     fn reduced_many(&self, q: &[f64], inertia: &mut [f64], derivative: &mut [f64]) -> BatchErrors {
         Mechanism::reduced_many(self, q, inertia, derivative)

@@ -161,6 +161,11 @@ pub fn instance(model: &Model) -> Result<Instance, MechError> {
                 ca: local(model, jt.a, oa),
                 cb: local(model, jt.b, ob),
                 carrier: m.carrier,
+                inv_centre: if rack {
+                    0.0
+                } else {
+                    1.0 / (V2::new(ob[0], ob[1]) - V2::new(oa[0], oa[1])).norm()
+                },
             })
         })
         .collect();
