@@ -576,7 +576,7 @@ impl Mechanism {
 impl OneDof for Mechanism {
     /// Inline, so that a machine of gears' I*, a sum worked out at loading, is evaluated
     /// in the caller; any other machine's is solved out of line
-    /// ([`Mechanism::reduced_solved`]).
+    /// (`Mechanism::reduced_solved`).
     #[inline]
     fn reduced(&self, q: f64) -> Result<Reduced, MechError> {
         if let Some(series) = &self.reduced_series {
