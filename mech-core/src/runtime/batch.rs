@@ -502,7 +502,7 @@ impl Mechanism {
         }
         if let Some(loads) = loads {
             // As the scalar `sums`.
-            self.load_terms(&mut z, s, loads);
+            self.load_terms(&mut z, &|l| &s[l], loads);
         }
         z
     }

@@ -341,6 +341,10 @@ impl Mechanism {
             z.reduced = series.at(q);
             return Ok(z);
         }
+        if let (Some(one), Level::Acceleration) = (&self.program.one_loop, upto) {
+            // A crank and one dyad: solved on literal indices, on the stack.
+            return one.sums(self, drive, loads, qd);
+        }
         self.with_states(|s| {
             match upto {
                 Level::Acceleration => self.solve_at::<ACCELERATION>(drive, s, &mut [])?,
@@ -406,38 +410,80 @@ impl Mechanism {
         qd: f64,
         inertia: bool,
     ) -> Result<ZhukovskiSums, MechError> {
+        self.sums_by(|l| &s[l], s, loads, qd, inertia)
+    }
+
+    /// [`Mechanism::sums`] with link l's state read as `at(l)`; the force elements (and
+    /// the blame of a non-finite sum on one of them) read `all`, the states by the
+    /// mechanism's numbers (empty for a mechanism without elements).
+    #[inline(always)]
+    pub(super) fn sums_by<'s>(
+        &self,
+        at: impl Fn(usize) -> &'s LinkState,
+        all: &[LinkState],
+        loads: Option<&Loads>,
+        qd: f64,
+        inertia: bool,
+    ) -> Result<ZhukovskiSums, MechError> {
         let mut z = ZhukovskiSums::new();
         let (links, gravity) = (&self.inst.links[..], self.inst.gravity);
         if inertia {
             for &(l, share) in &self.program.inertial {
-                match share {
-                    Share::AboutPivot => z.inertia_about_pivot(&links[l], &s[l]),
-                    Share::Translating => z.inertia_translating(&links[l], &s[l]),
-                    Share::Spanned(n) => z.inertia_spanned(&links[l], &s[l], &s[n]),
-                    Share::General => z.inertia(&links[l], &s[l]),
-                }
+                inertia_term(&mut z, share, &links[l], at(l), &at);
             }
         }
         if let Some(loads) = loads {
             self.check_loads(loads)?;
             for &(l, share) in &self.program.weighed {
-                match share {
-                    Share::Translating => z.gravity_translating(&links[l], &s[l], gravity),
-                    Share::Spanned(n) => z.gravity_spanned(&links[l], &s[l], &s[n], gravity),
-                    _ => z.gravity(&links[l], &s[l], gravity),
-                }
+                gravity_term(&mut z, share, &links[l], at(l), &at, gravity);
             }
-            self.load_terms(&mut z, s, loads);
+            self.load_terms(&mut z, &at, loads);
             if !self.inst.elements.is_empty() {
-                z.elements(&self.inst.elements, s, qd);
+                z.elements(&self.inst.elements, all, qd);
             }
         }
         crate::kernel::finite::finite_result(
             "reduced inertia and moment",
             &[z.reduced.inertia, z.reduced.inertia_derivative, z.moment],
         )
-        .map_err(|e| self.inst.blame_elements(&self.model, s, e))?;
+        .map_err(|e| self.inst.blame_elements(&self.model, all, e))?;
         Ok(z)
+    }
+}
+
+/// Link `l`'s (geometry `g`, state `s`) term of Zhukovski's I* by its share (`at(n)` the
+/// state of a spanned link's partner n).
+#[inline(always)]
+pub(super) fn inertia_term<'s>(
+    z: &mut ZhukovskiSums,
+    share: Share,
+    g: &crate::kernel::link_state::LinkGeom,
+    s: &LinkState,
+    at: &impl Fn(usize) -> &'s LinkState,
+) {
+    match share {
+        Share::AboutPivot => z.inertia_about_pivot(g, s),
+        Share::Translating => z.inertia_translating(g, s),
+        Share::Spanned(n) => z.inertia_spanned(g, s, at(n)),
+        Share::General => z.inertia(g, s),
+    }
+}
+
+/// Link `l`'s (geometry `g`, state `s`) power of gravity `gravity` in Zhukovski's M* by
+/// its share (as [`inertia_term`]).
+#[inline(always)]
+pub(super) fn gravity_term<'s>(
+    z: &mut ZhukovskiSums,
+    share: Share,
+    g: &crate::kernel::link_state::LinkGeom,
+    s: &LinkState,
+    at: &impl Fn(usize) -> &'s LinkState,
+    gravity: V2,
+) {
+    match share {
+        Share::Translating => z.gravity_translating(g, s, gravity),
+        Share::Spanned(n) => z.gravity_spanned(g, s, at(n), gravity),
+        _ => z.gravity(g, s, gravity),
     }
 }
 
@@ -474,14 +520,19 @@ impl Mechanism {
     /// link left out (ω = 0: it does no work), any other force at its point, any other
     /// torque by the link's ω.
     #[inline(always)]
-    pub(super) fn load_terms<S, Z: LoadTerms<S>>(&self, z: &mut Z, s: &[S], loads: &Loads) {
+    pub(super) fn load_terms<'s, S: 's, Z: LoadTerms<S>>(
+        &self,
+        z: &mut Z,
+        at: &impl Fn(usize) -> &'s S,
+        loads: &Loads,
+    ) {
         for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
             let link = load.link();
             match (*value, self.program.on_translating[k]) {
-                (LoadValue::Force(v), true) => z.force_translating(&s[link], v),
-                (LoadValue::Force(v), false) => z.force(&s[link], self.inst.loads[k], v),
+                (LoadValue::Force(v), true) => z.force_translating(at(link), v),
+                (LoadValue::Force(v), false) => z.force(at(link), self.inst.loads[k], v),
                 (LoadValue::Torque(_), true) => {}
-                (LoadValue::Torque(t), false) => z.torque(&s[link], t),
+                (LoadValue::Torque(t), false) => z.torque(at(link), t),
             }
         }
     }

@@ -129,6 +129,9 @@ pub(super) struct Program {
     /// Per load: its link slides on the ground (a force's power is its anchor's, a
     /// torque's nothing: the generated code's Zhukovski terms).
     pub(super) on_translating: Vec<bool>,
+    /// A crank and one closed-form dyad, solved on literal indices
+    /// ([`super::one_loop`]); `None` for the other mechanisms.
+    pub(super) one_loop: Option<super::one_loop::OneLoop>,
 }
 
 impl Program {
@@ -177,7 +180,8 @@ impl Program {
             .iter()
             .map(|load| model.translates(load.link()))
             .collect();
-        Program {
+        let mut program = Program {
+            one_loop: None,
             on_translating,
             angles,
             angle_order,
@@ -190,7 +194,9 @@ impl Program {
                 .iter()
                 .map(|j| j.kind == JointKind::Prismatic)
                 .collect(),
-        }
+        };
+        program.one_loop = super::one_loop::OneLoop::find(model, plan, &inst.joints, &program);
+        program
     }
 }
 

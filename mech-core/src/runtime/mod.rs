@@ -9,6 +9,7 @@ mod dispatch;
 mod forces;
 pub mod mechanism;
 mod newton;
+mod one_loop;
 pub mod results;
 pub mod spatial_columns;
 mod strength;
