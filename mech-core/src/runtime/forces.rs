@@ -451,10 +451,10 @@ impl Mechanism {
     }
 }
 
-/// Link `l`'s (geometry `g`, state `s`) term of Zhukovski's I* by its share (`at(n)` the
+/// A link's (geometry `g`, state `s`) term of Zhukovski's I* by its share (`at(n)` the
 /// state of a spanned link's partner n).
 #[inline(always)]
-pub(super) fn inertia_term<'s>(
+fn inertia_term<'s>(
     z: &mut ZhukovskiSums,
     share: Share,
     g: &crate::kernel::link_state::LinkGeom,
@@ -469,10 +469,10 @@ pub(super) fn inertia_term<'s>(
     }
 }
 
-/// Link `l`'s (geometry `g`, state `s`) power of gravity `gravity` in Zhukovski's M* by
+/// A link's (geometry `g`, state `s`) power of gravity `gravity` in Zhukovski's M* by
 /// its share (as [`inertia_term`]).
 #[inline(always)]
-pub(super) fn gravity_term<'s>(
+fn gravity_term<'s>(
     z: &mut ZhukovskiSums,
     share: Share,
     g: &crate::kernel::link_state::LinkGeom,

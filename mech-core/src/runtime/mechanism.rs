@@ -195,7 +195,7 @@ impl Program {
                 .map(|j| j.kind == JointKind::Prismatic)
                 .collect(),
         };
-        program.one_loop = super::one_loop::OneLoop::find(model, plan, &inst.joints, &program);
+        program.one_loop = super::one_loop::OneLoop::find(model, plan, &inst.joints);
         program
     }
 }

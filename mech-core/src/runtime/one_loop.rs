@@ -35,9 +35,8 @@ use crate::model::{JointKind, Model};
 use crate::plan::assur::{Group, Kernel};
 use crate::MechError;
 
-use super::forces::{gravity_term, inertia_term};
 use super::instances::crank_alone;
-use super::mechanism::{Mechanism, Program, Share};
+use super::mechanism::Mechanism;
 use super::results::Loads;
 use crate::solvers::zhukovski::ZhukovskiSums;
 
@@ -71,12 +70,9 @@ pub(super) struct OneLoop {
     /// The crank's driven group, its body the local 1.
     driven: Driven,
     /// The local numbering is the mechanism's (the crank is link 1, b₁ link 2, b₂ link
-    /// 3): Zhukovski's sums then run over the local states in their order
-    /// ([`OneLoop::sums_in_order`]), each link's state at a constant place.
+    /// 3): Zhukovski's sums then read the local states by the mechanism's numbers, with
+    /// no map.
     in_order: bool,
-    /// Per local link 1 to 3: its share of I* and of M*'s gravity
-    /// ([`Program::inertial`], [`Program::weighed`]), if it has the terms.
-    shares: [(Option<Share>, Option<Share>); 3],
 }
 
 /// The local sides (a, b) of the dyad's three joints in the local order: b₁'s outer joint
@@ -164,12 +160,7 @@ impl OneLoop {
     /// The one-loop form of the plan `plan` of `model` (its joints' geometry `joints`),
     /// or `None`: two groups, a revolute crank on the ground (the ground the joint's
     /// first link) and one of the six closed-form dyads between the crank and the ground.
-    pub(super) fn find(
-        model: &Model,
-        plan: &[Group],
-        joints: &[JointGeom],
-        program: &Program,
-    ) -> Option<Self> {
+    pub(super) fn find(model: &Model, plan: &[Group], joints: &[JointGeom]) -> Option<Self> {
         let [g0, g1] = plan else { return None };
         if model.links.len() > 4 || model.allow_redundant && plan.iter().any(|g| g.redundant()) {
             return None;
@@ -231,7 +222,6 @@ impl OneLoop {
         }
         let mut one = OneLoop {
             in_order: false,
-            shares: [(None, None); 3],
             form,
             on_crank,
             mask,
@@ -246,12 +236,6 @@ impl OneLoop {
             },
             driven: Driven { body: 1, ..*d },
         };
-        let share = |list: &[(usize, Share)], k: usize| {
-            list.iter().find(|e| one.local_of[e.0] == k).map(|e| e.1)
-        };
-        for k in 1..one.len() {
-            one.shares[k - 1] = (share(&program.inertial, k), share(&program.weighed, k));
-        }
         one.in_order = (0..one.len()).all(|l| one.local_of[l] == l);
         // No link outside the loop (its states are the loop's alone), no force element
         // (they read the states by the mechanism's numbers).
@@ -366,45 +350,10 @@ impl OneLoop {
             _ => &l[3],
         };
         if self.in_order {
-            self.sums_in_order(m, &l, &|g: usize| &l[g], loads)
+            m.sums_by(|g: usize| &l[g], &[], loads, qd, true)
         } else {
             m.sums_by(at, &[], loads, qd, true)
         }
-    }
-
-    /// [`Mechanism::sums_by`] (with the inertia terms) of a mechanism numbered as the
-    /// local states `l` (no force element): the inertia and gravity terms in the links' order, each a literal place
-    /// in `l` (the same terms added in the same order: the same numbers).
-    #[inline(always)]
-    fn sums_in_order<'s>(
-        &self,
-        m: &Mechanism,
-        l: &'s [LinkState; 4],
-        at: &impl Fn(usize) -> &'s LinkState,
-        loads: Option<&Loads>,
-    ) -> Result<ZhukovskiSums, MechError> {
-        let mut z = ZhukovskiSums::new();
-        let (links, gravity) = (&m.inst.links, m.inst.gravity);
-        let n = self.len();
-        for k in 1..4 {
-            if let (true, Some(share)) = (k < n, self.shares[k - 1].0) {
-                inertia_term(&mut z, share, &links[k], &l[k], at);
-            }
-        }
-        if let Some(loads) = loads {
-            m.check_loads(loads)?;
-            for k in 1..4 {
-                if let (true, Some(share)) = (k < n, self.shares[k - 1].1) {
-                    gravity_term(&mut z, share, &links[k], &l[k], at, gravity);
-                }
-            }
-            m.load_terms(&mut z, at, loads);
-        }
-        crate::kernel::finite::finite_result(
-            "reduced inertia and moment",
-            &[z.reduced.inertia, z.reduced.inertia_derivative, z.moment],
-        )?;
-        Ok(z)
     }
 }
 
