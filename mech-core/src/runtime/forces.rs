@@ -20,7 +20,7 @@ use std::sync::Arc;
 
 use super::dispatch::{ACCELERATION, VELOCITY};
 use super::mechanism::Mechanism;
-use super::mechanism::{Scratch, Share};
+use super::mechanism::{LoadShare, Scratch, Share};
 use super::results::*;
 
 impl Mechanism {
@@ -526,13 +526,12 @@ impl Mechanism {
         at: &impl Fn(usize) -> &'s S,
         loads: &Loads,
     ) {
-        for (k, (load, value)) in self.model.loads.iter().zip(&loads.values).enumerate() {
-            let link = load.link();
-            match (*value, self.program.on_translating[k]) {
-                (LoadValue::Force(v), true) => z.force_translating(at(link), v),
-                (LoadValue::Force(v), false) => z.force(at(link), self.inst.loads[k], v),
-                (LoadValue::Torque(_), true) => {}
-                (LoadValue::Torque(t), false) => z.torque(at(link), t),
+        for (&(link, share), value) in self.program.load_shares.iter().zip(&loads.values) {
+            match (*value, share) {
+                (LoadValue::Force(v), LoadShare::Translating) => z.force_translating(at(link), v),
+                (LoadValue::Force(v), LoadShare::At(d)) => z.force(at(link), d, v),
+                (LoadValue::Torque(_), LoadShare::Translating) => {}
+                (LoadValue::Torque(t), LoadShare::At(_)) => z.torque(at(link), t),
             }
         }
     }

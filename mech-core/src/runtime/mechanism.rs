@@ -105,6 +105,17 @@ pub(super) enum Share {
     General,
 }
 
+/// How a load's power per unit input rate is taken (the generated code's Zhukovski
+/// terms).
+#[derive(Clone, Copy, Debug)]
+pub(super) enum LoadShare {
+    /// On a link sliding on the ground: a force's power is its anchor's, a torque's
+    /// nothing (ω = 0).
+    Translating,
+    /// A force at the point of local vector `d` of its link, a torque by the link's ω.
+    At(V2),
+}
+
 /// The plan and the model resolved once at loading into what every call reads: how each
 /// link and point is published, which links carry which terms, each joint's reaction
 /// shape.
@@ -126,9 +137,9 @@ pub(super) struct Program {
     pub(super) inertial: Vec<(usize, Share)>,
     /// Per joint: it is prismatic (its reaction has a moment).
     pub(super) prismatic: Vec<bool>,
-    /// Per load: its link slides on the ground (a force's power is its anchor's, a
-    /// torque's nothing: the generated code's Zhukovski terms).
-    pub(super) on_translating: Vec<bool>,
+    /// Per load: the link it acts on and how its power enters Zhukovski's M*
+    /// ([`Mechanism::load_terms`]).
+    pub(super) load_shares: Vec<(usize, LoadShare)>,
     /// A crank and one closed-form dyad, solved on literal indices
     /// ([`super::one_loop`]); `None` for the other mechanisms.
     pub(super) one_loop: Option<super::one_loop::OneLoop>,
@@ -175,14 +186,20 @@ impl Program {
             .filter(|&l| terms[l].inertia())
             .map(|l| (l, share(l, true)))
             .collect();
-        let on_translating = model
-            .loads
-            .iter()
-            .map(|load| model.translates(load.link()))
+        let load_shares = (model.loads.iter().zip(&inst.loads))
+            .map(|(load, &d)| {
+                let l = load.link();
+                let share = if model.translates(l) {
+                    LoadShare::Translating
+                } else {
+                    LoadShare::At(d)
+                };
+                (l, share)
+            })
             .collect();
         let mut program = Program {
             one_loop: None,
-            on_translating,
+            load_shares,
             angles,
             angle_order,
             owners,

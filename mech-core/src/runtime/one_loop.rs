@@ -30,7 +30,7 @@ use crate::kernel::constraints::{Drive, JointGeom, Level};
 use crate::kernel::dyad::Solver;
 use crate::kernel::kinematics;
 use crate::kernel::link_state::LinkState;
-use crate::kernel::screw::{Chain, Driven};
+use crate::kernel::screw::Driven;
 use crate::model::{JointKind, Model};
 use crate::plan::assur::{Group, Kernel};
 use crate::MechError;
@@ -55,10 +55,13 @@ pub(super) struct OneLoop {
     /// The dyad's kind (`RRR` … `SLOTTED`).
     form: u8,
     /// The dyad's first outer joint (b₁'s pin or guide, a slotted slider's guide) is on
-    /// the crank; else on the ground, and the other outer joint on the crank.
+    /// the crank; else on the ground, and the other outer joint on the crank. (With
+    /// `mask`, what chose `instance`; read again by the tests, which count the forms.)
+    #[cfg_attr(not(test), allow(dead_code))]
     on_crank: bool,
     /// Bit k: the dyad's joint k is a prismatic or slot joint written in the other order
     /// than the local one ([`canonical`]).
+    #[cfg_attr(not(test), allow(dead_code))]
     mask: u8,
     /// The crank's joint, then the dyad's three (a slotted slider's two, the second
     /// twice), their local vectors in the local order (a revolute written in the other
@@ -69,6 +72,9 @@ pub(super) struct OneLoop {
     local_of: [usize; 4],
     /// The crank's driven group, its body the local 1.
     driven: Driven,
+    /// This form's instance of the solve and the sums ([`OneLoop::sums_form`]), chosen
+    /// at loading: a call goes straight to it.
+    instance: Instance,
     /// The local numbering is the mechanism's (the crank is link 1, b₁ link 2, b₂ link
     /// 3): Zhukovski's sums then read the local states by the mechanism's numbers, with
     /// no map.
@@ -156,6 +162,63 @@ impl<const FORM: u8, const C: bool, const MASK: u8> Local<FORM, C, MASK> {
     const SOLVER: Solver = local_solver(FORM);
 }
 
+/// An instance of [`OneLoop::sums_form`].
+type Instance =
+    fn(&OneLoop, &Mechanism, Drive, Option<&Loads>, f64) -> Result<ZhukovskiSums, MechError>;
+
+/// The instance of the form (`FORM`, `C`, `MASK`) and crank pin (`PINNED`) given, if it
+/// is one of the 34 forms.
+fn instance(form: u8, on_crank: bool, mask: u8, pinned: bool) -> Option<Instance> {
+    macro_rules! by_form {
+        ($(($f:ident, $c:literal, $mask:literal)),* $(,)?) => {
+            match (form, on_crank, mask) {
+                $(($f, $c, $mask) => Some(if pinned {
+                    OneLoop::sums_form::<$f, $c, $mask, true>
+                } else {
+                    OneLoop::sums_form::<$f, $c, $mask, false>
+                }),)*
+                _ => None,
+            }
+        };
+    }
+    by_form!(
+        (RRR, true, 0),
+        (RRR, false, 0),
+        (RRP, true, 0),
+        (RRP, false, 0),
+        (RRP, true, 4),
+        (RRP, false, 4),
+        (RPR, true, 0),
+        (RPR, false, 0),
+        (RPR, true, 2),
+        (RPR, false, 2),
+        (PRP, true, 0),
+        (PRP, false, 0),
+        (PRP, true, 1),
+        (PRP, false, 1),
+        (PRP, true, 4),
+        (PRP, false, 4),
+        (PRP, true, 5),
+        (PRP, false, 5),
+        (RPP, true, 0),
+        (RPP, false, 0),
+        (RPP, true, 2),
+        (RPP, false, 2),
+        (RPP, true, 4),
+        (RPP, false, 4),
+        (RPP, true, 6),
+        (RPP, false, 6),
+        (SLOTTED, true, 0),
+        (SLOTTED, false, 0),
+        (SLOTTED, true, 1),
+        (SLOTTED, false, 1),
+        (SLOTTED, true, 2),
+        (SLOTTED, false, 2),
+        (SLOTTED, true, 3),
+        (SLOTTED, false, 3),
+    )
+}
+
 impl OneLoop {
     /// The one-loop form of the plan `plan` of `model` (its joints' geometry `joints`),
     /// or `None`: two groups, a revolute crank on the ground (the ground the joint's
@@ -235,6 +298,7 @@ impl OneLoop {
                 to
             },
             driven: Driven { body: 1, ..*d },
+            instance: instance(form, on_crank, mask, d.pinned)?,
         };
         one.in_order = (0..one.len()).all(|l| one.local_of[l] == l);
         // No link outside the loop (its states are the loop's alone), no force element
@@ -253,9 +317,22 @@ impl OneLoop {
 
     /// Zhukovski's sums of `m` ([`Mechanism::sums`]: the inertia terms, and those of
     /// `loads` when given) over its motion at `drive`, solved up to the accelerations on
-    /// the local numbering. One instance per form.
-    #[inline(never)]
+    /// the local numbering by this form's instance.
+    #[inline(always)]
     pub(super) fn sums(
+        &self,
+        m: &Mechanism,
+        drive: Drive,
+        loads: Option<&Loads>,
+        qd: f64,
+    ) -> Result<ZhukovskiSums, MechError> {
+        (self.instance)(self, m, drive, loads, qd)
+    }
+
+    /// One instance of [`OneLoop::sums`]: the joints rebuilt with the literal sides of
+    /// `Local<FORM, C, MASK>`, both groups solved on local states, the sums read them
+    /// through the map from the mechanism's numbers.
+    fn sums_form<const FORM: u8, const C: bool, const MASK: u8, const PINNED: bool>(
         &self,
         m: &Mechanism,
         drive: Drive,
@@ -265,75 +342,14 @@ impl OneLoop {
         let Kernel::Chain(c) = &m.plan[1].kernel else {
             unreachable!("a one-loop plan's second group is a chain")
         };
-        macro_rules! by_form {
-            ($(($f:ident, $c:literal, $mask:literal)),* $(,)?) => {
-                match (self.form, self.on_crank, self.mask) {
-                    $(($f, $c, $mask) => if self.driven.pinned {
-                        self.sums_form::<$f, $c, $mask, true>(m, c, drive, loads, qd)
-                    } else {
-                        self.sums_form::<$f, $c, $mask, false>(m, c, drive, loads, qd)
-                    },)*
-                    _ => unreachable!("OneLoop::find returns only these forms"),
-                }
-            };
-        }
-        by_form!(
-            (RRR, true, 0),
-            (RRR, false, 0),
-            (RRP, true, 0),
-            (RRP, false, 0),
-            (RRP, true, 4),
-            (RRP, false, 4),
-            (RPR, true, 0),
-            (RPR, false, 0),
-            (RPR, true, 2),
-            (RPR, false, 2),
-            (PRP, true, 0),
-            (PRP, false, 0),
-            (PRP, true, 1),
-            (PRP, false, 1),
-            (PRP, true, 4),
-            (PRP, false, 4),
-            (PRP, true, 5),
-            (PRP, false, 5),
-            (RPP, true, 0),
-            (RPP, false, 0),
-            (RPP, true, 2),
-            (RPP, false, 2),
-            (RPP, true, 4),
-            (RPP, false, 4),
-            (RPP, true, 6),
-            (RPP, false, 6),
-            (SLOTTED, true, 0),
-            (SLOTTED, false, 0),
-            (SLOTTED, true, 1),
-            (SLOTTED, false, 1),
-            (SLOTTED, true, 2),
-            (SLOTTED, false, 2),
-            (SLOTTED, true, 3),
-            (SLOTTED, false, 3),
-        )
-    }
-
-    /// One instance of [`OneLoop::sums`]: the joints rebuilt with the literal sides of
-    /// `Local<FORM, C, MASK>`, both groups solved on local states, the sums read them
-    /// through the map from the mechanism's numbers.
-    #[inline(always)]
-    fn sums_form<const FORM: u8, const C: bool, const MASK: u8, const PINNED: bool>(
-        &self,
-        m: &Mechanism,
-        c: &Chain,
-        drive: Drive,
-        loads: Option<&Loads>,
-        qd: f64,
-    ) -> Result<ZhukovskiSums, MechError> {
         let upto = Level::Acceleration;
         let sides = Local::<FORM, C, MASK>::SIDES;
         let joint = |k: usize| self.local[k + 1].with_links(sides[k].0, sides[k].1, [false; 2]);
         let (dn, [j0]) = crank_alone::<true, PINNED>(&self.driven, &self.local[0]);
         let joints = [j0, joint(0), joint(1), joint(2)];
+        // The ground's state is the drawing's, at rest with its anchor at the origin
+        // (`plan::geometry::anchor`): a constant, which the kernels' reads of it fold.
         let mut l = [LinkState::default(); 4];
-        l[0] = m.inst.drawing[0];
         let crank = Solver::DrivenRevolute {
             body: 1,
             joint: 0,
